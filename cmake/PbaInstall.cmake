@@ -1,0 +1,19 @@
+# `cmake --install` puts the core's headers, library and a CMake package in place,
+# so another project can `find_package(pba)` and link `pba::core`.
+include(CMakePackageConfigHelpers)
+install(DIRECTORY include/pba DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(TARGETS pba_core pba_flags EXPORT pbaTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(EXPORT pbaTargets NAMESPACE pba:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/pba)
+configure_package_config_file(cmake/pbaConfig.cmake.in
+  ${CMAKE_CURRENT_BINARY_DIR}/pbaConfig.cmake
+  INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/pba)
+write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/pbaConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/pbaConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/pbaConfigVersion.cmake
+  DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/pba)
+if(TARGET pba)
+  install(TARGETS pba RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()

@@ -1,0 +1,6 @@
+# One place for compile flags shared by every pba target.
+add_library(pba_flags INTERFACE)
+target_compile_options(pba_flags INTERFACE
+  $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion>
+  $<$<BOOL:${PBA_WARNINGS_AS_ERRORS}>:-Werror>
+  $<$<BOOL:${PBA_NATIVE}>:-march=native>)

@@ -1,0 +1,86 @@
+#pragma once
+// Body: what every simulated object has (the practical's class diagram).
+// Particle derives from it today; rigid bodies will add orientation, angular
+// velocity and an inertia tensor in a subclass of their own.
+#include <memory>
+#include <string>
+
+#include "pba/integrator.hpp"
+#include "pba/math.hpp"
+#include "pba/mesh.hpp"
+#include "pba/state.hpp"
+
+namespace pba {
+
+class Body {
+public:
+    virtual ~Body() = default;
+    /// Deep copy through the base class, so a World (and a scene's reset) can copy its bodies.
+    virtual std::unique_ptr<Body> clone() const = 0;
+
+    // ---- get methods (the practical's names) ----
+    Mesh& getMesh() { return m_mesh; }
+    const Mesh& getMesh() const { return m_mesh; }
+    glm::mat4 getTranslate() const { return m_mesh.getTranslate(); }
+    glm::mat4 getRotate() const { return m_mesh.getRotate(); }
+    glm::mat4 getScale() const { return m_mesh.getScale(); }
+
+    dvec3& getAcc() { return m_acc; }
+    dvec3& getVel() { return m_vel; }
+    /// Writing through this reference does not move the mesh: prefer setPos.
+    dvec3& getPos() { return m_pos; }
+    const dvec3& getAcc() const { return m_acc; }
+    const dvec3& getVel() const { return m_vel; }
+    const dvec3& getPos() const { return m_pos; }
+
+    double getMass() const { return m_mass; }
+    double getCor() const { return m_cor; }
+
+    // ---- set methods ----
+    void setMesh(Mesh mesh);
+    void setAcc(const dvec3& acc) { m_acc = acc; }
+    void setVel(const dvec3& vel) { m_vel = vel; }
+    void setVel(int i, double v) { m_vel[i] = v; }
+    /// Moves the body and keeps the mesh's translation in sync.
+    void setPos(const dvec3& pos);
+    void setPos(int i, double p);
+    /// Throws std::invalid_argument unless mass is finite and positive.
+    void setMass(double mass);
+    /// Coefficient of restitution; throws std::invalid_argument outside [0, 1].
+    void setCor(double cor);
+
+    // ---- transformation methods: delegate to the mesh ----
+    void translate(const glm::vec3& offset) { m_mesh.translate(offset); }
+    void rotate(float angle, const glm::vec3& axis) { m_mesh.rotate(angle, axis); }
+    void scale(const glm::vec3& factors) { m_mesh.scale(factors); }
+
+    // ---- pba's additions ----
+    const std::string& getName() const { return m_name; }
+    void setName(std::string name) { m_name = std::move(name); }
+    Integrator getIntegrator() const { return m_integrator; }
+    void setIntegrator(Integrator integrator) { m_integrator = integrator; }
+    /// A fixed body receives no force and never moves (the integrator scene's reference).
+    bool isFixed() const { return m_fixed; }
+    void setFixed(bool fixed) { m_fixed = fixed; }
+
+    State getState() const { return {m_pos, m_vel}; }
+    void setState(const State& state);
+
+protected:
+    Body() = default;
+    Body(const Body&) = default;
+    Body& operator=(const Body&) = default;
+
+private:
+    Mesh m_mesh;          ///< mesh used to represent the body
+    double m_mass = 1.0;  ///< mass, kg
+    double m_cor = 1.0;   ///< coefficient of restitution in [0, 1]
+    dvec3 m_acc{0.0};     ///< acceleration of the last step, m/s^2
+    dvec3 m_vel{0.0};     ///< velocity, m/s
+    dvec3 m_pos{0.0};     ///< position, m
+    std::string m_name;
+    Integrator m_integrator = Integrator::SemiImplicitEuler;
+    bool m_fixed = false;
+};
+
+} // namespace pba

@@ -1,0 +1,333 @@
+#pragma once
+// Collisions of a point with the planes that bound the world (a ground plane, or the
+// six faces of the room). The region allowed to a body is the intersection of the
+// planes' inner half-spaces.
+//
+// How a bounce is resolved changes what the integrator study shows, so the response
+// is a named choice:
+//  - Exact: find the time of impact tau of the body's own integrator path, step to it,
+//    reflect the normal velocity, and integrate the rest of the step. It adds no error
+//    of its own: an integrator exact for constant acceleration stays exact through bounces.
+//  - Reflect: the classic practical solution; after a full step, mirror a body found
+//    beyond a surface back across it.
+//  - Clamp: after a full step, put the body back on the surface.
+// Every function here is a template over the scalar type and the acceleration, so the
+// same rule serves a double-precision Particle and a float swarm.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include "pba/integrator.hpp"
+
+namespace pba {
+
+enum class CollisionResponse { Exact, Reflect, Clamp };
+
+inline constexpr std::array<CollisionResponse, 3> kAllCollisionResponses{
+    CollisionResponse::Exact, CollisionResponse::Reflect, CollisionResponse::Clamp};
+
+/// "exact", "reflect", "clamp".
+std::string_view collisionResponseName(CollisionResponse response);
+std::optional<CollisionResponse> collisionResponseFromName(std::string_view name);
+
+/// The half-space dot(normal, x) >= offset; `normal` is a unit vector pointing inside.
+template <class T>
+struct PlaneT {
+    Vec3<T> normal;
+    T offset;
+    T distance(const Vec3<T>& x) const { return glm::dot(normal, x) - offset; }
+};
+using Plane = PlaneT<double>;
+
+namespace collision_detail {
+
+/// How many impacts one step may resolve before the rest of it is clamped (a body
+/// wedged in a corner with e close to 1 would otherwise loop).
+inline constexpr int kMaxEvents = 16;
+
+template <class T>
+inline T contactTolerance(const PlaneT<T>& plane)
+{
+    return T(64) * std::numeric_limits<T>::epsilon() * (T(1) + std::abs(plane.offset));
+}
+
+/// Moves x onto the plane along its normal (Sterbenz: exact when x is near the plane).
+template <class T>
+inline void snapOnto(const PlaneT<T>& plane, Vec3<T>& x)
+{
+    x -= plane.distance(x) * plane.normal;
+}
+
+/// Smallest tau in (0, limit] where c0 + c1 tau + c2 tau^2 falls through zero, with c0 >= 0.
+/// Uses the cancellation-free form of the quadratic formula.
+template <class T>
+inline std::optional<T> firstQuadraticCrossing(T c0, T c1, T c2, T limit)
+{
+    if (c0 <= T(0) && c1 < T(0))
+        return T(0); // on the surface and moving in: impact now
+    std::optional<T> best;
+    auto consider = [&](T r) {
+        if (r > T(0) && r <= limit && (!best || r < *best))
+            best = r;
+    };
+    if (c2 == T(0)) {
+        if (c1 < T(0))
+            consider(-c0 / c1);
+        return best;
+    }
+    const T disc = c1 * c1 - T(4) * c2 * c0;
+    if (disc < T(0))
+        return best;
+    const T q = T(-0.5) * (c1 + std::copysign(std::sqrt(disc), c1));
+    if (q != T(0)) {
+        consider(q / c2);
+        consider(c0 / q);
+    }
+    // Only a crossing from inside to outside counts: the slope there must be negative.
+    if (best && c1 + T(2) * c2 * *best > T(0))
+        return std::nullopt;
+    return best;
+}
+
+/// Signed distance after one integrator step of length tau from (x, v).
+template <class T, class Accel>
+inline T distanceAfter(Integrator integrator, const PlaneT<T>& plane, Vec3<T> x, Vec3<T> v, T tau, Accel&& accel)
+{
+    integrate(integrator, x, v, tau, accel);
+    return plane.distance(x);
+}
+
+/// The time of impact of one integrator step with a plane, or nothing if the step stays inside.
+/// Forward Euler, semi-implicit Euler and velocity Verlet move the position along a polynomial
+/// in tau built from the start-of-step acceleration, so their impact time is closed form.
+/// RK4's path is a polynomial only for constant forces: it is bracketed and bisected on the
+/// real RK4 step, which converges to the same root (to rounding) when the forces are constant.
+template <class T, class Accel>
+inline std::optional<T> timeOfImpact(Integrator integrator, const PlaneT<T>& plane, const Vec3<T>& x,
+                                     const Vec3<T>& v, T limit, Accel&& accel)
+{
+    const T c0 = std::max(plane.distance(x), T(0));
+    const T c1 = glm::dot(plane.normal, v);
+    const T an = glm::dot(plane.normal, accel(x, v));
+    switch (integrator) {
+    case Integrator::ForwardEuler: return firstQuadraticCrossing(c0, c1, T(0), limit);
+    case Integrator::SemiImplicitEuler: return firstQuadraticCrossing(c0, c1, an, limit);
+    case Integrator::VelocityVerlet: return firstQuadraticCrossing(c0, c1, T(0.5) * an, limit);
+    case Integrator::RK4: break;
+    }
+    // RK4: the constant-acceleration estimate and a few samples find the first sign change.
+    constexpr int kSamples = 8;
+    const std::optional<T> estimate = firstQuadraticCrossing(c0, c1, T(0.5) * an, limit);
+    if (estimate && *estimate == T(0))
+        return estimate;
+    if (!estimate && distanceAfter(integrator, plane, x, v, limit, accel) >= T(0))
+        return std::nullopt;
+    std::array<T, kSamples + 1> taus{};
+    std::size_t count = 0;
+    for (int k = 1; k <= kSamples; ++k)
+        taus[count++] = limit * T(k) / T(kSamples);
+    if (estimate)
+        taus[count++] = *estimate;
+    std::sort(taus.begin(), taus.begin() + count);
+    T lo = T(0);
+    T hi = limit;
+    bool found = false;
+    for (std::size_t i = 0; i < count && !found; ++i) {
+        if (distanceAfter(integrator, plane, x, v, taus[i], accel) < T(0)) {
+            hi = taus[i];
+            found = true;
+        } else {
+            lo = taus[i];
+        }
+    }
+    if (!found)
+        return std::nullopt;
+    for (int i = 0; i < 200 && lo < hi; ++i) {
+        const T mid = lo + (hi - lo) * T(0.5);
+        if (mid <= lo || mid >= hi)
+            break;
+        (distanceAfter(integrator, plane, x, v, mid, accel) < T(0) ? hi : lo) = mid;
+    }
+    return hi;
+}
+
+/// A body lies on a plane when it touches it and does not move away from it.
+template <class T>
+inline bool restsOn(const PlaneT<T>& plane, const Vec3<T>& x, const Vec3<T>& v)
+{
+    return std::abs(plane.distance(x)) <= contactTolerance(plane) && glm::dot(plane.normal, v) <= T(0);
+}
+
+/// Last line of defence for every mode: a body never ends a step outside.
+template <class T>
+inline void keepInside(std::span<const PlaneT<T>> planes, Vec3<T>& x, Vec3<T>& v)
+{
+    for (const PlaneT<T>& plane : planes) {
+        if (plane.distance(x) < T(0)) {
+            snapOnto(plane, x);
+            const T vn = glm::dot(plane.normal, v);
+            if (vn < T(0))
+                v -= vn * plane.normal;
+        }
+    }
+}
+
+} // namespace collision_detail
+
+/// The exact response. Returns the number of bounces during the step.
+///
+/// Resting contact: a body on a surface whose net acceleration pushes into it is held
+/// there by removing the normal components of its velocity and acceleration (the
+/// surface's normal force), so it neither sinks nor bounces an endless number of
+/// zero-length times. With e < 1 a rebound too weak to leave the surface for one full
+/// step (slower than |a.n| dt) becomes such a contact; with e = 1 no energy may be
+/// lost, so every rebound is kept.
+template <class T, class Accel>
+inline int stepExact(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
+                     Vec3<T>& v, T dt, Accel&& accel)
+{
+    using namespace collision_detail;
+    constexpr std::size_t kMaxPlanes = 8;
+    std::array<bool, kMaxPlanes> contact{};
+    auto constrained = [&](const Vec3<T>& px, const Vec3<T>& pv) {
+        Vec3<T> a = accel(px, pv);
+        for (std::size_t p = 0; p < planes.size() && p < kMaxPlanes; ++p) {
+            const T an = glm::dot(planes[p].normal, a);
+            if (contact[p] && an < T(0))
+                a -= an * planes[p].normal;
+        }
+        return a;
+    };
+    int bounces = 0;
+    T remaining = dt;
+    for (int event = 0; event < kMaxEvents && remaining > T(0); ++event) {
+        for (std::size_t p = 0; p < planes.size() && p < kMaxPlanes; ++p) {
+            contact[p] = false; // decide each plane afresh with the unconstrained acceleration
+            if (restsOn(planes[p], x, v) && glm::dot(planes[p].normal, accel(x, v)) < T(0)) {
+                contact[p] = true;
+                snapOnto(planes[p], x);
+                v -= glm::dot(planes[p].normal, v) * planes[p].normal;
+            }
+        }
+        std::optional<T> tau;
+        std::size_t hit = 0;
+        for (std::size_t p = 0; p < planes.size() && p < kMaxPlanes; ++p) {
+            if (contact[p])
+                continue;
+            const auto t = timeOfImpact(integrator, planes[p], x, v, remaining, constrained);
+            if (t && (!tau || *t < *tau)) {
+                tau = t;
+                hit = p;
+            }
+        }
+        if (!tau) {
+            integrate(integrator, x, v, remaining, constrained);
+            remaining = T(0);
+            break;
+        }
+        if (*tau > T(0))
+            integrate(integrator, x, v, *tau, constrained);
+        const PlaneT<T>& plane = planes[hit];
+        snapOnto(plane, x);
+        const T vn = glm::dot(plane.normal, v);
+        const T an = glm::dot(plane.normal, accel(x, v));
+        if (vn < T(0)) {
+            v -= (T(1) + restitution) * vn * plane.normal;
+            ++bounces;
+            if (restitution < T(1) && an < T(0) && -restitution * vn < -an * dt)
+                v -= glm::dot(plane.normal, v) * plane.normal; // too weak to leave: rest
+        }
+        remaining -= *tau;
+    }
+    keepInside(planes, x, v);
+    return bounces;
+}
+
+/// The classic response: a full step, then mirror the body back across every surface it
+/// passed (repeatedly, so even a body fast enough to cross the room ends inside).
+template <class T, class Accel>
+inline int stepReflect(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
+                       Vec3<T>& v, T dt, Accel&& accel)
+{
+    integrate(integrator, x, v, dt, accel);
+    int bounces = 0;
+    for (int pass = 0; pass < collision_detail::kMaxEvents; ++pass) {
+        bool mirrored = false;
+        for (const PlaneT<T>& plane : planes) {
+            const T d = plane.distance(x);
+            if (d >= T(0))
+                continue;
+            x -= T(2) * d * plane.normal;
+            const T vn = glm::dot(plane.normal, v);
+            if (vn < T(0)) {
+                v -= (T(1) + restitution) * vn * plane.normal;
+                ++bounces;
+            }
+            mirrored = true;
+        }
+        if (!mirrored)
+            break;
+    }
+    collision_detail::keepInside(planes, x, v);
+    return bounces;
+}
+
+/// A full step, then put the body back on every surface it passed.
+template <class T, class Accel>
+inline int stepClamp(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
+                     Vec3<T>& v, T dt, Accel&& accel)
+{
+    integrate(integrator, x, v, dt, accel);
+    int bounces = 0;
+    for (const PlaneT<T>& plane : planes) {
+        if (plane.distance(x) >= T(0))
+            continue;
+        collision_detail::snapOnto(plane, x);
+        const T vn = glm::dot(plane.normal, v);
+        if (vn < T(0)) {
+            v -= (T(1) + restitution) * vn * plane.normal;
+            ++bounces;
+        }
+    }
+    collision_detail::keepInside(planes, x, v);
+    return bounces;
+}
+
+/// One step of a body with the chosen response; returns the number of bounces.
+template <class T, class Accel>
+inline int stepWithCollisions(CollisionResponse response, Integrator integrator, std::span<const PlaneT<T>> planes,
+                              T restitution, Vec3<T>& x, Vec3<T>& v, T dt, Accel&& accel)
+{
+    if (planes.empty()) {
+        integrate(integrator, x, v, dt, accel);
+        return 0;
+    }
+    switch (response) {
+    case CollisionResponse::Exact: return stepExact(integrator, planes, restitution, x, v, dt, accel);
+    case CollisionResponse::Reflect: return stepReflect(integrator, planes, restitution, x, v, dt, accel);
+    case CollisionResponse::Clamp: return stepClamp(integrator, planes, restitution, x, v, dt, accel);
+    }
+    return 0;
+}
+
+/// The planes of a ground at height h (y up).
+template <class T>
+inline std::array<PlaneT<T>, 1> groundPlanes(T height)
+{
+    return {PlaneT<T>{Vec3<T>(0, 1, 0), height}};
+}
+
+/// The six inward-facing planes of an axis-aligned room; the floor comes first.
+template <class T>
+inline std::array<PlaneT<T>, 6> roomPlanes(const Vec3<T>& lo, const Vec3<T>& hi)
+{
+    return {PlaneT<T>{Vec3<T>(0, 1, 0), lo.y},  PlaneT<T>{Vec3<T>(0, -1, 0), -hi.y},
+            PlaneT<T>{Vec3<T>(1, 0, 0), lo.x},  PlaneT<T>{Vec3<T>(-1, 0, 0), -hi.x},
+            PlaneT<T>{Vec3<T>(0, 0, 1), lo.z},  PlaneT<T>{Vec3<T>(0, 0, -1), -hi.z}};
+}
+
+} // namespace pba

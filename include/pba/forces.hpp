@@ -1,0 +1,76 @@
+#pragma once
+// The basic forces. Each one's physics is a small template kernel (usable in float
+// by swarms); the class around it adapts the kernel to the Force interface.
+#include "pba/force.hpp"
+
+namespace pba {
+
+/// Uniform gravity: F = m g, potential energy -m g.x.
+class Gravity final : public ForceBase<Gravity> {
+public:
+    explicit Gravity(const dvec3& g) : m_g(g) {}
+    std::string_view type() const override { return "gravity"; }
+    dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const override;
+    double potentialEnergy(std::size_t index, const Body& body, const dvec3& x) const override;
+    const dvec3& acceleration() const { return m_g; }
+    void setAcceleration(const dvec3& g) { m_g = g; }
+
+private:
+    dvec3 m_g;
+};
+
+/// Linear drag F = -c v: the low-Reynolds-number model, which keeps the ODE linear
+/// so its exact solution stays available to the tests.
+template <class T>
+inline Vec3<T> dragForce(T coefficient, const Vec3<T>& v)
+{
+    return -coefficient * v;
+}
+
+class Drag final : public ForceBase<Drag> {
+public:
+    explicit Drag(double coefficient) : m_coefficient(coefficient) {}
+    std::string_view type() const override { return "drag"; }
+    dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const override;
+    double coefficient() const { return m_coefficient; }
+
+private:
+    double m_coefficient;
+};
+
+/// Damped spring between a fixed anchor and one particle:
+/// F = -k (|d| - L) d/|d| - c (v . d/|d|) d/|d|, with d = x - anchor.
+template <class T>
+inline Vec3<T> springForce(const Vec3<T>& anchor, T stiffness, T restLength, T damping, const Vec3<T>& x, const Vec3<T>& v)
+{
+    const Vec3<T> d = x - anchor;
+    const T length = glm::length(d);
+    if (length <= T(0))
+        return Vec3<T>(T(0)); // direction undefined at the anchor: no force rather than NaN
+    const Vec3<T> u = d / length;
+    return -(stiffness * (length - restLength) + damping * glm::dot(v, u)) * u;
+}
+
+class Spring final : public ForceBase<Spring> {
+public:
+    Spring(std::size_t particle, const dvec3& anchor, double stiffness, double restLength, double damping)
+        : m_particle(particle), m_anchor(anchor), m_stiffness(stiffness), m_restLength(restLength), m_damping(damping) {}
+    std::string_view type() const override { return "spring"; }
+    dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const override;
+    double potentialEnergy(std::size_t index, const Body& body, const dvec3& x) const override;
+
+    std::size_t particle() const { return m_particle; }
+    const dvec3& anchor() const { return m_anchor; }
+    double stiffness() const { return m_stiffness; }
+    double restLength() const { return m_restLength; }
+    double damping() const { return m_damping; }
+
+private:
+    std::size_t m_particle;
+    dvec3 m_anchor;
+    double m_stiffness;
+    double m_restLength;
+    double m_damping;
+};
+
+} // namespace pba

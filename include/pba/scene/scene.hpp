@@ -1,0 +1,51 @@
+#pragma once
+// Scenes: JSON files (documented in docs/scenes.md) that build a World. This library
+// sits on top of the core; the core itself knows no file format.
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pba/world.hpp"
+
+namespace pba {
+
+/// A scene as loaded: the world at t = 0 plus how long and with which dt to run it.
+struct Scene {
+    std::string name;
+    std::string description;
+    double dt = 0.01;        ///< s
+    double duration = 10.0;  ///< s
+    World world;
+    std::string source;      ///< file path, or "builtin:NAME"
+};
+
+/// Bad input: names the file, the field (as a JSON path such as particles[1].mass) and the reason.
+/// what() is the one-line message "FILE: FIELD: REASON".
+class SceneError : public std::runtime_error {
+public:
+    SceneError(std::string file, std::string field, std::string reason);
+    const std::string& file() const { return m_file; }
+    const std::string& field() const { return m_field; }
+    const std::string& reason() const { return m_reason; }
+
+private:
+    std::string m_file;
+    std::string m_field;
+    std::string m_reason;
+};
+
+/// Parses scene JSON text; `source` names it in errors.
+Scene parseScene(std::string_view json, const std::string& source);
+/// Reads and parses a scene file.
+Scene loadSceneFile(const std::filesystem::path& path);
+/// A built-in scene name ("integrators") or a path to a JSON file.
+Scene loadScene(std::string_view nameOrPath);
+
+/// The built-in scenes, shipped as files in scenes/ and compiled into the library.
+std::vector<std::string> builtinSceneNames();
+/// The JSON text of a built-in scene, or an empty view if there is none of that name.
+std::string_view builtinSceneText(std::string_view name);
+
+} // namespace pba

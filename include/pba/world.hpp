@@ -1,0 +1,120 @@
+#pragma once
+// The World owns bodies, forces and the surfaces that bound them, and advances them by
+// a fixed dt. The step runs in named phases:
+//   1. store previous states (for the renderer's interpolation)
+//   2. integrate each moving body with its own integrator, resolving collisions on the way
+//      (forces are summed at every trial state an integrator asks for)
+//   3. check the new states are finite
+// It knows no window, no file format and no clock: frame time never reaches it.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pba/body.hpp"
+#include "pba/collision.hpp"
+#include "pba/force.hpp"
+#include "pba/particle.hpp"
+#include "pba/state.hpp"
+
+namespace pba {
+
+/// An axis-aligned box: the room.
+struct Aabb {
+    dvec3 min{0.0};
+    dvec3 max{0.0};
+};
+
+/// Thrown by World::step when a body's position or velocity stops being finite.
+class NonFiniteStateError : public std::runtime_error {
+public:
+    NonFiniteStateError(std::string body, std::uint64_t step, double time, std::string quantity);
+    const std::string& body() const { return m_body; }
+    std::uint64_t step() const { return m_step; }
+    double time() const { return m_time; }
+    const std::string& quantity() const { return m_quantity; }
+
+private:
+    std::string m_body;
+    std::uint64_t m_step;
+    double m_time;
+    std::string m_quantity;
+};
+
+class World {
+public:
+    World() = default;
+    World(const World& other);
+    World& operator=(const World& other);
+    World(World&&) noexcept = default;
+    World& operator=(World&&) noexcept = default;
+    ~World() = default;
+
+    // ---- bodies ----
+    Body& addBody(std::unique_ptr<Body> body);
+    Particle& addParticle(const Particle& particle);
+    std::size_t bodyCount() const { return m_bodies.size(); }
+    Body& body(std::size_t i) { return *m_bodies[i]; }
+    const Body& body(std::size_t i) const { return *m_bodies[i]; }
+    std::optional<std::size_t> findBody(std::string_view name) const;
+
+    // ---- forces ----
+    Force& addForce(std::unique_ptr<Force> force);
+    std::size_t forceCount() const { return m_forces.size(); }
+    Force& force(std::size_t i) { return *m_forces[i]; }
+    const Force& force(std::size_t i) const { return *m_forces[i]; }
+    /// The gravitational acceleration of the world's Gravity forces (zero without any).
+    dvec3 gravity() const;
+
+    // ---- the surfaces ----
+    void setGround(double height);
+    void setRoom(const Aabb& room);
+    void clearSurfaces();
+    const std::optional<double>& ground() const { return m_ground; }
+    const std::optional<Aabb>& room() const { return m_room; }
+    std::span<const Plane> planes() const { return m_planes; }
+    CollisionResponse collisionResponse() const { return m_response; }
+    void setCollisionResponse(CollisionResponse response) { m_response = response; }
+
+    // ---- stepping ----
+    /// Advances every moving body by exactly dt. Throws NonFiniteStateError (leaving the
+    /// world as it was before the step) if a state stops being finite.
+    void step(double dt);
+    double time() const { return m_time; }
+    std::uint64_t stepCount() const { return m_steps; }
+    /// The state before the last step (equal to the current one before any step).
+    const State& previousState(std::size_t i) const { return m_previous[i]; }
+    /// Blend of previous and current state for rendering, alpha in [0, 1).
+    State interpolatedState(std::size_t i, double alpha) const;
+    /// Bounces of body i since the start.
+    std::uint64_t bounceCount(std::size_t i) const { return m_bounces[i]; }
+
+    // ---- physics read-outs ----
+    /// Net force over mass on body i at the trial state (x, v); zero for a fixed body.
+    dvec3 acceleration(std::size_t i, const dvec3& x, const dvec3& v) const;
+    double kineticEnergy(std::size_t i) const;
+    double potentialEnergy(std::size_t i) const;
+    double energy(std::size_t i) const { return kineticEnergy(i) + potentialEnergy(i); }
+
+private:
+    void storePreviousStates();
+    void integrateBodies(double dt);
+    void checkFinite(const std::vector<State>& before) const;
+
+    std::vector<std::unique_ptr<Body>> m_bodies;
+    std::vector<std::unique_ptr<Force>> m_forces;
+    std::vector<State> m_previous;
+    std::vector<std::uint64_t> m_bounces;
+    std::optional<double> m_ground;
+    std::optional<Aabb> m_room;
+    std::vector<Plane> m_planes;
+    CollisionResponse m_response = CollisionResponse::Exact;
+    double m_time = 0.0;
+    std::uint64_t m_steps = 0;
+};
+
+} // namespace pba
