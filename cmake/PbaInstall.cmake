@@ -2,7 +2,7 @@
 # so another project can `find_package(pba)` and link `pba::core`.
 include(CMakePackageConfigHelpers)
 install(DIRECTORY include/pba DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(TARGETS pba_core pba_flags EXPORT pbaTargets
+install(TARGETS pba_core EXPORT pbaTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

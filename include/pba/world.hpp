@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "pba/body.hpp"
@@ -103,7 +104,7 @@ public:
 private:
     void storePreviousStates();
     void integrateBodies(double dt);
-    void checkFinite(const std::vector<State>& before) const;
+    std::optional<std::pair<std::size_t, std::string>> firstNonFinite() const;
 
     std::vector<std::unique_ptr<Body>> m_bodies;
     std::vector<std::unique_ptr<Force>> m_forces;
@@ -115,6 +116,9 @@ private:
     CollisionResponse m_response = CollisionResponse::Exact;
     double m_time = 0.0;
     std::uint64_t m_steps = 0;
+    double m_lastDt = 0.0;       ///< dt of the previous step
+    double m_baseTime = 0.0;     ///< time when dt last changed
+    std::uint64_t m_baseSteps = 0;
 };
 
 } // namespace pba

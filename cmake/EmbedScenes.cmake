@@ -1,0 +1,13 @@
+# Writes OUT: a table of (name, JSON text) for every scene file in FILES.
+set(body "// Generated from scenes/*.json by cmake/EmbedScenes.cmake: do not edit.\n#include <string_view>\n#include <utility>\n\nnamespace pba::detail {\nextern const std::pair<std::string_view, std::string_view> kBuiltinScenes[];\nextern const std::size_t kBuiltinSceneCount;\nconst std::pair<std::string_view, std::string_view> kBuiltinScenes[] = {\n")
+set(count 0)
+string(REPLACE "|" ";" FILES "${FILES}")
+foreach(file IN LISTS FILES)
+  get_filename_component(name ${file} NAME_WE)
+  file(READ ${file} text)
+  string(APPEND body "    {\"${name}\", R\"pba_scene(${text})pba_scene\"},\n")
+  math(EXPR count "${count} + 1")
+endforeach()
+string(APPEND body "};\nconst std::size_t kBuiltinSceneCount = ${count};\n} // namespace pba::detail\n")
+file(WRITE ${OUT}.new "${body}")
+file(COPY_FILE ${OUT}.new ${OUT} ONLY_IF_DIFFERENT)

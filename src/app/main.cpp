@@ -1,0 +1,56 @@
+// The `pba` command: one subcommand per file, errors as one line and a documented exit code.
+#include <algorithm>
+#include <exception>
+#include <string>
+#include <vector>
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "command.hpp"
+#include "pba/scene/scene.hpp"
+
+int main(int argc, char** argv)
+{
+    using namespace pba::app;
+    CLI::App app{"pba: a physics-based animation lab. Particles, integrators and fixed timesteps you can see and "
+                 "measure.",
+                 "pba"};
+    app.footer("Exit status: 0 success, 1 other failure, 2 bad input or usage, 3 simulation failure "
+               "(non-finite state).\nRun `pba COMMAND --help` for the options of a command.");
+    app.require_subcommand(0, 1);
+    Action selected;
+    addSimCommand(app, selected);
+
+    // `pba` alone runs the default action (the same as `pba sim`).
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty())
+        args = {"sim"};
+    std::reverse(args.begin(), args.end()); // CLI11 takes the arguments in reverse order
+    try {
+        app.parse(args);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        fmt::print(stderr, "pba: error: {}\n", e.what());
+        return kExitBadInput;
+    }
+    if (!selected) {
+        fmt::print(stderr, "pba: error: no command given (see pba --help)\n");
+        return kExitBadInput;
+    }
+    try {
+        return selected();
+    } catch (const pba::SceneError& e) {
+        fmt::print(stderr, "pba: error: {}\n", e.what());
+        return kExitBadInput;
+    } catch (const UsageError& e) {
+        fmt::print(stderr, "pba: error: {}\n", e.what());
+        return kExitBadInput;
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "pba: error: {}\n", e.what());
+        return kExitFailure;
+    }
+}

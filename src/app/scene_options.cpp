@@ -1,0 +1,57 @@
+#include "scene_options.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "command.hpp"
+
+namespace pba::app {
+
+void addSceneOptions(CLI::App& command, SceneOptions& options, const std::string& defaultScene)
+{
+    options.scene = defaultScene;
+    command.add_option("scene", options.scene,
+                       "Built-in scene name or path to a JSON scene file (see `docs/scenes.md`)")
+        ->default_str(defaultScene);
+    command.add_option("--dt", options.dt, "Fixed physics timestep in seconds (overrides the scene)");
+    command.add_option("--duration", options.duration, "Simulated time in seconds (overrides the scene)");
+    command.add_option("--integrator", options.integrator,
+                       "forward-euler, semi-implicit-euler, velocity-verlet or rk4, for every moving particle");
+    command.add_option("--collision", options.collision,
+                       "Collision response: exact (time of impact), reflect (mirror back) or clamp (put back)");
+}
+
+Scene loadSceneWithOverrides(const SceneOptions& options)
+{
+    Scene scene = loadScene(options.scene);
+    if (options.dt) {
+        if (!std::isfinite(*options.dt) || *options.dt <= 0.0)
+            throw UsageError(fmt::format("--dt: must be finite and positive, got {}", *options.dt));
+        scene.dt = *options.dt;
+    }
+    if (options.duration) {
+        if (!std::isfinite(*options.duration) || *options.duration <= 0.0)
+            throw UsageError(fmt::format("--duration: must be finite and positive, got {}", *options.duration));
+        scene.duration = *options.duration;
+    }
+    if (options.integrator) {
+        const auto integrator = integratorFromName(*options.integrator);
+        if (!integrator)
+            throw UsageError(fmt::format("--integrator: unknown integrator '{}' (expected forward-euler, "
+                                         "semi-implicit-euler, velocity-verlet or rk4)", *options.integrator));
+        for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
+            if (!scene.world.body(i).isFixed())
+                scene.world.body(i).setIntegrator(*integrator);
+    }
+    if (options.collision) {
+        const auto response = collisionResponseFromName(*options.collision);
+        if (!response)
+            throw UsageError(fmt::format("--collision: unknown collision response '{}' (expected exact, reflect "
+                                         "or clamp)", *options.collision));
+        scene.world.setCollisionResponse(*response);
+    }
+    return scene;
+}
+
+} // namespace pba::app

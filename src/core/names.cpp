@@ -1,0 +1,55 @@
+// Names of the integrators and collision responses, as scenes and the command line spell them.
+#include "pba/collision.hpp"
+#include "pba/integrator.hpp"
+
+namespace pba {
+
+std::string_view integratorName(Integrator integrator)
+{
+    switch (integrator) {
+    case Integrator::ForwardEuler: return "forward-euler";
+    case Integrator::SemiImplicitEuler: return "semi-implicit-euler";
+    case Integrator::VelocityVerlet: return "velocity-verlet";
+    case Integrator::RK4: return "rk4";
+    }
+    return "?";
+}
+
+std::optional<Integrator> integratorFromName(std::string_view name)
+{
+    for (Integrator integrator : kAllIntegrators)
+        if (integratorName(integrator) == name)
+            return integrator;
+    return std::nullopt;
+}
+
+int integratorOrder(Integrator integrator)
+{
+    switch (integrator) {
+    case Integrator::ForwardEuler:
+    case Integrator::SemiImplicitEuler: return 1;
+    case Integrator::VelocityVerlet: return 2;
+    case Integrator::RK4: return 4;
+    }
+    return 0;
+}
+
+std::string_view collisionResponseName(CollisionResponse response)
+{
+    switch (response) {
+    case CollisionResponse::Exact: return "exact";
+    case CollisionResponse::Reflect: return "reflect";
+    case CollisionResponse::Clamp: return "clamp";
+    }
+    return "?";
+}
+
+std::optional<CollisionResponse> collisionResponseFromName(std::string_view name)
+{
+    for (CollisionResponse response : kAllCollisionResponses)
+        if (collisionResponseName(response) == name)
+            return response;
+    return std::nullopt;
+}
+
+} // namespace pba

@@ -1,0 +1,188 @@
+#include "pba/world.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "pba/forces.hpp"
+
+namespace pba {
+
+NonFiniteStateError::NonFiniteStateError(std::string body, std::uint64_t step, double time, std::string quantity)
+    : std::runtime_error(fmt::format("the {} of body '{}' is not finite at step {} (t = {} s): "
+                                     "try a smaller dt or another integrator",
+                                     quantity, body, step, time)),
+      m_body(std::move(body)), m_step(step), m_time(time), m_quantity(std::move(quantity))
+{
+}
+
+World::World(const World& other)
+    : m_previous(other.m_previous), m_bounces(other.m_bounces), m_ground(other.m_ground), m_room(other.m_room),
+      m_planes(other.m_planes), m_response(other.m_response), m_time(other.m_time), m_steps(other.m_steps),
+      m_lastDt(other.m_lastDt), m_baseTime(other.m_baseTime), m_baseSteps(other.m_baseSteps)
+{
+    m_bodies.reserve(other.m_bodies.size());
+    for (const auto& body : other.m_bodies)
+        m_bodies.push_back(body->clone());
+    m_forces.reserve(other.m_forces.size());
+    for (const auto& force : other.m_forces)
+        m_forces.push_back(force->clone());
+}
+
+World& World::operator=(const World& other)
+{
+    if (this != &other) {
+        World copy(other);
+        *this = std::move(copy);
+    }
+    return *this;
+}
+
+Body& World::addBody(std::unique_ptr<Body> body)
+{
+    m_previous.push_back(body->getState());
+    m_bounces.push_back(0);
+    m_bodies.push_back(std::move(body));
+    return *m_bodies.back();
+}
+
+Particle& World::addParticle(const Particle& particle)
+{
+    return static_cast<Particle&>(addBody(std::make_unique<Particle>(particle)));
+}
+
+std::optional<std::size_t> World::findBody(std::string_view name) const
+{
+    for (std::size_t i = 0; i < m_bodies.size(); ++i)
+        if (m_bodies[i]->getName() == name)
+            return i;
+    return std::nullopt;
+}
+
+Force& World::addForce(std::unique_ptr<Force> force)
+{
+    m_forces.push_back(std::move(force));
+    return *m_forces.back();
+}
+
+dvec3 World::gravity() const
+{
+    dvec3 g(0.0);
+    for (const auto& force : m_forces)
+        if (const auto* gravity = dynamic_cast<const Gravity*>(force.get()))
+            g += gravity->acceleration();
+    return g;
+}
+
+void World::setGround(double height)
+{
+    m_room.reset();
+    m_ground = height;
+    const auto planes = groundPlanes(height);
+    m_planes.assign(planes.begin(), planes.end());
+}
+
+void World::setRoom(const Aabb& room)
+{
+    m_ground.reset();
+    m_room = room;
+    const auto planes = roomPlanes(room.min, room.max);
+    m_planes.assign(planes.begin(), planes.end());
+}
+
+void World::clearSurfaces()
+{
+    m_ground.reset();
+    m_room.reset();
+    m_planes.clear();
+}
+
+dvec3 World::acceleration(std::size_t i, const dvec3& x, const dvec3& v) const
+{
+    const Body& b = *m_bodies[i];
+    if (b.isFixed())
+        return dvec3(0.0);
+    dvec3 f(0.0);
+    for (const auto& force : m_forces)
+        f += force->force(i, b, x, v);
+    return f / b.getMass();
+}
+
+State World::interpolatedState(std::size_t i, double alpha) const
+{
+    return interpolate(m_previous[i], m_bodies[i]->getState(), alpha);
+}
+
+double World::kineticEnergy(std::size_t i) const
+{
+    const Body& b = *m_bodies[i];
+    return 0.5 * b.getMass() * glm::dot(b.getVel(), b.getVel());
+}
+
+double World::potentialEnergy(std::size_t i) const
+{
+    const Body& b = *m_bodies[i];
+    double e = 0.0;
+    for (const auto& force : m_forces)
+        e += force->potentialEnergy(i, b, b.getPos());
+    return e;
+}
+
+void World::step(double dt)
+{
+    const std::vector<State> olderStates = m_previous;
+    storePreviousStates();
+    integrateBodies(dt);
+    if (const auto bad = firstNonFinite()) {
+        // Roll back so a viewer can pause on the last finite state instead of drawing garbage.
+        for (std::size_t i = 0; i < m_bodies.size(); ++i)
+            m_bodies[i]->setState(m_previous[i]);
+        m_previous = olderStates;
+        throw NonFiniteStateError(m_bodies[bad->first]->getName(), m_steps + 1, m_time + dt, bad->second);
+    }
+    // t = t0 + k dt from the last change of dt, rather than a running sum, so the time of
+    // step n is n dt to rounding instead of drifting by n rounding errors.
+    if (dt != m_lastDt) {
+        m_lastDt = dt;
+        m_baseTime = m_time;
+        m_baseSteps = m_steps;
+    }
+    ++m_steps;
+    m_time = m_baseTime + static_cast<double>(m_steps - m_baseSteps) * dt;
+}
+
+void World::storePreviousStates()
+{
+    for (std::size_t i = 0; i < m_bodies.size(); ++i)
+        m_previous[i] = m_bodies[i]->getState();
+}
+
+void World::integrateBodies(double dt)
+{
+    for (std::size_t i = 0; i < m_bodies.size(); ++i) {
+        Body& b = *m_bodies[i];
+        if (b.isFixed())
+            continue;
+        auto accel = [this, i](const dvec3& x, const dvec3& v) { return acceleration(i, x, v); };
+        State s = b.getState();
+        const int bounces = stepWithCollisions(m_response, b.getIntegrator(), std::span<const Plane>(m_planes),
+                                               b.getCor(), s.pos, s.vel, dt, accel);
+        m_bounces[i] += static_cast<std::uint64_t>(bounces);
+        b.setState(s);
+        b.setAcc(accel(s.pos, s.vel));
+    }
+}
+
+std::optional<std::pair<std::size_t, std::string>> World::firstNonFinite() const
+{
+    auto finite = [](const dvec3& u) { return std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z); };
+    for (std::size_t i = 0; i < m_bodies.size(); ++i) {
+        if (!finite(m_bodies[i]->getPos()))
+            return std::pair{i, std::string("position")};
+        if (!finite(m_bodies[i]->getVel()))
+            return std::pair{i, std::string("velocity")};
+    }
+    return std::nullopt;
+}
+
+} // namespace pba

@@ -1,0 +1,193 @@
+// Scene files to Worlds. The order of reading follows docs/scenes.md.
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "force_parsers.hpp"
+#include "json_reader.hpp"
+#include "pba/forces.hpp"
+#include "pba/scene/scene.hpp"
+
+namespace pba {
+
+SceneError::SceneError(std::string file, std::string field, std::string reason)
+    : std::runtime_error(fmt::format("{}: {}: {}", file, field, reason)), m_file(std::move(file)),
+      m_field(std::move(field)), m_reason(std::move(reason))
+{
+}
+
+namespace {
+
+using scene_detail::Json;
+using scene_detail::ObjectReader;
+
+void readSurfaces(ObjectReader& root, World& world)
+{
+    if (root.has("ground") && root.has("room"))
+        root.fail("room", "a scene has either a ground or a room, not both");
+    if (root.has("ground")) {
+        ObjectReader ground = root.object("ground");
+        world.setGround(ground.number("height", 0.0));
+        ground.finish();
+    }
+    if (root.has("room")) {
+        ObjectReader room = root.object("room");
+        const Aabb box{room.vec3("min"), room.vec3("max")};
+        for (int i = 0; i < 3; ++i)
+            if (!(box.min[i] < box.max[i]))
+                room.fail("min", fmt::format("must be below max on every axis (axis {}: {} >= {})", "xyz"[i],
+                                             box.min[i], box.max[i]));
+        world.setRoom(box);
+        room.finish();
+    }
+}
+
+Integrator readIntegrator(ObjectReader& reader, const std::string& key, Integrator fallback)
+{
+    if (!reader.has(key))
+        return fallback;
+    const std::string name = reader.string(key);
+    const auto integrator = integratorFromName(name);
+    if (!integrator)
+        reader.fail(key, fmt::format("unknown integrator '{}' (expected forward-euler, semi-implicit-euler, "
+                                     "velocity-verlet or rk4)", name));
+    return *integrator;
+}
+
+bool inside(const World& world, const dvec3& x)
+{
+    for (const Plane& plane : world.planes())
+        if (plane.distance(x) < 0.0)
+            return false;
+    return true;
+}
+
+void readParticle(const Json& value, const std::string& path, const std::string& file, World& world,
+                  std::set<std::string>& names)
+{
+    ObjectReader reader(value, path, file);
+    Particle p;
+    const std::string name = reader.string("name");
+    if (name.empty())
+        reader.fail("name", "must not be empty");
+    if (!names.insert(name).second)
+        reader.fail("name", fmt::format("another particle is already named '{}'", name));
+    p.setName(name);
+    p.setPos(reader.vec3("position"));
+    p.setVel(reader.vec3("velocity", dvec3(0.0)));
+    const double mass = reader.positive("mass", 1.0);
+    p.setMass(mass);
+    const double restitution = reader.number("restitution", 1.0);
+    if (!(restitution >= 0.0 && restitution <= 1.0))
+        reader.fail("restitution", fmt::format("must be in [0, 1], got {}", restitution));
+    p.setCor(restitution);
+    p.setIntegrator(readIntegrator(reader, "integrator", Integrator::SemiImplicitEuler));
+    p.setFixed(reader.boolean("fixed", false));
+    if (!inside(world, p.getPos()))
+        reader.fail("position", "lies outside the ground or room");
+    reader.finish();
+    world.addParticle(p);
+}
+
+void readForce(const Json& value, const std::string& path, const std::string& file, World& world)
+{
+    ObjectReader reader(value, path, file);
+    const std::string type = reader.string("type");
+    for (const auto& known : scene_detail::forceTypes()) {
+        if (type == known.name) {
+            world.addForce(known.parse(reader, world));
+            reader.finish();
+            return;
+        }
+    }
+    std::string names;
+    for (const auto& known : scene_detail::forceTypes())
+        names += (names.empty() ? "" : ", ") + std::string(known.name);
+    reader.fail("type", fmt::format("unknown force type '{}' (expected one of: {})", type, names));
+}
+
+Scene readScene(const Json& document, const std::string& file)
+{
+    ObjectReader root(document, "", file);
+    Scene scene;
+    scene.source = file;
+    scene.name = root.string("name", "unnamed");
+    scene.description = root.string("description", "");
+    scene.dt = root.positive("dt", 0.01);
+    scene.duration = root.positive("duration", 10.0);
+    const dvec3 g = root.vec3("gravity", dvec3(0.0, -9.81, 0.0));
+    if (root.has("collision_response")) {
+        const std::string name = root.string("collision_response");
+        const auto response = collisionResponseFromName(name);
+        if (!response)
+            root.fail("collision_response",
+                      fmt::format("unknown collision response '{}' (expected exact, reflect or clamp)", name));
+        scene.world.setCollisionResponse(*response);
+    }
+    readSurfaces(root, scene.world);
+    scene.world.addForce(std::make_unique<Gravity>(g));
+    std::set<std::string> names;
+    root.array("particles", [&](const Json& value, const std::string& path, std::size_t) {
+        readParticle(value, path, file, scene.world, names);
+    });
+    root.array("forces", [&](const Json& value, const std::string& path, std::size_t) {
+        readForce(value, path, file, scene.world);
+    });
+    root.finish();
+    return scene;
+}
+
+std::string parseErrorReason(const nlohmann::json::parse_error& error)
+{
+    std::string what = error.what();
+    const auto pos = what.find("] ");
+    return "malformed JSON: " + (pos == std::string::npos ? what : what.substr(pos + 2));
+}
+
+} // namespace
+
+Scene parseScene(std::string_view json, const std::string& source)
+{
+    Json document;
+    try {
+        document = Json::parse(json.begin(), json.end());
+    } catch (const nlohmann::json::parse_error& error) {
+        throw SceneError(source, "(document)", parseErrorReason(error));
+    }
+    return readScene(document, source);
+}
+
+Scene loadSceneFile(const std::filesystem::path& path)
+{
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw SceneError(path.string(), "(file)", std::filesystem::exists(path, ec) ? "is not a regular file"
+                                                                                     : "no such file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw SceneError(path.string(), "(file)", "cannot be opened for reading");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parseScene(text.str(), path.string());
+}
+
+Scene loadScene(std::string_view nameOrPath)
+{
+    if (const std::string_view text = builtinSceneText(nameOrPath); !text.empty()) {
+        Scene scene = parseScene(text, fmt::format("builtin:{}", nameOrPath));
+        return scene;
+    }
+    const std::filesystem::path path{std::string(nameOrPath)};
+    if (path.has_parent_path() || path.extension() == ".json" || std::filesystem::exists(path))
+        return loadSceneFile(path);
+    std::string names;
+    for (const auto& name : builtinSceneNames())
+        names += (names.empty() ? "" : ", ") + name;
+    throw SceneError(std::string(nameOrPath), "(scene)",
+                     fmt::format("neither a built-in scene ({}) nor a file", names));
+}
+
+} // namespace pba
