@@ -140,7 +140,7 @@ Scene readScene(const Json& document, const std::string& file)
     return scene;
 }
 
-std::string parseErrorReason(const nlohmann::json::parse_error& error)
+std::string parseErrorReason(const nlohmann::json::exception& error)
 {
     std::string what = error.what();
     const auto pos = what.find("] ");
@@ -154,7 +154,7 @@ Scene parseScene(std::string_view json, const std::string& source)
     Json document;
     try {
         document = Json::parse(json.begin(), json.end());
-    } catch (const nlohmann::json::parse_error& error) {
+    } catch (const nlohmann::json::exception& error) { // parse errors and number overflow
         throw SceneError(source, "(document)", parseErrorReason(error));
     }
     return readScene(document, source);

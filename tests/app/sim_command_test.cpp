@@ -1,0 +1,123 @@
+// `pba sim` end to end: the CSV contract, frame-rate independence and bad input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+
+#include "support/run_command.hpp"
+
+using namespace pba::test;
+
+TEST(PbaSim, PrintsASummaryTableForTheIntegratorsScene)
+{
+    const CommandResult r = runPba("sim integrators");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* expected : {"reference", "forward-euler", "semi-implicit-euler", "highest y", "bounces",
+                                 "E now/E start"})
+        EXPECT_NE(r.out.find(expected), std::string::npos) << expected << "\n" << r.out;
+}
+
+TEST(PbaSim, WritesOneCsvRowPerBodyPerStepIncludingStepZero)
+{
+    const auto dir = freshDir("sim_csv");
+    const auto csv = dir / "run.csv";
+    const CommandResult r = runPba("sim integrators --dt 0.01 --duration 1 --out " + csv.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream in(csv);
+    std::string header;
+    std::getline(in, header);
+    EXPECT_EQ(header.rfind("step,t,body,x,y,z,vx,vy,vz", 0), 0u) << header;
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line.rfind("0,0,reference,", 0), 0u) << line;
+    int rows = 1;
+    std::string last;
+    while (std::getline(in, line)) {
+        ++rows;
+        last = line;
+    }
+    EXPECT_EQ(rows, 101 * 3);
+    EXPECT_EQ(last.rfind("100,1,semi-implicit-euler,", 0), 0u) << last;
+}
+
+TEST(PbaSim, FrameRateDoesNotChangeTheResults)
+{
+    const auto dir = freshDir("sim_frames");
+    for (const char* rate : {"30", "144"}) {
+        const CommandResult r = runPba(std::string("sim integrators --duration 3 --frame-rate ") + rate + " --out " +
+                                       (dir / (std::string(rate) + ".csv")).string());
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+    }
+    const CommandResult plain = runPba("sim integrators --duration 3 --out " + (dir / "plain.csv").string());
+    ASSERT_EQ(plain.exitCode, 0);
+    const std::string a = readFile(dir / "30.csv");
+    EXPECT_FALSE(a.empty());
+    EXPECT_EQ(a, readFile(dir / "144.csv"));
+    EXPECT_EQ(a, readFile(dir / "plain.csv"));
+}
+
+TEST(PbaSim, OverridesApplyToEveryMovingParticle)
+{
+    const CommandResult r = runPba("sim integrators --integrator rk4 --collision reflect --dt 0.005 --duration 2");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("collision response reflect"), std::string::npos);
+    EXPECT_NE(r.out.find("(fixed)"), std::string::npos);
+    EXPECT_EQ(r.out.find("forward-euler          forward-euler"), std::string::npos);
+}
+
+struct BadRun {
+    const char* args;
+    const char* message;
+};
+
+void PrintTo(const BadRun& bad, std::ostream* os) { *os << bad.args; }
+
+class PbaSimBadInput : public testing::TestWithParam<BadRun> {};
+
+TEST_P(PbaSimBadInput, ExitsTwoWithOneLineAndNoOutputFile)
+{
+    const auto dir = freshDir("sim_bad");
+    const auto scene = dir / "bad.json";
+    std::ofstream(scene) << R"({"particles": [{"name": "a", "position": [0, 1, 0], "mass": -1}]})";
+    std::string args = GetParam().args;
+    if (const auto pos = args.find("BAD"); pos != std::string::npos)
+        args.replace(pos, 3, scene.string());
+    const auto out = dir / "out.csv";
+    const CommandResult r = runPba("sim " + args + " --out " + out.string());
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find(GetParam().message), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1) << "no temporary files left";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    PbaSim, PbaSimBadInput,
+    testing::Values(BadRun{"BAD", "particles[0].mass: must be positive"},
+                    BadRun{"no-such-scene", "neither a built-in scene"},
+                    BadRun{"/nonexistent/x.json", "no such file"},
+                    BadRun{"integrators --dt 0", "--dt: must be finite and positive"},
+                    BadRun{"integrators --dt -1", "--dt"},
+                    BadRun{"integrators --duration 0", "--duration"},
+                    BadRun{"integrators --integrator leapfrog", "unknown integrator 'leapfrog'"},
+                    BadRun{"integrators --collision bounce", "unknown collision response 'bounce'"},
+                    BadRun{"integrators --frame-rate 0", "--frame-rate"},
+                    BadRun{"integrators --no-such-option", "no-such-option"}));
+
+TEST(PbaSim, UnwritableOutputIsBadInput)
+{
+    const CommandResult r = runPba("sim integrators --out /nonexistent/dir/run.csv");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("/nonexistent/dir/run.csv"), std::string::npos) << r.err;
+}
+
+TEST(PbaSim, HelpExplainsEveryOption)
+{
+    const CommandResult top = runPba("--help");
+    EXPECT_EQ(top.exitCode, 0);
+    EXPECT_NE(top.out.find("sim"), std::string::npos);
+    const CommandResult sim = runPba("sim --help");
+    EXPECT_EQ(sim.exitCode, 0);
+    for (const char* option : {"--dt", "--duration", "--integrator", "--collision", "--frame-rate", "--out"})
+        EXPECT_NE(sim.out.find(option), std::string::npos) << option;
+}

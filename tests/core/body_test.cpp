@@ -1,0 +1,104 @@
+// The practical's class diagram, made real: Particle's defaults and Body's accessors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "pba/particle.hpp"
+
+using namespace pba;
+
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+} // namespace
+
+TEST(Particle, DefaultsFollowThePractical)
+{
+    Particle p;
+    EXPECT_EQ(p.getMass(), 1.0);
+    EXPECT_EQ(p.getCor(), 1.0);
+    EXPECT_EQ(p.getVel(), dvec3(0.0));
+    EXPECT_EQ(p.getAcc(), dvec3(0.0));
+    EXPECT_FALSE(p.isFixed());
+    EXPECT_EQ(p.getMesh().vertices().size(), 4u);
+    EXPECT_EQ(p.getMesh().indices().size(), 6u);
+    EXPECT_FLOAT_EQ(p.getScale()[0][0], 0.1f);
+    EXPECT_FLOAT_EQ(p.getScale()[1][1], 0.1f);
+    // Rotated by pi/2 about x: the quad's +y axis maps to +z, so it lies in the xz plane.
+    const glm::vec4 y = p.getRotate() * glm::vec4(0, 1, 0, 0);
+    EXPECT_NEAR(y.z, 1.0f, 1e-6f);
+    EXPECT_NEAR(y.y, 0.0f, 1e-6f);
+}
+
+TEST(Body, SetPosKeepsTheMeshTranslationInSync)
+{
+    Particle p;
+    p.setPos(dvec3(1.5, -2.0, 3.25));
+    EXPECT_EQ(p.getPos(), dvec3(1.5, -2.0, 3.25));
+    EXPECT_EQ(glm::vec3(p.getTranslate()[3]), glm::vec3(1.5f, -2.0f, 3.25f));
+    p.setPos(1, 7.0);
+    EXPECT_EQ(p.getPos().y, 7.0);
+    EXPECT_EQ(p.getTranslate()[3][1], 7.0f);
+}
+
+TEST(Body, AccessorsReturnReferencesAndSetSingleComponents)
+{
+    Particle p;
+    p.getVel() = dvec3(1, 2, 3);
+    p.setVel(2, -4.0);
+    EXPECT_EQ(p.getVel(), dvec3(1, 2, -4));
+    p.getAcc().y = -9.81;
+    EXPECT_EQ(p.getAcc().y, -9.81);
+    p.setAcc(dvec3(0, 1, 0));
+    EXPECT_EQ(p.getAcc(), dvec3(0, 1, 0));
+}
+
+TEST(Body, TransformationsDelegateToTheMesh)
+{
+    Particle p;
+    p.translate(glm::vec3(1, 0, 0));
+    EXPECT_FLOAT_EQ(p.getTranslate()[3][0], 1.0f);
+    p.scale(glm::vec3(2.0f));
+    EXPECT_FLOAT_EQ(p.getScale()[0][0], 0.2f);
+    const glm::mat4 before = p.getRotate();
+    p.rotate(std::numbers::pi_v<float>, glm::vec3(0, 1, 0));
+    EXPECT_NE(p.getRotate(), before);
+}
+
+TEST(Body, RejectsBadMassAndRestitutionNamingTheValue)
+{
+    Particle p;
+    for (double bad : {0.0, -1.0, kNaN, kInf}) {
+        try {
+            p.setMass(bad);
+            FAIL() << "mass " << bad << " accepted";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find("mass"), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_EQ(p.getMass(), 1.0);
+    EXPECT_THROW(p.setCor(-0.1), std::invalid_argument);
+    EXPECT_THROW(p.setCor(1.5), std::invalid_argument);
+    EXPECT_THROW(p.setCor(kNaN), std::invalid_argument);
+    try {
+        p.setCor(1.5);
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("1.5"), std::string::npos) << e.what();
+    }
+    p.setCor(0.0);
+    p.setCor(1.0);
+    EXPECT_EQ(p.getCor(), 1.0);
+}
+
+TEST(Body, CloneIsDeep)
+{
+    Particle p;
+    p.setName("a");
+    p.setPos(dvec3(1, 2, 3));
+    auto copy = p.clone();
+    p.setPos(dvec3(0.0));
+    EXPECT_EQ(copy->getPos(), dvec3(1, 2, 3));
+    EXPECT_EQ(copy->getName(), "a");
+}

@@ -1,0 +1,84 @@
+// The fixed-timestep clock against its definition: steps = floor(sum of clamped frame
+// times / dt), the accumulator carries the remainder, the cap drops whole steps.
+// Frame times and dt are dyadic rationals so the floating-point sums are exact and the
+// oracle is exact too.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "pba/clock.hpp"
+
+using namespace pba;
+
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+} // namespace
+
+TEST(FixedTimestepClock, TakesFloorOfAccumulatedTimeOverDt)
+{
+    const double dt = 1.0 / 128.0;
+    FixedTimestepClock clock(dt, 0.25, 1000);
+    std::mt19937 rng(7);
+    std::uniform_int_distribution<int> ticks(1, 400); // frame times in 1/1024 s up to ~0.39 s
+    double clampedSum = 0.0;
+    std::int64_t steps = 0;
+    for (int frame = 0; frame < 2000; ++frame) {
+        const double frameTime = ticks(rng) / 1024.0;
+        clampedSum += std::min(frameTime, 0.25);
+        steps += clock.advance(frameTime);
+        EXPECT_EQ(steps, static_cast<std::int64_t>(std::floor(clampedSum / dt)));
+        EXPECT_GE(clock.alpha(), 0.0);
+        EXPECT_LT(clock.alpha(), 1.0);
+        EXPECT_EQ(clock.accumulator(), clampedSum - static_cast<double>(steps) * dt);
+    }
+}
+
+TEST(FixedTimestepClock, ClampsLongFramesAgainstTheSpiralOfDeath)
+{
+    const double dt = 1.0 / 64.0;
+    FixedTimestepClock clock(dt, 0.25, 1000);
+    EXPECT_EQ(clock.advance(5.0), 16); // 0.25 / (1/64)
+    EXPECT_EQ(clock.droppedTime(), 4.75);
+    EXPECT_EQ(clock.alpha(), 0.0);
+}
+
+TEST(FixedTimestepClock, StepCapDropsWholeStepsAndKeepsAlphaBelowOne)
+{
+    const double dt = 1.0 / 1024.0;
+    FixedTimestepClock clock(dt, 0.25, 10);
+    const double frame = 102.5 / 1024.0;
+    EXPECT_EQ(clock.advance(frame), 10);
+    EXPECT_GE(clock.alpha(), 0.0);
+    EXPECT_LT(clock.alpha(), 1.0);
+    EXPECT_DOUBLE_EQ(clock.alpha(), 0.5);
+    for (int i = 0; i < 100; ++i) {
+        EXPECT_LE(clock.advance(0.25), 10);
+        EXPECT_LT(clock.alpha(), 1.0);
+    }
+}
+
+TEST(FixedTimestepClock, RejectsHostileFrameTimesWithoutChangingState)
+{
+    FixedTimestepClock clock(1.0 / 64.0);
+    clock.advance(1.0 / 128.0);
+    const double before = clock.accumulator();
+    for (double bad : {0.0, -1.0, kNaN, kInf, -kInf}) {
+        EXPECT_THROW(clock.advance(bad), std::invalid_argument) << bad;
+        EXPECT_EQ(clock.accumulator(), before);
+    }
+    EXPECT_THROW(FixedTimestepClock(0.0), std::invalid_argument);
+    EXPECT_THROW(FixedTimestepClock(0.01, -1.0), std::invalid_argument);
+    EXPECT_THROW(FixedTimestepClock(0.01, 0.25, 0), std::invalid_argument);
+}
+
+TEST(FixedTimestepClock, ChangingDtKeepsTheFractionOfAStep)
+{
+    FixedTimestepClock clock(1.0 / 64.0);
+    clock.advance(1.5 / 64.0);
+    EXPECT_DOUBLE_EQ(clock.alpha(), 0.5);
+    clock.setDt(1.0 / 16.0);
+    EXPECT_DOUBLE_EQ(clock.alpha(), 0.5);
+}

@@ -1,0 +1,241 @@
+// Collisions against exact oracles: the analytic bouncing trajectory (apex h, bounce
+// period 2 sqrt(2h/g)), the apex sequence e^(2k) h, resting contact, and the guarantee
+// that nothing ever ends a step outside the room.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "pba/forces.hpp"
+#include "pba/scene/scene.hpp"
+#include "pba/world.hpp"
+
+using namespace pba;
+
+namespace {
+
+constexpr double kG = 9.81;
+
+World dropWorld(Integrator integrator, CollisionResponse response, double h, double restitution = 1.0)
+{
+    World world;
+    world.addForce(std::make_unique<Gravity>(dvec3(0, -kG, 0)));
+    world.setGround(0.0);
+    world.setCollisionResponse(response);
+    Particle p;
+    p.setPos(dvec3(0, h, 0));
+    p.setIntegrator(integrator);
+    p.setCor(restitution);
+    world.addParticle(p);
+    return world;
+}
+
+/// Height and vertical velocity of a ball dropped from rest at h with e = 1.
+/// With t0 = sqrt(2h/g) the motion repeats every 2 t0; s is the time since the last apex.
+std::pair<double, double> exactBounce(double h, double t)
+{
+    const double t0 = std::sqrt(2 * h / kG);
+    const double s = std::fmod(t + t0, 2 * t0) - t0;
+    return {h - 0.5 * kG * s * s, -kG * s};
+}
+
+std::vector<double> apexHeights(World& world, double dt, double duration)
+{
+    std::vector<double> apexes;
+    double previousVy = world.body(0).getVel().y;
+    for (int n = 0; n < static_cast<int>(duration / dt); ++n) {
+        const double y = world.body(0).getPos().y;
+        world.step(dt);
+        const double vy = world.body(0).getVel().y;
+        if (previousVy > 0 && vy <= 0)
+            apexes.push_back(std::max(y, world.body(0).getPos().y));
+        previousVy = vy;
+    }
+    return apexes;
+}
+
+} // namespace
+
+TEST(Collisions, ResponseNamesRoundTrip)
+{
+    for (CollisionResponse response : kAllCollisionResponses)
+        EXPECT_EQ(collisionResponseFromName(collisionResponseName(response)), response);
+    EXPECT_FALSE(collisionResponseFromName("bounce").has_value());
+}
+
+// Velocity Verlet and RK4 are exact for constant acceleration and the exact response adds
+// no error of its own, so they follow the analytic bouncing path to rounding at any dt.
+TEST(Collisions, ExactResponseReproducesTheAnalyticBounceAtAnyDt)
+{
+    const double h = 2.0;
+    for (Integrator integrator : {Integrator::VelocityVerlet, Integrator::RK4}) {
+        for (double dt : {0.0005, 0.01, 0.05, 0.1}) {
+            World world = dropWorld(integrator, CollisionResponse::Exact, h);
+            const int steps = static_cast<int>(std::lround(10.0 / dt));
+            for (int n = 1; n <= steps; ++n) {
+                world.step(dt);
+                const auto [y, vy] = exactBounce(h, n * dt);
+                ASSERT_NEAR(world.body(0).getPos().y, y, 1e-9) << integratorName(integrator) << " dt " << dt << " n " << n;
+                ASSERT_NEAR(world.body(0).getVel().y, vy, 1e-8) << integratorName(integrator) << " dt " << dt;
+            }
+            // 10 s holds floor(10 / period + 1/2) impacts: the period is 2 sqrt(2h/g).
+            const double period = 2 * std::sqrt(2 * h / kG);
+            EXPECT_EQ(world.bounceCount(0), static_cast<std::uint64_t>(std::floor(10.0 / period + 0.5)));
+        }
+    }
+}
+
+TEST(Collisions, ForwardEulerGainsEnergyInEveryResponse)
+{
+    for (CollisionResponse response : kAllCollisionResponses) {
+        for (double dt : {0.001, 0.01, 0.05}) {
+            World world = dropWorld(Integrator::ForwardEuler, response, 2.0);
+            const double e0 = world.energy(0);
+            for (int n = 0; n < static_cast<int>(10.0 / dt); ++n)
+                world.step(dt);
+            EXPECT_GT(world.energy(0), e0) << collisionResponseName(response) << " dt " << dt;
+        }
+    }
+}
+
+// The practical's classic result: with the mirror response semi-implicit Euler keeps its
+// bounce: its energy oscillates within the shadow-energy band (about g |v| dt / 2 per unit
+// mass mid-flight) but neither grows nor decays over many bounces.
+TEST(Collisions, SemiImplicitEulerKeepsItsEnergyInReflectMode)
+{
+    for (double dt : {0.0005, 0.001, 0.005, 0.01, 0.02, 0.05}) {
+        World world = dropWorld(Integrator::SemiImplicitEuler, CollisionResponse::Reflect, 2.0);
+        const double e0 = world.energy(0);
+        double sum = 0.0;
+        const int steps = static_cast<int>(std::lround(10.0 / dt));
+        for (int n = 0; n < steps; ++n) {
+            world.step(dt);
+            sum += world.energy(0) / e0;
+        }
+        EXPECT_NEAR(sum / steps, 1.0, 0.05) << "time-averaged energy, dt " << dt; // measured 0.040 at dt 0.05
+        EXPECT_NEAR(world.energy(0) / e0, 1.0, 0.06) << "final energy, dt " << dt; // measured 0.049 at dt 0.05
+    }
+}
+
+TEST(Collisions, RestitutionGivesApexESquaredToTheKTimesTheDropHeight)
+{
+    const double h = 2.0;
+    for (double e : {0.9, 0.7}) {
+        World world = dropWorld(Integrator::RK4, CollisionResponse::Exact, h, e);
+        const std::vector<double> apexes = apexHeights(world, 0.001, 6.0);
+        ASSERT_GE(apexes.size(), 4u);
+        for (std::size_t k = 0; k < 4; ++k) {
+            // Sampled apexes lie within g dt^2 / 2 of the true one.
+            EXPECT_NEAR(apexes[k], std::pow(e, 2.0 * double(k + 1)) * h, 1e-5) << "e " << e << " bounce " << k + 1;
+        }
+    }
+}
+
+TEST(Collisions, ABodyAtRestOnTheGroundNeitherSinksNorBouncesForever)
+{
+    for (Integrator integrator : kAllIntegrators) {
+        World world = dropWorld(integrator, CollisionResponse::Exact, 1.0, 0.5);
+        for (int n = 0; n < 2000; ++n) {
+            world.step(0.01);
+            ASSERT_GE(world.body(0).getPos().y, 0.0);
+        }
+        const auto bounces = world.bounceCount(0);
+        for (int n = 0; n < 500; ++n)
+            world.step(0.01);
+        EXPECT_EQ(world.body(0).getPos().y, 0.0) << integratorName(integrator);
+        EXPECT_EQ(world.body(0).getVel().y, 0.0) << integratorName(integrator);
+        EXPECT_EQ(world.bounceCount(0), bounces) << integratorName(integrator);
+    }
+}
+
+TEST(Collisions, BallStartingOnTheGroundWithRestitutionOneStaysThere)
+{
+    World world = dropWorld(Integrator::SemiImplicitEuler, CollisionResponse::Exact, 0.0, 1.0);
+    for (int n = 0; n < 100; ++n)
+        world.step(0.01);
+    EXPECT_EQ(world.body(0).getPos().y, 0.0);
+    EXPECT_EQ(world.body(0).getVel().y, 0.0);
+}
+
+// An apex above the ceiling inside one step: the exact response finds the impact even
+// though the step starts and ends inside the room.
+TEST(Collisions, ExactResponseCatchesAnImpactInsideAStep)
+{
+    World world;
+    world.addForce(std::make_unique<Gravity>(dvec3(0, -kG, 0)));
+    world.setRoom({dvec3(-1, 0, -1), dvec3(1, 1, 1)});
+    Particle p;
+    p.setPos(dvec3(0, 0.9, 0));
+    p.setVel(dvec3(0, 2.0, 0)); // would rise to 0.9 + 4 / (2 g) = 1.104
+    p.setIntegrator(Integrator::VelocityVerlet);
+    world.addParticle(p);
+    world.step(0.1); // without the ceiling y(0.1) = 1.0509, which lies inside the room
+    EXPECT_EQ(world.bounceCount(0), 1u);
+    EXPECT_LT(world.body(0).getVel().y, 0.0);
+}
+
+TEST(Collisions, NothingEverEndsAStepOutsideTheRoom)
+{
+    std::mt19937 rng(42);
+    std::uniform_real_distribution<double> speed(-500.0, 500.0);
+    const Aabb room{dvec3(-2, 0, -2), dvec3(2, 4, 2)};
+    for (CollisionResponse response : kAllCollisionResponses) {
+        for (Integrator integrator : kAllIntegrators) {
+            World world;
+            world.addForce(std::make_unique<Gravity>(dvec3(0, -kG, 0)));
+            world.setRoom(room);
+            world.setCollisionResponse(response);
+            for (int i = 0; i < 10; ++i) {
+                Particle p;
+                p.setPos(dvec3(0, 2, 0));
+                p.setVel(dvec3(speed(rng), speed(rng), speed(rng)));
+                p.setIntegrator(integrator);
+                p.setCor(i % 2 ? 1.0 : 0.8);
+                world.addParticle(p);
+            }
+            for (int n = 0; n < 300; ++n) {
+                world.step(0.1);
+                for (std::size_t i = 0; i < world.bodyCount(); ++i) {
+                    const dvec3 x = world.body(i).getPos();
+                    ASSERT_TRUE(x.x >= room.min.x && x.x <= room.max.x && x.y >= room.min.y && x.y <= room.max.y &&
+                                x.z >= room.min.z && x.z <= room.max.z)
+                        << collisionResponseName(response) << " " << integratorName(integrator) << " step " << n;
+                }
+            }
+        }
+    }
+}
+
+TEST(World, NonFiniteStateStopsTheStepAndNamesTheBody)
+{
+    World world;
+    Particle p;
+    p.setName("bob");
+    p.setIntegrator(Integrator::ForwardEuler);
+    p.setPos(dvec3(0, 1, 0));
+    world.addParticle(p);
+    world.addForce(std::make_unique<Spring>(0, dvec3(0.0), 1e300, 0.0, 0.0));
+    world.step(1.0);
+    try {
+        for (int n = 0; n < 10; ++n)
+            world.step(1.0);
+        FAIL() << "no error";
+    } catch (const NonFiniteStateError& e) {
+        EXPECT_EQ(e.body(), "bob");
+        EXPECT_NE(std::string(e.what()).find("smaller dt"), std::string::npos);
+        EXPECT_TRUE(std::isfinite(world.body(0).getPos().y)); // rolled back to the last finite state
+        EXPECT_EQ(world.stepCount() + 1, e.step());
+    }
+}
+
+TEST(World, CopiesAreDeepAndInterpolationBlendsStates)
+{
+    World a = loadScene("integrators").world;
+    World b = a;
+    a.step(0.01);
+    EXPECT_EQ(b.stepCount(), 0u);
+    EXPECT_EQ(b.body(1).getPos().y, 2.0);
+    const State mid = a.interpolatedState(1, 0.5);
+    EXPECT_DOUBLE_EQ(mid.pos.y, 0.5 * (a.previousState(1).pos.y + a.body(1).getPos().y));
+}

@@ -1,0 +1,125 @@
+// Scenes: the built-ins load, and every kind of bad input is a SceneError naming the
+// file, the field (as a JSON path) and the reason.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "pba/scene/scene.hpp"
+
+using namespace pba;
+
+TEST(SceneLoader, BuiltinScenesLoadByName)
+{
+    const auto names = builtinSceneNames();
+    for (const char* expected : {"bouncing-cube", "integrators", "spring"})
+        EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+    for (const auto& name : names) {
+        const Scene scene = loadScene(name);
+        EXPECT_EQ(scene.name, name);
+        EXPECT_GT(scene.world.bodyCount(), 0u);
+    }
+}
+
+TEST(SceneLoader, IntegratorsSceneIsTask3)
+{
+    const Scene scene = loadScene("integrators");
+    ASSERT_EQ(scene.world.bodyCount(), 3u);
+    EXPECT_TRUE(scene.world.body(0).isFixed());
+    EXPECT_EQ(scene.world.body(1).getIntegrator(), Integrator::ForwardEuler);
+    EXPECT_EQ(scene.world.body(2).getIntegrator(), Integrator::SemiImplicitEuler);
+    for (std::size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(scene.world.body(i).getPos().y, 2.0);
+        EXPECT_EQ(scene.world.body(i).getVel(), dvec3(0.0));
+        EXPECT_EQ(scene.world.body(i).getCor(), 1.0);
+    }
+    EXPECT_EQ(scene.world.ground(), 0.0);
+}
+
+TEST(SceneLoader, LoadsAFileByPath)
+{
+    const std::string path = testing::TempDir() + "/pba_scene_test.json";
+    std::ofstream(path) << R"({"name": "mine", "dt": 0.02, "room": {"min": [0,0,0], "max": [1,1,1]},
+        "particles": [{"name": "p", "position": [0.5, 0.5, 0.5]}]})";
+    const Scene scene = loadScene(path);
+    EXPECT_EQ(scene.name, "mine");
+    EXPECT_EQ(scene.dt, 0.02);
+    ASSERT_TRUE(scene.world.room().has_value());
+    EXPECT_EQ(scene.world.planes().size(), 6u);
+}
+
+struct BadScene {
+    const char* json;
+    const char* field;
+    const char* reason;
+};
+
+// Shown in test names and failures instead of the struct's bytes.
+void PrintTo(const BadScene& bad, std::ostream* os) { *os << bad.field << " " << bad.reason; }
+
+class BadSceneTest : public testing::TestWithParam<BadScene> {};
+
+TEST_P(BadSceneTest, IsReportedWithFieldAndReason)
+{
+    const BadScene& bad = GetParam();
+    try {
+        parseScene(bad.json, "bad.json");
+        FAIL() << "accepted: " << bad.json;
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.file(), "bad.json");
+        EXPECT_EQ(e.field(), bad.field) << e.what();
+        EXPECT_NE(e.reason().find(bad.reason), std::string::npos) << e.what();
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "one line";
+    }
+}
+
+#define P(extra) R"({"particles": [{"name": "a", "position": [0, 1, 0])" extra "}]}"
+INSTANTIATE_TEST_SUITE_P(
+    SceneLoader, BadSceneTest,
+    testing::Values(BadScene{"{", "(document)", "malformed JSON"},
+                    BadScene{"[1, 2]", "(scene)", "expected an object"},
+                    BadScene{R"({"dt": "fast"})", "dt", "expected a number, got a string"},
+                    BadScene{R"({"dt": 0})", "dt", "must be positive"},
+                    BadScene{R"({"dt": -0.1})", "dt", "must be positive"},
+                    BadScene{R"({"dt": 1e999})", "(document)", "number overflow"},
+                    BadScene{R"({"duration": 0})", "duration", "must be positive"},
+                    BadScene{R"({"gravity": [0, -9.81]})", "gravity", "array of 3 numbers"},
+                    BadScene{R"({"gravty": [0, -9.81, 0]})", "gravty", "unknown key"},
+                    BadScene{R"({"collision_response": "bounce"})", "collision_response", "unknown collision response"},
+                    BadScene{R"({"room": {"min": [0, 0, 0], "max": [1, 0, 1]}})", "room.min", "must be below max"},
+                    BadScene{R"({"ground": {"height": 0}, "room": {"min": [0,0,0], "max": [1,1,1]}})", "room", "not both"},
+                    BadScene{R"({"ground": {"hieght": 0}})", "ground.hieght", "unknown key"},
+                    BadScene{P(R"(, "mass": 0)"), "particles[0].mass", "must be positive"},
+                    BadScene{P(R"(, "mass": -2)"), "particles[0].mass", "must be positive"},
+                    BadScene{P(R"(, "restitution": 1.5)"), "particles[0].restitution", "must be in [0, 1]"},
+                    BadScene{P(R"(, "restitution": -0.5)"), "particles[0].restitution", "must be in [0, 1]"},
+                    BadScene{P(R"(, "integrator": "leapfrog")"), "particles[0].integrator", "unknown integrator"},
+                    BadScene{P(R"(, "fixed": "yes")"), "particles[0].fixed", "expected a boolean"},
+                    BadScene{P(R"(, "colour": "red")"), "particles[0].colour", "unknown key"},
+                    BadScene{R"({"particles": [{"position": [0, 1, 0]}]})", "particles[0].name", "missing"},
+                    BadScene{R"({"particles": [{"name": "a", "position": [0, 1, 0]}, {"name": "a", "position": [0, 1, 0]}]})",
+                             "particles[1].name", "already named"},
+                    BadScene{R"({"particles": [{"name": "a", "position": [0, 1, 0]}, {"name": "b", "position": [0, 1, 0], "mass": 0}]})",
+                             "particles[1].mass", "must be positive"},
+                    BadScene{R"({"ground": {"height": 0}, "particles": [{"name": "a", "position": [0, -1, 0]}]})",
+                             "particles[0].position", "outside"},
+                    BadScene{R"({"forces": [{"type": "magnet"}]})", "forces[0].type", "unknown force type"},
+                    BadScene{R"({"particles": [{"name": "a", "position": [0, 1, 0]}], "forces": [{"type": "spring", "particle": "zz", "anchor": [0,0,0], "stiffness": 1}]})",
+                             "forces[0].particle", "no particle named"},
+                    BadScene{R"({"particles": [{"name": "a", "position": [0, 1, 0]}], "forces": [{"type": "spring", "particle": "a", "anchor": [0,0,0], "stiffness": -1}]})",
+                             "forces[0].stiffness", "must be positive"},
+                    BadScene{R"({"forces": [{"type": "drag", "coefficient": -1}]})", "forces[0].coefficient",
+                             "must not be negative"}));
+#undef P
+
+TEST(SceneLoader, MissingFileAndUnknownNameAreErrors)
+{
+    try {
+        loadScene("/nonexistent/dir/scene.json");
+        FAIL();
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.file(), "/nonexistent/dir/scene.json");
+        EXPECT_NE(e.reason().find("no such file"), std::string::npos);
+    }
+    EXPECT_THROW(loadScene("no-such-scene"), SceneError);
+}
