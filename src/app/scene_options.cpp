@@ -13,13 +13,18 @@ void addSceneOptions(CLI::App& command, SceneOptions& options, const std::string
     options.scene = defaultScene;
     command.add_option("scene", options.scene,
                        "Built-in scene name or path to a JSON scene file (see `docs/scenes.md`)")
-        ->default_str(defaultScene);
-    command.add_option("--dt", options.dt, "Fixed physics timestep in seconds (overrides the scene)");
-    command.add_option("--duration", options.duration, "Simulated time in seconds (overrides the scene)");
+        ->default_str(defaultScene)
+        ->type_name("SCENE");
+    command.add_option("--dt", options.dt, "Fixed physics timestep in seconds (overrides the scene)")
+        ->type_name("SECONDS");
+    command.add_option("--duration", options.duration, "Simulated time in seconds (overrides the scene)")
+        ->type_name("SECONDS");
     command.add_option("--integrator", options.integrator,
-                       "forward-euler, semi-implicit-euler, velocity-verlet or rk4, for every moving particle");
+                       "forward-euler, semi-implicit-euler, velocity-verlet or rk4, for every moving particle")
+        ->type_name("NAME");
     command.add_option("--collision", options.collision,
-                       "Collision response: exact (time of impact), reflect (mirror back) or clamp (put back)");
+                       "Collision response: exact (time of impact), reflect (mirror back) or clamp (put back)")
+        ->type_name("MODE");
 }
 
 Scene loadSceneWithOverrides(const SceneOptions& options)

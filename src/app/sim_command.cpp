@@ -120,14 +120,16 @@ void addSimCommand(CLI::App& root, Action& selected)
 {
     auto options = std::make_shared<SimOptions>();
     CLI::App* sim = root.add_subcommand("sim", "Run a scene without drawing it and print a per-body summary");
-    sim->footer("Example: pba sim integrators --dt 0.05 --integrator rk4 --out run.csv");
+    sim->footer("\nExamples:\n  pba sim integrators --dt 0.05 --integrator rk4\n  pba sim bouncing-cube --out run.csv --frame-rate 30\n");
     addSceneOptions(*sim, options->scene, kDefaultScene);
     sim->add_option("--out", options->out,
                     "Write one CSV row per body per physics step (step 0 included) to this file; columns "
-                    "step,t,body,x,y,z,vx,vy,vz,energy");
+                    "step,t,body,x,y,z,vx,vy,vz,energy")
+        ->type_name("FILE.csv");
     sim->add_option("--frame-rate", options->frameRate,
                     "Drive the fixed-timestep clock with synthetic frames of 1/HZ seconds (the results do not "
-                    "change: only dt and the number of steps matter)");
+                    "change: only dt and the number of steps matter)")
+        ->type_name("HZ");
     sim->callback([options, &selected] { selected = [options] { return runSim(*options); }; });
 }
 
