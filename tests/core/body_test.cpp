@@ -2,17 +2,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 #include "pba/particle.hpp"
+#include "support/special_values.hpp"
 
 using namespace pba;
 
-namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
-} // namespace
+using pba::test::kInf;
+using pba::test::kNaN;
 
 TEST(Particle, DefaultsFollowThePractical)
 {
