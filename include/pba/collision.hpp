@@ -35,11 +35,28 @@ std::string_view collisionResponseName(CollisionResponse response);
 std::optional<CollisionResponse> collisionResponseFromName(std::string_view name);
 
 /// The half-space dot(normal, x) >= offset; `normal` is a unit vector pointing inside.
+/// A plane may have a round hole (the blow dryer's, in the floor): a body crossing the plane
+/// within holeRadius of holeCentre passes through, into a short shaft closed below by
+/// another plane (the dryer's grille), and is kept inside the shaft's radius.
 template <class T>
 struct PlaneT {
     Vec3<T> normal;
     T offset;
+    T holeRadius = T(0);
+    Vec3<T> holeCentre{T(0)};
+
     T distance(const Vec3<T>& x) const { return glm::dot(normal, x) - offset; }
+    /// The offset of x from the hole's axis, in the plane.
+    Vec3<T> fromHoleAxis(const Vec3<T>& x) const
+    {
+        const Vec3<T> rel = x - holeCentre;
+        return rel - glm::dot(rel, normal) * normal;
+    }
+    bool overHole(const Vec3<T>& x) const
+    {
+        const Vec3<T> rho = fromHoleAxis(x);
+        return holeRadius > T(0) && glm::dot(rho, rho) < holeRadius * holeRadius;
+    }
 };
 using Plane = PlaneT<double>;
 
@@ -155,25 +172,77 @@ inline std::optional<T> timeOfImpact(Integrator integrator, const PlaneT<T>& pla
     return hi;
 }
 
+/// timeOfImpact for a plane that may have a hole: a body already in the shaft below the hole
+/// does not meet the plane, and neither does one whose path crosses it over the hole.
+template <class T, class Accel>
+inline std::optional<T> timeOfImpactWithHole(Integrator integrator, const PlaneT<T>& plane, const Vec3<T>& x,
+                                             const Vec3<T>& v, T limit, Accel&& accel)
+{
+    if (plane.holeRadius <= T(0))
+        return timeOfImpact(integrator, plane, x, v, limit, accel);
+    if (plane.distance(x) < T(0) && plane.overHole(x))
+        return std::nullopt;
+    const std::optional<T> tau = timeOfImpact(integrator, plane, x, v, limit, accel);
+    if (!tau)
+        return tau;
+    Vec3<T> xi = x;
+    Vec3<T> vi = v;
+    integrate(integrator, xi, vi, *tau, accel);
+    return plane.overHole(xi) ? std::nullopt : tau;
+}
+
+/// Keeps a body that is in the shaft below a hole within the shaft's radius: the side wall is
+/// resolved by putting the body back on it (the shaft is shallow and rarely touched).
+template <class T>
+inline int keepInShaft(const PlaneT<T>& plane, T restitution, Vec3<T>& x, Vec3<T>& v)
+{
+    const Vec3<T> rho = plane.fromHoleAxis(x);
+    const T r = glm::length(rho);
+    if (r < plane.holeRadius || r <= T(0))
+        return 0;
+    const Vec3<T> out = rho / r;
+    x -= (r - plane.holeRadius * (T(1) - T(16) * std::numeric_limits<T>::epsilon())) * out;
+    const T vr = glm::dot(v, out);
+    if (vr <= T(0))
+        return 0;
+    v -= (T(1) + restitution) * vr * out;
+    return 1;
+}
+
+/// After a full step (reflect and clamp): the body went through the hole, or was in its shaft.
+template <class T>
+inline bool passesHole(const PlaneT<T>& plane, const Vec3<T>& start, const Vec3<T>& x)
+{
+    return plane.holeRadius > T(0) && (plane.overHole(x) || plane.distance(start) < T(0));
+}
+
 /// A body lies on a plane when it touches it and does not move away from it.
 template <class T>
 inline bool restsOn(const PlaneT<T>& plane, const Vec3<T>& x, const Vec3<T>& v)
 {
-    return std::abs(plane.distance(x)) <= contactTolerance(plane) && glm::dot(plane.normal, v) <= T(0);
+    return std::abs(plane.distance(x)) <= contactTolerance(plane) && glm::dot(plane.normal, v) <= T(0) &&
+           !plane.overHole(x);
 }
 
-/// Last line of defence for every mode: a body never ends a step outside.
+/// Last line of defence for every mode: a body never ends a step outside. `start` is where
+/// the step began: a body that was in a hole's shaft is kept in the shaft.
 template <class T>
-inline void keepInside(std::span<const PlaneT<T>> planes, Vec3<T>& x, Vec3<T>& v)
+inline int keepInside(std::span<const PlaneT<T>> planes, T restitution, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v)
 {
+    int bounces = 0;
     for (const PlaneT<T>& plane : planes) {
         if (plane.distance(x) < T(0)) {
+            if (plane.holeRadius > T(0) && (plane.overHole(x) || plane.distance(start) < T(0))) {
+                bounces += keepInShaft(plane, restitution, x, v);
+                continue;
+            }
             snapOnto(plane, x);
             const T vn = glm::dot(plane.normal, v);
             if (vn < T(0))
                 v -= vn * plane.normal;
         }
     }
+    return bounces;
 }
 
 } // namespace collision_detail
@@ -202,6 +271,7 @@ inline int stepExact(Integrator integrator, std::span<const PlaneT<T>> planes, T
         }
         return a;
     };
+    const Vec3<T> start = x;
     int bounces = 0;
     T remaining = dt;
     for (int event = 0; event < kMaxEvents && remaining > T(0); ++event) {
@@ -218,7 +288,7 @@ inline int stepExact(Integrator integrator, std::span<const PlaneT<T>> planes, T
         for (std::size_t p = 0; p < planes.size() && p < kMaxPlanes; ++p) {
             if (contact[p])
                 continue;
-            const auto t = timeOfImpact(integrator, planes[p], x, v, remaining, constrained);
+            const auto t = timeOfImpactWithHole(integrator, planes[p], x, v, remaining, constrained);
             if (t && (!tau || *t < *tau)) {
                 tau = t;
                 hit = p;
@@ -243,7 +313,7 @@ inline int stepExact(Integrator integrator, std::span<const PlaneT<T>> planes, T
         }
         remaining -= *tau;
     }
-    keepInside(planes, x, v);
+    bounces += keepInside(planes, restitution, start, x, v);
     return bounces;
 }
 
@@ -253,13 +323,14 @@ template <class T, class Accel>
 inline int stepReflect(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
                        Vec3<T>& v, T dt, Accel&& accel)
 {
+    const Vec3<T> start = x;
     integrate(integrator, x, v, dt, accel);
     int bounces = 0;
     for (int pass = 0; pass < collision_detail::kMaxEvents; ++pass) {
         bool mirrored = false;
         for (const PlaneT<T>& plane : planes) {
             const T d = plane.distance(x);
-            if (d >= T(0))
+            if (d >= T(0) || collision_detail::passesHole(plane, start, x))
                 continue;
             x -= T(2) * d * plane.normal;
             const T vn = glm::dot(plane.normal, v);
@@ -272,7 +343,7 @@ inline int stepReflect(Integrator integrator, std::span<const PlaneT<T>> planes,
         if (!mirrored)
             break;
     }
-    collision_detail::keepInside(planes, x, v);
+    bounces += collision_detail::keepInside(planes, restitution, start, x, v);
     return bounces;
 }
 
@@ -281,10 +352,11 @@ template <class T, class Accel>
 inline int stepClamp(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
                      Vec3<T>& v, T dt, Accel&& accel)
 {
+    const Vec3<T> start = x;
     integrate(integrator, x, v, dt, accel);
     int bounces = 0;
     for (const PlaneT<T>& plane : planes) {
-        if (plane.distance(x) >= T(0))
+        if (plane.distance(x) >= T(0) || collision_detail::passesHole(plane, start, x))
             continue;
         collision_detail::snapOnto(plane, x);
         const T vn = glm::dot(plane.normal, v);
@@ -293,7 +365,7 @@ inline int stepClamp(Integrator integrator, std::span<const PlaneT<T>> planes, T
             ++bounces;
         }
     }
-    collision_detail::keepInside(planes, x, v);
+    bounces += collision_detail::keepInside(planes, restitution, start, x, v);
     return bounces;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 // Everything of the physics core in one include.
+#include "pba/blow_dryer.hpp"
 #include "pba/body.hpp"
 #include "pba/clock.hpp"
 #include "pba/collision.hpp"

@@ -30,6 +30,13 @@ struct Aabb {
     dvec3 max{0.0};
 };
 
+/// A round hole in the floor with a grille `depth` below it (the blow dryer's).
+struct FloorHole {
+    dvec3 centre{0.0}; ///< on the floor
+    double radius = 0.0;
+    double depth = 0.05;
+};
+
 /// Thrown by World::step when a body's position or velocity stops being finite.
 class NonFiniteStateError : public std::runtime_error {
 public:
@@ -75,6 +82,10 @@ public:
     void setGround(double height);
     void setRoom(const Aabb& room);
     void clearSurfaces();
+    /// Cuts a hole in the floor (of the room or the ground); one hole at most, as the planes
+    /// carry one each. Throws std::invalid_argument without a floor or for a bad radius/depth.
+    void setFloorHole(const FloorHole& hole);
+    const std::optional<FloorHole>& floorHole() const { return m_hole; }
     const std::optional<double>& ground() const { return m_ground; }
     const std::optional<Aabb>& room() const { return m_room; }
     std::span<const Plane> planes() const { return m_planes; }
@@ -102,6 +113,7 @@ public:
     double energy(std::size_t i) const { return kineticEnergy(i) + potentialEnergy(i); }
 
 private:
+    void rebuildPlanes();
     void storePreviousStates();
     void integrateBodies(double dt);
     std::optional<std::pair<std::size_t, std::string>> firstNonFinite() const;
@@ -112,6 +124,7 @@ private:
     std::vector<std::uint64_t> m_bounces;
     std::optional<double> m_ground;
     std::optional<Aabb> m_room;
+    std::optional<FloorHole> m_hole;
     std::vector<Plane> m_planes;
     CollisionResponse m_response = CollisionResponse::Exact;
     double m_time = 0.0;

@@ -19,7 +19,7 @@ enum ExitCode : int {
 };
 
 /// The default scene of `pba` and its subcommands.
-inline constexpr const char* kDefaultScene = "integrators";
+inline constexpr const char* kDefaultScene = "blow-dryer";
 
 /// Bad input from the command line; main() prints it as one line and exits with kExitBadInput.
 class UsageError : public std::runtime_error {
@@ -37,5 +37,6 @@ public:
 using Action = std::function<int()>;
 
 void addSimCommand(CLI::App& root, Action& selected);
+void addFieldCommand(CLI::App& root, Action& selected);
 
 } // namespace pba::app

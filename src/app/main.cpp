@@ -21,6 +21,7 @@ int main(int argc, char** argv)
     app.require_subcommand(0, 1);
     Action selected;
     addSimCommand(app, selected);
+    addFieldCommand(app, selected);
 
     // `pba` alone runs the default action (the same as `pba sim`).
     std::vector<std::string> args(argv + 1, argv + argc);

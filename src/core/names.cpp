@@ -53,3 +53,40 @@ std::optional<CollisionResponse> collisionResponseFromName(std::string_view name
 }
 
 } // namespace pba
+
+#include "pba/blow_dryer.hpp"
+
+namespace pba {
+
+std::string_view falloffName(Falloff falloff)
+{
+    switch (falloff) {
+    case Falloff::Linear: return "linear";
+    case Falloff::Quadratic: return "quadratic";
+    case Falloff::Smooth: return "smooth";
+    }
+    return "?";
+}
+
+std::optional<Falloff> falloffFromName(std::string_view name)
+{
+    for (Falloff falloff : {Falloff::Linear, Falloff::Quadratic, Falloff::Smooth})
+        if (falloffName(falloff) == name)
+            return falloff;
+    return std::nullopt;
+}
+
+std::string_view flowDirectionName(FlowDirection direction)
+{
+    return direction == FlowDirection::Vertical ? "vertical" : "cone-flow";
+}
+
+std::optional<FlowDirection> flowDirectionFromName(std::string_view name)
+{
+    for (FlowDirection direction : {FlowDirection::Vertical, FlowDirection::ConeFlow})
+        if (flowDirectionName(direction) == name)
+            return direction;
+    return std::nullopt;
+}
+
+} // namespace pba

@@ -18,6 +18,7 @@ NonFiniteStateError::NonFiniteStateError(std::string body, std::uint64_t step, d
 
 World::World(const World& other)
     : m_previous(other.m_previous), m_bounces(other.m_bounces), m_ground(other.m_ground), m_room(other.m_room),
+      m_hole(other.m_hole),
       m_planes(other.m_planes), m_response(other.m_response), m_time(other.m_time), m_steps(other.m_steps),
       m_lastDt(other.m_lastDt), m_baseTime(other.m_baseTime), m_baseSteps(other.m_baseSteps)
 {
@@ -78,23 +79,51 @@ void World::setGround(double height)
 {
     m_room.reset();
     m_ground = height;
-    const auto planes = groundPlanes(height);
-    m_planes.assign(planes.begin(), planes.end());
+    rebuildPlanes();
 }
 
 void World::setRoom(const Aabb& room)
 {
     m_ground.reset();
     m_room = room;
-    const auto planes = roomPlanes(room.min, room.max);
-    m_planes.assign(planes.begin(), planes.end());
+    rebuildPlanes();
 }
 
 void World::clearSurfaces()
 {
     m_ground.reset();
     m_room.reset();
+    m_hole.reset();
     m_planes.clear();
+}
+
+void World::setFloorHole(const FloorHole& hole)
+{
+    if (!m_ground && !m_room)
+        throw std::invalid_argument("a floor hole needs a ground or a room");
+    if (!(hole.radius > 0.0 && std::isfinite(hole.radius)) || !(hole.depth > 0.0 && std::isfinite(hole.depth)))
+        throw std::invalid_argument(fmt::format("a floor hole needs a positive radius and depth, got {} and {}",
+                                                hole.radius, hole.depth));
+    m_hole = hole;
+    rebuildPlanes();
+}
+
+void World::rebuildPlanes()
+{
+    m_planes.clear();
+    if (m_ground) {
+        const auto planes = groundPlanes(*m_ground);
+        m_planes.assign(planes.begin(), planes.end());
+    } else if (m_room) {
+        const auto planes = roomPlanes(m_room->min, m_room->max);
+        m_planes.assign(planes.begin(), planes.end());
+    }
+    if (m_hole && !m_planes.empty()) {
+        Plane& floor = m_planes.front(); // both builders put the floor first
+        floor.holeRadius = m_hole->radius;
+        floor.holeCentre = dvec3(m_hole->centre.x, floor.offset, m_hole->centre.z);
+        m_planes.push_back(Plane{floor.normal, floor.offset - m_hole->depth}); // the grille
+    }
 }
 
 dvec3 World::acceleration(std::size_t i, const dvec3& x, const dvec3& v) const

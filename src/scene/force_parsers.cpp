@@ -1,14 +1,18 @@
 #include "force_parsers.hpp"
 
+#include <cmath>
+#include <optional>
+
 #include <fmt/format.h>
 
+#include "pba/blow_dryer.hpp"
 #include "pba/forces.hpp"
 
 namespace pba::scene_detail {
 
 namespace {
 
-std::unique_ptr<Force> parseSpring(ObjectReader& reader, const World& world)
+std::unique_ptr<Force> parseSpring(ObjectReader& reader, World& world)
 {
     const std::string name = reader.string("particle");
     const auto index = world.findBody(name);
@@ -21,9 +25,65 @@ std::unique_ptr<Force> parseSpring(ObjectReader& reader, const World& world)
     return std::make_unique<Spring>(*index, anchor, stiffness, restLength, damping);
 }
 
-std::unique_ptr<Force> parseDrag(ObjectReader& reader, const World&)
+std::unique_ptr<Force> parseDrag(ObjectReader& reader, World&)
 {
     return std::make_unique<Drag>(reader.nonNegative("coefficient"));
+}
+
+template <class Enum>
+Enum readChoice(ObjectReader& reader, const std::string& key, Enum fallback, std::optional<Enum> (*fromName)(std::string_view),
+                const char* expected)
+{
+    if (!reader.has(key))
+        return fallback;
+    const std::string name = reader.string(key);
+    const auto value = fromName(name);
+    if (!value)
+        reader.fail(key, fmt::format("unknown value '{}' (expected {})", name, expected));
+    return *value;
+}
+
+BlowDryerField readBlowDryerField(ObjectReader& reader)
+{
+    BlowDryerField f;
+    f.nozzle = reader.vec3("nozzle");
+    const dvec3 axis = reader.vec3("axis", dvec3(0, 1, 0));
+    if (glm::length(axis) == 0.0)
+        reader.fail("axis", "must not be the zero vector");
+    f.axis = glm::normalize(axis);
+    f.height = reader.positive("height");
+    f.nozzleRadius = reader.nonNegative("nozzle_radius", 0.0);
+    f.topRadius = reader.nonNegative("top_radius");
+    if (f.topRadius <= 0.0)
+        reader.fail("top_radius", "must be positive");
+    if (f.axis.y > 0.0 && f.topRadius < f.nozzleRadius)
+        reader.fail("top_radius", fmt::format("must not be smaller than nozzle_radius ({}) when the axis points up",
+                                              f.nozzleRadius));
+    f.strength = reader.number("strength");
+    f.axialFalloff = readChoice(reader, "axial_falloff", Falloff::Linear, &falloffFromName, "linear, quadratic or smooth");
+    f.radialFalloff = readChoice(reader, "radial_falloff", Falloff::Linear, &falloffFromName, "linear, quadratic or smooth");
+    f.direction = readChoice(reader, "direction", FlowDirection::Vertical, &flowDirectionFromName, "vertical or cone-flow");
+    return f;
+}
+
+/// A dryer whose nozzle sits on the floor blows up through a hole of the nozzle's radius,
+/// with its grille `grille_depth` below the floor.
+void cutHoleForNozzle(ObjectReader& reader, const BlowDryerField& f, World& world)
+{
+    const double depth = reader.positive("grille_depth", 0.05);
+    const std::optional<double> floor = world.room() ? std::optional<double>(world.room()->min.y) : world.ground();
+    if (!floor || f.nozzleRadius <= 0.0 || std::abs(f.nozzle.y - *floor) > 1e-9 || f.axis.y <= 0.0)
+        return;
+    if (world.floorHole())
+        reader.fail("nozzle", "only one blow dryer may sit in the floor");
+    world.setFloorHole(FloorHole{f.nozzle, f.nozzleRadius, depth});
+}
+
+std::unique_ptr<Force> parseBlowDryer(ObjectReader& reader, World& world)
+{
+    const BlowDryerField field = readBlowDryerField(reader);
+    cutHoleForNozzle(reader, field, world);
+    return std::make_unique<BlowDryer>(field);
 }
 
 } // namespace
@@ -33,6 +93,7 @@ const std::vector<ForceType>& forceTypes()
     static const std::vector<ForceType> types{
         {"spring", &parseSpring},
         {"drag", &parseDrag},
+        {"blow-dryer", &parseBlowDryer},
     };
     return types;
 }

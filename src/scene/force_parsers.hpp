@@ -12,8 +12,8 @@
 namespace pba::scene_detail {
 
 /// Reads the force described by `reader` (its "type" key already read). The world holds
-/// the scene's particles, so a force that names one can find it.
-using ForceParser = std::unique_ptr<Force> (*)(ObjectReader& reader, const World& world);
+/// the scene's particles and surfaces, so a force can name a particle or cut a hole in the floor.
+using ForceParser = std::unique_ptr<Force> (*)(ObjectReader& reader, World& world);
 
 struct ForceType {
     const char* name;

@@ -1,0 +1,103 @@
+#pragma once
+// Task 4's blow dryer: a conical force field rising from a hole in the floor.
+//
+// The region of influence is the frustum between a disc of radius r0 at the nozzle and
+// a disc of radius R at height H along the axis. Inside it the force is
+//     F = strength * axial(1 - h/H) * radial(1 - r/R(h)) * direction,
+// with R(h) = r0 + (R - r0) h/H, so it is strongest on the axis at the nozzle and zero at
+// the top, on the edge and outside. `direction` is the axis ("vertical", the basic task)
+// or, in "cone-flow" mode, normalize(H axis + (R - r0) rho / R(h)) where rho is the radial
+// offset: the axis on the axis, parallel to the cone's side at the edge, blended linearly
+// in between, always away from the nozzle, and never dividing by r (continuous on the axis).
+//
+// The kernel is a template over the scalar with no data-dependent branches beyond
+// selects, so a swarm loop over float arrays vectorises it.
+#include <algorithm>
+#include <optional>
+#include <string_view>
+
+#include "pba/force.hpp"
+#include "pba/math.hpp"
+
+namespace pba {
+
+enum class Falloff { Linear, Quadratic, Smooth };
+enum class FlowDirection { Vertical, ConeFlow };
+
+std::string_view falloffName(Falloff falloff);
+std::optional<Falloff> falloffFromName(std::string_view name);
+std::string_view flowDirectionName(FlowDirection direction);
+std::optional<FlowDirection> flowDirectionFromName(std::string_view name);
+
+/// A falloff profile of u in [0, 1]: 0 at u = 0, 1 at u = 1. `linear` u, `quadratic` u^2,
+/// `smooth` the smoothstep u^2 (3 - 2u), flat at both ends.
+template <class T>
+inline T falloff(Falloff kind, T u)
+{
+    u = std::clamp(u, T(0), T(1));
+    switch (kind) {
+    case Falloff::Linear: return u;
+    case Falloff::Quadratic: return u * u;
+    case Falloff::Smooth: return u * u * (T(3) - T(2) * u);
+    }
+    return u;
+}
+
+template <class T>
+struct BlowDryerFieldT {
+    Vec3<T> nozzle{T(0)};           ///< centre of the hole in the floor, m
+    Vec3<T> axis{T(0), T(1), T(0)}; ///< unit vector, the direction of the flow
+    T height = T(1);                ///< H, m
+    T nozzleRadius = T(0);          ///< r0, m
+    T topRadius = T(1);             ///< R, m
+    T strength = T(0);              ///< force at the nozzle on the axis, N
+    Falloff axialFalloff = Falloff::Linear;
+    Falloff radialFalloff = Falloff::Linear;
+    FlowDirection direction = FlowDirection::Vertical;
+
+    template <class U>
+    BlowDryerFieldT<U> as() const
+    {
+        return {Vec3<U>(nozzle), Vec3<U>(axis), U(height), U(nozzleRadius), U(topRadius), U(strength),
+                axialFalloff, radialFalloff, direction};
+    }
+};
+using BlowDryerField = BlowDryerFieldT<double>;
+
+/// The force of the field at x (independent of the body's mass and velocity).
+template <class T>
+inline Vec3<T> blowDryerForce(const BlowDryerFieldT<T>& f, const Vec3<T>& x)
+{
+    const Vec3<T> d = x - f.nozzle;
+    const T h = glm::dot(d, f.axis);
+    const Vec3<T> rho = d - h * f.axis;
+    const T r = glm::length(rho);
+    const T s = h / f.height;
+    const T radiusHere = f.nozzleRadius + (f.topRadius - f.nozzleRadius) * s;
+    const bool inside = h >= T(0) && s < T(1) && r < radiusHere;
+    const T safeRadius = inside ? radiusHere : T(1);
+    const T magnitude =
+        inside ? f.strength * falloff(f.axialFalloff, T(1) - s) * falloff(f.radialFalloff, T(1) - r / safeRadius) : T(0);
+    if (f.direction == FlowDirection::Vertical)
+        return magnitude * f.axis;
+    const Vec3<T> flow = f.height * f.axis + ((f.topRadius - f.nozzleRadius) / safeRadius) * rho;
+    return (magnitude / glm::length(flow)) * flow;
+}
+
+/// The field as a Force of the World.
+class BlowDryer final : public ForceBase<BlowDryer> {
+public:
+    explicit BlowDryer(const BlowDryerField& field) : m_field(field) {}
+    std::string_view type() const override { return "blow-dryer"; }
+    dvec3 force(std::size_t, const Body&, const dvec3& x, const dvec3&) const override
+    {
+        return blowDryerForce(m_field, x);
+    }
+    const BlowDryerField& field() const { return m_field; }
+    BlowDryerField& field() { return m_field; }
+
+private:
+    BlowDryerField m_field;
+};
+
+} // namespace pba
