@@ -73,6 +73,10 @@ TEST_P(BadSceneTest, IsReportedWithFieldAndReason)
     }
 }
 
+// A blow dryer with one key changed (later keys win in the JSON object we build).
+#define D(change)                                                                                          \
+    R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "forces": [{"type": "blow-dryer", "nozzle": [0, 0, 0], )" \
+    R"("height": 3, "nozzle_radius": 0.2, "top_radius": 1, "strength": 30, )" change "}]}"
 #define P(extra) R"({"particles": [{"name": "a", "position": [0, 1, 0])" extra "}]}"
 INSTANTIATE_TEST_SUITE_P(
     SceneLoader, BadSceneTest,
@@ -109,7 +113,21 @@ INSTANTIATE_TEST_SUITE_P(
                     BadScene{R"({"particles": [{"name": "a", "position": [0, 1, 0]}], "forces": [{"type": "spring", "particle": "a", "anchor": [0,0,0], "stiffness": -1}]})",
                              "forces[0].stiffness", "must be positive"},
                     BadScene{R"({"forces": [{"type": "drag", "coefficient": -1}]})", "forces[0].coefficient",
-                             "must not be negative"}));
+                             "must not be negative"},
+                    BadScene{D(R"("height": 0)"), "forces[0].height", "must be positive"},
+                    BadScene{D(R"("height": -1)"), "forces[0].height", "must be positive"},
+                    BadScene{D(R"("nozzle_radius": -0.1)"), "forces[0].nozzle_radius", "must not be negative"},
+                    BadScene{D(R"("top_radius": -1)"), "forces[0].top_radius", "must not be negative"},
+                    BadScene{D(R"("nozzle_radius": 0.5, "top_radius": 0.2)"), "forces[0].top_radius",
+                             "must not be smaller than nozzle_radius"},
+                    BadScene{D(R"("axis": [0, 0, 0])"), "forces[0].axis", "zero vector"},
+                    BadScene{D(R"("strength": "strong")"), "forces[0].strength", "expected a number"},
+                    BadScene{D(R"("axial_falloff": "cubic")"), "forces[0].axial_falloff", "unknown value 'cubic'"},
+                    BadScene{D(R"("radial_falloff": 2)"), "forces[0].radial_falloff", "expected a string"},
+                    BadScene{D(R"("direction": "sideways")"), "forces[0].direction", "unknown value 'sideways'"},
+                    BadScene{D(R"("grille_depth": 0)"), "forces[0].grille_depth", "must be positive"},
+                    BadScene{D(R"("nozzel": [0, 0, 0])"), "forces[0].nozzel", "unknown key"}));
+#undef D
 #undef P
 
 TEST(SceneLoader, MissingFileAndUnknownNameAreErrors)

@@ -1,0 +1,56 @@
+// `pba field`: the force at a point (text and JSON) and the slice picture.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "support/run_command.hpp"
+
+using namespace pba::test;
+
+TEST(PbaField, PrintsEachFieldAndTheTotalAtAPoint)
+{
+    // On the axis 1 m above the nozzle: 58 N (1 - 1/3.5) up, smooth radial falloff is 1 on the axis.
+    const CommandResult r = runPba("field blow-dryer --at 0,1,0 --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    const double lift = 58.0 * (1.0 - 1.0 / 3.5);
+    EXPECT_NEAR(json["total"][1].get<double>(), lift - 9.81, 1e-9);
+    ASSERT_EQ(json["forces"].size(), 2u);
+    EXPECT_EQ(json["forces"][0]["type"], "gravity");
+    EXPECT_EQ(json["forces"][1]["type"], "blow-dryer");
+    EXPECT_NEAR(json["forces"][1]["force"][1].get<double>(), lift, 1e-9);
+
+    const CommandResult text = runPba("field blow-dryer --at 0,1,0");
+    ASSERT_EQ(text.exitCode, 0);
+    EXPECT_NE(text.out.find("blow-dryer"), std::string::npos);
+    EXPECT_NE(text.out.find("total"), std::string::npos);
+}
+
+TEST(PbaField, OutsideTheConeOnlyGravityActs)
+{
+    const CommandResult r = runPba("field blow-dryer --at 1.9,1,1.9 --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    EXPECT_EQ(json["forces"][1]["force"], nlohmann::json::array({0.0, 0.0, 0.0}));
+}
+
+TEST(PbaField, DrawsTheSliceAsAPng)
+{
+    const auto dir = freshDir("field_slice");
+    const auto png = dir / "field.png";
+    const CommandResult r = runPba("field blow-dryer-flow --slice --out " + png.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string bytes = readFile(png);
+    ASSERT_GT(bytes.size(), 10000u);
+    EXPECT_EQ(bytes.substr(1, 3), "PNG");
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1) << "no temporary files left";
+}
+
+TEST(PbaField, BadUsageIsExitTwo)
+{
+    EXPECT_EQ(runPba("field blow-dryer").exitCode, 2);
+    EXPECT_EQ(runPba("field blow-dryer --at 1,2").exitCode, 2);
+    EXPECT_EQ(runPba("field blow-dryer --slice").exitCode, 2);
+    EXPECT_EQ(runPba("field integrators --slice --out /tmp/x.png").exitCode, 2);
+    EXPECT_EQ(runPba("field blow-dryer --slice --out /nonexistent/dir/x.png").exitCode, 2);
+}
