@@ -38,5 +38,7 @@ using Action = std::function<int()>;
 
 void addSimCommand(CLI::App& root, Action& selected);
 void addFieldCommand(CLI::App& root, Action& selected);
+void addRenderCommand(CLI::App& root, Action& selected);
+void addViewCommand(CLI::App& root, Action& selected);
 
 } // namespace pba::app

@@ -1,0 +1,44 @@
+#include "progress.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+#include <fmt/format.h>
+
+namespace pba::app {
+
+Progress::Progress(std::string what, long total)
+    : m_what(std::move(what)), m_total(total), m_terminal(::isatty(STDERR_FILENO) != 0),
+      m_start(std::chrono::steady_clock::now()), m_lastDraw(m_start)
+{
+}
+
+void Progress::update(long done)
+{
+    if (!m_terminal)
+        return;
+    const auto now = std::chrono::steady_clock::now();
+    const double elapsed = std::chrono::duration<double>(now - m_start).count();
+    // Only long work gets a bar, and at most ten redraws a second.
+    if (elapsed < 1.0 || (now - m_lastDraw < std::chrono::milliseconds(100) && done < m_total))
+        return;
+    m_lastDraw = now;
+    const double fraction = m_total > 0 ? double(done) / double(m_total) : 1.0;
+    const int width = 30;
+    const int filled = static_cast<int>(fraction * width);
+    const double remaining = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+    fmt::print(stderr, "\r{} [{}{}] {}/{}  {:.1f} s elapsed, {:.1f} s left   ", m_what, std::string(filled, '#'),
+               std::string(width - filled, '.'), done, m_total, elapsed, remaining);
+    std::fflush(stderr);
+}
+
+void Progress::finish(const std::string& summary)
+{
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+    if (m_terminal)
+        fmt::print(stderr, "\r\033[K");
+    fmt::print(stderr, "{} in {:.1f} s\n", summary, elapsed);
+}
+
+} // namespace pba::app

@@ -1,0 +1,24 @@
+#pragma once
+// A progress bar on stderr for long work: frames or runs done, total, elapsed, remaining.
+// When stderr is not a terminal it stays quiet until the one-line summary at the end.
+#include <chrono>
+#include <string>
+
+namespace pba::app {
+
+class Progress {
+public:
+    Progress(std::string what, long total);
+    void update(long done);
+    /// Prints the closing summary line ("rendered 600 frames in 12.3 s").
+    void finish(const std::string& summary);
+
+private:
+    std::string m_what;
+    long m_total;
+    bool m_terminal;
+    std::chrono::steady_clock::time_point m_start;
+    std::chrono::steady_clock::time_point m_lastDraw;
+};
+
+} // namespace pba::app

@@ -1,0 +1,36 @@
+#pragma once
+// Where rendered frames go: one PNG, numbered PNGs in a folder, or an MP4 through ffmpeg.
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/image_io.hpp"
+
+namespace pba::app {
+
+enum class OutputKind { Png, Mp4, Frames };
+
+/// FILE.png, FILE.mp4, or a directory (a path ending in '/' or an existing directory).
+/// Throws UsageError for anything else.
+OutputKind outputKind(const std::string& out);
+
+class FrameSink {
+public:
+    /// Checks the output can be written before any rendering (UsageError if not).
+    FrameSink(OutputKind kind, const std::string& out, int width, int height, int fps);
+    void add(const std::vector<std::uint8_t>& rgba);
+    void finish();
+
+private:
+    OutputKind m_kind;
+    std::filesystem::path m_out;
+    int m_width;
+    int m_height;
+    long m_count = 0;
+    std::vector<std::uint8_t> m_last;
+    std::unique_ptr<render::VideoWriter> m_video;
+};
+
+} // namespace pba::app

@@ -1,0 +1,28 @@
+#pragma once
+// An orbit camera: it circles a target at a distance, yaw and pitch in radians.
+#include <glm/glm.hpp>
+
+namespace pba::render {
+
+struct OrbitCamera {
+    glm::vec3 target{0.0f, 1.0f, 0.0f};
+    float distance = 8.0f;
+    float yaw = 0.5f;    ///< about the vertical axis
+    float pitch = 0.35f; ///< above the horizon
+    float fovY = 0.75f;  ///< vertical field of view, radians
+
+    glm::vec3 eye() const;
+    glm::mat4 view() const;
+    glm::mat4 projection(float aspect) const;
+    /// Window pixel (x right, y down) where a world point lands; z < 0 or > 1 means clipped.
+    glm::vec3 project(const glm::vec3& world, int width, int height) const;
+
+    void orbit(float dYaw, float dPitch);
+    void zoom(float factor);
+    /// Moves the target in the view plane by a fraction of the distance.
+    void pan(float dx, float dy);
+    /// Frames an axis-aligned box.
+    static OrbitCamera framing(const glm::vec3& lo, const glm::vec3& hi);
+};
+
+} // namespace pba::render

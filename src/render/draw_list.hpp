@@ -1,0 +1,49 @@
+#pragma once
+// What one frame shows, as plain data: shaded sprites, coloured lines, translucent triangles
+// and an optional checkered floor. Scene drawing fills it from the World; the Renderer turns
+// it into GL calls. Keeping the two apart lets tests and later features (the blow dryer's
+// cone, swarms) add shapes without touching OpenGL.
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace pba::render {
+
+struct Sprite {
+    glm::vec3 position;
+    float radius; ///< world units
+    glm::vec4 colour;
+};
+
+struct ColouredVertex {
+    glm::vec3 position;
+    glm::vec4 colour;
+};
+
+/// A checkered rectangle in the plane y = height, with an optional round hole.
+struct Floor {
+    glm::vec2 min{-1.0f}; ///< x, z
+    glm::vec2 max{1.0f};
+    float height = 0.0f;
+    float cell = 0.5f;
+    glm::vec2 holeCentre{0.0f};
+    float holeRadius = 0.0f;
+};
+
+struct DrawList {
+    std::vector<Sprite> sprites;
+    std::vector<ColouredVertex> lines;     ///< pairs of vertices
+    std::vector<ColouredVertex> triangles; ///< triples, drawn blended after everything opaque
+    std::optional<Floor> floor;
+
+    void clear();
+    void addLine(const glm::vec3& a, const glm::vec3& b, const glm::vec4& colour);
+    void addBoxEdges(const glm::vec3& lo, const glm::vec3& hi, const glm::vec4& colour);
+    void addTriangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec4& colour);
+    void addArrow(const glm::vec3& from, const glm::vec3& to, const glm::vec4& colour);
+    /// n sprites from a packed float array x0 y0 z0 x1 y1 z1 ... (swarms).
+    void addPoints(const float* xyz, std::size_t n, float radius, const glm::vec4& colour);
+};
+
+} // namespace pba::render

@@ -1,0 +1,45 @@
+#pragma once
+// Everything a headless picture needs, in the order it needs it: an EGL context, the scene
+// renderer, ImGui for the legend, and a camera framing the world. `pba render` and the render
+// tests use this; the viewer uses the same Renderer and world_view code in a window.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/camera.hpp"
+#include "render/draw_list.hpp"
+#include "render/gl_context.hpp"
+#include "render/overlay.hpp"
+#include "render/renderer.hpp"
+#include "render/world_view.hpp"
+
+namespace pba::render {
+
+class OffscreenRenderer {
+public:
+    OffscreenRenderer(int width, int height, bool legend = true);
+
+    /// Draws the world at the clock's alpha and returns RGBA8 pixels, top row first.
+    std::vector<std::uint8_t> render(const World& world, const World& initial, double alpha,
+                                     const ViewSettings& settings, const Trails* trails, const std::string& sceneName,
+                                     double dt);
+
+    OrbitCamera& camera() { return m_camera; }
+    int width() const { return m_context.width(); }
+    int height() const { return m_context.height(); }
+    std::string driver() const { return m_context.renderer(); }
+    /// Draws a prepared list (benchmarks, swarms) without the legend.
+    std::vector<std::uint8_t> renderList(const DrawList& list);
+
+private:
+    HeadlessContext m_context;
+    Renderer m_renderer;
+    std::unique_ptr<ImGuiLayer> m_imgui;
+    OrbitCamera m_camera;
+    bool m_cameraSet = false;
+    bool m_legendShown = false;
+    DrawList m_list;
+};
+
+} // namespace pba::render

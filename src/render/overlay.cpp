@@ -1,0 +1,75 @@
+#include "overlay.hpp"
+
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include "pba/world.hpp"
+#include "world_view.hpp"
+
+namespace pba::render {
+
+ImGuiLayer::ImGuiLayer(GLFWwindow* window) : m_windowed(window != nullptr)
+{
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr; // no imgui.ini left behind in the user's directory
+    ImGui::StyleColorsDark();
+    ImGui::GetStyle().WindowRounding = 4.0f;
+    if (window)
+        ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 330 core"); // 1.86 defaults to GLSL 130, refused by core profiles
+}
+
+ImGuiLayer::~ImGuiLayer()
+{
+    ImGui_ImplOpenGL3_Shutdown();
+    if (m_windowed)
+        ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+}
+
+void ImGuiLayer::beginFrame(int width, int height, float deltaTime)
+{
+    ImGui_ImplOpenGL3_NewFrame();
+    if (m_windowed) {
+        ImGui_ImplGlfw_NewFrame();
+    } else {
+        ImGuiIO& io = ImGui::GetIO();
+        io.DisplaySize = ImVec2(float(width), float(height));
+        io.DeltaTime = deltaTime > 0.0f ? deltaTime : 1.0f / 60.0f;
+    }
+    ImGui::NewFrame();
+}
+
+void ImGuiLayer::endFrame()
+{
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+void drawLegend(const World& world, const std::string& sceneName, double dt, bool compact)
+{
+    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_Always);
+    ImGui::SetNextWindowBgAlpha(0.65f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+    if (ImGui::Begin("legend", nullptr, flags)) {
+        ImGui::Text("%s   t = %.2f s   dt = %g s", sceneName.c_str(), world.time(), dt);
+        const std::size_t shown = compact ? std::min<std::size_t>(world.bodyCount(), 8) : world.bodyCount();
+        for (std::size_t i = 0; i < shown; ++i) {
+            const Body& body = world.body(i);
+            const glm::vec4 c = bodyColour(body);
+            ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1.0f), "o");
+            ImGui::SameLine();
+            ImGui::Text("%s  (%s)", body.getName().c_str(),
+                        body.isFixed() ? "fixed" : std::string(integratorName(body.getIntegrator())).c_str());
+        }
+        if (shown < world.bodyCount())
+            ImGui::Text("... and %zu more", world.bodyCount() - shown);
+    }
+    ImGui::End();
+}
+
+} // namespace pba::render

@@ -1,0 +1,33 @@
+#pragma once
+// Dear ImGui on top of the scene: the legend in rendered images and videos, and the whole
+// control panel in the viewer. The same ImGui code runs in a window (GLFW backend) and
+// headless (display size set by hand).
+#include <string>
+
+struct GLFWwindow;
+
+namespace pba {
+class World;
+}
+
+namespace pba::render {
+
+class ImGuiLayer {
+public:
+    /// With a window: GLFW input; without: headless, for rendered frames.
+    explicit ImGuiLayer(GLFWwindow* window = nullptr);
+    ~ImGuiLayer();
+    ImGuiLayer(const ImGuiLayer&) = delete;
+    ImGuiLayer& operator=(const ImGuiLayer&) = delete;
+
+    void beginFrame(int width, int height, float deltaTime);
+    void endFrame();
+
+private:
+    bool m_windowed;
+};
+
+/// A small box naming the scene, the time and each particle in its colour with its integrator.
+void drawLegend(const World& world, const std::string& sceneName, double dt, bool compact = false);
+
+} // namespace pba::render

@@ -1,0 +1,112 @@
+#include "renderer.hpp"
+
+#include <epoxy/gl.h>
+
+#include <cstddef>
+
+#include "shaders.hpp"
+
+namespace pba::render {
+
+Renderer::Renderer()
+    : m_sprite("sprite", glsl::kSpriteVertex, glsl::kSpriteFragment),
+      m_flat("flat", glsl::kFlatVertex, glsl::kFlatFragment),
+      m_floor("floor", glsl::kFloorVertex, glsl::kFloorFragment)
+{
+    glGenVertexArrays(1, &m_vao);
+    glGenBuffers(1, &m_vbo);
+}
+
+Renderer::~Renderer()
+{
+    glDeleteBuffers(1, &m_vbo);
+    glDeleteVertexArrays(1, &m_vao);
+}
+
+void Renderer::draw(const DrawList& list, const OrbitCamera& camera, int width, int height, const glm::vec3& background)
+{
+    glClearColor(background.r, background.g, background.b, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    const glm::mat4 view = camera.view();
+    const glm::mat4 projection = camera.projection(float(width) / float(std::max(height, 1)));
+    for (const Shader* shader : {&m_sprite, &m_flat, &m_floor}) {
+        shader->use();
+        shader->set("uView", view);
+        shader->set("uProjection", projection);
+    }
+    m_sprite.use();
+    m_sprite.set("uViewportHeight", float(height));
+    glBindVertexArray(m_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
+    if (list.floor)
+        drawFloor(*list.floor);
+    drawColoured(list.lines, GL_LINES);
+    drawSprites(list.sprites);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+    drawColoured(list.triangles, GL_TRIANGLES);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glBindVertexArray(0);
+}
+
+void Renderer::drawFloor(const Floor& floor)
+{
+    const glm::vec3 quad[6] = {{floor.min.x, floor.height, floor.min.y}, {floor.max.x, floor.height, floor.min.y},
+                               {floor.max.x, floor.height, floor.max.y}, {floor.min.x, floor.height, floor.min.y},
+                               {floor.max.x, floor.height, floor.max.y}, {floor.min.x, floor.height, floor.max.y}};
+    m_floor.use();
+    m_floor.set("uCell", floor.cell);
+    m_floor.set("uHole", glm::vec3(floor.holeCentre, floor.holeRadius));
+    glBufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STREAM_DRAW);
+    glEnableVertexAttribArray(0);
+    glDisableVertexAttribArray(1);
+    glDisableVertexAttribArray(2);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+    // Pull the floor slightly back in depth so lines lying on it stay visible.
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.0f, 1.0f);
+    glDrawArrays(GL_TRIANGLES, 0, 6);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+void Renderer::drawColoured(const std::vector<ColouredVertex>& vertices, unsigned mode)
+{
+    if (vertices.empty())
+        return;
+    m_flat.use();
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(ColouredVertex)), vertices.data(),
+                 GL_STREAM_DRAW);
+    glEnableVertexAttribArray(0);
+    glEnableVertexAttribArray(1);
+    glDisableVertexAttribArray(2);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(ColouredVertex),
+                          reinterpret_cast<void*>(offsetof(ColouredVertex, position)));
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(ColouredVertex),
+                          reinterpret_cast<void*>(offsetof(ColouredVertex, colour)));
+    glDrawArrays(mode, 0, static_cast<GLsizei>(vertices.size()));
+}
+
+void Renderer::drawSprites(const std::vector<Sprite>& sprites)
+{
+    if (sprites.empty())
+        return;
+    m_sprite.use();
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(sprites.size() * sizeof(Sprite)), sprites.data(),
+                 GL_STREAM_DRAW);
+    glEnableVertexAttribArray(0);
+    glEnableVertexAttribArray(1);
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Sprite), reinterpret_cast<void*>(offsetof(Sprite, position)));
+    glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, sizeof(Sprite), reinterpret_cast<void*>(offsetof(Sprite, radius)));
+    glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(Sprite), reinterpret_cast<void*>(offsetof(Sprite, colour)));
+    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(sprites.size()));
+}
+
+} // namespace pba::render

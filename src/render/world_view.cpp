@@ -1,0 +1,169 @@
+#include "world_view.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "pba/blow_dryer.hpp"
+
+namespace pba::render {
+
+glm::vec4 integratorColour(Integrator integrator)
+{
+    switch (integrator) {
+    case Integrator::ForwardEuler: return {0.93f, 0.33f, 0.27f, 1.0f};      // red: gains energy
+    case Integrator::SemiImplicitEuler: return {0.30f, 0.75f, 0.38f, 1.0f}; // green
+    case Integrator::VelocityVerlet: return {0.27f, 0.55f, 0.95f, 1.0f};    // blue
+    case Integrator::RK4: return {0.95f, 0.70f, 0.20f, 1.0f};               // amber
+    }
+    return {1, 1, 1, 1};
+}
+
+glm::vec4 bodyColour(const Body& body)
+{
+    return body.isFixed() ? glm::vec4(0.70f, 0.70f, 0.72f, 1.0f) : integratorColour(body.getIntegrator());
+}
+
+glm::vec3 drawnPosition(const World& world, std::size_t i, double alpha, bool interpolate)
+{
+    return glm::vec3(interpolate ? world.interpolatedState(i, alpha).pos : world.body(i).getPos());
+}
+
+void Trails::record(const World& world, double alpha, bool interpolate)
+{
+    m_points.resize(world.bodyCount());
+    for (std::size_t i = 0; i < world.bodyCount(); ++i) {
+        auto& trail = m_points[i];
+        trail.push_back(drawnPosition(world, i, alpha, interpolate));
+        while (trail.size() > m_length)
+            trail.pop_front();
+    }
+}
+
+namespace {
+
+void addSurfaces(const World& world, DrawList& out)
+{
+    const glm::vec4 edge(0.55f, 0.60f, 0.70f, 1.0f);
+    Floor floor;
+    if (world.room()) {
+        const glm::vec3 lo(world.room()->min), hi(world.room()->max);
+        out.addBoxEdges(lo, hi, edge);
+        floor.min = {lo.x, lo.z};
+        floor.max = {hi.x, hi.z};
+        floor.height = lo.y;
+        floor.cell = std::max(hi.x - lo.x, hi.z - lo.z) / 8.0f;
+    } else if (world.ground()) {
+        glm::vec3 centre(0.0f);
+        for (std::size_t i = 0; i < world.bodyCount(); ++i)
+            centre += glm::vec3(world.body(i).getPos()) / float(world.bodyCount());
+        floor.min = {centre.x - 3.0f, centre.z - 3.0f};
+        floor.max = {centre.x + 3.0f, centre.z + 3.0f};
+        floor.height = float(*world.ground());
+        floor.cell = 0.5f;
+    } else {
+        return;
+    }
+    if (const auto& hole = world.floorHole()) {
+        floor.holeCentre = {float(hole->centre.x), float(hole->centre.z)};
+        floor.holeRadius = float(hole->radius);
+    }
+    out.floor = floor;
+}
+
+void addCone(const BlowDryerField& f, bool arrows, DrawList& out)
+{
+    const glm::vec3 axis(f.axis), nozzle(f.nozzle);
+    glm::vec3 u = glm::cross(axis, glm::vec3(0, 0, 1));
+    if (glm::length(u) < 1e-4f)
+        u = glm::cross(axis, glm::vec3(1, 0, 0));
+    u = glm::normalize(u);
+    const glm::vec3 w = glm::cross(axis, u);
+    const glm::vec3 top = nozzle + float(f.height) * axis;
+    const int segments = 48;
+    const glm::vec4 fill(0.35f, 0.75f, 1.0f, 0.10f), rim(0.45f, 0.80f, 1.0f, 0.8f);
+    for (int k = 0; k < segments; ++k) {
+        const float a0 = 2.0f * std::numbers::pi_v<float> * float(k) / segments;
+        const float a1 = 2.0f * std::numbers::pi_v<float> * float(k + 1) / segments;
+        const glm::vec3 d0 = std::cos(a0) * u + std::sin(a0) * w, d1 = std::cos(a1) * u + std::sin(a1) * w;
+        const glm::vec3 b0 = nozzle + float(f.nozzleRadius) * d0, b1 = nozzle + float(f.nozzleRadius) * d1;
+        const glm::vec3 t0 = top + float(f.topRadius) * d0, t1 = top + float(f.topRadius) * d1;
+        out.addTriangle(b0, t0, t1, fill);
+        out.addTriangle(b0, t1, b1, fill);
+        out.addLine(t0, t1, rim);
+        out.addLine(b0, b1, rim);
+        if (k % 12 == 0)
+            out.addLine(b0, t0, glm::vec4(rim.r, rim.g, rim.b, 0.5f));
+    }
+    if (!arrows)
+        return;
+    // Arrows in two vertical planes through the axis, scaled so the strongest spans a cell.
+    const float cell = float(std::max(f.topRadius, f.height) / 10.0);
+    const float scale = 0.9f * cell / float(std::max(std::abs(f.strength), 1e-9));
+    for (const glm::vec3& across : {u, w})
+        for (float h = 0.5f * cell; h < float(f.height); h += cell)
+            for (float s = -float(f.topRadius); s <= float(f.topRadius); s += cell) {
+                const glm::vec3 x = nozzle + h * axis + s * across;
+                const glm::vec3 force(blowDryerForce(f, dvec3(x)));
+                const float m = glm::length(force);
+                if (m > 0.0f)
+                    out.addArrow(x, x + scale * force, glm::vec4(1.0f, 0.55f + 0.45f * m / float(f.strength), 0.2f, 0.9f));
+            }
+}
+
+void addBodies(const World& world, const World& initial, double alpha, const ViewSettings& settings,
+               const Trails* trails, DrawList& out)
+{
+    for (std::size_t i = 0; i < world.bodyCount(); ++i) {
+        const glm::vec4 colour = bodyColour(world.body(i));
+        const glm::vec3 at = drawnPosition(world, i, alpha, settings.interpolate);
+        out.sprites.push_back({at, settings.particleRadius, colour});
+        if (settings.referenceLines && i < initial.bodyCount()) {
+            const glm::vec3 start(initial.body(i).getPos());
+            const glm::vec4 faint(colour.r, colour.g, colour.b, 0.8f);
+            out.addLine(start - glm::vec3(0.25f, 0, 0), start + glm::vec3(0.25f, 0, 0), faint);
+        }
+        if (settings.trails && trails && i < trails->points().size()) {
+            const auto& trail = trails->points()[i];
+            for (std::size_t k = 1; k < trail.size(); ++k) {
+                const float fade = float(k) / float(trail.size());
+                out.addLine(trail[k - 1], trail[k], glm::vec4(glm::vec3(colour) * (0.25f + 0.75f * fade), 1.0f));
+            }
+        }
+    }
+}
+
+} // namespace
+
+void buildDrawList(const World& world, const World& initial, double alpha, const ViewSettings& settings,
+                   const Trails* trails, DrawList& out)
+{
+    out.clear();
+    addSurfaces(world, out);
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        if (const auto* dryer = dynamic_cast<const BlowDryer*>(&world.force(i)); dryer && settings.cone)
+            addCone(dryer->field(), settings.fieldArrows, out);
+    addBodies(world, initial, alpha, settings, trails, out);
+}
+
+OrbitCamera frameWorld(const World& world)
+{
+    if (world.room())
+        return OrbitCamera::framing(glm::vec3(world.room()->min), glm::vec3(world.room()->max));
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (std::size_t i = 0; i < world.bodyCount(); ++i) {
+        lo = glm::min(lo, glm::vec3(world.body(i).getPos()));
+        hi = glm::max(hi, glm::vec3(world.body(i).getPos()));
+    }
+    if (world.bodyCount() == 0)
+        lo = hi = glm::vec3(0.0f);
+    if (world.ground())
+        lo.y = std::min(lo.y, float(*world.ground()));
+    lo -= glm::vec3(0.5f);
+    hi += glm::vec3(0.5f);
+    OrbitCamera camera = OrbitCamera::framing(lo, hi);
+    camera.pitch = 0.2f;
+    return camera;
+}
+
+} // namespace pba::render

@@ -1,0 +1,50 @@
+#pragma once
+// The World as a picture: the room or ground, each particle at its interpolated state,
+// coloured by integrator, its fading trail, a line at its start height, and the blow
+// dryer's cone and field arrows. Reads the world; never writes it.
+#include <deque>
+#include <vector>
+
+#include "camera.hpp"
+#include "draw_list.hpp"
+#include "pba/world.hpp"
+
+namespace pba::render {
+
+struct ViewSettings {
+    bool interpolate = true;      ///< blend previous and current state with the clock's alpha
+    bool trails = true;
+    bool referenceLines = true;   ///< a horizontal line at each particle's start height
+    bool cone = true;             ///< the blow dryer's region, translucent
+    bool fieldArrows = false;     ///< arrows on a grid inside the cone, scaled by magnitude
+    float particleRadius = 0.08f; ///< drawn radius, m (particles are points)
+};
+
+/// The colour of each integrator (and grey for fixed bodies), shared by the legend.
+glm::vec4 integratorColour(Integrator integrator);
+glm::vec4 bodyColour(const Body& body);
+
+/// Recent drawn positions of each body, for fading trails.
+class Trails {
+public:
+    explicit Trails(std::size_t length = 90) : m_length(length) {}
+    void record(const World& world, double alpha, bool interpolate);
+    void clear() { m_points.clear(); }
+    const std::vector<std::deque<glm::vec3>>& points() const { return m_points; }
+
+private:
+    std::size_t m_length;
+    std::vector<std::deque<glm::vec3>> m_points;
+};
+
+/// The position a body is drawn at.
+glm::vec3 drawnPosition(const World& world, std::size_t i, double alpha, bool interpolate);
+
+/// Fills `out` with the world. `initial` (the scene at t = 0) gives the start heights.
+void buildDrawList(const World& world, const World& initial, double alpha, const ViewSettings& settings,
+                   const Trails* trails, DrawList& out);
+
+/// A camera that frames the room, or the ground and the particles.
+OrbitCamera frameWorld(const World& world);
+
+} // namespace pba::render
