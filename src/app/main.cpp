@@ -23,6 +23,7 @@ int main(int argc, char** argv)
     addSimCommand(app, selected);
     addFieldCommand(app, selected);
     addRenderCommand(app, selected);
+    addViewCommand(app, selected);
 
     // `pba` alone runs the default action (the same as `pba sim`).
     std::vector<std::string> args(argv + 1, argv + argc);

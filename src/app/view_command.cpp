@@ -1,0 +1,54 @@
+// `pba view`: the interactive window.
+#include <memory>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "command.hpp"
+#include "scene_options.hpp"
+#include "viewer.hpp"
+#include "render/gl_context.hpp"
+
+namespace pba::app {
+
+namespace {
+
+struct ViewOptions {
+    SceneOptions scene;
+    std::optional<int> frames;
+    std::optional<std::string> screenshot;
+};
+
+int runView(const ViewOptions& options)
+{
+    Scene scene = loadSceneWithOverrides(options.scene);
+    if (options.frames && *options.frames <= 0)
+        throw UsageError(fmt::format("--frames: must be positive, got {}", *options.frames));
+    if (options.screenshot && !options.frames)
+        throw UsageError("--screenshot needs --frames N (the frame to save)");
+    try {
+        return runViewer(std::move(scene), options.frames, options.screenshot);
+    } catch (const render::RenderError& e) {
+        throw RuntimeFailure(e.what());
+    }
+}
+
+} // namespace
+
+void addViewCommand(CLI::App& root, Action& selected)
+{
+    auto options = std::make_shared<ViewOptions>();
+    CLI::App* view = root.add_subcommand("view", "Open the interactive viewer (needs a display; see `pba render` "
+                                                 "for none)");
+    addSceneOptions(*view, options->scene, kDefaultScene);
+    view->add_option("--frames", options->frames, "Run this many frames, then close")->type_name("N");
+    view->add_option("--screenshot", options->screenshot, "With --frames: save the last frame to this PNG")
+        ->type_name("FILE.png");
+    view->footer("\nKeys: space pause/play, '.' or right arrow single step, r reset, i toggle interpolation,\n"
+                 "      c reset the camera, Esc quit.\n"
+                 "Mouse: drag to orbit, right-drag or shift-drag to pan, wheel to zoom.\n"
+                 "Without a display: xvfb-run -a -s \"-screen 0 1280x720x24\" pba view\n");
+    view->callback([options, &selected] { selected = [options] { return runView(*options); }; });
+}
+
+} // namespace pba::app
