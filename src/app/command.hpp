@@ -41,4 +41,9 @@ void addFieldCommand(CLI::App& root, Action& selected);
 void addRenderCommand(CLI::App& root, Action& selected);
 void addViewCommand(CLI::App& root, Action& selected);
 
+/// `pba` with no arguments: the default scene in a window when there is a display,
+/// otherwise rendered to an MP4 and a PNG in `directory`.
+int runDefault(const std::string& directory);
+int renderDefaultScene(const std::string& directory);
+
 } // namespace pba::app

@@ -25,10 +25,7 @@ int main(int argc, char** argv)
     addRenderCommand(app, selected);
     addViewCommand(app, selected);
 
-    // `pba` alone runs the default action (the same as `pba sim`).
     std::vector<std::string> args(argv + 1, argv + argc);
-    if (args.empty())
-        args = {"sim"};
     std::reverse(args.begin(), args.end()); // CLI11 takes the arguments in reverse order
     try {
         app.parse(args);
@@ -40,10 +37,8 @@ int main(int argc, char** argv)
         fmt::print(stderr, "pba: error: {}\n", e.what());
         return kExitBadInput;
     }
-    if (!selected) {
-        fmt::print(stderr, "pba: error: no command given (see pba --help)\n");
-        return kExitBadInput;
-    }
+    if (!selected) // `pba` alone: the default scene, in a window or rendered
+        selected = [] { return runDefault("pba-out"); };
     try {
         return selected();
     } catch (const pba::SceneError& e) {

@@ -2,6 +2,7 @@
 // MP4. Video time follows the fixed-timestep clock fed with frames of 1/fps seconds, so the
 // interpolation between physics states is exercised exactly as in the window.
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <regex>
@@ -85,6 +86,25 @@ int runRender(const RenderOptions& options)
 }
 
 } // namespace
+
+int renderDefaultScene(const std::string& directory)
+{
+    std::filesystem::create_directories(directory);
+    RenderOptions options;
+    options.scene.scene = kDefaultScene;
+    options.scene.duration = 10.0;
+    options.out = directory + "/" + kDefaultScene + ".mp4";
+    if (const int code = runRender(options); code != kExitSuccess)
+        return code;
+    options.out = directory + "/" + kDefaultScene + ".png";
+    options.time = 10.0;
+    if (const int code = runRender(options); code != kExitSuccess)
+        return code;
+    fmt::print("no display: rendered the {} scene instead of opening a window:\n  {}/{}.mp4\n  {}/{}.png\n"
+               "(run `xvfb-run -a -s \"-screen 0 1280x720x24\" pba view` for the window on a machine without one)\n",
+               kDefaultScene, directory, kDefaultScene, directory, kDefaultScene);
+    return kExitSuccess;
+}
 
 void addRenderCommand(CLI::App& root, Action& selected)
 {

@@ -1,4 +1,5 @@
 // `pba view`: the interactive window.
+#include <cstdlib>
 #include <memory>
 #include <optional>
 
@@ -34,6 +35,19 @@ int runView(const ViewOptions& options)
 }
 
 } // namespace
+
+int runDefault(const std::string& directory)
+{
+    const char* display = std::getenv("DISPLAY");
+    if (display && *display) {
+        try {
+            return runViewer(loadScene(kDefaultScene), std::nullopt, std::nullopt);
+        } catch (const render::RenderError& e) {
+            fmt::print(stderr, "pba: no window ({}); rendering instead\n", e.what());
+        }
+    }
+    return renderDefaultScene(directory);
+}
 
 void addViewCommand(CLI::App& root, Action& selected)
 {

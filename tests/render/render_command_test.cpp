@@ -1,0 +1,80 @@
+// `pba render` and `pba view` end to end: an MP4 probed with ffprobe, numbered frames, and the
+// window under a virtual X server.
+#include <gtest/gtest.h>
+
+#include <stb_image.h>
+
+#include "support/run_command.hpp"
+
+using namespace pba::test;
+
+TEST(PbaRender, WritesAnH264Mp4WithOneFramePerTick)
+{
+    const auto dir = freshDir("render_mp4");
+    const auto mp4 = dir / "spring.mp4";
+    const CommandResult r = runPba("render spring --duration 1 --fps 30 --size 320x240 --out " + mp4.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const CommandResult probe = runShell("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                                         "stream=codec_name,width,height,pix_fmt,nb_read_frames -of csv=p=0 " +
+                                         mp4.string());
+    ASSERT_EQ(probe.exitCode, 0) << probe.err;
+    EXPECT_EQ(probe.out, "h264,320,240,yuv420p,31\n"); // frames at t = 0, 1/30, ..., 1
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1) << "no temporary files left";
+}
+
+TEST(PbaRender, WritesNumberedFramesAndOnePng)
+{
+    const auto dir = freshDir("render_frames");
+    ASSERT_EQ(runPba("render integrators --duration 0.1 --fps 20 --size 160x120 --out " + (dir / "frames/").string())
+                  .exitCode,
+              0);
+    EXPECT_TRUE(std::filesystem::exists(dir / "frames/frame_00000.png"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "frames/frame_00002.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "frames/frame_00003.png"));
+    const auto png = dir / "one.png";
+    ASSERT_EQ(runPba("render integrators --time 0.5 --size 200x100 --out " + png.string()).exitCode, 0);
+    int w = 0, h = 0, channels = 0;
+    unsigned char* data = stbi_load(png.c_str(), &w, &h, &channels, 4);
+    ASSERT_NE(data, nullptr);
+    EXPECT_EQ(w, 200);
+    EXPECT_EQ(h, 100);
+    stbi_image_free(data);
+}
+
+TEST(PbaRender, BadOutputIsBadInputAndLeavesNothing)
+{
+    const auto dir = freshDir("render_bad");
+    EXPECT_EQ(runPba("render integrators --out " + (dir / "x.gif").string()).exitCode, 2);
+    EXPECT_EQ(runPba("render integrators --out " + (dir / "missing/x.png").string()).exitCode, 2);
+    EXPECT_EQ(runPba("render integrators --size 12 --out " + (dir / "x.png").string()).exitCode, 2);
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0);
+}
+
+// The real window, on a virtual X server: the panel and the particles are in the screenshot.
+TEST(PbaView, WindowUnderXvfbShowsThePanelAndTheParticles)
+{
+    const auto dir = freshDir("view_xvfb");
+    const auto png = dir / "view.png";
+    const CommandResult r = runShell("xvfb-run -a -s '-screen 0 1280x720x24' " + std::string(PBA_BINARY) +
+                                     " view integrators --frames 30 --screenshot " + png.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+    int w = 0, h = 0, channels = 0;
+    unsigned char* data = stbi_load(png.c_str(), &w, &h, &channels, 4);
+    ASSERT_NE(data, nullptr);
+    int red = 0, green = 0, panelBlue = 0;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const unsigned char* p = data + (static_cast<std::size_t>(y) * w + x) * 4;
+            if (p[0] > 150 && p[1] < 110 && p[2] < 110)
+                ++red; // the forward Euler particle
+            if (p[1] > 130 && p[0] < 110 && p[2] < 130)
+                ++green; // the semi-implicit Euler particle
+            if (x > w - 440 && p[2] > p[0] + 40 && p[2] > 80)
+                ++panelBlue; // ImGui's blue widgets in the panel on the right
+        }
+    }
+    stbi_image_free(data);
+    EXPECT_GT(red, 30);
+    EXPECT_GT(green, 30);
+    EXPECT_GT(panelBlue, 2000);
+}
