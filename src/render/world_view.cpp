@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "pba/blow_dryer.hpp"
+#include "pba/forces.hpp"
 
 namespace pba::render {
 
@@ -133,6 +134,28 @@ void addBodies(const World& world, const World& initial, double alpha, const Vie
     }
 }
 
+/// A spring as a zigzag from its anchor to its particle, the anchor as a small grey ball.
+void addSpring(const Spring& spring, const glm::vec3& end, DrawList& out)
+{
+    const glm::vec3 anchor(spring.anchor());
+    const glm::vec3 along = end - anchor;
+    glm::vec3 side = glm::cross(along, glm::vec3(0, 0, 1));
+    if (glm::length(side) < 1e-6f)
+        side = glm::vec3(1, 0, 0);
+    side = 0.08f * glm::normalize(side);
+    const int coils = 16;
+    const glm::vec4 colour(0.85f, 0.85f, 0.9f, 1.0f);
+    glm::vec3 previous = anchor;
+    for (int k = 1; k <= coils; ++k) {
+        const float t = float(k) / float(coils + 1);
+        const glm::vec3 next = anchor + t * along + (k % 2 ? side : -side);
+        out.addLine(previous, next, colour);
+        previous = next;
+    }
+    out.addLine(previous, end, colour);
+    out.sprites.push_back({anchor, 0.05f, glm::vec4(0.6f, 0.6f, 0.65f, 1.0f)});
+}
+
 } // namespace
 
 void buildDrawList(const World& world, const World& initial, double alpha, const ViewSettings& settings,
@@ -143,6 +166,9 @@ void buildDrawList(const World& world, const World& initial, double alpha, const
     for (std::size_t i = 0; i < world.forceCount(); ++i)
         if (const auto* dryer = dynamic_cast<const BlowDryer*>(&world.force(i)); dryer && settings.cone)
             addCone(dryer->field(), settings.fieldArrows, out);
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        if (const auto* spring = dynamic_cast<const Spring*>(&world.force(i)); spring && spring->particle() < world.bodyCount())
+            addSpring(*spring, drawnPosition(world, spring->particle(), alpha, settings.interpolate), out);
     addBodies(world, initial, alpha, settings, trails, out);
 }
 
@@ -155,6 +181,11 @@ OrbitCamera frameWorld(const World& world)
         lo = glm::min(lo, glm::vec3(world.body(i).getPos()));
         hi = glm::max(hi, glm::vec3(world.body(i).getPos()));
     }
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        if (const auto* spring = dynamic_cast<const Spring*>(&world.force(i))) {
+            lo = glm::min(lo, glm::vec3(spring->anchor()));
+            hi = glm::max(hi, glm::vec3(spring->anchor()));
+        }
     if (world.bodyCount() == 0)
         lo = hi = glm::vec3(0.0f);
     if (world.ground())
