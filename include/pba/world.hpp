@@ -97,6 +97,8 @@ public:
     /// world as it was before the step) if a state stops being finite.
     void step(double dt);
     double time() const { return m_time; }
+    /// The time of the previous states (before the last step).
+    double previousTime() const { return m_previousTime; }
     std::uint64_t stepCount() const { return m_steps; }
     /// The state before the last step (equal to the current one before any step).
     const State& previousState(std::size_t i) const { return m_previous[i]; }
@@ -128,6 +130,7 @@ private:
     std::vector<Plane> m_planes;
     CollisionResponse m_response = CollisionResponse::Exact;
     double m_time = 0.0;
+    double m_previousTime = 0.0;
     std::uint64_t m_steps = 0;
     double m_lastDt = 0.0;       ///< dt of the previous step
     double m_baseTime = 0.0;     ///< time when dt last changed

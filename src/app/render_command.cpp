@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "lanes.hpp"
 #include "progress.hpp"
 #include "render_output.hpp"
 #include "scene_options.hpp"
@@ -29,6 +30,7 @@ struct RenderOptions {
     std::string size = "1280x720";
     bool arrows = false;
     bool noTrails = false;
+    bool lanes = false;
 };
 
 void parseSize(const std::string& text, int& width, int& height)
@@ -58,6 +60,8 @@ int runRender(const RenderOptions& options)
     render::ViewSettings settings;
     settings.fieldArrows = options.arrows;
     settings.trails = !options.noTrails;
+    if (options.lanes)
+        settings.ghost = exactGhosts(scene.world);
     render::OffscreenRenderer renderer(width, height);
     render::Trails trails;
     const World initial = scene.world;
@@ -121,6 +125,8 @@ void addRenderCommand(CLI::App& root, Action& selected)
     render->add_option("--size", options->size, "Image size (default 1280x720)")->type_name("WxH");
     render->add_flag("--arrows", options->arrows, "Draw the blow dryer's field as arrows inside its cone");
     render->add_flag("--no-trails", options->noTrails, "Do not draw the particles' fading trails");
+    render->add_flag("--lanes", options->lanes, "Integrator lanes: a ghost of the exact solution beside each particle "
+                                                "that has one (the integrators and spring scenes)");
     render->footer("\nExamples:\n  pba render integrators --out integrators.png --time 1.2\n"
                    "  pba render blow-dryer --out blow-dryer.mp4 --duration 10\n"
                    "  pba render spring --out frames/ --fps 30\n");

@@ -18,6 +18,7 @@ struct ViewOptions {
     SceneOptions scene;
     std::optional<int> frames;
     std::optional<std::string> screenshot;
+    bool lanes = false;
 };
 
 int runView(const ViewOptions& options)
@@ -28,7 +29,7 @@ int runView(const ViewOptions& options)
     if (options.screenshot && !options.frames)
         throw UsageError("--screenshot needs --frames N (the frame to save)");
     try {
-        return runViewer(std::move(scene), options.frames, options.screenshot);
+        return runViewer(std::move(scene), options.frames, options.screenshot, options.lanes);
     } catch (const render::RenderError& e) {
         throw RuntimeFailure(e.what());
     }
@@ -58,6 +59,7 @@ void addViewCommand(CLI::App& root, Action& selected)
     view->add_option("--frames", options->frames, "Run this many frames, then close")->type_name("N");
     view->add_option("--screenshot", options->screenshot, "With --frames: save the last frame to this PNG")
         ->type_name("FILE.png");
+    view->add_flag("--lanes", options->lanes, "Integrator lanes: the exact solution's ghost beside each particle");
     view->footer("\nKeys: space pause/play, '.' or right arrow single step, r reset, i toggle interpolation,\n"
                  "      c reset the camera, Esc quit.\n"
                  "Mouse: drag to orbit, right-drag or shift-drag to pan, wheel to zoom.\n"

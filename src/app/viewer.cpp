@@ -8,6 +8,7 @@
 #include <imgui.h>
 
 #include "command.hpp"
+#include "lanes.hpp"
 #include "render/gl_context.hpp"
 #include "render/image_io.hpp"
 #include "render/overlay.hpp"
@@ -35,6 +36,8 @@ void ViewerState::load(Scene newScene)
     scenePath = scene.source;
     camera = render::frameWorld(scene.world);
     initial = scene.world;
+    if (settings.ghost)
+        settings.ghost = exactGhosts(initial);
     clock = FixedTimestepClock(scene.dt, clock.maxFrameTime(), clock.maxStepsPerFrame());
     reset();
 }
@@ -127,12 +130,14 @@ void handleKeys(ViewerState& state, GLFWwindow* window)
 
 } // namespace
 
-int runViewer(Scene scene, std::optional<int> frames, std::optional<std::string> screenshot)
+int runViewer(Scene scene, std::optional<int> frames, std::optional<std::string> screenshot, bool lanes)
 {
     render::WindowContext window(1280, 720, fmt::format("pba: {}", scene.name));
     render::Renderer renderer;
     render::ImGuiLayer imgui(window.window());
     ViewerState state;
+    if (lanes)
+        state.settings.ghost = [](std::size_t, double) { return std::optional<glm::vec3>(); }; // set by load()
     state.load(std::move(scene));
     render::DrawList list;
     auto last = std::chrono::steady_clock::now();

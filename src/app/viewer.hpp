@@ -60,6 +60,6 @@ void drawPanel(ViewerState& state);
 
 /// Runs the window until it is closed, or for `frames` frames if given, then saves the
 /// last frame to `screenshot` if given. Returns an exit code.
-int runViewer(Scene scene, std::optional<int> frames, std::optional<std::string> screenshot);
+int runViewer(Scene scene, std::optional<int> frames, std::optional<std::string> screenshot, bool lanes = false);
 
 } // namespace pba::app

@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include "pba/blow_dryer.hpp"
+#include "lanes.hpp"
 #include "viewer.hpp"
 
 namespace pba::app {
@@ -76,6 +77,9 @@ void viewSection(ViewerState& state)
     ImGui::Checkbox("cone", &state.settings.cone);
     ImGui::SameLine();
     ImGui::Checkbox("arrows", &state.settings.fieldArrows);
+    bool lanes = static_cast<bool>(state.settings.ghost);
+    if (ImGui::Checkbox("integrator lanes: the exact solution's ghost beside each particle", &lanes))
+        state.settings.ghost = lanes ? exactGhosts(state.initial) : nullptr;
 }
 
 void particlesSection(ViewerState& state)

@@ -19,7 +19,7 @@ NonFiniteStateError::NonFiniteStateError(std::string body, std::uint64_t step, d
 World::World(const World& other)
     : m_previous(other.m_previous), m_bounces(other.m_bounces), m_ground(other.m_ground), m_room(other.m_room),
       m_hole(other.m_hole),
-      m_planes(other.m_planes), m_response(other.m_response), m_time(other.m_time), m_steps(other.m_steps),
+      m_planes(other.m_planes), m_response(other.m_response), m_time(other.m_time), m_previousTime(other.m_previousTime), m_steps(other.m_steps),
       m_lastDt(other.m_lastDt), m_baseTime(other.m_baseTime), m_baseSteps(other.m_baseSteps)
 {
     m_bodies.reserve(other.m_bodies.size());
@@ -171,6 +171,7 @@ void World::step(double dt)
     }
     // t = t0 + k dt from the last change of dt, rather than a running sum, so the time of
     // step n is n dt to rounding instead of drifting by n rounding errors.
+    m_previousTime = m_time;
     if (dt != m_lastDt) {
         m_lastDt = dt;
         m_baseTime = m_time;

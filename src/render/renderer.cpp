@@ -98,6 +98,8 @@ void Renderer::drawSprites(const std::vector<Sprite>& sprites)
         return;
     m_sprite.use();
     glEnable(GL_PROGRAM_POINT_SIZE);
+    glEnable(GL_BLEND); // ghosts are translucent
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(sprites.size() * sizeof(Sprite)), sprites.data(),
                  GL_STREAM_DRAW);
     glEnableVertexAttribArray(0);
@@ -107,6 +109,7 @@ void Renderer::drawSprites(const std::vector<Sprite>& sprites)
     glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, sizeof(Sprite), reinterpret_cast<void*>(offsetof(Sprite, radius)));
     glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(Sprite), reinterpret_cast<void*>(offsetof(Sprite, colour)));
     glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(sprites.size()));
+    glDisable(GL_BLEND);
 }
 
 } // namespace pba::render

@@ -119,6 +119,16 @@ void addBodies(const World& world, const World& initial, double alpha, const Vie
         const glm::vec4 colour = bodyColour(world.body(i));
         const glm::vec3 at = drawnPosition(world, i, alpha, settings.interpolate);
         out.sprites.push_back({at, settings.particleRadius, colour});
+        if (settings.ghost) {
+            // The exact solution at the drawn time, one lane behind the body (+z).
+            const double t = settings.interpolate ? world.previousTime() + alpha * (world.time() - world.previousTime())
+                                                  : world.time();
+            if (const auto exact = settings.ghost(i, t)) {
+                const glm::vec3 lane(0.0f, 0.0f, -3.0f * settings.particleRadius);
+                out.sprites.push_back({*exact + lane, settings.particleRadius, glm::vec4(1.0f, 1.0f, 1.0f, 0.55f)});
+                out.addLine(at, *exact + lane, glm::vec4(0.85f, 0.85f, 0.95f, 0.25f));
+            }
+        }
         if (settings.referenceLines && i < initial.bodyCount()) {
             const glm::vec3 start(initial.body(i).getPos());
             const glm::vec4 faint(colour.r, colour.g, colour.b, 0.8f);

@@ -3,6 +3,8 @@
 // coloured by integrator, its fading trail, a line at its start height, and the blow
 // dryer's cone and field arrows. Reads the world; never writes it.
 #include <deque>
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include "camera.hpp"
@@ -18,6 +20,10 @@ struct ViewSettings {
     bool cone = true;             ///< the blow dryer's region, translucent
     bool fieldArrows = false;     ///< arrows on a grid inside the cone, scaled by magnitude
     float particleRadius = 0.08f; ///< drawn radius, m (particles are points)
+    /// Integrator lanes: where the exact solution puts body i at time t, drawn as a translucent
+    /// ghost beside the body (nothing where there is no exact solution). Set by the program,
+    /// which knows the oracles; the renderer only draws.
+    std::function<std::optional<glm::vec3>(std::size_t, double)> ghost;
 };
 
 /// The colour of each integrator (and grey for fixed bodies), shared by the legend.

@@ -1,0 +1,122 @@
+// `pba compare`: the integrator study as a reproducible report.
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "command.hpp"
+#include "compare_report.hpp"
+#include "progress.hpp"
+
+namespace pba::app {
+
+namespace {
+
+struct CompareOptions {
+    std::string scene = "integrators";
+    std::string out = "pba-compare";
+    std::vector<std::string> integrators;
+    std::vector<std::string> collisions;
+    std::vector<double> dts;
+    std::optional<double> duration;
+    int jobs = 0;
+};
+
+study::StudyConfig makeConfig(const CompareOptions& options)
+{
+    study::StudyConfig config;
+    config.scene = loadScene(options.scene);
+    config.duration = options.duration.value_or(config.scene.duration);
+    if (!(std::isfinite(config.duration) && config.duration > 0))
+        throw UsageError(fmt::format("--duration: must be finite and positive, got {}", config.duration));
+    if (!options.integrators.empty()) {
+        config.integrators.clear();
+        for (const auto& name : options.integrators) {
+            const auto integrator = integratorFromName(name);
+            if (!integrator)
+                throw UsageError(fmt::format("--integrators: unknown integrator '{}'", name));
+            config.integrators.push_back(*integrator);
+        }
+    }
+    if (!options.collisions.empty()) {
+        config.collisions.clear();
+        for (const auto& name : options.collisions) {
+            const auto collision = collisionResponseFromName(name);
+            if (!collision)
+                throw UsageError(fmt::format("--collisions: unknown collision response '{}'", name));
+            config.collisions.push_back(*collision);
+        }
+    }
+    if (!options.dts.empty())
+        config.dts = options.dts;
+    for (double dt : config.dts)
+        if (!(std::isfinite(dt) && dt > 0))
+            throw UsageError(fmt::format("--dt: every dt must be finite and positive, got {}", dt));
+    std::sort(config.dts.begin(), config.dts.end());
+    config.jobs = options.jobs > 0 ? options.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    return config;
+}
+
+int runCompare(const CompareOptions& options)
+{
+    const study::StudyConfig config = makeConfig(options);
+    std::error_code ec;
+    std::filesystem::create_directories(options.out, ec);
+    if (ec || !std::filesystem::is_directory(options.out))
+        throw UsageError(fmt::format("--out: cannot create the directory {}", options.out));
+    const auto runs = static_cast<long>(config.integrators.size() * (config.collisions.size() * config.dts.size() + 1));
+    Progress progress("comparing", runs);
+    const study::StudyResult result = study::runStudy(config, [&](long done, long) { progress.update(done); });
+    const std::filesystem::path dir(options.out);
+    writeResultsCsv(dir / "results.csv", result);
+    writeOrdersCsv(dir / "orders.csv", result);
+    const bool plots = writePlots(dir, config, result);
+    if (!plots)
+        fmt::print(stderr, "pba: gnuplot is not installed, so there are no plots: install the Debian package "
+                           "gnuplot-nox\n");
+    writeReport(dir / "report.md", config, result, plots);
+    for (CollisionResponse c : config.collisions)
+        fmt::print("E(end)/E(0), {} response, first moving particle of {}:\n{}\n", collisionResponseName(c),
+                   config.scene.name, energyTable(config, result, c, false));
+    fmt::print("order of accuracy (spring):");
+    for (const auto& o : result.orders)
+        fmt::print("  {} {:.2f} (expected {})", integratorName(o.integrator), o.measured, o.expected);
+    fmt::print("\n\n{}", findings(config, result));
+    progress.finish(fmt::format("wrote {}/report.md, results.csv, orders.csv{} ({} runs)", options.out,
+                                plots ? " and plots" : "", result.runs.size()));
+    return kExitSuccess;
+}
+
+} // namespace
+
+void addCompareCommand(CLI::App& root, Action& selected)
+{
+    auto options = std::make_shared<CompareOptions>();
+    CLI::App* compare = root.add_subcommand("compare", "The integrator study: every integrator, collision response "
+                                                       "and dt against the exact solution, as tables, plots and a report");
+    compare->add_option("scene", options->scene, "Built-in scene name or path (default integrators)")->type_name("SCENE");
+    compare->add_option("--out", options->out, "Directory for report.md, results.csv, orders.csv and the PNG plots "
+                                               "(default pba-compare)")
+        ->type_name("DIR");
+    compare->add_option("--integrators", options->integrators, "Comma-separated integrators (default all four)")
+        ->delimiter(',')
+        ->type_name("A,B");
+    compare->add_option("--collisions", options->collisions, "Comma-separated collision responses (default all three)")
+        ->delimiter(',')
+        ->type_name("A,B");
+    compare->add_option("--dt", options->dts, "Comma-separated timesteps (default 0.0005,0.001,0.002,0.005,0.01,0.02,"
+                                              "0.05,0.1)")
+        ->delimiter(',')
+        ->type_name("DT,DT");
+    compare->add_option("--duration", options->duration, "Simulated time of each run (default the scene's)")
+        ->type_name("SECONDS");
+    compare->add_option("--jobs", options->jobs, "Runs in parallel (default all cores); results do not depend on it")
+        ->type_name("N");
+    compare->footer("\nExample: pba compare --out study && open study/report.md\n");
+    compare->callback([options, &selected] { selected = [options] { return runCompare(*options); }; });
+}
+
+} // namespace pba::app

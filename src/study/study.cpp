@@ -1,0 +1,194 @@
+#include "study.hpp"
+
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include "exact_solution.hpp"
+
+namespace pba::study {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr std::size_t kSeriesPoints = 2000;
+
+/// Follows one particle through a run: energy, apexes (from the state just before vy turns
+/// down: y + vy^2 / 2g, exact for a state on an exact parabola), and the position error.
+struct Tracker {
+    std::size_t index;
+    std::optional<ExactSolution> exact;
+    double e0;
+    ParticleResult result;
+    std::vector<double> apexTimes{0.0};
+    double lastApex = kNaN;
+    double previousVy = 0.0;
+    double previousTime = 0.0;
+    std::size_t stride = 1;
+
+    void sample(const World& world)
+    {
+        const Body& b = world.body(index);
+        const double ratio = e0 != 0.0 ? world.energy(index) / e0 : 1.0;
+        result.maxEnergyDeviation = std::max(result.maxEnergyDeviation, std::abs(ratio - 1.0));
+        if (world.stepCount() > 0)
+            result.meanEnergyRatio += ratio / double(result.steps);
+        if (exact)
+            result.maxPositionError =
+                std::max(result.maxPositionError, glm::length(b.getPos() - exact->position(world.time())));
+        if (world.stepCount() % stride == 0) {
+            result.series.t.push_back(world.time());
+            result.series.y.push_back(b.getPos().y);
+            result.series.energyRatio.push_back(ratio);
+        }
+    }
+
+    void beforeStep(const World& world)
+    {
+        previousVy = world.body(index).getVel().y;
+        previousTime = world.time();
+    }
+
+    void afterStep(const World& world, const State& before)
+    {
+        const double vy = world.body(index).getVel().y;
+        if (exact && exact->kind() == ExactSolution::Kind::Bounce && previousVy > 0.0 && vy <= 0.0 &&
+            world.bounceCount(index) > 0) {
+            const double g = exact->gravity();
+            lastApex = before.pos.y + before.vel.y * before.vel.y / (2.0 * g);
+            apexTimes.push_back(previousTime + before.vel.y / g);
+        }
+    }
+};
+
+} // namespace
+
+std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator, CollisionResponse collision,
+                                       double dt, double duration)
+{
+    World world = scene.world;
+    world.setCollisionResponse(collision);
+    std::vector<Tracker> trackers;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i) {
+        if (world.body(i).isFixed())
+            continue;
+        world.body(i).setIntegrator(integrator);
+        Tracker t{i, ExactSolution::find(world, i), world.energy(i), {}};
+        t.result.particle = world.body(i).getName();
+        trackers.push_back(std::move(t));
+    }
+    const auto steps = static_cast<std::uint64_t>(std::max(1.0, std::round(duration / dt)));
+    for (auto& t : trackers) {
+        t.result.integrator = integrator;
+        t.result.collision = collision;
+        t.result.dt = dt;
+        t.result.steps = steps;
+        t.stride = std::max<std::size_t>(1, static_cast<std::size_t>(steps / kSeriesPoints));
+        t.sample(world);
+    }
+    for (std::uint64_t n = 0; n < steps; ++n) {
+        std::vector<State> before;
+        for (auto& t : trackers) {
+            t.beforeStep(world);
+            before.push_back(world.body(t.index).getState());
+        }
+        world.step(dt);
+        for (std::size_t k = 0; k < trackers.size(); ++k) {
+            trackers[k].afterStep(world, before[k]);
+            trackers[k].sample(world);
+        }
+    }
+    std::vector<ParticleResult> results;
+    for (auto& t : trackers) {
+        ParticleResult& r = t.result;
+        r.energyRatioEnd = t.e0 != 0.0 ? world.energy(t.index) / t.e0 : 1.0;
+        r.bounces = world.bounceCount(t.index);
+        const bool bounce = t.exact && t.exact->kind() == ExactSolution::Kind::Bounce;
+        r.apexRatioLast = bounce && !std::isnan(t.lastApex) ? t.lastApex / t.exact->height() : kNaN;
+        if (bounce && t.apexTimes.size() >= 2) {
+            const double measured = (t.apexTimes.back() - t.apexTimes.front()) / double(t.apexTimes.size() - 1);
+            r.periodError = (measured - t.exact->period()) / t.exact->period();
+        } else {
+            r.periodError = kNaN;
+        }
+        if (!t.exact)
+            r.maxPositionError = kNaN;
+        results.push_back(std::move(r));
+    }
+    return results;
+}
+
+OrderResult measureOrder(const Scene& spring, Integrator integrator, const std::vector<double>& dts, double window)
+{
+    OrderResult order{integrator, dts, {}, kNaN, integratorOrder(integrator)};
+    for (double dt : dts) {
+        const auto runs = measureRun(spring, integrator, CollisionResponse::Exact, dt, window);
+        order.errors.push_back(runs.empty() ? kNaN : runs.front().maxPositionError);
+    }
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int n = 0;
+    for (std::size_t i = 0; i < dts.size(); ++i) {
+        if (dts[i] > 0.02 + 1e-12 || !(order.errors[i] > 1e-11))
+            continue;
+        const double x = std::log(dts[i]), y = std::log(order.errors[i]);
+        sx += x;
+        sy += y;
+        sxx += x * x;
+        sxy += x * y;
+        ++n;
+    }
+    if (n >= 2)
+        order.measured = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    return order;
+}
+
+StudyResult runStudy(const StudyConfig& config, const std::function<void(long, long)>& progress)
+{
+    struct Task {
+        Integrator integrator;
+        CollisionResponse collision;
+        double dt;
+    };
+    std::vector<Task> tasks;
+    for (Integrator integrator : config.integrators)
+        for (CollisionResponse collision : config.collisions)
+            for (double dt : config.dts)
+                tasks.push_back({integrator, collision, dt});
+    const Scene spring = loadScene("spring");
+    const std::size_t total = tasks.size() + config.integrators.size();
+    std::vector<std::vector<ParticleResult>> runs(tasks.size());
+    StudyResult result;
+    result.orders.resize(config.integrators.size());
+    std::atomic<std::size_t> next{0};
+    std::atomic<long> done{0};
+    auto worker = [&] {
+        for (std::size_t i; (i = next.fetch_add(1)) < total; ++done) {
+            if (i < tasks.size())
+                runs[i] = measureRun(config.scene, tasks[i].integrator, tasks[i].collision, tasks[i].dt, config.duration);
+            else
+                result.orders[i - tasks.size()] =
+                    measureOrder(spring, config.integrators[i - tasks.size()], config.dts, result.orderWindow);
+        }
+    };
+    std::vector<std::thread> threads;
+    for (int j = 1; j < std::max(1, config.jobs); ++j)
+        threads.emplace_back(worker);
+    std::thread main(worker);
+    while (done.load() < static_cast<long>(total)) {
+        if (progress)
+            progress(done.load(), static_cast<long>(total));
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    main.join();
+    for (auto& t : threads)
+        t.join();
+    if (progress)
+        progress(static_cast<long>(total), static_cast<long>(total));
+    for (auto& run : runs)
+        for (auto& r : run)
+            result.runs.push_back(std::move(r));
+    return result;
+}
+
+} // namespace pba::study
