@@ -317,14 +317,13 @@ inline int stepExact(Integrator integrator, std::span<const PlaneT<T>> planes, T
     return bounces;
 }
 
-/// The classic response: a full step, then mirror the body back across every surface it
-/// passed (repeatedly, so even a body fast enough to cross the room ends inside).
-template <class T, class Accel>
-inline int stepReflect(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
-                       Vec3<T>& v, T dt, Accel&& accel)
+/// The classic response's rule, applied after a full step from `start`: mirror the body back
+/// across every surface it passed (repeatedly, so even a body fast enough to cross the room ends
+/// inside). Split from the step so swarms can integrate a whole block first and then apply it.
+template <class T>
+inline int reflectAfterStep(std::span<const PlaneT<T>> planes, T restitution, const Vec3<T>& start, Vec3<T>& x,
+                            Vec3<T>& v)
 {
-    const Vec3<T> start = x;
-    integrate(integrator, x, v, dt, accel);
     int bounces = 0;
     for (int pass = 0; pass < collision_detail::kMaxEvents; ++pass) {
         bool mirrored = false;
@@ -343,17 +342,15 @@ inline int stepReflect(Integrator integrator, std::span<const PlaneT<T>> planes,
         if (!mirrored)
             break;
     }
-    bounces += collision_detail::keepInside(planes, restitution, start, x, v);
-    return bounces;
+    return bounces + collision_detail::keepInside(planes, restitution, start, x, v);
 }
 
-/// A full step, then put the body back on every surface it passed.
-template <class T, class Accel>
-inline int stepClamp(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
-                     Vec3<T>& v, T dt, Accel&& accel)
+/// The clamp response's rule after a full step from `start`: put the body back on every
+/// surface it passed.
+template <class T>
+inline int clampAfterStep(std::span<const PlaneT<T>> planes, T restitution, const Vec3<T>& start, Vec3<T>& x,
+                          Vec3<T>& v)
 {
-    const Vec3<T> start = x;
-    integrate(integrator, x, v, dt, accel);
     int bounces = 0;
     for (const PlaneT<T>& plane : planes) {
         if (plane.distance(x) >= T(0) || collision_detail::passesHole(plane, start, x))
@@ -365,8 +362,41 @@ inline int stepClamp(Integrator integrator, std::span<const PlaneT<T>> planes, T
             ++bounces;
         }
     }
-    bounces += collision_detail::keepInside(planes, restitution, start, x, v);
-    return bounces;
+    return bounces + collision_detail::keepInside(planes, restitution, start, x, v);
+}
+
+/// The classic response: a full step, then reflectAfterStep.
+template <class T, class Accel>
+inline int stepReflect(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
+                       Vec3<T>& v, T dt, Accel&& accel)
+{
+    const Vec3<T> start = x;
+    integrate(integrator, x, v, dt, accel);
+    return reflectAfterStep(planes, restitution, start, x, v);
+}
+
+/// A full step, then clampAfterStep.
+template <class T, class Accel>
+inline int stepClamp(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
+                     Vec3<T>& v, T dt, Accel&& accel)
+{
+    const Vec3<T> start = x;
+    integrate(integrator, x, v, dt, accel);
+    return clampAfterStep(planes, restitution, start, x, v);
+}
+
+/// True if a full, collision-free step from `start` to x needs no collision rule at all:
+/// x is inside every plane and neither end is in a hole's shaft. The exact response's result
+/// is then the plain step too, except for a path that leaves and re-enters within the step
+/// (an apex beyond the ceiling), which this end-point test cannot see.
+template <class T>
+inline bool stepStaysInside(std::span<const PlaneT<T>> planes, const Vec3<T>& start, const Vec3<T>& x)
+{
+    bool inside = true;
+    for (const PlaneT<T>& plane : planes)
+        inside = inside && plane.distance(x) > collision_detail::contactTolerance(plane) &&
+                 plane.distance(start) > collision_detail::contactTolerance(plane);
+    return inside;
 }
 
 /// One step of a body with the chosen response; returns the number of bounces.

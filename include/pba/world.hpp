@@ -21,6 +21,7 @@
 #include "pba/force.hpp"
 #include "pba/particle.hpp"
 #include "pba/state.hpp"
+#include "pba/swarm.hpp"
 
 namespace pba {
 
@@ -70,6 +71,16 @@ public:
     const Body& body(std::size_t i) const { return *m_bodies[i]; }
     std::optional<std::size_t> findBody(std::string_view name) const;
 
+    // ---- swarms: many identical particles as float arrays, stepped with the same rules ----
+    Swarm& addSwarm(const SwarmDesc& desc);
+    std::size_t swarmCount() const { return m_swarms.size(); }
+    Swarm& swarm(std::size_t i) { return m_swarms[i]; }
+    const Swarm& swarm(std::size_t i) const { return m_swarms[i]; }
+    /// Threads for stepping swarms: 0 (the default) uses all cores; results do not depend on it.
+    void setThreads(int threads) { m_threads = threads; }
+    /// The forces that act on swarms, in float: gravity, drag and blow dryers.
+    SwarmFields swarmFields() const;
+
     // ---- forces ----
     Force& addForce(std::unique_ptr<Force> force);
     std::size_t forceCount() const { return m_forces.size(); }
@@ -118,10 +129,13 @@ private:
     void rebuildPlanes();
     void storePreviousStates();
     void integrateBodies(double dt);
+    void stepSwarms(double dt);
     std::optional<std::pair<std::size_t, std::string>> firstNonFinite() const;
 
     std::vector<std::unique_ptr<Body>> m_bodies;
     std::vector<std::unique_ptr<Force>> m_forces;
+    std::vector<Swarm> m_swarms;
+    int m_threads = 0;
     std::vector<State> m_previous;
     std::vector<std::uint64_t> m_bounces;
     std::optional<double> m_ground;

@@ -48,6 +48,8 @@ Scene loadSceneWithOverrides(const SceneOptions& options)
         for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
             if (!scene.world.body(i).isFixed())
                 scene.world.body(i).setIntegrator(*integrator);
+        for (std::size_t i = 0; i < scene.world.swarmCount(); ++i)
+            scene.world.swarm(i).setIntegrator(*integrator);
     }
     if (options.collision) {
         const auto response = collisionResponseFromName(*options.collision);

@@ -21,6 +21,7 @@ struct SimOptions {
     SceneOptions scene;
     std::optional<std::string> out;
     std::optional<double> frameRate;
+    bool swarmParticles = false;
 };
 
 /// What the summary reports about each body, gathered as the run goes.
@@ -44,10 +45,57 @@ void writeCsvRows(std::ostream& out, const World& world)
     }
 }
 
+/// Swarm particles as CSV rows, named NAME[i]; only on request (a million rows a step).
+void writeSwarmRows(std::ostream& out, const World& world)
+{
+    const dvec3 g = world.gravity();
+    for (std::size_t s = 0; s < world.swarmCount(); ++s) {
+        const Swarm& swarm = world.swarm(s);
+        for (std::size_t i = 0; i < swarm.size(); ++i) {
+            const Vec3<float> x = swarm.position(i), v = swarm.velocity(i);
+            const double energy = swarm.mass() * (0.5 * glm::dot(v, v) - glm::dot(Vec3<float>(g), x));
+            out << fmt::format("{},{},{}[{}],{},{},{},{},{},{},{}\n", world.stepCount(), world.time(), swarm.name(), i,
+                               x.x, x.y, x.z, v.x, v.y, v.z, energy);
+        }
+    }
+}
+
+/// Statistics of each swarm instead of a row per particle.
+void printSwarmSummary(const World& world)
+{
+    for (std::size_t s = 0; s < world.swarmCount(); ++s) {
+        const Swarm& swarm = world.swarm(s);
+        dvec3 mean(0.0);
+        double speed = 0.0, low = INFINITY, high = -INFINITY;
+        std::size_t outside = 0;
+        for (std::size_t i = 0; i < swarm.size(); ++i) {
+            const dvec3 x(swarm.position(i));
+            mean += x;
+            speed += glm::length(dvec3(swarm.velocity(i)));
+            low = std::min(low, x.y);
+            high = std::max(high, x.y);
+            for (const Plane& plane : world.planes())
+                if (plane.distance(x) < -1e-4 && !(plane.holeRadius > 0 && plane.overHole(x))) {
+                    ++outside;
+                    break;
+                }
+        }
+        const double n = double(std::max<std::size_t>(swarm.size(), 1));
+        fmt::print("swarm {}: {} particles ({}), mean position ({:.3f}, {:.3f}, {:.3f}), height {:.3f} to {:.3f}, "
+                   "mean speed {:.3f} m/s, {} outside the surfaces\n",
+                   swarm.name(), swarm.size(), integratorName(swarm.integrator()), mean.x / n, mean.y / n, mean.z / n,
+                   low, high, speed / n, outside);
+    }
+}
+
 void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary)
 {
     fmt::print("scene {}: {} steps of dt = {} s, t = {} s, collision response {}\n", scene.name, world.stepCount(),
                scene.dt, world.time(), collisionResponseName(world.collisionResponse()));
+    if (world.bodyCount() == 0) {
+        printSwarmSummary(world);
+        return;
+    }
     fmt::print("{:<22} {:<20} {:>32} {:>10} {:>8} {:>14}\n", "body", "integrator", "final position (m)",
                "highest y", "bounces", "E now/E start");
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
@@ -59,6 +107,7 @@ void printSummary(const Scene& scene, const World& world, const std::vector<Body
                    fmt::format("({:.4f}, {:.4f}, {:.4f})", x.x, x.y, x.z), summary[i].highest,
                    world.bounceCount(i), ratio);
     }
+    printSwarmSummary(world);
 }
 
 int runSim(const SimOptions& options)
@@ -83,6 +132,8 @@ int runSim(const SimOptions& options)
             summary[i].highest = std::max(summary[i].highest, world.body(i).getPos().y);
         if (csv)
             writeCsvRows(csv->stream(), world);
+        if (csv && options.swarmParticles)
+            writeSwarmRows(csv->stream(), world);
     };
 
     // The number of steps depends on dt and duration alone. With --frame-rate the clock
@@ -110,7 +161,9 @@ int runSim(const SimOptions& options)
         csv->commit();
     printSummary(scene, world, summary);
     if (options.out)
-        fmt::print("wrote {} rows to {}\n", (world.stepCount() + 1) * world.bodyCount(), *options.out);
+        fmt::print("wrote {} to {}\n", options.swarmParticles ? "every body and swarm particle at every step"
+                                                              : fmt::format("{} rows", (world.stepCount() + 1) * world.bodyCount()),
+                   *options.out);
     return kExitSuccess;
 }
 
@@ -130,6 +183,9 @@ void addSimCommand(CLI::App& root, Action& selected)
                     "Drive the fixed-timestep clock with synthetic frames of 1/HZ seconds (the results do not "
                     "change: only dt and the number of steps matter)")
         ->type_name("HZ");
+    sim->add_flag("--swarm-particles", options->swarmParticles,
+                  "With --out: also write a row per swarm particle (named SWARM[i]); without it swarms are "
+                  "summarised by statistics");
     sim->callback([options, &selected] { selected = [options] { return runSim(*options); }; });
 }
 

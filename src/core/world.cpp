@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "pba/blow_dryer.hpp"
 #include "pba/forces.hpp"
 
 namespace pba {
@@ -17,7 +18,7 @@ NonFiniteStateError::NonFiniteStateError(std::string body, std::uint64_t step, d
 }
 
 World::World(const World& other)
-    : m_previous(other.m_previous), m_bounces(other.m_bounces), m_ground(other.m_ground), m_room(other.m_room),
+    : m_swarms(other.m_swarms), m_threads(other.m_threads), m_previous(other.m_previous), m_bounces(other.m_bounces), m_ground(other.m_ground), m_room(other.m_room),
       m_hole(other.m_hole),
       m_planes(other.m_planes), m_response(other.m_response), m_time(other.m_time), m_previousTime(other.m_previousTime), m_steps(other.m_steps),
       m_lastDt(other.m_lastDt), m_baseTime(other.m_baseTime), m_baseSteps(other.m_baseSteps)
@@ -58,6 +59,38 @@ std::optional<std::size_t> World::findBody(std::string_view name) const
         if (m_bodies[i]->getName() == name)
             return i;
     return std::nullopt;
+}
+
+Swarm& World::addSwarm(const SwarmDesc& desc)
+{
+    m_swarms.emplace_back(desc);
+    return m_swarms.back();
+}
+
+SwarmFields World::swarmFields() const
+{
+    SwarmFields fields;
+    for (const auto& force : m_forces) {
+        if (const auto* gravity = dynamic_cast<const Gravity*>(force.get()))
+            fields.gravity += Vec3<float>(gravity->acceleration());
+        else if (const auto* drag = dynamic_cast<const Drag*>(force.get()))
+            fields.drag += float(drag->coefficient());
+        else if (const auto* dryer = dynamic_cast<const BlowDryer*>(force.get()))
+            fields.dryers.push_back(dryer->field().as<float>());
+    }
+    return fields;
+}
+
+void World::stepSwarms(double dt)
+{
+    if (m_swarms.empty())
+        return;
+    const SwarmFields fields = swarmFields();
+    std::vector<PlaneT<float>> planes;
+    for (const Plane& p : m_planes)
+        planes.push_back({Vec3<float>(p.normal), float(p.offset), float(p.holeRadius), Vec3<float>(p.holeCentre)});
+    for (Swarm& swarm : m_swarms)
+        swarm.step(fields, planes, m_response, float(dt), m_threads);
 }
 
 Force& World::addForce(std::unique_ptr<Force> force)
@@ -162,6 +195,7 @@ void World::step(double dt)
     const std::vector<State> olderStates = m_previous;
     storePreviousStates();
     integrateBodies(dt);
+    stepSwarms(dt);
     if (const auto bad = firstNonFinite()) {
         // Roll back so a viewer can pause on the last finite state instead of drawing garbage.
         for (std::size_t i = 0; i < m_bodies.size(); ++i)

@@ -57,3 +57,15 @@ void DrawList::addPoints(const float* xyz, std::size_t n, float radius, const gl
 }
 
 } // namespace pba::render
+
+namespace pba::render {
+
+void DrawList::addPoints(const float* x, const float* y, const float* z, std::size_t n, float radius,
+                         const glm::vec4& colour)
+{
+    sprites.reserve(sprites.size() + n);
+    for (std::size_t i = 0; i < n; ++i)
+        sprites.push_back({glm::vec3(x[i], y[i], z[i]), radius, colour});
+}
+
+} // namespace pba::render

@@ -44,6 +44,8 @@ struct DrawList {
     void addArrow(const glm::vec3& from, const glm::vec3& to, const glm::vec4& colour);
     /// n sprites from a packed float array x0 y0 z0 x1 y1 z1 ... (swarms).
     void addPoints(const float* xyz, std::size_t n, float radius, const glm::vec4& colour);
+    /// n sprites from structure-of-arrays coordinates (swarms).
+    void addPoints(const float* x, const float* y, const float* z, std::size_t n, float radius, const glm::vec4& colour);
 };
 
 } // namespace pba::render

@@ -68,6 +68,13 @@ void drawLegend(const World& world, const std::string& sceneName, double dt, boo
         }
         if (shown < world.bodyCount())
             ImGui::Text("... and %zu more", world.bodyCount() - shown);
+        for (std::size_t s = 0; s < world.swarmCount(); ++s) {
+            const glm::vec4 c = integratorColour(world.swarm(s).integrator());
+            ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1.0f), "o");
+            ImGui::SameLine();
+            ImGui::Text("swarm %s: %zu particles (%s)", world.swarm(s).name().c_str(), world.swarm(s).size(),
+                        std::string(integratorName(world.swarm(s).integrator())).c_str());
+        }
     }
     ImGui::End();
 }

@@ -180,6 +180,12 @@ void buildDrawList(const World& world, const World& initial, double alpha, const
         if (const auto* spring = dynamic_cast<const Spring*>(&world.force(i)); spring && spring->particle() < world.bodyCount())
             addSpring(*spring, drawnPosition(world, spring->particle(), alpha, settings.interpolate), out);
     addBodies(world, initial, alpha, settings, trails, out);
+    // Swarms keep no previous state (24 bytes a particle is the budget): drawn where they are.
+    for (std::size_t s = 0; s < world.swarmCount(); ++s) {
+        const Swarm& swarm = world.swarm(s);
+        out.addPoints(swarm.px().data(), swarm.py().data(), swarm.pz().data(), swarm.size(),
+                      settings.particleRadius * 0.3f, integratorColour(swarm.integrator()));
+    }
 }
 
 OrbitCamera frameWorld(const World& world)

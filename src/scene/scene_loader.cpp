@@ -92,6 +92,44 @@ void readParticle(const Json& value, const std::string& path, const std::string&
     world.addParticle(p);
 }
 
+std::uint64_t readCount(ObjectReader& reader, const std::string& key, double limit)
+{
+    const double x = reader.number(key);
+    if (!(x >= 0 && x <= limit && std::floor(x) == x))
+        reader.fail(key, fmt::format("must be a whole number from 0 to {:g}, got {}", limit, x));
+    return static_cast<std::uint64_t>(x);
+}
+
+void readSwarm(const Json& value, const std::string& path, const std::string& file, World& world,
+               std::set<std::string>& names)
+{
+    ObjectReader reader(value, path, file);
+    SwarmDesc desc;
+    desc.name = reader.string("name");
+    if (desc.name.empty() || !names.insert(desc.name).second)
+        reader.fail("name", desc.name.empty() ? "must not be empty" : fmt::format("'{}' is already taken", desc.name));
+    desc.count = readCount(reader, "count", 1e8);
+    ObjectReader region = reader.object("region");
+    desc.regionMin = region.vec3("min");
+    desc.regionMax = region.vec3("max");
+    for (int i = 0; i < 3; ++i)
+        if (desc.regionMin[i] > desc.regionMax[i])
+            region.fail("min", fmt::format("must not be above max (axis {})", "xyz"[i]));
+    region.finish();
+    if (!inside(world, desc.regionMin) || !inside(world, desc.regionMax))
+        reader.fail("region", "lies outside the ground or room");
+    desc.velocity = reader.vec3("velocity", dvec3(0.0));
+    desc.velocityJitter = reader.nonNegative("velocity_jitter", 0.0);
+    desc.mass = reader.positive("mass", 1.0);
+    desc.restitution = reader.number("restitution", 1.0);
+    if (!(desc.restitution >= 0.0 && desc.restitution <= 1.0))
+        reader.fail("restitution", fmt::format("must be in [0, 1], got {}", desc.restitution));
+    desc.integrator = readIntegrator(reader, "integrator", Integrator::SemiImplicitEuler);
+    desc.seed = readCount(reader, "seed", 9007199254740992.0);
+    reader.finish();
+    world.addSwarm(desc);
+}
+
 void readForce(const Json& value, const std::string& path, const std::string& file, World& world)
 {
     ObjectReader reader(value, path, file);
@@ -132,6 +170,9 @@ Scene readScene(const Json& document, const std::string& file)
     std::set<std::string> names;
     root.array("particles", [&](const Json& value, const std::string& path, std::size_t) {
         readParticle(value, path, file, scene.world, names);
+    });
+    root.array("swarms", [&](const Json& value, const std::string& path, std::size_t) {
+        readSwarm(value, path, file, scene.world, names);
     });
     root.array("forces", [&](const Json& value, const std::string& path, std::size_t) {
         readForce(value, path, file, scene.world);

@@ -1,0 +1,90 @@
+#pragma once
+// Swarms: many identical particles sharing one mesh, stored as structure-of-arrays floats
+// (24 bytes a particle) and stepped by the same integrator, force-kernel and collision
+// templates as a single Particle, instantiated for float and inlined into a loop the
+// compiler vectorises. A Particle stays a readable object; a million of them live here.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "pba/blow_dryer.hpp"
+#include "pba/collision.hpp"
+#include "pba/forces.hpp"
+#include "pba/integrator.hpp"
+#include "pba/math.hpp"
+
+namespace pba {
+
+/// How a swarm is made (the scene's "swarms" entries).
+struct SwarmDesc {
+    std::string name;
+    std::size_t count = 0;
+    dvec3 regionMin{0.0}; ///< initial positions are uniform in this box
+    dvec3 regionMax{0.0};
+    dvec3 velocity{0.0};  ///< initial velocity of every particle ...
+    double velocityJitter = 0.0; ///< ... plus a uniform offset in [-jitter, jitter] per component, m/s
+    double mass = 1.0;
+    double restitution = 1.0;
+    Integrator integrator = Integrator::SemiImplicitEuler;
+    std::uint64_t seed = 1;
+};
+
+/// The uniform fields that act on swarm particles, in float: gravity, linear drag and blow
+/// dryers. (Springs tie one named particle, so they never act on swarms.)
+struct SwarmFields {
+    Vec3<float> gravity{0.0f};
+    float drag = 0.0f;
+    std::vector<BlowDryerFieldT<float>> dryers;
+};
+
+class Swarm {
+public:
+    /// Positions and velocities from a counter-based generator: particle i's values depend on
+    /// (seed, i) only, so they do not depend on how the work is split.
+    explicit Swarm(const SwarmDesc& desc);
+
+    const SwarmDesc& desc() const { return m_desc; }
+    const std::string& name() const { return m_desc.name; }
+    std::size_t size() const { return m_px.size(); }
+    float mass() const { return m_mass; }
+    float restitution() const { return m_restitution; }
+    Integrator integrator() const { return m_integrator; }
+    void setIntegrator(Integrator integrator) { m_integrator = integrator; }
+    void setRestitution(float restitution) { m_restitution = restitution; }
+
+    Vec3<float> position(std::size_t i) const { return {m_px[i], m_py[i], m_pz[i]}; }
+    Vec3<float> velocity(std::size_t i) const { return {m_vx[i], m_vy[i], m_vz[i]}; }
+    void set(std::size_t i, const Vec3<float>& x, const Vec3<float>& v);
+    std::span<const float> px() const { return m_px; }
+    std::span<const float> py() const { return m_py; }
+    std::span<const float> pz() const { return m_pz; }
+
+    /// One step of dt for every particle; `threads` 0 means all cores. The result is the same
+    /// whatever the thread count: particles are independent and each is stepped the same way.
+    /// Returns the number of bounces.
+    std::uint64_t step(const SwarmFields& fields, std::span<const PlaneT<float>> planes, CollisionResponse response,
+                       float dt, int threads = 0);
+
+private:
+    std::uint64_t stepRange(const SwarmFields& fields, std::span<const PlaneT<float>> planes,
+                            CollisionResponse response, float dt, std::size_t begin, std::size_t end);
+
+    SwarmDesc m_desc;
+    float m_mass;
+    float m_restitution;
+    Integrator m_integrator;
+    std::vector<float> m_px, m_py, m_pz, m_vx, m_vy, m_vz;
+};
+
+/// The acceleration a swarm particle of mass m feels at (x, v): one inline expression of the
+/// same kernels the Force classes wrap.
+inline Vec3<float> swarmAcceleration(const SwarmFields& f, float inverseMass, const Vec3<float>& x, const Vec3<float>& v)
+{
+    Vec3<float> force = dragForce(f.drag, v);
+    for (const auto& dryer : f.dryers)
+        force += blowDryerForce(dryer, x);
+    return f.gravity + force * inverseMass;
+}
+
+} // namespace pba
