@@ -17,7 +17,7 @@ TEST(SceneLoader, BuiltinScenesLoadByName)
     for (const auto& name : names) {
         const Scene scene = loadScene(name);
         EXPECT_EQ(scene.name, name);
-        EXPECT_GT(scene.world.bodyCount(), 0u);
+        EXPECT_GT(scene.world.bodyCount() + scene.world.swarmCount(), 0u);
     }
 }
 
