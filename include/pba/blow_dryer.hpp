@@ -13,6 +13,7 @@
 // The kernel is a template over the scalar with no data-dependent branches beyond
 // selects, so a swarm loop over float arrays vectorises it.
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string_view>
 
@@ -30,17 +31,22 @@ std::string_view flowDirectionName(FlowDirection direction);
 std::optional<FlowDirection> flowDirectionFromName(std::string_view name);
 
 /// A falloff profile of u in [0, 1]: 0 at u = 0, 1 at u = 1. `linear` u, `quadratic` u^2,
-/// `smooth` the smoothstep u^2 (3 - 2u), flat at both ends.
+/// `smooth` the smoothstep u^2 (3 - 2u), flat at both ends. Written as a blend of the three
+/// rather than a switch, so a loop over many particles stays free of branches and vectorises.
+/// The three profiles blended by weights that are 1 for the chosen one and 0 for the others:
+/// arithmetic rather than a switch, so a loop over many particles has no branch and vectorises.
+template <class T>
+inline T falloffBlend(T linear, T quadratic, T smooth, T u)
+{
+    u = std::min(std::max(u, T(0)), T(1));
+    const T u2 = u * u;
+    return linear * u + quadratic * u2 + smooth * (u2 * (T(3) - T(2) * u));
+}
+
 template <class T>
 inline T falloff(Falloff kind, T u)
 {
-    u = std::clamp(u, T(0), T(1));
-    switch (kind) {
-    case Falloff::Linear: return u;
-    case Falloff::Quadratic: return u * u;
-    case Falloff::Smooth: return u * u * (T(3) - T(2) * u);
-    }
-    return u;
+    return falloffBlend(T(kind == Falloff::Linear), T(kind == Falloff::Quadratic), T(kind == Falloff::Smooth), u);
 }
 
 template <class T>
@@ -64,24 +70,52 @@ struct BlowDryerFieldT {
 };
 using BlowDryerField = BlowDryerFieldT<double>;
 
+/// The field with its choices turned into numbers (weights 1 for the chosen profile and 0
+/// for the others), so the force is arithmetic only: a swarm loop holds one of these and
+/// vectorises; enums in the loop would stop it.
+template <class T>
+struct BlowDryerKernelT {
+    Vec3<T> nozzle, axis;
+    T height, nozzleRadius, topRadius, strength;
+    T axialLinear, axialQuadratic, axialSmooth;
+    T radialLinear, radialQuadratic, radialSmooth;
+    T flowWeight; ///< 1 for cone-flow, 0 for vertical
+
+    BlowDryerKernelT() : BlowDryerKernelT(BlowDryerFieldT<T>{}) {}
+    explicit BlowDryerKernelT(const BlowDryerFieldT<T>& f)
+        : nozzle(f.nozzle), axis(f.axis), height(f.height), nozzleRadius(f.nozzleRadius), topRadius(f.topRadius),
+          strength(f.strength), axialLinear(T(f.axialFalloff == Falloff::Linear)),
+          axialQuadratic(T(f.axialFalloff == Falloff::Quadratic)), axialSmooth(T(f.axialFalloff == Falloff::Smooth)),
+          radialLinear(T(f.radialFalloff == Falloff::Linear)), radialQuadratic(T(f.radialFalloff == Falloff::Quadratic)),
+          radialSmooth(T(f.radialFalloff == Falloff::Smooth)), flowWeight(T(f.direction == FlowDirection::ConeFlow))
+    {
+    }
+};
+
 /// The force of the field at x (independent of the body's mass and velocity).
 template <class T>
-inline Vec3<T> blowDryerForce(const BlowDryerFieldT<T>& f, const Vec3<T>& x)
+inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
 {
     const Vec3<T> d = x - f.nozzle;
     const T h = glm::dot(d, f.axis);
     const Vec3<T> rho = d - h * f.axis;
-    const T r = glm::length(rho);
+    const T r = std::sqrt(glm::dot(rho, rho));
     const T s = h / f.height;
     const T radiusHere = f.nozzleRadius + (f.topRadius - f.nozzleRadius) * s;
-    const bool inside = h >= T(0) && s < T(1) && r < radiusHere;
-    const T safeRadius = inside ? radiusHere : T(1);
-    const T magnitude =
-        inside ? f.strength * falloff(f.axialFalloff, T(1) - s) * falloff(f.radialFalloff, T(1) - r / safeRadius) : T(0);
-    if (f.direction == FlowDirection::Vertical)
-        return magnitude * f.axis;
-    const Vec3<T> flow = f.height * f.axis + ((f.topRadius - f.nozzleRadius) / safeRadius) * rho;
-    return (magnitude / glm::length(flow)) * flow;
+    // Masks as numbers rather than branches: the same arithmetic for every particle.
+    const T inside = T(h >= T(0)) * T(s < T(1)) * T(r < radiusHere);
+    const T safeRadius = inside * radiusHere + (T(1) - inside);
+    const T magnitude = inside * f.strength * falloffBlend(f.axialLinear, f.axialQuadratic, f.axialSmooth, T(1) - s) *
+                        falloffBlend(f.radialLinear, f.radialQuadratic, f.radialSmooth, T(1) - r / safeRadius);
+    // Vertical: the axis. Cone-flow: H axis + (R - r0) rho / R(h).
+    const Vec3<T> flow = f.height * f.axis + (f.flowWeight * (f.topRadius - f.nozzleRadius) / safeRadius) * rho;
+    return (magnitude / std::sqrt(glm::dot(flow, flow))) * flow;
+}
+
+template <class T>
+inline Vec3<T> blowDryerForce(const BlowDryerFieldT<T>& f, const Vec3<T>& x)
+{
+    return blowDryerForce(BlowDryerKernelT<T>(f), x);
 }
 
 /// The field as a Force of the World.

@@ -15,6 +15,7 @@
 // same rule serves a double-precision Particle and a float swarm.
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -385,18 +386,19 @@ inline int stepClamp(Integrator integrator, std::span<const PlaneT<T>> planes, T
     return clampAfterStep(planes, restitution, start, x, v);
 }
 
-/// True if a full, collision-free step from `start` to x needs no collision rule at all:
-/// x is inside every plane and neither end is in a hole's shaft. The exact response's result
-/// is then the plain step too, except for a path that leaves and re-enters within the step
-/// (an apex beyond the ceiling), which this end-point test cannot see.
+/// Marks the points (SoA arrays, n of them) that are not clear of `plane`: within its contact
+/// tolerance or beyond it. A step whose start and end are clear of every plane needs no
+/// collision rule at all; the marked ones get the full rule. Plane-major, so each loop is a
+/// straight line of arithmetic that vectorises. (A path that leaves and re-enters within one
+/// step, an apex beyond the ceiling, is not seen by this end-point test.)
 template <class T>
-inline bool stepStaysInside(std::span<const PlaneT<T>> planes, const Vec3<T>& start, const Vec3<T>& x)
+inline void markNotClear(const PlaneT<T>& plane, const T* __restrict x, const T* __restrict y, const T* __restrict z,
+                         std::size_t n, std::uint8_t* __restrict marks)
 {
-    bool inside = true;
-    for (const PlaneT<T>& plane : planes)
-        inside = inside && plane.distance(x) > collision_detail::contactTolerance(plane) &&
-                 plane.distance(start) > collision_detail::contactTolerance(plane);
-    return inside;
+    const T nx = plane.normal.x, ny = plane.normal.y, nz = plane.normal.z;
+    const T limit = plane.offset + collision_detail::contactTolerance(plane);
+    for (std::size_t k = 0; k < n; ++k)
+        marks[k] |= static_cast<std::uint8_t>(nx * x[k] + ny * y[k] + nz * z[k] <= limit);
 }
 
 /// One step of a body with the chosen response; returns the number of bounces.

@@ -38,6 +38,26 @@ struct SwarmFields {
     std::vector<BlowDryerFieldT<float>> dryers;
 };
 
+/// The same fields laid out for the inner loop: the first dryer held by value (with a zero
+/// strength when there is none), so the common case is one straight-line expression.
+struct SwarmKernelFields {
+    Vec3<float> gravity{0.0f};
+    float drag = 0.0f;
+    BlowDryerKernelT<float> dryer{};
+    std::vector<BlowDryerKernelT<float>> more; ///< dryers after the first
+    std::size_t moreCount = 0;
+
+    explicit SwarmKernelFields(const SwarmFields& f) : gravity(f.gravity), drag(f.drag)
+    {
+        BlowDryerFieldT<float> off;
+        off.strength = 0.0f;
+        dryer = BlowDryerKernelT<float>(f.dryers.empty() ? off : f.dryers.front());
+        for (std::size_t k = 1; k < f.dryers.size(); ++k)
+            more.emplace_back(f.dryers[k]);
+        moreCount = more.size();
+    }
+};
+
 class Swarm {
 public:
     /// Positions and velocities from a counter-based generator: particle i's values depend on
@@ -78,13 +98,22 @@ private:
 };
 
 /// The acceleration a swarm particle of mass m feels at (x, v): one inline expression of the
-/// same kernels the Force classes wrap.
-inline Vec3<float> swarmAcceleration(const SwarmFields& f, float inverseMass, const Vec3<float>& x, const Vec3<float>& v)
+/// same kernels the Force classes wrap (the first dryer only: see swarmAccelerationAll).
+inline Vec3<float> swarmAcceleration(const SwarmKernelFields& f, float inverseMass, const Vec3<float>& x,
+                                     const Vec3<float>& v)
 {
-    Vec3<float> force = dragForce(f.drag, v);
-    for (const auto& dryer : f.dryers)
-        force += blowDryerForce(dryer, x);
-    return f.gravity + force * inverseMass;
+    return f.gravity + (dragForce(f.drag, v) + blowDryerForce(f.dryer, x)) * inverseMass; // as in stepBlocks' loop
+}
+
+/// With every dryer: the loop over dryers keeps the particle loop from vectorising, so it is
+/// used only when a scene has more than one.
+inline Vec3<float> swarmAccelerationAll(const SwarmKernelFields& f, float inverseMass, const Vec3<float>& x,
+                                        const Vec3<float>& v)
+{
+    Vec3<float> a = swarmAcceleration(f, inverseMass, x, v);
+    for (std::size_t k = 0; k < f.moreCount; ++k)
+        a += blowDryerForce(f.more[k], x) * inverseMass;
+    return a;
 }
 
 } // namespace pba

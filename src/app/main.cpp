@@ -25,6 +25,7 @@ int main(int argc, char** argv)
     addRenderCommand(app, selected);
     addViewCommand(app, selected);
     addCompareCommand(app, selected);
+    addBenchCommand(app, selected);
 
     std::vector<std::string> args(argv + 1, argv + argc);
     std::reverse(args.begin(), args.end()); // CLI11 takes the arguments in reverse order

@@ -49,36 +49,46 @@ struct Arrays {
 
 /// Phase 1 of a block: the plain integrator step for every particle, a loop with no branches
 /// the vectoriser cannot turn into selects. The start states are kept for phase 2.
-template <Integrator kIntegrator>
-void integrateBlock(const Arrays& a, std::size_t begin, std::size_t n, const SwarmFields& fields, float inverseMass,
-                    float dt, float (*start)[kBlock])
+template <Integrator kIntegrator, class Accel>
+void integrateBlock(float* __restrict px, float* __restrict py, float* __restrict pz, float* __restrict vx,
+                    float* __restrict vy, float* __restrict vz, float* __restrict s0, float* __restrict s1,
+                    float* __restrict s2, float* __restrict s3, float* __restrict s4, float* __restrict s5,
+                    std::size_t n, float dt, Accel accel)
 {
-    auto accel = [&](const Vec3<float>& x, const Vec3<float>& v) { return swarmAcceleration(fields, inverseMass, x, v); };
+    // Distinct arrays (restrict) and an acceleration holding its fields by value: what lets
+    // the compiler vectorise this loop without alias checks.
     for (std::size_t k = 0; k < n; ++k) {
-        const std::size_t i = begin + k;
-        Vec3<float> x(a.px[i], a.py[i], a.pz[i]);
-        Vec3<float> v(a.vx[i], a.vy[i], a.vz[i]);
-        start[0][k] = x.x, start[1][k] = x.y, start[2][k] = x.z;
-        start[3][k] = v.x, start[4][k] = v.y, start[5][k] = v.z;
+        Vec3<float> x(px[k], py[k], pz[k]);
+        Vec3<float> v(vx[k], vy[k], vz[k]);
+        s0[k] = x.x, s1[k] = x.y, s2[k] = x.z;
+        s3[k] = v.x, s4[k] = v.y, s5[k] = v.z;
         integrateAs<kIntegrator>(x, v, dt, accel);
-        a.px[i] = x.x, a.py[i] = x.y, a.pz[i] = x.z;
-        a.vx[i] = v.x, a.vy[i] = v.y, a.vz[i] = v.z;
+        px[k] = x.x, py[k] = x.y, pz[k] = x.z;
+        vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
     }
+}
+
+template <Integrator kIntegrator, class Accel>
+void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kBlock], Accel accel)
+{
+    integrateBlock<kIntegrator>(a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b, start[0], start[1],
+                                start[2], start[3], start[4], start[5], n, dt, accel);
 }
 
 /// Phase 2 of a block: the few particles that met a surface get the collision rule, the same
 /// function a Particle uses (the exact response redoes the step from the start state).
 template <Integrator kIntegrator>
-std::uint64_t collideBlock(const Arrays& a, std::size_t begin, std::size_t n, const SwarmFields& fields,
+std::uint64_t collideBlock(const Arrays& a, std::size_t begin, std::size_t n, const SwarmKernelFields& fields,
                            float inverseMass, float restitution, float dt, std::span<const PlaneT<float>> planes,
                            CollisionResponse response, const float (*start)[kBlock])
 {
-    auto accel = [&](const Vec3<float>& x, const Vec3<float>& v) { return swarmAcceleration(fields, inverseMass, x, v); };
+    auto accel = [&](const Vec3<float>& x, const Vec3<float>& v) {
+        return swarmAccelerationAll(fields, inverseMass, x, v);
+    };
     std::array<std::uint8_t, kBlock> hit{};
-    for (std::size_t k = 0; k < n; ++k) {
-        const std::size_t i = begin + k;
-        hit[k] = !stepStaysInside(planes, Vec3<float>(start[0][k], start[1][k], start[2][k]),
-                                  Vec3<float>(a.px[i], a.py[i], a.pz[i]));
+    for (const PlaneT<float>& plane : planes) {
+        markNotClear(plane, start[0], start[1], start[2], n, hit.data());
+        markNotClear(plane, a.px + begin, a.py + begin, a.pz + begin, n, hit.data());
     }
     std::uint64_t bounces = 0;
     for (std::size_t k = 0; k < n; ++k) {
@@ -104,15 +114,25 @@ std::uint64_t collideBlock(const Arrays& a, std::size_t begin, std::size_t n, co
 }
 
 template <Integrator kIntegrator>
-std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const SwarmFields& fields,
+std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const SwarmKernelFields& fields,
                          float inverseMass, float restitution, float dt, std::span<const PlaneT<float>> planes,
                          CollisionResponse response)
 {
     alignas(64) float start[6][kBlock];
     std::uint64_t bounces = 0;
+    const auto one = [gravity = fields.gravity, drag = fields.drag, dryer = fields.dryer,
+                      inverseMass](const Vec3<float>& x, const Vec3<float>& v) {
+        return gravity + (dragForce(drag, v) + blowDryerForce(dryer, x)) * inverseMass;
+    };
+    const auto all = [&](const Vec3<float>& x, const Vec3<float>& v) {
+        return swarmAccelerationAll(fields, inverseMass, x, v);
+    };
     for (std::size_t b = begin; b < end; b += kBlock) {
         const std::size_t n = std::min(kBlock, end - b);
-        integrateBlock<kIntegrator>(a, b, n, fields, inverseMass, dt, start);
+        if (fields.moreCount == 0)
+            integrateBlock<kIntegrator>(a, b, n, dt, start, one);
+        else
+            integrateBlock<kIntegrator>(a, b, n, dt, start, all);
         if (!planes.empty())
             bounces += collideBlock<kIntegrator>(a, b, n, fields, inverseMass, restitution, dt, planes, response, start);
     }
@@ -141,11 +161,12 @@ void Swarm::set(std::size_t i, const Vec3<float>& x, const Vec3<float>& v)
     m_vx[i] = v.x, m_vy[i] = v.y, m_vz[i] = v.z;
 }
 
-std::uint64_t Swarm::stepRange(const SwarmFields& fields, std::span<const PlaneT<float>> planes,
+std::uint64_t Swarm::stepRange(const SwarmFields& swarmFields, std::span<const PlaneT<float>> planes,
                                CollisionResponse response, float dt, std::size_t begin, std::size_t end)
 {
     const Arrays a{m_px.data(), m_py.data(), m_pz.data(), m_vx.data(), m_vy.data(), m_vz.data()};
     const float inverseMass = 1.0f / m_mass;
+    const SwarmKernelFields fields(swarmFields);
     switch (m_integrator) {
     case Integrator::ForwardEuler:
         return stepBlocks<Integrator::ForwardEuler>(a, begin, end, fields, inverseMass, m_restitution, dt, planes, response);

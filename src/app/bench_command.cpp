@@ -1,0 +1,210 @@
+// `pba bench`: particle-steps per second of the swarm layout against the practical's
+// vector of heap Particles and against the memory-bandwidth bound, measured in one run.
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <memory>
+#include <thread>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "command.hpp"
+#include "pba/scene/scene.hpp"
+
+namespace pba::app {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct BenchOptions {
+    bool json = false;
+    bool quick = false;
+    std::vector<double> sizes;
+};
+
+struct Row {
+    std::string layout;
+    std::string integrator;
+    std::size_t n = 0;
+    int threads = 1;
+    double rate = 0.0; ///< particle-steps per second
+    double bytesPerParticle = 0.0;
+    double ofBound = 0.0;
+    double ofBaseline = 0.0;
+};
+
+double seconds(Clock::time_point from) { return std::chrono::duration<double>(Clock::now() - from).count(); }
+
+/// Runs `step` (which advances n particles once) until minTime has passed; the median rate of
+/// `repeats` such runs, in particle-steps per second.
+template <class Step>
+double measure(std::size_t n, double minTime, int repeats, Step&& step)
+{
+    step(); // warm caches and page in memory
+    std::vector<double> rates;
+    for (int r = 0; r < repeats; ++r) {
+        const auto start = Clock::now();
+        long steps = 0;
+        do {
+            step();
+            ++steps;
+        } while (seconds(start) < minTime);
+        rates.push_back(double(n) * double(steps) / seconds(start));
+    }
+    std::sort(rates.begin(), rates.end());
+    return rates[rates.size() / 2];
+}
+
+World swarmWorld(std::size_t n, Integrator integrator, int threads)
+{
+    Scene scene = loadScene("blow-dryer-swarm");
+    World world;
+    world.addForce(scene.world.force(0).clone()); // gravity
+    world.addForce(scene.world.force(1).clone()); // the blow dryer
+    world.setRoom(*scene.world.room());
+    world.setFloorHole(*scene.world.floorHole());
+    world.setCollisionResponse(scene.world.collisionResponse());
+    SwarmDesc desc = scene.world.swarm(0).desc();
+    desc.count = n;
+    desc.integrator = integrator;
+    world.addSwarm(desc);
+    world.setThreads(threads);
+    return world;
+}
+
+/// The practical's way: one heap-allocated Particle (with its own mesh) per particle, stepped
+/// one by one through the same world, forces and collisions.
+World baselineWorld(std::size_t n)
+{
+    World swarm = swarmWorld(n, Integrator::SemiImplicitEuler, 1);
+    World world;
+    for (std::size_t i = 0; i < swarm.forceCount(); ++i)
+        world.addForce(swarm.force(i).clone());
+    world.setRoom(*swarm.room());
+    world.setFloorHole(*swarm.floorHole());
+    world.setCollisionResponse(swarm.collisionResponse());
+    for (std::size_t i = 0; i < n; ++i) {
+        Particle p;
+        p.setPos(dvec3(swarm.swarm(0).position(i)));
+        p.setVel(dvec3(swarm.swarm(0).velocity(i)));
+        p.setCor(swarm.swarm(0).restitution());
+        world.addParticle(p);
+    }
+    return world;
+}
+
+/// The best rate of the in-place update a[i] = a[i] * s + t over the swarm state's size
+/// (24 n bytes) on all cores, counting 8 bytes moved per element, over the 48 bytes a
+/// particle-step must move (position and velocity, read and written, in float).
+double bandwidthBound(std::size_t n, double minTime)
+{
+    std::vector<float> a(6 * n, 1.0f);
+    double best = 0.0;
+    for (int r = 0; r < 3; ++r) {
+        const auto start = Clock::now();
+        long passes = 0;
+        do {
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, a.size(), 1 << 16), [&](const auto& range) {
+                for (std::size_t i = range.begin(); i < range.end(); ++i)
+                    a[i] = a[i] * 0.999f + 0.001f;
+            });
+            ++passes;
+        } while (seconds(start) < minTime);
+        best = std::max(best, 8.0 * double(a.size()) * double(passes) / seconds(start));
+    }
+    return best / 48.0;
+}
+
+double residentBytes()
+{
+    std::ifstream status("/proc/self/statm");
+    long pages = 0, resident = 0;
+    status >> pages >> resident;
+    return double(resident) * double(sysconf(_SC_PAGESIZE));
+}
+
+std::string table(const std::vector<Row>& rows)
+{
+    std::string out = fmt::format("{:<9} {:<20} {:>10} {:>7} {:>16} {:>9} {:>11} {:>12}\n", "layout", "integrator", "N",
+                                  "threads", "particle-steps/s", "of bound", "x baseline", "bytes/part.");
+    for (const Row& r : rows)
+        out += fmt::format("{:<9} {:<20} {:>10} {:>7} {:>16.3e} {:>9} {:>11} {:>12}\n", r.layout, r.integrator, r.n,
+                           r.threads, r.rate, r.ofBound > 0 ? fmt::format("{:.2f}", r.ofBound) : "",
+                           r.ofBaseline > 0 ? fmt::format("{:.1f}", r.ofBaseline) : "",
+                           r.bytesPerParticle > 0 ? fmt::format("{:.1f}", r.bytesPerParticle) : "");
+    return out;
+}
+
+int runBench(const BenchOptions& options)
+{
+    std::vector<std::size_t> sizes;
+    for (double s : options.sizes.empty() ? std::vector<double>{1e3, 1e5, 1e6, 1e7} : options.sizes)
+        sizes.push_back(static_cast<std::size_t>(s));
+    if (options.quick && options.sizes.empty())
+        sizes = {1000, 100000};
+    const double minTime = options.quick ? 0.02 : 0.25;
+    const int repeats = options.quick ? 1 : 3;
+    const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    std::vector<Row> rows;
+    for (std::size_t n : sizes) {
+        const double bound = bandwidthBound(n, minTime);
+        rows.push_back({"bound", "", n, cores, bound, 24.0, 1.0, 0.0});
+        double baseline = 0.0;
+        if (n <= 1000000) { // a million heap Particles take about a gigabyte; ten million do not fit the point
+            World world = baselineWorld(n);
+            baseline = measure(n, minTime, repeats, [&] { world.step(0.002); });
+            rows.push_back({"baseline", "semi-implicit-euler", n, 1, baseline, 0.0, baseline / bound, 1.0});
+        }
+        for (Integrator integrator : kAllIntegrators) {
+            for (int threads : {1, cores}) {
+                const double before = residentBytes();
+                World world = swarmWorld(n, integrator, threads);
+                const double bytes = (residentBytes() - before) / double(n);
+                const double rate = measure(n, minTime, repeats, [&] { world.step(0.002); });
+                rows.push_back({"swarm", std::string(integratorName(integrator)), n, threads, rate,
+                                n >= 1000000 ? bytes : 0.0, rate / bound, baseline > 0 ? rate / baseline : 0.0});
+                if (threads == cores)
+                    break;
+            }
+        }
+        if (!options.json)
+            fmt::print(stderr, "measured N = {}\n", n);
+    }
+    if (options.json) {
+        nlohmann::json out;
+        out["results"] = nlohmann::json::array();
+        for (const Row& r : rows)
+            out["results"].push_back({{"layout", r.layout}, {"integrator", r.integrator}, {"n", r.n},
+                                      {"threads", r.threads}, {"particle_steps_per_s", r.rate},
+                                      {"bytes_per_particle", r.bytesPerParticle}, {"fraction_of_bound", r.ofBound},
+                                      {"times_baseline", r.ofBaseline}});
+        out["machine"] = {{"cores", cores}};
+        fmt::print("{}\n", out.dump(2));
+    } else {
+        fmt::print("{}", table(rows));
+    }
+    return kExitSuccess;
+}
+
+} // namespace
+
+void addBenchCommand(CLI::App& root, Action& selected)
+{
+    auto options = std::make_shared<BenchOptions>();
+    CLI::App* bench = root.add_subcommand("bench", "Measure particle-steps per second: swarms with each integrator "
+                                                   "on 1 and all cores, the heap-Particle baseline, the bandwidth bound");
+    bench->add_flag("--json", options->json, "Print {\"results\": [...]} instead of a table");
+    bench->add_flag("--quick", options->quick, "Measure briefly, at N = 1e3 and 1e5 (for scripted checks)");
+    bench->add_option("--sizes", options->sizes, "Comma-separated particle counts (default 1e3,1e5,1e6,1e7)")
+        ->delimiter(',')
+        ->type_name("N,N");
+    bench->footer("\nThe workload is the blow-dryer-swarm scene (gravity, the blow dryer, the room's walls and the\n"
+                  "hole) at dt = 0.002. Timings are medians of 3; compare rows of one run, not across runs.\n");
+    bench->callback([options, &selected] { selected = [options] { return runBench(*options); }; });
+}
+
+} // namespace pba::app
