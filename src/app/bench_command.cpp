@@ -119,12 +119,24 @@ double bandwidthBound(std::size_t n, double minTime)
     return best / 48.0;
 }
 
-double residentBytes()
+/// Peak resident memory of this process so far (VmHWM), bytes.
+double peakResidentBytes()
 {
-    std::ifstream status("/proc/self/statm");
-    long pages = 0, resident = 0;
-    status >> pages >> resident;
-    return double(resident) * double(sysconf(_SC_PAGESIZE));
+    std::ifstream status("/proc/self/status");
+    for (std::string line; std::getline(status, line);)
+        if (line.rfind("VmHWM:", 0) == 0)
+            return std::stod(line.substr(6)) * 1024.0;
+    return 0.0;
+}
+
+/// Peak memory per swarm particle: measured first, before anything else has raised the peak,
+/// as the growth of the peak while an n-particle swarm world is built and stepped.
+double bytesPerParticle(std::size_t n)
+{
+    const double before = peakResidentBytes();
+    World world = swarmWorld(n, Integrator::SemiImplicitEuler, 0);
+    world.step(0.002);
+    return (peakResidentBytes() - before) / double(n);
 }
 
 std::string table(const std::vector<Row>& rows)
@@ -150,6 +162,8 @@ int runBench(const BenchOptions& options)
     const int repeats = options.quick ? 1 : 3;
     const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     std::vector<Row> rows;
+    const std::size_t largest = *std::max_element(sizes.begin(), sizes.end());
+    const double memory = largest >= 1000000 ? bytesPerParticle(largest) : 0.0;
     for (std::size_t n : sizes) {
         const double bound = bandwidthBound(n, minTime);
         rows.push_back({"bound", "", n, cores, bound, 24.0, 1.0, 0.0});
@@ -161,12 +175,11 @@ int runBench(const BenchOptions& options)
         }
         for (Integrator integrator : kAllIntegrators) {
             for (int threads : {1, cores}) {
-                const double before = residentBytes();
                 World world = swarmWorld(n, integrator, threads);
-                const double bytes = (residentBytes() - before) / double(n);
+                const double bytes = n == largest ? memory : 0.0;
                 const double rate = measure(n, minTime, repeats, [&] { world.step(0.002); });
-                rows.push_back({"swarm", std::string(integratorName(integrator)), n, threads, rate,
-                                n >= 1000000 ? bytes : 0.0, rate / bound, baseline > 0 ? rate / baseline : 0.0});
+                rows.push_back({"swarm", std::string(integratorName(integrator)), n, threads, rate, bytes, rate / bound,
+                                baseline > 0 ? rate / baseline : 0.0});
                 if (threads == cores)
                     break;
             }

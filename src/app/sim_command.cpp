@@ -128,6 +128,11 @@ int runSim(const SimOptions& options)
         summary[i].highest = world.body(i).getPos().y;
     }
     auto record = [&] {
+        // The state can be finite while its energy has overflowed (0.5 k x^2 with x ~ 1e155):
+        // a row with an infinite energy is no more valid than one with an infinite position.
+        for (std::size_t i = 0; i < world.bodyCount(); ++i)
+            if (!std::isfinite(world.energy(i)))
+                throw NonFiniteStateError(world.body(i).getName(), world.stepCount(), world.time(), "energy");
         for (std::size_t i = 0; i < world.bodyCount(); ++i)
             summary[i].highest = std::max(summary[i].highest, world.body(i).getPos().y);
         if (csv)

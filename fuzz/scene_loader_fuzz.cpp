@@ -1,0 +1,26 @@
+// libFuzzer target: any bytes given to the scene loader either load or raise SceneError, and
+// a loaded scene survives a few steps. Anything else (a crash, a sanitizer report, another
+// exception, a hang) is a bug.
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "pba/scene/scene.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+    const std::string_view text(reinterpret_cast<const char*>(data), size);
+    try {
+        pba::Scene scene = pba::parseScene(text, "fuzz.json");
+        std::size_t swarmParticles = 0;
+        for (std::size_t i = 0; i < scene.world.swarmCount(); ++i)
+            swarmParticles += scene.world.swarm(i).size();
+        if (swarmParticles > 100000)
+            return 0; // a valid but huge scene: stepping it proves nothing and takes long
+        for (int n = 0; n < 3; ++n)
+            scene.world.step(scene.dt);
+    } catch (const pba::SceneError&) {
+    } catch (const pba::NonFiniteStateError&) {
+    }
+    return 0;
+}
