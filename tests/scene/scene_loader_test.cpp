@@ -77,6 +77,10 @@ TEST_P(BadSceneTest, IsReportedWithFieldAndReason)
 #define D(change)                                                                                          \
     R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "forces": [{"type": "blow-dryer", "nozzle": [0, 0, 0], )" \
     R"("height": 3, "nozzle_radius": 0.2, "top_radius": 1, "strength": 30, )" change "}]}"
+// A swarm with one key changed (the last of duplicate keys wins).
+#define S(change)                                                                                          \
+    R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "swarms": [{"name": "s", "count": 10, )"            \
+    R"("region": {"min": [0, 1, 0], "max": [1, 2, 1]}, "seed": 1, )" change "}]}"
 #define P(extra) R"({"particles": [{"name": "a", "position": [0, 1, 0])" extra "}]}"
 INSTANTIATE_TEST_SUITE_P(
     SceneLoader, BadSceneTest,
@@ -126,7 +130,20 @@ INSTANTIATE_TEST_SUITE_P(
                     BadScene{D(R"("radial_falloff": 2)"), "forces[0].radial_falloff", "expected a string"},
                     BadScene{D(R"("direction": "sideways")"), "forces[0].direction", "unknown value 'sideways'"},
                     BadScene{D(R"("grille_depth": 0)"), "forces[0].grille_depth", "must be positive"},
-                    BadScene{D(R"("nozzel": [0, 0, 0])"), "forces[0].nozzel", "unknown key"}));
+                    BadScene{D(R"("nozzel": [0, 0, 0])"), "forces[0].nozzel", "unknown key"},
+                    BadScene{S(R"("count": -1)"), "swarms[0].count", "whole number"},
+                    BadScene{S(R"("count": 2.5)"), "swarms[0].count", "whole number"},
+                    BadScene{S(R"("count": 1e9)"), "swarms[0].count", "whole number"},
+                    BadScene{S(R"("mass": 0)"), "swarms[0].mass", "must be positive"},
+                    BadScene{S(R"("restitution": 2)"), "swarms[0].restitution", "must be in [0, 1]"},
+                    BadScene{S(R"("velocity_jitter": -1)"), "swarms[0].velocity_jitter", "must not be negative"},
+                    BadScene{S(R"("integrator": "euler")"), "swarms[0].integrator", "unknown integrator"},
+                    BadScene{S(R"("seed": -3)"), "swarms[0].seed", "whole number"},
+                    BadScene{S(R"("region": {"min": [0, 0.5, 0], "max": [0, 9, 0]})"), "swarms[0].region", "outside"},
+                    BadScene{S(R"("region": {"min": [1, 1, 1], "max": [0, 1, 1]})"), "swarms[0].region.min",
+                             "must not be above max"},
+                    BadScene{S(R"("colour": 1)"), "swarms[0].colour", "unknown key"}));
+#undef S
 #undef D
 #undef P
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 #include "pba/scene/scene.hpp"
 #include "pba/world.hpp"
@@ -110,4 +111,24 @@ TEST(Swarm, NoParticleEverLeavesTheRoom)
                 ASSERT_LE(std::hypot(x.x, x.z), world.floorHole()->radius + 1e-5);
         }
     }
+}
+
+#include <nlohmann/json.hpp>
+
+#include "support/run_command.hpp"
+
+// pba bench's JSON has the keys the README documents, for every layout.
+TEST(PbaBench, QuickJsonHasEveryLayout)
+{
+    const auto r = pba::test::runPba("bench --quick --json --sizes 1000");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    std::set<std::string> layouts;
+    for (const auto& row : json["results"]) {
+        layouts.insert(row["layout"].get<std::string>());
+        for (const char* key : {"integrator", "n", "threads", "particle_steps_per_s", "bytes_per_particle"})
+            EXPECT_TRUE(row.contains(key)) << key;
+        EXPECT_GT(row["particle_steps_per_s"].get<double>(), 0.0);
+    }
+    EXPECT_EQ(layouts, (std::set<std::string>{"bound", "baseline", "swarm"}));
 }
