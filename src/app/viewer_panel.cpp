@@ -78,7 +78,7 @@ void viewSection(ViewerState& state)
     ImGui::SameLine();
     ImGui::Checkbox("arrows", &state.settings.fieldArrows);
     bool lanes = static_cast<bool>(state.settings.ghost);
-    if (ImGui::Checkbox("integrator lanes: the exact solution's ghost beside each particle", &lanes))
+    if (ImGui::Checkbox("lanes (exact ghost)", &lanes))
         state.settings.ghost = lanes ? exactGhosts(state.initial) : nullptr;
 }
 
@@ -123,6 +123,14 @@ void plotsSection(const ViewerState& state)
     }
 }
 
+/// The hole in the floor follows the nozzle (it is the nozzle's opening).
+void moveHole(World& world, const BlowDryerField& f)
+{
+    const auto& hole = world.floorHole();
+    if (hole && f.nozzleRadius > 0.0)
+        world.setFloorHole(FloorHole{f.nozzle, f.nozzleRadius, hole->depth});
+}
+
 void dryerSection(ViewerState& state)
 {
     World& world = state.scene.world;
@@ -148,7 +156,18 @@ void dryerSection(ViewerState& state)
             f.radialFalloff = static_cast<Falloff>(radial);
         if (ImGui::Combo("direction", &direction, kDirectionNames, 2))
             f.direction = static_cast<FlowDirection>(direction);
-        ImGui::Text("nozzle radius %.2f m (the hole in the floor)", r0);
+        float nozzle[2] = {float(f.nozzle.x), float(f.nozzle.z)};
+        bool moved = ImGui::SliderFloat2("nozzle x, z (m)", nozzle, -5.0f, 5.0f);
+        moved |= ImGui::SliderFloat("nozzle radius (m)", &r0, 0.0f, std::max(float(f.topRadius), 0.01f));
+        if (moved) {
+            f.nozzle.x = nozzle[0];
+            f.nozzle.z = nozzle[1];
+            f.nozzleRadius = r0;
+            moveHole(world, f);
+        }
+        float axis[3] = {float(f.axis.x), float(f.axis.y), float(f.axis.z)};
+        if (ImGui::SliderFloat3("axis", axis, -1.0f, 1.0f) && glm::length(glm::vec3(axis[0], axis[1], axis[2])) > 1e-3f)
+            f.axis = glm::normalize(dvec3(axis[0], axis[1], axis[2]));
         ImGui::PopID();
     }
 }
