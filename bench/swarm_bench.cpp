@@ -11,17 +11,11 @@ namespace {
 
 pba::World swarmWorld(std::size_t n, pba::Integrator integrator, int threads)
 {
-    pba::Scene scene = pba::loadScene("blow-dryer-swarm");
-    pba::SwarmDesc desc = scene.world.swarm(0).desc();
+    pba::World world = pba::loadScene("blow-dryer-swarm").world;
+    pba::SwarmDesc desc = world.swarm(0).desc();
     desc.count = n;
     desc.integrator = integrator;
-    pba::World world;
-    for (std::size_t i = 0; i < scene.world.forceCount(); ++i)
-        world.addForce(scene.world.force(i).clone());
-    world.setRoom(*scene.world.room());
-    world.setFloorHole(*scene.world.floorHole());
-    world.setCollisionResponse(scene.world.collisionResponse());
-    world.addSwarm(desc);
+    world.swarm(0) = pba::Swarm(desc);
     world.setThreads(threads);
     return world;
 }

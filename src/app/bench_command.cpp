@@ -59,19 +59,14 @@ double measure(std::size_t n, double minTime, int repeats, Step&& step)
     return rates[rates.size() / 2];
 }
 
+/// The blow-dryer-swarm scene's world with n particles of the given integrator.
 World swarmWorld(std::size_t n, Integrator integrator, int threads)
 {
-    Scene scene = loadScene("blow-dryer-swarm");
-    World world;
-    world.addForce(scene.world.force(0).clone()); // gravity
-    world.addForce(scene.world.force(1).clone()); // the blow dryer
-    world.setRoom(*scene.world.room());
-    world.setFloorHole(*scene.world.floorHole());
-    world.setCollisionResponse(scene.world.collisionResponse());
-    SwarmDesc desc = scene.world.swarm(0).desc();
+    World world = loadScene("blow-dryer-swarm").world;
+    SwarmDesc desc = world.swarm(0).desc();
     desc.count = n;
     desc.integrator = integrator;
-    world.addSwarm(desc);
+    world.swarm(0) = Swarm(desc);
     world.setThreads(threads);
     return world;
 }
@@ -81,12 +76,8 @@ World swarmWorld(std::size_t n, Integrator integrator, int threads)
 World baselineWorld(std::size_t n)
 {
     World swarm = swarmWorld(n, Integrator::SemiImplicitEuler, 1);
-    World world;
-    for (std::size_t i = 0; i < swarm.forceCount(); ++i)
-        world.addForce(swarm.force(i).clone());
-    world.setRoom(*swarm.room());
-    world.setFloorHole(*swarm.floorHole());
-    world.setCollisionResponse(swarm.collisionResponse());
+    World world = swarm;
+    world.swarm(0) = Swarm(SwarmDesc{}); // the same world, with the particles as heap objects instead
     for (std::size_t i = 0; i < n; ++i) {
         Particle p;
         p.setPos(dvec3(swarm.swarm(0).position(i)));

@@ -15,18 +15,12 @@ namespace {
 /// The blow-dryer-swarm scene with n particles.
 World swarmWorld(std::size_t n, CollisionResponse response = CollisionResponse::Reflect)
 {
-    Scene scene = loadScene("blow-dryer-swarm");
-    SwarmDesc desc = scene.world.swarm(0).desc();
+    World world = loadScene("blow-dryer-swarm").world;
+    SwarmDesc desc = world.swarm(0).desc();
     desc.count = n;
-    const World& world = scene.world;
-    World fresh;
-    for (std::size_t i = 0; i < world.forceCount(); ++i)
-        fresh.addForce(world.force(i).clone());
-    fresh.setRoom(*world.room());
-    fresh.setFloorHole(*world.floorHole());
-    fresh.setCollisionResponse(response);
-    fresh.addSwarm(desc);
-    return fresh;
+    world.swarm(0) = Swarm(desc);
+    world.setCollisionResponse(response);
+    return world;
 }
 
 } // namespace
