@@ -78,3 +78,15 @@ TEST(PbaView, WindowUnderXvfbShowsThePanelAndTheParticles)
     EXPECT_GT(green, 30);
     EXPECT_GT(panelBlue, 2000);
 }
+
+// Without ffmpeg on the PATH the error names the package to install, and nothing is left behind.
+TEST(PbaRender, MissingFfmpegNamesThePackageAndWritesNothing)
+{
+    const auto dir = freshDir("render_noffmpeg");
+    const auto mp4 = dir / "x.mp4";
+    const CommandResult r =
+        runShell("PATH=/nonexistent " + std::string(PBA_BINARY) + " render spring --duration 0.1 --out " + mp4.string());
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("install the Debian package ffmpeg"), std::string::npos) << r.err;
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0);
+}
