@@ -4,7 +4,9 @@
 //   1. store previous states (for the renderer's interpolation)
 //   2. integrate each moving body with its own integrator, resolving collisions on the way
 //      (forces are summed at every trial state an integrator asks for)
-//   3. check the new states are finite
+//   3. step the swarms (float arrays, all cores) with the same integrator, force and
+//      collision templates
+//   4. check the new states are finite
 // It knows no window, no file format and no clock: frame time never reaches it.
 #include <cstdint>
 #include <memory>

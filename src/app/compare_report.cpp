@@ -46,7 +46,6 @@ std::string energyTable(const study::StudyConfig& config, const study::StudyResu
                         bool markdown)
 {
     std::string out;
-    const std::string sep = markdown ? " | " : "  ";
     out += markdown ? "| integrator" : fmt::format("{:<20}", "integrator \\ dt");
     for (double dt : config.dts)
         out += markdown ? fmt::format(" | {}", dt) : fmt::format("{:>10}", dt);
@@ -65,7 +64,6 @@ std::string energyTable(const study::StudyConfig& config, const study::StudyResu
         }
         out += markdown ? " |\n" : "\n";
     }
-    (void)sep;
     return out;
 }
 
