@@ -1,6 +1,6 @@
 #pragma once
 // Swarms: many identical particles sharing one mesh, stored as structure-of-arrays floats
-// (24 bytes a particle) and stepped by the same integrator, force-kernel and collision
+// (24 bytes a particle, plus one byte remembering whether it is clear of every surface) and stepped by the same integrator, force-kernel and collision
 // templates as a single Particle, instantiated for float and inlined into a loop the
 // compiler vectorises. A Particle stays a readable object; a million of them live here.
 #include <cstdint>
@@ -95,6 +95,8 @@ private:
     float m_restitution;
     Integrator m_integrator;
     std::vector<float> m_px, m_py, m_pz, m_vx, m_vy, m_vz;
+    std::vector<std::uint8_t> m_clear; ///< per particle: clear of every surface after its last step
+    std::vector<PlaneT<float>> m_clearOf; ///< the surfaces m_clear was computed against
 };
 
 /// The acceleration a swarm particle of mass m feels at (x, v): one inline expression of the

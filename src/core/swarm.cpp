@@ -1,5 +1,6 @@
 #include "pba/swarm.hpp"
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 
@@ -45,6 +46,7 @@ inline void integrateAs(Vec3<float>& x, Vec3<float>& v, float dt, Accel&& accel)
 
 struct Arrays {
     float *px, *py, *pz, *vx, *vy, *vz;
+    std::uint8_t* clear; ///< 1: the position is clear of every surface (known from the last step)
 };
 
 /// Phase 1 of a block: the plain integrator step for every particle, a loop with no branches
@@ -85,11 +87,15 @@ std::uint64_t collideBlock(const Arrays& a, std::size_t begin, std::size_t n, co
     auto accel = [&](const Vec3<float>& x, const Vec3<float>& v) {
         return swarmAccelerationAll(fields, inverseMass, x, v);
     };
-    std::array<std::uint8_t, kBlock> hit{};
-    for (const PlaneT<float>& plane : planes) {
-        markNotClear(plane, start[0], start[1], start[2], n, hit.data());
+    // Whether each particle started clear is known from its last step; only the ends are
+    // tested here, plane by plane. The few that need the rule have their result tested below.
+    std::array<std::uint8_t, kBlock> hit;
+    for (std::size_t k = 0; k < n; ++k)
+        hit[k] = static_cast<std::uint8_t>(a.clear[begin + k] == 0);
+    for (const PlaneT<float>& plane : planes)
         markNotClear(plane, a.px + begin, a.py + begin, a.pz + begin, n, hit.data());
-    }
+    for (std::size_t k = 0; k < n; ++k)
+        a.clear[begin + k] = static_cast<std::uint8_t>(hit[k] == 0);
     std::uint64_t bounces = 0;
     for (std::size_t k = 0; k < n; ++k) {
         if (!hit[k])
@@ -109,6 +115,10 @@ std::uint64_t collideBlock(const Arrays& a, std::size_t begin, std::size_t n, co
         }
         a.px[i] = x.x, a.py[i] = x.y, a.pz[i] = x.z;
         a.vx[i] = v.x, a.vy[i] = v.y, a.vz[i] = v.z;
+        std::uint8_t notClear = 0;
+        for (const PlaneT<float>& plane : planes)
+            markNotClear(plane, &a.px[i], &a.py[i], &a.pz[i], 1, &notClear);
+        a.clear[i] = static_cast<std::uint8_t>(notClear == 0);
     }
     return bounces;
 }
@@ -143,7 +153,8 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
 
 Swarm::Swarm(const SwarmDesc& desc)
     : m_desc(desc), m_mass(float(desc.mass)), m_restitution(float(desc.restitution)), m_integrator(desc.integrator),
-      m_px(desc.count), m_py(desc.count), m_pz(desc.count), m_vx(desc.count), m_vy(desc.count), m_vz(desc.count)
+      m_px(desc.count), m_py(desc.count), m_pz(desc.count), m_vx(desc.count), m_vy(desc.count), m_vz(desc.count),
+      m_clear(desc.count, 0)
 {
     for (std::size_t i = 0; i < desc.count; ++i) {
         const dvec3 x = desc.regionMin + (desc.regionMax - desc.regionMin) *
@@ -159,12 +170,13 @@ void Swarm::set(std::size_t i, const Vec3<float>& x, const Vec3<float>& v)
 {
     m_px[i] = x.x, m_py[i] = x.y, m_pz[i] = x.z;
     m_vx[i] = v.x, m_vy[i] = v.y, m_vz[i] = v.z;
+    m_clear[i] = 0; // unknown until the next step tests it
 }
 
 std::uint64_t Swarm::stepRange(const SwarmFields& swarmFields, std::span<const PlaneT<float>> planes,
                                CollisionResponse response, float dt, std::size_t begin, std::size_t end)
 {
-    const Arrays a{m_px.data(), m_py.data(), m_pz.data(), m_vx.data(), m_vy.data(), m_vz.data()};
+    const Arrays a{m_px.data(), m_py.data(), m_pz.data(), m_vx.data(), m_vy.data(), m_vz.data(), m_clear.data()};
     const float inverseMass = 1.0f / m_mass;
     const SwarmKernelFields fields(swarmFields);
     switch (m_integrator) {
@@ -186,6 +198,17 @@ std::uint64_t Swarm::step(const SwarmFields& fields, std::span<const PlaneT<floa
                           float dt, int threads)
 {
     const std::size_t n = size();
+    // The remembered "clear of every surface" flags hold only for the surfaces they were
+    // computed against: new surfaces (a moved hole, another room) mean testing everything again.
+    const bool same = planes.size() == m_clearOf.size() &&
+                      std::equal(planes.begin(), planes.end(), m_clearOf.begin(), [](const auto& p, const auto& q) {
+                          return p.normal == q.normal && p.offset == q.offset && p.holeRadius == q.holeRadius &&
+                                 p.holeCentre == q.holeCentre;
+                      });
+    if (!same) {
+        std::fill(m_clear.begin(), m_clear.end(), std::uint8_t(0));
+        m_clearOf.assign(planes.begin(), planes.end());
+    }
     if (threads == 1 || n < kParallelThreshold)
         return stepRange(fields, planes, response, dt, 0, n);
     // Whole blocks per task; a particle's result does not depend on which thread steps it.
