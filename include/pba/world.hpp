@@ -106,8 +106,8 @@ public:
     void setCollisionResponse(CollisionResponse response) { m_response = response; }
 
     // ---- stepping ----
-    /// Advances every moving body by exactly dt. Throws NonFiniteStateError (leaving the
-    /// world as it was before the step) if a state stops being finite.
+    /// Advances every moving body by exactly dt. Throws NonFiniteStateError (bodies back at
+    /// their state before the step) if a state stops being finite.
     void step(double dt);
     double time() const { return m_time; }
     /// The time of the previous states (before the last step).

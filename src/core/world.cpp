@@ -192,15 +192,14 @@ double World::potentialEnergy(std::size_t i) const
 
 void World::step(double dt)
 {
-    const std::vector<State> olderStates = m_previous;
     storePreviousStates();
     integrateBodies(dt);
     stepSwarms(dt);
     if (const auto bad = firstNonFinite()) {
-        // Roll back so a viewer can pause on the last finite state instead of drawing garbage.
+        // Roll back so a viewer can pause on the last finite state instead of drawing garbage
+        // (previous and current then coincide: nothing moves between them).
         for (std::size_t i = 0; i < m_bodies.size(); ++i)
             m_bodies[i]->setState(m_previous[i]);
-        m_previous = olderStates;
         throw NonFiniteStateError(m_bodies[bad->first]->getName(), m_steps + 1, m_time + dt, bad->second);
     }
     // t = t0 + k dt from the last change of dt, rather than a running sum, so the time of

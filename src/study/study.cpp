@@ -87,11 +87,11 @@ std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator
         t.stride = std::max<std::size_t>(1, static_cast<std::size_t>(steps / kSeriesPoints));
         t.sample(world);
     }
+    std::vector<State> before(trackers.size());
     for (std::uint64_t n = 0; n < steps; ++n) {
-        std::vector<State> before;
-        for (auto& t : trackers) {
-            t.beforeStep(world);
-            before.push_back(world.body(t.index).getState());
+        for (std::size_t k = 0; k < trackers.size(); ++k) {
+            trackers[k].beforeStep(world);
+            before[k] = world.body(trackers[k].index).getState();
         }
         world.step(dt);
         for (std::size_t k = 0; k < trackers.size(); ++k) {
