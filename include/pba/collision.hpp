@@ -386,19 +386,33 @@ inline int stepClamp(Integrator integrator, std::span<const PlaneT<T>> planes, T
     return clampAfterStep(planes, restitution, start, x, v);
 }
 
-/// Marks the points (SoA arrays, n of them) that are not clear of `plane`: within its contact
-/// tolerance or beyond it. A step whose start and end are clear of every plane needs no
-/// collision rule at all; the marked ones get the full rule. Plane-major, so each loop is a
-/// straight line of arithmetic that vectorises. (A path that leaves and re-enters within one
+/// Lowers margin[k] to the clearance of point k (SoA arrays, n of them) from `plane`: its
+/// distance beyond the plane's contact tolerance, so a point is clear of every plane when its
+/// smallest margin is positive. A step whose start and end are clear of every plane needs no
+/// collision rule at all; the others get the full rule. Plane-major and in the scalar type
+/// (three multiply-adds and a min a point, no conversion to flags per plane), so each loop is
+/// a straight line of arithmetic that vectorises. (A path that leaves and re-enters within one
 /// step, an apex beyond the ceiling, is not seen by this end-point test.)
 template <class T>
-inline void markNotClear(const PlaneT<T>& plane, const T* __restrict x, const T* __restrict y, const T* __restrict z,
-                         std::size_t n, std::uint8_t* __restrict marks)
+inline void lowerClearance(const PlaneT<T>& plane, const T* __restrict x, const T* __restrict y,
+                           const T* __restrict z, std::size_t n, T* __restrict margin)
 {
     const T nx = plane.normal.x, ny = plane.normal.y, nz = plane.normal.z;
     const T limit = plane.offset + collision_detail::contactTolerance(plane);
-    for (std::size_t k = 0; k < n; ++k)
-        marks[k] |= static_cast<std::uint8_t>(nx * x[k] + ny * y[k] + nz * z[k] <= limit);
+    for (std::size_t k = 0; k < n; ++k) {
+        const T d = nx * x[k] + ny * y[k] + nz * z[k] - limit;
+        margin[k] = d < margin[k] ? d : margin[k]; // not std::min: its reference stops the vectoriser
+    }
+}
+
+/// Whether x is clear of every plane (see lowerClearance).
+template <class T>
+inline bool clearOfAll(std::span<const PlaneT<T>> planes, const Vec3<T>& x)
+{
+    T margin = std::numeric_limits<T>::infinity();
+    for (const PlaneT<T>& plane : planes)
+        lowerClearance(plane, &x.x, &x.y, &x.z, 1, &margin);
+    return margin > T(0);
 }
 
 /// One step of a body with the chosen response; returns the number of bounces.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cstring>
+#include <limits>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -77,27 +79,49 @@ void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, flo
                                 start[2], start[3], start[4], start[5], n, dt, accel);
 }
 
-/// Phase 2 of a block: the few particles that met a surface get the collision rule, the same
-/// function a Particle uses (the exact response redoes the step from the start state).
+/// Phase 2 of a block: which particles need a collision rule. One that started or ended the
+/// step within a surface's contact tolerance (or beyond it) does; whether it started clear is
+/// remembered from its last step, so only the ends are tested here. Returns how many need it.
+std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std::span<const PlaneT<float>> planes,
+                          std::uint8_t* __restrict hit)
+{
+    alignas(64) float margin[kBlock];
+    std::fill_n(margin, n, std::numeric_limits<float>::infinity());
+    for (const PlaneT<float>& plane : planes)
+        lowerClearance(plane, a.px + begin, a.py + begin, a.pz + begin, n, margin);
+    std::uint8_t* __restrict clear = a.clear + begin;
+    std::size_t count = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::uint8_t clearNow = margin[k] > 0.0f;
+        hit[k] = static_cast<std::uint8_t>((clearNow & clear[k]) ^ 1u);
+        clear[k] = clearNow;
+        count += hit[k];
+    }
+    return count;
+}
+
+/// Phase 3 of a block: the few particles that met a surface get the collision rule, the same
+/// function a Particle uses (the exact response redoes the step from the start state). Kept out
+/// of line: it is scalar and rare, so it need not be copied for every instruction set.
 template <Integrator kIntegrator>
-std::uint64_t collideBlock(const Arrays& a, std::size_t begin, std::size_t n, const SwarmKernelFields& fields,
+[[gnu::noinline]] std::uint64_t collideBlock(const Arrays& a, std::size_t begin, std::size_t n, const SwarmKernelFields& fields,
                            float inverseMass, float restitution, float dt, std::span<const PlaneT<float>> planes,
-                           CollisionResponse response, const float (*start)[kBlock])
+                           CollisionResponse response, const float (*start)[kBlock], const std::uint8_t* hit)
 {
     auto accel = [&](const Vec3<float>& x, const Vec3<float>& v) {
         return swarmAccelerationAll(fields, inverseMass, x, v);
     };
-    // Whether each particle started clear is known from its last step; only the ends are
-    // tested here, plane by plane. The few that need the rule have their result tested below.
-    std::array<std::uint8_t, kBlock> hit;
-    for (std::size_t k = 0; k < n; ++k)
-        hit[k] = static_cast<std::uint8_t>(a.clear[begin + k] == 0);
-    for (const PlaneT<float>& plane : planes)
-        markNotClear(plane, a.px + begin, a.py + begin, a.pz + begin, n, hit.data());
-    for (std::size_t k = 0; k < n; ++k)
-        a.clear[begin + k] = static_cast<std::uint8_t>(hit[k] == 0);
     std::uint64_t bounces = 0;
     for (std::size_t k = 0; k < n; ++k) {
+        // Most particles are clear: skip eight flags at a time.
+        if (k % 8 == 0 && k + 8 <= n) {
+            std::uint64_t eight;
+            std::memcpy(&eight, hit + k, sizeof eight);
+            if (eight == 0) {
+                k += 7;
+                continue;
+            }
+        }
         if (!hit[k])
             continue;
         const std::size_t i = begin + k;
@@ -115,10 +139,7 @@ std::uint64_t collideBlock(const Arrays& a, std::size_t begin, std::size_t n, co
         }
         a.px[i] = x.x, a.py[i] = x.y, a.pz[i] = x.z;
         a.vx[i] = v.x, a.vy[i] = v.y, a.vz[i] = v.z;
-        std::uint8_t notClear = 0;
-        for (const PlaneT<float>& plane : planes)
-            markNotClear(plane, &a.px[i], &a.py[i], &a.pz[i], 1, &notClear);
-        a.clear[i] = static_cast<std::uint8_t>(notClear == 0);
+        a.clear[i] = static_cast<std::uint8_t>(clearOfAll(planes, x));
     }
     return bounces;
 }
@@ -129,6 +150,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
                          CollisionResponse response)
 {
     alignas(64) float start[6][kBlock];
+    alignas(64) std::uint8_t hit[kBlock];
     std::uint64_t bounces = 0;
     const auto one = [gravity = fields.gravity, drag = fields.drag, dryer = fields.dryer,
                       inverseMass](const Vec3<float>& x, const Vec3<float>& v) {
@@ -143,10 +165,46 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
             integrateBlock<kIntegrator>(a, b, n, dt, start, one);
         else
             integrateBlock<kIntegrator>(a, b, n, dt, start, all);
-        if (!planes.empty())
-            bounces += collideBlock<kIntegrator>(a, b, n, fields, inverseMass, restitution, dt, planes, response, start);
+        if (!planes.empty() && classifyBlock(a, b, n, planes, hit) > 0)
+            bounces += collideBlock<kIntegrator>(a, b, n, fields, inverseMass, restitution, dt, planes, response, start,
+                                                 hit);
     }
     return bounces;
+}
+
+// GCC on x86-64 only: clang 14 does not combine target_clones with flatten, and other CPUs
+// have other instruction sets (there the loop is compiled once, for the build's target).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define PBA_FOR_EACH_INSTRUCTION_SET [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"), gnu::flatten]]
+#else
+#define PBA_FOR_EACH_INSTRUCTION_SET
+#endif
+
+/// Every integrator's loop for a range of particles, compiled three times: for AVX-512
+/// (x86-64-v4), AVX2 with FMA (x86-64-v3) and the baseline SSE2, the best picked when the
+/// program starts. The default build so runs 16 floats an instruction on a CPU that has them
+/// without `-march=native`, and still runs everywhere. `flatten` inlines every kernel into each
+/// copy, so the integrator, force and collision templates are compiled for that instruction set.
+/// (Vector width and fused multiply-adds change the last bits of a result from one kind of CPU
+/// to another; on one machine it is the same for every thread count.)
+PBA_FOR_EACH_INSTRUCTION_SET
+std::uint64_t stepSwarmRange(Integrator integrator, const Arrays& a, std::size_t begin, std::size_t end,
+                             const SwarmKernelFields& fields, float inverseMass, float restitution, float dt,
+                             std::span<const PlaneT<float>> planes, CollisionResponse response)
+{
+    switch (integrator) {
+    case Integrator::ForwardEuler:
+        return stepBlocks<Integrator::ForwardEuler>(a, begin, end, fields, inverseMass, restitution, dt, planes, response);
+    case Integrator::SemiImplicitEuler:
+        return stepBlocks<Integrator::SemiImplicitEuler>(a, begin, end, fields, inverseMass, restitution, dt, planes,
+                                                         response);
+    case Integrator::VelocityVerlet:
+        return stepBlocks<Integrator::VelocityVerlet>(a, begin, end, fields, inverseMass, restitution, dt, planes,
+                                                      response);
+    case Integrator::RK4:
+        return stepBlocks<Integrator::RK4>(a, begin, end, fields, inverseMass, restitution, dt, planes, response);
+    }
+    return 0;
 }
 
 } // namespace
@@ -179,19 +237,7 @@ std::uint64_t Swarm::stepRange(const SwarmFields& swarmFields, std::span<const P
     const Arrays a{m_px.data(), m_py.data(), m_pz.data(), m_vx.data(), m_vy.data(), m_vz.data(), m_clear.data()};
     const float inverseMass = 1.0f / m_mass;
     const SwarmKernelFields fields(swarmFields);
-    switch (m_integrator) {
-    case Integrator::ForwardEuler:
-        return stepBlocks<Integrator::ForwardEuler>(a, begin, end, fields, inverseMass, m_restitution, dt, planes, response);
-    case Integrator::SemiImplicitEuler:
-        return stepBlocks<Integrator::SemiImplicitEuler>(a, begin, end, fields, inverseMass, m_restitution, dt, planes,
-                                                         response);
-    case Integrator::VelocityVerlet:
-        return stepBlocks<Integrator::VelocityVerlet>(a, begin, end, fields, inverseMass, m_restitution, dt, planes,
-                                                      response);
-    case Integrator::RK4:
-        return stepBlocks<Integrator::RK4>(a, begin, end, fields, inverseMass, m_restitution, dt, planes, response);
-    }
-    return 0;
+    return stepSwarmRange(m_integrator, a, begin, end, fields, inverseMass, m_restitution, dt, planes, response);
 }
 
 std::uint64_t Swarm::step(const SwarmFields& fields, std::span<const PlaneT<float>> planes, CollisionResponse response,
