@@ -77,6 +77,7 @@ template <class T>
 struct BlowDryerKernelT {
     Vec3<T> nozzle, axis;
     T height, nozzleRadius, topRadius, strength;
+    T inverseHeight, spread; ///< 1 / H, and R - r0
     T axialLinear, axialQuadratic, axialSmooth;
     T radialLinear, radialQuadratic, radialSmooth;
     T flowWeight; ///< 1 for cone-flow, 0 for vertical
@@ -84,7 +85,8 @@ struct BlowDryerKernelT {
     BlowDryerKernelT() : BlowDryerKernelT(BlowDryerFieldT<T>{}) {}
     explicit BlowDryerKernelT(const BlowDryerFieldT<T>& f)
         : nozzle(f.nozzle), axis(f.axis), height(f.height), nozzleRadius(f.nozzleRadius), topRadius(f.topRadius),
-          strength(f.strength), axialLinear(T(f.axialFalloff == Falloff::Linear)),
+          strength(f.strength), inverseHeight(T(1) / f.height), spread(f.topRadius - f.nozzleRadius),
+          axialLinear(T(f.axialFalloff == Falloff::Linear)),
           axialQuadratic(T(f.axialFalloff == Falloff::Quadratic)), axialSmooth(T(f.axialFalloff == Falloff::Smooth)),
           radialLinear(T(f.radialFalloff == Falloff::Linear)), radialQuadratic(T(f.radialFalloff == Falloff::Quadratic)),
           radialSmooth(T(f.radialFalloff == Falloff::Smooth)), flowWeight(T(f.direction == FlowDirection::ConeFlow))
@@ -93,6 +95,13 @@ struct BlowDryerKernelT {
 };
 
 /// The force of the field at x (independent of the body's mass and velocity).
+///
+/// Written for the swarm loop, where square roots and divisions are the expensive
+/// instructions: one division and two square roots a particle. With q = R(h) (the radius
+/// here) and c = w (R - r0) / q (w = 1 for cone-flow, 0 for vertical), the flow direction is
+/// H axis + c rho, and since rho is perpendicular to the axis its length is
+/// sqrt(H^2 + c^2 r^2) = sqrt(H^2 q^2 + w^2 (R - r0)^2 r^2) / q. Both 1/q (for r/q and c) and
+/// 1 / that length come from the one reciprocal 1 / (q sqrt(H^2 q^2 + w^2 (R - r0)^2 r^2)).
 template <class T>
 inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
 {
@@ -100,16 +109,21 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
     const T h = glm::dot(d, f.axis);
     const Vec3<T> rho = d - h * f.axis;
     const T r = std::sqrt(glm::dot(rho, rho));
-    const T s = h / f.height;
-    const T radiusHere = f.nozzleRadius + (f.topRadius - f.nozzleRadius) * s;
+    const T s = h * f.inverseHeight;
+    const T radiusHere = f.nozzleRadius + f.spread * s;
     // Masks as numbers rather than branches: the same arithmetic for every particle.
     const T inside = T(h >= T(0)) * T(s < T(1)) * T(r < radiusHere);
-    const T safeRadius = inside * radiusHere + (T(1) - inside);
+    const T q = inside * radiusHere + (T(1) - inside); // 1 outside, where the force is zero anyway
+    const T spreadR = f.flowWeight * f.spread * r;
+    const T root = std::sqrt(f.height * f.height * q * q + spreadR * spreadR); // q |flow|
+    const T inverse = T(1) / (q * root);
+    const T inverseRadius = root * inverse;   // 1 / q
+    const T inverseLength = q * q * inverse; // 1 / |flow|
     const T magnitude = inside * f.strength * falloffBlend(f.axialLinear, f.axialQuadratic, f.axialSmooth, T(1) - s) *
-                        falloffBlend(f.radialLinear, f.radialQuadratic, f.radialSmooth, T(1) - r / safeRadius);
+                        falloffBlend(f.radialLinear, f.radialQuadratic, f.radialSmooth, T(1) - r * inverseRadius);
     // Vertical: the axis. Cone-flow: H axis + (R - r0) rho / R(h).
-    const Vec3<T> flow = f.height * f.axis + (f.flowWeight * (f.topRadius - f.nozzleRadius) / safeRadius) * rho;
-    return (magnitude / std::sqrt(glm::dot(flow, flow))) * flow;
+    const Vec3<T> flow = f.height * f.axis + (f.flowWeight * f.spread * inverseRadius) * rho;
+    return (magnitude * inverseLength) * flow;
 }
 
 template <class T>

@@ -210,11 +210,15 @@ inline int keepInShaft(const PlaneT<T>& plane, T restitution, Vec3<T>& x, Vec3<T
     return 1;
 }
 
-/// After a full step (reflect and clamp): the body went through the hole, or was in its shaft.
+/// Whether a body that ended the step at x, from `start`, is excused from `plane` by its hole:
+/// it is over the hole, or it was already in the shaft below. Bitwise operators rather than
+/// && and ||, so a swarm loop can evaluate it for every particle without branches.
 template <class T>
-inline bool passesHole(const PlaneT<T>& plane, const Vec3<T>& start, const Vec3<T>& x)
+inline bool throughHole(const PlaneT<T>& plane, const Vec3<T>& start, const Vec3<T>& x)
 {
-    return plane.holeRadius > T(0) && (plane.overHole(x) || plane.distance(start) < T(0));
+    const Vec3<T> rho = plane.fromHoleAxis(x);
+    return (plane.holeRadius > T(0)) &
+           ((glm::dot(rho, rho) < plane.holeRadius * plane.holeRadius) | (plane.distance(start) < T(0)));
 }
 
 /// A body lies on a plane when it touches it and does not move away from it.
@@ -233,7 +237,7 @@ inline int keepInside(std::span<const PlaneT<T>> planes, T restitution, const Ve
     int bounces = 0;
     for (const PlaneT<T>& plane : planes) {
         if (plane.distance(x) < T(0)) {
-            if (plane.holeRadius > T(0) && (plane.overHole(x) || plane.distance(start) < T(0))) {
+            if (throughHole(plane, start, x)) {
                 bounces += keepInShaft(plane, restitution, x, v);
                 continue;
             }
@@ -318,28 +322,54 @@ inline int stepExact(Integrator integrator, std::span<const PlaneT<T>> planes, T
     return bounces;
 }
 
+/// One plane's share of a pass of the reflect rule: a body that ended the step beyond `plane`
+/// (and not through its hole) is mirrored back across it, and its normal velocity reflected
+/// with restitution if it still moves outward. Written with selects instead of branches, so
+/// the same function serves one body and a vectorised loop over a swarm's arrays; a body that
+/// is inside is left exactly as it was. Returns whether it mirrored; counts the bounce.
+template <class T>
+inline bool mirrorBack(const PlaneT<T>& plane, T restitution, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
+                       int& bounces)
+{
+    const T d = plane.distance(x);
+    const bool beyond = (d < T(0)) & !collision_detail::throughHole(plane, start, x);
+    x -= (beyond ? T(2) * d : T(0)) * plane.normal;
+    const T vn = glm::dot(plane.normal, v);
+    const bool bounce = beyond & (vn < T(0));
+    v -= (bounce ? (T(1) + restitution) * vn : T(0)) * plane.normal;
+    bounces += int(bounce);
+    return beyond;
+}
+
+/// The clamp rule's share for one plane: put the body back on it. As mirrorBack.
+template <class T>
+inline bool snapBack(const PlaneT<T>& plane, T restitution, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
+                     int& bounces)
+{
+    const T d = plane.distance(x);
+    const bool beyond = (d < T(0)) & !collision_detail::throughHole(plane, start, x);
+    x -= (beyond ? d : T(0)) * plane.normal;
+    const T vn = glm::dot(plane.normal, v);
+    const bool bounce = beyond & (vn < T(0));
+    v -= (bounce ? (T(1) + restitution) * vn : T(0)) * plane.normal;
+    bounces += int(bounce);
+    return beyond;
+}
+
 /// The classic response's rule, applied after a full step from `start`: mirror the body back
 /// across every surface it passed (repeatedly, so even a body fast enough to cross the room ends
-/// inside). Split from the step so swarms can integrate a whole block first and then apply it.
+/// inside). Split from the step so swarms can integrate a whole block first and then apply it;
+/// a swarm runs the first pass over all its planes itself (`passesDone` 1) and calls this only
+/// for the bodies still outside.
 template <class T>
 inline int reflectAfterStep(std::span<const PlaneT<T>> planes, T restitution, const Vec3<T>& start, Vec3<T>& x,
-                            Vec3<T>& v)
+                            Vec3<T>& v, int passesDone = 0)
 {
     int bounces = 0;
-    for (int pass = 0; pass < collision_detail::kMaxEvents; ++pass) {
+    for (int pass = passesDone; pass < collision_detail::kMaxEvents; ++pass) {
         bool mirrored = false;
-        for (const PlaneT<T>& plane : planes) {
-            const T d = plane.distance(x);
-            if (d >= T(0) || collision_detail::passesHole(plane, start, x))
-                continue;
-            x -= T(2) * d * plane.normal;
-            const T vn = glm::dot(plane.normal, v);
-            if (vn < T(0)) {
-                v -= (T(1) + restitution) * vn * plane.normal;
-                ++bounces;
-            }
-            mirrored = true;
-        }
+        for (const PlaneT<T>& plane : planes)
+            mirrored |= mirrorBack(plane, restitution, start, x, v, bounces);
         if (!mirrored)
             break;
     }
@@ -347,22 +377,16 @@ inline int reflectAfterStep(std::span<const PlaneT<T>> planes, T restitution, co
 }
 
 /// The clamp response's rule after a full step from `start`: put the body back on every
-/// surface it passed.
+/// surface it passed (`passesDone` 1: a swarm has done that pass, only the last line of
+/// defence remains).
 template <class T>
 inline int clampAfterStep(std::span<const PlaneT<T>> planes, T restitution, const Vec3<T>& start, Vec3<T>& x,
-                          Vec3<T>& v)
+                          Vec3<T>& v, int passesDone = 0)
 {
     int bounces = 0;
-    for (const PlaneT<T>& plane : planes) {
-        if (plane.distance(x) >= T(0) || collision_detail::passesHole(plane, start, x))
-            continue;
-        collision_detail::snapOnto(plane, x);
-        const T vn = glm::dot(plane.normal, v);
-        if (vn < T(0)) {
-            v -= (T(1) + restitution) * vn * plane.normal;
-            ++bounces;
-        }
-    }
+    if (passesDone == 0)
+        for (const PlaneT<T>& plane : planes)
+            snapBack(plane, restitution, start, x, v, bounces);
     return bounces + collision_detail::keepInside(planes, restitution, start, x, v);
 }
 
@@ -392,16 +416,47 @@ inline int stepClamp(Integrator integrator, std::span<const PlaneT<T>> planes, T
 /// collision rule at all; the others get the full rule. Plane-major and in the scalar type
 /// (three multiply-adds and a min a point, no conversion to flags per plane), so each loop is
 /// a straight line of arithmetic that vectorises. (A path that leaves and re-enters within one
-/// step, an apex beyond the ceiling, is not seen by this end-point test.)
+/// step, an apex beyond the ceiling, is not seen by this end-point test.) Returns how many of
+/// the points are beyond the plane itself, which tells whether the plane's rule has work.
 template <class T>
-inline void lowerClearance(const PlaneT<T>& plane, const T* __restrict x, const T* __restrict y,
-                           const T* __restrict z, std::size_t n, T* __restrict margin)
+inline std::size_t lowerClearance(const PlaneT<T>& plane, const T* __restrict x, const T* __restrict y,
+                                  const T* __restrict z, std::size_t n, T* __restrict margin)
 {
-    const T nx = plane.normal.x, ny = plane.normal.y, nz = plane.normal.z;
-    const T limit = plane.offset + collision_detail::contactTolerance(plane);
+    const T nx = plane.normal.x, ny = plane.normal.y, nz = plane.normal.z, offset = plane.offset;
+    const T tolerance = collision_detail::contactTolerance(plane);
+    std::uint32_t beyond = 0; // 32 bits: a counter as wide as T keeps the loop in one vector width
     for (std::size_t k = 0; k < n; ++k) {
-        const T d = nx * x[k] + ny * y[k] + nz * z[k] - limit;
-        margin[k] = d < margin[k] ? d : margin[k]; // not std::min: its reference stops the vectoriser
+        const T d = nx * x[k] + ny * y[k] + nz * z[k] - offset;
+        const T clearance = d - tolerance;
+        margin[k] = clearance < margin[k] ? clearance : margin[k]; // not std::min: its reference stops the vectoriser
+        beyond += static_cast<std::uint32_t>(d < T(0));
+    }
+    return beyond;
+}
+
+/// As lowerClearance, and lowers depth[k] to the point's signed distance from the plane: a point
+/// whose smallest depth is negative is outside some plane and needs the rest of a collision
+/// rule. A point in the shaft below the plane's hole, well within its radius, is where it may
+/// be (keepInShaft would leave it): it does not lower its depth for this plane.
+template <class T>
+inline void lowerClearanceAndDepth(const PlaneT<T>& plane, const T* __restrict x, const T* __restrict y,
+                                   const T* __restrict z, std::size_t n, T* __restrict margin, T* __restrict depth)
+{
+    const Vec3<T> normal = plane.normal; // copies: the stores below cannot change them
+    const T offset = plane.offset;
+    const T tolerance = collision_detail::contactTolerance(plane);
+    const T inner = plane.holeRadius * (T(1) - T(64) * std::numeric_limits<T>::epsilon());
+    const T innerSquared = plane.holeRadius > T(0) ? inner * inner : T(-1);
+    const Vec3<T> centre = plane.holeCentre;
+    for (std::size_t k = 0; k < n; ++k) {
+        const Vec3<T> p(x[k], y[k], z[k]);
+        const T d = glm::dot(normal, p) - offset;
+        const T clearance = d - tolerance;
+        margin[k] = clearance < margin[k] ? clearance : margin[k];
+        const Vec3<T> rel = p - centre;
+        const Vec3<T> rho = rel - glm::dot(rel, normal) * normal;
+        const T counted = glm::dot(rho, rho) < innerSquared ? std::numeric_limits<T>::infinity() : d;
+        depth[k] = counted < depth[k] ? counted : depth[k];
     }
 }
 

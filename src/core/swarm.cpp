@@ -81,16 +81,19 @@ void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, flo
 
 /// Phase 2 of a block: which particles need a collision rule. One that started or ended the
 /// step within a surface's contact tolerance (or beyond it) does; whether it started clear is
-/// remembered from its last step, so only the ends are tested here. Returns how many need it.
+/// remembered from its last step, so only the ends are tested here. Returns how many need it:
+/// most blocks of a swarm in flight need none and are done.
 std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std::span<const PlaneT<float>> planes,
-                          std::uint8_t* __restrict hit)
+                          std::uint8_t* __restrict hit, std::uint64_t& planesCrossed)
 {
     alignas(64) float margin[kBlock];
     std::fill_n(margin, n, std::numeric_limits<float>::infinity());
-    for (const PlaneT<float>& plane : planes)
-        lowerClearance(plane, a.px + begin, a.py + begin, a.pz + begin, n, margin);
+    planesCrossed = 0;
+    for (std::size_t p = 0; p < planes.size(); ++p)
+        if (lowerClearance(planes[p], a.px + begin, a.py + begin, a.pz + begin, n, margin) > 0)
+            planesCrossed |= std::uint64_t(1) << std::min<std::size_t>(p, 63);
     std::uint8_t* __restrict clear = a.clear + begin;
-    std::size_t count = 0;
+    std::uint32_t count = 0;
     for (std::size_t k = 0; k < n; ++k) {
         const std::uint8_t clearNow = margin[k] > 0.0f;
         hit[k] = static_cast<std::uint8_t>((clearNow & clear[k]) ^ 1u);
@@ -100,47 +103,116 @@ std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std
     return count;
 }
 
-/// Phase 3 of a block: the few particles that met a surface get the collision rule, the same
-/// function a Particle uses (the exact response redoes the step from the start state). Kept out
-/// of line: it is scalar and rare, so it need not be copied for every instruction set.
+/// Phase 3 of a block, exact response: the particles that met a surface redo their step with
+/// the rule a Particle uses (time of impact on the integrator's own path, from the start
+/// state). Kept out of line: it is scalar, so it need not be copied for every instruction set.
 template <Integrator kIntegrator>
-[[gnu::noinline]] std::uint64_t collideBlock(const Arrays& a, std::size_t begin, std::size_t n, const SwarmKernelFields& fields,
-                           float inverseMass, float restitution, float dt, std::span<const PlaneT<float>> planes,
-                           CollisionResponse response, const float (*start)[kBlock], const std::uint8_t* hit)
+[[gnu::noinline]] std::uint64_t collideExactly(const Arrays& a, std::size_t begin, std::size_t n,
+                                               const SwarmKernelFields& fields, float inverseMass, float restitution,
+                                               float dt, std::span<const PlaneT<float>> planes,
+                                               const float (*start)[kBlock], const std::uint8_t* hit)
 {
     auto accel = [&](const Vec3<float>& x, const Vec3<float>& v) {
         return swarmAccelerationAll(fields, inverseMass, x, v);
     };
     std::uint64_t bounces = 0;
     for (std::size_t k = 0; k < n; ++k) {
-        // Most particles are clear: skip eight flags at a time.
-        if (k % 8 == 0 && k + 8 <= n) {
-            std::uint64_t eight;
-            std::memcpy(&eight, hit + k, sizeof eight);
-            if (eight == 0) {
-                k += 7;
-                continue;
-            }
-        }
         if (!hit[k])
+            continue;
+        const std::size_t i = begin + k;
+        Vec3<float> x(start[0][k], start[1][k], start[2][k]);
+        Vec3<float> v(start[3][k], start[4][k], start[5][k]);
+        bounces += stepExact(kIntegrator, planes, restitution, x, v, dt, accel);
+        a.px[i] = x.x, a.py[i] = x.y, a.pz[i] = x.z;
+        a.vx[i] = v.x, a.vy[i] = v.y, a.vz[i] = v.z;
+        a.clear[i] = static_cast<std::uint8_t>(clearOfAll(planes, x));
+    }
+    return bounces;
+}
+
+/// The first pass of the reflect (kMirror) or clamp rule over one plane for a whole block: the
+/// same mirrorBack/snapBack a Particle uses, branch-free, so this is a vectorised loop (a
+/// particle inside the plane is left exactly as it was).
+template <bool kMirror>
+int passOverPlane(const PlaneT<float> plane, float restitution, float* __restrict px, float* __restrict py,
+                  float* __restrict pz, float* __restrict vx, float* __restrict vy, float* __restrict vz,
+                  const float* __restrict s0, const float* __restrict s1, const float* __restrict s2, std::size_t n)
+{
+    int bounces = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        const Vec3<float> from(s0[k], s1[k], s2[k]);
+        Vec3<float> x(px[k], py[k], pz[k]);
+        Vec3<float> v(vx[k], vy[k], vz[k]);
+        if constexpr (kMirror)
+            mirrorBack(plane, restitution, from, x, v, bounces);
+        else
+            snapBack(plane, restitution, from, x, v, bounces);
+        px[k] = x.x, py[k] = x.y, pz[k] = x.z;
+        vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
+    }
+    return bounces;
+}
+
+/// The rest of the rule for the few particles still outside after the first pass (a corner, a
+/// body fast enough to cross the room, the hole's shaft): the same function a Particle uses,
+/// told that its first pass is done. Out of line, as collideExactly.
+[[gnu::noinline]] std::uint64_t finishRule(const Arrays& a, std::size_t begin, std::size_t n, float restitution,
+                                           std::span<const PlaneT<float>> planes, CollisionResponse response,
+                                           const float (*start)[kBlock], const std::uint8_t* outside)
+{
+    std::uint64_t bounces = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        if (!outside[k])
             continue;
         const std::size_t i = begin + k;
         const Vec3<float> from(start[0][k], start[1][k], start[2][k]);
         Vec3<float> x(a.px[i], a.py[i], a.pz[i]);
         Vec3<float> v(a.vx[i], a.vy[i], a.vz[i]);
-        if (response == CollisionResponse::Reflect) {
-            bounces += reflectAfterStep(planes, restitution, from, x, v);
-        } else if (response == CollisionResponse::Clamp) {
-            bounces += clampAfterStep(planes, restitution, from, x, v);
-        } else {
-            x = from;
-            v = Vec3<float>(start[3][k], start[4][k], start[5][k]);
-            bounces += stepExact(kIntegrator, planes, restitution, x, v, dt, accel);
-        }
+        bounces += response == CollisionResponse::Reflect ? reflectAfterStep(planes, restitution, from, x, v, 1)
+                                                          : clampAfterStep(planes, restitution, from, x, v, 1);
         a.px[i] = x.x, a.py[i] = x.y, a.pz[i] = x.z;
         a.vx[i] = v.x, a.vy[i] = v.y, a.vz[i] = v.z;
         a.clear[i] = static_cast<std::uint8_t>(clearOfAll(planes, x));
     }
+    return bounces;
+}
+
+/// Phase 3 of a block, reflect and clamp responses: the rule's first pass plane by plane over the
+/// whole block, then (phase 4) which particles are clear now and which are still outside. A
+/// plane no particle of the block crossed is skipped (most of a room's walls, most steps); a
+/// particle sent across such a plane by another's rule (a corner) is among those still outside,
+/// and the rest of the rule sees to it.
+std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, float restitution,
+                               std::span<const PlaneT<float>> planes, CollisionResponse response,
+                               const float (*start)[kBlock], std::uint64_t planesCrossed)
+{
+    std::uint64_t bounces = 0;
+    for (std::size_t p = 0; p < planes.size(); ++p) {
+        if ((planesCrossed >> std::min<std::size_t>(p, 63) & 1u) == 0)
+            continue;
+        const PlaneT<float>& plane = planes[p];
+        bounces += response == CollisionResponse::Reflect
+                       ? passOverPlane<true>(plane, restitution, a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b,
+                                             a.vz + b, start[0], start[1], start[2], n)
+                       : passOverPlane<false>(plane, restitution, a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b,
+                                              a.vz + b, start[0], start[1], start[2], n);
+    }
+    alignas(64) float margin[kBlock];
+    alignas(64) float depth[kBlock];
+    alignas(64) std::uint8_t outside[kBlock];
+    std::fill_n(margin, n, std::numeric_limits<float>::infinity());
+    std::fill_n(depth, n, std::numeric_limits<float>::infinity());
+    for (const PlaneT<float>& plane : planes)
+        lowerClearanceAndDepth(plane, a.px + b, a.py + b, a.pz + b, n, margin, depth);
+    std::uint8_t* __restrict clear = a.clear + b;
+    std::uint32_t count = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        clear[k] = margin[k] > 0.0f;
+        outside[k] = depth[k] < 0.0f;
+        count += outside[k];
+    }
+    if (count > 0)
+        bounces += finishRule(a, b, n, restitution, planes, response, start, outside);
     return bounces;
 }
 
@@ -165,9 +237,13 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
             integrateBlock<kIntegrator>(a, b, n, dt, start, one);
         else
             integrateBlock<kIntegrator>(a, b, n, dt, start, all);
-        if (!planes.empty() && classifyBlock(a, b, n, planes, hit) > 0)
-            bounces += collideBlock<kIntegrator>(a, b, n, fields, inverseMass, restitution, dt, planes, response, start,
-                                                 hit);
+        std::uint64_t planesCrossed = 0;
+        if (planes.empty() || classifyBlock(a, b, n, planes, hit, planesCrossed) == 0)
+            continue;
+        if (response == CollisionResponse::Exact)
+            bounces += collideExactly<kIntegrator>(a, b, n, fields, inverseMass, restitution, dt, planes, start, hit);
+        else
+            bounces += collideAfterStep(a, b, n, restitution, planes, response, start, planesCrossed);
     }
     return bounces;
 }
