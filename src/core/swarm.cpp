@@ -53,7 +53,7 @@ struct Arrays {
 
 /// Phase 1 of a block: the plain integrator step for every particle, a loop with no branches
 /// the vectoriser cannot turn into selects. The start states are kept for phase 2.
-template <Integrator kIntegrator, class Accel>
+template <Integrator kIntegrator, bool kKeepStartVelocity, class Accel>
 void integrateBlock(float* __restrict px, float* __restrict py, float* __restrict pz, float* __restrict vx,
                     float* __restrict vy, float* __restrict vz, float* __restrict s0, float* __restrict s1,
                     float* __restrict s2, float* __restrict s3, float* __restrict s4, float* __restrict s5,
@@ -65,7 +65,8 @@ void integrateBlock(float* __restrict px, float* __restrict py, float* __restric
         Vec3<float> x(px[k], py[k], pz[k]);
         Vec3<float> v(vx[k], vy[k], vz[k]);
         s0[k] = x.x, s1[k] = x.y, s2[k] = x.z;
-        s3[k] = v.x, s4[k] = v.y, s5[k] = v.z;
+        if constexpr (kKeepStartVelocity) // only the exact response redoes the step
+            s3[k] = v.x, s4[k] = v.y, s5[k] = v.z;
         integrateAs<kIntegrator>(x, v, dt, accel);
         px[k] = x.x, py[k] = x.y, pz[k] = x.z;
         vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
@@ -73,10 +74,15 @@ void integrateBlock(float* __restrict px, float* __restrict py, float* __restric
 }
 
 template <Integrator kIntegrator, class Accel>
-void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kBlock], Accel accel)
+void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kBlock],
+                    CollisionResponse response, Accel accel)
 {
-    integrateBlock<kIntegrator>(a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b, start[0], start[1],
-                                start[2], start[3], start[4], start[5], n, dt, accel);
+    if (response == CollisionResponse::Exact)
+        integrateBlock<kIntegrator, true>(a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b, start[0],
+                                          start[1], start[2], start[3], start[4], start[5], n, dt, accel);
+    else
+        integrateBlock<kIntegrator, false>(a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b, start[0],
+                                           start[1], start[2], start[3], start[4], start[5], n, dt, accel);
 }
 
 /// Phase 2 of a block: which particles need a collision rule. One that started or ended the
@@ -234,9 +240,9 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
     for (std::size_t b = begin; b < end; b += kBlock) {
         const std::size_t n = std::min(kBlock, end - b);
         if (fields.moreCount == 0)
-            integrateBlock<kIntegrator>(a, b, n, dt, start, one);
+            integrateBlock<kIntegrator>(a, b, n, dt, start, response, one);
         else
-            integrateBlock<kIntegrator>(a, b, n, dt, start, all);
+            integrateBlock<kIntegrator>(a, b, n, dt, start, response, all);
         std::uint64_t planesCrossed = 0;
         if (planes.empty() || classifyBlock(a, b, n, planes, hit, planesCrossed) == 0)
             continue;
