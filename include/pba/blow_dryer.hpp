@@ -31,22 +31,30 @@ std::string_view flowDirectionName(FlowDirection direction);
 std::optional<FlowDirection> flowDirectionFromName(std::string_view name);
 
 /// A falloff profile of u in [0, 1]: 0 at u = 0, 1 at u = 1. `linear` u, `quadratic` u^2,
-/// `smooth` the smoothstep u^2 (3 - 2u), flat at both ends. Written as a blend of the three
-/// rather than a switch, so a loop over many particles stays free of branches and vectorises.
-/// The three profiles blended by weights that are 1 for the chosen one and 0 for the others:
-/// arithmetic rather than a switch, so a loop over many particles has no branch and vectorises.
+/// `smooth` the smoothstep u^2 (3 - 2u), flat at both ends. Every profile is a cubic
+/// u (a + u (b + c u)), so a profile is three numbers rather than a switch: a loop over many
+/// particles has no branch and vectorises, and the cubic costs three multiply-adds.
 template <class T>
-inline T falloffBlend(T linear, T quadratic, T smooth, T u)
-{
-    u = std::min(std::max(u, T(0)), T(1));
-    const T u2 = u * u;
-    return linear * u + quadratic * u2 + smooth * (u2 * (T(3) - T(2) * u));
-}
+struct FalloffCubic {
+    T a, b, c;
+
+    explicit FalloffCubic(Falloff kind)
+        : a(T(kind == Falloff::Linear)),
+          b(T(kind == Falloff::Quadratic) + T(3) * T(kind == Falloff::Smooth)),
+          c(T(-2) * T(kind == Falloff::Smooth))
+    {
+    }
+    T operator()(T u) const
+    {
+        u = std::min(std::max(u, T(0)), T(1));
+        return u * (a + u * (b + c * u));
+    }
+};
 
 template <class T>
 inline T falloff(Falloff kind, T u)
 {
-    return falloffBlend(T(kind == Falloff::Linear), T(kind == Falloff::Quadratic), T(kind == Falloff::Smooth), u);
+    return FalloffCubic<T>(kind)(u);
 }
 
 template <class T>
@@ -70,26 +78,22 @@ struct BlowDryerFieldT {
 };
 using BlowDryerField = BlowDryerFieldT<double>;
 
-/// The field with its choices turned into numbers (weights 1 for the chosen profile and 0
-/// for the others), so the force is arithmetic only: a swarm loop holds one of these and
+/// The field with its choices turned into numbers (each falloff a cubic's coefficients, the
+/// direction a weight), so the force is arithmetic only: a swarm loop holds one of these and
 /// vectorises; enums in the loop would stop it.
 template <class T>
 struct BlowDryerKernelT {
     Vec3<T> nozzle, axis;
     T height, nozzleRadius, topRadius, strength;
     T inverseHeight, spread; ///< 1 / H, and R - r0
-    T axialLinear, axialQuadratic, axialSmooth;
-    T radialLinear, radialQuadratic, radialSmooth;
+    FalloffCubic<T> axial, radial;
     T flowWeight; ///< 1 for cone-flow, 0 for vertical
 
     BlowDryerKernelT() : BlowDryerKernelT(BlowDryerFieldT<T>{}) {}
     explicit BlowDryerKernelT(const BlowDryerFieldT<T>& f)
         : nozzle(f.nozzle), axis(f.axis), height(f.height), nozzleRadius(f.nozzleRadius), topRadius(f.topRadius),
           strength(f.strength), inverseHeight(T(1) / f.height), spread(f.topRadius - f.nozzleRadius),
-          axialLinear(T(f.axialFalloff == Falloff::Linear)),
-          axialQuadratic(T(f.axialFalloff == Falloff::Quadratic)), axialSmooth(T(f.axialFalloff == Falloff::Smooth)),
-          radialLinear(T(f.radialFalloff == Falloff::Linear)), radialQuadratic(T(f.radialFalloff == Falloff::Quadratic)),
-          radialSmooth(T(f.radialFalloff == Falloff::Smooth)), flowWeight(T(f.direction == FlowDirection::ConeFlow))
+          axial(f.axialFalloff), radial(f.radialFalloff), flowWeight(T(f.direction == FlowDirection::ConeFlow))
     {
     }
 };
@@ -119,8 +123,7 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
     const T inverse = T(1) / (q * root);
     const T inverseRadius = root * inverse;   // 1 / q
     const T inverseLength = q * q * inverse; // 1 / |flow|
-    const T magnitude = inside * f.strength * falloffBlend(f.axialLinear, f.axialQuadratic, f.axialSmooth, T(1) - s) *
-                        falloffBlend(f.radialLinear, f.radialQuadratic, f.radialSmooth, T(1) - r * inverseRadius);
+    const T magnitude = inside * f.strength * f.axial(T(1) - s) * f.radial(T(1) - r * inverseRadius);
     // Vertical: the axis. Cone-flow: H axis + (R - r0) rho / R(h).
     const Vec3<T> flow = f.height * f.axis + (f.flowWeight * f.spread * inverseRadius) * rho;
     return (magnitude * inverseLength) * flow;
