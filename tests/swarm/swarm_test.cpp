@@ -129,5 +129,9 @@ TEST(PbaBench, QuickJsonHasEveryLayout)
             EXPECT_TRUE(row.contains(key)) << key;
         EXPECT_GT(row["particle_steps_per_s"].get<double>(), 0.0);
     }
-    EXPECT_EQ(layouts, (std::set<std::string>{"bound", "baseline", "swarm"}));
+    EXPECT_EQ(layouts, (std::set<std::string>{"bound", "baseline", "swarm", "scene"}));
+    const auto& scene = json["results"].back();
+    EXPECT_EQ(scene["scene"], "fountain-1m");
+    EXPECT_EQ(scene["n"], 1000000);
+    EXPECT_GT(scene["steps_per_s"].get<double>(), 0.0);
 }
