@@ -53,6 +53,14 @@ struct PlaneT {
         const Vec3<T> rel = x - holeCentre;
         return rel - glm::dot(rel, normal) * normal;
     }
+    /// 0, 1 or 2 when the normal is exactly plus or minus that axis (a wall of a box), else -1.
+    int axis() const
+    {
+        for (int i = 0; i < 3; ++i)
+            if (std::abs(normal[i]) == T(1) && normal[(i + 1) % 3] == T(0) && normal[(i + 2) % 3] == T(0))
+                return i;
+        return -1;
+    }
     bool overHole(const Vec3<T>& x) const
     {
         const Vec3<T> rho = fromHoleAxis(x);
@@ -425,6 +433,19 @@ inline std::size_t lowerClearance(const PlaneT<T>& plane, const T* __restrict x,
     const T nx = plane.normal.x, ny = plane.normal.y, nz = plane.normal.z, offset = plane.offset;
     const T tolerance = collision_detail::contactTolerance(plane);
     std::uint32_t beyond = 0; // 32 bits: a counter as wide as T keeps the loop in one vector width
+    if (const int axis = plane.axis(); axis >= 0) {
+        // A wall of a box: the dot product is one coordinate (times 1 or -1), and this loop
+        // reads one array instead of three.
+        const T* __restrict c = axis == 0 ? x : axis == 1 ? y : z;
+        const T sign = plane.normal[axis];
+        for (std::size_t k = 0; k < n; ++k) {
+            const T d = sign * c[k] - offset;
+            const T clearance = d - tolerance;
+            margin[k] = clearance < margin[k] ? clearance : margin[k];
+            beyond += static_cast<std::uint32_t>(d < T(0));
+        }
+        return beyond;
+    }
     for (std::size_t k = 0; k < n; ++k) {
         const T d = nx * x[k] + ny * y[k] + nz * z[k] - offset;
         const T clearance = d - tolerance;
@@ -445,6 +466,17 @@ inline void lowerClearanceAndDepth(const PlaneT<T>& plane, const T* __restrict x
     const Vec3<T> normal = plane.normal; // copies: the stores below cannot change them
     const T offset = plane.offset;
     const T tolerance = collision_detail::contactTolerance(plane);
+    if (const int axis = plane.axis(); axis >= 0 && plane.holeRadius <= T(0)) { // a wall: as in lowerClearance
+        const T* __restrict c = axis == 0 ? x : axis == 1 ? y : z;
+        const T sign = normal[axis];
+        for (std::size_t k = 0; k < n; ++k) {
+            const T d = sign * c[k] - offset;
+            const T clearance = d - tolerance;
+            margin[k] = clearance < margin[k] ? clearance : margin[k];
+            depth[k] = d < depth[k] ? d : depth[k];
+        }
+        return;
+    }
     const T inner = plane.holeRadius * (T(1) - T(64) * std::numeric_limits<T>::epsilon());
     const T innerSquared = plane.holeRadius > T(0) ? inner * inner : T(-1);
     const Vec3<T> centre = plane.holeCentre;
