@@ -455,24 +455,21 @@ inline std::size_t lowerClearance(const PlaneT<T>& plane, const T* __restrict x,
     return beyond;
 }
 
-/// As lowerClearance, and lowers depth[k] to the point's signed distance from the plane: a point
-/// whose smallest depth is negative is outside some plane and needs the rest of a collision
-/// rule. A point in the shaft below the plane's hole, well within its radius, is where it may
-/// be (keepInShaft would leave it): it does not lower its depth for this plane.
+/// Lowers depth[k] to point k's signed distance from the plane (no tolerance): a point whose
+/// smallest depth is negative is outside some plane and needs the rest of a collision rule. A
+/// point in the shaft below the plane's hole, well within its radius, is where it may be
+/// (keepInShaft would leave it): it does not lower its depth for this plane.
 template <class T>
-inline void lowerClearanceAndDepth(const PlaneT<T>& plane, const T* __restrict x, const T* __restrict y,
-                                   const T* __restrict z, std::size_t n, T* __restrict margin, T* __restrict depth)
+inline void lowerDepth(const PlaneT<T>& plane, const T* __restrict x, const T* __restrict y, const T* __restrict z,
+                       std::size_t n, T* __restrict depth)
 {
     const Vec3<T> normal = plane.normal; // copies: the stores below cannot change them
     const T offset = plane.offset;
-    const T tolerance = collision_detail::contactTolerance(plane);
     if (const int axis = plane.axis(); axis >= 0 && plane.holeRadius <= T(0)) { // a wall: as in lowerClearance
         const T* __restrict c = axis == 0 ? x : axis == 1 ? y : z;
         const T sign = normal[axis];
         for (std::size_t k = 0; k < n; ++k) {
             const T d = sign * c[k] - offset;
-            const T clearance = d - tolerance;
-            margin[k] = clearance < margin[k] ? clearance : margin[k];
             depth[k] = d < depth[k] ? d : depth[k];
         }
         return;
@@ -483,8 +480,6 @@ inline void lowerClearanceAndDepth(const PlaneT<T>& plane, const T* __restrict x
     for (std::size_t k = 0; k < n; ++k) {
         const Vec3<T> p(x[k], y[k], z[k]);
         const T d = glm::dot(normal, p) - offset;
-        const T clearance = d - tolerance;
-        margin[k] = clearance < margin[k] ? clearance : margin[k];
         const Vec3<T> rel = p - centre;
         const Vec3<T> rho = rel - glm::dot(rel, normal) * normal;
         const T counted = glm::dot(rho, rho) < innerSquared ? std::numeric_limits<T>::infinity() : d;

@@ -1,8 +1,8 @@
 #pragma once
 // Swarms: many identical particles sharing one mesh, stored as structure-of-arrays floats
-// (24 bytes a particle, plus one byte remembering whether it is clear of every surface) and stepped by the same integrator, force-kernel and collision
-// templates as a single Particle, instantiated for float and inlined into a loop the
-// compiler vectorises. A Particle stays a readable object; a million of them live here.
+// (24 bytes a particle; with the exact response, one byte more remembering whether it is clear
+// of every surface) and stepped by the same integrator, force-kernel and collision templates
+// as a single Particle, instantiated for float and inlined into a loop the compiler vectorises. A Particle stays a readable object; a million of them live here.
 #include <cstdint>
 #include <span>
 #include <string>
@@ -95,7 +95,7 @@ private:
     float m_restitution;
     Integrator m_integrator;
     std::vector<float> m_px, m_py, m_pz, m_vx, m_vy, m_vz;
-    std::vector<std::uint8_t> m_clear; ///< per particle: clear of every surface after its last step
+    std::vector<std::uint8_t> m_clear; ///< exact response only, per particle: clear of every surface after its last step
     std::vector<PlaneT<float>> m_clearOf; ///< the surfaces m_clear was computed against
 };
 

@@ -85,12 +85,13 @@ void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, flo
                                            start[1], start[2], start[3], start[4], start[5], n, dt, accel);
 }
 
-/// Phase 2 of a block: which particles need a collision rule. One that started or ended the
-/// step within a surface's contact tolerance (or beyond it) does; whether it started clear is
-/// remembered from its last step, so only the ends are tested here. Returns how many need it:
-/// most blocks of a swarm in flight need none and are done.
+/// Phase 2 of a block: which particles need a collision rule. For reflect and clamp, those that
+/// ended the step within a surface's contact tolerance (or beyond it): their rules look at
+/// where the step ended. The exact response also redoes the steps that started there; whether
+/// a particle started clear is remembered from its last step (`remember`), so only the ends
+/// are tested here. Returns how many need a rule: most blocks of a swarm in flight need none.
 std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std::span<const PlaneT<float>> planes,
-                          std::uint8_t* __restrict hit, std::uint64_t& planesCrossed)
+                          bool remember, std::uint8_t* __restrict hit, std::uint64_t& planesCrossed)
 {
     alignas(64) float margin[kBlock];
     std::fill_n(margin, n, std::numeric_limits<float>::infinity());
@@ -98,8 +99,15 @@ std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std
     for (std::size_t p = 0; p < planes.size(); ++p)
         if (lowerClearance(planes[p], a.px + begin, a.py + begin, a.pz + begin, n, margin) > 0)
             planesCrossed |= std::uint64_t(1) << std::min<std::size_t>(p, 63);
-    std::uint8_t* __restrict clear = a.clear + begin;
     std::uint32_t count = 0;
+    if (!remember) {
+        for (std::size_t k = 0; k < n; ++k) {
+            hit[k] = static_cast<std::uint8_t>(!(margin[k] > 0.0f));
+            count += hit[k];
+        }
+        return count;
+    }
+    std::uint8_t* __restrict clear = a.clear + begin;
     for (std::size_t k = 0; k < n; ++k) {
         const std::uint8_t clearNow = margin[k] > 0.0f;
         hit[k] = static_cast<std::uint8_t>((clearNow & clear[k]) ^ 1u);
@@ -178,13 +186,12 @@ int passOverPlane(const PlaneT<float> plane, float restitution, float* __restric
                                                           : clampAfterStep(planes, restitution, from, x, v, 1);
         a.px[i] = x.x, a.py[i] = x.y, a.pz[i] = x.z;
         a.vx[i] = v.x, a.vy[i] = v.y, a.vz[i] = v.z;
-        a.clear[i] = static_cast<std::uint8_t>(clearOfAll(planes, x));
     }
     return bounces;
 }
 
 /// Phase 3 of a block, reflect and clamp responses: the rule's first pass plane by plane over the
-/// whole block, then (phase 4) which particles are clear now and which are still outside. A
+/// whole block, then (phase 4) which particles are still outside. A
 /// plane no particle of the block crossed is skipped (most of a room's walls, most steps); a
 /// particle sent across such a plane by another's rule (a corner) is among those still outside,
 /// and the rest of the rule sees to it.
@@ -203,17 +210,13 @@ std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, fl
                        : passOverPlane<false>(plane, restitution, a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b,
                                               a.vz + b, start[0], start[1], start[2], n);
     }
-    alignas(64) float margin[kBlock];
     alignas(64) float depth[kBlock];
     alignas(64) std::uint8_t outside[kBlock];
-    std::fill_n(margin, n, std::numeric_limits<float>::infinity());
     std::fill_n(depth, n, std::numeric_limits<float>::infinity());
     for (const PlaneT<float>& plane : planes)
-        lowerClearanceAndDepth(plane, a.px + b, a.py + b, a.pz + b, n, margin, depth);
-    std::uint8_t* __restrict clear = a.clear + b;
+        lowerDepth(plane, a.px + b, a.py + b, a.pz + b, n, depth);
     std::uint32_t count = 0;
     for (std::size_t k = 0; k < n; ++k) {
-        clear[k] = margin[k] > 0.0f;
         outside[k] = depth[k] < 0.0f;
         count += outside[k];
     }
@@ -244,7 +247,8 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
         else
             integrateBlock<kIntegrator>(a, b, n, dt, start, response, all);
         std::uint64_t planesCrossed = 0;
-        if (planes.empty() || classifyBlock(a, b, n, planes, hit, planesCrossed) == 0)
+        if (planes.empty() || classifyBlock(a, b, n, planes, response == CollisionResponse::Exact, hit,
+                                            planesCrossed) == 0)
             continue;
         if (response == CollisionResponse::Exact)
             bounces += collideExactly<kIntegrator>(a, b, n, fields, inverseMass, restitution, dt, planes, start, hit);
@@ -293,8 +297,7 @@ std::uint64_t stepSwarmRange(Integrator integrator, const Arrays& a, std::size_t
 
 Swarm::Swarm(const SwarmDesc& desc)
     : m_desc(desc), m_mass(float(desc.mass)), m_restitution(float(desc.restitution)), m_integrator(desc.integrator),
-      m_px(desc.count), m_py(desc.count), m_pz(desc.count), m_vx(desc.count), m_vy(desc.count), m_vz(desc.count),
-      m_clear(desc.count, 0)
+      m_px(desc.count), m_py(desc.count), m_pz(desc.count), m_vx(desc.count), m_vy(desc.count), m_vz(desc.count)
 {
     for (std::size_t i = 0; i < desc.count; ++i) {
         const dvec3 x = desc.regionMin + (desc.regionMax - desc.regionMin) *
@@ -310,7 +313,8 @@ void Swarm::set(std::size_t i, const Vec3<float>& x, const Vec3<float>& v)
 {
     m_px[i] = x.x, m_py[i] = x.y, m_pz[i] = x.z;
     m_vx[i] = v.x, m_vy[i] = v.y, m_vz[i] = v.z;
-    m_clear[i] = 0; // unknown until the next step tests it
+    if (!m_clear.empty())
+        m_clear[i] = 0; // unknown until the next step tests it
 }
 
 std::uint64_t Swarm::stepRange(const SwarmFields& swarmFields, std::span<const PlaneT<float>> planes,
@@ -333,8 +337,12 @@ std::uint64_t Swarm::step(const SwarmFields& fields, std::span<const PlaneT<floa
                           return p.normal == q.normal && p.offset == q.offset && p.holeRadius == q.holeRadius &&
                                  p.holeCentre == q.holeCentre;
                       });
-    if (!same) {
-        std::fill(m_clear.begin(), m_clear.end(), std::uint8_t(0));
+    if (response != CollisionResponse::Exact) {
+        // Reflect and clamp look at where a step ends only: no flags to keep (or to move).
+        m_clear = {};
+        m_clearOf.clear();
+    } else if (!same || m_clear.size() != n) {
+        m_clear.assign(n, std::uint8_t(0));
         m_clearOf.assign(planes.begin(), planes.end());
     }
     if (threads == 1 || n < kParallelThreshold)
