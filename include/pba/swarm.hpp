@@ -87,7 +87,7 @@ public:
                        float dt, int threads = 0);
 
 private:
-    std::uint64_t stepRange(const SwarmFields& fields, std::span<const PlaneT<float>> planes,
+    std::uint64_t stepRange(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes,
                             CollisionResponse response, float dt, std::size_t begin, std::size_t end);
 
     SwarmDesc m_desc;

@@ -317,18 +317,18 @@ void Swarm::set(std::size_t i, const Vec3<float>& x, const Vec3<float>& v)
         m_clear[i] = 0; // unknown until the next step tests it
 }
 
-std::uint64_t Swarm::stepRange(const SwarmFields& swarmFields, std::span<const PlaneT<float>> planes,
+std::uint64_t Swarm::stepRange(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes,
                                CollisionResponse response, float dt, std::size_t begin, std::size_t end)
 {
     const Arrays a{m_px.data(), m_py.data(), m_pz.data(), m_vx.data(), m_vy.data(), m_vz.data(), m_clear.data()};
     const float inverseMass = 1.0f / m_mass;
-    const SwarmKernelFields fields(swarmFields);
     return stepSwarmRange(m_integrator, a, begin, end, fields, inverseMass, m_restitution, dt, planes, response);
 }
 
-std::uint64_t Swarm::step(const SwarmFields& fields, std::span<const PlaneT<float>> planes, CollisionResponse response,
-                          float dt, int threads)
+std::uint64_t Swarm::step(const SwarmFields& swarmFields, std::span<const PlaneT<float>> planes,
+                          CollisionResponse response, float dt, int threads)
 {
+    const SwarmKernelFields fields(swarmFields); // once a step, not once a task
     const std::size_t n = size();
     // The remembered "clear of every surface" flags hold only for the surfaces they were
     // computed against: new surfaces (a moved hole, another room) mean testing everything again.
@@ -357,8 +357,8 @@ std::uint64_t Swarm::step(const SwarmFields& fields, std::span<const PlaneT<floa
             },
             std::plus<>());
     };
-    if (threads <= 0)
-        return body();
+    if (threads <= 0 || threads >= tbb::this_task_arena::max_concurrency())
+        return body(); // all cores: the default arena, not a new one every step
     tbb::task_arena arena(threads);
     return arena.execute(body);
 }
