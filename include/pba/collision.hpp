@@ -330,18 +330,21 @@ inline int stepExact(Integrator integrator, std::span<const PlaneT<T>> planes, T
     return bounces;
 }
 
-/// One plane's share of a pass of the reflect rule: a body that ended the step beyond `plane`
-/// (and not through its hole) is mirrored back across it, and its normal velocity reflected
-/// with restitution if it still moves outward. Written with selects instead of branches, so
-/// the same function serves one body and a vectorised loop over a swarm's arrays; a body that
-/// is inside is left exactly as it was. Returns whether it mirrored; counts the bounce.
+namespace collision_detail {
+
+/// The reflect and clamp rules' share for one plane: a body that ended the step beyond `plane`
+/// (and not through its hole) is moved back along the normal by `back` times its depth (2:
+/// mirrored across the plane, 1: put on it), and its normal velocity reflected with
+/// restitution if it still moves outward. Written with selects instead of branches, so the
+/// same function serves one body and a vectorised loop over a swarm's arrays; a body that is
+/// inside is left exactly as it was. Returns whether it moved the body; counts the bounce.
 template <class T>
-inline bool mirrorBack(const PlaneT<T>& plane, T restitution, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
-                       int& bounces)
+inline bool pushBack(const PlaneT<T>& plane, T restitution, T back, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
+                     int& bounces)
 {
     const T d = plane.distance(x);
-    const bool beyond = (d < T(0)) & !collision_detail::throughHole(plane, start, x);
-    x -= (beyond ? T(2) * d : T(0)) * plane.normal;
+    const bool beyond = (d < T(0)) & !throughHole(plane, start, x);
+    x -= (beyond ? back * d : T(0)) * plane.normal;
     const T vn = glm::dot(plane.normal, v);
     const bool bounce = beyond & (vn < T(0));
     v -= (bounce ? (T(1) + restitution) * vn : T(0)) * plane.normal;
@@ -349,19 +352,22 @@ inline bool mirrorBack(const PlaneT<T>& plane, T restitution, const Vec3<T>& sta
     return beyond;
 }
 
-/// The clamp rule's share for one plane: put the body back on it. As mirrorBack.
+} // namespace collision_detail
+
+/// One plane's share of a pass of the reflect rule: mirror the body back across it.
+template <class T>
+inline bool mirrorBack(const PlaneT<T>& plane, T restitution, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
+                       int& bounces)
+{
+    return collision_detail::pushBack(plane, restitution, T(2), start, x, v, bounces);
+}
+
+/// The clamp rule's share for one plane: put the body back on it.
 template <class T>
 inline bool snapBack(const PlaneT<T>& plane, T restitution, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
                      int& bounces)
 {
-    const T d = plane.distance(x);
-    const bool beyond = (d < T(0)) & !collision_detail::throughHole(plane, start, x);
-    x -= (beyond ? d : T(0)) * plane.normal;
-    const T vn = glm::dot(plane.normal, v);
-    const bool bounce = beyond & (vn < T(0));
-    v -= (bounce ? (T(1) + restitution) * vn : T(0)) * plane.normal;
-    bounces += int(bounce);
-    return beyond;
+    return collision_detail::pushBack(plane, restitution, T(1), start, x, v, bounces);
 }
 
 /// The classic response's rule, applied after a full step from `start`: mirror the body back
