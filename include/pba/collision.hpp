@@ -21,6 +21,7 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <utility>
 
 #include "pba/integrator.hpp"
 
@@ -370,17 +371,89 @@ inline bool snapBack(const PlaneT<T>& plane, T restitution, const Vec3<T>& start
     return collision_detail::pushBack(plane, restitution, T(1), start, x, v, bounces);
 }
 
+/// Two opposite walls of a box, neither with a hole: the slab lo <= x[axis] <= hi.
+template <class T>
+struct SlabT {
+    int axis;
+    T lo, hi;
+};
+
+/// The slabs among `planes` (at most one an axis), so the reflect rule can fold a body into
+/// each in one go. Returns how many there are.
+template <class T>
+inline int boxSlabs(std::span<const PlaneT<T>> planes, std::array<SlabT<T>, 3>& slabs)
+{
+    int count = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        const PlaneT<T>* low = nullptr;
+        const PlaneT<T>* high = nullptr;
+        for (const PlaneT<T>& plane : planes) {
+            if (plane.axis() != axis || plane.holeRadius > T(0))
+                continue;
+            (plane.normal[axis] > T(0) ? low : high) = &plane;
+        }
+        if (low && high && low->offset < -high->offset)
+            slabs[std::size_t(count++)] = SlabT<T>{axis, low->offset, -high->offset};
+    }
+    return count;
+}
+
+/// The reflect rule between a slab's two walls in closed form, for a body still beyond one after
+/// a pass (faster than the room is wide in a step). Mirroring it across that wall, then across
+/// the other, and so on until it is inside, puts it where its coordinate folds into the slab:
+/// the slab's mirror images repeat every 2 (hi - lo). Its velocity along the axis changes sign
+/// and keeps e of its size at every wall it is moving towards when mirrored: the first one if it
+/// moved outward, every later one if it still moves at all. Branch-free like pushBack, so a swarm runs
+/// it as a vectorised loop; a body inside the slab is left exactly as it was. Beyond 2^22 slab
+/// widths (or not finite) it is left to the last line of defence. Returns the bounces, in T
+/// (an int here would stop GCC vectorising the swarm's loop, whose sum this is).
+template <class T>
+inline T foldIntoSlab(const SlabT<T>& slab, T restitution, T& c, T& cv)
+{
+    constexpr int kBits = 22;
+    const T width = slab.hi - slab.lo;
+    const T u = c - slab.lo;
+    const T q = u / width;
+    const bool below = u < T(0);
+    const bool fold = (below | (q > T(1))) & (std::abs(q) < T(1 << kBits));
+    const T walls = below ? std::ceil(-q) : std::ceil(q) - T(1);
+    const T period = T(2) * width;
+    const T r = u - period * std::floor(u / period);
+    const T folded = std::clamp(r <= width ? r : period - r, T(0), width);
+    c = fold ? slab.lo + folded : c;
+    const T first = (below ? -cv : cv) > T(0) ? T(1) : T(0);
+    const T later = cv != T(0) ? walls - T(1) : T(0);
+    const T moving = fold ? first + later : T(0);
+    const T hits = restitution > T(0) ? moving : std::min(moving, T(1)); // e = 0: the first stops it
+    // e^hits by squaring, written out for each bit: a straight line a vectorised loop can hold.
+    const int bits = static_cast<int>(hits);
+    T factor = T(1), power = restitution;
+    [&]<int... kBit>(std::integer_sequence<int, kBit...>) {
+        ((factor *= (bits >> kBit & 1) ? power : T(1), power *= power), ...);
+    }(std::make_integer_sequence<int, kBits + 1>{});
+    cv *= (bits & 1) ? -factor : factor;
+    return hits;
+}
+
 /// The classic response's rule, applied after a full step from `start`: mirror the body back
-/// across every surface it passed (repeatedly, so even a body fast enough to cross the room ends
-/// inside). Split from the step so swarms can integrate a whole block first and then apply it;
-/// a swarm runs the first pass over all its planes itself (`passesDone` 1) and calls this only
-/// for the bodies still outside.
+/// across every surface it passed, repeatedly, so even a body fast enough to cross the room ends
+/// inside; one still outside after a pass is folded into the box's slabs first. Split from the
+/// step so swarms can integrate a whole block first and then apply it; a swarm runs the first
+/// pass and the fold itself (`passesDone` 1) and calls this only for the bodies still outside.
 template <class T>
 inline int reflectAfterStep(std::span<const PlaneT<T>> planes, T restitution, const Vec3<T>& start, Vec3<T>& x,
                             Vec3<T>& v, int passesDone = 0)
 {
     int bounces = 0;
     for (int pass = passesDone; pass < collision_detail::kMaxEvents; ++pass) {
+        if (pass == 1) {
+            std::array<SlabT<T>, 3> slabs;
+            const int count = boxSlabs(planes, slabs);
+            for (int s = 0; s < count; ++s) {
+                const SlabT<T>& slab = slabs[std::size_t(s)];
+                bounces += static_cast<int>(foldIntoSlab(slab, restitution, x[slab.axis], v[slab.axis]));
+            }
+        }
         bool mirrored = false;
         for (const PlaneT<T>& plane : planes)
             mirrored |= mirrorBack(plane, restitution, start, x, v, bounces);

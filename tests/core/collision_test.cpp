@@ -3,7 +3,9 @@
 // that nothing ever ends a step outside the room.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -173,6 +175,58 @@ TEST(Collisions, ExactResponseCatchesAnImpactInsideAStep)
     world.step(0.1); // without the ceiling y(0.1) = 1.0509, which lies inside the room
     EXPECT_EQ(world.bounceCount(0), 1u);
     EXPECT_LT(world.body(0).getVel().y, 0.0);
+}
+
+// The oracle for the fold: the reflect rule as the practical states it, mirror across the wall
+// the body is beyond until it is beyond none, one wall at a time with no limit on the passes.
+// The fold must end in the same place with the same velocity and the same number of bounces,
+// for bodies up to 40 slab widths out, moving either way or not at all, with any restitution.
+TEST(Collisions, FoldingIntoASlabIsMirroringBetweenItsWallsUntilInside)
+{
+    const Plane low{dvec3(1, 0, 0), -2.0};   // x >= -2
+    const Plane high{dvec3(-1, 0, 0), -3.0}; // x <= 3
+    std::array<SlabT<double>, 3> slabs;
+    const std::array<Plane, 2> walls{low, high};
+    ASSERT_EQ(boxSlabs(std::span<const Plane>(walls), slabs), 1);
+    const SlabT<double> slab = slabs[0];
+    EXPECT_EQ(slab.axis, 0);
+    EXPECT_EQ(slab.lo, -2.0);
+    EXPECT_EQ(slab.hi, 3.0);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> where(-200.0, 200.0), speed(-50.0, 50.0);
+    for (double e : {1.0, 0.8, 0.0}) {
+        for (int trial = 0; trial < 2000; ++trial) {
+            const dvec3 start(0.5, 1, 1);
+            const double from = where(rng);
+            dvec3 x(from, 1, 1), v(trial % 5 == 0 ? 0.0 : speed(rng), 0, 0);
+            dvec3 mx = x, mv = v;
+            int expected = 0;
+            for (bool mirrored = true; mirrored;)
+                mirrored = mirrorBack(low, e, start, mx, mv, expected) | mirrorBack(high, e, start, mx, mv, expected);
+            const int bounces = static_cast<int>(foldIntoSlab(slab, e, x.x, v.x));
+            ASSERT_NEAR(x.x, mx.x, 1e-11) << "from " << from << " e " << e;
+            ASSERT_NEAR(v.x, mv.x, 1e-12 * (1 + std::abs(mv.x))) << "from " << from << " e " << e;
+            ASSERT_EQ(bounces, expected) << "from " << from << " e " << e;
+        }
+    }
+}
+
+// A body inside the slab is left exactly as it was (bit for bit), and one beyond 2^22 widths or
+// not finite is left to the last line of defence.
+TEST(Collisions, FoldingLeavesBodiesInsideAndHopelessOnesAlone)
+{
+    const SlabT<float> slab{1, 0.0f, 4.0f};
+    for (float c : {0.0f, 1e-30f, 2.5f, 4.0f}) {
+        float x = c, v = -3.0f;
+        EXPECT_EQ(foldIntoSlab(slab, 1.0f, x, v), 0.0f);
+        EXPECT_EQ(x, c);
+        EXPECT_EQ(v, -3.0f);
+    }
+    for (float c : {1e30f, -1e30f, std::numeric_limits<float>::infinity(), std::nanf("")}) {
+        float x = c, v = 1.0f;
+        EXPECT_EQ(foldIntoSlab(slab, 1.0f, x, v), 0.0f);
+        EXPECT_EQ(v, 1.0f);
+    }
 }
 
 TEST(Collisions, NothingEverEndsAStepOutsideTheRoom)
