@@ -378,6 +378,22 @@ struct SlabT {
     T lo, hi;
 };
 
+namespace collision_detail {
+
+/// The indices in `planes` of the walls facing +axis and -axis (the last of each; -1 when there
+/// is none), leaving out walls with a hole unless `withHoles`.
+template <class T>
+inline std::array<int, 2> wallsOnAxis(std::span<const PlaneT<T>> planes, int axis, bool withHoles)
+{
+    std::array<int, 2> walls{-1, -1};
+    for (std::size_t p = 0; p < planes.size(); ++p)
+        if (planes[p].axis() == axis && (withHoles || planes[p].holeRadius <= T(0)))
+            walls[planes[p].normal[axis] > T(0) ? 0 : 1] = static_cast<int>(p);
+    return walls;
+}
+
+} // namespace collision_detail
+
 /// The slabs among `planes` (at most one an axis), so the reflect rule can fold a body into
 /// each in one go. Returns how many there are.
 template <class T>
@@ -385,15 +401,10 @@ inline int boxSlabs(std::span<const PlaneT<T>> planes, std::array<SlabT<T>, 3>& 
 {
     int count = 0;
     for (int axis = 0; axis < 3; ++axis) {
-        const PlaneT<T>* low = nullptr;
-        const PlaneT<T>* high = nullptr;
-        for (const PlaneT<T>& plane : planes) {
-            if (plane.axis() != axis || plane.holeRadius > T(0))
-                continue;
-            (plane.normal[axis] > T(0) ? low : high) = &plane;
-        }
-        if (low && high && low->offset < -high->offset)
-            slabs[std::size_t(count++)] = SlabT<T>{axis, low->offset, -high->offset};
+        const auto [low, high] = collision_detail::wallsOnAxis(planes, axis, false);
+        if (low >= 0 && high >= 0 && planes[std::size_t(low)].offset < -planes[std::size_t(high)].offset)
+            slabs[std::size_t(count++)] =
+                SlabT<T>{axis, planes[std::size_t(low)].offset, -planes[std::size_t(high)].offset};
     }
     return count;
 }
@@ -532,6 +543,64 @@ inline std::size_t lowerClearance(const PlaneT<T>& plane, const T* __restrict x,
         beyond += static_cast<std::uint32_t>(d < T(0));
     }
     return beyond;
+}
+
+/// The six walls of a box among a world's planes (a hole in one is allowed: the surface test
+/// that uses this is only a filter), for testing many points against all six in one loop.
+template <class T>
+struct BoxWallsT {
+    std::array<T, 3> lo, hi;           ///< a point is beyond none of the walls when lo <= x <= hi
+    std::array<T, 3> clearLo, clearHi; ///< and clear of them (beyond the contact tolerance) between these
+    std::array<int, 6> plane;          ///< the walls' indices in the span: low x, high x, low y, ...
+    std::uint64_t mask = 0;            ///< bits of those indices (below 64)
+};
+
+/// The box whose walls are among `planes`, if every axis has a wall on each side.
+template <class T>
+inline std::optional<BoxWallsT<T>> boxWalls(std::span<const PlaneT<T>> planes)
+{
+    BoxWallsT<T> box;
+    for (int axis = 0; axis < 3; ++axis) {
+        const auto [low, high] = collision_detail::wallsOnAxis(planes, axis, true);
+        if (low < 0 || high < 0 || low >= 64 || high >= 64)
+            return std::nullopt;
+        const PlaneT<T>& l = planes[std::size_t(low)];
+        const PlaneT<T>& h = planes[std::size_t(high)];
+        const auto i = std::size_t(axis);
+        box.lo[i] = l.offset;
+        box.hi[i] = -h.offset;
+        box.clearLo[i] = l.offset + collision_detail::contactTolerance(l);
+        box.clearHi[i] = -h.offset - collision_detail::contactTolerance(h);
+        box.plane[2 * i] = low;
+        box.plane[2 * i + 1] = high;
+        box.mask |= std::uint64_t(1) << low | std::uint64_t(1) << high;
+    }
+    return box;
+}
+
+/// lowerClearance for all six walls of a box in one loop: each coordinate is read once and the
+/// margins written once, where six plane-by-plane loops read and wrote the margins six times
+/// (this was a sixth of a swarm step). A point beyond a wall is never clear of it (x < lo
+/// implies x < clearLo). Sets margin[k] (the other planes then lower it) and adds to beyond[w]
+/// how many points are beyond wall w (in the order of BoxWallsT::plane).
+template <class T>
+inline void setClearanceInBox(const BoxWallsT<T>& box, const T* __restrict x, const T* __restrict y,
+                              const T* __restrict z, std::size_t n, T* __restrict margin,
+                              std::array<std::uint32_t, 6>& beyond)
+{
+    const T xl = box.clearLo[0], xh = box.clearHi[0], yl = box.clearLo[1], yh = box.clearHi[1];
+    const T zl = box.clearLo[2], zh = box.clearHi[2];
+    const T x0 = box.lo[0], x1 = box.hi[0], y0 = box.lo[1], y1 = box.hi[1], z0 = box.lo[2], z1 = box.hi[2];
+    std::uint32_t b0 = 0, b1 = 0, b2 = 0, b3 = 0, b4 = 0, b5 = 0; // 32 bits, as in lowerClearance
+    for (std::size_t k = 0; k < n; ++k) {
+        const T a = x[k], b = y[k], c = z[k];
+        const T mx = std::min(a - xl, xh - a), my = std::min(b - yl, yh - b), mz = std::min(c - zl, zh - c);
+        margin[k] = std::min(mx, std::min(my, mz));
+        b0 += static_cast<std::uint32_t>(a < x0), b1 += static_cast<std::uint32_t>(a > x1);
+        b2 += static_cast<std::uint32_t>(b < y0), b3 += static_cast<std::uint32_t>(b > y1);
+        b4 += static_cast<std::uint32_t>(c < z0), b5 += static_cast<std::uint32_t>(c > z1);
+    }
+    beyond[0] += b0, beyond[1] += b1, beyond[2] += b2, beyond[3] += b3, beyond[4] += b4, beyond[5] += b5;
 }
 
 /// Lowers depth[k] to point k's signed distance from the plane (no tolerance): a point whose

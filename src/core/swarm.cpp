@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstring>
 #include <limits>
+#include <optional>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -91,13 +92,24 @@ void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, flo
 /// a particle started clear is remembered from its last step (`remember`), so only the ends
 /// are tested here. Returns how many need a rule: most blocks of a swarm in flight need none.
 std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std::span<const PlaneT<float>> planes,
-                          bool remember, std::uint8_t* __restrict hit, std::uint64_t& planesCrossed)
+                          const std::optional<BoxWallsT<float>>& box, bool remember, std::uint8_t* __restrict hit,
+                          std::uint64_t& planesCrossed)
 {
     alignas(64) float margin[kBlock];
-    std::fill_n(margin, n, std::numeric_limits<float>::infinity());
     planesCrossed = 0;
+    if (box) {
+        std::array<std::uint32_t, 6> beyond{};
+        setClearanceInBox(*box, a.px + begin, a.py + begin, a.pz + begin, n, margin, beyond);
+        for (std::size_t w = 0; w < 6; ++w)
+            if (beyond[w] > 0)
+                planesCrossed |= std::uint64_t(1) << box->plane[w];
+    } else {
+        std::fill_n(margin, n, std::numeric_limits<float>::infinity());
+    }
+    const std::uint64_t done = box ? box->mask : 0;
     for (std::size_t p = 0; p < planes.size(); ++p)
-        if (lowerClearance(planes[p], a.px + begin, a.py + begin, a.pz + begin, n, margin) > 0)
+        if ((p >= 64 || (done >> p & 1u) == 0) &&
+            lowerClearance(planes[p], a.px + begin, a.py + begin, a.pz + begin, n, margin) > 0)
             planesCrossed |= std::uint64_t(1) << std::min<std::size_t>(p, 63);
     std::uint32_t count = 0;
     if (!remember) {
@@ -267,6 +279,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
     alignas(64) float start[6][kBlock];
     alignas(64) std::uint8_t hit[kBlock];
     std::uint64_t bounces = 0;
+    const std::optional<BoxWallsT<float>> box = boxWalls(planes);
     const auto one = [gravity = fields.gravity, drag = fields.drag, dryer = fields.dryer,
                       inverseMass](const Vec3<float>& x, const Vec3<float>& v) {
         return gravity + (dragForce(drag, v) + blowDryerForce(dryer, x)) * inverseMass;
@@ -281,7 +294,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
         else
             integrateBlock<kIntegrator>(a, b, n, dt, start, response, all);
         std::uint64_t planesCrossed = 0;
-        if (planes.empty() || classifyBlock(a, b, n, planes, response == CollisionResponse::Exact, hit,
+        if (planes.empty() || classifyBlock(a, b, n, planes, box, response == CollisionResponse::Exact, hit,
                                             planesCrossed) == 0)
             continue;
         if (response == CollisionResponse::Exact)

@@ -229,6 +229,42 @@ TEST(Collisions, FoldingLeavesBodiesInsideAndHopelessOnesAlone)
     }
 }
 
+// The swarm's one-loop surface test for a box agrees with the plane-by-plane one it replaces:
+// the same points are clear (the margins agree to rounding), the same counts are beyond each
+// wall, and the floor's hole does not stop the floor from being one of the box's walls.
+TEST(Collisions, TheBoxSurfaceTestAgreesWithThePlaneByPlaneOne)
+{
+    std::vector<PlaneT<float>> planes{
+        {Vec3<float>(0, 1, 0), 0.0f, 0.3f, Vec3<float>(0.0f)}, {Vec3<float>(0, -1, 0), -4.0f},
+        {Vec3<float>(1, 0, 0), -2.0f}, {Vec3<float>(-1, 0, 0), -2.0f},
+        {Vec3<float>(0, 0, 1), -2.0f}, {Vec3<float>(0, 0, -1), -2.0f}};
+    const auto box = boxWalls(std::span<const PlaneT<float>>(planes));
+    ASSERT_TRUE(box.has_value());
+    EXPECT_EQ(box->mask, 0b111111u);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> coordinate(-2.5f, 4.5f);
+    constexpr std::size_t n = 4096;
+    std::vector<float> x(n), y(n), z(n), boxMargin(n), planeMargin(n, std::numeric_limits<float>::infinity());
+    for (std::size_t k = 0; k < n; ++k) {
+        x[k] = coordinate(rng), y[k] = coordinate(rng), z[k] = coordinate(rng);
+        if (k % 7 == 0)
+            x[k] = 2.0f; // on a wall
+        if (k % 11 == 0)
+            y[k] = 1e-7f; // within the floor's contact tolerance
+    }
+    std::array<std::uint32_t, 6> beyond{};
+    setClearanceInBox(*box, x.data(), y.data(), z.data(), n, boxMargin.data(), beyond);
+    for (std::size_t w = 0; w < 6; ++w) {
+        const auto p = std::size_t(box->plane[w]);
+        EXPECT_EQ(beyond[w], lowerClearance(planes[p], x.data(), y.data(), z.data(), n, planeMargin.data()))
+            << "wall " << w;
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+        ASSERT_EQ(boxMargin[k] > 0.0f, planeMargin[k] > 0.0f) << "point " << k;
+        ASSERT_NEAR(boxMargin[k], planeMargin[k], 1e-6f) << "point " << k;
+    }
+}
+
 TEST(Collisions, NothingEverEndsAStepOutsideTheRoom)
 {
     std::mt19937 rng(42);
