@@ -98,6 +98,12 @@ struct BlowDryerKernelT {
     }
 };
 
+/// What the kernel knows of the dryer's axis when it is compiled: nothing (`Any`), or that it is
+/// exactly +y (`Up`, every built-in scene), which turns the axial and radial projections into
+/// picking coordinates: a sixth fewer multiplications in a swarm step, measured about 15%
+/// faster on all cores. Both are the same arithmetic otherwise.
+enum class DryerAxis { Any, Up };
+
 /// The force of the field at x (independent of the body's mass and velocity).
 ///
 /// Written for the swarm loop, where square roots and divisions are the expensive
@@ -106,27 +112,39 @@ struct BlowDryerKernelT {
 /// H axis + c rho, and since rho is perpendicular to the axis its length is
 /// sqrt(H^2 + c^2 r^2) = sqrt(H^2 q^2 + w^2 (R - r0)^2 r^2) / q. Both 1/q (for r/q and c) and
 /// 1 / that length come from the one reciprocal 1 / (q sqrt(H^2 q^2 + w^2 (R - r0)^2 r^2)).
-template <class T>
+template <DryerAxis kAxis = DryerAxis::Any, class T>
 inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
 {
     const Vec3<T> d = x - f.nozzle;
-    const T h = glm::dot(d, f.axis);
-    const Vec3<T> rho = d - h * f.axis;
-    const T r = std::sqrt(glm::dot(rho, rho));
+    T h, rSquared;
+    Vec3<T> rho;
+    if constexpr (kAxis == DryerAxis::Up) {
+        h = d.y, rho = Vec3<T>(d.x, T(0), d.z), rSquared = d.x * d.x + d.z * d.z;
+    } else {
+        h = glm::dot(d, f.axis), rho = d - h * f.axis, rSquared = glm::dot(rho, rho);
+    }
+    const T r = std::sqrt(rSquared);
     const T s = h * f.inverseHeight;
     const T radiusHere = f.nozzleRadius + f.spread * s;
-    // Masks as numbers rather than branches: the same arithmetic for every particle.
-    const T inside = T(h >= T(0)) * T(s < T(1)) * T(r < radiusHere);
-    const T q = inside * radiusHere + (T(1) - inside); // 1 outside, where the force is zero anyway
+    // Selects rather than branches: the same arithmetic for every particle (a vectorised loop
+    // turns them into masked moves, cheaper than multiplying by masks as numbers).
+    const bool inside = (h >= T(0)) & (s < T(1)) & (r < radiusHere);
+    const T q = inside ? radiusHere : T(1); // 1 outside, where the force is zero anyway
     const T spreadR = f.flowWeight * f.spread * r;
     const T root = std::sqrt(f.height * f.height * q * q + spreadR * spreadR); // q |flow|
     const T inverse = T(1) / (q * root);
     const T inverseRadius = root * inverse;   // 1 / q
     const T inverseLength = q * q * inverse; // 1 / |flow|
-    const T magnitude = inside * f.strength * f.axial(T(1) - s) * f.radial(T(1) - r * inverseRadius);
+    const T magnitude = inside ? f.strength * f.axial(T(1) - s) * f.radial(T(1) - r * inverseRadius) : T(0);
     // Vertical: the axis. Cone-flow: H axis + (R - r0) rho / R(h).
-    const Vec3<T> flow = f.height * f.axis + (f.flowWeight * f.spread * inverseRadius) * rho;
-    return (magnitude * inverseLength) * flow;
+    const T scale = magnitude * inverseLength;
+    const T radial = f.flowWeight * f.spread * inverseRadius;
+    if constexpr (kAxis == DryerAxis::Up) {
+        const T c = scale * radial;
+        return Vec3<T>(c * d.x, scale * f.height, c * d.z);
+    } else {
+        return scale * (f.height * f.axis + radial * rho);
+    }
 }
 
 template <class T>

@@ -46,6 +46,7 @@ struct SwarmKernelFields {
     BlowDryerKernelT<float> dryer{};
     std::vector<BlowDryerKernelT<float>> more; ///< dryers after the first
     std::size_t moreCount = 0;
+    bool dryerUp = false; ///< the first dryer points exactly along +y (see DryerAxis)
 
     explicit SwarmKernelFields(const SwarmFields& f) : gravity(f.gravity), drag(f.drag)
     {
@@ -55,6 +56,7 @@ struct SwarmKernelFields {
         for (std::size_t k = 1; k < f.dryers.size(); ++k)
             more.emplace_back(f.dryers[k]);
         moreCount = more.size();
+        dryerUp = dryer.axis == Vec3<float>(0.0f, 1.0f, 0.0f);
     }
 };
 

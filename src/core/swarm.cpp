@@ -271,6 +271,17 @@ std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, fl
     return bounces;
 }
 
+/// The acceleration with at most one dryer, as swarmAcceleration: a closure holding its fields
+/// by value, so the loop that calls it needs no alias checks.
+template <DryerAxis kAxis>
+auto oneDryer(const SwarmKernelFields& fields, float inverseMass)
+{
+    return [gravity = fields.gravity, drag = fields.drag, dryer = fields.dryer,
+            inverseMass](const Vec3<float>& x, const Vec3<float>& v) {
+        return gravity + (dragForce(drag, v) + blowDryerForce<kAxis>(dryer, x)) * inverseMass;
+    };
+}
+
 template <Integrator kIntegrator>
 std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const SwarmKernelFields& fields,
                          float inverseMass, float restitution, float dt, std::span<const PlaneT<float>> planes,
@@ -280,19 +291,19 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
     alignas(64) std::uint8_t hit[kBlock];
     std::uint64_t bounces = 0;
     const std::optional<BoxWallsT<float>> box = boxWalls(planes);
-    const auto one = [gravity = fields.gravity, drag = fields.drag, dryer = fields.dryer,
-                      inverseMass](const Vec3<float>& x, const Vec3<float>& v) {
-        return gravity + (dragForce(drag, v) + blowDryerForce(dryer, x)) * inverseMass;
-    };
+    const auto up = oneDryer<DryerAxis::Up>(fields, inverseMass);
+    const auto any = oneDryer<DryerAxis::Any>(fields, inverseMass);
     const auto all = [&](const Vec3<float>& x, const Vec3<float>& v) {
         return swarmAccelerationAll(fields, inverseMass, x, v);
     };
     for (std::size_t b = begin; b < end; b += kBlock) {
         const std::size_t n = std::min(kBlock, end - b);
-        if (fields.moreCount == 0)
-            integrateBlock<kIntegrator>(a, b, n, dt, start, response, one);
-        else
+        if (fields.moreCount > 0)
             integrateBlock<kIntegrator>(a, b, n, dt, start, response, all);
+        else if (fields.dryerUp)
+            integrateBlock<kIntegrator>(a, b, n, dt, start, response, up);
+        else
+            integrateBlock<kIntegrator>(a, b, n, dt, start, response, any);
         std::uint64_t planesCrossed = 0;
         if (planes.empty() || classifyBlock(a, b, n, planes, box, response == CollisionResponse::Exact, hit,
                                             planesCrossed) == 0)
