@@ -115,15 +115,11 @@ enum class DryerAxis { Any, Up };
 template <DryerAxis kAxis = DryerAxis::Any, class T>
 inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
 {
+    constexpr bool kUp = kAxis == DryerAxis::Up;
     const Vec3<T> d = x - f.nozzle;
-    T h, rSquared;
-    Vec3<T> rho;
-    if constexpr (kAxis == DryerAxis::Up) {
-        h = d.y, rho = Vec3<T>(d.x, T(0), d.z), rSquared = d.x * d.x + d.z * d.z;
-    } else {
-        h = glm::dot(d, f.axis), rho = d - h * f.axis, rSquared = glm::dot(rho, rho);
-    }
-    const T r = std::sqrt(rSquared);
+    const T h = kUp ? d.y : glm::dot(d, f.axis);
+    const Vec3<T> rho = kUp ? Vec3<T>(d.x, T(0), d.z) : d - h * f.axis;
+    const T r = std::sqrt(kUp ? d.x * d.x + d.z * d.z : glm::dot(rho, rho));
     const T s = h * f.inverseHeight;
     const T radiusHere = f.nozzleRadius + f.spread * s;
     // Selects rather than branches: the same arithmetic for every particle (a vectorised loop
@@ -139,7 +135,7 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
     // Vertical: the axis. Cone-flow: H axis + (R - r0) rho / R(h).
     const T scale = magnitude * inverseLength;
     const T radial = f.flowWeight * f.spread * inverseRadius;
-    if constexpr (kAxis == DryerAxis::Up) {
+    if constexpr (kUp) {
         const T c = scale * radial;
         return Vec3<T>(c * d.x, scale * f.height, c * d.z);
     } else {

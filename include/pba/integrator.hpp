@@ -52,9 +52,10 @@ inline void velocityVerlet(Vec3<T>& x, Vec3<T>& v, T dt, Accel&& accel)
 {
     const T half = T(0.5);
     const Vec3<T> a0 = accel(x, v);
-    const Vec3<T> x1 = x + v * dt + a0 * (half * dt * dt);
-    const Vec3<T> a1 = accel(x1, v + a0 * dt);
-    x = x1;
+    // x moves first and a1 is taken there: no copy of the new position to assign afterwards,
+    // which in a large inlined swarm loop GCC kept in memory and so stopped vectorising.
+    x = x + v * dt + a0 * (half * dt * dt);
+    const Vec3<T> a1 = accel(x, v + a0 * dt);
     v += (a0 + a1) * (half * dt);
 }
 
