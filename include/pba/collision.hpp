@@ -450,7 +450,7 @@ inline T foldIntoSlab(const SlabT<T>& slab, T restitution, T& c, T& cv)
 /// across every surface it passed, repeatedly, so even a body fast enough to cross the room ends
 /// inside; one still outside after a pass is folded into the box's slabs first. Split from the
 /// step so swarms can integrate a whole block first and then apply it; a swarm runs the first
-/// pass and the fold itself (`passesDone` 1) and calls this only for the bodies still outside.
+/// pass (`passesDone` 1) and the fold (2) itself and calls this only for the bodies still outside.
 template <class T>
 inline int reflectAfterStep(std::span<const PlaneT<T>> planes, T restitution, const Vec3<T>& start, Vec3<T>& x,
                             Vec3<T>& v, int passesDone = 0)

@@ -179,9 +179,9 @@ int passOverPlane(const PlaneT<float> plane, float restitution, float* __restric
     return bounces;
 }
 
-/// The rest of the rule for the few particles still outside after the first pass (a corner, a
-/// body fast enough to cross the room, the hole's shaft): the same function a Particle uses,
-/// told that its first pass is done. Out of line, as collideExactly.
+/// The rest of the rule for the few particles still outside after the first pass (and, for
+/// reflect, the fold): a corner, the hole's shaft. The same function a Particle uses, told
+/// which passes are done. Out of line, as collideExactly.
 [[gnu::noinline]] std::uint64_t finishRule(const Arrays& a, std::size_t begin, std::size_t n, float restitution,
                                            std::span<const PlaneT<float>> planes, CollisionResponse response,
                                            const float (*start)[kBlock], const std::uint8_t* outside)
@@ -194,7 +194,7 @@ int passOverPlane(const PlaneT<float> plane, float restitution, float* __restric
         const Vec3<float> from(start[0][k], start[1][k], start[2][k]);
         Vec3<float> x(a.px[i], a.py[i], a.pz[i]);
         Vec3<float> v(a.vx[i], a.vy[i], a.vz[i]);
-        bounces += response == CollisionResponse::Reflect ? reflectAfterStep(planes, restitution, from, x, v, 1)
+        bounces += response == CollisionResponse::Reflect ? reflectAfterStep(planes, restitution, from, x, v, 2)
                                                           : clampAfterStep(planes, restitution, from, x, v, 1);
         a.px[i] = x.x, a.py[i] = x.y, a.pz[i] = x.z;
         a.vx[i] = v.x, a.vy[i] = v.y, a.vz[i] = v.z;
@@ -221,6 +221,15 @@ std::size_t markOutside(const Arrays& a, std::size_t b, std::size_t n, std::span
 
 /// The reflect rule's later passes between two walls of the box, for a block with particles
 /// still outside after the first: the closed-form fold a Particle uses, one vectorised loop.
+/// Whether any of the n coordinates is outside the slab.
+bool anyOutsideSlab(const SlabT<float> slab, const float* __restrict c, std::size_t n)
+{
+    std::uint32_t outside = 0;
+    for (std::size_t k = 0; k < n; ++k)
+        outside += static_cast<std::uint32_t>((c[k] < slab.lo) | (c[k] > slab.hi));
+    return outside > 0;
+}
+
 /// (The count is a float sum: exact below 2^24 bounces a block and a step.)
 std::uint64_t foldBlock(const SlabT<float> slab, float restitution, float* __restrict c, float* __restrict cv,
                         std::size_t n)
@@ -255,15 +264,21 @@ std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, fl
     alignas(64) std::uint8_t outside[kBlock];
     std::size_t count = markOutside(a, b, n, planes, outside);
     if (count > 0 && response == CollisionResponse::Reflect) {
+        // Most blocks with particles still outside have them in the hole's shaft, inside every
+        // slab: a slab is folded only when some particle is beyond it.
         std::array<SlabT<float>, 3> slabs;
         const int slabCount = boxSlabs(planes, slabs);
+        bool folded = false;
         for (int s = 0; s < slabCount; ++s) {
             const SlabT<float>& slab = slabs[std::size_t(s)];
             float* position = slab.axis == 0 ? a.px : slab.axis == 1 ? a.py : a.pz;
             float* velocity = slab.axis == 0 ? a.vx : slab.axis == 1 ? a.vy : a.vz;
-            bounces += foldBlock(slab, restitution, position + b, velocity + b, n);
+            if (anyOutsideSlab(slab, position + b, n)) {
+                bounces += foldBlock(slab, restitution, position + b, velocity + b, n);
+                folded = true;
+            }
         }
-        if (slabCount > 0)
+        if (folded)
             count = markOutside(a, b, n, planes, outside);
     }
     if (count > 0)
