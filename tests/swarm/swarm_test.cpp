@@ -7,6 +7,7 @@
 
 #include "pba/scene/scene.hpp"
 #include "pba/world.hpp"
+#include "support/fast_swarm.hpp"
 
 using namespace pba;
 
@@ -21,6 +22,19 @@ World swarmWorld(std::size_t n, CollisionResponse response = CollisionResponse::
     world.swarm(0) = Swarm(desc);
     world.setCollisionResponse(response);
     return world;
+}
+
+/// One double-precision Particle for each of the swarm's particles, with its state and rules.
+void addParticlesLike(World& world, const Swarm& swarm)
+{
+    for (std::size_t i = 0; i < swarm.size(); ++i) {
+        Particle p;
+        p.setPos(dvec3(swarm.position(i)));
+        p.setVel(dvec3(swarm.velocity(i)));
+        p.setCor(swarm.restitution());
+        p.setIntegrator(swarm.integrator());
+        world.addParticle(p);
+    }
 }
 
 } // namespace
@@ -52,14 +66,7 @@ TEST(Swarm, FollowsTheSameTrajectoriesAsParticles)
             World world = swarmWorld(64, response);
             world.swarm(0).setIntegrator(integrator);
             const Swarm& swarm = world.swarm(0);
-            for (std::size_t i = 0; i < swarm.size(); ++i) {
-                Particle p;
-                p.setPos(dvec3(swarm.position(i)));
-                p.setVel(dvec3(swarm.velocity(i)));
-                p.setCor(swarm.restitution());
-                p.setIntegrator(integrator);
-                world.addParticle(p);
-            }
+            addParticlesLike(world, swarm);
             for (int n = 0; n < 500; ++n)
                 world.step(0.002);
             double worst = 0.0;
@@ -97,25 +104,9 @@ TEST(Swarm, ResultsDoNotDependOnTheThreadCount)
 // one step the float swarm and the double Particles agree to single precision.
 TEST(Swarm, FastParticlesFoldBackIntoTheRoomAsParticlesDo)
 {
-    World world;
-    world.setRoom(Aabb{dvec3(-2, 0, -2), dvec3(2, 4, 2)});
-    world.setCollisionResponse(CollisionResponse::Reflect);
-    SwarmDesc desc;
-    desc.count = 1000;
-    desc.regionMin = dvec3(-1.9, 0.1, -1.9);
-    desc.regionMax = dvec3(1.9, 3.9, 1.9);
-    desc.velocityJitter = 500.0;
-    desc.restitution = 0.9;
-    world.addSwarm(desc);
+    World world = pba::test::fastSwarmWorld(1000, 0.9);
     const Swarm& swarm = world.swarm(0);
-    for (std::size_t i = 0; i < swarm.size(); ++i) {
-        Particle p;
-        p.setPos(dvec3(swarm.position(i)));
-        p.setVel(dvec3(swarm.velocity(i)));
-        p.setCor(swarm.restitution());
-        p.setIntegrator(swarm.integrator());
-        world.addParticle(p);
-    }
+    addParticlesLike(world, swarm);
     world.step(0.1);
     for (std::size_t i = 0; i < swarm.size(); ++i) {
         ASSERT_LT(glm::length(dvec3(swarm.position(i)) - world.body(i).getPos()), 1e-4) << "particle " << i;
