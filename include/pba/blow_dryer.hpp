@@ -44,11 +44,9 @@ struct FalloffCubic {
           c(T(-2) * T(kind == Falloff::Smooth))
     {
     }
-    T operator()(T u) const
-    {
-        u = std::min(std::max(u, T(0)), T(1));
-        return u * (a + u * (b + c * u));
-    }
+    T operator()(T u) const { return inRange(std::min(std::max(u, T(0)), T(1))); }
+    /// For u known to lie in [0, 1] (inside the cone): no clamp, three multiply-adds.
+    T inRange(T u) const { return u * (a + u * (b + c * u)); }
 };
 
 template <class T>
@@ -125,22 +123,25 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
     // Selects rather than branches: the same arithmetic for every particle (a vectorised loop
     // turns them into masked moves, cheaper than multiplying by masks as numbers).
     const bool inside = (h >= T(0)) & (s < T(1)) & (r < radiusHere);
-    const T q = inside ? radiusHere : T(1); // 1 outside, where the force is zero anyway
+    // Computed for every particle, as if inside: outside, q may be zero or negative and what
+    // follows infinite or NaN, but only the two selects below read it (no traps are enabled).
+    // Selecting q itself instead made GCC compute the roots and the division twice, once per
+    // value of q.
+    const T q = radiusHere;
     const T spreadR = f.flowWeight * f.spread * r;
     const T root = std::sqrt(f.height * f.height * q * q + spreadR * spreadR); // q |flow|
     const T inverse = T(1) / (q * root);
     const T inverseRadius = root * inverse;   // 1 / q
     const T inverseLength = q * q * inverse; // 1 / |flow|
-    const T magnitude = inside ? f.strength * f.axial(T(1) - s) * f.radial(T(1) - r * inverseRadius) : T(0);
+    // Inside the cone both falloffs' arguments lie in (0, 1]: no clamps.
+    const T magnitude = f.strength * f.axial.inRange(T(1) - s) * f.radial.inRange(T(1) - r * inverseRadius);
     // Vertical: the axis. Cone-flow: H axis + (R - r0) rho / R(h).
-    const T scale = magnitude * inverseLength;
-    const T radial = f.flowWeight * f.spread * inverseRadius;
-    if constexpr (kUp) {
-        const T c = scale * radial;
-        return Vec3<T>(c * d.x, scale * f.height, c * d.z);
-    } else {
-        return scale * (f.height * f.axis + radial * rho);
-    }
+    const T scale = inside ? magnitude * inverseLength : T(0);
+    const T radial = inside ? scale * f.flowWeight * f.spread * inverseRadius : T(0);
+    if constexpr (kUp)
+        return Vec3<T>(radial * d.x, scale * f.height, radial * d.z);
+    else
+        return scale * f.height * f.axis + radial * rho;
 }
 
 template <class T>
