@@ -38,10 +38,11 @@ template <class T>
 struct FalloffCubic {
     T a, b, c;
 
-    explicit FalloffCubic(Falloff kind)
-        : a(T(kind == Falloff::Linear)),
-          b(T(kind == Falloff::Quadratic) + T(3) * T(kind == Falloff::Smooth)),
-          c(T(-2) * T(kind == Falloff::Smooth))
+    /// The profile times `scale` (which the force kernel sets to the dryer's strength).
+    explicit FalloffCubic(Falloff kind, T scale = T(1))
+        : a(scale * T(kind == Falloff::Linear)),
+          b(scale * (T(kind == Falloff::Quadratic) + T(3) * T(kind == Falloff::Smooth))),
+          c(scale * T(-2) * T(kind == Falloff::Smooth))
     {
     }
     T operator()(T u) const { return inRange(std::min(std::max(u, T(0)), T(1))); }
@@ -82,16 +83,19 @@ using BlowDryerField = BlowDryerFieldT<double>;
 template <class T>
 struct BlowDryerKernelT {
     Vec3<T> nozzle, axis;
-    T height, nozzleRadius, topRadius, strength;
-    T inverseHeight, spread; ///< 1 / H, and R - r0
-    FalloffCubic<T> axial, radial;
-    T flowWeight; ///< 1 for cone-flow, 0 for vertical
+    T height, nozzleRadius, inverseHeight, spread; ///< H, r0, 1 / H and R - r0
+    T flowSpread;         ///< R - r0 for cone-flow, 0 for vertical: the weight of rho in the direction
+    FalloffCubic<T> axial; ///< the strength times the axial profile: the force on the axis
+    FalloffCubic<T> radial;
 
     BlowDryerKernelT() : BlowDryerKernelT(BlowDryerFieldT<T>{}) {}
-    explicit BlowDryerKernelT(const BlowDryerFieldT<T>& f)
-        : nozzle(f.nozzle), axis(f.axis), height(f.height), nozzleRadius(f.nozzleRadius), topRadius(f.topRadius),
-          strength(f.strength), inverseHeight(T(1) / f.height), spread(f.topRadius - f.nozzleRadius),
-          axial(f.axialFalloff), radial(f.radialFalloff), flowWeight(T(f.direction == FlowDirection::ConeFlow))
+    /// `scale` multiplies the force: a swarm passes 1 / m and gets the dryer's acceleration,
+    /// one multiplication a particle fewer.
+    explicit BlowDryerKernelT(const BlowDryerFieldT<T>& f, T scale = T(1))
+        : nozzle(f.nozzle), axis(f.axis), height(f.height), nozzleRadius(f.nozzleRadius),
+          inverseHeight(T(1) / f.height), spread(f.topRadius - f.nozzleRadius),
+          flowSpread(f.direction == FlowDirection::ConeFlow ? spread : T(0)), axial(f.axialFalloff, scale * f.strength),
+          radial(f.radialFalloff)
     {
     }
 };
@@ -128,16 +132,16 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
     // Selecting q itself instead made GCC compute the roots and the division twice, once per
     // value of q.
     const T q = radiusHere;
-    const T spreadR = f.flowWeight * f.spread * r;
+    const T spreadR = f.flowSpread * r;
     const T root = std::sqrt(f.height * f.height * q * q + spreadR * spreadR); // q |flow|
     const T inverse = T(1) / (q * root);
     const T inverseRadius = root * inverse;   // 1 / q
     const T inverseLength = q * q * inverse; // 1 / |flow|
     // Inside the cone both falloffs' arguments lie in (0, 1]: no clamps.
-    const T magnitude = f.strength * f.axial.inRange(T(1) - s) * f.radial.inRange(T(1) - r * inverseRadius);
+    const T magnitude = f.axial.inRange(T(1) - s) * f.radial.inRange(T(1) - r * inverseRadius);
     // Vertical: the axis. Cone-flow: H axis + (R - r0) rho / R(h).
     const T scale = inside ? magnitude * inverseLength : T(0);
-    const T radial = inside ? scale * f.flowWeight * f.spread * inverseRadius : T(0);
+    const T radial = inside ? scale * f.flowSpread * inverseRadius : T(0);
     if constexpr (kUp)
         return Vec3<T>(radial * d.x, scale * f.height, radial * d.z);
     else

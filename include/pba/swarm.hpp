@@ -38,23 +38,25 @@ struct SwarmFields {
     std::vector<BlowDryerFieldT<float>> dryers;
 };
 
-/// The same fields laid out for the inner loop: the first dryer held by value (with a zero
-/// strength when there is none), so the common case is one straight-line expression.
+/// The same fields laid out for the inner loop, as the accelerations they give a particle of
+/// one swarm's mass (1 / m folded into the drag and the dryers' strengths once a step, not
+/// multiplied in for every particle): the first dryer held by value (with a zero strength when
+/// there is none), so the common case is one straight-line expression.
 struct SwarmKernelFields {
     Vec3<float> gravity{0.0f};
-    float drag = 0.0f;
+    float dragPerMass = 0.0f; ///< the drag coefficient over m
     BlowDryerKernelT<float> dryer{};
     std::vector<BlowDryerKernelT<float>> more; ///< dryers after the first
     std::size_t moreCount = 0;
     bool dryerUp = false; ///< the first dryer points exactly along +y (see DryerAxis)
 
-    explicit SwarmKernelFields(const SwarmFields& f) : gravity(f.gravity), drag(f.drag)
+    SwarmKernelFields(const SwarmFields& f, float inverseMass) : gravity(f.gravity), dragPerMass(f.drag * inverseMass)
     {
         BlowDryerFieldT<float> off;
         off.strength = 0.0f;
-        dryer = BlowDryerKernelT<float>(f.dryers.empty() ? off : f.dryers.front());
+        dryer = BlowDryerKernelT<float>(f.dryers.empty() ? off : f.dryers.front(), inverseMass);
         for (std::size_t k = 1; k < f.dryers.size(); ++k)
-            more.emplace_back(f.dryers[k]);
+            more.emplace_back(f.dryers[k], inverseMass);
         moreCount = more.size();
         dryerUp = dryer.axis == Vec3<float>(0.0f, 1.0f, 0.0f);
     }
@@ -101,22 +103,21 @@ private:
     std::vector<PlaneT<float>> m_clearOf; ///< the surfaces m_clear was computed against
 };
 
-/// The acceleration a swarm particle of mass m feels at (x, v): one inline expression of the
-/// same kernels the Force classes wrap (the first dryer only: see swarmAccelerationAll).
-inline Vec3<float> swarmAcceleration(const SwarmKernelFields& f, float inverseMass, const Vec3<float>& x,
-                                     const Vec3<float>& v)
+/// The acceleration a swarm particle feels at (x, v): one inline expression of the same
+/// kernels the Force classes wrap (the first dryer only: see swarmAccelerationAll).
+template <DryerAxis kAxis = DryerAxis::Any>
+inline Vec3<float> swarmAcceleration(const SwarmKernelFields& f, const Vec3<float>& x, const Vec3<float>& v)
 {
-    return f.gravity + (dragForce(f.drag, v) + blowDryerForce(f.dryer, x)) * inverseMass; // as in stepBlocks' loop
+    return f.gravity + dragForce(f.dragPerMass, v) + blowDryerForce<kAxis>(f.dryer, x);
 }
 
 /// With every dryer: the loop over dryers keeps the particle loop from vectorising, so it is
 /// used only when a scene has more than one.
-inline Vec3<float> swarmAccelerationAll(const SwarmKernelFields& f, float inverseMass, const Vec3<float>& x,
-                                        const Vec3<float>& v)
+inline Vec3<float> swarmAccelerationAll(const SwarmKernelFields& f, const Vec3<float>& x, const Vec3<float>& v)
 {
-    Vec3<float> a = swarmAcceleration(f, inverseMass, x, v);
+    Vec3<float> a = swarmAcceleration(f, x, v);
     for (std::size_t k = 0; k < f.moreCount; ++k)
-        a += blowDryerForce(f.more[k], x) * inverseMass;
+        a += blowDryerForce(f.more[k], x);
     return a;
 }
 

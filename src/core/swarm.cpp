@@ -134,12 +134,12 @@ std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std
 /// state). Kept out of line: it is scalar, so it need not be copied for every instruction set.
 template <Integrator kIntegrator>
 [[gnu::noinline]] std::uint64_t collideExactly(const Arrays& a, std::size_t begin, std::size_t n,
-                                               const SwarmKernelFields& fields, float inverseMass, float restitution,
+                                               const SwarmKernelFields& fields, float restitution,
                                                float dt, std::span<const PlaneT<float>> planes,
                                                const float (*start)[kBlock], const std::uint8_t* hit)
 {
     auto accel = [&](const Vec3<float>& x, const Vec3<float>& v) {
-        return swarmAccelerationAll(fields, inverseMass, x, v);
+        return swarmAccelerationAll(fields, x, v);
     };
     std::uint64_t bounces = 0;
     for (std::size_t k = 0; k < n; ++k) {
@@ -286,30 +286,30 @@ std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, fl
     return bounces;
 }
 
-/// The acceleration with at most one dryer, as swarmAcceleration: a closure holding its fields
+/// The acceleration with at most one dryer, swarmAcceleration as a closure holding its fields
 /// by value, so the loop that calls it needs no alias checks.
 template <DryerAxis kAxis>
-auto oneDryer(const SwarmKernelFields& fields, float inverseMass)
+auto oneDryer(const SwarmKernelFields& fields)
 {
-    return [gravity = fields.gravity, drag = fields.drag, dryer = fields.dryer,
-            inverseMass](const Vec3<float>& x, const Vec3<float>& v) {
-        return gravity + (dragForce(drag, v) + blowDryerForce<kAxis>(dryer, x)) * inverseMass;
+    return [gravity = fields.gravity, drag = fields.dragPerMass, dryer = fields.dryer](const Vec3<float>& x,
+                                                                                      const Vec3<float>& v) {
+        return gravity + dragForce(drag, v) + blowDryerForce<kAxis>(dryer, x); // as swarmAcceleration
     };
 }
 
 template <Integrator kIntegrator>
 std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const SwarmKernelFields& fields,
-                         float inverseMass, float restitution, float dt, std::span<const PlaneT<float>> planes,
+                         float restitution, float dt, std::span<const PlaneT<float>> planes,
                          CollisionResponse response)
 {
     alignas(64) float start[6][kBlock];
     alignas(64) std::uint8_t hit[kBlock];
     std::uint64_t bounces = 0;
     const std::optional<BoxWallsT<float>> box = boxWalls(planes);
-    const auto up = oneDryer<DryerAxis::Up>(fields, inverseMass);
-    const auto any = oneDryer<DryerAxis::Any>(fields, inverseMass);
+    const auto up = oneDryer<DryerAxis::Up>(fields);
+    const auto any = oneDryer<DryerAxis::Any>(fields);
     const auto all = [&](const Vec3<float>& x, const Vec3<float>& v) {
-        return swarmAccelerationAll(fields, inverseMass, x, v);
+        return swarmAccelerationAll(fields, x, v);
     };
     for (std::size_t b = begin; b < end; b += kBlock) {
         const std::size_t n = std::min(kBlock, end - b);
@@ -324,7 +324,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
                                             planesCrossed) == 0)
             continue;
         if (response == CollisionResponse::Exact)
-            bounces += collideExactly<kIntegrator>(a, b, n, fields, inverseMass, restitution, dt, planes, start, hit);
+            bounces += collideExactly<kIntegrator>(a, b, n, fields, restitution, dt, planes, start, hit);
         else
             bounces += collideAfterStep(a, b, n, restitution, planes, response, start, planesCrossed);
     }
@@ -348,20 +348,20 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
 /// to another; on one machine it is the same for every thread count.)
 PBA_FOR_EACH_INSTRUCTION_SET
 std::uint64_t stepSwarmRange(Integrator integrator, const Arrays& a, std::size_t begin, std::size_t end,
-                             const SwarmKernelFields& fields, float inverseMass, float restitution, float dt,
+                             const SwarmKernelFields& fields, float restitution, float dt,
                              std::span<const PlaneT<float>> planes, CollisionResponse response)
 {
     switch (integrator) {
     case Integrator::ForwardEuler:
-        return stepBlocks<Integrator::ForwardEuler>(a, begin, end, fields, inverseMass, restitution, dt, planes, response);
+        return stepBlocks<Integrator::ForwardEuler>(a, begin, end, fields, restitution, dt, planes, response);
     case Integrator::SemiImplicitEuler:
-        return stepBlocks<Integrator::SemiImplicitEuler>(a, begin, end, fields, inverseMass, restitution, dt, planes,
+        return stepBlocks<Integrator::SemiImplicitEuler>(a, begin, end, fields, restitution, dt, planes,
                                                          response);
     case Integrator::VelocityVerlet:
-        return stepBlocks<Integrator::VelocityVerlet>(a, begin, end, fields, inverseMass, restitution, dt, planes,
+        return stepBlocks<Integrator::VelocityVerlet>(a, begin, end, fields, restitution, dt, planes,
                                                       response);
     case Integrator::RK4:
-        return stepBlocks<Integrator::RK4>(a, begin, end, fields, inverseMass, restitution, dt, planes, response);
+        return stepBlocks<Integrator::RK4>(a, begin, end, fields, restitution, dt, planes, response);
     }
     return 0;
 }
@@ -394,14 +394,13 @@ std::uint64_t Swarm::stepRange(const SwarmKernelFields& fields, std::span<const 
                                CollisionResponse response, float dt, std::size_t begin, std::size_t end)
 {
     const Arrays a{m_px.data(), m_py.data(), m_pz.data(), m_vx.data(), m_vy.data(), m_vz.data(), m_clear.data()};
-    const float inverseMass = 1.0f / m_mass;
-    return stepSwarmRange(m_integrator, a, begin, end, fields, inverseMass, m_restitution, dt, planes, response);
+    return stepSwarmRange(m_integrator, a, begin, end, fields, m_restitution, dt, planes, response);
 }
 
 std::uint64_t Swarm::step(const SwarmFields& swarmFields, std::span<const PlaneT<float>> planes,
                           CollisionResponse response, float dt, int threads)
 {
-    const SwarmKernelFields fields(swarmFields); // once a step, not once a task
+    const SwarmKernelFields fields(swarmFields, 1.0f / m_mass); // once a step, not once a task
     const std::size_t n = size();
     // The remembered "clear of every surface" flags hold only for the surfaces they were
     // computed against: new surfaces (a moved hole, another room) mean testing everything again.
