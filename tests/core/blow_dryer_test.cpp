@@ -207,8 +207,9 @@ TEST(BlowDryerDynamics, TheBallNeverLeavesTheRoomInASimulatedHour)
         ASSERT_TRUE(x.x >= room.min.x && x.x <= room.max.x && x.z >= room.min.z && x.z <= room.max.z &&
                     x.y <= room.max.y && x.y >= grille)
             << "step " << n << " at (" << x.x << ", " << x.y << ", " << x.z << ")";
-        if (x.y < room.min.y) // below the floor only inside the hole's shaft
+        if (x.y < room.min.y) { // below the floor only inside the hole's shaft
             ASSERT_LE(std::hypot(x.x, x.z), world.floorHole()->radius) << "step " << n;
+        }
     }
 }
 
@@ -237,8 +238,9 @@ TEST(FloorHole, ABallOverTheHoleLandsOnTheGrilleInEveryResponse)
                 world.step(0.01);
                 const dvec3 a = world.body(0).getPos();
                 ASSERT_GE(a.y, -0.05 - 1e-12) << collisionResponseName(response);
-                if (a.y < 0.0)
+                if (a.y < 0.0) {
                     ASSERT_LE(std::hypot(a.x, a.z), 0.2 + 1e-12) << collisionResponseName(response) << " n " << n;
+                }
                 ASSERT_GE(world.body(1).getPos().y, 0.0);
             }
             EXPECT_LT(world.body(0).getPos().y, 0.0) << collisionResponseName(response) << " "

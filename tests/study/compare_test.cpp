@@ -47,8 +47,9 @@ TEST(IntegratorStudy, ForwardEulerGainsMoreEnergyTheLargerDtInEveryResponse)
         ASSERT_EQ(rows.size(), 8u);
         for (std::size_t i = 0; i < rows.size(); ++i) {
             EXPECT_GT(rows[i]->energyRatioEnd, 1.0) << collisionResponseName(collision) << " dt " << rows[i]->dt;
-            if (i > 0)
+            if (i > 0) {
                 EXPECT_GT(rows[i]->energyRatioEnd, rows[i - 1]->energyRatioEnd) << collisionResponseName(collision);
+            }
         }
     }
 }
@@ -56,8 +57,9 @@ TEST(IntegratorStudy, ForwardEulerGainsMoreEnergyTheLargerDtInEveryResponse)
 TEST(IntegratorStudy, SemiImplicitEulerKeepsItsEnergyWithReflect)
 {
     for (const auto* r : select(Integrator::SemiImplicitEuler, CollisionResponse::Reflect))
-        if (r->dt <= 0.05)
+        if (r->dt <= 0.05) {
             EXPECT_NEAR(r->meanEnergyRatio, 1.0, 0.05) << "dt " << r->dt;
+        }
 }
 
 TEST(IntegratorStudy, VerletAndRK4ReproduceTheBouncePeriodAndApexWithExactImpacts)

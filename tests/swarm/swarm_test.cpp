@@ -128,8 +128,9 @@ TEST(Swarm, NoParticleEverLeavesTheRoom)
             ASSERT_TRUE(x.x >= room.min.x - 1e-5 && x.x <= room.max.x + 1e-5 && x.z >= room.min.z - 1e-5 &&
                         x.z <= room.max.z + 1e-5 && x.y <= room.max.y + 1e-5 && x.y >= grille - 1e-5)
                 << collisionResponseName(response) << " particle " << i;
-            if (x.y < room.min.y - 1e-5)
+            if (x.y < room.min.y - 1e-5) {
                 ASSERT_LE(std::hypot(x.x, x.z), world.floorHole()->radius + 1e-5);
+            }
         }
     }
 }
