@@ -581,26 +581,52 @@ inline std::optional<BoxWallsT<T>> boxWalls(std::span<const PlaneT<T>> planes)
 /// lowerClearance for all six walls of a box in one loop: each coordinate is read once and the
 /// margins written once, where six plane-by-plane loops read and wrote the margins six times
 /// (this was a sixth of a swarm step). A point beyond a wall is never clear of it (x < lo
-/// implies x < clearLo). Sets margin[k] (the other planes then lower it) and adds to beyond[w]
-/// how many points are beyond wall w (in the order of BoxWallsT::plane).
+/// implies x < clearLo). Sets margin[k]; the other planes then lower it.
 template <class T>
 inline void setClearanceInBox(const BoxWallsT<T>& box, const T* __restrict x, const T* __restrict y,
-                              const T* __restrict z, std::size_t n, T* __restrict margin,
-                              std::array<std::uint32_t, 6>& beyond)
+                              const T* __restrict z, std::size_t n, T* __restrict margin)
 {
     const T xl = box.clearLo[0], xh = box.clearHi[0], yl = box.clearLo[1], yh = box.clearHi[1];
     const T zl = box.clearLo[2], zh = box.clearHi[2];
-    const T x0 = box.lo[0], x1 = box.hi[0], y0 = box.lo[1], y1 = box.hi[1], z0 = box.lo[2], z1 = box.hi[2];
-    std::uint32_t b0 = 0, b1 = 0, b2 = 0, b3 = 0, b4 = 0, b5 = 0; // 32 bits, as in lowerClearance
     for (std::size_t k = 0; k < n; ++k) {
         const T a = x[k], b = y[k], c = z[k];
         const T mx = std::min(a - xl, xh - a), my = std::min(b - yl, yh - b), mz = std::min(c - zl, zh - c);
         margin[k] = std::min(mx, std::min(my, mz));
+    }
+}
+
+/// Adds to beyond[w] how many points are beyond wall w of the box (in the order of
+/// BoxWallsT::plane), as lowerClearance counts them. Apart from setClearanceInBox because a
+/// swarm needs it only for the few blocks in which a point met a surface: counting in every
+/// block cost as much as the margins.
+template <class T>
+inline void countBeyondBox(const BoxWallsT<T>& box, const T* __restrict x, const T* __restrict y,
+                           const T* __restrict z, std::size_t n, std::array<std::uint32_t, 6>& beyond)
+{
+    const T x0 = box.lo[0], x1 = box.hi[0], y0 = box.lo[1], y1 = box.hi[1], z0 = box.lo[2], z1 = box.hi[2];
+    std::uint32_t b0 = 0, b1 = 0, b2 = 0, b3 = 0, b4 = 0, b5 = 0; // 32 bits, as in lowerClearance
+    for (std::size_t k = 0; k < n; ++k) {
+        const T a = x[k], b = y[k], c = z[k];
         b0 += static_cast<std::uint32_t>(a < x0), b1 += static_cast<std::uint32_t>(a > x1);
         b2 += static_cast<std::uint32_t>(b < y0), b3 += static_cast<std::uint32_t>(b > y1);
         b4 += static_cast<std::uint32_t>(c < z0), b5 += static_cast<std::uint32_t>(c > z1);
     }
     beyond[0] += b0, beyond[1] += b1, beyond[2] += b2, beyond[3] += b3, beyond[4] += b4, beyond[5] += b5;
+}
+
+/// lowerDepth for the six walls of a box in one loop, each coordinate read once (as
+/// setClearanceInBox for lowerClearance). A wall with a hole must be left to lowerDepth, which
+/// knows the hole's shaft: give it an infinite bound here.
+template <class T>
+inline void lowerDepthInBox(const std::array<T, 3>& lo, const std::array<T, 3>& hi, const T* __restrict x,
+                            const T* __restrict y, const T* __restrict z, std::size_t n, T* __restrict depth)
+{
+    const T x0 = lo[0], x1 = hi[0], y0 = lo[1], y1 = hi[1], z0 = lo[2], z1 = hi[2];
+    for (std::size_t k = 0; k < n; ++k) {
+        const T a = x[k], b = y[k], c = z[k];
+        const T d = std::min(std::min(std::min(a - x0, x1 - a), std::min(b - y0, y1 - b)), std::min(c - z0, z1 - c));
+        depth[k] = d < depth[k] ? d : depth[k];
+    }
 }
 
 /// Lowers depth[k] to point k's signed distance from the plane (no tolerance): a point whose

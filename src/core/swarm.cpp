@@ -90,22 +90,18 @@ void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, flo
 /// ended the step within a surface's contact tolerance (or beyond it): their rules look at
 /// where the step ended. The exact response also redoes the steps that started there; whether
 /// a particle started clear is remembered from its last step (`remember`), so only the ends
-/// are tested here. Returns how many need a rule: most blocks of a swarm in flight need none.
+/// are tested here. Returns how many need a rule: most blocks of a swarm in flight need none,
+/// and only for the others are the planes a particle crossed (`planesCrossed`) worked out.
 std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std::span<const PlaneT<float>> planes,
                           const std::optional<BoxWallsT<float>>& box, bool remember, std::uint8_t* __restrict hit,
                           std::uint64_t& planesCrossed)
 {
     alignas(64) float margin[kBlock];
     planesCrossed = 0;
-    if (box) {
-        std::array<std::uint32_t, 6> beyond{};
-        setClearanceInBox(*box, a.px + begin, a.py + begin, a.pz + begin, n, margin, beyond);
-        for (std::size_t w = 0; w < 6; ++w)
-            if (beyond[w] > 0)
-                planesCrossed |= std::uint64_t(1) << box->plane[w];
-    } else {
+    if (box)
+        setClearanceInBox(*box, a.px + begin, a.py + begin, a.pz + begin, n, margin);
+    else
         std::fill_n(margin, n, std::numeric_limits<float>::infinity());
-    }
     const std::uint64_t done = box ? box->mask : 0;
     for (std::size_t p = 0; p < planes.size(); ++p)
         if ((p >= 64 || (done >> p & 1u) == 0) &&
@@ -116,6 +112,13 @@ std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std
         for (std::size_t k = 0; k < n; ++k) {
             hit[k] = static_cast<std::uint8_t>(!(margin[k] > 0.0f));
             count += hit[k];
+        }
+        if (count > 0 && box) { // which of the box's walls the rule's first pass must visit
+            std::array<std::uint32_t, 6> beyond{};
+            countBeyondBox(*box, a.px + begin, a.py + begin, a.pz + begin, n, beyond);
+            for (std::size_t w = 0; w < 6; ++w)
+                if (beyond[w] > 0)
+                    planesCrossed |= std::uint64_t(1) << box->plane[w];
         }
         return count;
     }
@@ -202,15 +205,41 @@ int passOverPlane(const PlaneT<float> plane, float restitution, float* __restric
     return bounces;
 }
 
+/// The walls of a box whose depths markOutside takes in one loop: those without a hole (a wall
+/// with one keeps an infinite bound and is tested by itself, shaft and all).
+struct DepthBox {
+    std::array<float, 3> lo{}, hi{};
+    std::uint64_t mask = 0; ///< the planes it covers
+
+    DepthBox(const std::optional<BoxWallsT<float>>& box, std::span<const PlaneT<float>> planes)
+    {
+        constexpr float kInf = std::numeric_limits<float>::infinity();
+        lo.fill(-kInf);
+        hi.fill(kInf);
+        if (!box)
+            return;
+        for (std::size_t w = 0; w < 6; ++w) {
+            const auto p = static_cast<std::size_t>(box->plane[w]);
+            if (planes[p].holeRadius > 0.0f)
+                continue;
+            (w % 2 == 0 ? lo : hi)[w / 2] = w % 2 == 0 ? box->lo[w / 2] : box->hi[w / 2];
+            mask |= std::uint64_t(1) << p;
+        }
+    }
+};
+
 /// Phase 4 of a block: which particles are still outside a surface after the first pass (one in
 /// a hole's shaft is not). Returns how many.
 std::size_t markOutside(const Arrays& a, std::size_t b, std::size_t n, std::span<const PlaneT<float>> planes,
-                        std::uint8_t* __restrict outside)
+                        const DepthBox& box, std::uint8_t* __restrict outside)
 {
     alignas(64) float depth[kBlock];
     std::fill_n(depth, n, std::numeric_limits<float>::infinity());
-    for (const PlaneT<float>& plane : planes)
-        lowerDepth(plane, a.px + b, a.py + b, a.pz + b, n, depth);
+    if (box.mask != 0)
+        lowerDepthInBox(box.lo, box.hi, a.px + b, a.py + b, a.pz + b, n, depth);
+    for (std::size_t p = 0; p < planes.size(); ++p)
+        if (p >= 64 || (box.mask >> p & 1u) == 0)
+            lowerDepth(planes[p], a.px + b, a.py + b, a.pz + b, n, depth);
     std::uint32_t count = 0;
     for (std::size_t k = 0; k < n; ++k) {
         outside[k] = depth[k] < 0.0f;
@@ -248,7 +277,7 @@ std::uint64_t foldBlock(const SlabT<float> slab, float restitution, float* __res
 /// block at once; the rest of the rule sees to any still outside after that.
 std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, float restitution,
                                std::span<const PlaneT<float>> planes, CollisionResponse response,
-                               const float (*start)[kBlock], std::uint64_t planesCrossed)
+                               const float (*start)[kBlock], std::uint64_t planesCrossed, const DepthBox& box)
 {
     std::uint64_t bounces = 0;
     for (std::size_t p = 0; p < planes.size(); ++p) {
@@ -262,7 +291,7 @@ std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, fl
                                               a.vz + b, start[0], start[1], start[2], n);
     }
     alignas(64) std::uint8_t outside[kBlock];
-    std::size_t count = markOutside(a, b, n, planes, outside);
+    std::size_t count = markOutside(a, b, n, planes, box, outside);
     if (count > 0 && response == CollisionResponse::Reflect) {
         // Most blocks with particles still outside have them in the hole's shaft, inside every
         // slab: a slab is folded only when some particle is beyond it.
@@ -279,7 +308,7 @@ std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, fl
             }
         }
         if (folded)
-            count = markOutside(a, b, n, planes, outside);
+            count = markOutside(a, b, n, planes, box, outside);
     }
     if (count > 0)
         bounces += finishRule(a, b, n, restitution, planes, response, start, outside);
@@ -306,6 +335,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
     alignas(64) std::uint8_t hit[kBlock];
     std::uint64_t bounces = 0;
     const std::optional<BoxWallsT<float>> box = boxWalls(planes);
+    const DepthBox depthBox(box, planes);
     const auto up = oneDryer<DryerAxis::Up>(fields);
     const auto any = oneDryer<DryerAxis::Any>(fields);
     const auto all = [&](const Vec3<float>& x, const Vec3<float>& v) {
@@ -326,7 +356,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
         if (response == CollisionResponse::Exact)
             bounces += collideExactly<kIntegrator>(a, b, n, fields, restitution, dt, planes, start, hit);
         else
-            bounces += collideAfterStep(a, b, n, restitution, planes, response, start, planesCrossed);
+            bounces += collideAfterStep(a, b, n, restitution, planes, response, start, planesCrossed, depthBox);
     }
     return bounces;
 }

@@ -231,7 +231,8 @@ TEST(Collisions, FoldingLeavesBodiesInsideAndHopelessOnesAlone)
 
 // The swarm's one-loop surface test for a box agrees with the plane-by-plane one it replaces:
 // the same points are clear (the margins agree to rounding), the same counts are beyond each
-// wall, and the floor's hole does not stop the floor from being one of the box's walls.
+// wall, the same depths, and the floor's hole does not stop the floor from being one of the
+// box's walls.
 TEST(Collisions, TheBoxSurfaceTestAgreesWithThePlaneByPlaneOne)
 {
     std::vector<PlaneT<float>> planes{
@@ -253,7 +254,8 @@ TEST(Collisions, TheBoxSurfaceTestAgreesWithThePlaneByPlaneOne)
             y[k] = 1e-7f; // within the floor's contact tolerance
     }
     std::array<std::uint32_t, 6> beyond{};
-    setClearanceInBox(*box, x.data(), y.data(), z.data(), n, boxMargin.data(), beyond);
+    setClearanceInBox(*box, x.data(), y.data(), z.data(), n, boxMargin.data());
+    countBeyondBox(*box, x.data(), y.data(), z.data(), n, beyond);
     for (std::size_t w = 0; w < 6; ++w) {
         const auto p = std::size_t(box->plane[w]);
         EXPECT_EQ(beyond[w], lowerClearance(planes[p], x.data(), y.data(), z.data(), n, planeMargin.data()))
@@ -263,6 +265,18 @@ TEST(Collisions, TheBoxSurfaceTestAgreesWithThePlaneByPlaneOne)
         ASSERT_EQ(boxMargin[k] > 0.0f, planeMargin[k] > 0.0f) << "point " << k;
         ASSERT_NEAR(boxMargin[k], planeMargin[k], 1e-6f) << "point " << k;
     }
+    // Depths: the box's walls but the floor (it has a hole: its bound stays infinite and
+    // lowerDepth, which knows the shaft, tests it) give bit for bit the plane-by-plane depths.
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    std::array<float, 3> lo = box->lo, hi = box->hi;
+    lo[1] = -kInf;
+    std::vector<float> boxDepth(n, kInf), planeDepth(n, kInf);
+    lowerDepthInBox(lo, hi, x.data(), y.data(), z.data(), n, boxDepth.data());
+    lowerDepth(planes[0], x.data(), y.data(), z.data(), n, boxDepth.data());
+    for (const PlaneT<float>& plane : planes)
+        lowerDepth(plane, x.data(), y.data(), z.data(), n, planeDepth.data());
+    for (std::size_t k = 0; k < n; ++k)
+        ASSERT_EQ(boxDepth[k], planeDepth[k]) << "point " << k;
 }
 
 TEST(Collisions, NothingEverEndsAStepOutsideTheRoom)
