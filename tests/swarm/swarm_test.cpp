@@ -77,6 +77,32 @@ TEST(Swarm, FollowsTheSameTrajectoriesAsParticles)
     }
 }
 
+// The loop is compiled for the forces a swarm meets (a dryer along +y or any axis, with drag
+// or without): each variant follows the Particles as the built-in scene's does.
+TEST(Swarm, FollowsParticlesWithDragAndATiltedDryer)
+{
+    for (const bool drag : {false, true}) {
+        for (const bool tilted : {false, true}) {
+            if (!drag && !tilted)
+                continue; // the scene itself: FollowsTheSameTrajectoriesAsParticles
+            World world = swarmWorld(64);
+            if (drag)
+                world.addForce(std::make_unique<Drag>(0.4));
+            for (std::size_t f = 0; f < world.forceCount(); ++f)
+                if (auto* dryer = dynamic_cast<BlowDryer*>(&world.force(f)); dryer && tilted)
+                    dryer->field().axis = glm::normalize(dvec3(0.3, 1.0, -0.2));
+            ASSERT_EQ(world.swarmFields().drag, drag ? 0.4f : 0.0f);
+            addParticlesLike(world, world.swarm(0));
+            for (int n = 0; n < 500; ++n)
+                world.step(0.002);
+            double worst = 0.0;
+            for (std::size_t i = 0; i < world.swarm(0).size(); ++i)
+                worst = std::max(worst, glm::length(dvec3(world.swarm(0).position(i)) - world.body(i).getPos()));
+            EXPECT_LT(worst, 2e-3) << "drag " << drag << " tilted " << tilted;
+        }
+    }
+}
+
 // Through the landing (1.2 s: the rain reaches the floor and the hole after about 0.7 s), with
 // every response: the collision passes work on whole blocks, whose bounds do not move with the
 // thread count. 40,000 particles, above the size where the step goes parallel.
