@@ -31,6 +31,10 @@ double uniform(std::uint64_t seed, std::uint64_t i, int component)
 
 /// Particles a block: the start states of one block stay in L1 while the block is stepped.
 constexpr std::size_t kBlock = 512;
+/// The block's start states are six rows of this many floats: 192 bytes more than a block, so
+/// that element k of the six rows lies at six different offsets in a 4 KB page (see
+/// Swarm::m_state for why that matters).
+constexpr std::size_t kStartRow = kBlock + 48;
 /// Below this many particles threads cost more than they save (measured: 3x slower at 1,000).
 constexpr std::size_t kParallelThreshold = 32768;
 
@@ -75,7 +79,7 @@ void integrateBlock(float* __restrict px, float* __restrict py, float* __restric
 }
 
 template <Integrator kIntegrator, class Accel>
-void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kBlock],
+void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
                     CollisionResponse response, Accel accel)
 {
     if (response == CollisionResponse::Exact)
@@ -90,8 +94,9 @@ void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, flo
 /// ended the step within a surface's contact tolerance (or beyond it): their rules look at
 /// where the step ended. The exact response also redoes the steps that started there; whether
 /// a particle started clear is remembered from its last step (`remember`), so only the ends
-/// are tested here. Returns how many need a rule: most blocks of a swarm in flight need none,
-/// and only for the others are the planes a particle crossed (`planesCrossed`) worked out.
+/// are tested here, and those particles are marked in `hit` for it. Returns how many need a
+/// rule: most blocks of a swarm in flight need none, and only for the others are the planes a
+/// particle crossed (`planesCrossed`, for reflect and clamp) worked out.
 std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std::span<const PlaneT<float>> planes,
                           const std::optional<BoxWallsT<float>>& box, bool remember, std::uint8_t* __restrict hit,
                           std::uint64_t& planesCrossed)
@@ -108,11 +113,9 @@ std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std
             lowerClearance(planes[p], a.px + begin, a.py + begin, a.pz + begin, n, margin) > 0)
             planesCrossed |= std::uint64_t(1) << std::min<std::size_t>(p, 63);
     std::uint32_t count = 0;
-    if (!remember) {
-        for (std::size_t k = 0; k < n; ++k) {
-            hit[k] = static_cast<std::uint8_t>(!(margin[k] > 0.0f));
-            count += hit[k];
-        }
+    if (!remember) { // reflect and clamp: a count, no flags (their first pass visits every particle)
+        for (std::size_t k = 0; k < n; ++k)
+            count += static_cast<std::uint32_t>(!(margin[k] > 0.0f));
         if (count > 0 && box) { // which of the box's walls the rule's first pass must visit
             std::array<std::uint32_t, 6> beyond{};
             countBeyondBox(*box, a.px + begin, a.py + begin, a.pz + begin, n, beyond);
@@ -139,7 +142,7 @@ template <Integrator kIntegrator>
 [[gnu::noinline]] std::uint64_t collideExactly(const Arrays& a, std::size_t begin, std::size_t n,
                                                const SwarmKernelFields& fields, float restitution,
                                                float dt, std::span<const PlaneT<float>> planes,
-                                               const float (*start)[kBlock], const std::uint8_t* hit)
+                                               const float (*start)[kStartRow], const std::uint8_t* hit)
 {
     auto accel = [&](const Vec3<float>& x, const Vec3<float>& v) {
         return swarmAccelerationAll(fields, x, v);
@@ -187,7 +190,7 @@ int passOverPlane(const PlaneT<float> plane, float restitution, float* __restric
 /// which passes are done. Out of line, as collideExactly.
 [[gnu::noinline]] std::uint64_t finishRule(const Arrays& a, std::size_t begin, std::size_t n, float restitution,
                                            std::span<const PlaneT<float>> planes, CollisionResponse response,
-                                           const float (*start)[kBlock], const std::uint8_t* outside)
+                                           const float (*start)[kStartRow], const std::uint8_t* outside)
 {
     std::uint64_t bounces = 0;
     for (std::size_t k = 0; k < n; ++k) {
@@ -277,7 +280,7 @@ std::uint64_t foldBlock(const SlabT<float> slab, float restitution, float* __res
 /// block at once; the rest of the rule sees to any still outside after that.
 std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, float restitution,
                                std::span<const PlaneT<float>> planes, CollisionResponse response,
-                               const float (*start)[kBlock], std::uint64_t planesCrossed, const DepthBox& box)
+                               const float (*start)[kStartRow], std::uint64_t planesCrossed, const DepthBox& box)
 {
     std::uint64_t bounces = 0;
     for (std::size_t p = 0; p < planes.size(); ++p) {
@@ -337,7 +340,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
                          float restitution, float dt, std::span<const PlaneT<float>> planes,
                          CollisionResponse response)
 {
-    alignas(64) float start[6][kBlock];
+    alignas(64) float start[6][kStartRow];
     alignas(64) std::uint8_t hit[kBlock];
     std::uint64_t bounces = 0;
     const std::optional<BoxWallsT<float>> box = boxWalls(planes);
@@ -409,7 +412,7 @@ std::uint64_t stepSwarmRange(Integrator integrator, const Arrays& a, std::size_t
 
 Swarm::Swarm(const SwarmDesc& desc)
     : m_desc(desc), m_mass(float(desc.mass)), m_restitution(float(desc.restitution)), m_integrator(desc.integrator),
-      m_px(desc.count), m_py(desc.count), m_pz(desc.count), m_vx(desc.count), m_vy(desc.count), m_vz(desc.count)
+      m_count(desc.count), m_stride((desc.count + 1023) / 1024 * 1024 + 144), m_state(6 * m_stride)
 {
     for (std::size_t i = 0; i < desc.count; ++i) {
         const dvec3 x = desc.regionMin + (desc.regionMax - desc.regionMin) *
@@ -423,8 +426,8 @@ Swarm::Swarm(const SwarmDesc& desc)
 
 void Swarm::set(std::size_t i, const Vec3<float>& x, const Vec3<float>& v)
 {
-    m_px[i] = x.x, m_py[i] = x.y, m_pz[i] = x.z;
-    m_vx[i] = v.x, m_vy[i] = v.y, m_vz[i] = v.z;
+    array(0)[i] = x.x, array(1)[i] = x.y, array(2)[i] = x.z;
+    array(3)[i] = v.x, array(4)[i] = v.y, array(5)[i] = v.z;
     if (!m_clear.empty())
         m_clear[i] = 0; // unknown until the next step tests it
 }
@@ -432,7 +435,7 @@ void Swarm::set(std::size_t i, const Vec3<float>& x, const Vec3<float>& v)
 std::uint64_t Swarm::stepRange(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes,
                                CollisionResponse response, float dt, std::size_t begin, std::size_t end)
 {
-    const Arrays a{m_px.data(), m_py.data(), m_pz.data(), m_vx.data(), m_vy.data(), m_vz.data(), m_clear.data()};
+    const Arrays a{array(0), array(1), array(2), array(3), array(4), array(5), m_clear.data()};
     return stepSwarmRange(m_integrator, a, begin, end, fields, m_restitution, dt, planes, response);
 }
 
