@@ -94,9 +94,9 @@ void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, flo
 /// ended the step within a surface's contact tolerance (or beyond it): their rules look at
 /// where the step ended. The exact response also redoes the steps that started there; whether
 /// a particle started clear is remembered from its last step (`remember`), so only the ends
-/// are tested here. The particles that need one are marked in `hit`; returns how many: most
-/// blocks of a swarm in flight need none. `planesCrossed` gets the planes other than the box's
-/// walls that some particle is beyond (gatherAndCollide adds the walls).
+/// are tested here, and those particles are marked in `hit` for it. Returns how many need a
+/// rule: most blocks of a swarm in flight need none, and only for the others are the planes a
+/// particle crossed (`planesCrossed`, for reflect and clamp) worked out.
 std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std::span<const PlaneT<float>> planes,
                           const std::optional<BoxWallsT<float>>& box, bool remember, std::uint8_t* __restrict hit,
                           std::uint64_t& planesCrossed)
@@ -113,12 +113,16 @@ std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std
             lowerClearance(planes[p], a.px + begin, a.py + begin, a.pz + begin, n, margin) > 0)
             planesCrossed |= std::uint64_t(1) << std::min<std::size_t>(p, 63);
     std::uint32_t count = 0;
-    if (!remember) { // reflect and clamp: counted first, flagged only where some particle hit
+    if (!remember) { // reflect and clamp: a count, no flags (their first pass visits every particle)
         for (std::size_t k = 0; k < n; ++k)
             count += static_cast<std::uint32_t>(!(margin[k] > 0.0f));
-        if (count > 0)
-            for (std::size_t k = 0; k < n; ++k)
-                hit[k] = static_cast<std::uint8_t>(!(margin[k] > 0.0f));
+        if (count > 0 && box) { // which of the box's walls the rule's first pass must visit
+            std::array<std::uint32_t, 6> beyond{};
+            countBeyondBox(*box, a.px + begin, a.py + begin, a.pz + begin, n, beyond);
+            for (std::size_t w = 0; w < 6; ++w)
+                if (beyond[w] > 0)
+                    planesCrossed |= std::uint64_t(1) << box->plane[w];
+        }
         return count;
     }
     std::uint8_t* __restrict clear = a.clear + begin;
@@ -268,9 +272,9 @@ std::uint64_t foldBlock(const SlabT<float> slab, float restitution, float* __res
     return static_cast<std::uint64_t>(bounces);
 }
 
-/// Phase 3 of a block, reflect and clamp responses, for the particles that hit (gathered by
-/// gatherAndCollide): the rule's first pass plane by plane over all of them, then (phase 4)
-/// which are still outside. A plane none of them crossed is skipped (most of a room's walls, most steps); a particle sent across such a
+/// Phase 3 of a block, reflect and clamp responses: the rule's first pass plane by plane over the
+/// whole block, then (phase 4) which particles are still outside. A plane no particle of the
+/// block crossed is skipped (most of a room's walls, most steps); a particle sent across such a
 /// plane by another's rule (a corner) is among those still outside. Particles still outside
 /// after a reflect pass (faster than the room is wide) are folded into the box's slabs, whole
 /// block at once; the rest of the rule sees to any still outside after that.
@@ -311,52 +315,6 @@ std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, fl
     }
     if (count > 0)
         bounces += finishRule(a, b, n, restitution, planes, response, start, outside);
-    return bounces;
-}
-
-/// Phase 3 of a block, reflect and clamp: collideAfterStep for just the particles that hit,
-/// gathered into a small block of their own and scattered back. A particle clear of every
-/// surface is left exactly as it was by each part of the rule (no plane to mirror it across,
-/// no slab to fold it into), so this is the same result as running the rule's vectorised
-/// passes over the whole block, at the cost of the few: where rain lands most blocks have a
-/// handful of 512 particles at a wall, and the passes over all 512 cost twice the integration.
-std::uint64_t gatherAndCollide(const Arrays& a, std::size_t b, std::size_t n, float restitution,
-                               std::span<const PlaneT<float>> planes, CollisionResponse response,
-                               const float (*start)[kStartRow], const std::uint8_t* hit,
-                               const std::optional<BoxWallsT<float>>& box, std::uint64_t planesCrossed,
-                               const DepthBox& depthBox)
-{
-    alignas(64) std::uint16_t index[kBlock];
-    std::size_t m = 0;
-    for (std::size_t k = 0; k < n; ++k) { // branch-free: write every index, keep the hits'
-        index[m] = static_cast<std::uint16_t>(k);
-        m += hit[k];
-    }
-    alignas(64) float state[6][kStartRow];
-    alignas(64) float from[3][kStartRow];
-    float* const arrays[6] = {a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b};
-    for (std::size_t j = 0; j < m; ++j) {
-        const std::size_t k = index[j];
-        for (std::size_t c = 0; c < 6; ++c)
-            state[c][j] = arrays[c][k];
-        for (std::size_t c = 0; c < 3; ++c)
-            from[c][j] = start[c][k];
-    }
-    const Arrays gathered{state[0], state[1], state[2], state[3], state[4], state[5], nullptr};
-    if (box) { // which of the box's walls the rule's first pass must visit
-        std::array<std::uint32_t, 6> beyond{};
-        countBeyondBox(*box, state[0], state[1], state[2], m, beyond);
-        for (std::size_t w = 0; w < 6; ++w)
-            if (beyond[w] > 0)
-                planesCrossed |= std::uint64_t(1) << box->plane[w];
-    }
-    const std::uint64_t bounces =
-        collideAfterStep(gathered, 0, m, restitution, planes, response, from, planesCrossed, depthBox);
-    for (std::size_t j = 0; j < m; ++j) {
-        const std::size_t k = index[j];
-        for (std::size_t c = 0; c < 6; ++c)
-            arrays[c][k] = state[c][j];
-    }
     return bounces;
 }
 
@@ -410,8 +368,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
         if (response == CollisionResponse::Exact)
             bounces += collideExactly<kIntegrator>(a, b, n, fields, restitution, dt, planes, start, hit);
         else
-            bounces += gatherAndCollide(a, b, n, restitution, planes, response, start, hit, box, planesCrossed,
-                                        depthBox);
+            bounces += collideAfterStep(a, b, n, restitution, planes, response, start, planesCrossed, depthBox);
     }
     return bounces;
 }
