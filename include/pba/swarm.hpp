@@ -116,6 +116,13 @@ private:
         bool operator==(const LineAligned<U>&) const noexcept { return true; }
     };
 
+    /// Floats from one array to the next for `count` particles (see m_stride).
+    static constexpr std::size_t strideFor(std::size_t count)
+    {
+        constexpr std::size_t kPage = 4096 / sizeof(float), kStagger = 576 / sizeof(float);
+        return (count + kPage - 1) / kPage * kPage + kStagger;
+    }
+
     std::size_t m_count = 0;
     /// The six arrays (m_state), m_stride floats apart: a whole number of 4 KB pages plus 576 bytes, so
     /// element k of the six lies at six different offsets within a page. Six separate vectors
@@ -131,10 +138,9 @@ private:
 
 /// The acceleration a swarm particle feels at (x, v): one inline expression of the same
 /// kernels the Force classes wrap (the first dryer only: see swarmAccelerationAll).
-template <DryerAxis kAxis = DryerAxis::Any>
 inline Vec3<float> swarmAcceleration(const SwarmKernelFields& f, const Vec3<float>& x, const Vec3<float>& v)
 {
-    return f.gravity + dragForce(f.dragPerMass, v) + blowDryerForce<kAxis>(f.dryer, x);
+    return f.gravity + dragForce(f.dragPerMass, v) + blowDryerForce(f.dryer, x);
 }
 
 /// With every dryer: the loop over dryers keeps the particle loop from vectorising, so it is

@@ -221,11 +221,15 @@ struct DepthBox {
         hi.fill(kInf);
         if (!box)
             return;
-        for (std::size_t w = 0; w < 6; ++w) {
+        for (std::size_t w = 0; w < 6; ++w) { // low x, high x, low y, ... as BoxWallsT::plane
             const auto p = static_cast<std::size_t>(box->plane[w]);
             if (planes[p].holeRadius > 0.0f)
                 continue;
-            (w % 2 == 0 ? lo : hi)[w / 2] = w % 2 == 0 ? box->lo[w / 2] : box->hi[w / 2];
+            const std::size_t axis = w / 2;
+            if (w % 2 == 0)
+                lo[axis] = box->lo[axis];
+            else
+                hi[axis] = box->hi[axis];
             mask |= std::uint64_t(1) << p;
         }
     }
@@ -351,16 +355,13 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
     const bool drag = fields.dragPerMass != 0.0f;
     for (std::size_t b = begin; b < end; b += kBlock) {
         const std::size_t n = std::min(kBlock, end - b);
+        const auto integrate = [&](auto accel) { integrateBlock<kIntegrator>(a, b, n, dt, start, response, accel); };
         if (fields.moreCount > 0)
-            integrateBlock<kIntegrator>(a, b, n, dt, start, response, all);
-        else if (fields.dryerUp && drag)
-            integrateBlock<kIntegrator>(a, b, n, dt, start, response, oneDryer<DryerAxis::Up, true>(fields));
+            integrate(all);
         else if (fields.dryerUp)
-            integrateBlock<kIntegrator>(a, b, n, dt, start, response, oneDryer<DryerAxis::Up, false>(fields));
-        else if (drag)
-            integrateBlock<kIntegrator>(a, b, n, dt, start, response, oneDryer<DryerAxis::Any, true>(fields));
+            drag ? integrate(oneDryer<DryerAxis::Up, true>(fields)) : integrate(oneDryer<DryerAxis::Up, false>(fields));
         else
-            integrateBlock<kIntegrator>(a, b, n, dt, start, response, oneDryer<DryerAxis::Any, false>(fields));
+            drag ? integrate(oneDryer<DryerAxis::Any, true>(fields)) : integrate(oneDryer<DryerAxis::Any, false>(fields));
         std::uint64_t planesCrossed = 0;
         if (planes.empty() || classifyBlock(a, b, n, planes, box, response == CollisionResponse::Exact, hit,
                                             planesCrossed) == 0)
@@ -412,7 +413,7 @@ std::uint64_t stepSwarmRange(Integrator integrator, const Arrays& a, std::size_t
 
 Swarm::Swarm(const SwarmDesc& desc)
     : m_desc(desc), m_mass(float(desc.mass)), m_restitution(float(desc.restitution)), m_integrator(desc.integrator),
-      m_count(desc.count), m_stride((desc.count + 1023) / 1024 * 1024 + 144), m_state(6 * m_stride)
+      m_count(desc.count), m_stride(strideFor(desc.count)), m_state(6 * m_stride)
 {
     for (std::size_t i = 0; i < desc.count; ++i) {
         const dvec3 x = desc.regionMin + (desc.regionMax - desc.regionMin) *
