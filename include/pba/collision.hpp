@@ -72,6 +72,15 @@ using Plane = PlaneT<double>;
 
 namespace collision_detail {
 
+/// std::min by value, for the loops over a swarm's arrays: std::min takes and returns
+/// references, and GCC 12 stopped vectorising lowerDepthInBox ("complicated access pattern")
+/// when a change elsewhere in the step altered how it was inlined. The same result as std::min.
+template <class T>
+inline T lesser(T a, T b)
+{
+    return b < a ? b : a;
+}
+
 /// How many impacts one step may resolve before the rest of it is clamped (a body
 /// wedged in a corner with e close to 1 would otherwise loop).
 inline constexpr int kMaxEvents = 16;
@@ -590,9 +599,27 @@ inline void setClearanceInBox(const BoxWallsT<T>& box, const T* __restrict x, co
     const T zl = box.clearLo[2], zh = box.clearHi[2];
     for (std::size_t k = 0; k < n; ++k) {
         const T a = x[k], b = y[k], c = z[k];
-        const T mx = std::min(a - xl, xh - a), my = std::min(b - yl, yh - b), mz = std::min(c - zl, zh - c);
-        margin[k] = std::min(mx, std::min(my, mz));
+        using collision_detail::lesser;
+        margin[k] = lesser(lesser(lesser(a - xl, xh - a), lesser(b - yl, yh - b)), lesser(c - zl, zh - c));
     }
+}
+
+/// How many of the points are not clear of the box's walls: those setClearanceInBox gives a
+/// margin that is not positive (x - lo > 0 exactly when x > lo), counted without the margins.
+/// A swarm in flight needs only this count, and comparisons are cheaper than the margins.
+template <class T>
+inline std::uint32_t countUnclearInBox(const BoxWallsT<T>& box, const T* __restrict x, const T* __restrict y,
+                                       const T* __restrict z, std::size_t n)
+{
+    const T xl = box.clearLo[0], xh = box.clearHi[0], yl = box.clearLo[1], yh = box.clearHi[1];
+    const T zl = box.clearLo[2], zh = box.clearHi[2];
+    std::uint32_t count = 0; // 32 bits, as in lowerClearance
+    for (std::size_t k = 0; k < n; ++k) {
+        const T a = x[k], b = y[k], c = z[k];
+        const bool clear = (a > xl) & (a < xh) & (b > yl) & (b < yh) & (c > zl) & (c < zh);
+        count += static_cast<std::uint32_t>(!clear);
+    }
+    return count;
 }
 
 /// Adds to beyond[w] how many points are beyond wall w of the box (in the order of
@@ -624,7 +651,8 @@ inline void lowerDepthInBox(const std::array<T, 3>& lo, const std::array<T, 3>& 
     const T x0 = lo[0], x1 = hi[0], y0 = lo[1], y1 = hi[1], z0 = lo[2], z1 = hi[2];
     for (std::size_t k = 0; k < n; ++k) {
         const T a = x[k], b = y[k], c = z[k];
-        const T d = std::min(std::min(std::min(a - x0, x1 - a), std::min(b - y0, y1 - b)), std::min(c - z0, z1 - c));
+        using collision_detail::lesser;
+        const T d = lesser(lesser(lesser(a - x0, x1 - a), lesser(b - y0, y1 - b)), lesser(c - z0, z1 - c));
         depth[k] = d < depth[k] ? d : depth[k];
     }
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <atomic>
 #include <cstring>
 #include <limits>
@@ -35,6 +36,10 @@ constexpr std::size_t kBlock = 512;
 /// that element k of the six rows lies at six different offsets in a 4 KB page (see
 /// Swarm::m_state for why that matters).
 constexpr std::size_t kStartRow = kBlock + 48;
+/// A block with at most this many particles at a surface has them gathered for the collision
+/// rule (collideGathered), in groups of kGatherWidth (a vector of floats, AVX-512's 16).
+constexpr std::size_t kGatherMax = 64;
+constexpr std::size_t kGatherWidth = 16;
 /// Below this many particles threads cost more than they save (measured: 3x slower at 1,000).
 constexpr std::size_t kParallelThreshold = 32768;
 
@@ -50,6 +55,9 @@ inline void integrateAs(Vec3<float>& x, Vec3<float>& v, float dt, Accel&& accel)
     else
         rk4(x, v, dt, accel);
 }
+
+/// Where the steps of a block's particles began: three rows, x, y and z.
+using StartPositions = std::array<const float*, 3>;
 
 struct Arrays {
     float *px, *py, *pz, *vx, *vy, *vz;
@@ -92,17 +100,25 @@ void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, flo
 
 /// Phase 2 of a block: which particles need a collision rule. For reflect and clamp, those that
 /// ended the step within a surface's contact tolerance (or beyond it): their rules look at
-/// where the step ended. The exact response also redoes the steps that started there; whether
-/// a particle started clear is remembered from its last step (`remember`), so only the ends
-/// are tested here, and those particles are marked in `hit` for it. Returns how many need a
-/// rule: most blocks of a swarm in flight need none, and only for the others are the planes a
-/// particle crossed (`planesCrossed`, for reflect and clamp) worked out.
+/// where the step ended; each particle's clearance is left in `margin` (positive: clear). The
+/// exact response also redoes the steps that started there; whether a particle started clear
+/// is remembered from its last step (`remember`), so only the ends are tested here, and those
+/// particles are marked in `hit` for it. Returns how many need a rule: most blocks of a swarm
+/// in flight need none. `planesCrossed` gets the planes, other than the box's walls, that some
+/// particle is beyond (the box's are counted only where needed: boxWallsCrossed).
 std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std::span<const PlaneT<float>> planes,
                           const std::optional<BoxWallsT<float>>& box, bool remember, std::uint8_t* __restrict hit,
-                          std::uint64_t& planesCrossed)
+                          float* __restrict margin, std::uint64_t& planesCrossed)
 {
-    alignas(64) float margin[kBlock];
     planesCrossed = 0;
+    if (!remember && box && planes.size() < 64 && box->mask + 1 == std::uint64_t(1) << planes.size()) {
+        // Reflect or clamp in a room with no other surfaces: the count first, margins only
+        // for a block with some particle at a wall.
+        const std::uint32_t count = countUnclearInBox(*box, a.px + begin, a.py + begin, a.pz + begin, n);
+        if (count > 0)
+            setClearanceInBox(*box, a.px + begin, a.py + begin, a.pz + begin, n, margin);
+        return count;
+    }
     if (box)
         setClearanceInBox(*box, a.px + begin, a.py + begin, a.pz + begin, n, margin);
     else
@@ -113,16 +129,9 @@ std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std
             lowerClearance(planes[p], a.px + begin, a.py + begin, a.pz + begin, n, margin) > 0)
             planesCrossed |= std::uint64_t(1) << std::min<std::size_t>(p, 63);
     std::uint32_t count = 0;
-    if (!remember) { // reflect and clamp: a count, no flags (their first pass visits every particle)
+    if (!remember) { // reflect and clamp: a count, no flags (the margins say which)
         for (std::size_t k = 0; k < n; ++k)
             count += static_cast<std::uint32_t>(!(margin[k] > 0.0f));
-        if (count > 0 && box) { // which of the box's walls the rule's first pass must visit
-            std::array<std::uint32_t, 6> beyond{};
-            countBeyondBox(*box, a.px + begin, a.py + begin, a.pz + begin, n, beyond);
-            for (std::size_t w = 0; w < 6; ++w)
-                if (beyond[w] > 0)
-                    planesCrossed |= std::uint64_t(1) << box->plane[w];
-        }
         return count;
     }
     std::uint8_t* __restrict clear = a.clear + begin;
@@ -133,6 +142,22 @@ std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std
         count += hit[k];
     }
     return count;
+}
+
+/// Which of the box's walls some of the n positions are beyond: the walls the reflect and clamp
+/// rules' first pass must visit.
+std::uint64_t boxWallsCrossed(const std::optional<BoxWallsT<float>>& box, const float* x, const float* y,
+                              const float* z, std::size_t n)
+{
+    if (!box)
+        return 0;
+    std::array<std::uint32_t, 6> beyond{};
+    countBeyondBox(*box, x, y, z, n, beyond);
+    std::uint64_t crossed = 0;
+    for (std::size_t w = 0; w < 6; ++w)
+        if (beyond[w] > 0)
+            crossed |= std::uint64_t(1) << box->plane[w];
+    return crossed;
 }
 
 /// Phase 3 of a block, exact response: the particles that met a surface redo their step with
@@ -190,7 +215,7 @@ int passOverPlane(const PlaneT<float> plane, float restitution, float* __restric
 /// which passes are done. Out of line, as collideExactly.
 [[gnu::noinline]] std::uint64_t finishRule(const Arrays& a, std::size_t begin, std::size_t n, float restitution,
                                            std::span<const PlaneT<float>> planes, CollisionResponse response,
-                                           const float (*start)[kStartRow], const std::uint8_t* outside)
+                                           const StartPositions& start, const std::uint8_t* outside)
 {
     std::uint64_t bounces = 0;
     for (std::size_t k = 0; k < n; ++k) {
@@ -284,7 +309,7 @@ std::uint64_t foldBlock(const SlabT<float> slab, float restitution, float* __res
 /// block at once; the rest of the rule sees to any still outside after that.
 std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, float restitution,
                                std::span<const PlaneT<float>> planes, CollisionResponse response,
-                               const float (*start)[kStartRow], std::uint64_t planesCrossed, const DepthBox& box)
+                               const StartPositions& start, std::uint64_t planesCrossed, const DepthBox& box)
 {
     std::uint64_t bounces = 0;
     for (std::size_t p = 0; p < planes.size(); ++p) {
@@ -322,6 +347,68 @@ std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, fl
     return bounces;
 }
 
+/// The particles of a block that need a collision rule (margin not positive: at most
+/// kGatherMax, and fewer than n), listed in `index`, then the first clear one repeated up to a
+/// whole number of vectors. Returns how many need the rule. Flags first, in a vectorised loop,
+/// then eight flags a word, so the scan passes over the clear particles eight at a time.
+std::size_t listHits(const float* __restrict margin, std::size_t n, std::uint16_t* __restrict index)
+{
+    alignas(64) std::uint8_t flag[kBlock + 8] = {};
+    for (std::size_t k = 0; k < n; ++k)
+        flag[k] = static_cast<std::uint8_t>(!(margin[k] > 0.0f));
+    std::size_t m = 0;
+    std::size_t spare = n;
+    for (std::size_t w = 0; w < n; w += 8) {
+        std::uint64_t word;
+        std::memcpy(&word, flag + w, sizeof word);
+        if (spare == n && word != 0x0101010101010101ull)
+            spare = w + static_cast<std::size_t>(std::countr_one(word) / 8);
+        for (; word != 0; word &= word - 1) // one bit a flag: bit 0 of its byte
+            index[m++] = static_cast<std::uint16_t>(w + static_cast<std::size_t>(std::countr_zero(word) / 8));
+    }
+    for (std::size_t j = m; j % kGatherWidth != 0; ++j)
+        index[j] = static_cast<std::uint16_t>(spare);
+    return m;
+}
+
+/// Phase 3 of a block, reflect and clamp, when few of its particles met a surface (where rain
+/// lands: a handful of the 512): collideAfterStep over just those, gathered into a small block
+/// and scattered back. Over the whole block, the rule's passes, the still-outside test and the
+/// wall counts cost more than the integration. A particle clear of every surface is left
+/// exactly as it was by every part of the rule, so the result is the same bit for bit (tested);
+/// the gathered block is filled up to whole vectors with copies of one such particle, so its
+/// loops have no scalar remainder.
+std::uint64_t collideGathered(const Arrays& a, std::size_t b, std::size_t n, const float* margin,
+                              float restitution, std::span<const PlaneT<float>> planes,
+                              CollisionResponse response, const float (*start)[kStartRow],
+                              std::uint64_t planesCrossed, const std::optional<BoxWallsT<float>>& box,
+                              const DepthBox& depthBox)
+{
+    std::array<std::uint16_t, kGatherMax + kGatherWidth> index;
+    const std::size_t m = listHits(margin, n, index.data());
+    const std::size_t width = (m + kGatherWidth - 1) / kGatherWidth * kGatherWidth;
+    alignas(64) float state[6][kGatherMax + kGatherWidth];
+    alignas(64) float from[3][kGatherMax + kGatherWidth];
+    float* const arrays[6] = {a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b};
+    for (std::size_t j = 0; j < width; ++j) {
+        const std::size_t k = index[j];
+        for (std::size_t c = 0; c < 6; ++c)
+            state[c][j] = arrays[c][k];
+        for (std::size_t c = 0; c < 3; ++c)
+            from[c][j] = start[c][k];
+    }
+    const Arrays gathered{state[0], state[1], state[2], state[3], state[4], state[5], nullptr};
+    planesCrossed |= boxWallsCrossed(box, state[0], state[1], state[2], width);
+    const std::uint64_t bounces = collideAfterStep(gathered, 0, width, restitution, planes, response,
+                                                   {from[0], from[1], from[2]}, planesCrossed, depthBox);
+    for (std::size_t j = 0; j < m; ++j) {
+        const std::size_t k = index[j];
+        for (std::size_t c = 0; c < 6; ++c)
+            arrays[c][k] = state[c][j];
+    }
+    return bounces;
+}
+
 /// The acceleration with at most one dryer, swarmAcceleration as a closure holding its fields
 /// by value, so the loop that calls it needs no alias checks. Without drag (`kDrag` false, every
 /// built-in swarm scene) the term is left out rather than multiplied by zero: the same result
@@ -346,6 +433,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
 {
     alignas(64) float start[6][kStartRow];
     alignas(64) std::uint8_t hit[kBlock];
+    alignas(64) float margin[kBlock];
     std::uint64_t bounces = 0;
     const std::optional<BoxWallsT<float>> box = boxWalls(planes);
     const DepthBox depthBox(box, planes);
@@ -363,13 +451,22 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
         else
             drag ? integrate(oneDryer<DryerAxis::Any, true>(fields)) : integrate(oneDryer<DryerAxis::Any, false>(fields));
         std::uint64_t planesCrossed = 0;
-        if (planes.empty() || classifyBlock(a, b, n, planes, box, response == CollisionResponse::Exact, hit,
-                                            planesCrossed) == 0)
+        const std::size_t hits =
+            planes.empty() ? 0
+                           : classifyBlock(a, b, n, planes, box, response == CollisionResponse::Exact, hit, margin,
+                                           planesCrossed);
+        if (hits == 0)
             continue;
-        if (response == CollisionResponse::Exact)
+        if (response == CollisionResponse::Exact) {
             bounces += collideExactly<kIntegrator>(a, b, n, fields, restitution, dt, planes, start, hit);
-        else
-            bounces += collideAfterStep(a, b, n, restitution, planes, response, start, planesCrossed, depthBox);
+        } else if (hits <= kGatherMax && hits < n) {
+            bounces += collideGathered(a, b, n, margin, restitution, planes, response, start, planesCrossed,
+                                       box, depthBox);
+        } else {
+            planesCrossed |= boxWallsCrossed(box, a.px + b, a.py + b, a.pz + b, n);
+            bounces += collideAfterStep(a, b, n, restitution, planes, response, {start[0], start[1], start[2]},
+                                        planesCrossed, depthBox);
+        }
     }
     return bounces;
 }

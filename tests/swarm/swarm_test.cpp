@@ -2,6 +2,7 @@
 // the same results whatever the thread count, and nobody leaves the room.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <set>
 
@@ -137,6 +138,39 @@ TEST(Swarm, FastParticlesFoldBackIntoTheRoomAsParticlesDo)
     for (std::size_t i = 0; i < swarm.size(); ++i) {
         ASSERT_LT(glm::length(dvec3(swarm.position(i)) - world.body(i).getPos()), 1e-4) << "particle " << i;
         ASSERT_LT(glm::length(dvec3(swarm.velocity(i)) - world.body(i).getVel()), 1e-3) << "particle " << i;
+    }
+}
+
+// A block with a few particles at a wall has them gathered for the rule; one with many runs the
+// rule over all of its particles. Either way a particle gets the same result, bit for bit:
+// five particles (on the floor, in a corner, over the hole, in the shaft, at the ceiling) among
+// 507 clear ones, and the same five among 507 others that all meet the floor.
+TEST(Swarm, AFewAtAWallGetTheSameRuleAsAWholeBlock)
+{
+    const std::array<std::pair<Vec3<float>, Vec3<float>>, 5> few = {{
+        {{1.0f, 0.001f, 1.0f}, {0.5f, -3.0f, 0.2f}},    // the floor
+        {{1.999f, 0.002f, -1.999f}, {4.0f, -4.0f, -4.0f}}, // a corner: three walls
+        {{0.1f, 0.001f, 0.05f}, {0.0f, -3.0f, 0.0f}},   // over the hole
+        {{0.05f, -0.05f, 0.0f}, {2.0f, -1.0f, 0.0f}},   // in the shaft
+        {{-1.0f, 3.999f, 0.5f}, {0.0f, 2.0f, 0.0f}},    // the ceiling
+    }};
+    for (CollisionResponse response : {CollisionResponse::Reflect, CollisionResponse::Clamp}) {
+        World gathered = swarmWorld(512, response);
+        World whole = swarmWorld(512, response);
+        for (std::size_t i = few.size(); i < 512; ++i) // the others: clear, or all on the floor
+            whole.swarm(0).set(i, Vec3<float>(-1.5f + 0.005f * float(i), 0.001f, 1.2f), Vec3<float>(0.0f, -2.0f, 0.0f));
+        for (std::size_t i = 0; i < few.size(); ++i) {
+            gathered.swarm(0).set(i, few[i].first, few[i].second);
+            whole.swarm(0).set(i, few[i].first, few[i].second);
+        }
+        gathered.step(0.002);
+        whole.step(0.002);
+        for (std::size_t i = 0; i < few.size(); ++i) {
+            EXPECT_EQ(gathered.swarm(0).position(i), whole.swarm(0).position(i))
+                << collisionResponseName(response) << " particle " << i;
+            EXPECT_EQ(gathered.swarm(0).velocity(i), whole.swarm(0).velocity(i))
+                << collisionResponseName(response) << " particle " << i;
+        }
     }
 }
 
