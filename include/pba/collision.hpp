@@ -389,15 +389,21 @@ struct SlabT {
 
 namespace collision_detail {
 
-/// The indices in `planes` of the walls facing +axis and -axis (the last of each; -1 when there
+/// The indices in `planes` of the walls facing +axis and -axis (the inner one of each; -1 when there
 /// is none), leaving out walls with a hole unless `withHoles`.
 template <class T>
 inline std::array<int, 2> wallsOnAxis(std::span<const PlaneT<T>> planes, int axis, bool withHoles)
 {
     std::array<int, 2> walls{-1, -1};
-    for (std::size_t p = 0; p < planes.size(); ++p)
-        if (planes[p].axis() == axis && (withHoles || planes[p].holeRadius <= T(0)))
-            walls[planes[p].normal[axis] > T(0) ? 0 : 1] = static_cast<int>(p);
+    for (std::size_t p = 0; p < planes.size(); ++p) {
+        if (planes[p].axis() != axis || (!withHoles && planes[p].holeRadius > T(0)))
+            continue;
+        // Of two walls on one side the inner one (a larger offset on either side: the floor, not
+        // the grille below its hole): a point clear of it is clear of the other.
+        int& wall = walls[planes[p].normal[axis] > T(0) ? 0 : 1];
+        if (wall < 0 || planes[p].offset > planes[std::size_t(wall)].offset)
+            wall = static_cast<int>(p);
+    }
     return walls;
 }
 

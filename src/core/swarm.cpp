@@ -30,6 +30,37 @@ double uniform(std::uint64_t seed, std::uint64_t i, int component)
     return double(mix(mix(seed) ^ mix(i * 8 + std::uint64_t(component))) >> 11) * 0x1.0p-53;
 }
 
+/// Whether a point clear of the box's walls is clear of every plane: the other planes (the
+/// grille at the bottom of the hole's shaft) are clear of the whole of the box's clear region,
+/// tested at its eight corners, in double precision.
+bool boxCoversAll(const BoxWallsT<float>& box, std::span<const PlaneT<float>> planes)
+{
+    for (std::size_t p = 0; p < planes.size(); ++p) {
+        if (p < 64 && (box.mask >> p & 1u) != 0)
+            continue;
+        const PlaneT<float>& plane = planes[p];
+        for (int corner = 0; corner < 8; ++corner) {
+            const double x = corner & 1 ? box.clearHi[0] : box.clearLo[0];
+            const double y = corner & 2 ? box.clearHi[1] : box.clearLo[1];
+            const double z = corner & 4 ? box.clearHi[2] : box.clearLo[2];
+            const double d = double(plane.normal.x) * x + double(plane.normal.y) * y + double(plane.normal.z) * z -
+                             double(plane.offset);
+            if (!(d > 2.0 * double(collision_detail::contactTolerance(plane))))
+                return false;
+        }
+    }
+    return true;
+}
+
+/// The same surfaces: what the exact response's remembered flags were computed against.
+bool samePlanes(std::span<const PlaneT<float>> a, std::span<const PlaneT<float>> b)
+{
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const auto& p, const auto& q) {
+        return p.normal == q.normal && p.offset == q.offset && p.holeRadius == q.holeRadius &&
+               p.holeCentre == q.holeCentre;
+    });
+}
+
 /// Particles a block: the start states of one block stay in L1 while the block is stepped.
 constexpr std::size_t kBlock = 512;
 /// The block's start states are six rows of this many floats: 192 bytes more than a block, so
@@ -105,20 +136,16 @@ void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, flo
 /// is remembered from its last step (`remember`), so only the ends are tested here, and those
 /// particles are marked in `hit` for it. Returns how many need a rule: most blocks of a swarm
 /// in flight need none. `planesCrossed` gets the planes, other than the box's walls, that some
-/// particle is beyond (the box's are counted only where needed: boxWallsCrossed).
+/// particle is beyond (the box's are counted only where needed: boxWallsCrossed). `coversAll`:
+/// a particle clear of the box's walls is clear of every plane (boxCoversAll).
 std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std::span<const PlaneT<float>> planes,
                           const std::optional<BoxWallsT<float>>& box, bool remember, std::uint8_t* __restrict hit,
-                          float* __restrict margin, std::uint64_t& planesCrossed)
+                          bool coversAll, float* __restrict margin, std::uint64_t& planesCrossed)
 {
     planesCrossed = 0;
-    if (!remember && box && planes.size() < 64 && box->mask + 1 == std::uint64_t(1) << planes.size()) {
-        // Reflect or clamp in a room with no other surfaces: the count first, margins only
-        // for a block with some particle at a wall.
-        const std::uint32_t count = countUnclearInBox(*box, a.px + begin, a.py + begin, a.pz + begin, n);
-        if (count > 0)
-            setClearanceInBox(*box, a.px + begin, a.py + begin, a.pz + begin, n, margin);
-        return count;
-    }
+    if (!remember && box && coversAll &&
+        countUnclearInBox(*box, a.px + begin, a.py + begin, a.pz + begin, n) == 0)
+        return 0; // reflect or clamp, every particle clear of the room: no margins needed
     if (box)
         setClearanceInBox(*box, a.px + begin, a.py + begin, a.pz + begin, n, margin);
     else
@@ -436,6 +463,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
     alignas(64) float margin[kBlock];
     std::uint64_t bounces = 0;
     const std::optional<BoxWallsT<float>> box = boxWalls(planes);
+    const bool coversAll = box && boxCoversAll(*box, planes);
     const DepthBox depthBox(box, planes);
     const auto all = [&](const Vec3<float>& x, const Vec3<float>& v) {
         return swarmAccelerationAll(fields, x, v);
@@ -453,8 +481,8 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
         std::uint64_t planesCrossed = 0;
         const std::size_t hits =
             planes.empty() ? 0
-                           : classifyBlock(a, b, n, planes, box, response == CollisionResponse::Exact, hit, margin,
-                                           planesCrossed);
+                           : classifyBlock(a, b, n, planes, box, response == CollisionResponse::Exact, hit, coversAll,
+                                           margin, planesCrossed);
         if (hits == 0)
             continue;
         if (response == CollisionResponse::Exact) {
@@ -544,11 +572,7 @@ std::uint64_t Swarm::step(const SwarmFields& swarmFields, std::span<const PlaneT
     const std::size_t n = size();
     // The remembered "clear of every surface" flags hold only for the surfaces they were
     // computed against: new surfaces (a moved hole, another room) mean testing everything again.
-    const bool same = planes.size() == m_clearOf.size() &&
-                      std::equal(planes.begin(), planes.end(), m_clearOf.begin(), [](const auto& p, const auto& q) {
-                          return p.normal == q.normal && p.offset == q.offset && p.holeRadius == q.holeRadius &&
-                                 p.holeCentre == q.holeCentre;
-                      });
+    const bool same = samePlanes(planes, m_clearOf);
     if (response != CollisionResponse::Exact) {
         // Reflect and clamp look at where a step ends only: no flags to keep (or to move).
         m_clear = {};
