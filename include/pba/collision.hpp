@@ -610,22 +610,39 @@ inline void setClearanceInBox(const BoxWallsT<T>& box, const T* __restrict x, co
     }
 }
 
-/// How many of the points are not clear of the box's walls: those setClearanceInBox gives a
-/// margin that is not positive (x - lo > 0 exactly when x > lo), counted without the margins.
-/// A swarm in flight needs only this count, and comparisons are cheaper than the margins.
+/// Where a point is clear of the box's walls: where setClearanceInBox gives it a positive
+/// margin (x - lo > 0 exactly when x > lo), tested without the margins, which a swarm in flight
+/// does not need. By value, so the loops that hold one need no alias checks.
 template <class T>
-inline std::uint32_t countUnclearInBox(const BoxWallsT<T>& box, const T* __restrict x, const T* __restrict y,
+struct ClearRegionT {
+    T xl, xh, yl, yh, zl, zh;
+
+    explicit ClearRegionT(const BoxWallsT<T>& box)
+        : xl(box.clearLo[0]), xh(box.clearHi[0]), yl(box.clearLo[1]), yh(box.clearHi[1]), zl(box.clearLo[2]),
+          zh(box.clearHi[2])
+    {
+    }
+    bool contains(T a, T b, T c) const { return (a > xl) & (a < xh) & (b > yl) & (b < yh) & (c > zl) & (c < zh); }
+};
+
+/// How many of the points are not clear of the box's walls.
+template <class T>
+inline std::uint32_t countUnclearInBox(const ClearRegionT<T> region, const T* __restrict x, const T* __restrict y,
                                        const T* __restrict z, std::size_t n)
 {
-    const T xl = box.clearLo[0], xh = box.clearHi[0], yl = box.clearLo[1], yh = box.clearHi[1];
-    const T zl = box.clearLo[2], zh = box.clearHi[2];
     std::uint32_t count = 0; // 32 bits, as in lowerClearance
-    for (std::size_t k = 0; k < n; ++k) {
-        const T a = x[k], b = y[k], c = z[k];
-        const bool clear = (a > xl) & (a < xh) & (b > yl) & (b < yh) & (c > zl) & (c < zh);
-        count += static_cast<std::uint32_t>(!clear);
-    }
+    for (std::size_t k = 0; k < n; ++k)
+        count += static_cast<std::uint32_t>(!region.contains(x[k], y[k], z[k]));
     return count;
+}
+
+/// unclear[k] = 1 for the points countUnclearInBox counts, 0 for the others.
+template <class T>
+inline void markUnclearInBox(const ClearRegionT<T> region, const T* __restrict x, const T* __restrict y,
+                             const T* __restrict z, std::size_t n, std::uint8_t* __restrict unclear)
+{
+    for (std::size_t k = 0; k < n; ++k)
+        unclear[k] = static_cast<std::uint8_t>(!region.contains(x[k], y[k], z[k]));
 }
 
 /// Adds to beyond[w] how many points are beyond wall w of the box (in the order of

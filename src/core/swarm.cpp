@@ -129,36 +129,40 @@ void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, flo
                                            start[1], start[2], start[3], start[4], start[5], n, dt, accel);
 }
 
-/// Phase 2 of a block: which particles need a collision rule. For reflect and clamp, those that
-/// ended the step within a surface's contact tolerance (or beyond it): their rules look at
-/// where the step ended; each particle's clearance is left in `margin` (positive: clear). The
-/// exact response also redoes the steps that started there; whether a particle started clear
-/// is remembered from its last step (`remember`), so only the ends are tested here, and those
-/// particles are marked in `hit` for it. Returns how many need a rule: most blocks of a swarm
-/// in flight need none. `planesCrossed` gets the planes, other than the box's walls, that some
-/// particle is beyond (the box's are counted only where needed: boxWallsCrossed). `coversAll`:
-/// a particle clear of the box's walls is clear of every plane (boxCoversAll).
+/// Phase 2 of a block: which particles need a collision rule, marked in `hit`; returns how many
+/// (none in most blocks of a swarm in flight, and then nothing is marked). For reflect and
+/// clamp, those that ended the step within a surface's contact tolerance (or beyond it): their
+/// rules look at where the step ended. The exact response also redoes the steps that started
+/// there; whether a particle started clear is remembered from its last step (`remember`), so
+/// only the ends are tested here. `coversAll`: a particle clear of the box's walls is clear of
+/// every plane (boxCoversAll), so they are the whole test.
 std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std::span<const PlaneT<float>> planes,
-                          const std::optional<BoxWallsT<float>>& box, bool remember, std::uint8_t* __restrict hit,
-                          bool coversAll, float* __restrict margin, std::uint64_t& planesCrossed)
+                          const std::optional<BoxWallsT<float>>& box, bool coversAll, bool remember,
+                          std::uint8_t* __restrict hit)
 {
-    planesCrossed = 0;
-    if (!remember && box && coversAll &&
-        countUnclearInBox(*box, a.px + begin, a.py + begin, a.pz + begin, n) == 0)
-        return 0; // reflect or clamp, every particle clear of the room: no margins needed
+    const float *x = a.px + begin, *y = a.py + begin, *z = a.pz + begin;
+    if (!remember && coversAll) {
+        const ClearRegionT<float> region(*box);
+        const std::uint32_t count = countUnclearInBox(region, x, y, z, n);
+        if (count > 0)
+            markUnclearInBox(region, x, y, z, n, hit);
+        return count;
+    }
+    alignas(64) float margin[kBlock];
     if (box)
-        setClearanceInBox(*box, a.px + begin, a.py + begin, a.pz + begin, n, margin);
+        setClearanceInBox(*box, x, y, z, n, margin);
     else
         std::fill_n(margin, n, std::numeric_limits<float>::infinity());
     const std::uint64_t done = box ? box->mask : 0;
     for (std::size_t p = 0; p < planes.size(); ++p)
-        if ((p >= 64 || (done >> p & 1u) == 0) &&
-            lowerClearance(planes[p], a.px + begin, a.py + begin, a.pz + begin, n, margin) > 0)
-            planesCrossed |= std::uint64_t(1) << std::min<std::size_t>(p, 63);
+        if (p >= 64 || (done >> p & 1u) == 0)
+            lowerClearance(planes[p], x, y, z, n, margin);
     std::uint32_t count = 0;
-    if (!remember) { // reflect and clamp: a count, no flags (the margins say which)
-        for (std::size_t k = 0; k < n; ++k)
-            count += static_cast<std::uint32_t>(!(margin[k] > 0.0f));
+    if (!remember) {
+        for (std::size_t k = 0; k < n; ++k) {
+            hit[k] = static_cast<std::uint8_t>(!(margin[k] > 0.0f));
+            count += hit[k];
+        }
         return count;
     }
     std::uint8_t* __restrict clear = a.clear + begin;
@@ -171,19 +175,29 @@ std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std
     return count;
 }
 
-/// Which of the box's walls some of the n positions are beyond: the walls the reflect and clamp
-/// rules' first pass must visit.
-std::uint64_t boxWallsCrossed(const std::optional<BoxWallsT<float>>& box, const float* x, const float* y,
-                              const float* z, std::size_t n)
+/// The planes some of the n positions are beyond: those the reflect and clamp rules' first pass
+/// must visit (the box's walls counted in one loop). Worked out only for the blocks, or the
+/// gathered particles, that met a surface.
+std::uint64_t crossedPlanes(const std::optional<BoxWallsT<float>>& box, std::span<const PlaneT<float>> planes,
+                            const float* x, const float* y, const float* z, std::size_t n)
 {
-    if (!box)
-        return 0;
-    std::array<std::uint32_t, 6> beyond{};
-    countBeyondBox(*box, x, y, z, n, beyond);
     std::uint64_t crossed = 0;
-    for (std::size_t w = 0; w < 6; ++w)
-        if (beyond[w] > 0)
-            crossed |= std::uint64_t(1) << box->plane[w];
+    if (box) {
+        std::array<std::uint32_t, 6> beyond{};
+        countBeyondBox(*box, x, y, z, n, beyond);
+        for (std::size_t w = 0; w < 6; ++w)
+            if (beyond[w] > 0)
+                crossed |= std::uint64_t(1) << box->plane[w];
+    }
+    alignas(64) float unused[kBlock]; // lowerClearance's margins: only its count is wanted here
+    const std::uint64_t done = box ? box->mask : 0;
+    for (std::size_t p = 0; p < planes.size(); ++p) {
+        if (p < 64 && (done >> p & 1u) != 0)
+            continue;
+        std::fill_n(unused, n, std::numeric_limits<float>::infinity());
+        if (lowerClearance(planes[p], x, y, z, n, unused) > 0)
+            crossed |= std::uint64_t(1) << std::min<std::size_t>(p, 63);
+    }
     return crossed;
 }
 
@@ -374,20 +388,18 @@ std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, fl
     return bounces;
 }
 
-/// The particles of a block that need a collision rule (margin not positive: at most
-/// kGatherMax, and fewer than n), listed in `index`, then the first clear one repeated up to a
-/// whole number of vectors. Returns how many need the rule. Flags first, in a vectorised loop,
-/// then eight flags a word, so the scan passes over the clear particles eight at a time.
-std::size_t listHits(const float* __restrict margin, std::size_t n, std::uint16_t* __restrict index)
+/// The particles of a block marked in `hit` (at most kGatherMax, and fewer than n), listed in
+/// `index`, then the first clear one repeated up to a whole number of vectors. Returns how many
+/// are marked. The flags are read eight a word, so the scan passes over clear particles eight
+/// at a time; `hit` has room for a whole last word.
+std::size_t listHits(std::uint8_t* __restrict hit, std::size_t n, std::uint16_t* __restrict index)
 {
-    alignas(64) std::uint8_t flag[kBlock + 8] = {};
-    for (std::size_t k = 0; k < n; ++k)
-        flag[k] = static_cast<std::uint8_t>(!(margin[k] > 0.0f));
+    std::fill(hit + n, hit + (n + 7) / 8 * 8, std::uint8_t(0));
     std::size_t m = 0;
     std::size_t spare = n;
     for (std::size_t w = 0; w < n; w += 8) {
         std::uint64_t word;
-        std::memcpy(&word, flag + w, sizeof word);
+        std::memcpy(&word, hit + w, sizeof word);
         if (spare == n && word != 0x0101010101010101ull)
             spare = w + static_cast<std::size_t>(std::countr_one(word) / 8);
         for (; word != 0; word &= word - 1) // one bit a flag: bit 0 of its byte
@@ -405,14 +417,13 @@ std::size_t listHits(const float* __restrict margin, std::size_t n, std::uint16_
 /// exactly as it was by every part of the rule, so the result is the same bit for bit (tested);
 /// the gathered block is filled up to whole vectors with copies of one such particle, so its
 /// loops have no scalar remainder.
-std::uint64_t collideGathered(const Arrays& a, std::size_t b, std::size_t n, const float* margin,
-                              float restitution, std::span<const PlaneT<float>> planes,
-                              CollisionResponse response, const float (*start)[kStartRow],
-                              std::uint64_t planesCrossed, const std::optional<BoxWallsT<float>>& box,
+std::uint64_t collideGathered(const Arrays& a, std::size_t b, std::size_t n, std::uint8_t* hit, float restitution,
+                              std::span<const PlaneT<float>> planes, CollisionResponse response,
+                              const float (*start)[kStartRow], const std::optional<BoxWallsT<float>>& box,
                               const DepthBox& depthBox)
 {
     std::array<std::uint16_t, kGatherMax + kGatherWidth> index;
-    const std::size_t m = listHits(margin, n, index.data());
+    const std::size_t m = listHits(hit, n, index.data());
     const std::size_t width = (m + kGatherWidth - 1) / kGatherWidth * kGatherWidth;
     alignas(64) float state[6][kGatherMax + kGatherWidth];
     alignas(64) float from[3][kGatherMax + kGatherWidth];
@@ -425,9 +436,9 @@ std::uint64_t collideGathered(const Arrays& a, std::size_t b, std::size_t n, con
             from[c][j] = start[c][k];
     }
     const Arrays gathered{state[0], state[1], state[2], state[3], state[4], state[5], nullptr};
-    planesCrossed |= boxWallsCrossed(box, state[0], state[1], state[2], width);
+    const std::uint64_t crossed = crossedPlanes(box, planes, state[0], state[1], state[2], width);
     const std::uint64_t bounces = collideAfterStep(gathered, 0, width, restitution, planes, response,
-                                                   {from[0], from[1], from[2]}, planesCrossed, depthBox);
+                                                   {from[0], from[1], from[2]}, crossed, depthBox);
     for (std::size_t j = 0; j < m; ++j) {
         const std::size_t k = index[j];
         for (std::size_t c = 0; c < 6; ++c)
@@ -459,8 +470,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
                          CollisionResponse response)
 {
     alignas(64) float start[6][kStartRow];
-    alignas(64) std::uint8_t hit[kBlock];
-    alignas(64) float margin[kBlock];
+    alignas(64) std::uint8_t hit[kBlock + 8]; // room for listHits' last word
     std::uint64_t bounces = 0;
     const std::optional<BoxWallsT<float>> box = boxWalls(planes);
     const bool coversAll = box && boxCoversAll(*box, planes);
@@ -478,22 +488,18 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
             drag ? integrate(oneDryer<DryerAxis::Up, true>(fields)) : integrate(oneDryer<DryerAxis::Up, false>(fields));
         else
             drag ? integrate(oneDryer<DryerAxis::Any, true>(fields)) : integrate(oneDryer<DryerAxis::Any, false>(fields));
-        std::uint64_t planesCrossed = 0;
-        const std::size_t hits =
-            planes.empty() ? 0
-                           : classifyBlock(a, b, n, planes, box, response == CollisionResponse::Exact, hit, coversAll,
-                                           margin, planesCrossed);
+        const bool exact = response == CollisionResponse::Exact;
+        const std::size_t hits = planes.empty() ? 0 : classifyBlock(a, b, n, planes, box, coversAll, exact, hit);
         if (hits == 0)
             continue;
-        if (response == CollisionResponse::Exact) {
+        if (exact) {
             bounces += collideExactly<kIntegrator>(a, b, n, fields, restitution, dt, planes, start, hit);
         } else if (hits <= kGatherMax && hits < n) {
-            bounces += collideGathered(a, b, n, margin, restitution, planes, response, start, planesCrossed,
-                                       box, depthBox);
+            bounces += collideGathered(a, b, n, hit, restitution, planes, response, start, box, depthBox);
         } else {
-            planesCrossed |= boxWallsCrossed(box, a.px + b, a.py + b, a.pz + b, n);
+            const std::uint64_t crossed = crossedPlanes(box, planes, a.px + b, a.py + b, a.pz + b, n);
             bounces += collideAfterStep(a, b, n, restitution, planes, response, {start[0], start[1], start[2]},
-                                        planesCrossed, depthBox);
+                                        crossed, depthBox);
         }
     }
     return bounces;
