@@ -233,6 +233,25 @@ TEST(Collisions, FoldingLeavesBodiesInsideAndHopelessOnesAlone)
 // the same points are clear (the margins agree to rounding), the same counts are beyond each
 // wall, the same depths, and the floor's hole does not stop the floor from being one of the
 // box's walls.
+// The grille below a floor's hole faces +y as the floor does: the box is the floor's, the inner
+// wall, so a point clear of the box is clear of the grille too. The slabs, which leave out walls
+// with a hole, take the grille.
+TEST(Collisions, TheBoxTakesTheInnerOfTwoWallsOnASide)
+{
+    std::vector<PlaneT<float>> planes{
+        {Vec3<float>(0, 1, 0), 0.0f, 0.3f, Vec3<float>(0.0f)}, {Vec3<float>(0, -1, 0), -4.0f},
+        {Vec3<float>(1, 0, 0), -2.0f}, {Vec3<float>(-1, 0, 0), -2.0f},
+        {Vec3<float>(0, 0, 1), -2.0f}, {Vec3<float>(0, 0, -1), -2.0f},
+        {Vec3<float>(0, 1, 0), -0.05f}};
+    const auto box = boxWalls(std::span<const PlaneT<float>>(planes));
+    ASSERT_TRUE(box.has_value());
+    EXPECT_EQ(box->plane[2], 0);
+    EXPECT_EQ(box->lo[1], 0.0f);
+    std::array<SlabT<float>, 3> slabs;
+    ASSERT_EQ(boxSlabs(std::span<const PlaneT<float>>(planes), slabs), 3);
+    EXPECT_EQ(slabs[1].lo, -0.05f);
+}
+
 TEST(Collisions, TheBoxSurfaceTestAgreesWithThePlaneByPlaneOne)
 {
     std::vector<PlaneT<float>> planes{
@@ -261,10 +280,17 @@ TEST(Collisions, TheBoxSurfaceTestAgreesWithThePlaneByPlaneOne)
         EXPECT_EQ(beyond[w], lowerClearance(planes[p], x.data(), y.data(), z.data(), n, planeMargin.data()))
             << "wall " << w;
     }
+    std::vector<std::uint8_t> unclear(n);
+    const std::uint32_t unclearCount =
+        markUnclearInBox(ClearRegionT<float>(*box), x.data(), y.data(), z.data(), n, unclear.data());
+    std::uint32_t notPositive = 0;
     for (std::size_t k = 0; k < n; ++k) {
         ASSERT_EQ(boxMargin[k] > 0.0f, planeMargin[k] > 0.0f) << "point " << k;
         ASSERT_NEAR(boxMargin[k], planeMargin[k], 1e-6f) << "point " << k;
+        ASSERT_EQ(unclear[k] == 1, !(boxMargin[k] > 0.0f)) << "point " << k; // the test without margins
+        notPositive += unclear[k];
     }
+    EXPECT_EQ(unclearCount, notPositive);
     // Depths: the box's walls but the floor (it has a hole: its bound stays infinite and
     // lowerDepth, which knows the shaft, tests it) give bit for bit the plane-by-plane depths.
     constexpr float kInf = std::numeric_limits<float>::infinity();
