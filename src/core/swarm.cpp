@@ -130,12 +130,12 @@ void integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, flo
 }
 
 /// Phase 2 of a block: which particles need a collision rule, marked in `hit`; returns how many
-/// (none in most blocks of a swarm in flight). For reflect and
-/// clamp, those that ended the step within a surface's contact tolerance (or beyond it): their
-/// rules look at where the step ended. The exact response also redoes the steps that started
-/// there; whether a particle started clear is remembered from its last step (`remember`), so
-/// only the ends are tested here. `coversAll`: a particle clear of the box's walls is clear of
-/// every plane (boxCoversAll), so they are the whole test, and no margins are needed.
+/// (none in most blocks of a swarm in flight). For reflect and clamp, those that ended the step
+/// within a surface's contact tolerance (or beyond it): their rules look at where the step
+/// ended. The exact response also redoes the steps that started there; whether a particle
+/// started clear is remembered from its last step (`remember`), so only the ends are tested
+/// here. `coversAll`: a particle clear of the box's walls is clear of every plane
+/// (boxCoversAll), so they are the whole test, and no margins are needed.
 std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std::span<const PlaneT<float>> planes,
                           const std::optional<BoxWallsT<float>>& box, bool coversAll, bool remember,
                           std::uint8_t* __restrict hit)
