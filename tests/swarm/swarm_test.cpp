@@ -144,7 +144,9 @@ TEST(Swarm, FastParticlesFoldBackIntoTheRoomAsParticlesDo)
 // A block with a few particles at a wall has them gathered for the rule; one with many runs the
 // rule over all of its particles. Either way a particle gets the same result, bit for bit:
 // five particles (on the floor, in a corner, over the hole, in the shaft, at the ceiling) among
-// 507 clear ones, and the same five among 507 others that all meet the floor.
+// clear ones, and the same five among others that all meet the floor. Also with 64 at a wall
+// (the most gathered: the first clear one is in the second word of flags) and in a last,
+// partial block (particles 512 on of 600).
 TEST(Swarm, AFewAtAWallGetTheSameRuleAsAWholeBlock)
 {
     const std::array<std::pair<Vec3<float>, Vec3<float>>, 5> few = {{
@@ -154,22 +156,30 @@ TEST(Swarm, AFewAtAWallGetTheSameRuleAsAWholeBlock)
         {{0.05f, -0.05f, 0.0f}, {2.0f, -1.0f, 0.0f}},   // in the shaft
         {{-1.0f, 3.999f, 0.5f}, {0.0f, 2.0f, 0.0f}},    // the ceiling
     }};
-    for (CollisionResponse response : {CollisionResponse::Reflect, CollisionResponse::Clamp}) {
-        World gathered = swarmWorld(512, response);
-        World whole = swarmWorld(512, response);
-        for (std::size_t i = few.size(); i < 512; ++i) // the others: clear, or all on the floor
-            whole.swarm(0).set(i, Vec3<float>(-1.5f + 0.005f * float(i), 0.001f, 1.2f), Vec3<float>(0.0f, -2.0f, 0.0f));
-        for (std::size_t i = 0; i < few.size(); ++i) {
-            gathered.swarm(0).set(i, few[i].first, few[i].second);
-            whole.swarm(0).set(i, few[i].first, few[i].second);
-        }
-        gathered.step(0.002);
-        whole.step(0.002);
-        for (std::size_t i = 0; i < few.size(); ++i) {
-            EXPECT_EQ(gathered.swarm(0).position(i), whole.swarm(0).position(i))
-                << collisionResponseName(response) << " particle " << i;
-            EXPECT_EQ(gathered.swarm(0).velocity(i), whole.swarm(0).velocity(i))
-                << collisionResponseName(response) << " particle " << i;
+    const auto onTheFloor = [](std::size_t i) {
+        return std::pair(Vec3<float>(-1.5f + 0.005f * float(i % 512), 0.001f, 1.2f), Vec3<float>(0.0f, -2.0f, 0.0f));
+    };
+    struct Case {
+        std::size_t count, first, atWall; // swarm size, first particle of the block, how many at a wall
+    };
+    for (const Case c : {Case{512, 0, 5}, Case{512, 0, 64}, Case{600, 512, 5}}) {
+        for (CollisionResponse response : {CollisionResponse::Reflect, CollisionResponse::Clamp}) {
+            World gathered = swarmWorld(c.count, response);
+            World whole = swarmWorld(c.count, response);
+            for (std::size_t i = c.first; i < c.count; ++i) {
+                const auto [x, v] = i - c.first < few.size() ? few[i - c.first] : onTheFloor(i);
+                whole.swarm(0).set(i, x, v);
+                if (i - c.first < c.atWall)
+                    gathered.swarm(0).set(i, x, v);
+            }
+            gathered.step(0.002);
+            whole.step(0.002);
+            for (std::size_t i = c.first; i < c.first + c.atWall; ++i) {
+                ASSERT_EQ(gathered.swarm(0).position(i), whole.swarm(0).position(i))
+                    << collisionResponseName(response) << " particle " << i << " of " << c.count;
+                ASSERT_EQ(gathered.swarm(0).velocity(i), whole.swarm(0).velocity(i))
+                    << collisionResponseName(response) << " particle " << i << " of " << c.count;
+            }
         }
     }
 }
