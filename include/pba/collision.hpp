@@ -593,26 +593,10 @@ inline std::optional<BoxWallsT<T>> boxWalls(std::span<const PlaneT<T>> planes)
     return box;
 }
 
-/// lowerClearance for all six walls of a box in one loop: each coordinate is read once and the
-/// margins written once, where six plane-by-plane loops read and wrote the margins six times
-/// (this was a sixth of a swarm step). A point beyond a wall is never clear of it (x < lo
-/// implies x < clearLo). Sets margin[k]; the other planes then lower it.
-template <class T>
-inline void setClearanceInBox(const BoxWallsT<T>& box, const T* __restrict x, const T* __restrict y,
-                              const T* __restrict z, std::size_t n, T* __restrict margin)
-{
-    const T xl = box.clearLo[0], xh = box.clearHi[0], yl = box.clearLo[1], yh = box.clearHi[1];
-    const T zl = box.clearLo[2], zh = box.clearHi[2];
-    for (std::size_t k = 0; k < n; ++k) {
-        const T a = x[k], b = y[k], c = z[k];
-        using collision_detail::lesser;
-        margin[k] = lesser(lesser(lesser(a - xl, xh - a), lesser(b - yl, yh - b)), lesser(c - zl, zh - c));
-    }
-}
-
-/// Where a point is clear of the box's walls: where setClearanceInBox gives it a positive
-/// margin (x - lo > 0 exactly when x > lo), tested without the margins, which a swarm in flight
-/// does not need. By value, so the loops that hold one need no alias checks.
+/// The region clear of the box's walls (beyond their contact tolerance), by value, so the loops
+/// that hold one need no alias checks. `margin` is lowerClearance's margin for all six walls
+/// (positive: clear); `contains` is the same answer without it (x - lo > 0 exactly when
+/// x > lo), cheaper where only the answer is needed, as for a swarm in flight.
 template <class T>
 struct ClearRegionT {
     T xl, xh, yl, yh, zl, zh;
@@ -622,8 +606,26 @@ struct ClearRegionT {
           zh(box.clearHi[2])
     {
     }
+    T margin(T a, T b, T c) const
+    {
+        using collision_detail::lesser;
+        return lesser(lesser(lesser(a - xl, xh - a), lesser(b - yl, yh - b)), lesser(c - zl, zh - c));
+    }
     bool contains(T a, T b, T c) const { return (a > xl) & (a < xh) & (b > yl) & (b < yh) & (c > zl) & (c < zh); }
 };
+
+/// lowerClearance for all six walls of a box in one loop: each coordinate is read once and the
+/// margins written once, where six plane-by-plane loops read and wrote the margins six times
+/// (this was a sixth of a swarm step). A point beyond a wall is never clear of it (x < lo
+/// implies x < clearLo). Sets margin[k]; the other planes then lower it.
+template <class T>
+inline void setClearanceInBox(const BoxWallsT<T>& box, const T* __restrict x, const T* __restrict y,
+                              const T* __restrict z, std::size_t n, T* __restrict margin)
+{
+    const ClearRegionT<T> region(box);
+    for (std::size_t k = 0; k < n; ++k)
+        margin[k] = region.margin(x[k], y[k], z[k]);
+}
 
 /// unclear[k] = 1 for the points not clear of the box's walls, 0 for the others; returns how many
 /// there are. (Counting first and marking only when some are was measured slower: one pass
