@@ -108,12 +108,15 @@ enum class DryerAxis { Any, Up };
 
 /// The force of the field at x (independent of the body's mass and velocity).
 ///
-/// Written for the swarm loop, where square roots and divisions are the expensive
-/// instructions: one division and two square roots a particle. With q = R(h) (the radius
-/// here) and c = w (R - r0) / q (w = 1 for cone-flow, 0 for vertical), the flow direction is
-/// H axis + c rho, and since rho is perpendicular to the axis its length is
-/// sqrt(H^2 + c^2 r^2) = sqrt(H^2 q^2 + w^2 (R - r0)^2 r^2) / q. Both 1/q (for r/q and c) and
-/// 1 / that length come from the one reciprocal 1 / (q sqrt(H^2 q^2 + w^2 (R - r0)^2 r^2)).
+/// Written for the swarm loop, where square roots and divisions are the slow instructions:
+/// two of each a particle, none waiting for another. With q = R(h) (the radius here) and
+/// c = w (R - r0) / q (w = 1 for cone-flow, 0 for vertical), the flow direction is H axis + c rho,
+/// and since rho is perpendicular to the axis its length is sqrt(H^2 + c^2 r^2) =
+/// sqrt(H^2 q^2 + w^2 (R - r0)^2 r^2) / q: that root is taken from r^2, beside r's own, and
+/// 1/q (for r/q and c) and q / root (1 / the length) are two divisions. One division,
+/// 1 / (q root), gave both, but chained root, product, division and products one after another:
+/// a swarm loop over a block in L1 measured 18% slower that way (0.83 against 0.68 ns a
+/// particle), the out-of-order core having less to do while it waited.
 template <DryerAxis kAxis = DryerAxis::Any, class T>
 inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
 {
@@ -121,7 +124,8 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
     const Vec3<T> d = x - f.nozzle;
     const T h = kUp ? d.y : glm::dot(d, f.axis);
     const Vec3<T> rho = kUp ? Vec3<T>(d.x, T(0), d.z) : d - h * f.axis;
-    const T r = std::sqrt(kUp ? d.x * d.x + d.z * d.z : glm::dot(rho, rho));
+    const T r2 = kUp ? d.x * d.x + d.z * d.z : glm::dot(rho, rho);
+    const T r = std::sqrt(r2);
     const T s = h * f.inverseHeight;
     const T radiusHere = f.nozzleRadius + f.spread * s;
     // Selects rather than branches: the same arithmetic for every particle (a vectorised loop
@@ -132,11 +136,9 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
     // Selecting q itself instead made GCC compute the roots and the division twice, once per
     // value of q.
     const T q = radiusHere;
-    const T spreadR = f.flowSpread * r;
-    const T root = std::sqrt(f.height * f.height * q * q + spreadR * spreadR); // q |flow|
-    const T inverse = T(1) / (q * root);
-    const T inverseRadius = root * inverse;   // 1 / q
-    const T inverseLength = q * q * inverse; // 1 / |flow|
+    const T root = std::sqrt(f.height * f.height * q * q + f.flowSpread * f.flowSpread * r2); // q |flow|
+    const T inverseRadius = T(1) / q;
+    const T inverseLength = q / root; // 1 / |flow|
     // Inside the cone both falloffs' arguments lie in (0, 1]: no clamps.
     const T magnitude = f.axial.inRange(T(1) - s) * f.radial.inRange(T(1) - r * inverseRadius);
     // Vertical: the axis. Cone-flow: H axis + (R - r0) rho / R(h).
