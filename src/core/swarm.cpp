@@ -71,6 +71,7 @@ constexpr std::size_t kStartRow = kBlock + 48;
 /// rule (collideGathered), in groups of kGatherWidth (a vector of floats, AVX-512's 16).
 constexpr std::size_t kGatherMax = 64;
 constexpr std::size_t kGatherWidth = 16;
+static_assert(kGatherMax % kGatherWidth == 0, "a gathered block of kGatherMax is whole vectors");
 /// Below this many particles threads cost more than they save (measured: 3x slower at 1,000).
 constexpr std::size_t kParallelThreshold = 32768;
 
@@ -384,30 +385,32 @@ std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, fl
 }
 
 /// The particles of a block marked in `hit` (at most kGatherMax, and fewer than n), listed in
-/// `index`, then the first clear one repeated up to a whole number of vectors. Returns how many
-/// are marked. The flags are packed 64 to a word (a multiplication gathers eight 0/1 bytes into
-/// eight bits), and the scan then visits only the set bits: a branch a word of 64 and one a
-/// hit, where a branch every eight flags mispredicted often. `hit` has room for a whole last
-/// word of 64.
-std::size_t listHits(std::uint8_t* __restrict hit, std::size_t n, std::uint16_t* __restrict index)
+/// `index`; returns how many, and in `spare` the first clear one. The flags are first packed
+/// eight to a byte (a multiplication gathers eight 0/1 bytes into eight bits: one loop, which
+/// vectorises), and the scan then visits only the set bits of each 64: a branch a word and one
+/// a hit, where a branch every eight flags mispredicted often. `hit` has room for a whole
+/// last word of 64.
+std::size_t listHits(std::uint8_t* __restrict hit, std::size_t n, std::uint16_t* __restrict index,
+                     std::size_t& spare)
 {
     std::fill(hit + n, hit + (n + 63) / 64 * 64, std::uint8_t(0));
-    std::size_t m = 0;
-    std::size_t spare = n;
-    for (std::size_t q = 0; q < n; q += 64) {
-        std::uint64_t bits = 0;
-        for (std::size_t w = 0; w < 64; w += 8) {
-            std::uint64_t word;
-            std::memcpy(&word, hit + q + w, sizeof word);
-            bits |= (word * 0x0102040810204080ull >> 56) << w; // byte i's bit 0 to bit i
-        }
-        if (spare == n && ~bits != 0) // the first clear one (before any padding: some are clear)
-            spare = q + static_cast<std::size_t>(std::countr_one(bits));
-        for (; bits != 0; bits &= bits - 1)
-            index[m++] = static_cast<std::uint16_t>(q + static_cast<std::size_t>(std::countr_zero(bits)));
+    alignas(64) std::uint8_t packed[kBlock / 8]; // byte w: flags 8w to 8w + 7, little-endian
+    const std::size_t words = (n + 63) / 64;
+    for (std::size_t w = 0; w < words * 8; ++w) {
+        std::uint64_t eight;
+        std::memcpy(&eight, hit + 8 * w, sizeof eight);
+        packed[w] = static_cast<std::uint8_t>(eight * 0x0102040810204080ull >> 56); // byte i's bit 0 to bit i
     }
-    for (std::size_t j = m; j % kGatherWidth != 0; ++j)
-        index[j] = static_cast<std::uint16_t>(spare);
+    std::size_t m = 0;
+    spare = n;
+    for (std::size_t q = 0; q < words; ++q) {
+        std::uint64_t bits;
+        std::memcpy(&bits, packed + 8 * q, sizeof bits);
+        if (spare == n && ~bits != 0) // the first clear one (before any padding: some are clear)
+            spare = 64 * q + static_cast<std::size_t>(std::countr_one(bits));
+        for (; bits != 0; bits &= bits - 1)
+            index[m++] = static_cast<std::uint16_t>(64 * q + static_cast<std::size_t>(std::countr_zero(bits)));
+    }
     return m;
 }
 
@@ -417,19 +420,25 @@ std::size_t listHits(std::uint8_t* __restrict hit, std::size_t n, std::uint16_t*
 /// wall counts cost more than the integration. A particle clear of every surface is left
 /// exactly as it was by every part of the rule, so the result is the same bit for bit (tested);
 /// the gathered block is filled up to whole vectors with copies of one such particle, so its
-/// loops have no scalar remainder.
+/// loops have no scalar remainder (written first as whole rows, then overwritten by the few
+/// gathered: a copy a value, where gathering the copies one by one cost as much as the rule).
 std::uint64_t collideGathered(const Arrays& a, std::size_t b, std::size_t n, std::uint8_t* hit, float restitution,
                               std::span<const PlaneT<float>> planes, CollisionResponse response,
                               const float (*start)[kStartRow], const std::optional<BoxWallsT<float>>& box,
                               const DepthBox& depthBox)
 {
-    std::array<std::uint16_t, kGatherMax + kGatherWidth> index;
-    const std::size_t m = listHits(hit, n, index.data());
+    std::array<std::uint16_t, kGatherMax> index;
+    std::size_t spare = 0;
+    const std::size_t m = listHits(hit, n, index.data(), spare);
     const std::size_t width = (m + kGatherWidth - 1) / kGatherWidth * kGatherWidth;
-    alignas(64) float state[6][kGatherMax + kGatherWidth];
-    alignas(64) float from[3][kGatherMax + kGatherWidth];
+    alignas(64) float state[6][kGatherMax];
+    alignas(64) float from[3][kGatherMax];
     float* const arrays[6] = {a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b};
-    for (std::size_t j = 0; j < width; ++j) {
+    for (std::size_t c = 0; c < 6; ++c)
+        std::fill_n(state[c], width, arrays[c][spare]);
+    for (std::size_t c = 0; c < 3; ++c)
+        std::fill_n(from[c], width, start[c][spare]);
+    for (std::size_t j = 0; j < m; ++j) {
         const std::size_t k = index[j];
         for (std::size_t c = 0; c < 6; ++c)
             state[c][j] = arrays[c][k];
