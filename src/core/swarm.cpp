@@ -68,7 +68,7 @@ constexpr std::size_t kBlock = 512;
 /// Swarm::m_state for why that matters).
 constexpr std::size_t kStartRow = kBlock + 48;
 /// A block with at most this many particles at a surface has them gathered for the collision
-/// rule (collideGathered), in groups of kGatherWidth (a vector of floats, AVX-512's 16).
+/// rule (GatheredHits), in groups of kGatherWidth (a vector of floats, AVX-512's 16).
 constexpr std::size_t kGatherMax = 64;
 constexpr std::size_t kGatherWidth = 16;
 static_assert(kGatherMax % kGatherWidth == 0, "a gathered block of kGatherMax is whole vectors");
@@ -414,48 +414,92 @@ std::size_t listHits(std::uint8_t* __restrict hit, std::size_t n, std::uint16_t*
     return m;
 }
 
-/// Phase 3 of a block, reflect and clamp, when few of its particles met a surface (where rain
-/// lands: a handful of the 512): collideAfterStep over just those, gathered into a small block
-/// and scattered back. Over the whole block, the rule's passes, the still-outside test and the
-/// wall counts cost more than the integration. A particle clear of every surface is left
-/// exactly as it was by every part of the rule, so the result is the same bit for bit (tested);
-/// the gathered block is filled up to whole vectors with copies of one such particle, so its
-/// loops have no scalar remainder (written first as whole rows, then overwritten by the few
-/// gathered: a copy a value, where gathering the copies one by one cost as much as the rule).
-std::uint64_t collideGathered(const Arrays& a, std::size_t b, std::size_t n, std::uint8_t* hit, float restitution,
-                              std::span<const PlaneT<float>> planes, CollisionResponse response,
-                              const float (*start)[kStartRow], const std::optional<BoxWallsT<float>>& box,
-                              const DepthBox& depthBox)
-{
-    std::array<std::uint16_t, kGatherMax> index;
-    std::size_t spare = 0;
-    const std::size_t m = listHits(hit, n, index.data(), spare);
-    const std::size_t width = (m + kGatherWidth - 1) / kGatherWidth * kGatherWidth;
-    alignas(64) float state[6][kGatherMax];
-    alignas(64) float from[3][kGatherMax];
-    float* const arrays[6] = {a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b};
-    for (std::size_t c = 0; c < 6; ++c)
-        std::fill_n(state[c], width, arrays[c][spare]);
-    for (std::size_t c = 0; c < 3; ++c)
-        std::fill_n(from[c], width, start[c][spare]);
-    for (std::size_t j = 0; j < m; ++j) {
-        const std::size_t k = index[j];
-        for (std::size_t c = 0; c < 6; ++c)
-            state[c][j] = arrays[c][k];
-        for (std::size_t c = 0; c < 3; ++c)
-            from[c][j] = start[c][k];
+/// Phase 3, reflect and clamp, for the blocks where few particles met a surface (where rain
+/// lands: a handful of the 512): collideAfterStep over just those particles, gathered from
+/// several blocks into a batch of their own and scattered back. Over a whole block the rule's
+/// passes, the still-outside test and the wall counts cost more than the integration; over one
+/// block's handful, padded to a vector, they cost as much as listing and gathering them. A
+/// particle clear of every surface is left exactly as it was by every part of the rule, and
+/// the rule treats each particle by itself, so the result is the same bit for bit (tested). The
+/// batch is filled up to whole vectors with copies of one such particle, so its loops have no
+/// scalar remainder.
+class GatheredHits {
+public:
+    static constexpr std::size_t kCapacity = 2 * kGatherMax;
+
+    GatheredHits(const Arrays& a, float restitution, std::span<const PlaneT<float>> planes,
+                 CollisionResponse response, const std::optional<BoxWallsT<float>>& box, const DepthBox& depthBox)
+        : m_a(a), m_restitution(restitution), m_planes(planes), m_response(response), m_box(box),
+          m_depthBox(depthBox)
+    {
     }
-    const Arrays gathered{state[0], state[1], state[2], state[3], state[4], state[5], nullptr};
-    const std::uint64_t crossed = crossedPlanes(box, planes, state[0], state[1], state[2], width);
-    const std::uint64_t bounces = collideAfterStep(gathered, 0, width, restitution, planes, response,
-                                                   {from[0], from[1], from[2]}, crossed, depthBox);
-    for (std::size_t j = 0; j < m; ++j) {
-        const std::size_t k = index[j];
-        for (std::size_t c = 0; c < 6; ++c)
-            arrays[c][k] = state[c][j];
+
+    /// Adds the particles of block b marked in `hit` (at most kGatherMax, and fewer than n), with
+    /// their start positions; runs the batch first if they would not fit. Returns its bounces.
+    std::uint64_t add(std::size_t b, std::size_t n, std::uint8_t* hit, const float (*start)[kStartRow])
+    {
+        std::array<std::uint16_t, kGatherMax> index;
+        std::size_t spare = 0;
+        const std::size_t m = listHits(hit, n, index.data(), spare);
+        const std::uint64_t bounces = m_count + m > kCapacity ? collide() : 0;
+        const float* const arrays[6] = {m_a.px + b, m_a.py + b, m_a.pz + b, m_a.vx + b, m_a.vy + b, m_a.vz + b};
+        if (!m_haveSpare) {
+            for (std::size_t c = 0; c < 6; ++c)
+                m_spare[c] = arrays[c][spare];
+            for (std::size_t c = 0; c < 3; ++c)
+                m_spare[6 + c] = start[c][spare];
+            m_haveSpare = true;
+        }
+        for (std::size_t j = 0; j < m; ++j) {
+            const std::size_t k = index[j];
+            m_index[m_count + j] = b + k;
+            for (std::size_t c = 0; c < 6; ++c)
+                m_state[c][m_count + j] = arrays[c][k];
+            for (std::size_t c = 0; c < 3; ++c)
+                m_from[c][m_count + j] = start[c][k];
+        }
+        m_count += m;
+        return bounces;
     }
-    return bounces;
-}
+
+    /// Runs the rule over the particles gathered so far and writes them back. Returns the bounces.
+    std::uint64_t collide()
+    {
+        if (m_count == 0)
+            return 0;
+        const std::size_t width = (m_count + kGatherWidth - 1) / kGatherWidth * kGatherWidth;
+        for (std::size_t j = m_count; j < width; ++j) {
+            for (std::size_t c = 0; c < 6; ++c)
+                m_state[c][j] = m_spare[c];
+            for (std::size_t c = 0; c < 3; ++c)
+                m_from[c][j] = m_spare[6 + c];
+        }
+        const Arrays gathered{m_state[0], m_state[1], m_state[2], m_state[3], m_state[4], m_state[5], nullptr};
+        const std::uint64_t crossed = crossedPlanes(m_box, m_planes, m_state[0], m_state[1], m_state[2], width);
+        const std::uint64_t bounces = collideAfterStep(gathered, 0, width, m_restitution, m_planes, m_response,
+                                                       {m_from[0], m_from[1], m_from[2]}, crossed, m_depthBox);
+        float* const arrays[6] = {m_a.px, m_a.py, m_a.pz, m_a.vx, m_a.vy, m_a.vz};
+        for (std::size_t j = 0; j < m_count; ++j)
+            for (std::size_t c = 0; c < 6; ++c)
+                arrays[c][m_index[j]] = m_state[c][j];
+        m_count = 0;
+        return bounces;
+    }
+
+private:
+    const Arrays& m_a;
+    float m_restitution;
+    std::span<const PlaneT<float>> m_planes;
+    CollisionResponse m_response;
+    const std::optional<BoxWallsT<float>>& m_box;
+    const DepthBox& m_depthBox;
+    std::size_t m_count = 0;
+    bool m_haveSpare = false;
+    std::array<float, 9> m_spare{}; ///< a clear particle's state and start: the padding
+    std::array<std::size_t, kCapacity> m_index;
+    alignas(64) float m_state[6][kCapacity];
+    alignas(64) float m_from[3][kCapacity];
+};
 
 /// The acceleration with at most one dryer, swarmAcceleration as a closure holding its fields
 /// by value, so the loop that calls it needs no alias checks. Without drag (`kDrag` false, every
@@ -485,6 +529,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
     const std::optional<BoxWallsT<float>> box = boxWalls(planes);
     const bool coversAll = box && boxCoversAll(*box, planes);
     const DepthBox depthBox(box, planes);
+    GatheredHits gathered(a, restitution, planes, response, box, depthBox);
     const auto all = [&](const Vec3<float>& x, const Vec3<float>& v) {
         return swarmAccelerationAll(fields, x, v);
     };
@@ -505,14 +550,14 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
         if (exact) {
             bounces += collideExactly<kIntegrator>(a, b, n, fields, restitution, dt, planes, start, hit);
         } else if (hits <= kGatherMax && hits < n) {
-            bounces += collideGathered(a, b, n, hit, restitution, planes, response, start, box, depthBox);
+            bounces += gathered.add(b, n, hit, start);
         } else {
             const std::uint64_t crossed = crossedPlanes(box, planes, a.px + b, a.py + b, a.pz + b, n);
             bounces += collideAfterStep(a, b, n, restitution, planes, response, {start[0], start[1], start[2]},
                                         crossed, depthBox);
         }
     }
-    return bounces;
+    return bounces + gathered.collide();
 }
 
 // GCC on x86-64 only: clang 14 does not combine target_clones with flatten, and other CPUs

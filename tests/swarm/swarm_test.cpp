@@ -141,12 +141,12 @@ TEST(Swarm, FastParticlesFoldBackIntoTheRoomAsParticlesDo)
     }
 }
 
-// A block with a few particles at a wall has them gathered for the rule; one with many runs the
-// rule over all of its particles. Either way a particle gets the same result, bit for bit:
-// five particles (on the floor, in a corner, over the hole, in the shaft, at the ceiling) among
-// clear ones, and the same five among others that all meet the floor. Also with 64 at a wall
-// (the most gathered: the first clear one is in the second word of flags) and in a last,
-// partial block (particles 512 on of 600).
+// A block with a few particles at a wall has them gathered, with those of other such blocks,
+// for the rule; one with many runs the rule over all of its particles. Either way a particle
+// gets the same result, bit for bit: five particles (on the floor, in a corner, over the hole,
+// in the shaft, at the ceiling) among clear ones, and the same five among others that all meet
+// the floor. Also with 64 at a wall (the most gathered: the first clear one is in the second
+// word of flags), in a last, partial block (particles 512 on of 600), and over eight blocks.
 TEST(Swarm, AFewAtAWallGetTheSameRuleAsAWholeBlock)
 {
     const std::array<std::pair<Vec3<float>, Vec3<float>>, 5> few = {{
@@ -160,21 +160,27 @@ TEST(Swarm, AFewAtAWallGetTheSameRuleAsAWholeBlock)
         return std::pair(Vec3<float>(-1.5f + 0.005f * float(i % 512), 0.001f, 1.2f), Vec3<float>(0.0f, -2.0f, 0.0f));
     };
     struct Case {
-        std::size_t count, first, atWall; // swarm size, first particle of the block, how many at a wall
+        std::size_t count, first, atWall; // swarm size, first particle at a wall, how many a block
     };
-    for (const Case c : {Case{512, 0, 5}, Case{512, 0, 64}, Case{600, 512, 5}}) {
+    // One block; the most a block gathers; a last, partial block; and eight blocks whose 40 each
+    // fill the batch (128) twice before the last is run at the end.
+    for (const Case c : {Case{512, 0, 5}, Case{512, 0, 64}, Case{600, 512, 5}, Case{4096, 0, 40}}) {
         for (CollisionResponse response : {CollisionResponse::Reflect, CollisionResponse::Clamp}) {
             World gathered = swarmWorld(c.count, response);
             World whole = swarmWorld(c.count, response);
+            const auto atWall = [&](std::size_t i) { return i >= c.first && (i - c.first) % 512 < c.atWall; };
             for (std::size_t i = c.first; i < c.count; ++i) {
-                const auto [x, v] = i - c.first < few.size() ? few[i - c.first] : onTheFloor(i);
+                const std::size_t k = (i - c.first) % 512;
+                const auto [x, v] = k < few.size() ? few[k] : onTheFloor(i);
                 whole.swarm(0).set(i, x, v);
-                if (i - c.first < c.atWall)
+                if (atWall(i))
                     gathered.swarm(0).set(i, x, v);
             }
             gathered.step(0.002);
             whole.step(0.002);
-            for (std::size_t i = c.first; i < c.first + c.atWall; ++i) {
+            for (std::size_t i = 0; i < c.count; ++i) {
+                if (!atWall(i))
+                    continue;
                 ASSERT_EQ(gathered.swarm(0).position(i), whole.swarm(0).position(i))
                     << collisionResponseName(response) << " particle " << i << " of " << c.count;
                 ASSERT_EQ(gathered.swarm(0).velocity(i), whole.swarm(0).velocity(i))
