@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <thread>
 
@@ -40,25 +41,43 @@ struct Row {
 
 double seconds(Clock::time_point from) { return std::chrono::duration<double>(Clock::now() - from).count(); }
 
-/// Runs `step` (which advances n particles once) until minTime has passed; the median rate of
-/// `repeats` such runs, in particle-steps per second.
-template <class Step>
-double measure(std::size_t n, double minTime, int repeats, Step&& step)
+/// Runs `step` (which advances n particles once) until minTime has passed; the rate, in
+/// particle-steps per second.
+double window(std::size_t n, double minTime, const std::function<void()>& step)
 {
-    step(); // warm caches and page in memory
-    std::vector<double> rates;
-    for (int r = 0; r < repeats; ++r) {
-        const auto start = Clock::now();
-        long steps = 0;
-        do {
-            step();
-            ++steps;
-        } while (seconds(start) < minTime);
-        rates.push_back(double(n) * double(steps) / seconds(start));
-    }
+    const auto start = Clock::now();
+    long steps = 0;
+    do {
+        step();
+        ++steps;
+    } while (seconds(start) < minTime);
+    return double(n) * double(steps) / seconds(start);
+}
+
+/// The median of a few rates.
+double median(std::vector<double> rates)
+{
     std::sort(rates.begin(), rates.end());
     return rates[rates.size() / 2];
 }
+
+/// Runs `step` until minTime has passed, `repeats` times; the median rate.
+double measure(std::size_t n, double minTime, int repeats, const std::function<void()>& step)
+{
+    step(); // warm caches and page in memory
+    std::vector<double> rates;
+    for (int r = 0; r < repeats; ++r)
+        rates.push_back(window(n, minTime, step));
+    return median(rates);
+}
+
+/// What one row of a size measures: its world (none for the bound) and the step it times.
+struct Subject {
+    Row row;
+    std::unique_ptr<World> world;
+    std::function<void()> step;
+    std::vector<double> rates;
+};
 
 /// The blow-dryer-swarm scene's world with n particles of the given integrator.
 World swarmWorld(std::size_t n, Integrator integrator, int threads)
@@ -89,26 +108,16 @@ World baselineWorld(std::size_t n)
     return world;
 }
 
-/// The best rate of the in-place update a[i] = a[i] * s + t over the swarm state's size
-/// (24 n bytes) on all cores, counting 8 bytes moved per element, over the 48 bytes a
-/// particle-step must move (position and velocity, read and written, in float).
-double bandwidthBound(std::size_t n, double minTime)
+/// One pass of the bandwidth bound's in-place update a[i] = a[i] * s + t over the swarm state's
+/// size (24 n bytes, so a = 6 n floats) on all cores. Counting 8 bytes moved per element, a pass
+/// moves 48 n bytes: what n particle-steps must move (position and velocity, read and written, in
+/// float), so a pass counts as n particle-steps.
+void boundPass(std::vector<float>& a)
 {
-    std::vector<float> a(6 * n, 1.0f);
-    double best = 0.0;
-    for (int r = 0; r < 3; ++r) {
-        const auto start = Clock::now();
-        long passes = 0;
-        do {
-            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, a.size(), 1 << 16), [&](const auto& range) {
-                for (std::size_t i = range.begin(); i < range.end(); ++i)
-                    a[i] = a[i] * 0.999f + 0.001f;
-            });
-            ++passes;
-        } while (seconds(start) < minTime);
-        best = std::max(best, 8.0 * double(a.size()) * double(passes) / seconds(start));
-    }
-    return best / 48.0;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, a.size(), 1 << 16), [&](const auto& range) {
+        for (std::size_t i = range.begin(); i < range.end(); ++i)
+            a[i] = a[i] * 0.999f + 0.001f;
+    });
 }
 
 /// fountain-1m as a program runs it: a million particles, all cores, steps of the scene's dt,
@@ -150,6 +159,50 @@ double bytesPerParticle(std::size_t n)
     return (peakResidentBytes() - before) / double(n);
 }
 
+/// The rows of one size: the bound, the baseline (up to a million: a million heap Particles take
+/// about a gigabyte) and the swarm with each integrator on 1 thread and on all cores. Their
+/// windows are taken in turn, round after round, rather than row after row: this machine's speed
+/// drifts by a third over seconds, and a bound measured seconds before a row made the row's
+/// ratio swing with the drift (0.48 to 0.72 in three runs); interleaved, a slow spell slows
+/// every row alike. The bound's rate is its best window; every other row's is its median, its
+/// world stepping on from one window to the next as it would in one run.
+std::vector<Row> measureSize(std::size_t n, double minTime, int repeats, int cores, double bytes)
+{
+    std::vector<float> state(6 * n, 1.0f);
+    std::vector<Subject> subjects;
+    subjects.push_back({Row{"bound", "", n, cores, 0.0, 24.0, 1.0, 0.0}, nullptr, [&state] { boundPass(state); }, {}});
+    const auto add = [&](Row row, World world) {
+        auto owned = std::make_unique<World>(std::move(world));
+        World* stepped = owned.get();
+        subjects.push_back({std::move(row), std::move(owned), [stepped] { stepped->step(0.002); }, {}});
+    };
+    if (n <= 1000000)
+        add(Row{"baseline", "semi-implicit-euler", n, 1, 0.0, 0.0, 0.0, 1.0}, baselineWorld(n));
+    for (Integrator integrator : kAllIntegrators)
+        for (int threads : {1, cores}) {
+            add(Row{"swarm", std::string(integratorName(integrator)), n, threads, 0.0, bytes, 0.0, 0.0},
+                swarmWorld(n, integrator, threads));
+            if (threads == cores)
+                break;
+        }
+    for (Subject& subject : subjects)
+        subject.step(); // warm caches and page in memory
+    for (int r = 0; r < repeats; ++r)
+        for (Subject& subject : subjects)
+            subject.rates.push_back(window(n, minTime, subject.step));
+    const double bound = *std::max_element(subjects[0].rates.begin(), subjects[0].rates.end());
+    const double baseline = subjects[1].row.layout == "baseline" ? median(subjects[1].rates) : 0.0;
+    std::vector<Row> rows;
+    for (Subject& subject : subjects) {
+        Row row = subject.row;
+        row.rate = row.layout == "bound" ? bound : median(subject.rates);
+        row.ofBound = row.rate / bound;
+        row.ofBaseline = baseline > 0.0 && row.layout != "bound" ? row.rate / baseline : 0.0;
+        rows.push_back(row);
+    }
+    return rows;
+}
+
 std::string table(const std::vector<Row>& rows)
 {
     std::string out = fmt::format("{:<9} {:<20} {:>10} {:>7} {:>16} {:>9} {:>11} {:>12}\n", "layout", "integrator", "N",
@@ -176,25 +229,8 @@ int runBench(const BenchOptions& options)
     const std::size_t largest = *std::max_element(sizes.begin(), sizes.end());
     const double memory = largest >= 1000000 ? bytesPerParticle(largest) : 0.0;
     for (std::size_t n : sizes) {
-        const double bound = bandwidthBound(n, minTime);
-        rows.push_back({"bound", "", n, cores, bound, 24.0, 1.0, 0.0});
-        double baseline = 0.0;
-        if (n <= 1000000) { // a million heap Particles take about a gigabyte; ten million do not fit the point
-            World world = baselineWorld(n);
-            baseline = measure(n, minTime, repeats, [&] { world.step(0.002); });
-            rows.push_back({"baseline", "semi-implicit-euler", n, 1, baseline, 0.0, baseline / bound, 1.0});
-        }
-        for (Integrator integrator : kAllIntegrators) {
-            for (int threads : {1, cores}) {
-                World world = swarmWorld(n, integrator, threads);
-                const double bytes = n == largest ? memory : 0.0;
-                const double rate = measure(n, minTime, repeats, [&] { world.step(0.002); });
-                rows.push_back({"swarm", std::string(integratorName(integrator)), n, threads, rate, bytes, rate / bound,
-                                baseline > 0 ? rate / baseline : 0.0});
-                if (threads == cores)
-                    break;
-            }
-        }
+        const std::vector<Row> measured = measureSize(n, minTime, repeats, cores, n == largest ? memory : 0.0);
+        rows.insert(rows.end(), measured.begin(), measured.end());
         if (!options.json)
             fmt::print(stderr, "measured N = {}\n", n);
     }
@@ -238,7 +274,10 @@ void addBenchCommand(CLI::App& root, Action& selected)
         ->delimiter(',')
         ->type_name("N,N");
     bench->footer("\nThe workload is the blow-dryer-swarm scene (gravity, the blow dryer, the room's walls and the\n"
-                  "hole) at dt = 0.002. Timings are medians of 3; compare rows of one run, not across runs.\n"
+                  "hole) at dt = 0.002. Each row of a size is timed in 3 windows of a quarter second (one of 0.02 s\n"
+                  "with --quick), taken in turn with the other rows' so that a machine's drifting speed slows them\n"
+                  "alike; a row's rate is its median window, the bound's its best. Compare rows of one run, not\n"
+                  "across runs.\n"
                   "Last, the fountain-1m scene is stepped as a program would, after a simulated second of\n"
                   "warm-up (4 steps with --quick), and its physics steps per second are reported.\n");
     bench->callback([options, &selected] { selected = [options] { return runBench(*options); }; });
