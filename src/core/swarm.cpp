@@ -67,11 +67,11 @@ constexpr std::size_t kBlock = 512;
 /// that element k of the six rows lies at six different offsets in a 4 KB page (see
 /// Swarm::m_state for why that matters).
 constexpr std::size_t kStartRow = kBlock + 48;
-/// A block with at most this many particles at a surface has them gathered for the collision
-/// rule (GatheredHits), in groups of kGatherWidth (a vector of floats, AVX-512's 16).
+/// A block with at most this many particles at a surface has them gathered, with those of other
+/// such blocks, for the collision rule (GatheredHits), padded to whole vectors of kGatherWidth
+/// floats (AVX-512's 16).
 constexpr std::size_t kGatherMax = 64;
 constexpr std::size_t kGatherWidth = 16;
-static_assert(kGatherMax % kGatherWidth == 0, "a gathered block of kGatherMax is whole vectors");
 /// Below this many particles threads cost more than they save (measured: 3x slower at 1,000).
 constexpr std::size_t kParallelThreshold = 32768;
 
@@ -426,6 +426,7 @@ std::size_t listHits(std::uint8_t* __restrict hit, std::size_t n, std::uint16_t*
 class GatheredHits {
 public:
     static constexpr std::size_t kCapacity = 2 * kGatherMax;
+    static_assert(kCapacity % kGatherWidth == 0, "a full batch is whole vectors: its padding fits");
 
     GatheredHits(const Arrays& a, float restitution, std::span<const PlaneT<float>> planes,
                  CollisionResponse response, const std::optional<BoxWallsT<float>>& box, const DepthBox& depthBox)
