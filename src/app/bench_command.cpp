@@ -71,10 +71,9 @@ double measure(std::size_t n, double minTime, int repeats, const std::function<v
     return median(rates);
 }
 
-/// What one row of a size measures: its world (none for the bound) and the step it times.
+/// One row of a size, the step it times (which owns its world) and the rates of its windows.
 struct Subject {
     Row row;
-    std::unique_ptr<World> world;
     std::function<void()> step;
     std::vector<double> rates;
 };
@@ -170,11 +169,10 @@ std::vector<Row> measureSize(std::size_t n, double minTime, int repeats, int cor
 {
     std::vector<float> state(6 * n, 1.0f);
     std::vector<Subject> subjects;
-    subjects.push_back({Row{"bound", "", n, cores, 0.0, 24.0, 1.0, 0.0}, nullptr, [&state] { boundPass(state); }, {}});
+    subjects.push_back({Row{"bound", "", n, cores, 0.0, 24.0, 1.0, 0.0}, [&state] { boundPass(state); }, {}});
     const auto add = [&](Row row, World world) {
-        auto owned = std::make_unique<World>(std::move(world));
-        World* stepped = owned.get();
-        subjects.push_back({std::move(row), std::move(owned), [stepped] { stepped->step(0.002); }, {}});
+        auto owned = std::make_shared<World>(std::move(world));
+        subjects.push_back({std::move(row), [owned] { owned->step(0.002); }, {}});
     };
     if (n <= 1000000)
         add(Row{"baseline", "semi-implicit-euler", n, 1, 0.0, 0.0, 0.0, 1.0}, baselineWorld(n));
@@ -190,8 +188,11 @@ std::vector<Row> measureSize(std::size_t n, double minTime, int repeats, int cor
     for (int r = 0; r < repeats; ++r)
         for (Subject& subject : subjects)
             subject.rates.push_back(window(n, minTime, subject.step));
-    const double bound = *std::max_element(subjects[0].rates.begin(), subjects[0].rates.end());
-    const double baseline = subjects[1].row.layout == "baseline" ? median(subjects[1].rates) : 0.0;
+    const std::vector<double>& boundRates = subjects.front().rates; // the bound is pushed first
+    const double bound = *std::max_element(boundRates.begin(), boundRates.end());
+    const auto baselineRow = std::find_if(subjects.begin(), subjects.end(),
+                                          [](const Subject& subject) { return subject.row.layout == "baseline"; });
+    const double baseline = baselineRow != subjects.end() ? median(baselineRow->rates) : 0.0;
     std::vector<Row> rows;
     for (Subject& subject : subjects) {
         Row row = subject.row;
