@@ -243,22 +243,37 @@ TEST(Swarm, NoParticleEverLeavesTheRoom)
 
 #include "support/run_command.hpp"
 
-// pba bench's JSON has the keys the README documents, for every layout.
+// pba bench's JSON has the keys the README documents, for every layout; a row's rate is its
+// best window, so never below its median, and its fraction of the bound is best over best.
 TEST(PbaBench, QuickJsonHasEveryLayout)
 {
     const auto r = pba::test::runPba("bench --quick --json --sizes 1000");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto json = nlohmann::json::parse(r.out);
     std::set<std::string> layouts;
+    double bound = 0.0;
     for (const auto& row : json["results"]) {
         layouts.insert(row["layout"].get<std::string>());
-        for (const char* key : {"integrator", "n", "threads", "particle_steps_per_s", "bytes_per_particle"})
+        for (const char* key : {"integrator", "n", "threads", "particle_steps_per_s", "particle_steps_per_s_median",
+                                "bytes_per_particle"})
             EXPECT_TRUE(row.contains(key)) << key;
-        EXPECT_GT(row["particle_steps_per_s"].get<double>(), 0.0);
+        const double rate = row["particle_steps_per_s"].get<double>();
+        EXPECT_GT(rate, 0.0);
+        EXPECT_GT(row["particle_steps_per_s_median"].get<double>(), 0.0);
+        EXPECT_LE(row["particle_steps_per_s_median"].get<double>(), rate);
+        if (row["layout"] == "bound")
+            bound = rate;
+        if (row["layout"] == "swarm") {
+            EXPECT_DOUBLE_EQ(row["fraction_of_bound"].get<double>(), rate / bound);
+        }
     }
     EXPECT_EQ(layouts, (std::set<std::string>{"bound", "baseline", "swarm", "scene"}));
     const auto& scene = json["results"].back();
     EXPECT_EQ(scene["scene"], "fountain-1m");
     EXPECT_EQ(scene["n"], 1000000);
     EXPECT_GT(scene["steps_per_s"].get<double>(), 0.0);
+    // steps_per_s is the slowest span's: never above the whole run's
+    EXPECT_LE(scene["steps_per_s"].get<double>(), scene["steps_per_s_overall"].get<double>());
+    EXPECT_EQ(scene["spans"], 2);
+    EXPECT_EQ(scene["steps_per_span"], 4);
 }
