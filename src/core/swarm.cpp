@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <optional>
+#include <type_traits>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -226,8 +227,9 @@ template <Integrator kIntegrator>
 
 /// The first pass of the reflect (kMirror) or clamp rule over one plane for a whole block: the
 /// same mirrorBack/snapBack a Particle uses, branch-free, so this is a vectorised loop (a
-/// particle inside the plane is left exactly as it was).
-template <bool kMirror>
+/// particle inside the plane is left exactly as it was). Compiled apart for a plane with a hole,
+/// whose pass also keeps the particles in its shaft within the shaft's wall.
+template <bool kMirror, bool kHole>
 int passOverPlane(const PlaneT<float> plane, float restitution, float* __restrict px, float* __restrict py,
                   float* __restrict pz, float* __restrict vx, float* __restrict vy, float* __restrict vz,
                   const float* __restrict s0, const float* __restrict s1, const float* __restrict s2, std::size_t n)
@@ -238,13 +240,25 @@ int passOverPlane(const PlaneT<float> plane, float restitution, float* __restric
         Vec3<float> x(px[k], py[k], pz[k]);
         Vec3<float> v(vx[k], vy[k], vz[k]);
         if constexpr (kMirror)
-            mirrorBack(plane, restitution, from, x, v, bounces);
+            mirrorBack<kHole>(plane, restitution, from, x, v, bounces);
         else
-            snapBack(plane, restitution, from, x, v, bounces);
+            snapBack<kHole>(plane, restitution, from, x, v, bounces);
         px[k] = x.x, py[k] = x.y, pz[k] = x.z;
         vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
     }
     return bounces;
+}
+
+template <bool kMirror>
+int passOverPlane(const PlaneT<float>& plane, float restitution, const Arrays& a, std::size_t b,
+                  const StartPositions& start, std::size_t n)
+{
+    const auto pass = [&](auto hole) {
+        return passOverPlane<kMirror, decltype(hole)::value>(plane, restitution, a.px + b, a.py + b, a.pz + b,
+                                                             a.vx + b, a.vy + b, a.vz + b, start[0], start[1],
+                                                             start[2], n);
+    };
+    return plane.holeRadius > 0.0f ? pass(std::true_type{}) : pass(std::false_type{});
 }
 
 /// The rest of the rule for the few particles still outside after the first pass (and, for
@@ -353,11 +367,8 @@ std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, fl
         if ((planesCrossed >> std::min<std::size_t>(p, 63) & 1u) == 0)
             continue;
         const PlaneT<float>& plane = planes[p];
-        bounces += response == CollisionResponse::Reflect
-                       ? passOverPlane<true>(plane, restitution, a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b,
-                                             a.vz + b, start[0], start[1], start[2], n)
-                       : passOverPlane<false>(plane, restitution, a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b,
-                                              a.vz + b, start[0], start[1], start[2], n);
+        bounces += response == CollisionResponse::Reflect ? passOverPlane<true>(plane, restitution, a, b, start, n)
+                                                          : passOverPlane<false>(plane, restitution, a, b, start, n);
     }
     alignas(64) std::uint8_t outside[kBlock];
     std::size_t count = markOutside(a, b, n, planes, box, outside);

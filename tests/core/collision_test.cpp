@@ -211,6 +211,39 @@ TEST(Collisions, FoldingIntoASlabIsMirroringBetweenItsWallsUntilInside)
     }
 }
 
+// The shaft's wall in a pass of the rule: a body in the shaft beyond its radius is put just
+// inside it with its outward radial velocity reflected with restitution and its tangential and
+// vertical velocity kept (a Particle and a swarm's vectorised pass both get this from
+// mirrorBack); a body in the shaft within the radius, or one above the floor, is left bit for
+// bit as it was.
+TEST(Collisions, TheShaftWallIsPartOfTheFloorsPass)
+{
+    const Plane floor{dvec3(0, 1, 0), 0.0, 0.25, dvec3(0.0)};
+    const double e = 0.6;
+    const dvec3 start(0.2, -0.02, 0.0); // already in the shaft
+    dvec3 x(0.3, -0.03, 0.1), v(2.0, -0.5, 1.0);
+    int bounces = 0;
+    EXPECT_TRUE(mirrorBack(floor, e, start, x, v, bounces));
+    EXPECT_EQ(bounces, 1);
+    const dvec3 out = glm::normalize(dvec3(0.3, 0.0, 0.1));
+    EXPECT_LT(std::hypot(x.x, x.z), 0.25);
+    EXPECT_NEAR(std::hypot(x.x, x.z), 0.25, 1e-14);
+    EXPECT_EQ(x.y, -0.03);
+    const dvec3 v0(2.0, -0.5, 1.0);
+    EXPECT_NEAR(glm::dot(v, out), -e * glm::dot(v0, out), 1e-14);
+    EXPECT_NEAR(glm::length(v - glm::dot(v, out) * out), glm::length(v0 - glm::dot(v0, out) * out), 1e-14);
+    const std::array<std::pair<dvec3, dvec3>, 2> leftAlone{std::pair{start, dvec3(0.1, -0.03, -0.2)},  // within
+                                                           std::pair{dvec3(1, 1, 1), dvec3(1, 0.5, 1)}}; // above
+    for (const auto& [from, at] : leftAlone) {
+        dvec3 y = at, w(2.0, -0.5, 1.0);
+        int none = 0;
+        EXPECT_FALSE(mirrorBack(floor, e, from, y, w, none));
+        EXPECT_EQ(none, 0);
+        EXPECT_EQ(y, at);
+        EXPECT_EQ(w, dvec3(2.0, -0.5, 1.0));
+    }
+}
+
 // A body inside the slab is left exactly as it was (bit for bit), and one beyond 2^22 widths or
 // not finite is left to the last line of defence.
 TEST(Collisions, FoldingLeavesBodiesInsideAndHopelessOnesAlone)
