@@ -262,7 +262,7 @@ int passOverPlane(const PlaneT<float>& plane, float restitution, const Arrays& a
 }
 
 /// The rest of the rule for the few particles still outside after the first pass (and, for
-/// reflect, the fold): a corner, the hole's shaft. The same function a Particle uses, told
+/// reflect, the fold): a corner, a shaft's rim. The same function a Particle uses, told
 /// which passes are done. Out of line, as collideExactly.
 [[gnu::noinline]] std::uint64_t finishRule(const Arrays& a, std::size_t begin, std::size_t n, float restitution,
                                            std::span<const PlaneT<float>> planes, CollisionResponse response,
@@ -373,8 +373,8 @@ std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, fl
     alignas(64) std::uint8_t outside[kBlock];
     std::size_t count = markOutside(a, b, n, planes, box, outside);
     if (count > 0 && response == CollisionResponse::Reflect) {
-        // Most blocks with particles still outside have them in the hole's shaft, inside every
-        // slab: a slab is folded only when some particle is beyond it.
+        // Particles still outside are mostly at a corner or a shaft's rim, inside every slab: a
+        // slab is folded only when some particle is beyond it.
         std::array<SlabT<float>, 3> slabs;
         const int slabCount = boxSlabs(planes, slabs);
         bool folded = false;
