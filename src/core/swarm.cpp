@@ -228,9 +228,10 @@ template <Integrator kIntegrator>
 /// The first pass of the reflect (kMirror) or clamp rule over one plane for a whole block: the
 /// same mirrorBack/snapBack a Particle uses, branch-free, so this is a vectorised loop (a
 /// particle inside the plane is left exactly as it was). Compiled apart for a plane with a hole,
-/// whose pass also keeps the particles in its shaft within the shaft's wall.
-template <bool kMirror, bool kHole>
-int passOverPlane(const PlaneT<float> plane, float restitution, float* __restrict px, float* __restrict py,
+/// whose pass also keeps the particles in its shaft within the shaft's wall, and for each form
+/// of the plane's geometry (a wall of the room as an AxisPlaneT).
+template <bool kMirror, bool kHole, class Plane>
+int passOverPlane(const Plane plane, float restitution, float* __restrict px, float* __restrict py,
                   float* __restrict pz, float* __restrict vx, float* __restrict vy, float* __restrict vz,
                   const float* __restrict s0, const float* __restrict s1, const float* __restrict s2, std::size_t n)
 {
@@ -253,12 +254,14 @@ template <bool kMirror>
 int passOverPlane(const PlaneT<float>& plane, float restitution, const Arrays& a, std::size_t b,
                   const StartPositions& start, std::size_t n)
 {
-    const auto pass = [&](auto hole) {
-        return passOverPlane<kMirror, decltype(hole)::value>(plane, restitution, a.px + b, a.py + b, a.pz + b,
-                                                             a.vx + b, a.vy + b, a.vz + b, start[0], start[1],
-                                                             start[2], n);
-    };
-    return plane.holeRadius > 0.0f ? pass(std::true_type{}) : pass(std::false_type{});
+    return withPlaneGeometry(plane, [&](const auto geometry) {
+        const auto pass = [&](auto hole) {
+            return passOverPlane<kMirror, decltype(hole)::value>(geometry, restitution, a.px + b, a.py + b,
+                                                                 a.pz + b, a.vx + b, a.vy + b, a.vz + b, start[0],
+                                                                 start[1], start[2], n);
+        };
+        return plane.holeRadius > 0.0f ? pass(std::true_type{}) : pass(std::false_type{});
+    });
 }
 
 /// The rest of the rule for the few particles still outside after the first pass (and, for

@@ -244,6 +244,63 @@ TEST(Collisions, TheShaftWallIsPartOfTheFloorsPass)
     }
 }
 
+// A wall's geometry with its axis known when compiled (AxisPlaneT, what a swarm's passes use)
+// gives the rule exactly what the generic plane gives: for each axis and side, with a hole,
+// for bodies beyond the plane, over the hole, in the shaft, at the shaft's wall and clear of it.
+template <class T>
+void expectAxisPlanesAgree()
+{
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<T> near(T(-0.6), T(0.6)), speed(T(-3), T(3));
+    for (int axis = 0; axis < 3; ++axis) {
+        for (T sign : {T(1), T(-1)}) {
+            Vec3<T> normal(T(0)), centre(T(0.1), T(-0.2), T(0.15));
+            normal[axis] = sign;
+            const PlaneT<T> plane{normal, T(0.3) * sign, T(0.25), centre};
+            int cases = 0;
+            for (int trial = 0; trial < 4000; ++trial) {
+                const Vec3<T> start(near(rng), near(rng), near(rng)), at(near(rng), near(rng), near(rng));
+                const Vec3<T> velocity(speed(rng), speed(rng), speed(rng));
+                for (bool mirror : {true, false}) {
+                    Vec3<T> x = at, v = velocity, ax = at, av = velocity;
+                    int bounces = 0, axisBounces = 0;
+                    const auto rule = [&](const auto& p, Vec3<T>& y, Vec3<T>& w, int& b) {
+                        return mirror ? mirrorBack(p, T(0.6), start, y, w, b) : snapBack(p, T(0.6), start, y, w, b);
+                    };
+                    const bool moved = rule(plane, x, v, bounces);
+                    const bool axisMoved = withPlaneGeometry(plane, [&](const auto& p) { return rule(p, ax, av, axisBounces); });
+                    cases += moved;
+                    ASSERT_EQ(moved, axisMoved) << "axis " << axis << " trial " << trial;
+                    ASSERT_EQ(x, ax) << "axis " << axis << " trial " << trial;
+                    ASSERT_EQ(v, av) << "axis " << axis << " trial " << trial;
+                    ASSERT_EQ(bounces, axisBounces) << "axis " << axis << " trial " << trial;
+                }
+            }
+            EXPECT_GT(cases, 1000); // the rule had work in many of the trials
+        }
+    }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+// Again compiled with fused multiply-adds, as a swarm's loops are on this machine: there the
+// order in which a sum's terms are taken changes its rounding.
+[[gnu::target("arch=x86-64-v3"), gnu::flatten]] void expectAxisPlanesAgreeWithFma()
+{
+    expectAxisPlanesAgree<float>();
+    expectAxisPlanesAgree<double>();
+}
+#endif
+
+TEST(Collisions, AnAxisPlaneGivesWhatThePlaneGives)
+{
+    expectAxisPlanesAgree<float>();
+    expectAxisPlanesAgree<double>();
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+    if (__builtin_cpu_supports("fma") && __builtin_cpu_supports("avx2"))
+        expectAxisPlanesAgreeWithFma();
+#endif
+}
+
 // A body inside the slab is left exactly as it was (bit for bit), and one beyond 2^22 widths or
 // not finite is left to the last line of defence.
 TEST(Collisions, FoldingLeavesBodiesInsideAndHopelessOnesAlone)
