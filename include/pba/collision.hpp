@@ -735,23 +735,57 @@ inline std::uint32_t markUnclearInBox(const ClearRegionT<T> region, const T* __r
     return count;
 }
 
-/// Adds to beyond[w] how many points are beyond wall w of the box (in the order of
-/// BoxWallsT::plane), as lowerClearance counts them. Apart from setClearanceInBox because a
-/// swarm needs it only for the few blocks in which a point met a surface: counting in every
-/// block cost as much as the margins.
+/// The smallest and the largest of each coordinate over some points. A point is beyond a plane
+/// whose normal is a coordinate axis exactly when the bound on the plane's side is, so one loop
+/// of six minima and maxima tells which of a room's walls, and which other axis-aligned planes
+/// (the grille below a hole), some of a block's points crossed: counting them wall by wall took
+/// six comparisons and six sums a point, and a second loop for each other plane.
 template <class T>
-inline void countBeyondBox(const BoxWallsT<T>& box, const T* __restrict x, const T* __restrict y,
-                           const T* __restrict z, std::size_t n, std::array<std::uint32_t, 6>& beyond)
-{
-    const T x0 = box.lo[0], x1 = box.hi[0], y0 = box.lo[1], y1 = box.hi[1], z0 = box.lo[2], z1 = box.hi[2];
-    std::uint32_t b0 = 0, b1 = 0, b2 = 0, b3 = 0, b4 = 0, b5 = 0; // 32 bits, as in lowerClearance
-    for (std::size_t k = 0; k < n; ++k) {
-        const T a = x[k], b = y[k], c = z[k];
-        b0 += static_cast<std::uint32_t>(a < x0), b1 += static_cast<std::uint32_t>(a > x1);
-        b2 += static_cast<std::uint32_t>(b < y0), b3 += static_cast<std::uint32_t>(b > y1);
-        b4 += static_cast<std::uint32_t>(c < z0), b5 += static_cast<std::uint32_t>(c > z1);
+struct BoundsT {
+    std::array<T, 3> lo, hi;
+
+    /// Whether some of the points are beyond `plane`, whose axis() must be 0, 1 or 2: what
+    /// lowerClearance's count > 0 says of them (its d = sign c - offset < 0 exactly when
+    /// sign c < offset).
+    bool beyond(const PlaneT<T>& plane) const
+    {
+        const int axis = plane.axis();
+        const auto i = static_cast<std::size_t>(axis);
+        return plane.normal[axis] > T(0) ? lo[i] < plane.offset : -hi[i] < plane.offset;
     }
-    beyond[0] += b0, beyond[1] += b1, beyond[2] += b2, beyond[3] += b3, beyond[4] += b4, beyond[5] += b5;
+};
+
+/// The bounds of n points (SoA arrays); a NaN coordinate is passed over, as lowerClearance
+/// counts it beyond no plane. The minima and maxima are kept lane by lane in whole vectors of
+/// kLanes floats and reduced at the end: GCC does not vectorise a floating-point minimum taken
+/// over a loop (it would reorder it), but it vectorises one taken element by element.
+template <class T>
+inline BoundsT<T> boundsOf(const T* __restrict x, const T* __restrict y, const T* __restrict z, std::size_t n)
+{
+    using collision_detail::lesser;
+    const auto greater = [](T a, T b) { return a < b ? b : a; };
+    constexpr std::size_t kLanes = 64 / sizeof(T);
+    constexpr T kInf = std::numeric_limits<T>::infinity();
+    T x0[kLanes], x1[kLanes], y0[kLanes], y1[kLanes], z0[kLanes], z1[kLanes];
+    std::fill_n(x0, kLanes, kInf), std::fill_n(y0, kLanes, kInf), std::fill_n(z0, kLanes, kInf);
+    std::fill_n(x1, kLanes, -kInf), std::fill_n(y1, kLanes, -kInf), std::fill_n(z1, kLanes, -kInf);
+    std::size_t k = 0;
+    for (; k + kLanes <= n; k += kLanes) {
+        for (std::size_t j = 0; j < kLanes; ++j) {
+            x0[j] = lesser(x0[j], x[k + j]), x1[j] = greater(x1[j], x[k + j]);
+            y0[j] = lesser(y0[j], y[k + j]), y1[j] = greater(y1[j], y[k + j]);
+            z0[j] = lesser(z0[j], z[k + j]), z1[j] = greater(z1[j], z[k + j]);
+        }
+    }
+    for (std::size_t j = 0; k < n; ++k, ++j) // the last, partial vector
+        x0[j] = lesser(x0[j], x[k]), x1[j] = greater(x1[j], x[k]), y0[j] = lesser(y0[j], y[k]),
+        y1[j] = greater(y1[j], y[k]), z0[j] = lesser(z0[j], z[k]), z1[j] = greater(z1[j], z[k]);
+    BoundsT<T> bounds{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}};
+    for (std::size_t j = 0; j < kLanes; ++j) {
+        bounds.lo = {lesser(bounds.lo[0], x0[j]), lesser(bounds.lo[1], y0[j]), lesser(bounds.lo[2], z0[j])};
+        bounds.hi = {greater(bounds.hi[0], x1[j]), greater(bounds.hi[1], y1[j]), greater(bounds.hi[2], z1[j])};
+    }
+    return bounds;
 }
 
 /// lowerDepth for the six walls of a box in one loop, each coordinate read once (as

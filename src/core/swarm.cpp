@@ -173,26 +173,23 @@ std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std
 }
 
 /// The planes some of the n positions are beyond: those the reflect and clamp rules' first pass
-/// must visit (the box's walls counted in one loop). Worked out only for the blocks, or the
-/// gathered particles, that met a surface.
-std::uint64_t crossedPlanes(const std::optional<BoxWallsT<float>>& box, std::span<const PlaneT<float>> planes,
-                            const float* x, const float* y, const float* z, std::size_t n)
+/// must visit (a room's walls, and any other axis-aligned plane, from the positions' bounds).
+/// Worked out only for the blocks, or the gathered particles, that met a surface.
+std::uint64_t crossedPlanes(std::span<const PlaneT<float>> planes, const float* x, const float* y, const float* z,
+                            std::size_t n)
 {
     std::uint64_t crossed = 0;
-    if (box) {
-        std::array<std::uint32_t, 6> beyond{};
-        countBeyondBox(*box, x, y, z, n, beyond);
-        for (std::size_t w = 0; w < 6; ++w)
-            if (beyond[w] > 0)
-                crossed |= std::uint64_t(1) << box->plane[w];
-    }
+    const BoundsT<float> bounds = boundsOf(x, y, z, n);
     alignas(64) float unused[kBlock]; // lowerClearance's margins: only its count is wanted here
-    const std::uint64_t done = box ? box->mask : 0;
     for (std::size_t p = 0; p < planes.size(); ++p) {
-        if (p < 64 && (done >> p & 1u) != 0)
-            continue;
-        std::fill_n(unused, n, std::numeric_limits<float>::infinity());
-        if (lowerClearance(planes[p], x, y, z, n, unused) > 0)
+        bool beyond = false;
+        if (planes[p].axis() >= 0) {
+            beyond = bounds.beyond(planes[p]);
+        } else {
+            std::fill_n(unused, n, std::numeric_limits<float>::infinity());
+            beyond = lowerClearance(planes[p], x, y, z, n, unused) > 0;
+        }
+        if (beyond)
             crossed |= std::uint64_t(1) << std::min<std::size_t>(p, 63);
     }
     return crossed;
@@ -443,9 +440,8 @@ public:
     static_assert(kCapacity % kGatherWidth == 0, "a full batch is whole vectors: its padding fits");
 
     GatheredHits(const Arrays& a, float restitution, std::span<const PlaneT<float>> planes,
-                 CollisionResponse response, const std::optional<BoxWallsT<float>>& box, const DepthBox& depthBox)
-        : m_a(a), m_restitution(restitution), m_planes(planes), m_response(response), m_box(box),
-          m_depthBox(depthBox)
+                 CollisionResponse response, const DepthBox& depthBox)
+        : m_a(a), m_restitution(restitution), m_planes(planes), m_response(response), m_depthBox(depthBox)
     {
     }
 
@@ -490,7 +486,7 @@ public:
                 m_from[c][j] = m_spare[6 + c];
         }
         const Arrays gathered{m_state[0], m_state[1], m_state[2], m_state[3], m_state[4], m_state[5], nullptr};
-        const std::uint64_t crossed = crossedPlanes(m_box, m_planes, m_state[0], m_state[1], m_state[2], width);
+        const std::uint64_t crossed = crossedPlanes(m_planes, m_state[0], m_state[1], m_state[2], width);
         const std::uint64_t bounces = collideAfterStep(gathered, 0, width, m_restitution, m_planes, m_response,
                                                        {m_from[0], m_from[1], m_from[2]}, crossed, m_depthBox);
         float* const arrays[6] = {m_a.px, m_a.py, m_a.pz, m_a.vx, m_a.vy, m_a.vz};
@@ -506,7 +502,6 @@ private:
     float m_restitution;
     std::span<const PlaneT<float>> m_planes;
     CollisionResponse m_response;
-    const std::optional<BoxWallsT<float>>& m_box;
     const DepthBox& m_depthBox;
     std::size_t m_count = 0;
     bool m_haveSpare = false;
@@ -544,7 +539,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
     const std::optional<BoxWallsT<float>> box = boxWalls(planes);
     const bool coversAll = box && boxCoversAll(*box, planes);
     const DepthBox depthBox(box, planes);
-    GatheredHits gathered(a, restitution, planes, response, box, depthBox);
+    GatheredHits gathered(a, restitution, planes, response, depthBox);
     const auto all = [&](const Vec3<float>& x, const Vec3<float>& v) {
         return swarmAccelerationAll(fields, x, v);
     };
@@ -567,7 +562,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
         } else if (hits <= kGatherMax && hits < n) {
             bounces += gathered.add(b, n, hit, start);
         } else {
-            const std::uint64_t crossed = crossedPlanes(box, planes, a.px + b, a.py + b, a.pz + b, n);
+            const std::uint64_t crossed = crossedPlanes(planes, a.px + b, a.py + b, a.pz + b, n);
             bounces += collideAfterStep(a, b, n, restitution, planes, response, {start[0], start[1], start[2]},
                                         crossed, depthBox);
         }
