@@ -85,7 +85,9 @@ using Plane = PlaneT<double>;
 /// is written once, over the primitives both provide; a swarm's passes hand it this form for
 /// the walls of its room, where the generic form did three times the arithmetic a particle
 /// (the floor with the blow dryer's hole was a third of a settled swarm's step). For finite
-/// coordinates it gives what PlaneT gives (tested); only the sign of a zero may differ.
+/// coordinates it does what PlaneT does, rounding for rounding (tested; only the sign of a zero
+/// may differ), but for where a compiler fuses a product into a sum, which is its choice for
+/// each form.
 template <class T, int kAxis>
 struct AxisPlaneT {
     static_assert(kAxis >= 0 && kAxis < 3);
@@ -277,8 +279,8 @@ inline std::optional<T> timeOfImpactWithHole(Integrator integrator, const PlaneT
 /// rather than branches, as pushBack, so a swarm's vectorised pass runs it too: a body that is
 /// not at the wall is left as it was. Returns whether it moved the body; counts the bounce.
 /// `plane` is a PlaneT or an AxisPlaneT, as for every function of the rule below.
-template <class Plane, class T>
-inline bool pushIntoShaft(const Plane& plane, T restitution, bool inShaft, Vec3<T>& x, Vec3<T>& v, int& bounces)
+template <class Geometry, class T>
+inline bool pushIntoShaft(const Geometry& plane, T restitution, bool inShaft, Vec3<T>& x, Vec3<T>& v, int& bounces)
 {
     const auto rho = plane.fromHoleAxis(x);
     const T r = glm::length(rho);
@@ -299,8 +301,8 @@ inline bool pushIntoShaft(const Plane& plane, T restitution, bool inShaft, Vec3<
 }
 
 /// Keeps a body that is in the shaft below a hole within the shaft's radius (pushIntoShaft).
-template <class Plane, class T>
-inline int keepInShaft(const Plane& plane, T restitution, Vec3<T>& x, Vec3<T>& v)
+template <class Geometry, class T>
+inline int keepInShaft(const Geometry& plane, T restitution, Vec3<T>& x, Vec3<T>& v)
 {
     int bounces = 0;
     pushIntoShaft(plane, restitution, true, x, v, bounces);
@@ -310,8 +312,8 @@ inline int keepInShaft(const Plane& plane, T restitution, Vec3<T>& x, Vec3<T>& v
 /// Whether a body that ended the step at x, from `start`, is excused from `plane` by its hole:
 /// it is over the hole, or it was already in the shaft below. Bitwise operators rather than
 /// && and ||, so a swarm loop can evaluate it for every particle without branches.
-template <class Plane, class T>
-inline bool throughHole(const Plane& plane, const Vec3<T>& start, const Vec3<T>& x)
+template <class Geometry, class T>
+inline bool throughHole(const Geometry& plane, const Vec3<T>& start, const Vec3<T>& x)
 {
     const auto rho = plane.fromHoleAxis(x);
     return (plane.holeRadius > T(0)) &
@@ -434,8 +436,8 @@ namespace collision_detail {
 /// the bounce. `kMayHaveHole` false, for a plane known to have none, skips the shaft's
 /// arithmetic (a swarm's pass picks it per plane; it changes no result). `plane` is a PlaneT or
 /// an AxisPlaneT.
-template <bool kMayHaveHole = true, class Plane, class T>
-inline bool pushBack(const Plane& plane, T restitution, T back, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
+template <bool kMayHaveHole = true, class Geometry, class T>
+inline bool pushBack(const Geometry& plane, T restitution, T back, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
                      int& bounces)
 {
     const T d = plane.distance(x);
@@ -455,16 +457,16 @@ inline bool pushBack(const Plane& plane, T restitution, T back, const Vec3<T>& s
 } // namespace collision_detail
 
 /// One plane's share of a pass of the reflect rule: mirror the body back across it.
-template <bool kMayHaveHole = true, class Plane, class T>
-inline bool mirrorBack(const Plane& plane, T restitution, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
+template <bool kMayHaveHole = true, class Geometry, class T>
+inline bool mirrorBack(const Geometry& plane, T restitution, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
                        int& bounces)
 {
     return collision_detail::pushBack<kMayHaveHole>(plane, restitution, T(2), start, x, v, bounces);
 }
 
 /// The clamp rule's share for one plane: put the body back on it.
-template <bool kMayHaveHole = true, class Plane, class T>
-inline bool snapBack(const Plane& plane, T restitution, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
+template <bool kMayHaveHole = true, class Geometry, class T>
+inline bool snapBack(const Geometry& plane, T restitution, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
                      int& bounces)
 {
     return collision_detail::pushBack<kMayHaveHole>(plane, restitution, T(1), start, x, v, bounces);

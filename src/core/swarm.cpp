@@ -62,6 +62,14 @@ bool samePlanes(std::span<const PlaneT<float>> a, std::span<const PlaneT<float>>
     });
 }
 
+// A function compiled once for each instruction set (see stepSwarmRange). GCC on x86-64 only: clang 14 does not combine target_clones with flatten, and other CPUs
+// have other instruction sets (there the loop is compiled once, for the build's target).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define PBA_FOR_EACH_INSTRUCTION_SET [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"), gnu::flatten]]
+#else
+#define PBA_FOR_EACH_INSTRUCTION_SET
+#endif
+
 /// Particles a block: the start states of one block stay in L1 while the block is stepped.
 constexpr std::size_t kBlock = 512;
 /// The block's start states are six rows of this many floats: 192 bytes more than a block, so
@@ -227,8 +235,8 @@ template <Integrator kIntegrator>
 /// particle inside the plane is left exactly as it was). Compiled apart for a plane with a hole,
 /// whose pass also keeps the particles in its shaft within the shaft's wall, and for each form
 /// of the plane's geometry (a wall of the room as an AxisPlaneT).
-template <bool kMirror, bool kHole, class Plane>
-int passOverPlane(const Plane plane, float restitution, float* __restrict px, float* __restrict py,
+template <bool kMirror, bool kHole, class Geometry>
+int passOverPlane(const Geometry plane, float restitution, float* __restrict px, float* __restrict py,
                   float* __restrict pz, float* __restrict vx, float* __restrict vy, float* __restrict vz,
                   const float* __restrict s0, const float* __restrict s1, const float* __restrict s2, std::size_t n)
 {
@@ -237,10 +245,15 @@ int passOverPlane(const Plane plane, float restitution, float* __restrict px, fl
         const Vec3<float> from(s0[k], s1[k], s2[k]);
         Vec3<float> x(px[k], py[k], pz[k]);
         Vec3<float> v(vx[k], vy[k], vz[k]);
+        // Counted apart and then added: a bounce off the plane and one off its shaft's wall
+        // exclude each other, and GCC, seeing that, made the running sum itself the operand of
+        // a select, which its vectoriser does not take as a sum (the loop ran scalar).
+        int bounced = 0;
         if constexpr (kMirror)
-            mirrorBack<kHole>(plane, restitution, from, x, v, bounces);
+            mirrorBack<kHole>(plane, restitution, from, x, v, bounced);
         else
-            snapBack<kHole>(plane, restitution, from, x, v, bounces);
+            snapBack<kHole>(plane, restitution, from, x, v, bounced);
+        bounces += bounced;
         px[k] = x.x, py[k] = x.y, pz[k] = x.z;
         vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
     }
@@ -395,6 +408,20 @@ std::uint64_t collideAfterStep(const Arrays& a, std::size_t b, std::size_t n, fl
     return bounces;
 }
 
+/// Phase 3, reflect and clamp, for a block or a gathered batch with particles at a surface: the
+/// planes they crossed, then collideAfterStep. Compiled once for each instruction set, apart
+/// from the integration loops that call it: the collision code does not depend on the
+/// integrator, and inlined into each integrator's loop it was compiled four times over (with
+/// the walls' geometry compiled for each axis, a sanitizer build of this file took 20 minutes).
+PBA_FOR_EACH_INSTRUCTION_SET
+std::uint64_t collideBlock(const Arrays& a, std::size_t b, std::size_t n, float restitution,
+                           std::span<const PlaneT<float>> planes, CollisionResponse response,
+                           const StartPositions& start, const DepthBox& box)
+{
+    const std::uint64_t crossed = crossedPlanes(planes, a.px + b, a.py + b, a.pz + b, n);
+    return collideAfterStep(a, b, n, restitution, planes, response, start, crossed, box);
+}
+
 /// The particles of a block marked in `hit` (at most kGatherMax, and fewer than n), listed in
 /// `index`; returns how many, and in `spare` the first clear one. The flags are first packed
 /// eight to a byte (a multiplication gathers eight 0/1 bytes into eight bits: one loop, which
@@ -486,9 +513,8 @@ public:
                 m_from[c][j] = m_spare[6 + c];
         }
         const Arrays gathered{m_state[0], m_state[1], m_state[2], m_state[3], m_state[4], m_state[5], nullptr};
-        const std::uint64_t crossed = crossedPlanes(m_planes, m_state[0], m_state[1], m_state[2], width);
-        const std::uint64_t bounces = collideAfterStep(gathered, 0, width, m_restitution, m_planes, m_response,
-                                                       {m_from[0], m_from[1], m_from[2]}, crossed, m_depthBox);
+        const std::uint64_t bounces = collideBlock(gathered, 0, width, m_restitution, m_planes, m_response,
+                                                   {m_from[0], m_from[1], m_from[2]}, m_depthBox);
         float* const arrays[6] = {m_a.px, m_a.py, m_a.pz, m_a.vx, m_a.vy, m_a.vz};
         for (std::size_t j = 0; j < m_count; ++j)
             for (std::size_t c = 0; c < 6; ++c)
@@ -562,21 +588,12 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
         } else if (hits <= kGatherMax && hits < n) {
             bounces += gathered.add(b, n, hit, start);
         } else {
-            const std::uint64_t crossed = crossedPlanes(planes, a.px + b, a.py + b, a.pz + b, n);
-            bounces += collideAfterStep(a, b, n, restitution, planes, response, {start[0], start[1], start[2]},
-                                        crossed, depthBox);
+            bounces += collideBlock(a, b, n, restitution, planes, response, {start[0], start[1], start[2]},
+                                    depthBox);
         }
     }
     return bounces + gathered.collide();
 }
-
-// GCC on x86-64 only: clang 14 does not combine target_clones with flatten, and other CPUs
-// have other instruction sets (there the loop is compiled once, for the build's target).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define PBA_FOR_EACH_INSTRUCTION_SET [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"), gnu::flatten]]
-#else
-#define PBA_FOR_EACH_INSTRUCTION_SET
-#endif
 
 /// Every integrator's loop for a range of particles, compiled three times: for AVX-512
 /// (x86-64-v4), AVX2 with FMA (x86-64-v3) and the baseline SSE2, the best picked when the

@@ -279,11 +279,20 @@ TEST(Collisions, TheBoundsOfPointsTellWhichPlanesTheyCrossed)
 }
 
 // A wall's geometry with its axis known when compiled (AxisPlaneT, what a swarm's passes use)
-// gives the rule exactly what the generic plane gives: for each axis and side, with a hole,
-// for bodies beyond the plane, over the hole, in the shaft, at the shaft's wall and clear of it.
+// gives the rule what the generic plane gives: for each axis and side, with a hole, for bodies
+// beyond the plane, over the hole, in the shaft, at the shaft's wall and clear of it. Without
+// fused multiply-adds both do the same roundings, bit for bit. With them, where the compiler
+// fuses a product into a sum is its choice for each form (the release build fuses both alike,
+// and a swarm's results do not change; a sanitizer build does not): the same to the last bits.
 template <class T>
-void expectAxisPlanesAgree()
+void expectAxisPlanesAgree(bool exact)
 {
+    const auto same = [exact](const Vec3<T>& a, const Vec3<T>& b) {
+        if (exact)
+            return a == b;
+        const T ulps = T(8) * std::numeric_limits<T>::epsilon();
+        return glm::all(glm::lessThanEqual(glm::abs(a - b), ulps * (T(1) + glm::abs(a))));
+    };
     std::mt19937 rng(11);
     std::uniform_real_distribution<T> near(T(-0.6), T(0.6)), speed(T(-3), T(3));
     for (int axis = 0; axis < 3; ++axis) {
@@ -302,11 +311,12 @@ void expectAxisPlanesAgree()
                         return mirror ? mirrorBack(p, T(0.6), start, y, w, b) : snapBack(p, T(0.6), start, y, w, b);
                     };
                     const bool moved = rule(plane, x, v, bounces);
-                    const bool axisMoved = withPlaneGeometry(plane, [&](const auto& p) { return rule(p, ax, av, axisBounces); });
+                    const bool axisMoved =
+                        withPlaneGeometry(plane, [&](const auto& p) { return rule(p, ax, av, axisBounces); });
                     cases += moved;
                     ASSERT_EQ(moved, axisMoved) << "axis " << axis << " trial " << trial;
-                    ASSERT_EQ(x, ax) << "axis " << axis << " trial " << trial;
-                    ASSERT_EQ(v, av) << "axis " << axis << " trial " << trial;
+                    ASSERT_TRUE(same(x, ax)) << "axis " << axis << " trial " << trial;
+                    ASSERT_TRUE(same(v, av)) << "axis " << axis << " trial " << trial;
                     ASSERT_EQ(bounces, axisBounces) << "axis " << axis << " trial " << trial;
                 }
             }
@@ -316,19 +326,23 @@ void expectAxisPlanesAgree()
 }
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-// Again compiled with fused multiply-adds, as a swarm's loops are on this machine: there the
-// order in which a sum's terms are taken changes its rounding.
+// Again compiled with fused multiply-adds, as a swarm's loops are on this machine.
 [[gnu::target("arch=x86-64-v3"), gnu::flatten]] void expectAxisPlanesAgreeWithFma()
 {
-    expectAxisPlanesAgree<float>();
-    expectAxisPlanesAgree<double>();
+    expectAxisPlanesAgree<float>(false);
+    expectAxisPlanesAgree<double>(false);
 }
 #endif
 
 TEST(Collisions, AnAxisPlaneGivesWhatThePlaneGives)
 {
-    expectAxisPlanesAgree<float>();
-    expectAxisPlanesAgree<double>();
+#if defined(__FMA__)
+    constexpr bool kExact = false; // a build for a CPU with fused multiply-adds (-march=native)
+#else
+    constexpr bool kExact = true;
+#endif
+    expectAxisPlanesAgree<float>(kExact);
+    expectAxisPlanesAgree<double>(kExact);
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
     if (__builtin_cpu_supports("fma") && __builtin_cpu_supports("avx2"))
         expectAxisPlanesAgreeWithFma();
