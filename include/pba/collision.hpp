@@ -615,6 +615,28 @@ inline int stepClamp(Integrator integrator, std::span<const PlaneT<T>> planes, T
     return clampAfterStep(planes, restitution, start, x, v);
 }
 
+namespace collision_detail {
+
+/// lowerClearance's loop for one form of the plane's geometry, taken by value so the stores
+/// to margin cannot change it. For a wall (AxisPlaneT) the distance is one coordinate, and the
+/// loop reads one array instead of three.
+template <class Geometry, class T>
+inline std::uint32_t lowerClearanceOf(const Geometry plane, T tolerance, const T* __restrict x,
+                                      const T* __restrict y, const T* __restrict z, std::size_t n,
+                                      T* __restrict margin)
+{
+    std::uint32_t beyond = 0; // 32 bits: a counter as wide as T keeps the loop in one vector width
+    for (std::size_t k = 0; k < n; ++k) {
+        const T d = plane.distance(Vec3<T>(x[k], y[k], z[k]));
+        const T clearance = d - tolerance;
+        margin[k] = clearance < margin[k] ? clearance : margin[k]; // not std::min: its reference stops the vectoriser
+        beyond += static_cast<std::uint32_t>(d < T(0));
+    }
+    return beyond;
+}
+
+} // namespace collision_detail
+
 /// Lowers margin[k] to the clearance of point k (SoA arrays, n of them) from `plane`: its
 /// distance beyond the plane's contact tolerance, so a point is clear of every plane when its
 /// smallest margin is positive. A step whose start and end are clear of every plane needs no
@@ -627,29 +649,10 @@ template <class T>
 inline std::size_t lowerClearance(const PlaneT<T>& plane, const T* __restrict x, const T* __restrict y,
                                   const T* __restrict z, std::size_t n, T* __restrict margin)
 {
-    const T nx = plane.normal.x, ny = plane.normal.y, nz = plane.normal.z, offset = plane.offset;
     const T tolerance = collision_detail::contactTolerance(plane);
-    std::uint32_t beyond = 0; // 32 bits: a counter as wide as T keeps the loop in one vector width
-    if (const int axis = plane.axis(); axis >= 0) {
-        // A wall of a box: the dot product is one coordinate (times 1 or -1), and this loop
-        // reads one array instead of three.
-        const T* __restrict c = axis == 0 ? x : axis == 1 ? y : z;
-        const T sign = plane.normal[axis];
-        for (std::size_t k = 0; k < n; ++k) {
-            const T d = sign * c[k] - offset;
-            const T clearance = d - tolerance;
-            margin[k] = clearance < margin[k] ? clearance : margin[k];
-            beyond += static_cast<std::uint32_t>(d < T(0));
-        }
-        return beyond;
-    }
-    for (std::size_t k = 0; k < n; ++k) {
-        const T d = nx * x[k] + ny * y[k] + nz * z[k] - offset;
-        const T clearance = d - tolerance;
-        margin[k] = clearance < margin[k] ? clearance : margin[k]; // not std::min: its reference stops the vectoriser
-        beyond += static_cast<std::uint32_t>(d < T(0));
-    }
-    return beyond;
+    return withPlaneGeometry(plane, [&](const auto geometry) {
+        return collision_detail::lowerClearanceOf(geometry, tolerance, x, y, z, n, margin);
+    });
 }
 
 /// The six walls of a box among a world's planes (a hole in one is allowed: the surface test
@@ -806,6 +809,36 @@ inline void lowerDepthInBox(const std::array<T, 3>& lo, const std::array<T, 3>& 
     }
 }
 
+namespace collision_detail {
+
+/// lowerDepth's loop for one form of the geometry of a plane with a hole (by value, as
+/// lowerClearanceOf's): points within innerSquared of the hole's axis are not counted.
+template <class Geometry, class T>
+inline void lowerDepthOf(const Geometry plane, T innerSquared, const T* __restrict x, const T* __restrict y,
+                         const T* __restrict z, std::size_t n, T* __restrict depth)
+{
+    for (std::size_t k = 0; k < n; ++k) {
+        const Vec3<T> p(x[k], y[k], z[k]);
+        const auto rho = plane.fromHoleAxis(p);
+        const T counted = glm::dot(rho, rho) < innerSquared ? std::numeric_limits<T>::infinity() : plane.distance(p);
+        depth[k] = counted < depth[k] ? counted : depth[k];
+    }
+}
+
+/// lowerDepth's loop for a plane without a hole: the distance alone, which for a wall
+/// (AxisPlaneT) reads one array instead of three.
+template <class Geometry, class T>
+inline void lowerDepthWithoutHole(const Geometry plane, const T* __restrict x, const T* __restrict y,
+                                  const T* __restrict z, std::size_t n, T* __restrict depth)
+{
+    for (std::size_t k = 0; k < n; ++k) {
+        const T d = plane.distance(Vec3<T>(x[k], y[k], z[k]));
+        depth[k] = d < depth[k] ? d : depth[k];
+    }
+}
+
+} // namespace collision_detail
+
 /// Lowers depth[k] to point k's signed distance from the plane (no tolerance): a point whose
 /// smallest depth is negative is outside some plane and needs the rest of a collision rule. A
 /// point in the shaft below the plane's hole, within its radius, is where it may be
@@ -815,27 +848,13 @@ template <class T>
 inline void lowerDepth(const PlaneT<T>& plane, const T* __restrict x, const T* __restrict y, const T* __restrict z,
                        std::size_t n, T* __restrict depth)
 {
-    const Vec3<T> normal = plane.normal; // copies: the stores below cannot change them
-    const T offset = plane.offset;
-    if (const int axis = plane.axis(); axis >= 0 && plane.holeRadius <= T(0)) { // a wall: as in lowerClearance
-        const T* __restrict c = axis == 0 ? x : axis == 1 ? y : z;
-        const T sign = normal[axis];
-        for (std::size_t k = 0; k < n; ++k) {
-            const T d = sign * c[k] - offset;
-            depth[k] = d < depth[k] ? d : depth[k];
-        }
-        return;
-    }
     const T inner = plane.holeRadius * (T(1) - T(8) * std::numeric_limits<T>::epsilon());
-    const T innerSquared = plane.holeRadius > T(0) ? inner * inner : T(-1);
-    withPlaneGeometry(plane, [&](const auto geometry) { // by value: the stores cannot change it
-        for (std::size_t k = 0; k < n; ++k) {
-            const Vec3<T> p(x[k], y[k], z[k]);
-            const auto rho = geometry.fromHoleAxis(p);
-            const T counted = glm::dot(rho, rho) < innerSquared ? std::numeric_limits<T>::infinity()
-                                                                : geometry.distance(p);
-            depth[k] = counted < depth[k] ? counted : depth[k];
-        }
+    const bool hole = plane.holeRadius > T(0);
+    withPlaneGeometry(plane, [&](const auto geometry) {
+        if (hole)
+            collision_detail::lowerDepthOf(geometry, inner * inner, x, y, z, n, depth);
+        else
+            collision_detail::lowerDepthWithoutHole(geometry, x, y, z, n, depth);
     });
 }
 

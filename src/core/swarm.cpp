@@ -62,8 +62,9 @@ bool samePlanes(std::span<const PlaneT<float>> a, std::span<const PlaneT<float>>
     });
 }
 
-// A function compiled once for each instruction set (see stepSwarmRange). GCC on x86-64 only: clang 14 does not combine target_clones with flatten, and other CPUs
-// have other instruction sets (there the loop is compiled once, for the build's target).
+// A function compiled once for each instruction set (see stepSwarmRange). GCC on x86-64 only:
+// clang 14 does not combine target_clones with flatten, and other CPUs have other instruction
+// sets (there the loop is compiled once, for the build's target).
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define PBA_FOR_EACH_INSTRUCTION_SET [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"), gnu::flatten]]
 #else
