@@ -10,6 +10,25 @@
 // offset: the axis on the axis, parallel to the cone's side at the edge, blended linearly
 // in between, always away from the nozzle, and never dividing by r (continuous on the axis).
 //
+// A dryer that blows up through a hole in the floor (`shaft`) pushes in the hole's shaft too:
+// below the nozzle, within r0 of it, the force is the nozzle's, strength * axis, the same across
+// the shaft (a short duct's flow is nearly uniform: plug flow). So whatever falls into the hole
+// is blown out again when the dryer is stronger than its weight.
+//
+// Two opt-in terms make the field an airflow that can hold a ball (both off by default, when the
+// force is exactly the one above). Let w(x) in [0, 1] be the profile (the force over the
+// strength: axial(1 - h/H) radial(1 - r/R(h)) in the cone, 1 in the shaft, 0 elsewhere) and
+// u(x) = U w(x) direction the air's velocity, U = `airSpeed` at the nozzle:
+//  - air drag: the ball feels the air as drag on its velocity relative to the air's,
+//    c (u - v) with c = strength / U, so a ball at rest feels exactly the force above and a
+//    moving one is damped toward the air's velocity (time constant m / c). Only where the air
+//    blows (the cone and the shaft): the room's still air is the `drag` force's business.
+//  - axis pull (Bernoulli): the air is fastest on the axis, where its pressure is lowest, and a
+//    ball of volume V feels -V grad p = (rho V / 2) grad |u|^2. With beta = `axisPull` (kg: the
+//    air mass the ball displaces, times a shape factor), the part across the axis,
+//    (beta / 2) grad_perp |u|^2 = beta U^2 w dw/dr rho/r, pulls toward the axis; the part along
+//    it is left out, so the hover height stays the one the push alone gives.
+//
 // The kernel is a template over the scalar with no data-dependent branches beyond
 // selects, so a swarm loop over float arrays vectorises it.
 #include <algorithm>
@@ -48,6 +67,8 @@ struct FalloffCubic {
     T operator()(T u) const { return inRange(std::min(std::max(u, T(0)), T(1))); }
     /// For u known to lie in [0, 1] (inside the cone): no clamp, three multiply-adds.
     T inRange(T u) const { return u * (a + u * (b + c * u)); }
+    /// The slope d/du: a + 2 b u + 3 c u^2, never negative on [0, 1].
+    T slope(T u) const { return a + u * (T(2) * b + T(3) * c * u); }
 };
 
 template <class T>
@@ -67,12 +88,18 @@ struct BlowDryerFieldT {
     Falloff axialFalloff = Falloff::Linear;
     Falloff radialFalloff = Falloff::Linear;
     FlowDirection direction = FlowDirection::Vertical;
+    bool shaft = false;             ///< blows up through a hole of radius r0 in the floor: pushes in its shaft
+    T airSpeed = T(0);              ///< U, the air's speed at the nozzle on the axis, m/s; 0: no air drag
+    T axisPull = T(0);              ///< beta, kg: the Bernoulli pull toward the axis (needs airSpeed)
+
+    /// The air drag's coefficient c = strength / U (0 without air speed), N s/m.
+    T airDrag() const { return airSpeed > T(0) ? strength / airSpeed : T(0); }
 
     template <class U>
     BlowDryerFieldT<U> as() const
     {
         return {Vec3<U>(nozzle), Vec3<U>(axis), U(height), U(nozzleRadius), U(topRadius), U(strength),
-                axialFalloff, radialFalloff, direction};
+                axialFalloff, radialFalloff, direction, shaft, U(airSpeed), U(axisPull)};
     }
 };
 using BlowDryerField = BlowDryerFieldT<double>;
@@ -87,6 +114,12 @@ struct BlowDryerKernelT {
     T flowSpread;         ///< R - r0 for cone-flow, 0 for vertical: the weight of rho in the direction
     FalloffCubic<T> axial; ///< the strength times the axial profile: the force on the axis
     FalloffCubic<T> radial;
+    T shaftRadius2; ///< r0^2 for a dryer in the floor, 0 (no shaft) otherwise
+    T shaftPush;    ///< the force in the shaft, along the axis
+    // The air terms (used by blowDryerForce<..., true> only):
+    FalloffCubic<T> axialProfile; ///< the axial profile alone (w's first factor)
+    T airDrag;  ///< c (times scale), 0 without air speed
+    T pull;     ///< beta U^2 (times scale)
 
     BlowDryerKernelT() : BlowDryerKernelT(BlowDryerFieldT<T>{}) {}
     /// `scale` multiplies the force: a swarm passes 1 / m and gets the dryer's acceleration,
@@ -95,9 +128,13 @@ struct BlowDryerKernelT {
         : nozzle(f.nozzle), axis(f.axis), height(f.height), nozzleRadius(f.nozzleRadius),
           inverseHeight(T(1) / f.height), spread(f.topRadius - f.nozzleRadius),
           flowSpread(f.direction == FlowDirection::ConeFlow ? spread : T(0)), axial(f.axialFalloff, scale * f.strength),
-          radial(f.radialFalloff)
+          radial(f.radialFalloff), shaftRadius2(f.shaft ? f.nozzleRadius * f.nozzleRadius : T(0)),
+          shaftPush(scale * f.strength), axialProfile(f.axialFalloff), airDrag(scale * f.airDrag()),
+          pull(scale * f.axisPull * f.airSpeed * f.airSpeed)
     {
     }
+    /// Whether the air terms are on: then only blowDryerForce<..., true> gives the force.
+    bool hasAirTerms() const { return airDrag != T(0) || pull != T(0); }
 };
 
 /// What the kernel knows of the dryer's axis when it is compiled: nothing (`Any`), or that it is
@@ -106,7 +143,19 @@ struct BlowDryerKernelT {
 /// faster on all cores. Both are the same arithmetic otherwise.
 enum class DryerAxis { Any, Up };
 
-/// The force of the field at x (independent of the body's mass and velocity).
+/// Whether x lies under the floor's hole of a dryer in the floor (the shaft and the dryer below
+/// its grille): below the nozzle and within r0 of it across the floor (the floor is horizontal,
+/// whatever the axis). No lower bound: a particle resting on the grille is in it whatever the
+/// rounding of the grille's height.
+template <class T>
+inline bool inBlowDryerShaft(const BlowDryerKernelT<T>& f, const Vec3<T>& d)
+{
+    return (d.y < T(0)) & (d.x * d.x + d.z * d.z < f.shaftRadius2);
+}
+
+/// The force of the field at x and, with `kAir`, velocity v (see the header's comment; without
+/// kAir the seed's force, which does not depend on v, and which equals the kAir force whenever
+/// the air terms are off).
 ///
 /// Written for the swarm loop, where square roots and divisions are the slow instructions:
 /// two of each a particle, none waiting for another. With q = R(h) (the radius here) and
@@ -114,11 +163,11 @@ enum class DryerAxis { Any, Up };
 /// and since rho is perpendicular to the axis its length is sqrt(H^2 + c^2 r^2) =
 /// sqrt(H^2 q^2 + w^2 (R - r0)^2 r^2) / q: that root is taken from r^2, beside r's own, and
 /// 1/q (for r/q and c) and q / root (1 / the length) are two divisions. One division,
-/// 1 / (q root), gave both, but chained root, product, division and products one after another:
-/// a swarm loop over a block in L1 measured 18% slower that way (0.83 against 0.68 ns a
-/// particle), the out-of-order core having less to do while it waited.
-template <DryerAxis kAxis = DryerAxis::Any, class T>
-inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
+/// 1 / (q root), gave both, but chained root, product, division and products one after another,
+/// and a swarm loop over a block in L1 measured slower that way: the out-of-order core had
+/// less to do while it waited.
+template <DryerAxis kAxis = DryerAxis::Any, bool kAir = false, class T>
+inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x, const Vec3<T>& v = Vec3<T>(T(0)))
 {
     constexpr bool kUp = kAxis == DryerAxis::Up;
     const Vec3<T> d = x - f.nozzle;
@@ -130,9 +179,12 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
     const T radiusHere = f.nozzleRadius + f.spread * s;
     // Selects rather than branches: the same arithmetic for every particle (a vectorised loop
     // turns them into masked moves, cheaper than multiplying by masks as numbers).
-    const bool inside = (h >= T(0)) & (s < T(1)) & (r < radiusHere);
+    const bool inShaft = kUp ? (h < T(0)) & (r2 < f.shaftRadius2) : inBlowDryerShaft(f, d);
+    // A tilted cone may reach below the floor: there the shaft's air wins (an upward axis keeps
+    // the two apart by h's sign alone).
+    const bool inside = (h >= T(0)) & (s < T(1)) & (r < radiusHere) & (kUp | !inShaft);
     // Computed for every particle, as if inside: outside, q may be zero or negative and what
-    // follows infinite or NaN, but only the two selects below read it (no traps are enabled).
+    // follows infinite or NaN, but only the selects below read it (no traps are enabled).
     // Selecting q itself instead made GCC compute the roots and the division twice, once per
     // value of q.
     const T q = radiusHere;
@@ -140,20 +192,62 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
     const T inverseRadius = T(1) / q;
     const T inverseLength = q / root; // 1 / |flow|
     // Inside the cone both falloffs' arguments lie in (0, 1]: no clamps.
-    const T magnitude = f.axial.inRange(T(1) - s) * f.radial.inRange(T(1) - r * inverseRadius);
-    // Vertical: the axis. Cone-flow: H axis + (R - r0) rho / R(h).
+    const T u = T(1) - r * inverseRadius;
+    const T magnitude = f.axial.inRange(T(1) - s) * f.radial.inRange(u);
+    // Vertical: the axis. Cone-flow: H axis + (R - r0) rho / R(h). In the shaft: the axis.
     const T scale = inside ? magnitude * inverseLength : T(0);
-    const T radial = inside ? scale * f.flowSpread * inverseRadius : T(0);
+    const T along = inShaft ? f.shaftPush : scale * f.height;
+    T radial = inside ? scale * f.flowSpread * inverseRadius : T(0);
+    Vec3<T> extra(T(0));
+    if constexpr (kAir) {
+        // The pull: beta U^2 w dw/dr rho / r, with w = A(1 - s) Rf(u) and dw/dr = -A(1 - s) Rf'(u) / q.
+        const T a = f.axialProfile.inRange(T(1) - s);
+        const T pullPerR = f.pull * a * a * f.radial.inRange(u) * f.radial.slope(u) * inverseRadius / r;
+        radial -= (inside & (r > T(0))) ? pullPerR : T(0);
+        // The air drag's velocity term, where the air blows (its push is the force above).
+        const T drag = (inside | inShaft) ? f.airDrag : T(0);
+        extra = -drag * v;
+    }
     if constexpr (kUp)
-        return Vec3<T>(radial * d.x, scale * f.height, radial * d.z);
+        return Vec3<T>(radial * d.x, along, radial * d.z) + extra;
     else
-        return scale * f.height * f.axis + radial * rho;
+        return along * f.axis + radial * rho + extra;
 }
 
 template <class T>
-inline Vec3<T> blowDryerForce(const BlowDryerFieldT<T>& f, const Vec3<T>& x)
+inline Vec3<T> blowDryerForce(const BlowDryerFieldT<T>& f, const Vec3<T>& x, const Vec3<T>& v = Vec3<T>(T(0)))
 {
-    return blowDryerForce(BlowDryerKernelT<T>(f), x);
+    return blowDryerForce<DryerAxis::Any, true>(BlowDryerKernelT<T>(f), x, v);
+}
+
+/// The air's velocity u = U w direction at x (zero without air speed): what the air drag pulls
+/// a body's velocity toward, and whose squared length the axis pull climbs.
+template <class T>
+inline Vec3<T> blowDryerAirVelocity(const BlowDryerFieldT<T>& f, const Vec3<T>& x)
+{
+    if (!(f.airSpeed > T(0)) || f.strength == T(0))
+        return Vec3<T>(T(0));
+    BlowDryerFieldT<T> pushOnly = f;
+    pushOnly.airSpeed = T(0);
+    pushOnly.axisPull = T(0);
+    return blowDryerForce(pushOnly, x) * (f.airSpeed / f.strength);
+}
+
+/// Whether x is inside the dryer's cone (its region of influence above the nozzle).
+template <class T>
+inline bool insideBlowDryerCone(const BlowDryerFieldT<T>& f, const Vec3<T>& x)
+{
+    const Vec3<T> d = x - f.nozzle;
+    const T h = glm::dot(d, f.axis);
+    const T r = glm::length(d - h * f.axis);
+    return h >= T(0) && h < f.height && r < f.nozzleRadius + (f.topRadius - f.nozzleRadius) * h / f.height;
+}
+
+/// Whether x is under the hole of a dryer that sits in the floor (in its shaft, or lower).
+template <class T>
+inline bool insideBlowDryerShaft(const BlowDryerFieldT<T>& f, const Vec3<T>& x)
+{
+    return inBlowDryerShaft(BlowDryerKernelT<T>(f), x - f.nozzle);
 }
 
 /// The field as a Force of the World.
@@ -161,9 +255,9 @@ class BlowDryer final : public ForceBase<BlowDryer> {
 public:
     explicit BlowDryer(const BlowDryerField& field) : m_field(field) {}
     std::string_view type() const override { return "blow-dryer"; }
-    dvec3 force(std::size_t, const Body&, const dvec3& x, const dvec3&) const override
+    dvec3 force(std::size_t, const Body&, const dvec3& x, const dvec3& v) const override
     {
-        return blowDryerForce(m_field, x);
+        return blowDryerForce(m_field, x, v);
     }
     const BlowDryerField& field() const { return m_field; }
     BlowDryerField& field() { return m_field; }

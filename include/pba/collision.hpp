@@ -35,6 +35,8 @@ inline constexpr std::array<CollisionResponse, 3> kAllCollisionResponses{
 /// "exact", "reflect", "clamp".
 std::string_view collisionResponseName(CollisionResponse response);
 std::optional<CollisionResponse> collisionResponseFromName(std::string_view name);
+/// One line for people: what the response does, and what it does to an elastic bounce.
+std::string_view collisionResponseSummary(CollisionResponse response);
 
 /// The half-space dot(normal, x) >= offset; `normal` is a unit vector pointing inside.
 /// A plane may have a round hole (the blow dryer's, in the floor): a body crossing the plane

@@ -50,6 +50,7 @@ struct SwarmKernelFields {
     std::vector<BlowDryerKernelT<float>> more; ///< dryers after the first
     std::size_t moreCount = 0;
     bool dryerUp = false; ///< the first dryer points exactly along +y (see DryerAxis)
+    bool air = false;     ///< some dryer has air terms (drag toward the air, axis pull)
 
     SwarmKernelFields(const SwarmFields& f, float inverseMass) : gravity(f.gravity), dragPerMass(f.drag * inverseMass)
     {
@@ -60,6 +61,9 @@ struct SwarmKernelFields {
             more.emplace_back(f.dryers[k], inverseMass);
         moreCount = more.size();
         dryerUp = dryer.axis == Vec3<float>(0.0f, 1.0f, 0.0f);
+        air = dryer.hasAirTerms();
+        for (const auto& k : more)
+            air = air || k.hasAirTerms();
     }
 };
 
@@ -137,19 +141,20 @@ private:
 };
 
 /// The acceleration a swarm particle feels at (x, v): one inline expression of the same
-/// kernels the Force classes wrap (the first dryer only: see swarmAccelerationAll).
+/// kernels the Force classes wrap (the first dryer only: see swarmAccelerationAll), the dryer's
+/// air terms included.
 inline Vec3<float> swarmAcceleration(const SwarmKernelFields& f, const Vec3<float>& x, const Vec3<float>& v)
 {
-    return f.gravity + dragForce(f.dragPerMass, v) + blowDryerForce(f.dryer, x);
+    return f.gravity + dragForce(f.dragPerMass, v) + blowDryerForce<DryerAxis::Any, true>(f.dryer, x, v);
 }
 
 /// With every dryer: the loop over dryers keeps the particle loop from vectorising, so it is
-/// used only when a scene has more than one.
+/// used only when a scene has more than one, or air terms.
 inline Vec3<float> swarmAccelerationAll(const SwarmKernelFields& f, const Vec3<float>& x, const Vec3<float>& v)
 {
     Vec3<float> a = swarmAcceleration(f, x, v);
     for (std::size_t k = 0; k < f.moreCount; ++k)
-        a += blowDryerForce(f.more[k], x);
+        a += blowDryerForce<DryerAxis::Any, true>(f.more[k], x, v);
     return a;
 }
 

@@ -12,6 +12,7 @@
 #include "command.hpp"
 #include "scene_options.hpp"
 #include "pba/clock.hpp"
+#include "study/jet_watch.hpp"
 
 namespace pba::app {
 
@@ -88,12 +89,45 @@ void printSwarmSummary(const World& world)
     }
 }
 
-void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary)
+/// What the bodies did in the blow dryer's jet, and how many swarm particles are in its shaft.
+void printJetSummary(const World& world, const study::JetWatch& jet)
+{
+    if (!jet.active())
+        return;
+    const double g = glm::length(world.gravity());
+    fmt::print("blow dryer: {:g} N at the nozzle ({}), lifts up to {:.3g} kg; a catch is a stay of {:g} s in the cone\n",
+               jet.field().strength, flowDirectionName(jet.field().direction),
+               g > 0.0 ? jet.field().strength / g : INFINITY, study::kCatchStay);
+    const auto bodies = jet.bodies();
+    if (!bodies.empty())
+        fmt::print("{:<22} {:>8} {:>10} {:>10} {:>12} {:>14} {:>15}\n", "body", "mass", "in cone", "caught at",
+                   "longest stay", "height in cone", "longest in hole");
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const study::BodyInJet& b = bodies[i];
+        if (world.body(i).isFixed())
+            continue;
+        fmt::print("{:<22} {:>6.3g}kg {:>9.1f}% {:>10} {:>11.2f}s {:>13.3f}m {:>14.2f}s\n", b.name, b.mass,
+                   100.0 * jet.fractionInCone(i), b.caughtAt ? fmt::format("{:.2f}s", *b.caughtAt) : std::string("never"),
+                   b.longestStay, b.meanHeightInCone, b.longestInShaft);
+    }
+    const auto inShaft = jet.swarmsInShaft(world);
+    for (std::size_t s = 0; s < inShaft.size(); ++s) {
+        const auto& figures = jet.swarms()[s];
+        fmt::print("swarm {}: at most {} particles in the cone (t = {:.1f} s, counted every {:g} s); {} in "
+                   "the dryer's shaft at the end; no particle stayed there longer than {:.3f} s at a stretch\n",
+                   world.swarm(s).name(), figures.peakInCone, figures.peakAt, study::JetWatch::kSwarmSample,
+                   inShaft[s], figures.longestInShaft);
+    }
+}
+
+void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary,
+                  const study::JetWatch& jet)
 {
     fmt::print("scene {}: {} steps of dt = {} s, t = {} s, collision response {}\n", scene.name, world.stepCount(),
                scene.dt, world.time(), collisionResponseName(world.collisionResponse()));
     if (world.bodyCount() == 0) {
         printSwarmSummary(world);
+        printJetSummary(world, jet);
         return;
     }
     fmt::print("{:<22} {:<20} {:>32} {:>10} {:>8} {:>14}\n", "body", "integrator", "final position (m)",
@@ -108,6 +142,7 @@ void printSummary(const Scene& scene, const World& world, const std::vector<Body
                    world.bounceCount(i), ratio);
     }
     printSwarmSummary(world);
+    printJetSummary(world, jet);
 }
 
 int runSim(const SimOptions& options)
@@ -127,6 +162,7 @@ int runSim(const SimOptions& options)
         summary[i].startEnergy = world.energy(i);
         summary[i].highest = world.body(i).getPos().y;
     }
+    study::JetWatch jet(world);
     auto record = [&] {
         // The state can be finite while its energy has overflowed (0.5 k x^2 with x ~ 1e155):
         // a row with an infinite energy is no more valid than one with an infinite position.
@@ -153,6 +189,7 @@ int runSim(const SimOptions& options)
             const std::uint64_t now = clock ? static_cast<std::uint64_t>(clock->advance(1.0 / *options.frameRate)) : 1;
             for (std::uint64_t k = 0; k < now && world.stepCount() < total; ++k) {
                 world.step(scene.dt);
+                jet.record(world);
                 record();
             }
         }
@@ -164,7 +201,7 @@ int runSim(const SimOptions& options)
     }
     if (csv)
         csv->commit();
-    printSummary(scene, world, summary);
+    printSummary(scene, world, summary, jet);
     if (options.out)
         fmt::print("wrote {} to {}\n", options.swarmParticles ? "every body and swarm particle at every step"
                                                               : fmt::format("{} rows", (world.stepCount() + 1) * world.bodyCount()),

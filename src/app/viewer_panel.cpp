@@ -17,6 +17,7 @@ namespace {
 constexpr const char* kIntegratorNames[] = {"forward-euler", "semi-implicit-euler", "velocity-verlet", "rk4"};
 constexpr const char* kFalloffNames[] = {"linear", "quadratic", "smooth"};
 constexpr const char* kDirectionNames[] = {"vertical", "cone-flow"};
+constexpr const char* kResponseNames[] = {"exact", "reflect", "clamp"}; // in CollisionResponse's order
 
 void sceneSection(ViewerState& state)
 {
@@ -39,6 +40,19 @@ void sceneSection(ViewerState& state)
     }
 }
 
+/// The collision response, applied live and kept by reset (the start state gets it too), so the
+/// practical's reflect and the exact response can be compared on the same drop.
+void collisionChoice(ViewerState& state)
+{
+    if (state.scene.world.planes().empty())
+        return;
+    int response = static_cast<int>(state.scene.world.collisionResponse());
+    if (ImGui::Combo("collision response", &response, kResponseNames, 3)) {
+        state.scene.world.setCollisionResponse(static_cast<CollisionResponse>(response));
+        state.initial.setCollisionResponse(static_cast<CollisionResponse>(response));
+    }
+}
+
 void timeSection(ViewerState& state)
 {
     if (ImGui::Button(state.paused ? "play (space)" : "pause (space)"))
@@ -57,6 +71,7 @@ void timeSection(ViewerState& state)
         state.scene.dt = dt;
     }
     ImGui::SliderFloat("time scale", &state.timeScale, 0.05f, 2.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
+    collisionChoice(state);
     ImGui::Checkbox("interpolate (i)", &state.settings.interpolate);
     float clamp = float(state.clock.maxFrameTime());
     if (ImGui::SliderFloat("frame clamp (s)", &clamp, 0.02f, 1.0f, "%.2f"))
@@ -148,6 +163,11 @@ void dryerSection(ViewerState& state)
             f.height = height;
         if (ImGui::SliderFloat("top radius (m)", &top, std::max(r0, 0.01f), 5.0f))
             f.topRadius = top;
+        float air = float(f.airSpeed), pull = float(f.axisPull);
+        if (ImGui::SliderFloat("air speed (m/s, 0: off)", &air, 0.0f, 60.0f))
+            f.airSpeed = air;
+        if (f.airSpeed > 0.0 && ImGui::SliderFloat("axis pull (kg)", &pull, 0.0f, 5.0f))
+            f.axisPull = pull;
         int axial = static_cast<int>(f.axialFalloff), radial = static_cast<int>(f.radialFalloff),
             direction = static_cast<int>(f.direction);
         if (ImGui::Combo("axial falloff", &axial, kFalloffNames, 3))

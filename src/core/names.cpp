@@ -44,6 +44,21 @@ std::string_view collisionResponseName(CollisionResponse response)
     return "?";
 }
 
+std::string_view collisionResponseSummary(CollisionResponse response)
+{
+    switch (response) {
+    case CollisionResponse::Exact:
+        return "exact: steps to the time of impact and bounces there; semi-implicit Euler then loses energy at each "
+               "bounce";
+    case CollisionResponse::Reflect:
+        return "reflect (the practical's): mirrors a body found below a surface after a full step; semi-implicit "
+               "Euler keeps its bounce";
+    case CollisionResponse::Clamp:
+        return "clamp: puts a body found below a surface back on it after a full step, losing the depth's energy";
+    }
+    return "?";
+}
+
 std::optional<CollisionResponse> collisionResponseFromName(std::string_view name)
 {
     for (CollisionResponse response : kAllCollisionResponses)

@@ -574,7 +574,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
     for (std::size_t b = begin; b < end; b += kBlock) {
         const std::size_t n = std::min(kBlock, end - b);
         const auto integrate = [&](auto accel) { integrateBlock<kIntegrator>(a, b, n, dt, start, response, accel); };
-        if (fields.moreCount > 0)
+        if (fields.moreCount > 0 || fields.air)
             integrate(all);
         else if (fields.dryerUp)
             drag ? integrate(oneDryer<DryerAxis::Up, true>(fields)) : integrate(oneDryer<DryerAxis::Up, false>(fields));

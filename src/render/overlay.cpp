@@ -57,15 +57,25 @@ void drawLegend(const World& world, const std::string& sceneName, double dt, boo
                                    ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
     if (ImGui::Begin("legend", nullptr, flags)) {
         ImGui::Text("%s   t = %.2f s   dt = %g s", sceneName.c_str(), world.time(), dt);
+        if (!world.planes().empty())
+            ImGui::TextDisabled("collisions: %s", std::string(collisionResponseSummary(world.collisionResponse())).c_str());
         const std::size_t shown = compact ? std::min<std::size_t>(world.bodyCount(), 8) : world.bodyCount();
+        bool massesDiffer = false; // then the legend says each mass, which sets its drawn size
+        for (std::size_t i = 1; i < world.bodyCount(); ++i)
+            massesDiffer = massesDiffer || world.body(i).getMass() != world.body(0).getMass();
         for (std::size_t i = 0; i < shown; ++i) {
             const Body& body = world.body(i);
             const glm::vec4 c = bodyColour(body);
             ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1.0f), "o");
             ImGui::SameLine();
-            ImGui::Text("%s  (%s)", body.getName().c_str(),
-                        body.isFixed() ? "fixed" : std::string(integratorName(body.getIntegrator())).c_str());
+            const std::string integrator = body.isFixed() ? "fixed" : std::string(integratorName(body.getIntegrator()));
+            if (massesDiffer)
+                ImGui::Text("%s  %g kg  (%s)", body.getName().c_str(), body.getMass(), integrator.c_str());
+            else
+                ImGui::Text("%s  (%s)", body.getName().c_str(), integrator.c_str());
         }
+        if (massesDiffer)
+            ImGui::TextDisabled("balls of one density: the heavier, the larger");
         if (shown < world.bodyCount())
             ImGui::Text("... and %zu more", world.bodyCount() - shown);
         for (std::size_t s = 0; s < world.swarmCount(); ++s) {

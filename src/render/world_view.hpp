@@ -43,6 +43,11 @@ private:
     std::vector<std::deque<glm::vec3>> m_points;
 };
 
+/// A body of this mass is drawn at ViewSettings::particleRadius; others scale with the cube root
+/// of their mass (one density), so the blow dryer's light and heavy balls can be told apart.
+inline constexpr double kDrawnReferenceMass = 1.0;
+float drawnRadius(const Body& body, const ViewSettings& settings);
+
 /// The position a body is drawn at.
 glm::vec3 drawnPosition(const World& world, std::size_t i, double alpha, bool interpolate);
 

@@ -63,12 +63,18 @@ BlowDryerField readBlowDryerField(ObjectReader& reader)
     f.axialFalloff = readChoice(reader, "axial_falloff", Falloff::Linear, &falloffFromName, "linear, quadratic or smooth");
     f.radialFalloff = readChoice(reader, "radial_falloff", Falloff::Linear, &falloffFromName, "linear, quadratic or smooth");
     f.direction = readChoice(reader, "direction", FlowDirection::Vertical, &flowDirectionFromName, "vertical or cone-flow");
+    f.airSpeed = reader.nonNegative("air_speed", 0.0);
+    f.axisPull = reader.nonNegative("axis_pull", 0.0);
+    if (f.axisPull > 0.0 && f.airSpeed == 0.0)
+        reader.fail("axis_pull", "needs air_speed: the pull comes from the air's speed");
+    if (f.airSpeed > 0.0 && f.strength <= 0.0)
+        reader.fail("air_speed", "needs a positive strength (the drag coefficient is strength / air_speed)");
     return f;
 }
 
 /// A dryer whose nozzle sits on the floor blows up through a hole of the nozzle's radius,
-/// with its grille `grille_depth` below the floor.
-void cutHoleForNozzle(ObjectReader& reader, const BlowDryerField& f, World& world)
+/// with its grille `grille_depth` below the floor, and pushes in that hole's shaft.
+void cutHoleForNozzle(ObjectReader& reader, BlowDryerField& f, World& world)
 {
     const double depth = reader.positive("grille_depth", 0.05);
     const std::optional<double> floor = world.room() ? std::optional<double>(world.room()->min.y) : world.ground();
@@ -77,11 +83,12 @@ void cutHoleForNozzle(ObjectReader& reader, const BlowDryerField& f, World& worl
     if (world.floorHole())
         reader.fail("nozzle", "only one blow dryer may sit in the floor");
     world.setFloorHole(FloorHole{f.nozzle, f.nozzleRadius, depth});
+    f.shaft = true;
 }
 
 std::unique_ptr<Force> parseBlowDryer(ObjectReader& reader, World& world)
 {
-    const BlowDryerField field = readBlowDryerField(reader);
+    BlowDryerField field = readBlowDryerField(reader);
     cutHoleForNozzle(reader, field, world);
     return std::make_unique<BlowDryer>(field);
 }

@@ -249,3 +249,219 @@ TEST(FloorHole, ABallOverTheHoleLandsOnTheGrilleInEveryResponse)
         }
     }
 }
+
+// ---- The shaft: air leaves the dryer at the grille ----
+
+// A dryer in the floor pushes in the hole's shaft with the nozzle's force, the same across the
+// shaft (plug flow), along the axis; beside the hole and without a hole, nothing below the nozzle.
+TEST(BlowDryerShaft, PushesWithTheNozzlesForceAcrossTheShaftOnly)
+{
+    for (FlowDirection direction : kDirections) {
+        BlowDryerField f = dryer(direction, Falloff::Linear, Falloff::Smooth);
+        EXPECT_EQ(blowDryerForce(f, dvec3(0, -0.02, 0)), dvec3(0.0)) << "no hole: the seed's field";
+        f.shaft = true;
+        for (const dvec3& x : {dvec3(0, -0.02, 0), dvec3(0.19, -0.04, 0), dvec3(0.1, -1e-9, -0.15), dvec3(0, -0.05, 0)})
+            EXPECT_EQ(blowDryerForce(f, x), dvec3(0, f.strength, 0)) << x.x << " " << x.y << " " << x.z;
+        EXPECT_EQ(blowDryerForce(f, dvec3(0.21, -0.02, 0)), dvec3(0.0)) << "under the floor beside the hole";
+        EXPECT_EQ(blowDryerForce(f, dvec3(0.0, 1.0, 0)), blowDryerForce(dryer(direction, Falloff::Linear, Falloff::Smooth),
+                                                                          dvec3(0.0, 1.0, 0)))
+            << "above the nozzle the field is the seed's";
+    }
+}
+
+// The built-in scene's dryer is in the floor: `pba field` shows the shaft's push.
+TEST(BlowDryerShaft, TheSceneLoaderPutsTheShaftUnderAFloorNozzle)
+{
+    const Scene scene = loadScene("blow-dryer");
+    const auto* dryer = dynamic_cast<const BlowDryer*>(&scene.world.force(scene.world.forceCount() - 1));
+    ASSERT_NE(dryer, nullptr);
+    EXPECT_TRUE(dryer->field().shaft);
+    EXPECT_EQ(blowDryerForce(dryer->field(), dvec3(0, -0.02, 0)), dvec3(0, dryer->field().strength, 0));
+}
+
+namespace {
+
+/// The room with the blow-dryer scene's hole and a seed-model dryer (no air terms) of `strength`,
+/// and one ball dropped slowly into the hole.
+World ballDroppedIntoTheHole(double strength, CollisionResponse response, Integrator integrator)
+{
+    World world;
+    world.addForce(std::make_unique<Gravity>(dvec3(0, -9.81, 0)));
+    world.setRoom({dvec3(-2, 0, -2), dvec3(2, 4, 2)});
+    world.setFloorHole({dvec3(0.0), 0.2, 0.05});
+    world.setCollisionResponse(response);
+    BlowDryerField f = dryer(FlowDirection::Vertical, Falloff::Linear, Falloff::Smooth);
+    f.strength = strength;
+    f.shaft = true;
+    world.addForce(std::make_unique<BlowDryer>(f));
+    Particle ball;
+    ball.setPos(dvec3(0.12, -0.001, -0.08)); // just inside the hole, falling slowly
+    ball.setVel(dvec3(0.05, -0.3, 0.0));
+    ball.setCor(0.5);
+    ball.setIntegrator(integrator);
+    world.addParticle(ball);
+    return world;
+}
+
+} // namespace
+
+// Stronger than its weight, the dryer blows a ball that falls into its hole out again within a
+// fraction of a second; weaker, the ball lies on the grille, kept in the shaft.
+TEST(BlowDryerShaft, ABallDroppedSlowlyIntoTheHoleIsBlownOutWhenTheDryerCanLiftIt)
+{
+    for (CollisionResponse response : kAllCollisionResponses) {
+        for (Integrator integrator : kAllIntegrators) {
+            const std::string label = std::string(collisionResponseName(response)) + " " +
+                                      std::string(integratorName(integrator));
+            World strong = ballDroppedIntoTheHole(30.0, response, integrator);
+            double outAt = -1.0;
+            for (int n = 0; n < 200 && outAt < 0.0; ++n) {
+                strong.step(0.005);
+                if (strong.body(0).getPos().y > 0.0)
+                    outAt = strong.time();
+            }
+            EXPECT_GT(outAt, 0.0) << label;
+            EXPECT_LT(outAt, 0.5) << label;
+
+            World weak = ballDroppedIntoTheHole(5.0, response, integrator);
+            for (int n = 0; n < 400; ++n)
+                weak.step(0.005);
+            EXPECT_NEAR(weak.body(0).getPos().y, -0.05, 1e-3) << label;
+        }
+    }
+}
+
+// ---- The air terms ----
+
+// With neither air key the force is the seed's, to the bit, whatever the velocity: the air
+// terms add exact zeros.
+TEST(BlowDryerAir, WithoutTheAirKeysTheForceIsTheSeedsWhateverTheVelocity)
+{
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> across(-1.5, 1.5), up(-0.1, 3.6), speed(-20, 20);
+    for (FlowDirection direction : kDirections)
+        for (Falloff radial : kFalloffs) {
+            BlowDryerField f = dryer(direction, Falloff::Linear, radial);
+            f.shaft = true;
+            const BlowDryerKernelT<double> kernel(f);
+            for (int k = 0; k < 2000; ++k) {
+                const dvec3 x(across(random), up(random), across(random));
+                const dvec3 v(speed(random), speed(random), speed(random));
+                EXPECT_EQ(blowDryerForce(f, x, v), (blowDryerForce<DryerAxis::Any, false>(kernel, x)));
+            }
+        }
+}
+
+// In the shaft the air is uniform: u = U along the axis. A ball there under gravity and the air
+// drag c (u - v), c = S / U, obeys m v' = S - m g - c v: released at rest it reaches the
+// terminal velocity v_T = (S - m g) / c as v(t) = v_T (1 - exp(-t / tau)), tau = m / c.
+TEST(BlowDryerAir, ABallInUniformAirReachesItsTerminalVelocityWithTimeConstantMOverC)
+{
+    const double g = 9.81, m = 2.0, S = 30.0, U = 6.0, c = S / U, tau = m / c, vT = (S - m * g) / c;
+    for (Integrator integrator : kAllIntegrators) {
+        BlowDryerField f = dryer(FlowDirection::Vertical);
+        f.nozzle = dvec3(0, 100, 0); // a deep shaft below it: uniform air all the way
+        f.nozzleRadius = 1.0;
+        f.topRadius = 2.0;
+        f.strength = S;
+        f.shaft = true;
+        f.airSpeed = U;
+        World world;
+        world.addForce(std::make_unique<Gravity>(dvec3(0, -g, 0)));
+        world.addForce(std::make_unique<BlowDryer>(f));
+        Particle ball;
+        ball.setMass(m);
+        ball.setIntegrator(integrator);
+        world.addParticle(ball);
+        const double dt = 1e-3;
+        double worst = 0.0;
+        for (int n = 1; n <= 4000; ++n) {
+            world.step(dt);
+            const double t = n * dt;
+            worst = std::max(worst, std::abs(world.body(0).getVel().y - vT * (1.0 - std::exp(-t / tau))));
+            if (n == static_cast<int>(std::lround(tau / dt))) {
+                EXPECT_NEAR(world.body(0).getVel().y / vT, 1.0 - std::exp(-1.0), 1e-3) << integratorName(integrator);
+            }
+        }
+        // First-order methods err by O(dt) relative to v_T / tau; RK4 by rounding.
+        EXPECT_LT(worst, integrator == Integrator::RK4 ? 1e-9 : 2e-3 * vT) << integratorName(integrator);
+        EXPECT_NEAR(world.body(0).getVel().y, vT, 1e-3 * vT) << integratorName(integrator);
+        EXPECT_NEAR(world.body(0).getVel().x, 0.0, 1e-12);
+    }
+}
+
+// The pull is (beta / 2) times the gradient of |u|^2 across the axis. Linear falloffs give a
+// closed form: w = (1 - s)(1 - r/R(h)), so beta U^2 w dw/dr = -beta U^2 (1 - s)^2 (1 - r/R) / R.
+// For every profile it matches a central difference of |u|^2 from the air's velocity.
+TEST(BlowDryerAir, ThePullIsHalfBetaTimesTheGradientOfTheAirSpeedSquaredAcrossTheAxis)
+{
+    BlowDryerField f = dryer(FlowDirection::Vertical);
+    f.airSpeed = 12.0;
+    f.axisPull = 0.7;
+    for (const double h : {0.3, 1.0, 2.2})
+        for (const double r : {0.05, 0.3, 0.6}) {
+            const double R = radiusAt(f, h), s = h / f.height;
+            if (r >= R)
+                continue;
+            const dvec3 x(r * 0.6, h, r * 0.8);
+            const dvec3 F = blowDryerForce(f, x); // at rest: the push (vertical) and the pull
+            const double expected = -f.axisPull * f.airSpeed * f.airSpeed * (1 - s) * (1 - s) * (1 - r / R) / R;
+            EXPECT_NEAR(F.x, expected * 0.6, 1e-12) << h << " " << r;
+            EXPECT_NEAR(F.z, expected * 0.8, 1e-12) << h << " " << r;
+        }
+    for (FlowDirection direction : kDirections)
+        for (Falloff axial : kFalloffs)
+            for (Falloff radial : kFalloffs) {
+                BlowDryerField g = dryer(direction, axial, radial);
+                g.airSpeed = 12.0;
+                g.axisPull = 0.7;
+                for (const double h : {0.4, 1.5, 2.5})
+                    for (const double r : {0.1, 0.35, 0.7}) {
+                        if (r >= radiusAt(g, h) - 1e-3)
+                            continue;
+                        const dvec3 dir(0.8, 0.0, -0.6);
+                        auto speed2 = [&](double rr) {
+                            const dvec3 u = blowDryerAirVelocity(g, dvec3(0, h, 0) + rr * dir);
+                            return glm::dot(u, u);
+                        };
+                        const double e = 1e-6;
+                        const double gradient = (speed2(r + e) - speed2(r - e)) / (2 * e);
+                        BlowDryerField pushOnly = g;
+                        pushOnly.axisPull = 0.0;
+                        const dvec3 x = dvec3(0, h, 0) + r * dir;
+                        const double pull = glm::dot(blowDryerForce(g, x) - blowDryerForce(pushOnly, x), dir);
+                        EXPECT_NEAR(pull, 0.5 * g.axisPull * gradient, 1e-5 * (1 + std::abs(pull)))
+                            << falloffName(axial) << " " << falloffName(radial) << " h " << h << " r " << r;
+                    }
+            }
+}
+
+// A ball off the axis at its hover height, with the air terms, is pulled back and settles on
+// the axis; without them (the seed's vertical field) nothing pushes it back, and any sideways
+// speed carries it out of the cone.
+TEST(BlowDryerAir, TheAirTermsHoldABallInTheJetThatTheSeedsFieldLoses)
+{
+    for (const bool air : {false, true}) {
+        BlowDryerField f = dryer(FlowDirection::Vertical, Falloff::Linear, Falloff::Smooth);
+        if (air) {
+            f.airSpeed = 15.0;
+            f.axisPull = 1.0;
+        }
+        World world;
+        world.addForce(std::make_unique<Gravity>(dvec3(0, -9.81, 0)));
+        world.addForce(std::make_unique<BlowDryer>(f));
+        Particle ball;
+        ball.setPos(dvec3(0.3, f.height * (1 - 9.81 / f.strength), 0));
+        ball.setVel(dvec3(0.4, 0.0, 0.2));
+        world.addParticle(ball);
+        for (int n = 0; n < 4000; ++n)
+            world.step(0.005);
+        const dvec3 x = world.body(0).getPos();
+        if (air) {
+            EXPECT_LT(std::hypot(x.x, x.z), 0.02);
+            EXPECT_TRUE(insideBlowDryerCone(f, x));
+        } else {
+            EXPECT_FALSE(insideBlowDryerCone(f, x));
+        }
+    }
+}

@@ -1,0 +1,193 @@
+// Every built-in scene's description says what `pba sim` measures on it; each test here runs the
+// scene and holds it to its claim, with the same measurements `pba sim` prints (study::JetWatch
+// for the blow dryer's figures).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "pba/blow_dryer.hpp"
+#include "pba/scene/scene.hpp"
+#include "pba/world.hpp"
+#include "study/jet_watch.hpp"
+
+using namespace pba;
+
+namespace {
+
+/// Runs `scene` for `duration` (its own without one) and returns what the jet watch saw.
+study::JetWatch runWatched(Scene& scene, double duration = 0.0)
+{
+    World& world = scene.world;
+    study::JetWatch jet(world);
+    const auto steps = static_cast<long>(std::lround((duration > 0.0 ? duration : scene.duration) / scene.dt));
+    for (long n = 0; n < steps; ++n) {
+        world.step(scene.dt);
+        jet.record(world);
+    }
+    return jet;
+}
+
+/// E(t) / E(0) of body i at every step of `duration` at `dt`.
+std::vector<double> energyRatios(Scene scene, std::size_t i, double dt, double duration)
+{
+    World& world = scene.world;
+    const double e0 = world.energy(i);
+    std::vector<double> ratios;
+    const auto steps = static_cast<long>(std::lround(duration / dt));
+    for (long n = 0; n < steps; ++n) {
+        world.step(dt);
+        ratios.push_back(world.energy(i) / e0);
+    }
+    return ratios;
+}
+
+double mean(const std::vector<double>& x, std::size_t begin, std::size_t end)
+{
+    double sum = 0.0;
+    for (std::size_t k = begin; k < end; ++k)
+        sum += x[k];
+    return sum / double(end - begin);
+}
+
+} // namespace
+
+// "caught by the jet within a second and hovers in it for the rest of the minute, near 2.9 m";
+// the issue's bar: caught within 3 s, in the cone 70% of the minute, never in the hole for 1 s.
+TEST(SceneClaims, BlowDryerCatchesTheBallWithinASecondAndHoldsItAllMinute)
+{
+    Scene scene = loadScene("blow-dryer");
+    ASSERT_DOUBLE_EQ(scene.duration, 60.0);
+    const study::JetWatch jet = runWatched(scene);
+    const study::BodyInJet ball = jet.bodies().at(0);
+    ASSERT_TRUE(ball.caughtAt.has_value());
+    EXPECT_LT(*ball.caughtAt, 1.0);
+    EXPECT_GE(jet.fractionInCone(0), 0.95);
+    EXPECT_GE(ball.longestStay, 59.0 - *ball.caughtAt); // caught for good: the rest of the minute
+    EXPECT_NEAR(ball.meanHeightInCone, 2.9, 0.1);
+    EXPECT_NEAR(scene.world.body(0).getPos().y, 2.9, 0.05); // hovering at the end
+    EXPECT_LT(ball.longestInShaft, 1.0);
+}
+
+// A bare `pba` renders the first 10 s: from its catch on, the ball never leaves the cone.
+TEST(SceneClaims, BlowDryerHoversThroughTheDefaultVideo)
+{
+    Scene scene = loadScene("blow-dryer");
+    World& world = scene.world;
+    const study::JetWatch jet = runWatched(scene, 10.0);
+    const auto ball = jet.bodies().at(0);
+    ASSERT_TRUE(ball.caughtAt.has_value());
+    EXPECT_NEAR(ball.longestStay, 10.0 - *ball.caughtAt, 2 * scene.dt);
+    EXPECT_TRUE(insideBlowDryerCone(jet.field(), world.body(0).getPos()));
+}
+
+// "each hovers where the push balances its weight: the heavier, the lower (from 3.4 m for the
+// 0.2 kg feather to 1.2 m for the 4 kg anvil) ... hold them in the jet all minute". The push on
+// the axis is S (1 - h/H) (linear axial falloff), so the balance is h = H (1 - m g / S).
+TEST(SceneClaims, BlowDryerFlowHoldsEveryBallItCanLiftTheHeavierLower)
+{
+    Scene scene = loadScene("blow-dryer-flow");
+    const study::JetWatch jet = runWatched(scene);
+    const auto balls = jet.bodies();
+    ASSERT_EQ(balls.size(), 5u);
+    const BlowDryerField& f = jet.field();
+    for (std::size_t i = 0; i < balls.size(); ++i) {
+        ASSERT_TRUE(balls[i].liftable) << balls[i].name;
+        EXPECT_GE(jet.fractionInCone(i), 0.99) << balls[i].name; // the issue's bar is a half
+        EXPECT_LT(balls[i].longestInShaft, 1.0) << balls[i].name;
+        const double balance = f.height * (1.0 - balls[i].mass * 9.81 / f.strength);
+        EXPECT_NEAR(balls[i].meanHeightInCone, balance, 0.05) << balls[i].name;
+        if (i > 0) {
+            ASSERT_GT(balls[i].mass, balls[i - 1].mass);
+            EXPECT_LT(balls[i].meanHeightInCone, balls[i - 1].meanHeightInCone) << balls[i].name;
+        }
+    }
+    EXPECT_NEAR(balls.front().meanHeightInCone, 3.4, 0.05);
+    EXPECT_NEAR(balls.back().meanHeightInCone, 1.2, 0.05);
+}
+
+// "rain into the cube room through the blow dryer's cone (over a third of them in it at once)
+// and settle on the floor; those that fall into the hole are blown out of it within a tenth of
+// a second" (the issue's bar: nothing lies in the hole for 1 s). Every particle is followed step
+// by step; 20,000 of the scene's particles (each one's state depends on the seed and its index
+// only) keep it short.
+TEST(SceneClaims, SwarmsSettleAndAreBlownOutOfTheHoleWithinATenthOfASecond)
+{
+    for (const char* name : {"blow-dryer-swarm", "fountain-1m"}) {
+        Scene scene = loadScene(name);
+        SwarmDesc desc = scene.world.swarm(0).desc();
+        desc.count = 20000;
+        scene.world.swarm(0) = Swarm(desc);
+        const study::JetWatch jet = runWatched(scene);
+        const auto& figures = jet.swarms().at(0);
+        EXPECT_LT(figures.longestInShaft, 0.12) << name;
+        EXPECT_GT(figures.peakInCone, desc.count / 3) << name;
+        double height = 0.0;
+        for (std::size_t i = 0; i < scene.world.swarm(0).size(); ++i)
+            height += scene.world.swarm(0).position(i).y;
+        EXPECT_LT(height / double(desc.count), 0.01) << name << ": settled on the floor";
+    }
+}
+
+// "dt = 1/480 s (8 steps per 60 Hz frame)".
+TEST(SceneClaims, FountainStepsEightTimesA60HzFrame)
+{
+    const Scene scene = loadScene("fountain-1m");
+    EXPECT_NEAR(scene.dt * 480.0, 1.0, 1e-12);
+    EXPECT_EQ(scene.world.swarm(0).size(), 1000000u);
+}
+
+// "With the practical's reflect response, forward Euler gains height at every bounce while
+// semi-implicit Euler keeps its bounce (its energy stays within 5% of the start)"; the issue
+// asks it over 60 s at dt 0.01 and 0.05. Semi-implicit Euler's energy dips within each flight
+// (by g^2 dt^2 / 2 a step, 12% of the drop's energy a second at dt 0.05) and the mirror gives it
+// back, so "keeps" is measured on what does not oscillate: the energy averaged over the first
+// and over the last ten seconds, and at the end.
+TEST(SceneClaims, IntegratorsShowThePracticalsLessonWithReflect)
+{
+    const Scene scene = loadScene("integrators");
+    EXPECT_EQ(scene.world.collisionResponse(), CollisionResponse::Reflect);
+    const std::size_t forward = *scene.world.findBody("forward-euler");
+    const std::size_t semi = *scene.world.findBody("semi-implicit-euler");
+    for (const double dt : {0.01, 0.05}) {
+        const std::vector<double> e = energyRatios(scene, semi, dt, 60.0);
+        const std::size_t tenSeconds = static_cast<std::size_t>(std::lround(10.0 / dt));
+        EXPECT_NEAR(mean(e, 0, tenSeconds), 1.0, 0.05) << "dt " << dt;
+        EXPECT_NEAR(mean(e, e.size() - tenSeconds, e.size()), 1.0, 0.05) << "dt " << dt;
+        EXPECT_NEAR(e.back(), 1.0, 0.05) << "dt " << dt;
+        const std::vector<double> f = energyRatios(scene, forward, dt, scene.duration);
+        EXPECT_GT(mean(f, f.size() - f.size() / 5, f.size()), 1.2) << "dt " << dt;
+    }
+}
+
+// "without losing energy ... stays at its start to rounding".
+TEST(SceneClaims, BouncingCubeKeepsItsEnergyToRounding)
+{
+    const Scene scene = loadScene("bouncing-cube");
+    for (const double ratio : energyRatios(scene, 0, scene.dt, scene.duration))
+        ASSERT_NEAR(ratio, 1.0, 1e-12);
+}
+
+// "Exact solution y(t) = 3 - cos(sqrt(10) t)": semi-implicit Euler at the scene's dt follows it
+// to first order (its phase error grows as t dt omega^2 / 2: about 2% of the amplitude by 10 s).
+TEST(SceneClaims, SpringFollowsItsExactSolution)
+{
+    Scene scene = loadScene("spring");
+    World& world = scene.world;
+    double worst = 0.0;
+    for (long n = 0; n < std::lround(scene.duration / scene.dt); ++n) {
+        world.step(scene.dt);
+        worst = std::max(worst, std::abs(world.body(0).getPos().y - (3.0 - std::cos(std::sqrt(10.0) * world.time()))));
+    }
+    EXPECT_LT(worst, 0.05);
+}
+
+// Every built-in scene has a test above.
+TEST(SceneClaims, EveryBuiltInSceneIsCovered)
+{
+    const std::vector<std::string> covered{"blow-dryer", "blow-dryer-flow", "blow-dryer-swarm", "bouncing-cube",
+                                           "fountain-1m", "integrators", "spring"};
+    std::vector<std::string> names = builtinSceneNames();
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, covered);
+}
