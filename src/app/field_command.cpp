@@ -109,7 +109,7 @@ dvec3 dryerForce(const std::vector<const BlowDryer*>& dryers, const dvec3& x)
     return sum;
 }
 
-void writeSliceData(const std::vector<const BlowDryer*>& dryers, const SliceFrame& fr, int resolution,
+void writeSliceData(const std::vector<const BlowDryer*>& dryers, const SliceFrame& fr, int resolution, double scale,
                     const std::filesystem::path& dir, double& maxMagnitude)
 {
     const int ns = resolution;
@@ -126,7 +126,8 @@ void writeSliceData(const std::vector<const BlowDryer*>& dryers, const SliceFram
         }
         magnitude << '\n';
     }
-    // Arrows on a coarse grid, scaled so the strongest spans one cell.
+    // Arrows on a coarse grid, scaled so a force of `scale` spans one cell; a stronger one (the
+    // axis pull near the nozzle) is drawn one cell long.
     const int as = 22;
     const double cell = (fr.sMax - fr.sMin) / as;
     std::ofstream arrows(dir / "arrows.dat");
@@ -134,9 +135,10 @@ void writeSliceData(const std::vector<const BlowDryer*>& dryers, const SliceFram
         for (int i = 0; i < as; ++i) {
             const double s = fr.sMin + (i + 0.5) * cell;
             const dvec3 f = dryerForce(dryers, fr.origin + s * fr.across + h * fr.up);
-            if (glm::length(f) <= 1e-9 * std::max(maxMagnitude, 1e-300))
+            const double length = glm::length(f);
+            if (length <= 1e-9 * std::max(scale, 1e-300))
                 continue;
-            const double k = 0.9 * cell / std::max(maxMagnitude, 1e-300);
+            const double k = 0.9 * cell / std::max({scale, length, 1e-300});
             arrows << s << ' ' << h << ' ' << k * glm::dot(f, fr.across) << ' ' << k * glm::dot(f, fr.up) << '\n';
         }
     }
@@ -166,8 +168,15 @@ int drawSlice(const Scene& scene, const FieldOptions& options)
     const BlowDryerField& f = dryers.front()->field();
     const SliceFrame frame = sliceFrame(scene.world, f);
     ScratchDir dir("pba-field");
+    // The colours and arrows are scaled by the strongest dryer's strength (its push at the nozzle):
+    // the axis pull, where a scene has one, is far stronger near the nozzle and saturates.
+    double scale = 0.0;
+    for (const BlowDryer* dryer : dryers)
+        scale = std::max(scale, std::abs(dryer->field().strength));
     double maxMagnitude = 0.0;
-    writeSliceData(dryers, frame, options.resolution, dir.path(), maxMagnitude);
+    writeSliceData(dryers, frame, options.resolution, scale, dir.path(), maxMagnitude);
+    if (scale <= 0.0)
+        scale = maxMagnitude;
     const auto& hole = scene.world.floorHole();
     writeOutlines(f, frame, hole ? hole->depth : 0.0, dir.path());
     const std::string script = fmt::format(
@@ -176,17 +185,18 @@ int drawSlice(const Scene& scene, const FieldOptions& options)
         "set title \"{name}: blow dryer force in the vertical plane through its axis ({dir}, {axial} axial, "
         "{radial} radial falloff)\"\n"
         "set xlabel 'across the axis (m)'\nset ylabel 'along the axis, from the nozzle (m)'\n"
-        "set cblabel '|F| (N)'\nset size ratio -1\nset xrange [{s0}:{s1}]\nset yrange [{h0}:{h1}]\n"
+        "set cblabel '|F| (N){saturated}' offset 1,0\nset size ratio -1\nset xrange [{s0}:{s1}]\nset yrange [{h0}:{h1}]\n"
         "set cbrange [0:{max}]\nset palette defined (0 '#0d0887', 0.25 '#7e03a8', 0.5 '#cc4778', 0.75 '#f89540', 1 '#f0f921')\n"
         "set key top right box opaque\n"
         "plot 'magnitude.dat' with image notitle, "
         "'arrows.dat' with vectors head filled size screen 0.008,20 lc rgb '#ffffff' title 'direction', "
         "'cone.dat' with lines lw 2 dt 2 lc rgb '#00c0ff' title 'cone edge', "
         "'floor.dat' with lines lw 4 lc rgb '#808080' title 'floor and grille'\n",
+        fmt::arg("saturated", maxMagnitude > 1.001 * scale ? fmt::format(", up to {:.0f} near the nozzle", maxMagnitude) : ""),
         fmt::arg("out", std::filesystem::absolute(target.temporaryPath()).string()), fmt::arg("name", scene.name),
         fmt::arg("dir", flowDirectionName(f.direction)), fmt::arg("axial", falloffName(f.axialFalloff)),
         fmt::arg("radial", falloffName(f.radialFalloff)), fmt::arg("s0", frame.sMin), fmt::arg("s1", frame.sMax),
-        fmt::arg("h0", frame.hMin), fmt::arg("h1", frame.hMax), fmt::arg("max", std::max(maxMagnitude, 1e-9)));
+        fmt::arg("h0", frame.hMin), fmt::arg("h1", frame.hMax), fmt::arg("max", std::max(scale, 1e-9)));
     target.stream().close();
     runGnuplot(script, dir.path());
     target.commit();

@@ -47,14 +47,9 @@ std::string_view collisionResponseName(CollisionResponse response)
 std::string_view collisionResponseSummary(CollisionResponse response)
 {
     switch (response) {
-    case CollisionResponse::Exact:
-        return "exact: steps to the time of impact and bounces there; semi-implicit Euler then loses energy at each "
-               "bounce";
-    case CollisionResponse::Reflect:
-        return "reflect (the practical's): mirrors a body found below a surface after a full step; semi-implicit "
-               "Euler keeps its bounce";
-    case CollisionResponse::Clamp:
-        return "clamp: puts a body found below a surface back on it after a full step, losing the depth's energy";
+    case CollisionResponse::Exact: return "exact: bounces at the time of impact (semi-implicit Euler loses energy)";
+    case CollisionResponse::Reflect: return "reflect: mirrored back after the step (semi-implicit Euler keeps it)";
+    case CollisionResponse::Clamp: return "clamp: put back on the surface after the step";
     }
     return "?";
 }

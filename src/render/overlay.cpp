@@ -1,5 +1,7 @@
 #include "overlay.hpp"
 
+#include <algorithm>
+
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -50,15 +52,21 @@ void ImGuiLayer::endFrame()
 
 void drawLegend(const World& world, const std::string& sceneName, double dt, bool compact)
 {
-    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_Always);
+    // Bottom left: the room's upper half, where balls fly and hover, stays in view.
+    ImGui::SetNextWindowPos(ImVec2(10, ImGui::GetIO().DisplaySize.y - 10), ImGuiCond_Always, ImVec2(0, 1));
     ImGui::SetNextWindowBgAlpha(0.65f);
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                                    ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
     if (ImGui::Begin("legend", nullptr, flags)) {
         ImGui::Text("%s   t = %.2f s   dt = %g s", sceneName.c_str(), world.time(), dt);
-        if (!world.planes().empty())
-            ImGui::TextDisabled("collisions: %s", std::string(collisionResponseSummary(world.collisionResponse())).c_str());
+        if (!world.planes().empty()) { // wrapped within the picture, however narrow
+            ImGui::PushTextWrapPos(std::max(200.0f, ImGui::GetIO().DisplaySize.x - 40.0f));
+            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+            ImGui::TextWrapped("collisions: %s", std::string(collisionResponseSummary(world.collisionResponse())).c_str());
+            ImGui::PopStyleColor();
+            ImGui::PopTextWrapPos();
+        }
         const std::size_t shown = compact ? std::min<std::size_t>(world.bodyCount(), 8) : world.bodyCount();
         bool massesDiffer = false; // then the legend says each mass, which sets its drawn size
         for (std::size_t i = 1; i < world.bodyCount(); ++i)
