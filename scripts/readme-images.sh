@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Renders the README's pictures and animations into docs/images/ from the built pba (headless:
+# EGL, no display needed). Usage: scripts/readme-images.sh [BUILD_DIR] (default build).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+pba=${1:-build}/pba
+out=docs/images
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+still() { # SCENE TIME [SIZE]
+  "$pba" render "$1" --size "${3:-640x360}" --time "$2" --out "$out/$1.png"
+}
+still integrators 6
+still bouncing-cube 3
+still spring 2
+still blow-dryer 6
+still blow-dryer-flow 12 640x480 # taller: the legend leaves all five balls in view
+"$pba" render blow-dryer-swarm --size 640x360 --time 1.5 --out "$out/blow-dryer-swarm.png"
+"$pba" field blow-dryer-flow --slice --out "$out/field-blow-dryer-flow.png"
+
+gif() { # SCENE SECONDS SIZE: the first SECONDS at 12 frames a second, a palette of its own
+  "$pba" render "$1" --duration "$2" --fps 12 --size "$3" --out "$work/$1.mp4"
+  ffmpeg -v error -y -i "$work/$1.mp4" -vf "palettegen=max_colors=96" "$work/$1-palette.png"
+  ffmpeg -v error -y -i "$work/$1.mp4" -i "$work/$1-palette.png" -lavfi "paletteuse=dither=bayer" "$out/$1.gif"
+}
+gif blow-dryer 8 480x270
+gif blow-dryer-flow 8 480x360
+ls -l "$out"
