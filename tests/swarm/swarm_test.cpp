@@ -139,6 +139,32 @@ TEST(Swarm, FollowsParticlesWithDragAndATiltedDryer)
     }
 }
 
+// A dryer with the air terms (drag toward the air's velocity, the pull toward the axis) goes
+// through the swarm's general loop: the same kernel in float, for every integrator and response,
+// and the particles that fall into the hole are blown out of it as Particles are.
+TEST(Swarm, FollowsParticlesWithTheDryersAirTerms)
+{
+    for (CollisionResponse response : kAllCollisionResponses) {
+        for (Integrator integrator : kAllIntegrators) {
+            World world = swarmWorld(64, response);
+            world.swarm(0).setIntegrator(integrator);
+            for (std::size_t f = 0; f < world.forceCount(); ++f)
+                if (auto* dryer = dynamic_cast<BlowDryer*>(&world.force(f))) {
+                    dryer->field().airSpeed = 15.0;
+                    dryer->field().axisPull = 1.0;
+                }
+            ASSERT_TRUE(SwarmKernelFields(world.swarmFields(), 1.0f).air);
+            addParticlesLike(world, world.swarm(0));
+            for (int n = 0; n < 500; ++n)
+                world.step(0.002);
+            double worst = 0.0;
+            for (std::size_t i = 0; i < world.swarm(0).size(); ++i)
+                worst = std::max(worst, glm::length(dvec3(world.swarm(0).position(i)) - world.body(i).getPos()));
+            EXPECT_LT(worst, 2e-3) << collisionResponseName(response) << " " << integratorName(integrator);
+        }
+    }
+}
+
 // Through the landing (1.2 s: the rain reaches the floor and the hole after about 0.7 s), with
 // every response: the collision passes work on whole blocks, whose bounds do not move with the
 // thread count. 40,000 particles, above the size where the step goes parallel.
