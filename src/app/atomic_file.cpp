@@ -1,32 +1,15 @@
 #include "atomic_file.hpp"
 
-#include <unistd.h>
-
 #include <fmt/format.h>
-
-#include "command.hpp"
 
 namespace pba::app {
 
-AtomicFile::AtomicFile(std::filesystem::path target) : m_target(std::move(target))
+AtomicFile::AtomicFile(const std::filesystem::path& target)
+    : m_temporary(io::resolveOutputFile(target), io::Temporary::Kind::File)
 {
-    if (std::filesystem::is_directory(m_target))
-        throw UsageError(fmt::format("{}: is a directory, expected a file path", m_target.string()));
-    m_temporary = m_target;
-    m_temporary += fmt::format(".tmp-{}", ::getpid());
-    m_stream.open(m_temporary, std::ios::binary | std::ios::trunc);
+    m_stream.open(m_temporary.path(), std::ios::binary | std::ios::trunc);
     if (!m_stream)
-        throw UsageError(fmt::format("{}: cannot be written (does the directory exist, is it writable?)",
-                                     m_target.string()));
-}
-
-AtomicFile::~AtomicFile()
-{
-    if (!m_committed) {
-        m_stream.close();
-        std::error_code ignored;
-        std::filesystem::remove(m_temporary, ignored);
-    }
+        throw io::BadOutput(fmt::format("{}: cannot be written (is the folder writable?)", target.string()));
 }
 
 void AtomicFile::commit()
@@ -34,13 +17,9 @@ void AtomicFile::commit()
     m_stream.flush();
     const bool ok = static_cast<bool>(m_stream);
     m_stream.close();
-    if (!ok)
-        throw RuntimeFailure(fmt::format("{}: write failed (disk full?)", m_target.string()));
-    std::error_code ec;
-    std::filesystem::rename(m_temporary, m_target, ec);
-    if (ec)
-        throw RuntimeFailure(fmt::format("{}: cannot be replaced: {}", m_target.string(), ec.message()));
-    m_committed = true;
+    if (!ok || m_stream.fail())
+        throw io::WriteError(fmt::format("{}: write failed (disk full?)", m_temporary.target().string()));
+    m_temporary.commit();
 }
 
 } // namespace pba::app

@@ -9,6 +9,7 @@
 
 #include "command.hpp"
 #include "compare_report.hpp"
+#include "io/output_file.hpp"
 #include "progress.hpp"
 
 namespace pba::app {
@@ -63,14 +64,13 @@ study::StudyConfig makeConfig(const CompareOptions& options)
 int runCompare(const CompareOptions& options)
 {
     const study::StudyConfig config = makeConfig(options);
-    std::error_code ec;
-    std::filesystem::create_directories(options.out, ec);
-    if (ec || !std::filesystem::is_directory(options.out))
-        throw UsageError(fmt::format("--out: cannot create the directory {}", options.out));
+    // The folder is written beside its target and swapped in whole: a failed study leaves the
+    // previous one untouched, not a mix of new tables and an old report.
+    io::Temporary folder(io::resolveOutputFolder(options.out), io::Temporary::Kind::Folder);
     const auto runs = static_cast<long>(config.integrators.size() * (config.collisions.size() * config.dts.size() + 1));
     Progress progress("comparing", runs);
     const study::StudyResult result = study::runStudy(config, [&](long done, long) { progress.update(done); });
-    const std::filesystem::path dir(options.out);
+    const std::filesystem::path dir = folder.path();
     writeResultsCsv(dir / "results.csv", result);
     writeOrdersCsv(dir / "orders.csv", result);
     const bool plots = writePlots(dir, config, result);
@@ -78,6 +78,7 @@ int runCompare(const CompareOptions& options)
         fmt::print(stderr, "pba: gnuplot is not installed, so there are no plots: install the Debian package "
                            "gnuplot-nox\n");
     writeReport(dir / "report.md", config, result, plots);
+    folder.commit();
     for (CollisionResponse c : config.collisions)
         fmt::print("E(end)/E(0), {} response, first moving particle of {}:\n{}\n", collisionResponseName(c),
                    config.scene.name, energyTable(config, result, c, false));

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "atomic_file.hpp"
+#include "csv.hpp"
 #include "gnuplot.hpp"
 #include "study/exact_solution.hpp"
 
@@ -75,7 +76,7 @@ void writeResultsCsv(const std::filesystem::path& path, const study::StudyResult
            "apex_ratio_last,period_error,max_position_error\n";
     for (const auto& r : result.runs)
         out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", integratorName(r.integrator),
-                           collisionResponseName(r.collision), r.dt, r.particle, r.steps, number(r.energyRatioEnd),
+                           collisionResponseName(r.collision), r.dt, csvField(r.particle), r.steps, number(r.energyRatioEnd),
                            number(r.meanEnergyRatio), number(r.maxEnergyDeviation), r.bounces, number(r.apexRatioLast), number(r.periodError),
                            number(r.maxPositionError));
     file.commit();
@@ -198,13 +199,8 @@ bool writePlots(const std::filesystem::path& dir, const study::StudyConfig& conf
     const std::string script = heightPlot(scratch.path(), config, result) + energyPlot(scratch.path(), config, result) +
                                convergencePlot(scratch.path(), result);
     runGnuplot(script, scratch.path());
-    for (const char* name : {"height.png", "energy.png", "convergence.png"}) {
-        AtomicFile target(dir / name);
-        target.stream().close();
-        std::filesystem::copy_file(scratch.path() / name, target.temporaryPath(),
-                                   std::filesystem::copy_options::overwrite_existing);
-        target.commit();
-    }
+    for (const char* name : {"height.png", "energy.png", "convergence.png"})
+        publish(scratch.path() / name, dir / name);
     return true;
 }
 

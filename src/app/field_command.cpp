@@ -11,9 +11,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "atomic_file.hpp"
 #include "command.hpp"
 #include "gnuplot.hpp"
+#include "io/output_file.hpp"
 #include "pba/blow_dryer.hpp"
 #include "pba/scene/scene.hpp"
 
@@ -164,7 +164,7 @@ int drawSlice(const Scene& scene, const FieldOptions& options)
             dryers.push_back(dryer);
     if (dryers.empty())
         throw UsageError(fmt::format("{}: scene has no blow-dryer force to slice", scene.source));
-    AtomicFile target(*options.out); // checks the path is writable before any work
+    const std::filesystem::path target = io::resolveOutputFile(*options.out); // before any work
     const BlowDryerField& f = dryers.front()->field();
     const SliceFrame frame = sliceFrame(scene.world, f);
     ScratchDir dir("pba-field");
@@ -181,9 +181,9 @@ int drawSlice(const Scene& scene, const FieldOptions& options)
     writeOutlines(f, frame, hole ? hole->depth : 0.0, dir.path());
     const std::string script = fmt::format(
         "set terminal pngcairo size 1100,900 font 'sans,12'\n"
-        "set output '{out}'\n"
-        "set title \"{name}: blow dryer force in the vertical plane through its axis ({dir}, {axial} axial, "
-        "{radial} radial falloff)\"\n"
+        "set output 'slice.png'\n"
+        "set title sprintf('%s: blow dryer force in the vertical plane through its axis ({dir}, {axial} axial, "
+        "{radial} radial falloff)', ARG1) noenhanced\n"
         "set xlabel 'across the axis (m)'\nset ylabel 'along the axis, from the nozzle (m)'\n"
         "set cblabel '|F| (N){saturated}' offset 1,0\nset size ratio -1\nset xrange [{s0}:{s1}]\nset yrange [{h0}:{h1}]\n"
         "set cbrange [0:{max}]\nset palette defined (0 '#0d0887', 0.25 '#7e03a8', 0.5 '#cc4778', 0.75 '#f89540', 1 '#f0f921')\n"
@@ -193,13 +193,11 @@ int drawSlice(const Scene& scene, const FieldOptions& options)
         "'cone.dat' with lines lw 2 dt 2 lc rgb '#00c0ff' title 'cone edge', "
         "'floor.dat' with lines lw 4 lc rgb '#808080' title 'floor and grille'\n",
         fmt::arg("saturated", maxMagnitude > 1.001 * scale ? fmt::format(", up to {:.0f} near the nozzle", maxMagnitude) : ""),
-        fmt::arg("out", std::filesystem::absolute(target.temporaryPath()).string()), fmt::arg("name", scene.name),
         fmt::arg("dir", flowDirectionName(f.direction)), fmt::arg("axial", falloffName(f.axialFalloff)),
         fmt::arg("radial", falloffName(f.radialFalloff)), fmt::arg("s0", frame.sMin), fmt::arg("s1", frame.sMax),
         fmt::arg("h0", frame.hMin), fmt::arg("h1", frame.hMax), fmt::arg("max", std::max(scale, 1e-9)));
-    target.stream().close();
-    runGnuplot(script, dir.path());
-    target.commit();
+    runGnuplot(script, dir.path(), {scene.name}); // the name is data (ARG1), never script text
+    publish(dir.path() / "slice.png", target);
     fmt::print("wrote {} (peak |F| = {:.4g} N)\n", *options.out, maxMagnitude);
     return kExitSuccess;
 }

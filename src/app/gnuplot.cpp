@@ -1,47 +1,50 @@
 #include "gnuplot.hpp"
 
-#include <cstdio>
-#include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <random>
 
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "io/child_process.hpp"
+#include "io/output_file.hpp"
 
 namespace pba::app {
 
-bool gnuplotAvailable() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+bool gnuplotAvailable() { return io::findProgram("gnuplot").has_value(); }
 
-void runGnuplot(const std::string& script, const std::filesystem::path& workDir)
+void runGnuplot(const std::string& script, const std::filesystem::path& workDir, const std::vector<std::string>& args)
 {
     if (!gnuplotAvailable())
         throw RuntimeFailure("gnuplot is not installed: install the Debian package gnuplot-nox "
                              "(scripts/install-deps.sh does)");
     const auto scriptPath = workDir / "plot.gp";
     std::ofstream(scriptPath) << script;
-    const auto logPath = workDir / "gnuplot.log";
-    const std::string command =
-        fmt::format("cd '{}' && gnuplot plot.gp > '{}' 2>&1", workDir.string(), logPath.string());
-    if (std::system(command.c_str()) != 0) {
-        std::ifstream log(logPath);
-        std::string first;
-        std::getline(log, first);
-        throw RuntimeFailure(fmt::format("gnuplot failed: {}", first));
+    std::vector<std::string> argv{"gnuplot", "-c", "plot.gp"};
+    argv.insert(argv.end(), args.begin(), args.end());
+    const auto log = workDir / "gnuplot.log";
+    const int status = io::runProgram(argv, {workDir, log, false});
+    if (status != 0) {
+        const std::string message = io::firstLine(log);
+        throw RuntimeFailure(fmt::format("gnuplot failed ({}){}{}", io::describeExit(status),
+                                         message.empty() ? "" : ": ", message));
     }
 }
 
-ScratchDir::ScratchDir(const std::string& prefix)
+void publish(const std::filesystem::path& made, const std::filesystem::path& target)
 {
-    std::random_device device;
-    m_path = std::filesystem::temp_directory_path() / fmt::format("{}-{:08x}", prefix, device());
-    std::filesystem::create_directories(m_path);
+    std::ifstream in(made, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in.good() && !in.eof())
+        throw RuntimeFailure(fmt::format("{}: gnuplot's picture cannot be read", made.string()));
+    io::writeFileAtomically(target, bytes);
 }
 
-ScratchDir::~ScratchDir()
+ScratchDir::ScratchDir(const std::string& prefix)
+    : m_folder(std::filesystem::temp_directory_path() / fmt::format("{}-{:08x}", prefix, std::random_device()()),
+               io::Temporary::Kind::Folder)
 {
-    std::error_code ignored;
-    std::filesystem::remove_all(m_path, ignored);
 }
 
 } // namespace pba::app

@@ -1,5 +1,6 @@
 // The `pba` command: one subcommand per file, errors as one line and a documented exit code.
 #include <algorithm>
+#include <csignal>
 #include <exception>
 #include <string>
 #include <vector>
@@ -8,11 +9,18 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "io/output_file.hpp"
 #include "pba/scene/scene.hpp"
 
 int main(int argc, char** argv)
 {
     using namespace pba::app;
+    // Before any thread starts: SIGINT and SIGTERM remove temporaries and stop child programs;
+    // a child that stops reading gives EPIPE, not a silent death.
+    pba::io::cleanUpOnSignals();
+    std::signal(SIGPIPE, SIG_IGN);
+    std::signal(SIGXFSZ, SIG_IGN); // past a file size limit a write fails (EFBIG) and is reported
+
     CLI::App app{"pba: a physics-based animation lab. Particles, integrators and fixed timesteps you can see and "
                  "measure.",
                  "pba"};
@@ -47,6 +55,9 @@ int main(int argc, char** argv)
         fmt::print(stderr, "pba: error: {}\n", e.what());
         return kExitBadInput;
     } catch (const UsageError& e) {
+        fmt::print(stderr, "pba: error: {}\n", e.what());
+        return kExitBadInput;
+    } catch (const pba::io::BadOutput& e) {
         fmt::print(stderr, "pba: error: {}\n", e.what());
         return kExitBadInput;
     } catch (const std::exception& e) {

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
-#include "render/gl_context.hpp"
 
 namespace pba::app {
 
@@ -20,25 +19,16 @@ OutputKind outputKind(const std::string& out)
 }
 
 FrameSink::FrameSink(OutputKind kind, const std::string& out, int width, int height, int fps)
-    : m_kind(kind), m_out(out), m_width(width), m_height(height)
+    : m_kind(kind), m_width(width), m_height(height)
 {
-    if (kind == OutputKind::Frames) {
-        std::error_code ec;
-        std::filesystem::create_directories(m_out, ec);
-        if (ec || !std::filesystem::is_directory(m_out))
-            throw UsageError(fmt::format("--out: cannot create the directory {}", out));
-        return;
-    }
-    const auto parent = m_out.parent_path().empty() ? std::filesystem::path(".") : m_out.parent_path();
-    if (!std::filesystem::is_directory(parent))
-        throw UsageError(fmt::format("{}: cannot be written: the directory {} does not exist", out, parent.string()));
-    if (kind == OutputKind::Mp4) {
-        try {
-            m_video = std::make_unique<render::VideoWriter>(m_out, width, height, fps);
-        } catch (const render::RenderError& e) {
-            throw RuntimeFailure(e.what());
-        }
-    }
+    // The path is checked here, before any rendering; a folder of frames is written beside its
+    // target and swapped in whole, so no frame of a longer earlier run is left among the new.
+    if (kind == OutputKind::Frames)
+        m_folder = std::make_unique<io::Temporary>(io::resolveOutputFolder(out), io::Temporary::Kind::Folder);
+    else
+        m_out = io::resolveOutputFile(out);
+    if (kind == OutputKind::Mp4)
+        m_video = std::make_unique<render::VideoWriter>(m_out, width, height, fps);
 }
 
 void FrameSink::add(const std::vector<std::uint8_t>& rgba)
@@ -47,7 +37,10 @@ void FrameSink::add(const std::vector<std::uint8_t>& rgba)
     case OutputKind::Png: m_last = rgba; break;
     case OutputKind::Mp4: m_video->addFrame(rgba); break;
     case OutputKind::Frames:
-        render::writePng(m_out / fmt::format("frame_{:05}.png", m_count), m_width, m_height, rgba);
+        // Inside the temporary folder a frame needs no temporary of its own: the folder is
+        // synced and renamed as a whole.
+        io::writeFile(m_folder->path() / fmt::format("frame_{:05}.png", m_count),
+                      render::encodePng(m_width, m_height, rgba));
         break;
     }
     ++m_count;
@@ -59,6 +52,8 @@ void FrameSink::finish()
         render::writePng(m_out, m_width, m_height, m_last);
     else if (m_kind == OutputKind::Mp4)
         m_video->finish();
+    else
+        m_folder->commit();
 }
 
 } // namespace pba::app

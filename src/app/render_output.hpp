@@ -18,14 +18,15 @@ OutputKind outputKind(const std::string& out);
 
 class FrameSink {
 public:
-    /// Checks the output can be written before any rendering (UsageError if not).
+    /// Checks the output can be written before any rendering (io::BadOutput if not).
     FrameSink(OutputKind kind, const std::string& out, int width, int height, int fps);
     void add(const std::vector<std::uint8_t>& rgba);
     void finish();
 
 private:
     OutputKind m_kind;
-    std::filesystem::path m_out;
+    std::filesystem::path m_out;              ///< a file output, resolved
+    std::unique_ptr<io::Temporary> m_folder;  ///< a folder output, written whole
     int m_width;
     int m_height;
     long m_count = 0;

@@ -10,6 +10,7 @@
 
 #include "atomic_file.hpp"
 #include "command.hpp"
+#include "csv.hpp"
 #include "scene_options.hpp"
 #include "pba/clock.hpp"
 #include "study/jet_watch.hpp"
@@ -41,7 +42,7 @@ void writeCsvRows(std::ostream& out, const World& world)
         const Body& b = world.body(i);
         const dvec3& x = b.getPos();
         const dvec3& v = b.getVel();
-        out << fmt::format("{},{},{},{},{},{},{},{},{},{}\n", world.stepCount(), world.time(), b.getName(), x.x, x.y,
+        out << fmt::format("{},{},{},{},{},{},{},{},{},{}\n", world.stepCount(), world.time(), csvField(b.getName()), x.x, x.y,
                            x.z, v.x, v.y, v.z, world.energy(i));
     }
 }
@@ -55,7 +56,8 @@ void writeSwarmRows(std::ostream& out, const World& world)
         for (std::size_t i = 0; i < swarm.size(); ++i) {
             const Vec3<float> x = swarm.position(i), v = swarm.velocity(i);
             const double energy = swarm.mass() * (0.5 * glm::dot(v, v) - glm::dot(Vec3<float>(g), x));
-            out << fmt::format("{},{},{}[{}],{},{},{},{},{},{},{}\n", world.stepCount(), world.time(), swarm.name(), i,
+            out << fmt::format("{},{},{},{},{},{},{},{},{},{}\n", world.stepCount(), world.time(),
+                               csvField(fmt::format("{}[{}]", swarm.name(), i)),
                                x.x, x.y, x.z, v.x, v.y, v.z, energy);
         }
     }

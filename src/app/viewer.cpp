@@ -8,6 +8,7 @@
 #include <imgui.h>
 
 #include "command.hpp"
+#include "io/output_file.hpp"
 #include "lanes.hpp"
 #include "render/gl_context.hpp"
 #include "render/image_io.hpp"
@@ -132,6 +133,8 @@ void handleKeys(ViewerState& state, GLFWwindow* window)
 
 int runViewer(Scene scene, std::optional<int> frames, std::optional<std::string> screenshot, bool lanes)
 {
+    const std::optional<std::filesystem::path> shot =
+        screenshot ? std::optional(io::resolveOutputFile(*screenshot)) : std::nullopt; // before the window opens
     render::WindowContext window(1280, 720, fmt::format("pba: {}", scene.name));
     render::Renderer renderer;
     render::ImGuiLayer imgui(window.window());
@@ -163,7 +166,7 @@ int runViewer(Scene scene, std::optional<int> frames, std::optional<std::string>
         renderer.draw(list, state.camera, width, std::max(height, 1));
         imgui.endFrame();
         if (screenshot && frames && frame == *frames - 1)
-            render::writePng(*screenshot, width, height, window.readPixels());
+            render::writePng(*shot, width, height, window.readPixels());
         window.swap();
     }
     if (screenshot)

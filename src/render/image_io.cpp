@@ -2,79 +2,77 @@
 
 #include <unistd.h>
 
-#include <cstdlib>
-
 #include <fmt/format.h>
 #include <stb_image_write.h>
 
-#include "gl_context.hpp"
-
 namespace pba::render {
 
-namespace {
-std::filesystem::path temporaryBeside(const std::filesystem::path& target, const char* extension)
+std::string encodePng(int width, int height, const std::vector<std::uint8_t>& rgba)
 {
-    std::filesystem::path temporary = target;
-    temporary += fmt::format(".tmp-{}{}", ::getpid(), extension);
-    return temporary;
+    std::string bytes;
+    auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+    };
+    if (!stbi_write_png_to_func(append, &bytes, width, height, 4, rgba.data(), width * 4))
+        throw io::WriteError("cannot encode the PNG");
+    return bytes;
 }
-} // namespace
 
 void writePng(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgba)
 {
-    const auto temporary = temporaryBeside(path, ".png");
-    if (!stbi_write_png(temporary.c_str(), width, height, 4, rgba.data(), width * 4)) {
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
-        throw RenderError(fmt::format("{}: cannot write the PNG (does the directory exist?)", path.string()));
-    }
-    std::filesystem::rename(temporary, path);
+    io::writeFileAtomically(path, encodePng(width, height, rgba));
 }
 
-bool ffmpegAvailable() { return std::system("command -v ffmpeg >/dev/null 2>&1") == 0; }
+bool ffmpegAvailable() { return io::findProgram("ffmpeg").has_value(); }
 
-VideoWriter::VideoWriter(std::filesystem::path target, int width, int height, int fps)
-    : m_target(std::move(target)), m_temporary(temporaryBeside(m_target, ".mp4")),
+VideoWriter::VideoWriter(const std::filesystem::path& target, int width, int height, int fps)
+    : m_video(target, io::Temporary::Kind::File),
+      m_log(std::filesystem::temp_directory_path() / fmt::format("pba-ffmpeg-{}.log", ::getpid()),
+            io::Temporary::Kind::File),
       m_frameBytes(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4)
 {
     if (!ffmpegAvailable())
-        throw RenderError("ffmpeg is not installed: install the Debian package ffmpeg (scripts/install-deps.sh does)");
-    // Frames arrive top row first (already flipped), so no -vf vflip. yuv420p needs even sizes.
-    const std::string command = fmt::format(
-        "ffmpeg -nostdin -y -loglevel error -f rawvideo -pixel_format rgba -video_size {}x{} -framerate {} -i - "
-        "-vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -c:v libx264 -preset veryfast -pix_fmt yuv420p -movflags +faststart "
-        "-f mp4 '{}'",
-        width, height, fps, m_temporary.string());
-    m_pipe = ::popen(command.c_str(), "w");
-    if (!m_pipe)
-        throw RenderError("cannot start ffmpeg");
+        throw io::WriteError("ffmpeg is not installed: install the Debian package ffmpeg (scripts/install-deps.sh does)");
+    // Frames arrive top row first (already flipped), so no vflip. yuv420p needs even sizes. The
+    // output is named as a file: URL of an absolute path, so no name can read as an option or
+    // another protocol.
+    const std::string output = "file:" + std::filesystem::absolute(m_video.path()).string();
+    m_ffmpeg = std::make_unique<io::ChildProcess>(
+        std::vector<std::string>{"ffmpeg", "-nostdin", "-y", "-loglevel", "error", "-f", "rawvideo", "-pixel_format",
+                                 "rgba", "-video_size", fmt::format("{}x{}", width, height), "-framerate",
+                                 std::to_string(fps), "-i", "pipe:0", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v",
+                                 "libx264", "-preset", "veryfast", "-pix_fmt", "yuv420p", "-movflags", "+faststart",
+                                 "-f", "mp4", output},
+        io::ChildProcess::Options{{}, m_log.path(), true});
 }
 
-VideoWriter::~VideoWriter()
+VideoWriter::~VideoWriter() = default; // the child is stopped, then the temporaries removed
+
+void VideoWriter::fail(const std::string& what)
 {
-    if (m_pipe) {
-        ::pclose(m_pipe);
-        std::error_code ignored;
-        std::filesystem::remove(m_temporary, ignored);
-    }
+    const int status = m_ffmpeg->wait();
+    const std::string message = io::firstLine(m_log.path());
+    throw io::WriteError(fmt::format("{}: {} ({}){}{}", m_video.target().string(), what, io::describeExit(status),
+                                     message.empty() ? "" : ": ", message));
 }
 
 void VideoWriter::addFrame(const std::vector<std::uint8_t>& rgba)
 {
-    if (rgba.size() != m_frameBytes || std::fwrite(rgba.data(), 1, rgba.size(), m_pipe) != rgba.size())
-        throw RenderError("ffmpeg stopped accepting frames");
+    if (rgba.size() != m_frameBytes)
+        throw io::WriteError("a frame of the wrong size");
+    if (!m_ffmpeg->write(rgba.data(), rgba.size()))
+        fail("ffmpeg stopped accepting frames");
 }
 
 void VideoWriter::finish()
 {
-    const int status = ::pclose(m_pipe);
-    m_pipe = nullptr;
+    const int status = m_ffmpeg->wait();
     if (status != 0) {
-        std::error_code ignored;
-        std::filesystem::remove(m_temporary, ignored);
-        throw RenderError(fmt::format("ffmpeg failed to encode {} (exit status {})", m_target.string(), status));
+        const std::string message = io::firstLine(m_log.path());
+        throw io::WriteError(fmt::format("{}: ffmpeg failed ({}){}{}", m_video.target().string(),
+                                         io::describeExit(status), message.empty() ? "" : ": ", message));
     }
-    std::filesystem::rename(m_temporary, m_target);
+    m_video.commit();
 }
 
 } // namespace pba::render

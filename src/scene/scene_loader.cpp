@@ -1,6 +1,7 @@
 // Scene files to Worlds. The order of reading follows docs/scenes.md.
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -65,12 +66,24 @@ bool inside(const World& world, const dvec3& x)
     return true;
 }
 
+/// A name (of the scene, a particle, a swarm): it goes into summaries, CSV rows, pictures and
+/// titles, so control characters (a newline, a tab, an escape) are refused.
+std::string readName(ObjectReader& reader, const std::string& key, const std::optional<std::string>& fallback = {})
+{
+    const std::string name = fallback ? reader.string(key, *fallback) : reader.string(key);
+    for (const char c : name)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            reader.fail(key, fmt::format("contains a control character (code {}); names are one line of text",
+                                         static_cast<int>(static_cast<unsigned char>(c))));
+    return name;
+}
+
 void readParticle(const Json& value, const std::string& path, const std::string& file, World& world,
                   std::set<std::string>& names)
 {
     ObjectReader reader(value, path, file);
     Particle p;
-    const std::string name = reader.string("name");
+    const std::string name = readName(reader, "name");
     if (name.empty())
         reader.fail("name", "must not be empty");
     if (!names.insert(name).second)
@@ -105,7 +118,7 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
 {
     ObjectReader reader(value, path, file);
     SwarmDesc desc;
-    desc.name = reader.string("name");
+    desc.name = readName(reader, "name");
     if (desc.name.empty() || !names.insert(desc.name).second)
         reader.fail("name", desc.name.empty() ? "must not be empty" : fmt::format("'{}' is already taken", desc.name));
     desc.count = readCount(reader, "count", 1e8);
@@ -152,7 +165,7 @@ Scene readScene(const Json& document, const std::string& file)
     ObjectReader root(document, "", file);
     Scene scene;
     scene.source = file;
-    scene.name = root.string("name", "unnamed");
+    scene.name = readName(root, "name", "unnamed");
     scene.description = root.string("description", "");
     scene.dt = root.positive("dt", 0.01);
     scene.duration = root.positive("duration", 10.0);

@@ -57,3 +57,64 @@ inline CommandResult runShell(const std::string& command)
 inline CommandResult runPba(const std::string& args) { return runShell(std::string(PBA_BINARY) + " " + args); }
 
 } // namespace pba::test
+
+#include <csignal>
+#include <vector>
+
+#include <sys/resource.h>
+
+namespace pba::test {
+
+struct RunOptions {
+    std::string path;              ///< PATH for the program (empty: this process's)
+    long long fileSizeLimit = -1;  ///< RLIMIT_FSIZE in bytes (-1: none): a stand-in for a full disk
+    int stopAfterMs = -1;          ///< send `stopSignal` this long after the start (-1: never)
+    int stopSignal = SIGTERM;
+    std::filesystem::path workDir; ///< empty: this process's
+};
+
+/// Runs the pba binary with an argument vector, no shell: what the arguments hold reaches pba
+/// exactly. exitCode is 128 + N when a signal N ended it.
+inline CommandResult runPbaArgv(const std::vector<std::string>& args, const RunOptions& options = {})
+{
+    const auto base = std::filesystem::temp_directory_path() / ("pba_test_argv_" + std::to_string(::getpid()));
+    const std::string outPath = base.string() + ".out", errPath = base.string() + ".err";
+    std::vector<std::string> argv{PBA_BINARY};
+    argv.insert(argv.end(), args.begin(), args.end());
+    std::vector<char*> pointers;
+    for (auto& a : argv)
+        pointers.push_back(a.data());
+    pointers.push_back(nullptr);
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        std::FILE* out = std::freopen(outPath.c_str(), "w", stdout);
+        std::FILE* err = std::freopen(errPath.c_str(), "w", stderr);
+        (void)out;
+        (void)err;
+        if (!options.path.empty())
+            ::setenv("PATH", options.path.c_str(), 1);
+        if (options.fileSizeLimit >= 0) {
+            const rlimit limit{rlim_t(options.fileSizeLimit), rlim_t(options.fileSizeLimit)};
+            ::setrlimit(RLIMIT_FSIZE, &limit);
+        }
+        if (!options.workDir.empty() && ::chdir(options.workDir.c_str()) != 0)
+            ::_exit(126);
+        ::execv(pointers[0], pointers.data());
+        ::_exit(127);
+    }
+    if (options.stopAfterMs >= 0) {
+        ::usleep(static_cast<useconds_t>(options.stopAfterMs) * 1000);
+        ::kill(pid, options.stopSignal);
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    CommandResult result;
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    result.out = readFile(outPath);
+    result.err = readFile(errPath);
+    std::filesystem::remove(outPath);
+    std::filesystem::remove(errPath);
+    return result;
+}
+
+} // namespace pba::test

@@ -1,0 +1,234 @@
+#include "io/output_file.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include <fmt/format.h>
+
+namespace pba::io {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// What the signal watcher removes and stops; guarded by its mutex (the watcher is a thread,
+/// not a signal handler, so it may lock and allocate).
+struct Registry {
+    std::mutex mutex;
+    std::vector<fs::path> temporaries;
+    std::vector<int> children;
+};
+
+Registry& registry()
+{
+    static Registry r;
+    return r;
+}
+
+std::string describe(const fs::path& p) { return p.string(); }
+
+/// fsync a file or folder by path; false on error.
+bool syncPath(const fs::path& p, bool directory)
+{
+    const int fd = ::open(p.c_str(), (directory ? O_RDONLY | O_DIRECTORY : O_RDONLY) | O_CLOEXEC);
+    if (fd < 0)
+        return false;
+    const bool ok = ::fsync(fd) == 0 || errno == EINVAL; // some file systems cannot sync folders
+    ::close(fd);
+    return ok;
+}
+
+bool syncTree(const fs::path& folder)
+{
+    std::error_code ec;
+    for (const auto& entry : fs::recursive_directory_iterator(folder, ec))
+        if (entry.is_regular_file() && !syncPath(entry.path(), false))
+            return false;
+    return !ec && syncPath(folder, true);
+}
+
+fs::path parentOf(const fs::path& p) { return p.parent_path().empty() ? fs::path(".") : p.parent_path(); }
+
+} // namespace
+
+fs::path resolveOutputFile(const fs::path& requested)
+{
+    if (requested.empty())
+        throw BadOutput("--out: the path is empty");
+    std::error_code ec;
+    fs::path target = requested;
+    // Follow links one by one (a link may name a file that does not exist yet).
+    for (int hops = 0; fs::is_symlink(fs::symlink_status(target, ec)); ++hops) {
+        const fs::path next = fs::read_symlink(target, ec);
+        if (ec || hops == 40)
+            throw BadOutput(fmt::format("{}: cannot follow the link", describe(requested)));
+        target = next.is_absolute() ? next : (parentOf(target) / next).lexically_normal();
+    }
+    const fs::file_status status = fs::status(target, ec);
+    if (fs::is_directory(status))
+        throw BadOutput(fmt::format("{}: is a directory, expected a file path", describe(requested)));
+    if (fs::exists(status) && !fs::is_regular_file(status))
+        throw BadOutput(fmt::format("{}: is not a regular file (a device, FIFO or socket): give a file path",
+                                    describe(requested)));
+    if (!fs::is_directory(parentOf(target)))
+        throw BadOutput(fmt::format("{}: cannot be written: the folder {} does not exist", describe(requested),
+                                    parentOf(target).string()));
+    return target;
+}
+
+fs::path resolveOutputFolder(const fs::path& requested)
+{
+    if (requested.empty())
+        throw BadOutput("--out: the path is empty");
+    std::error_code ec;
+    const fs::path named = requested.has_filename() ? requested : requested.parent_path(); // "out/" is "out"
+    fs::path target = fs::weakly_canonical(named, ec);
+    if (ec)
+        throw BadOutput(fmt::format("{}: cannot be resolved: {}", describe(requested), ec.message()));
+    const fs::file_status status = fs::status(target, ec);
+    if (fs::exists(status) && !fs::is_directory(status))
+        throw BadOutput(fmt::format("{}: exists and is not a folder", describe(requested)));
+    if (!fs::is_directory(parentOf(target)))
+        throw BadOutput(fmt::format("{}: cannot be written: the folder {} does not exist", describe(requested),
+                                    parentOf(target).string()));
+    return target;
+}
+
+Temporary::Temporary(fs::path target, Kind kind) : m_target(std::move(target)), m_kind(kind)
+{
+    m_temporary = m_target;
+    m_temporary += fmt::format(".tmp-{}", ::getpid());
+    {
+        std::lock_guard lock(registry().mutex);
+        registry().temporaries.push_back(m_temporary);
+    }
+    std::error_code ec;
+    fs::remove_all(m_temporary, ec); // a leftover of an earlier process with the same id
+    if (kind == Kind::Folder && !fs::create_directory(m_temporary, ec))
+        throw BadOutput(fmt::format("{}: cannot be written: {}", describe(m_target), ec.message()));
+}
+
+Temporary::~Temporary()
+{
+    std::error_code ignored;
+    if (!m_committed)
+        fs::remove_all(m_temporary, ignored);
+    std::lock_guard lock(registry().mutex);
+    auto& list = registry().temporaries;
+    list.erase(std::remove(list.begin(), list.end(), m_temporary), list.end());
+}
+
+void Temporary::commit()
+{
+    const bool synced = m_kind == Kind::File ? syncPath(m_temporary, false) : syncTree(m_temporary);
+    if (!synced)
+        throw WriteError(fmt::format("{}: write failed: {}", describe(m_target), std::strerror(errno)));
+    std::error_code ec;
+    if (m_kind == Kind::Folder && fs::exists(m_target)) {
+        // Two renames: the old folder moves aside, the new one takes its name, the old one goes.
+        fs::path old = m_target;
+        old += fmt::format(".old-{}", ::getpid());
+        fs::rename(m_target, old, ec);
+        if (!ec)
+            fs::rename(m_temporary, m_target, ec);
+        if (ec) {
+            std::error_code ignored;
+            if (!fs::exists(m_target))
+                fs::rename(old, m_target, ignored);
+            throw WriteError(fmt::format("{}: cannot be replaced: {}", describe(m_target), ec.message()));
+        }
+        fs::remove_all(old, ec);
+    } else {
+        fs::rename(m_temporary, m_target, ec);
+        if (ec)
+            throw WriteError(fmt::format("{}: cannot be replaced: {}", describe(m_target), ec.message()));
+    }
+    m_committed = true;
+    syncPath(parentOf(m_target), true); // the rename itself, on the disk
+}
+
+bool writeAll(int fd, const void* bytes, std::size_t size)
+{
+    const char* p = static_cast<const char*>(bytes);
+    while (size > 0) {
+        const ssize_t n = ::write(fd, p, size);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            return false;
+        p += n;
+        size -= static_cast<std::size_t>(n);
+    }
+    return true;
+}
+
+void writeFile(const fs::path& path, std::string_view bytes)
+{
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0)
+        throw WriteError(fmt::format("{}: cannot be written: {}", describe(path), std::strerror(errno)));
+    const bool written = writeAll(fd, bytes.data(), bytes.size());
+    const int error = errno;
+    const bool closed = ::close(fd) == 0;
+    if (!written || !closed)
+        throw WriteError(fmt::format("{}: write failed: {}", describe(path), std::strerror(written ? errno : error)));
+}
+
+void writeFileAtomically(const fs::path& target, std::string_view bytes)
+{
+    Temporary temporary(target, Temporary::Kind::File);
+    writeFile(temporary.path(), bytes);
+    temporary.commit();
+}
+
+void registerChild(int pid)
+{
+    std::lock_guard lock(registry().mutex);
+    registry().children.push_back(pid);
+}
+
+void unregisterChild(int pid)
+{
+    std::lock_guard lock(registry().mutex);
+    auto& list = registry().children;
+    list.erase(std::remove(list.begin(), list.end(), pid), list.end());
+}
+
+void cleanUpOnSignals()
+{
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    ::pthread_sigmask(SIG_BLOCK, &set, nullptr);
+    std::thread([set] {
+        int signal = 0;
+        while (::sigwait(&set, &signal) != 0) {
+        }
+        {
+            std::lock_guard lock(registry().mutex);
+            for (int pid : registry().children)
+                ::kill(pid, SIGTERM);
+            for (const fs::path& p : registry().temporaries) {
+                std::error_code ignored;
+                fs::remove_all(p, ignored);
+            }
+        }
+        // Die of the signal, so the shell sees what stopped the program.
+        ::signal(signal, SIG_DFL);
+        ::pthread_sigmask(SIG_UNBLOCK, &set, nullptr);
+        ::raise(signal);
+        ::_exit(128 + signal);
+    }).detach();
+}
+
+} // namespace pba::io

@@ -1,0 +1,234 @@
+// Hardening II: no string from a scene or a path reaches a shell or becomes script text, and
+// every output is written completely or not at all, whatever fails (a full disk, a helper
+// program, a signal). pba runs here from an argument vector (runPbaArgv), so each hostile
+// string reaches it exactly as written.
+#include <gtest/gtest.h>
+
+#include <sys/stat.h>
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "support/run_command.hpp"
+
+using namespace pba::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Strings that would run `touch MARKER` if they reached a shell or gnuplot's script text.
+std::vector<std::string> hostile(const fs::path& marker)
+{
+    const std::string m = marker.string();
+    return {"`touch " + m + "`", "$(touch " + m + ")", "'; system('touch " + m + "'); '",
+            "\"; system \"touch " + m + "\"; \"", "a;touch " + m, "x' . system('touch " + m + "') . '"};
+}
+
+/// The blow-dryer scene under another name, written to `dir`.
+fs::path sceneNamed(const fs::path& dir, const std::string& name, const std::string& file = "scene.json")
+{
+    nlohmann::json scene = nlohmann::json::parse(readFile(fs::path(PBA_SOURCE_DIR) / "scenes/blow-dryer.json"));
+    scene["name"] = name;
+    const fs::path path = dir / file;
+    std::ofstream(path) << scene.dump();
+    return path;
+}
+
+/// Files in `dir` whose names hold ".tmp-" (a temporary left behind).
+std::vector<std::string> temporaries(const fs::path& dir)
+{
+    std::vector<std::string> found;
+    for (const auto& entry : fs::recursive_directory_iterator(dir))
+        if (entry.path().filename().string().find(".tmp-") != std::string::npos)
+            found.push_back(entry.path().string());
+    return found;
+}
+
+void writeText(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+/// A folder holding a fake `name` program that prints a message and fails.
+fs::path failingProgram(const fs::path& dir, const std::string& name)
+{
+    const fs::path bin = dir / "bin";
+    fs::create_directories(bin);
+    writeText(bin / name, "#!/bin/sh\necho \"fake " + name + " failure\" >&2\nexit 3\n");
+    fs::permissions(bin / name, fs::perms::owner_all);
+    return bin;
+}
+
+} // namespace
+
+TEST(Security, SceneNamesReachGnuplotOnlyAsData)
+{
+    const fs::path dir = freshDir("hostile_names");
+    const fs::path marker = dir / "MARKER";
+    for (const std::string& name : hostile(marker)) {
+        const fs::path scene = sceneNamed(dir, name);
+        const CommandResult r = runPbaArgv({"field", scene.string(), "--slice", "--out", (dir / "f.png").string()},
+                                           {.workDir = dir});
+        EXPECT_EQ(r.exitCode, 0) << name << "\n" << r.err;
+        EXPECT_FALSE(fs::exists(marker)) << "ran: " << name;
+        EXPECT_TRUE(fs::exists(dir / "f.png")) << name;
+        fs::remove(dir / "f.png");
+    }
+    // A newline (gnuplot's command separator) or any control character in a name is refused.
+    const fs::path scene = sceneNamed(dir, "x\nsystem \"touch " + marker.string() + "\"");
+    const CommandResult r = runPbaArgv({"field", scene.string(), "--slice", "--out", (dir / "f.png").string()});
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("name: contains a control character"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(marker));
+}
+
+TEST(Security, OddOutputNamesAreWrittenUnderExactlyThatName)
+{
+    const fs::path dir = freshDir("odd_outputs");
+    const fs::path marker = dir / "MARKER";
+    // Relative to the working folder (a name holds no '/'): `touch MARKER` would make dir/MARKER.
+    std::vector<std::string> stems{"it's", "-starts-with-a-dash", "semi;colon $(touch MARKER)", "back`touch MARKER`tick",
+                                   "quote\"d", "new\nline", "it's'; touch MARKER; '"};
+    for (const std::string& stem : stems) {
+        for (const char* extension : {".mp4", ".png"}) {
+            const std::string name = stem + extension;
+            const CommandResult r =
+                runPbaArgv({"render", "integrators", "--size", "64x48", "--duration", "0.1", "--fps", "10",
+                            "--time", "0.1", "--out", name},
+                           {.workDir = dir});
+            // --time is for a PNG only: the video is made without it.
+            const CommandResult video = std::string(extension) == ".mp4"
+                                            ? runPbaArgv({"render", "integrators", "--size", "64x48", "--duration",
+                                                          "0.1", "--fps", "10", "--out", name},
+                                                         {.workDir = dir})
+                                            : r;
+            EXPECT_EQ(video.exitCode, 0) << name << "\n" << video.err;
+            EXPECT_TRUE(fs::is_regular_file(dir / name)) << name;
+            EXPECT_GT(fs::file_size(dir / name), 100u) << name;
+        }
+        const CommandResult csv =
+            runPbaArgv({"sim", "integrators", "--duration", "0.1", "--out", stem + ".csv"}, {.workDir = dir});
+        EXPECT_EQ(csv.exitCode, 0) << stem << "\n" << csv.err;
+        EXPECT_TRUE(fs::is_regular_file(dir / (stem + ".csv"))) << stem;
+    }
+    EXPECT_FALSE(fs::exists(marker));
+    EXPECT_TRUE(temporaries(dir).empty());
+}
+
+TEST(Outputs, AnythingButARegularFileIsRefusedAndLeftAlone)
+{
+    const fs::path dir = freshDir("not_regular");
+    ASSERT_EQ(::mkfifo((dir / "fifo").c_str(), 0600), 0);
+    for (const fs::path& target : {fs::path("/dev/null"), dir / "fifo", dir}) {
+        const CommandResult r = runPbaArgv({"sim", "integrators", "--duration", "0.1", "--out", target.string()});
+        EXPECT_EQ(r.exitCode, 2) << target;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    }
+    EXPECT_TRUE(fs::is_character_file("/dev/null"));
+    EXPECT_TRUE(fs::is_fifo(dir / "fifo"));
+    const CommandResult empty = runPbaArgv({"sim", "integrators", "--out", ""});
+    EXPECT_EQ(empty.exitCode, 2);
+    EXPECT_NE(empty.err.find("the path is empty"), std::string::npos) << empty.err;
+}
+
+TEST(Outputs, ASymbolicLinkIsFollowedToTheFileItNames)
+{
+    const fs::path dir = freshDir("symlink_out");
+    fs::create_directories(dir / "real");
+    fs::create_symlink(dir / "real/run.csv", dir / "link.csv"); // names a file that does not exist yet
+    const CommandResult r = runPbaArgv({"sim", "integrators", "--duration", "0.1", "--out", (dir / "link.csv").string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::is_symlink(dir / "link.csv"));
+    EXPECT_EQ(readFile(dir / "real/run.csv").rfind("step,t,body,", 0), 0u);
+}
+
+// RLIMIT_FSIZE stands in for a full disk: a write past it fails as ENOSPC would.
+TEST(Outputs, AFailedWriteLeavesThePreviousFileAndNoTemporary)
+{
+    const fs::path dir = freshDir("full_disk");
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"sim", "integrators", "--out", "out.csv"},
+          std::vector<std::string>{"render", "integrators", "--size", "320x240", "--time", "1", "--out", "out.png"},
+          std::vector<std::string>{"render", "integrators", "--size", "320x240", "--duration", "2", "--out", "out.mp4"},
+          std::vector<std::string>{"render", "integrators", "--size", "320x240", "--duration", "1", "--out", "frames/"}}) {
+        const fs::path target = dir / args.back();
+        if (args.back() == "frames/") {
+            fs::create_directories(target);
+            writeText(target / "keep.txt", "previous");
+        } else {
+            writeText(target, "previous");
+        }
+        const CommandResult r = runPbaArgv(args, {.fileSizeLimit = 2000, .workDir = dir});
+        EXPECT_EQ(r.exitCode, 1) << args.back() << "\n" << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_EQ(readFile(args.back() == "frames/" ? target / "keep.txt" : target), "previous") << args.back();
+    }
+    EXPECT_TRUE(temporaries(dir).empty());
+}
+
+TEST(Outputs, AFailingHelperProgramIsReportedInOneLineAndChangesNothing)
+{
+    const fs::path dir = freshDir("failing_helpers");
+    writeText(dir / "out.mp4", "previous");
+    const fs::path bin = failingProgram(dir, "ffmpeg");
+    failingProgram(dir, "gnuplot");
+    const CommandResult video = runPbaArgv({"render", "integrators", "--size", "64x48", "--duration", "0.5", "--out",
+                                            (dir / "out.mp4").string()},
+                                           {.path = bin.string()});
+    EXPECT_EQ(video.exitCode, 1);
+    EXPECT_NE(video.err.find("(exit status 3): fake ffmpeg failure"), std::string::npos) << video.err;
+    EXPECT_EQ(std::count(video.err.begin(), video.err.end(), '\n'), 1) << video.err;
+    EXPECT_EQ(readFile(dir / "out.mp4"), "previous");
+
+    // A study that fails leaves the previous study's folder as it was, not a mix.
+    ASSERT_EQ(runPbaArgv({"compare", "--duration", "1", "--dt", "0.01,0.02", "--out", (dir / "study").string()}).exitCode,
+              0);
+    const std::string report = readFile(dir / "study/report.md");
+    const CommandResult failed = runPbaArgv(
+        {"compare", "--duration", "2", "--dt", "0.005,0.01", "--out", (dir / "study").string()}, {.path = bin.string()});
+    EXPECT_EQ(failed.exitCode, 1) << failed.err;
+    EXPECT_NE(failed.err.find("fake gnuplot failure"), std::string::npos) << failed.err;
+    EXPECT_EQ(readFile(dir / "study/report.md"), report);
+    EXPECT_TRUE(temporaries(dir).empty());
+}
+
+TEST(Outputs, AFolderOfFramesIsReplacedWhole)
+{
+    const fs::path dir = freshDir("frames_whole");
+    const std::string out = (dir / "frames/").string();
+    ASSERT_EQ(runPbaArgv({"render", "spring", "--size", "64x48", "--duration", "0.5", "--fps", "10", "--out", out}).exitCode,
+              0);
+    EXPECT_TRUE(fs::exists(dir / "frames/frame_00005.png")); // t = 0, 0.1, ..., 0.5
+    ASSERT_EQ(runPbaArgv({"render", "spring", "--size", "64x48", "--duration", "0.2", "--fps", "10", "--out", out}).exitCode,
+              0);
+    EXPECT_TRUE(fs::exists(dir / "frames/frame_00002.png"));
+    EXPECT_FALSE(fs::exists(dir / "frames/frame_00003.png")) << "a frame of the longer run was left";
+}
+
+TEST(Outputs, AnInterruptedRunLeavesNoTemporary)
+{
+    const fs::path dir = freshDir("interrupted");
+    for (const int signal : {SIGTERM, SIGINT}) {
+        const CommandResult r =
+            runPbaArgv({"sim", "integrators", "--dt", "1e-5", "--duration", "1000", "--out", "run.csv"},
+                       {.stopAfterMs = 700, .stopSignal = signal, .workDir = dir});
+        EXPECT_EQ(r.exitCode, 128 + signal);
+        EXPECT_FALSE(fs::exists(dir / "run.csv"));
+        EXPECT_TRUE(temporaries(dir).empty());
+    }
+}
+
+TEST(Outputs, CsvQuotesNamesHoldingCommasAndQuotes)
+{
+    const fs::path dir = freshDir("csv_quotes");
+    nlohmann::json scene = nlohmann::json::parse(readFile(fs::path(PBA_SOURCE_DIR) / "scenes/integrators.json"));
+    scene["particles"][1]["name"] = "a,b";
+    scene["particles"][2]["name"] = "say \"hi\"";
+    std::ofstream(dir / "s.json") << scene.dump();
+    ASSERT_EQ(runPbaArgv({"sim", (dir / "s.json").string(), "--duration", "0.01", "--out", (dir / "r.csv").string()})
+                  .exitCode,
+              0);
+    const std::string csv = readFile(dir / "r.csv");
+    EXPECT_NE(csv.find("\n0,0,\"a,b\","), std::string::npos) << csv;
+    EXPECT_NE(csv.find("\n0,0,\"say \"\"hi\"\"\","), std::string::npos) << csv;
+}
