@@ -4,7 +4,9 @@
 // of every surface) and stepped by the same integrator, force-kernel and collision templates
 // as a single Particle, instantiated for float and inlined into a loop the compiler vectorises. A Particle stays a readable object; a million of them live here.
 #include <cstdint>
+#include <algorithm>
 #include <new>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -95,9 +97,28 @@ public:
     std::uint64_t step(const SwarmFields& fields, std::span<const PlaneT<float>> planes, CollisionResponse response,
                        float dt, int threads = 0);
 
+    /// The first particle whose state stopped being finite in the last step, if any: every
+    /// step checks each block while it is still in cache.
+    struct NonFiniteParticle {
+        std::size_t index;
+        const char* quantity; ///< "position" or "velocity"
+    };
+    const std::optional<NonFiniteParticle>& nonFinite() const { return m_nonFinite; }
+
+    /// A copy of every particle's state, for a World that rolls a failed step back, and back.
+    void saveState(std::vector<float>& out) const { out.assign(m_state.begin(), m_state.end()); }
+    void restoreState(const std::vector<float>& saved)
+    {
+        std::copy(saved.begin(), saved.end(), m_state.begin());
+        m_nonFinite.reset();
+    }
+
 private:
     std::uint64_t stepRange(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes,
                             CollisionResponse response, float dt, std::size_t begin, std::size_t end);
+    std::uint64_t stepAll(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes,
+                          CollisionResponse response, float dt, int threads);
+    void findNonFinite();
 
     SwarmDesc m_desc;
     float m_mass;
@@ -137,6 +158,8 @@ private:
     std::size_t m_stride = 0;
     std::vector<float, LineAligned<float>> m_state;
     std::vector<std::uint8_t> m_clear; ///< exact response only, per particle: clear of every surface after its last step
+    std::vector<std::uint8_t> m_finite; ///< per 512-particle block: all finite after the last step
+    std::optional<NonFiniteParticle> m_nonFinite;
     std::vector<PlaneT<float>> m_clearOf; ///< the surfaces m_clear was computed against
 };
 

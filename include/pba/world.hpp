@@ -40,10 +40,14 @@ struct FloorHole {
     double depth = 0.05;
 };
 
-/// Thrown by World::step when a body's position or velocity stops being finite.
+/// Thrown by World::step when a body's or a swarm particle's position or velocity stops being
+/// finite. `body` names it: a body's name, or "SWARM[i]" for particle i of a swarm.
 class NonFiniteStateError : public std::runtime_error {
 public:
     NonFiniteStateError(std::string body, std::uint64_t step, double time, std::string quantity);
+    /// For particle `index` of swarm `swarm`.
+    static NonFiniteStateError inSwarm(const std::string& swarm, std::size_t index, std::uint64_t step, double time,
+                                       std::string quantity);
     const std::string& body() const { return m_body; }
     std::uint64_t step() const { return m_step; }
     double time() const { return m_time; }
@@ -80,6 +84,11 @@ public:
     const Swarm& swarm(std::size_t i) const { return m_swarms[i]; }
     /// Threads for stepping swarms: 0 (the default) uses all cores; results do not depend on it.
     void setThreads(int threads) { m_threads = threads; }
+    /// Keep a copy of every swarm before each step, so that a failed step rolls the swarms back
+    /// with the bodies (the viewer pauses on the last finite state). Off by default: the copy
+    /// doubles a swarm's memory and its traffic each step, and a program that stops at the
+    /// failure has no use for it; without it the swarms keep the failed step's state.
+    void setSwarmRollback(bool keep) { m_swarmRollback = keep; }
     /// The forces that act on swarms, in float: gravity, drag and blow dryers.
     SwarmFields swarmFields() const;
 
@@ -106,8 +115,9 @@ public:
     void setCollisionResponse(CollisionResponse response) { m_response = response; }
 
     // ---- stepping ----
-    /// Advances every moving body by exactly dt. Throws NonFiniteStateError (bodies back at
-    /// their state before the step) if a state stops being finite.
+    /// Advances every moving body and swarm by exactly dt. Throws NonFiniteStateError (bodies,
+    /// and with setSwarmRollback swarms, back at their state before the step) if a state stops
+    /// being finite.
     void step(double dt);
     double time() const { return m_time; }
     /// The time of the previous states (before the last step).
@@ -133,11 +143,14 @@ private:
     void integrateBodies(double dt);
     void stepSwarms(double dt);
     std::optional<std::pair<std::size_t, std::string>> firstNonFinite() const;
+    void rollBack();
 
     std::vector<std::unique_ptr<Body>> m_bodies;
     std::vector<std::unique_ptr<Force>> m_forces;
     std::vector<Swarm> m_swarms;
     int m_threads = 0;
+    bool m_swarmRollback = false;
+    std::vector<std::vector<float>> m_swarmsBefore; ///< with m_swarmRollback: each swarm before the step
     std::vector<State> m_previous;
     std::vector<std::uint64_t> m_bounces;
     std::optional<double> m_ground;

@@ -34,6 +34,7 @@ void History::clear()
 void ViewerState::load(Scene newScene)
 {
     scene = std::move(newScene);
+    scene.world.setSwarmRollback(true); // a failed step pauses on the last finite state, swarms too
     scenePath = scene.source;
     camera = render::frameWorld(scene.world);
     initial = scene.world;

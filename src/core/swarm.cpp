@@ -104,7 +104,21 @@ using StartPositions = std::array<const float*, 3>;
 struct Arrays {
     float *px, *py, *pz, *vx, *vy, *vz;
     std::uint8_t* clear; ///< 1: the position is clear of every surface (known from the last step)
+    std::uint8_t* finite; ///< per block: 1 when its six arrays are all finite after the step
 };
+
+/// Whether n floats are all finite, by their exponent bits: an integer OR over the block, which
+/// vectorises (a float sum would not, without reassociation) and costs a fraction of a step.
+bool allFinite(const float* __restrict values, std::size_t n)
+{
+    std::uint32_t special = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        std::uint32_t bits;
+        std::memcpy(&bits, values + k, sizeof bits);
+        special |= static_cast<std::uint32_t>((bits & 0x7f800000u) == 0x7f800000u);
+    }
+    return special == 0;
+}
 
 /// Phase 1 of a block: the plain integrator step for every particle, a loop with no branches
 /// the vectoriser cannot turn into selects. The start states are kept for phase 2.
@@ -593,7 +607,15 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
                                     depthBox);
         }
     }
-    return bounces + gathered.collide();
+    bounces += gathered.collide();
+    // The check phase, per block while it is still in a near cache: swarms are checked every
+    // step like bodies, and the flags say where to look for the first bad particle.
+    for (std::size_t b = begin; b < end; b += kBlock) {
+        const std::size_t n = std::min(kBlock, end - b);
+        a.finite[b / kBlock] = allFinite(a.px + b, n) & allFinite(a.py + b, n) & allFinite(a.pz + b, n) &
+                               allFinite(a.vx + b, n) & allFinite(a.vy + b, n) & allFinite(a.vz + b, n);
+    }
+    return bounces;
 }
 
 /// Every integrator's loop for a range of particles, compiled three times: for AVX-512
@@ -650,7 +672,7 @@ void Swarm::set(std::size_t i, const Vec3<float>& x, const Vec3<float>& v)
 std::uint64_t Swarm::stepRange(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes,
                                CollisionResponse response, float dt, std::size_t begin, std::size_t end)
 {
-    const Arrays a{array(0), array(1), array(2), array(3), array(4), array(5), m_clear.data()};
+    const Arrays a{array(0), array(1), array(2), array(3), array(4), array(5), m_clear.data(), m_finite.data()};
     return stepSwarmRange(m_integrator, a, begin, end, fields, m_restitution, dt, planes, response);
 }
 
@@ -670,6 +692,34 @@ std::uint64_t Swarm::step(const SwarmFields& swarmFields, std::span<const PlaneT
         m_clear.assign(n, std::uint8_t(0));
         m_clearOf.assign(planes.begin(), planes.end());
     }
+    m_finite.resize((n + kBlock - 1) / kBlock);
+    const std::uint64_t bounces = stepAll(fields, planes, response, dt, threads);
+    findNonFinite();
+    return bounces;
+}
+
+void Swarm::findNonFinite()
+{
+    m_nonFinite.reset();
+    for (std::size_t block = 0; block < m_finite.size(); ++block) {
+        if (m_finite[block])
+            continue;
+        for (std::size_t i = block * kBlock; i < std::min(m_count, (block + 1) * kBlock); ++i) {
+            const Vec3<float> x = position(i), v = velocity(i);
+            if (!(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z)))
+                m_nonFinite = NonFiniteParticle{i, "position"};
+            else if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)))
+                m_nonFinite = NonFiniteParticle{i, "velocity"};
+            if (m_nonFinite)
+                return;
+        }
+    }
+}
+
+std::uint64_t Swarm::stepAll(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes,
+                             CollisionResponse response, float dt, int threads)
+{
+    const std::size_t n = size();
     if (threads == 1 || n < kParallelThreshold)
         return stepRange(fields, planes, response, dt, 0, n);
     // Whole blocks per task; a particle's result does not depend on which thread steps it.

@@ -17,8 +17,14 @@ NonFiniteStateError::NonFiniteStateError(std::string body, std::uint64_t step, d
 {
 }
 
+NonFiniteStateError NonFiniteStateError::inSwarm(const std::string& swarm, std::size_t index, std::uint64_t step,
+                                                 double time, std::string quantity)
+{
+    return NonFiniteStateError(fmt::format("{}[{}]", swarm, index), step, time, std::move(quantity));
+}
+
 World::World(const World& other)
-    : m_swarms(other.m_swarms), m_threads(other.m_threads), m_previous(other.m_previous), m_bounces(other.m_bounces), m_ground(other.m_ground), m_room(other.m_room),
+    : m_swarms(other.m_swarms), m_threads(other.m_threads), m_swarmRollback(other.m_swarmRollback), m_previous(other.m_previous), m_bounces(other.m_bounces), m_ground(other.m_ground), m_room(other.m_room),
       m_hole(other.m_hole),
       m_planes(other.m_planes), m_response(other.m_response), m_time(other.m_time), m_previousTime(other.m_previousTime), m_steps(other.m_steps),
       m_lastDt(other.m_lastDt), m_baseTime(other.m_baseTime), m_baseSteps(other.m_baseSteps)
@@ -195,13 +201,18 @@ void World::step(double dt)
     storePreviousStates();
     integrateBodies(dt);
     stepSwarms(dt);
+    // The check phase: every body, and every swarm (whose step checked its blocks).
     if (const auto bad = firstNonFinite()) {
-        // Roll back so a viewer can pause on the last finite state instead of drawing garbage
-        // (previous and current then coincide: nothing moves between them).
-        for (std::size_t i = 0; i < m_bodies.size(); ++i)
-            m_bodies[i]->setState(m_previous[i]);
+        rollBack();
         throw NonFiniteStateError(m_bodies[bad->first]->getName(), m_steps + 1, m_time + dt, bad->second);
     }
+    for (const Swarm& swarm : m_swarms)
+        if (const auto& bad = swarm.nonFinite()) {
+            const NonFiniteStateError error =
+                NonFiniteStateError::inSwarm(swarm.name(), bad->index, m_steps + 1, m_time + dt, bad->quantity);
+            rollBack();
+            throw error;
+        }
     // t = t0 + k dt from the last change of dt, rather than a running sum, so the time of
     // step n is n dt to rounding instead of drifting by n rounding errors.
     m_previousTime = m_time;
@@ -218,6 +229,22 @@ void World::storePreviousStates()
 {
     for (std::size_t i = 0; i < m_bodies.size(); ++i)
         m_previous[i] = m_bodies[i]->getState();
+    if (m_swarmRollback) {
+        m_swarmsBefore.resize(m_swarms.size());
+        for (std::size_t s = 0; s < m_swarms.size(); ++s)
+            m_swarms[s].saveState(m_swarmsBefore[s]);
+    }
+}
+
+void World::rollBack()
+{
+    // So a viewer can pause on the last finite state instead of drawing garbage (previous and
+    // current then coincide: nothing moves between them).
+    for (std::size_t i = 0; i < m_bodies.size(); ++i)
+        m_bodies[i]->setState(m_previous[i]);
+    if (m_swarmRollback)
+        for (std::size_t s = 0; s < m_swarms.size() && s < m_swarmsBefore.size(); ++s)
+            m_swarms[s].restoreState(m_swarmsBefore[s]);
 }
 
 void World::integrateBodies(double dt)

@@ -51,6 +51,8 @@ BlowDryerField readBlowDryerField(ObjectReader& reader)
     if (glm::length(axis) == 0.0)
         reader.fail("axis", "must not be the zero vector");
     f.axis = glm::normalize(axis);
+    if (!(std::abs(glm::length(f.axis) - 1.0) < 1e-9)) // its length overflowed or underflowed
+        reader.fail("axis", "is too large or too small to normalise: give a direction of moderate length");
     f.height = reader.positive("height");
     f.nozzleRadius = reader.nonNegative("nozzle_radius", 0.0);
     f.topRadius = reader.nonNegative("top_radius");
@@ -89,6 +91,18 @@ void cutHoleForNozzle(ObjectReader& reader, BlowDryerField& f, World& world)
 std::unique_ptr<Force> parseBlowDryer(ObjectReader& reader, World& world)
 {
     BlowDryerField field = readBlowDryerField(reader);
+    // The field must be computable: on the axis a quarter and halfway up, a finite force, and
+    // not zero unless the strength is (a height or radius so large that its square overflows
+    // gives none; a strength near the largest double gives infinities and NaN).
+    for (const double s : {0.25, 0.5}) {
+        const dvec3 force = blowDryerForce(field, field.nozzle + s * field.height * field.axis);
+        if (!(std::isfinite(force.x) && std::isfinite(force.y) && std::isfinite(force.z)) ||
+            (field.strength != 0.0 && glm::length(force) == 0.0))
+            reader.fail("strength", fmt::format("the field cannot be computed with these numbers (strength {}, height "
+                                                "{}, radii {} and {}): its force on the axis is ({}, {}, {})",
+                                                field.strength, field.height, field.nozzleRadius, field.topRadius,
+                                                force.x, force.y, force.z));
+    }
     cutHoleForNozzle(reader, field, world);
     return std::make_unique<BlowDryer>(field);
 }

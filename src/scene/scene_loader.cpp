@@ -10,6 +10,7 @@
 #include "force_parsers.hpp"
 #include "json_reader.hpp"
 #include "pba/forces.hpp"
+#include "pba/swarm.hpp"
 #include "pba/scene/scene.hpp"
 
 namespace pba {
@@ -113,6 +114,21 @@ std::uint64_t readCount(ObjectReader& reader, const std::string& key, double lim
     return static_cast<std::uint64_t>(x);
 }
 
+/// Swarms compute in single precision: a number of theirs must be a normal float (and 1/m too),
+/// or the first step would turn it into an infinity or zero.
+constexpr double kFloatMax = 3.4028234663852886e38;
+constexpr double kFloatMin = 1.1754943508222875e-38;
+
+bool fitsFloat(double x) { return std::abs(x) <= kFloatMax; }
+
+void requireFloat(const ObjectReader& reader, const std::string& key, const dvec3& v)
+{
+    for (int i = 0; i < 3; ++i)
+        if (!fitsFloat(v[i]))
+            reader.fail(key, fmt::format("{} cannot be represented in single precision, as a swarm's numbers are "
+                                         "(at most {:.3g} in size)", v[i], kFloatMax));
+}
+
 void readSwarm(const Json& value, const std::string& path, const std::string& file, World& world,
                std::set<std::string>& names)
 {
@@ -133,7 +149,15 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
         reader.fail("region", "lies outside the ground or room");
     desc.velocity = reader.vec3("velocity", dvec3(0.0));
     desc.velocityJitter = reader.nonNegative("velocity_jitter", 0.0);
+    requireFloat(region, "min", desc.regionMin);
+    requireFloat(region, "max", desc.regionMax);
+    requireFloat(reader, "velocity", desc.velocity + dvec3(desc.velocityJitter) * glm::sign(desc.velocity));
+    requireFloat(reader, "velocity_jitter", dvec3(desc.velocityJitter));
     desc.mass = reader.positive("mass", 1.0);
+    if (!(desc.mass >= kFloatMin && desc.mass <= kFloatMax))
+        reader.fail("mass", fmt::format("{} cannot be represented in single precision with its inverse, as a "
+                                        "swarm's numbers are (from {:.3g} to {:.3g} kg)",
+                                        desc.mass, kFloatMin, kFloatMax));
     desc.restitution = reader.number("restitution", 1.0);
     if (!(desc.restitution >= 0.0 && desc.restitution <= 1.0))
         reader.fail("restitution", fmt::format("must be in [0, 1], got {}", desc.restitution));
@@ -141,6 +165,27 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
     desc.seed = readCount(reader, "seed", 9007199254740992.0);
     reader.finish();
     world.addSwarm(desc);
+}
+
+/// A scene with swarms: the fields that act on them (gravity, drag, blow dryers), turned into
+/// each swarm's accelerations in float, must stay finite.
+bool swarmFieldsFit(const World& world)
+{
+    const SwarmFields fields = world.swarmFields();
+    for (std::size_t s = 0; s < world.swarmCount(); ++s) {
+        const SwarmKernelFields k(fields, 1.0f / world.swarm(s).mass());
+        auto finite = [](float x) { return std::isfinite(x); };
+        bool ok = finite(k.gravity.x) && finite(k.gravity.y) && finite(k.gravity.z) && finite(k.dragPerMass);
+        std::vector<BlowDryerKernelT<float>> dryers{k.dryer};
+        dryers.insert(dryers.end(), k.more.begin(), k.more.end());
+        for (const auto& d : dryers)
+            ok = ok && finite(d.axial.a) && finite(d.axial.b) && finite(d.axial.c) && finite(d.shaftPush) &&
+                 finite(d.airDrag) && finite(d.pull) && finite(d.inverseHeight) && finite(d.height * d.height) &&
+                 finite(d.nozzle.x) && finite(d.nozzle.y) && finite(d.nozzle.z) && finite(d.shaftRadius2);
+        if (!ok)
+            return false;
+    }
+    return true;
 }
 
 void readForce(const Json& value, const std::string& path, const std::string& file, World& world)
@@ -151,6 +196,9 @@ void readForce(const Json& value, const std::string& path, const std::string& fi
         if (type == known.name) {
             world.addForce(known.parse(reader, world));
             reader.finish();
+            if (!swarmFieldsFit(world))
+                reader.failHere("its numbers, as the accelerations they give the scene's swarms, cannot be "
+                                "represented in single precision (a swarm's numbers are floats)");
             return;
         }
     }
@@ -180,6 +228,9 @@ Scene readScene(const Json& document, const std::string& file)
     }
     readSurfaces(root, scene.world);
     scene.world.addForce(std::make_unique<Gravity>(g));
+    if (document.is_object() && document.contains("swarms") && !(fitsFloat(g.x) && fitsFloat(g.y) && fitsFloat(g.z)))
+        root.fail("gravity", fmt::format("cannot be represented in single precision, as a swarm's numbers are (at "
+                                         "most {:.3g} in size)", kFloatMax));
     std::set<std::string> names;
     root.array("particles", [&](const Json& value, const std::string& path, std::size_t) {
         readParticle(value, path, file, scene.world, names);

@@ -1,0 +1,118 @@
+// Hardening II: swarms are checked like bodies, and numbers that cannot be computed with are
+// refused at load, naming the field.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "pba/forces.hpp"
+#include "pba/scene/scene.hpp"
+#include "pba/world.hpp"
+#include "support/run_command.hpp"
+
+using namespace pba;
+using namespace pba::test;
+
+namespace {
+
+struct BadNumber {
+    const char* json;
+    const char* field;
+};
+
+constexpr const char* kSwarm =
+    R"("swarms": [{"name": "rain", "count": 10, "region": {"min": [0, 1, 0], "max": [0, 1, 0]}, "seed": 1)";
+
+/// A swarm that forward Euler blows up: drag c with c dt / m = 1e30 multiplies the velocity by
+/// -1e30 a step, past float's largest number in the second step.
+World explodingSwarm()
+{
+    Scene scene = parseScene(std::string("{\"ground\": {\"height\": 0}, ") + kSwarm +
+                                 R"(, "integrator": "forward-euler", "velocity": [0, 1, 0]}],
+                                    "forces": [{"type": "drag", "coefficient": 1e32}]})",
+                             "exploding");
+    return scene.world;
+}
+
+} // namespace
+
+class UnrepresentableNumbers : public ::testing::TestWithParam<BadNumber> {};
+
+TEST_P(UnrepresentableNumbers, AreRefusedAtLoadNamingTheField)
+{
+    try {
+        parseScene(GetParam().json, "bad.json");
+        FAIL() << "loaded: " << GetParam().json;
+    } catch (const SceneError& error) {
+        EXPECT_EQ(error.field(), GetParam().field) << error.what();
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Hardening, UnrepresentableNumbers,
+    ::testing::Values(
+        BadNumber{R"({"ground": {"height": 0}, "swarms": [{"name": "s", "count": 1, "region": {"min": [0, 1, 0],
+                      "max": [0, 1, 0]}, "seed": 1, "mass": 1e-300}]})",
+                  "swarms[0].mass"},
+        BadNumber{R"({"ground": {"height": 0}, "swarms": [{"name": "s", "count": 1, "region": {"min": [0, 1, 0],
+                      "max": [0, 1, 0]}, "seed": 1, "velocity": [1e39, 0, 0]}]})",
+                  "swarms[0].velocity"},
+        BadNumber{R"({"ground": {"height": 0}, "gravity": [0, -1e39, 0], "swarms": [{"name": "s", "count": 1,
+                      "region": {"min": [0, 1, 0], "max": [0, 1, 0]}, "seed": 1}]})",
+                  "gravity"},
+        BadNumber{R"({"ground": {"height": 0}, "swarms": [{"name": "s", "count": 1, "region": {"min": [0, 1, 0],
+                      "max": [0, 1, 0]}, "seed": 1}], "forces": [{"type": "blow-dryer", "nozzle": [0, 0, 0],
+                      "height": 1, "top_radius": 1, "strength": 1e39}]})",
+                  "forces[0]"},
+        BadNumber{R"({"forces": [{"type": "blow-dryer", "nozzle": [0, 0, 0], "height": 1, "top_radius": 1,
+                      "strength": 1e308}]})",
+                  "forces[0].strength"},
+        BadNumber{R"({"forces": [{"type": "blow-dryer", "nozzle": [0, 0, 0], "axis": [0, 1e200, 0], "height": 1,
+                      "top_radius": 1, "strength": 1}]})",
+                  "forces[0].axis"},
+        BadNumber{R"({"forces": [{"type": "blow-dryer", "nozzle": [0, 0, 0], "height": 1e200, "top_radius": 1e200,
+                      "strength": 1}]})",
+                  "forces[0].strength"}));
+
+TEST(SwarmChecks, ANonFiniteParticleStopsTheStepNamingSwarmParticleStepAndQuantity)
+{
+    World world = explodingSwarm();
+    world.step(0.01);
+    try {
+        world.step(0.01);
+        FAIL() << "the second step overflows float";
+    } catch (const NonFiniteStateError& error) {
+        EXPECT_EQ(error.body(), "rain[0]");
+        EXPECT_EQ(error.step(), 2u);
+        EXPECT_EQ(error.quantity(), "position"); // thrown 1e28 m below the ground: no finite mirror
+    }
+}
+
+// With rollback (the viewer's setting) the swarm is back where it was before the failed step,
+// with the bodies; without it a program stops there and the swarm keeps the failed state.
+TEST(SwarmChecks, BodiesAndSwarmsRollBackTogether)
+{
+    World world = explodingSwarm();
+    world.setSwarmRollback(true);
+    Particle p;
+    p.setPos(dvec3(0, 2, 0));
+    world.addParticle(p);
+    world.step(0.01);
+    const Vec3<float> before = world.swarm(0).velocity(3);
+    const dvec3 body = world.body(0).getPos();
+    EXPECT_THROW(world.step(0.01), NonFiniteStateError);
+    EXPECT_EQ(world.swarm(0).velocity(3), before);
+    EXPECT_EQ(world.body(0).getPos(), body);
+    EXPECT_FALSE(world.swarm(0).nonFinite().has_value());
+}
+
+TEST(SwarmChecks, PbaSimExitsThreeNamingTheParticle)
+{
+    const auto dir = freshDir("swarm_nan");
+    std::ofstream(dir / "s.json") << std::string("{\"ground\": {\"height\": 0}, \"duration\": 1, ") + kSwarm +
+                                         R"(, "integrator": "forward-euler", "velocity": [0, 1, 0]}],
+                                            "forces": [{"type": "drag", "coefficient": 1e32}]})";
+    const CommandResult r = runPbaArgv({"sim", (dir / "s.json").string()});
+    EXPECT_EQ(r.exitCode, 3);
+    EXPECT_NE(r.err.find("the position of body 'rain[0]' is not finite at step 2"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+}
