@@ -268,8 +268,13 @@ std::string table(const std::vector<Row>& rows)
 int runBench(const BenchOptions& options)
 {
     std::vector<std::size_t> sizes;
-    for (double s : options.sizes.empty() ? std::vector<double>{1e3, 1e5, 1e6, 1e7} : options.sizes)
+    for (double s : options.sizes.empty() ? std::vector<double>{1e3, 1e5, 1e6, 1e7} : options.sizes) {
+        // A swarm of the scene's particles: a whole number of them, at least one, at most what
+        // the scene format allows.
+        if (!(s >= 1.0 && s <= 1e8 && s == std::floor(s)))
+            throw UsageError(fmt::format("--sizes: each size must be a whole number from 1 to 1e8, got {}", s));
         sizes.push_back(static_cast<std::size_t>(s));
+    }
     if (options.quick && options.sizes.empty())
         sizes = {1000, 100000};
     const double minTime = options.quick ? 0.02 : 0.25;

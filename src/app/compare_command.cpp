@@ -11,6 +11,7 @@
 #include "compare_report.hpp"
 #include "io/output_file.hpp"
 #include "progress.hpp"
+#include "scene_options.hpp"
 
 namespace pba::app {
 
@@ -30,9 +31,18 @@ study::StudyConfig makeConfig(const CompareOptions& options)
 {
     study::StudyConfig config;
     config.scene = loadScene(options.scene);
+    bool moving = false;
+    for (std::size_t i = 0; i < config.scene.world.bodyCount(); ++i)
+        moving = moving || !config.scene.world.body(i).isFixed();
+    if (!moving)
+        throw UsageError(fmt::format("{}: the study compares particles, and this scene has no moving particle{}",
+                                     config.scene.source,
+                                     config.scene.world.swarmCount() > 0 ? " (only swarms: try pba sim or pba bench)" : ""));
     config.duration = options.duration.value_or(config.scene.duration);
     if (!(std::isfinite(config.duration) && config.duration > 0))
         throw UsageError(fmt::format("--duration: must be finite and positive, got {}", config.duration));
+    if (options.jobs < 0 || options.jobs > 256)
+        throw UsageError(fmt::format("--jobs: must be from 1 to 256 (0: all cores), got {}", options.jobs));
     if (!options.integrators.empty()) {
         config.integrators.clear();
         for (const auto& name : options.integrators) {
@@ -57,6 +67,8 @@ study::StudyConfig makeConfig(const CompareOptions& options)
         if (!(std::isfinite(dt) && dt > 0))
             throw UsageError(fmt::format("--dt: every dt must be finite and positive, got {}", dt));
     std::sort(config.dts.begin(), config.dts.end());
+    for (double dt : config.dts)
+        stepCount(config.duration, dt, "--duration");
     config.jobs = options.jobs > 0 ? options.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     return config;
 }

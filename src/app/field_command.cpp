@@ -113,7 +113,10 @@ void writeSliceData(const std::vector<const BlowDryer*>& dryers, const SliceFram
                     const std::filesystem::path& dir, double& maxMagnitude)
 {
     const int ns = resolution;
-    const int nh = std::max(2, static_cast<int>(resolution * (fr.hMax - fr.hMin) / (fr.sMax - fr.sMin)));
+    // Rows in proportion to the picture's height, but never more than four times the columns: a
+    // thin, tall dryer would otherwise ask for millions of rows of scratch data.
+    const double rows = resolution * (fr.hMax - fr.hMin) / (fr.sMax - fr.sMin);
+    const int nh = static_cast<int>(std::clamp(std::isfinite(rows) ? rows : 0.0, 2.0, 4.0 * resolution));
     std::ofstream magnitude(dir / "magnitude.dat");
     maxMagnitude = 0.0;
     for (int j = 0; j < nh; ++j) {
@@ -131,7 +134,8 @@ void writeSliceData(const std::vector<const BlowDryer*>& dryers, const SliceFram
     const int as = 22;
     const double cell = (fr.sMax - fr.sMin) / as;
     std::ofstream arrows(dir / "arrows.dat");
-    for (double h = fr.hMin + cell / 2; h < fr.hMax; h += cell) {
+    const double rowStep = std::max(cell, (fr.hMax - fr.hMin) / 100.0); // at most 100 rows of arrows
+    for (double h = fr.hMin + rowStep / 2; h < fr.hMax; h += rowStep) {
         for (int i = 0; i < as; ++i) {
             const double s = fr.sMin + (i + 0.5) * cell;
             const dvec3 f = dryerForce(dryers, fr.origin + s * fr.across + h * fr.up);

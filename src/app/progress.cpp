@@ -33,6 +33,12 @@ void Progress::update(long done)
     std::fflush(stderr);
 }
 
+void Progress::clear()
+{
+    if (m_terminal && std::chrono::steady_clock::now() - m_start >= std::chrono::seconds(1))
+        fmt::print(stderr, "\r\033[K");
+}
+
 void Progress::finish(const std::string& summary)
 {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();

@@ -12,6 +12,8 @@ public:
     void update(long done);
     /// Prints the closing summary line ("rendered 600 frames in 12.3 s").
     void finish(const std::string& summary);
+    /// Erases the bar (for a command whose summary goes elsewhere).
+    void clear();
 
 private:
     std::string m_what;

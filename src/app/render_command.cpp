@@ -3,6 +3,7 @@
 // interpolation between physics states is exercised exactly as in the window.
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <regex>
@@ -42,6 +43,21 @@ void parseSize(const std::string& text, int& width, int& height)
         throw UsageError(fmt::format("--size: expected WxH between 16 and 8192, e.g. 1280x720, got '{}'", text));
 }
 
+/// Synthetic frames are not late, so no clamp or step cap applies (those guard a real-time
+/// loop), and each frame is drawn at exactly its time t = k / fps rather than at the sum of k
+/// frame times (whose rounding drops a step now and then): the world takes the steps that bring
+/// its current state to t or just past it, and the drawn state is interpolated back to t, as the
+/// window's clock interpolates between the last two states. Returns that alpha.
+double stepToFrame(Scene& scene, double t)
+{
+    const double steps = std::max(0.0, std::ceil(t / scene.dt - 1e-9));
+    while (double(scene.world.stepCount()) < steps)
+        scene.world.step(scene.dt);
+    const World& w = scene.world;
+    const double span = w.time() - w.previousTime();
+    return span > 0.0 ? std::clamp((t - w.previousTime()) / span, 0.0, 1.0) : 1.0;
+}
+
 int runRender(const RenderOptions& options)
 {
     Scene scene = loadSceneWithOverrides(options.scene);
@@ -55,6 +71,10 @@ int runRender(const RenderOptions& options)
     const double until = options.time.value_or(scene.duration);
     if (!std::isfinite(until) || until < 0.0)
         throw UsageError(fmt::format("--time: must be finite and not negative, got {}", until));
+    stepCount(until, scene.dt, options.time ? "--time" : "--duration");
+    if (!(until * options.fps <= kMaxSteps))
+        throw UsageError(fmt::format("--duration: {:g} s at {} frames a second is more than {:g} frames", until,
+                                     options.fps, kMaxSteps));
     FrameSink sink(kind, options.out, width, height, options.fps); // checks the path before any work
 
     render::ViewSettings settings;
@@ -65,17 +85,15 @@ int runRender(const RenderOptions& options)
     render::OffscreenRenderer renderer(width, height);
     render::Trails trails;
     const World initial = scene.world;
-    FixedTimestepClock clock(scene.dt);
     const auto frames = static_cast<long>(std::floor(until * options.fps + 1e-9)) + 1;
     Progress progress("rendering", frames);
+    double alpha = 0.0;
     try {
         for (long frame = 0; frame < frames; ++frame) {
-            if (frame > 0)
-                for (int n = clock.advance(1.0 / options.fps); n > 0; --n)
-                    scene.world.step(scene.dt);
-            trails.record(scene.world, clock.alpha(), settings.interpolate);
+            alpha = stepToFrame(scene, double(frame) / options.fps);
+            trails.record(scene.world, alpha, settings.interpolate);
             if (kind != OutputKind::Png || frame == frames - 1)
-                sink.add(renderer.render(scene.world, initial, clock.alpha(), settings, &trails, scene.name, scene.dt));
+                sink.add(renderer.render(scene.world, initial, alpha, settings, &trails, scene.name, scene.dt));
             progress.update(frame + 1);
         }
     } catch (const NonFiniteStateError& error) {
@@ -85,7 +103,7 @@ int runRender(const RenderOptions& options)
     sink.finish();
     progress.finish(fmt::format("wrote {} ({} frame{}, {}x{}, t = {:.3g} s)", options.out,
                                 kind == OutputKind::Png ? 1 : frames, kind == OutputKind::Png || frames == 1 ? "" : "s",
-                                width, height, scene.world.time()));
+                                width, height, render::drawnTime(scene.world, alpha, settings.interpolate)));
     return kExitSuccess;
 }
 

@@ -27,6 +27,15 @@ void addSceneOptions(CLI::App& command, SceneOptions& options, const std::string
         ->type_name("MODE");
 }
 
+std::uint64_t stepCount(double seconds, double dt, const std::string& what)
+{
+    const double steps = std::round(seconds / dt);
+    if (!(steps <= kMaxSteps))
+        throw UsageError(fmt::format("{}: {:g} s at dt = {:g} s is {:.3g} steps, more than the {:g} a run may take",
+                                     what, seconds, dt, steps, kMaxSteps));
+    return static_cast<std::uint64_t>(std::max(1.0, steps));
+}
+
 Scene loadSceneWithOverrides(const SceneOptions& options)
 {
     Scene scene = loadScene(options.scene);
@@ -58,6 +67,8 @@ Scene loadSceneWithOverrides(const SceneOptions& options)
                                          "or clamp)", *options.collision));
         scene.world.setCollisionResponse(*response);
     }
+    stepCount(scene.duration, scene.dt,
+              options.duration ? "--duration" : options.dt ? "--dt" : fmt::format("{}: duration", scene.source));
     return scene;
 }
 

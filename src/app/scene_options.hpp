@@ -1,5 +1,6 @@
 #pragma once
 // The options that override a scene, shared by every subcommand that runs one.
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -20,7 +21,14 @@ struct SceneOptions {
 /// Adds the positional SCENE (with `defaultScene`) and --dt, --duration, --integrator, --collision.
 void addSceneOptions(CLI::App& command, SceneOptions& options, const std::string& defaultScene);
 
-/// Loads the scene and applies the overrides; throws SceneError or UsageError on bad input.
+/// The most steps one run may take: beyond it a run is a typo (dt 1e-12), and would not end.
+inline constexpr double kMaxSteps = 1e10;
+
+/// round(seconds / dt), at least 1; throws UsageError naming `what` beyond kMaxSteps.
+std::uint64_t stepCount(double seconds, double dt, const std::string& what);
+
+/// Loads the scene and applies the overrides; throws SceneError or UsageError on bad input
+/// (a duration of more than kMaxSteps steps of dt included).
 Scene loadSceneWithOverrides(const SceneOptions& options);
 
 } // namespace pba::app

@@ -11,6 +11,7 @@
 #include "atomic_file.hpp"
 #include "command.hpp"
 #include "csv.hpp"
+#include "progress.hpp"
 #include "scene_options.hpp"
 #include "pba/clock.hpp"
 #include "study/jet_watch.hpp"
@@ -152,6 +153,10 @@ int runSim(const SimOptions& options)
     Scene scene = loadSceneWithOverrides(options.scene);
     if (options.frameRate && !(std::isfinite(*options.frameRate) && *options.frameRate > 0.0))
         throw UsageError(fmt::format("--frame-rate: must be finite and positive, got {}", *options.frameRate));
+    if (options.frameRate && !(scene.duration * *options.frameRate <= kMaxSteps))
+        throw UsageError(fmt::format("--frame-rate: {:g} s at {:g} Hz is {:.3g} frames, more than the {:g} a run may "
+                                     "take", scene.duration, *options.frameRate, scene.duration * *options.frameRate,
+                                     kMaxSteps));
     std::unique_ptr<AtomicFile> csv;
     if (options.out) {
         csv = std::make_unique<AtomicFile>(*options.out);
@@ -181,11 +186,12 @@ int runSim(const SimOptions& options)
 
     // The number of steps depends on dt and duration alone. With --frame-rate the clock
     // hands them out in frames of 1/HZ seconds, as the viewer would: same steps, same bytes.
-    const auto total = static_cast<std::uint64_t>(std::max(1.0, std::round(scene.duration / scene.dt)));
+    const std::uint64_t total = stepCount(scene.duration, scene.dt, "--duration");
     std::optional<FixedTimestepClock> clock;
     if (options.frameRate)
         clock.emplace(scene.dt);
     record();
+    Progress progress("simulating", static_cast<long>(total)); // a bar on a terminal, after a second
     try {
         while (world.stepCount() < total) {
             const std::uint64_t now = clock ? static_cast<std::uint64_t>(clock->advance(1.0 / *options.frameRate)) : 1;
@@ -193,9 +199,13 @@ int runSim(const SimOptions& options)
                 world.step(scene.dt);
                 jet.record(world);
                 record();
+                if (world.stepCount() % 1024 == 0)
+                    progress.update(static_cast<long>(world.stepCount()));
             }
         }
+        progress.clear();
     } catch (const NonFiniteStateError& error) {
+        progress.clear();
         if (csv)
             csv->commit(); // the rows so far are valid, up to the last finite step
         fmt::print(stderr, "pba: error: {}: {}\n", scene.source, error.what());

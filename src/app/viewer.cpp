@@ -157,7 +157,8 @@ int runViewer(Scene scene, std::optional<int> frames, std::optional<std::string>
         handleKeys(state, window.window());
         state.advance(seconds);
         state.trails.record(state.scene.world, state.clock.alpha(), state.settings.interpolate);
-        render::drawLegend(state.scene.world, state.scene.name, state.clock.dt(), true);
+        render::drawLegend(state.scene.world, state.scene.name, state.clock.dt(),
+                           render::drawnTime(state.scene.world, state.clock.alpha(), state.settings.interpolate), true);
         drawPanel(state);
 
         int width = 0, height = 0;

@@ -50,7 +50,7 @@ void ImGuiLayer::endFrame()
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
-void drawLegend(const World& world, const std::string& sceneName, double dt, bool compact)
+void drawLegend(const World& world, const std::string& sceneName, double dt, double shownTime, bool compact)
 {
     // Bottom left: the room's upper half, where balls fly and hover, stays in view.
     ImGui::SetNextWindowPos(ImVec2(10, ImGui::GetIO().DisplaySize.y - 10), ImGuiCond_Always, ImVec2(0, 1));
@@ -59,7 +59,7 @@ void drawLegend(const World& world, const std::string& sceneName, double dt, boo
                                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                                    ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
     if (ImGui::Begin("legend", nullptr, flags)) {
-        ImGui::Text("%s   t = %.2f s   dt = %g s", sceneName.c_str(), world.time(), dt);
+        ImGui::Text("%s   t = %.2f s   dt = %g s", sceneName.c_str(), shownTime, dt);
         if (!world.planes().empty()) { // wrapped within the picture, however narrow
             ImGui::PushTextWrapPos(std::max(200.0f, ImGui::GetIO().DisplaySize.x - 40.0f));
             ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));

@@ -28,6 +28,6 @@ private:
 };
 
 /// A small box naming the scene, the time and each particle in its colour with its integrator.
-void drawLegend(const World& world, const std::string& sceneName, double dt, bool compact = false);
+void drawLegend(const World& world, const std::string& sceneName, double dt, double shownTime, bool compact = false);
 
 } // namespace pba::render

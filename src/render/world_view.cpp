@@ -33,6 +33,11 @@ float drawnRadius(const Body& body, const ViewSettings& settings)
     return settings.particleRadius * float(scale);
 }
 
+double drawnTime(const World& world, double alpha, bool interpolate)
+{
+    return interpolate ? world.previousTime() + alpha * (world.time() - world.previousTime()) : world.time();
+}
+
 glm::vec3 drawnPosition(const World& world, std::size_t i, double alpha, bool interpolate)
 {
     return glm::vec3(interpolate ? world.interpolatedState(i, alpha).pos : world.body(i).getPos());
@@ -129,8 +134,7 @@ void addBodies(const World& world, const World& initial, double alpha, const Vie
         out.sprites.push_back({at, drawnRadius(world.body(i), settings), colour});
         if (settings.ghost) {
             // The exact solution at the drawn time, one lane behind the body (+z).
-            const double t = settings.interpolate ? world.previousTime() + alpha * (world.time() - world.previousTime())
-                                                  : world.time();
+            const double t = drawnTime(world, alpha, settings.interpolate);
             if (const auto exact = settings.ghost(i, t)) {
                 const glm::vec3 lane(0.0f, 0.0f, -3.0f * settings.particleRadius);
                 out.sprites.push_back({*exact + lane, settings.particleRadius, glm::vec4(1.0f, 1.0f, 1.0f, 0.55f)});

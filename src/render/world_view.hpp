@@ -48,6 +48,9 @@ private:
 inline constexpr double kDrawnReferenceMass = 1.0;
 float drawnRadius(const Body& body, const ViewSettings& settings);
 
+/// The time of the state drawn: between the last two steps with the clock's alpha.
+double drawnTime(const World& world, double alpha, bool interpolate);
+
 /// The position a body is drawn at.
 glm::vec3 drawnPosition(const World& world, std::size_t i, double alpha, bool interpolate);
 

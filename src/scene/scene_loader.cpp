@@ -4,6 +4,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -129,6 +130,45 @@ void requireFloat(const ObjectReader& reader, const std::string& key, const dvec
                                          "(at most {:.3g} in size)", v[i], kFloatMax));
 }
 
+/// MemAvailable from /proc/meminfo, in bytes (nothing where it cannot be read).
+std::optional<double> availableMemory()
+{
+    std::ifstream meminfo("/proc/meminfo");
+    std::string key;
+    double kilobytes = 0.0;
+    std::string unit;
+    while (meminfo >> key >> kilobytes >> unit)
+        if (key == "MemAvailable:")
+            return kilobytes * 1024.0;
+    return std::nullopt;
+}
+
+/// A swarm's arrays: six floats a particle, and a byte of "clear of every surface" with exact.
+constexpr double kSwarmBytesPerParticle = 6 * sizeof(float) + 1;
+
+/// Before any swarm is made (a swarm allocates its arrays at once): all the swarms' particles
+/// must fit in the memory available, or the kernel would kill the run minutes later.
+void requireMemoryForSwarms(const Json& document, const std::string& file)
+{
+    if (!document.is_object() || !document.contains("swarms") || !document["swarms"].is_array())
+        return;
+    const auto available = availableMemory();
+    double bytes = 0.0;
+    for (std::size_t i = 0; i < document["swarms"].size(); ++i) {
+        const Json& swarm = document["swarms"][i];
+        if (!swarm.is_object() || !swarm.contains("count") || !swarm["count"].is_number())
+            continue; // readSwarm says what is wrong with it
+        const double count = swarm["count"].get<double>();
+        if (!(count >= 0.0 && count <= 1e8))
+            continue; // not a valid count: readSwarm says so
+        bytes += count * kSwarmBytesPerParticle;
+        if (available && bytes > *available)
+            throw SceneError(file, fmt::format("swarms[{}].count", i),
+                             fmt::format("{:g} particles need {:.2f} GB with the swarms before them, more than the "
+                                         "{:.2f} GB of memory available", count, bytes / 1e9, *available / 1e9));
+    }
+}
+
 void readSwarm(const Json& value, const std::string& path, const std::string& file, World& world,
                std::set<std::string>& names)
 {
@@ -208,6 +248,19 @@ void readForce(const Json& value, const std::string& path, const std::string& fi
     reader.fail("type", fmt::format("unknown force type '{}' (expected one of: {})", type, names));
 }
 
+/// Every particle's energy must be finite at the start: a velocity of 1e300 m/s is a valid
+/// number whose kinetic energy is not, and would fail the first step with no field to blame.
+void requireFiniteEnergies(const World& world, const std::string& file)
+{
+    for (std::size_t i = 0; i < world.bodyCount(); ++i) {
+        const std::string path = fmt::format("particles[{}]", i);
+        if (!std::isfinite(world.kineticEnergy(i)))
+            throw SceneError(file, path + ".velocity", "too large: the kinetic energy m v^2 / 2 is not finite");
+        if (!std::isfinite(world.potentialEnergy(i)))
+            throw SceneError(file, path + ".position", "too far: the potential energy is not finite");
+    }
+}
+
 Scene readScene(const Json& document, const std::string& file)
 {
     ObjectReader root(document, "", file);
@@ -231,6 +284,7 @@ Scene readScene(const Json& document, const std::string& file)
     if (document.is_object() && document.contains("swarms") && !(fitsFloat(g.x) && fitsFloat(g.y) && fitsFloat(g.z)))
         root.fail("gravity", fmt::format("cannot be represented in single precision, as a swarm's numbers are (at "
                                          "most {:.3g} in size)", kFloatMax));
+    requireMemoryForSwarms(document, file);
     std::set<std::string> names;
     root.array("particles", [&](const Json& value, const std::string& path, std::size_t) {
         readParticle(value, path, file, scene.world, names);
@@ -242,6 +296,7 @@ Scene readScene(const Json& document, const std::string& file)
         readForce(value, path, file, scene.world);
     });
     root.finish();
+    requireFiniteEnergies(scene.world, file);
     return scene;
 }
 
@@ -256,12 +311,40 @@ std::string parseErrorReason(const nlohmann::json::exception& error)
 
 Scene parseScene(std::string_view json, const std::string& source)
 {
+    // A NUL byte would end the document early, silently dropping what follows it.
+    if (const auto nul = json.find('\0'); nul != std::string_view::npos)
+        throw SceneError(source, "(document)", fmt::format("contains a NUL byte at offset {}: not a text file", nul));
+    // Duplicate keys: JSON leaves them undefined and the parser keeps the last; a scene refuses
+    // them, as it refuses unknown keys (both are usually mistakes).
+    std::vector<std::set<std::string>> keys;
+    std::vector<std::string> lastKey{""};
+    std::optional<std::string> duplicate;
+    const auto watch = [&](int, Json::parse_event_t event, Json& parsed) {
+        if (event == Json::parse_event_t::object_start) {
+            keys.emplace_back();
+            lastKey.push_back("");
+        } else if (event == Json::parse_event_t::object_end) {
+            keys.pop_back();
+            lastKey.pop_back();
+        } else if (event == Json::parse_event_t::key && !duplicate) {
+            const std::string key = parsed.get<std::string>();
+            if (!keys.back().insert(key).second)
+                duplicate = lastKey.size() > 1 && !lastKey[lastKey.size() - 2].empty()
+                                ? fmt::format("{}: duplicate key '{}' (each key may appear once in an object)",
+                                              lastKey[lastKey.size() - 2], key)
+                                : fmt::format("duplicate key '{}' (each key may appear once in an object)", key);
+            lastKey.back() = key;
+        }
+        return true;
+    };
     Json document;
     try {
-        document = Json::parse(json.begin(), json.end());
+        document = Json::parse(json.begin(), json.end(), watch);
     } catch (const nlohmann::json::exception& error) { // parse errors and number overflow
         throw SceneError(source, "(document)", parseErrorReason(error));
     }
+    if (duplicate)
+        throw SceneError(source, "(document)", *duplicate);
     return readScene(document, source);
 }
 

@@ -2,7 +2,11 @@
 // refused at load, naming the field.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <string>
+#include <vector>
 
 #include "pba/forces.hpp"
 #include "pba/scene/scene.hpp"
@@ -115,4 +119,58 @@ TEST(SwarmChecks, PbaSimExitsThreeNamingTheParticle)
     EXPECT_EQ(r.exitCode, 3);
     EXPECT_NE(r.err.find("the position of body 'rain[0]' is not finite at step 2"), std::string::npos) << r.err;
     EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+}
+
+struct BadFlags {
+    std::vector<std::string> args;
+    const char* says;
+};
+
+void PrintTo(const BadFlags& bad, std::ostream* os)
+{
+    for (const auto& a : bad.args)
+        *os << a << ' ';
+}
+
+class NumericFlags : public ::testing::TestWithParam<BadFlags> {};
+
+// Each of these crashed, hung or printed nonsense: now exit 2, one line naming the flag, and no
+// output file.
+TEST_P(NumericFlags, ThatCannotBeRunAreBadInputInOneLine)
+{
+    const auto dir = freshDir("numeric_flags");
+    std::vector<std::string> args = GetParam().args;
+    for (auto& a : args)
+        if (a == "OUT.mp4" || a == "OUT.png" || a == "OUT")
+            a = (dir / a).string();
+    const CommandResult r = runPbaArgv(args);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(GetParam().says), std::string::npos) << r.err;
+    EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Hardening, NumericFlags,
+    ::testing::Values(BadFlags{{"render", "integrators", "--duration", "1e300", "--out", "OUT.mp4"}, "1e+302 steps"},
+                      BadFlags{{"render", "integrators", "--time", "1e300", "--out", "OUT.png"}, "--time"},
+                      BadFlags{{"bench", "--sizes", "-1"}, "--sizes"}, BadFlags{{"bench", "--sizes", "nan"}, "--sizes"},
+                      BadFlags{{"bench", "--sizes", "0"}, "--sizes"}, BadFlags{{"bench", "--sizes", "0.5"}, "--sizes"},
+                      BadFlags{{"bench", "--sizes", "1e20"}, "--sizes"},
+                      BadFlags{{"compare", "--jobs", "100000", "--out", "OUT"}, "--jobs"},
+                      BadFlags{{"compare", "blow-dryer-swarm", "--out", "OUT"}, "no moving particle"},
+                      BadFlags{{"sim", "--dt", "1e-12"}, "--dt: 60 s at dt = 1e-12 s is 6e+13 steps"},
+                      BadFlags{{"sim", "--frame-rate", "1e300"}, "--frame-rate"},
+                      BadFlags{{"sim", "integrators", "--duration", "1e300"}, "--duration"},
+                      BadFlags{{"sim", "integrators", "--out", ""}, "the path is empty"}));
+
+// A thin, tall dryer's slice asked for millions of rows of scratch data; it is bounded now.
+TEST(NumericFlagsSlice, AThinDryersSliceIsBounded)
+{
+    const auto dir = freshDir("thin_dryer");
+    std::ofstream(dir / "thin.json") << R"({"forces": [{"type": "blow-dryer", "nozzle": [0, 0, 0], "height": 1000,
+                                             "top_radius": 0.001, "strength": 10}]})";
+    const CommandResult r = runPbaArgv({"field", (dir / "thin.json").string(), "--slice", "--out", (dir / "f.png").string()});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "f.png"));
 }

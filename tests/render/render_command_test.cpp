@@ -90,3 +90,19 @@ TEST(PbaRender, MissingFfmpegNamesThePackageAndWritesNothing)
     EXPECT_NE(r.err.find("install the Debian package ffmpeg"), std::string::npos) << r.err;
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0);
 }
+
+// Synthetic frames cover exactly the time asked for: no real-time clamp (0.25 s a frame)
+// shortens a slow frame rate, and --time T shows the state at T, not a step before it.
+TEST(PbaRender, FramesCoverExactlyTheTimeAskedFor)
+{
+    const auto dir = freshDir("render_time");
+    const CommandResult slow = runPba("render integrators --fps 1 --time 10 --size 64x48 --out " + (dir / "a.png").string());
+    ASSERT_EQ(slow.exitCode, 0) << slow.err;
+    EXPECT_NE(slow.err.find("t = 10 s"), std::string::npos) << slow.err;
+    const CommandResult at = runPba("render integrators --time 1.2 --size 64x48 --out " + (dir / "b.png").string());
+    EXPECT_NE(at.err.find("t = 1.2 s"), std::string::npos) << at.err;
+    const CommandResult video =
+        runPba("render integrators --fps 2 --duration 20 --size 64x48 --out " + (dir / "c.mp4").string());
+    ASSERT_EQ(video.exitCode, 0) << video.err;
+    EXPECT_NE(video.err.find("41 frames, 64x48, t = 20 s"), std::string::npos) << video.err;
+}

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "pba/scene/scene.hpp"
 
 using namespace pba;
@@ -59,11 +61,32 @@ void PrintTo(const BadScene& bad, std::ostream* os) { *os << bad.field << " " <<
 
 class BadSceneTest : public testing::TestWithParam<BadScene> {};
 
+/// The D and S cases below are a base object with some keys changed: "@forces{...}" or
+/// "@swarms{...}" merges the braces' keys into the base's first force or swarm (a scene may not
+/// repeat a key, so the change replaces it rather than following it).
+std::string expand(const std::string& text)
+{
+    if (text.rfind("@", 0) != 0)
+        return text;
+    const std::size_t brace = text.find('{');
+    const std::string list = text.substr(1, brace - 1);
+    nlohmann::json base = nlohmann::json::parse(
+        list == "forces"
+            ? R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "forces": [{"type": "blow-dryer", "nozzle": [0, 0, 0],
+                  "height": 3, "nozzle_radius": 0.2, "top_radius": 1, "strength": 30}]})"
+            : R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "swarms": [{"name": "s", "count": 10,
+                  "region": {"min": [0, 1, 0], "max": [1, 2, 1]}, "seed": 1}]})");
+    const nlohmann::json changes = nlohmann::json::parse(text.substr(brace));
+    for (const auto& [key, value] : changes.items())
+        base[list][0][key] = value;
+    return base.dump();
+}
+
 TEST_P(BadSceneTest, IsReportedWithFieldAndReason)
 {
     const BadScene& bad = GetParam();
     try {
-        parseScene(bad.json, "bad.json");
+        parseScene(expand(bad.json), "bad.json");
         FAIL() << "accepted: " << bad.json;
     } catch (const SceneError& e) {
         EXPECT_EQ(e.file(), "bad.json");
@@ -73,14 +96,9 @@ TEST_P(BadSceneTest, IsReportedWithFieldAndReason)
     }
 }
 
-// A blow dryer with one key changed (later keys win in the JSON object we build).
-#define D(change)                                                                                          \
-    R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "forces": [{"type": "blow-dryer", "nozzle": [0, 0, 0], )" \
-    R"("height": 3, "nozzle_radius": 0.2, "top_radius": 1, "strength": 30, )" change "}]}"
-// A swarm with one key changed (the last of duplicate keys wins).
-#define S(change)                                                                                          \
-    R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "swarms": [{"name": "s", "count": 10, )"            \
-    R"("region": {"min": [0, 1, 0], "max": [1, 2, 1]}, "seed": 1, )" change "}]}"
+// A blow dryer, or a swarm, with keys changed (see expand).
+#define D(change) "@forces{" change "}"
+#define S(change) "@swarms{" change "}"
 #define P(extra) R"({"particles": [{"name": "a", "position": [0, 1, 0])" extra "}]}"
 INSTANTIATE_TEST_SUITE_P(
     SceneLoader, BadSceneTest,
@@ -142,10 +160,39 @@ INSTANTIATE_TEST_SUITE_P(
                     BadScene{S(R"("region": {"min": [0, 0.5, 0], "max": [0, 9, 0]})"), "swarms[0].region", "outside"},
                     BadScene{S(R"("region": {"min": [1, 1, 1], "max": [0, 1, 1]})"), "swarms[0].region.min",
                              "must not be above max"},
-                    BadScene{S(R"("colour": 1)"), "swarms[0].colour", "unknown key"}));
+                    BadScene{S(R"("colour": 1)"), "swarms[0].colour", "unknown key"},
+                    BadScene{R"({"dt": 0.01, "dt": 0.02})", "(document)", "duplicate key 'dt'"},
+                    BadScene{P(R"(, "mass": 1, "mass": 2)"), "(document)", "particles: duplicate key 'mass'"},
+                    BadScene{P(R"(, "velocity": [1e300, 0, 0])"), "particles[0].velocity", "kinetic energy"},
+                    BadScene{R"({"particles": [{"name": "a\tb", "position": [0, 1, 0]}]})", "particles[0].name",
+                             "control character"}));
 #undef S
 #undef D
 #undef P
+
+// Text after a NUL byte was silently ignored; swarms that cannot fit in memory were made
+// anyway, and killed by the kernel or std::bad_alloc long after.
+TEST(SceneLoader, ANulByteAndSwarmsBeyondTheMemoryAreRefused)
+{
+    using namespace std::string_literals;
+    try {
+        parseScene("{\"dt\": 0.01}\0{\"dt\": 5}"s, "nul.json");
+        FAIL() << "accepted a NUL byte";
+    } catch (const SceneError& e) {
+        EXPECT_NE(e.reason().find("NUL byte at offset 12"), std::string::npos) << e.what();
+    }
+    nlohmann::json scene = {{"ground", {{"height", 0}}}, {"swarms", nlohmann::json::array()}};
+    for (int i = 0; i < 40; ++i) // 40 x 1e8 particles: 100 GB
+        scene["swarms"].push_back({{"name", "s" + std::to_string(i)}, {"count", 100000000}, {"seed", 1},
+                                   {"region", {{"min", {0, 1, 0}}, {"max", {0, 1, 0}}}}});
+    try {
+        parseScene(scene.dump(), "big.json");
+        FAIL() << "made 100 GB of swarms";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.field().rfind("swarms[", 0), 0u) << e.what();
+        EXPECT_NE(e.reason().find("of memory available"), std::string::npos) << e.what();
+    }
+}
 
 TEST(SceneLoader, MissingFileAndUnknownNameAreErrors)
 {
