@@ -527,7 +527,7 @@ public:
             for (std::size_t c = 0; c < 3; ++c)
                 m_from[c][j] = m_spare[6 + c];
         }
-        const Arrays gathered{m_state[0], m_state[1], m_state[2], m_state[3], m_state[4], m_state[5], nullptr};
+        const Arrays gathered{m_state[0], m_state[1], m_state[2], m_state[3], m_state[4], m_state[5], nullptr, nullptr};
         const std::uint64_t bounces = collideBlock(gathered, 0, width, m_restitution, m_planes, m_response,
                                                    {m_from[0], m_from[1], m_from[2]}, m_depthBox);
         float* const arrays[6] = {m_a.px, m_a.py, m_a.pz, m_a.vx, m_a.vy, m_a.vz};
