@@ -109,13 +109,18 @@ struct Arrays {
 
 /// Whether n floats are all finite, by their exponent bits: an integer OR over the block, which
 /// vectorises (a float sum would not, without reassociation) and costs a fraction of a step.
-bool allFinite(const float* __restrict values, std::size_t n)
+bool allFinite(const Arrays& a, std::size_t b, std::size_t n)
 {
+    // One pass over the six arrays with one OR accumulator: an infinity or a NaN is the only
+    // float whose exponent bits are all set. (Six separate reductions measured slower.)
+    const float* __restrict arrays[6] = {a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b};
     std::uint32_t special = 0;
     for (std::size_t k = 0; k < n; ++k) {
-        std::uint32_t bits;
-        std::memcpy(&bits, values + k, sizeof bits);
-        special |= static_cast<std::uint32_t>((bits & 0x7f800000u) == 0x7f800000u);
+        for (const float* values : arrays) {
+            std::uint32_t bits;
+            std::memcpy(&bits, values + k, sizeof bits);
+            special |= static_cast<std::uint32_t>((bits & 0x7f800000u) == 0x7f800000u);
+        }
     }
     return special == 0;
 }
@@ -531,9 +536,15 @@ public:
         const std::uint64_t bounces = collideBlock(gathered, 0, width, m_restitution, m_planes, m_response,
                                                    {m_from[0], m_from[1], m_from[2]}, m_depthBox);
         float* const arrays[6] = {m_a.px, m_a.py, m_a.pz, m_a.vx, m_a.vy, m_a.vz};
-        for (std::size_t j = 0; j < m_count; ++j)
-            for (std::size_t c = 0; c < 6; ++c)
+        for (std::size_t j = 0; j < m_count; ++j) {
+            bool finite = true;
+            for (std::size_t c = 0; c < 6; ++c) {
                 arrays[c][m_index[j]] = m_state[c][j];
+                finite = finite && std::isfinite(m_state[c][j]);
+            }
+            if (!finite) // its block was checked before its collision was resolved here
+                m_a.finite[m_index[j] / kBlock] = 0;
+        }
         m_count = 0;
         return bounces;
     }
@@ -596,26 +607,21 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
             drag ? integrate(oneDryer<DryerAxis::Any, true>(fields)) : integrate(oneDryer<DryerAxis::Any, false>(fields));
         const bool exact = response == CollisionResponse::Exact;
         const std::size_t hits = planes.empty() ? 0 : classifyBlock(a, b, n, planes, box, coversAll, exact, hit);
-        if (hits == 0)
-            continue;
-        if (exact) {
+        if (hits > 0 && exact) {
             bounces += collideExactly<kIntegrator>(a, b, n, fields, restitution, dt, planes, start, hit);
-        } else if (hits <= kGatherMax && hits < n) {
-            bounces += gathered.add(b, n, hit, start);
-        } else {
+        } else if (hits > 0 && hits <= kGatherMax && hits < n) {
+            bounces += gathered.add(b, n, hit, start); // checked again when the batch is resolved
+        } else if (hits > 0) {
             bounces += collideBlock(a, b, n, restitution, planes, response, {start[0], start[1], start[2]},
                                     depthBox);
         }
+        // The check phase, while the block is still in L1: swarms are checked every step like
+        // bodies, and the flags say where to look for the first bad particle. (After the step,
+        // over the whole range, the same check measured 15-25% of a step: the arrays again
+        // from L3 or memory.)
+        a.finite[b / kBlock] = allFinite(a, b, n);
     }
-    bounces += gathered.collide();
-    // The check phase, per block while it is still in a near cache: swarms are checked every
-    // step like bodies, and the flags say where to look for the first bad particle.
-    for (std::size_t b = begin; b < end; b += kBlock) {
-        const std::size_t n = std::min(kBlock, end - b);
-        a.finite[b / kBlock] = allFinite(a.px + b, n) & allFinite(a.py + b, n) & allFinite(a.pz + b, n) &
-                               allFinite(a.vx + b, n) & allFinite(a.vy + b, n) & allFinite(a.vz + b, n);
-    }
-    return bounces;
+    return bounces + gathered.collide();
 }
 
 /// Every integrator's loop for a range of particles, compiled three times: for AVX-512
