@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "frame_steps.hpp"
 #include "lanes.hpp"
 #include "progress.hpp"
 #include "render_output.hpp"
@@ -41,21 +42,6 @@ void parseSize(const std::string& text, int& width, int& height)
     if (!std::regex_match(text, m, pattern) || (width = std::stoi(m[1])) < 16 || (height = std::stoi(m[2])) < 16 ||
         width > 8192 || height > 8192)
         throw UsageError(fmt::format("--size: expected WxH between 16 and 8192, e.g. 1280x720, got '{}'", text));
-}
-
-/// Synthetic frames are not late, so no clamp or step cap applies (those guard a real-time
-/// loop), and each frame is drawn at exactly its time t = k / fps rather than at the sum of k
-/// frame times (whose rounding drops a step now and then): the world takes the steps that bring
-/// its current state to t or just past it, and the drawn state is interpolated back to t, as the
-/// window's clock interpolates between the last two states. Returns that alpha.
-double stepToFrame(Scene& scene, double t)
-{
-    const double steps = std::max(0.0, std::ceil(t / scene.dt - 1e-9));
-    while (double(scene.world.stepCount()) < steps)
-        scene.world.step(scene.dt);
-    const World& w = scene.world;
-    const double span = w.time() - w.previousTime();
-    return span > 0.0 ? std::clamp((t - w.previousTime()) / span, 0.0, 1.0) : 1.0;
 }
 
 int runRender(const RenderOptions& options)
@@ -91,7 +77,7 @@ int runRender(const RenderOptions& options)
     try {
         for (long frame = 0; frame < frames; ++frame) {
             alpha = stepToFrame(scene, double(frame) / options.fps);
-            trails.record(scene.world, alpha, settings.interpolate);
+            trails.record(scene.world, alpha, settings);
             if (kind != OutputKind::Png || frame == frames - 1)
                 sink.add(renderer.render(scene.world, initial, alpha, settings, &trails, scene.name, scene.dt));
             progress.update(frame + 1);
