@@ -43,12 +43,30 @@ glm::vec3 drawnPosition(const World& world, std::size_t i, double alpha, bool in
     return glm::vec3(interpolate ? world.interpolatedState(i, alpha).pos : world.body(i).getPos());
 }
 
-void Trails::record(const World& world, double alpha, bool interpolate)
+glm::vec3 restingCentre(const World& world, glm::vec3 point, float radius)
+{
+    for (const Plane& plane : world.planes()) {
+        const double d = plane.distance(dvec3(point));
+        // Beyond -radius the point is not touching this plane (it left the room, or fell into
+        // the hole's shaft): drawn where it is.
+        if (d < radius && d > -radius && !plane.overHole(dvec3(point)))
+            point += float(radius - d) * glm::vec3(plane.normal);
+    }
+    return point;
+}
+
+glm::vec3 drawnCentre(const World& world, std::size_t i, double alpha, const ViewSettings& settings)
+{
+    return restingCentre(world, drawnPosition(world, i, alpha, settings.interpolate),
+                         drawnRadius(world.body(i), settings));
+}
+
+void Trails::record(const World& world, double alpha, const ViewSettings& settings)
 {
     m_points.resize(world.bodyCount());
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
         auto& trail = m_points[i];
-        trail.push_back(drawnPosition(world, i, alpha, interpolate));
+        trail.push_back(drawnCentre(world, i, alpha, settings));
         while (trail.size() > m_length)
             trail.pop_front();
     }
@@ -85,6 +103,32 @@ void addSurfaces(const World& world, DrawList& out)
     out.floor = floor;
 }
 
+/// Arrows on a grid in two vertical planes through the axis. The scale is the push on the axis
+/// at the nozzle (the dryer's strength), which spans most of a cell, and a length grows as the
+/// square root of the force: the push fades to a few newtons at the top, where lengths in
+/// proportion were a few pixels. The air's pull toward the axis near the nozzle is many times
+/// the strength: those arrows stop at a cell, drawn white, so they do not cross the room. The
+/// colour, from orange to yellow, gives the magnitude in proportion.
+void addFieldArrows(const BlowDryerField& f, const glm::vec3& u, const glm::vec3& w, DrawList& out)
+{
+    const glm::vec3 axis(f.axis), nozzle(f.nozzle);
+    const float cell = float(std::max(f.topRadius, f.height) / 10.0);
+    const float reference = float(std::max(std::abs(f.strength), 1e-9));
+    for (const glm::vec3& across : {u, w})
+        for (float h = 0.5f * cell; h < float(f.height); h += cell)
+            for (float s = -float(f.topRadius); s <= float(f.topRadius); s += cell) {
+                const glm::vec3 x = nozzle + h * axis + s * across;
+                const glm::vec3 force(blowDryerForce(f, dvec3(x)));
+                const float m = glm::length(force) / reference;
+                if (m <= 0.0f)
+                    continue;
+                const glm::vec3 along = (0.9f * cell * std::sqrt(std::min(m, 1.0f))) * glm::normalize(force);
+                const glm::vec4 colour =
+                    m > 1.0f ? glm::vec4(1.0f, 1.0f, 1.0f, 0.9f) : glm::vec4(1.0f, 0.55f + 0.45f * m, 0.2f, 0.9f);
+                out.addArrow(x, x + along, colour);
+            }
+}
+
 void addCone(const BlowDryerField& f, bool arrows, DrawList& out)
 {
     const glm::vec3 axis(f.axis), nozzle(f.nozzle);
@@ -109,20 +153,8 @@ void addCone(const BlowDryerField& f, bool arrows, DrawList& out)
         if (k % 12 == 0)
             out.addLine(b0, t0, glm::vec4(rim.r, rim.g, rim.b, 0.5f));
     }
-    if (!arrows)
-        return;
-    // Arrows in two vertical planes through the axis, scaled so the strongest spans a cell.
-    const float cell = float(std::max(f.topRadius, f.height) / 10.0);
-    const float scale = 0.9f * cell / float(std::max(std::abs(f.strength), 1e-9));
-    for (const glm::vec3& across : {u, w})
-        for (float h = 0.5f * cell; h < float(f.height); h += cell)
-            for (float s = -float(f.topRadius); s <= float(f.topRadius); s += cell) {
-                const glm::vec3 x = nozzle + h * axis + s * across;
-                const glm::vec3 force(blowDryerForce(f, dvec3(x)));
-                const float m = glm::length(force);
-                if (m > 0.0f)
-                    out.addArrow(x, x + scale * force, glm::vec4(1.0f, 0.55f + 0.45f * m / float(f.strength), 0.2f, 0.9f));
-            }
+    if (arrows)
+        addFieldArrows(f, u, w, out);
 }
 
 void addBodies(const World& world, const World& initial, double alpha, const ViewSettings& settings,
@@ -130,15 +162,16 @@ void addBodies(const World& world, const World& initial, double alpha, const Vie
 {
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
         const glm::vec4 colour = bodyColour(world.body(i));
-        const glm::vec3 at = drawnPosition(world, i, alpha, settings.interpolate);
+        const glm::vec3 at = drawnCentre(world, i, alpha, settings);
         out.sprites.push_back({at, drawnRadius(world.body(i), settings), colour});
         if (settings.ghost) {
             // The exact solution at the drawn time, one lane behind the body (+z).
             const double t = drawnTime(world, alpha, settings.interpolate);
             if (const auto exact = settings.ghost(i, t)) {
                 const glm::vec3 lane(0.0f, 0.0f, -3.0f * settings.particleRadius);
-                out.sprites.push_back({*exact + lane, settings.particleRadius, glm::vec4(1.0f, 1.0f, 1.0f, 0.55f)});
-                out.addLine(at, *exact + lane, glm::vec4(0.85f, 0.85f, 0.95f, 0.25f));
+                const glm::vec3 ghost = restingCentre(world, *exact + lane, settings.particleRadius);
+                out.sprites.push_back({ghost, settings.particleRadius, glm::vec4(1.0f, 1.0f, 1.0f, 0.55f)});
+                out.addLine(at, ghost, glm::vec4(0.85f, 0.85f, 0.95f, 0.25f));
             }
         }
         if (settings.referenceLines && i < initial.bodyCount()) {
@@ -190,7 +223,7 @@ void buildDrawList(const World& world, const World& initial, double alpha, const
             addCone(dryer->field(), settings.fieldArrows, out);
     for (std::size_t i = 0; i < world.forceCount(); ++i)
         if (const auto* spring = dynamic_cast<const Spring*>(&world.force(i)); spring && spring->particle() < world.bodyCount())
-            addSpring(*spring, drawnPosition(world, spring->particle(), alpha, settings.interpolate), out);
+            addSpring(*spring, drawnCentre(world, spring->particle(), alpha, settings), out);
     addBodies(world, initial, alpha, settings, trails, out);
     // Swarms keep no previous state (24 bytes a particle is the budget): drawn where they are.
     for (std::size_t s = 0; s < world.swarmCount(); ++s) {

@@ -34,7 +34,8 @@ glm::vec4 bodyColour(const Body& body);
 class Trails {
 public:
     explicit Trails(std::size_t length = 90) : m_length(length) {}
-    void record(const World& world, double alpha, bool interpolate);
+    /// Each body's drawn centre (drawnCentre), so a trail runs through the balls as drawn.
+    void record(const World& world, double alpha, const ViewSettings& settings);
     void clear() { m_points.clear(); }
     const std::vector<std::deque<glm::vec3>>& points() const { return m_points; }
 
@@ -51,8 +52,17 @@ float drawnRadius(const Body& body, const ViewSettings& settings);
 /// The time of the state drawn: between the last two steps with the clock's alpha.
 double drawnTime(const World& world, double alpha, bool interpolate);
 
-/// The position a body is drawn at.
+/// The position of body i in the state drawn (the particle's point).
 glm::vec3 drawnPosition(const World& world, std::size_t i, double alpha, bool interpolate);
+
+/// Where a ball of `radius` around a particle at `point` is drawn: pushed out of each surface
+/// (the world's planes) that the point lies within `radius` of, so that at impact and at rest,
+/// when the particle is a point on the floor, its ball rests on the floor instead of sinking
+/// half into it. Away from surfaces, and over the floor's hole, it is the point itself.
+glm::vec3 restingCentre(const World& world, glm::vec3 point, float radius);
+
+/// The centre of body i's drawn ball: its drawn position resting on the surfaces it touches.
+glm::vec3 drawnCentre(const World& world, std::size_t i, double alpha, const ViewSettings& settings);
 
 /// Fills `out` with the world. `initial` (the scene at t = 0) gives the start heights.
 void buildDrawList(const World& world, const World& initial, double alpha, const ViewSettings& settings,
