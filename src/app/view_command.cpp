@@ -1,4 +1,5 @@
 // `pba view`: the interactive window.
+#include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <optional>
@@ -17,6 +18,7 @@ namespace {
 struct ViewOptions {
     SceneOptions scene;
     std::optional<int> frames;
+    std::optional<double> time;
     std::optional<std::string> screenshot;
     bool lanes = false;
 };
@@ -26,10 +28,25 @@ int runView(const ViewOptions& options)
     Scene scene = loadSceneWithOverrides(options.scene);
     if (options.frames && *options.frames <= 0)
         throw UsageError(fmt::format("--frames: must be positive, got {}", *options.frames));
-    if (options.screenshot && !options.frames)
-        throw UsageError("--screenshot needs --frames N (the frame to save)");
+    if (options.screenshot && !options.time)
+        throw UsageError("--screenshot needs --time T (the simulated time to save)");
+    if (options.time && options.frames)
+        throw UsageError("--time and --frames: choose one");
+    if (options.time) {
+        if (!std::isfinite(*options.time) || *options.time < 0.0)
+            throw UsageError(fmt::format("--time: must be finite and not negative, got {}", *options.time));
+        stepCount(*options.time, scene.dt, "--time");
+        if (options.scene.duration && *options.time > *options.scene.duration)
+            throw UsageError(fmt::format("--time: {:g} s is past --duration {:g} s", *options.time, *options.scene.duration));
+    }
+    ViewerRun run;
+    run.frames = options.frames;
+    run.time = options.time;
+    run.screenshot = options.screenshot;
+    run.pauseAt = options.scene.duration; // only when asked for: a scene's duration sizes batch runs
+    run.lanes = options.lanes;
     try {
-        return runViewer(std::move(scene), options.frames, options.screenshot, options.lanes);
+        return runViewer(std::move(scene), run);
     } catch (const render::RenderError& e) {
         throw RuntimeFailure(e.what());
     }
@@ -42,7 +59,7 @@ int runDefault(const std::string& directory)
     const char* display = std::getenv("DISPLAY");
     if (display && *display) {
         try {
-            return runViewer(loadScene(kDefaultScene), std::nullopt, std::nullopt);
+            return runViewer(loadScene(kDefaultScene), ViewerRun{});
         } catch (const render::RenderError& e) {
             fmt::print(stderr, "pba: no window ({}); rendering instead\n", e.what());
         }
@@ -56,14 +73,24 @@ void addViewCommand(CLI::App& root, Action& selected)
     CLI::App* view = root.add_subcommand("view", "Open the interactive viewer (needs a display; see `pba render` "
                                                  "for none)");
     addSceneOptions(*view, options->scene, kDefaultScene);
-    view->add_option("--frames", options->frames, "Run this many frames, then close")->type_name("N");
-    view->add_option("--screenshot", options->screenshot, "With --frames: save the last frame to this PNG")
+    view->get_option("--duration")->description("Pause when the simulated time reaches this (seconds)");
+    view->add_option("--frames", options->frames,
+                     "Run this many frames of real time, then close (the simulated time reached depends on "
+                     "the machine)")
+        ->type_name("N");
+    view->add_option("--time", options->time,
+                     "Run to exactly this simulated time with synthetic frames of 1/60 s (as pba render), then "
+                     "stay paused there, or with --screenshot save it and close")
+        ->type_name("SECONDS");
+    view->add_option("--screenshot", options->screenshot, "With --time: save the window at that time to this PNG")
         ->type_name("FILE.png");
     view->add_flag("--lanes", options->lanes, "Integrator lanes: the exact solution's ghost beside each particle");
-    view->footer("\nKeys: space pause/play, '.' or right arrow single step, r reset, i toggle interpolation,\n"
+    view->footer("\n--duration D pauses the run when the simulated time reaches D (play goes on past it).\n"
+                 "Keys: space pause/play, '.' or right arrow single step, r reset (restart with the panel's\n"
+                 "      settings), R (shift+r) reload the scene's own settings, i toggle interpolation,\n"
                  "      c reset the camera, Esc quit.\n"
                  "Mouse: drag to orbit, right-drag or shift-drag to pan, wheel to zoom.\n"
-                 "Without a display: xvfb-run -a -s \"-screen 0 1280x720x24\" pba view\n");
+                 "Without a display: xvfb-run -a -s \"-screen 0 1280x720x24\" pba view --time 2 --screenshot shot.png\n");
     view->callback([options, &selected] { selected = [options] { return runView(*options); }; });
 }
 

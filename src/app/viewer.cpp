@@ -9,6 +9,7 @@
 
 #include "command.hpp"
 #include "io/output_file.hpp"
+#include "key_input.hpp"
 #include "lanes.hpp"
 #include "render/gl_context.hpp"
 #include "render/image_io.hpp"
@@ -16,81 +17,6 @@
 #include "render/renderer.hpp"
 
 namespace pba::app {
-
-void History::push(std::size_t body, float value)
-{
-    auto& v = m_values[body];
-    if (v.size() == kLength)
-        v.erase(v.begin());
-    v.push_back(value);
-}
-
-void History::clear()
-{
-    for (auto& v : m_values)
-        v.clear();
-}
-
-void ViewerState::load(Scene newScene)
-{
-    scene = std::move(newScene);
-    scene.world.setSwarmRollback(true); // a failed step pauses on the last finite state, swarms too
-    scenePath = scene.source;
-    camera = render::frameWorld(scene.world);
-    initial = scene.world;
-    if (settings.ghost)
-        settings.ghost = exactGhosts(initial);
-    clock = FixedTimestepClock(scene.dt, clock.maxFrameTime(), clock.maxStepsPerFrame());
-    reset();
-}
-
-void ViewerState::reset()
-{
-    scene.world = initial;
-    clock.reset();
-    trails.clear();
-    heights.resize(scene.world.bodyCount());
-    energies.resize(scene.world.bodyCount());
-    error.reset();
-    record();
-}
-
-void ViewerState::advance(double frameSeconds)
-{
-    stepsThisFrame = 0;
-    if (error)
-        return;
-    if (!paused && frameSeconds > 0.0)
-        stepWorld(clock.advance(frameSeconds * timeScale));
-    if (stepOnce) {
-        stepWorld(1);
-        stepOnce = false;
-    }
-}
-
-void ViewerState::stepWorld(int steps)
-{
-    try {
-        for (int n = 0; n < steps; ++n) {
-            scene.world.step(clock.dt()); // the fixed dt: the frame time only decided how many steps
-            ++stepsThisFrame;
-            record();
-        }
-    } catch (const NonFiniteStateError& e) {
-        error = e.what();
-        paused = true;
-    }
-}
-
-void ViewerState::record()
-{
-    const World& world = scene.world;
-    for (std::size_t i = 0; i < world.bodyCount(); ++i) {
-        heights.push(i, float(world.body(i).getPos().y));
-        const double e0 = initial.energy(i);
-        energies.push(i, float(e0 != 0.0 ? world.energy(i) / e0 : 1.0));
-    }
-}
 
 namespace {
 
@@ -109,71 +35,93 @@ void handleMouse(render::OrbitCamera& camera)
         camera.zoom(io.MouseWheel > 0 ? 0.9f : 1.0f / 0.9f);
 }
 
-/// Space pause, '.' or right arrow single step, r reset, i interpolation, c camera, Esc quit.
-void handleKeys(ViewerState& state, GLFWwindow* window)
+/// GLFW calls this for every key event, whatever the frame rate; the frame takes the queue.
+void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int mods)
 {
+    static_cast<KeyInput*>(glfwGetWindowUserPointer(window))->onKey(key, action, mods);
+}
+
+/// The keys queued since the last frame, in order. Typing in a text box is not a command.
+void applyKeys(ViewerState& state, KeyInput& keys)
+{
+    const std::vector<ViewerCommand> commands = keys.take();
     if (ImGui::GetIO().WantCaptureKeyboard)
         return;
-    if (ImGui::IsKeyPressed(GLFW_KEY_SPACE))
-        state.paused = !state.paused;
-    if (ImGui::IsKeyPressed(GLFW_KEY_PERIOD) || ImGui::IsKeyPressed(GLFW_KEY_RIGHT)) {
-        state.paused = true;
-        state.stepOnce = true;
-    }
-    if (ImGui::IsKeyPressed(GLFW_KEY_R, false))
-        state.reset();
-    if (ImGui::IsKeyPressed(GLFW_KEY_I, false))
-        state.settings.interpolate = !state.settings.interpolate;
-    if (ImGui::IsKeyPressed(GLFW_KEY_C, false))
-        state.camera = render::frameWorld(state.initial);
-    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false))
-        glfwSetWindowShouldClose(window, GLFW_TRUE);
+    for (const ViewerCommand command : commands)
+        state.apply(command);
+}
+
+/// One frame of the capture (`--time T`): the synthetic frame k shows t = k / kCaptureFps, the
+/// last one exactly T; a few frames more at T let ImGui's self-sizing windows settle. Returns
+/// whether the frame shown is the capture's last.
+bool captureFrame(ViewerState& state, int frame, double until)
+{
+    const double t = std::min(double(frame) / kCaptureFps, until);
+    state.advanceTo(t);
+    return t == until && frame >= 2;
 }
 
 } // namespace
 
-int runViewer(Scene scene, std::optional<int> frames, std::optional<std::string> screenshot, bool lanes)
+int runViewer(Scene scene, const ViewerRun& run)
 {
     const std::optional<std::filesystem::path> shot =
-        screenshot ? std::optional(io::resolveOutputFile(*screenshot)) : std::nullopt; // before the window opens
+        run.screenshot ? std::optional(io::resolveOutputFile(*run.screenshot)) : std::nullopt; // before the window opens
+    KeyInput keys; // outlives the window, whose key callback writes to it
     render::WindowContext window(1280, 720, fmt::format("pba: {}", scene.name));
+    glfwSetWindowUserPointer(window.window(), &keys);
+    glfwSetKeyCallback(window.window(), onKey); // before ImGui's backend, which calls it on
     render::Renderer renderer;
     render::ImGuiLayer imgui(window.window());
     ViewerState state;
-    if (lanes)
+    state.pauseAt = run.pauseAt;
+    if (run.lanes)
         state.settings.ghost = [](std::size_t, double) { return std::optional<glm::vec3>(); }; // set by load()
     state.load(std::move(scene));
     render::DrawList list;
+    bool capturing = run.time.has_value(); // synthetic frames to run.time: no real time, no input
+    const double captureUntil = run.time.value_or(0.0);
     auto last = std::chrono::steady_clock::now();
-    for (int frame = 0; !window.shouldClose() && (!frames || frame < *frames); ++frame) {
+    for (int frame = 0; !window.shouldClose() && !state.quit && (!run.frames || frame < *run.frames); ++frame) {
         glfwPollEvents();
         const auto now = std::chrono::steady_clock::now();
-        const double seconds = std::chrono::duration<double>(now - last).count();
+        double seconds = std::chrono::duration<double>(now - last).count();
         last = now;
+        const bool captured = capturing && captureFrame(state, frame, captureUntil);
+        if (capturing)
+            seconds = 1.0 / kCaptureFps;
         state.frameRate = seconds > 0.0 ? 0.9f * state.frameRate + 0.1f * float(1.0 / seconds) : state.frameRate;
 
         imgui.beginFrame(0, 0, float(seconds));
-        handleMouse(state.camera);
-        handleKeys(state, window.window());
-        state.advance(seconds);
-        state.trails.record(state.scene.world, state.clock.alpha(), state.settings.interpolate);
+        if (!capturing) {
+            handleMouse(state.camera);
+            applyKeys(state, keys);
+            state.advance(seconds);
+        } else {
+            keys.take(); // keys pressed during a capture do not change it
+        }
+        state.trails.record(state.scene.world, state.alpha(), state.settings);
         render::drawLegend(state.scene.world, state.scene.name, state.clock.dt(),
-                           render::drawnTime(state.scene.world, state.clock.alpha(), state.settings.interpolate), true);
-        drawPanel(state);
+                           render::drawnTime(state.scene.world, state.alpha(), state.settings.interpolate), true);
+        const float panel = drawPanel(state);
 
         int width = 0, height = 0;
         window.framebufferSize(width, height);
-        render::buildDrawList(state.scene.world, state.initial, state.clock.alpha(), state.settings, &state.trails, list);
+        render::buildDrawList(state.scene.world, state.initial, state.alpha(), state.settings, &state.trails, list);
         window.bindForDrawing();
-        renderer.draw(list, state.camera, width, std::max(height, 1));
+        renderer.draw(list, state.camera, std::max(width - int(panel), 1), std::max(height, 1)); // beside the panel
         imgui.endFrame();
-        if (screenshot && frames && frame == *frames - 1)
+        if (captured && shot) {
             render::writePng(*shot, width, height, window.readPixels());
+            fmt::print("wrote {} (t = {:g} s)\n", *run.screenshot, captureUntil);
+            return state.error ? kExitSimulationFailure : kExitSuccess;
+        }
+        if (captured) { // the window stays open, paused at the time asked for
+            capturing = false;
+            state.paused = true;
+        }
         window.swap();
     }
-    if (screenshot)
-        fmt::print("wrote {}\n", *screenshot);
     return kExitSuccess;
 }
-
 } // namespace pba::app

@@ -47,10 +47,8 @@ void collisionChoice(ViewerState& state)
     if (state.scene.world.planes().empty())
         return;
     int response = static_cast<int>(state.scene.world.collisionResponse());
-    if (ImGui::Combo("collision response", &response, kResponseNames, 3)) {
-        state.scene.world.setCollisionResponse(static_cast<CollisionResponse>(response));
-        state.initial.setCollisionResponse(static_cast<CollisionResponse>(response));
-    }
+    if (ImGui::Combo("collision response", &response, kResponseNames, 3))
+        state.setCollisionResponse(static_cast<CollisionResponse>(response));
 }
 
 void timeSection(ViewerState& state)
@@ -58,18 +56,21 @@ void timeSection(ViewerState& state)
     if (ImGui::Button(state.paused ? "play (space)" : "pause (space)"))
         state.paused = !state.paused;
     ImGui::SameLine();
-    if (ImGui::Button("step (.)")) {
-        state.paused = true;
-        state.stepOnce = true;
-    }
+    if (ImGui::Button("step (.)"))
+        state.apply(ViewerCommand::Step);
     ImGui::SameLine();
     if (ImGui::Button("reset (r)"))
         state.reset();
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Restart with the settings chosen here (integrators, e, dryer, dt, collisions)");
+    ImGui::SameLine();
+    if (ImGui::Button("reload scene (R)"))
+        state.reload();
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Restart with the scene's own settings, undoing the changes made here");
     float dt = float(state.clock.dt());
-    if (ImGui::SliderFloat("dt (s)", &dt, 0.0005f, 0.1f, "%.4f", ImGuiSliderFlags_Logarithmic)) {
-        state.clock.setDt(dt);
-        state.scene.dt = dt;
-    }
+    if (ImGui::SliderFloat("dt (s)", &dt, 0.0005f, 0.1f, "%.4f", ImGuiSliderFlags_Logarithmic))
+        state.setDt(dt);
     ImGui::SliderFloat("time scale", &state.timeScale, 0.05f, 2.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
     collisionChoice(state);
     ImGui::Checkbox("interpolate (i)", &state.settings.interpolate);
@@ -80,7 +81,7 @@ void timeSection(ViewerState& state)
     if (ImGui::SliderInt("steps cap", &cap, 1, 2000))
         state.clock.setMaxStepsPerFrame(cap);
     ImGui::Text("%.0f fps   %d steps this frame   alpha %.2f   t = %.3f s", state.frameRate, state.stepsThisFrame,
-                state.clock.alpha(), state.scene.world.time());
+                state.alpha(), state.scene.world.time());
 }
 
 void viewSection(ViewerState& state)
@@ -102,7 +103,7 @@ void particlesSection(ViewerState& state)
     World& world = state.scene.world;
     const std::size_t shown = std::min<std::size_t>(world.bodyCount(), 12);
     for (std::size_t i = 0; i < shown; ++i) {
-        Body& body = world.body(i);
+        const Body& body = world.body(i);
         ImGui::PushID(static_cast<int>(i));
         const glm::vec4 c = render::bodyColour(body);
         ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1), "%s", body.getName().c_str());
@@ -113,93 +114,113 @@ void particlesSection(ViewerState& state)
             int integrator = static_cast<int>(body.getIntegrator());
             ImGui::SetNextItemWidth(170);
             if (ImGui::Combo("integrator", &integrator, kIntegratorNames, 4))
-                body.setIntegrator(static_cast<Integrator>(integrator));
+                state.setIntegrator(i, static_cast<Integrator>(integrator));
             ImGui::SameLine();
             float e = float(body.getCor());
             ImGui::SetNextItemWidth(100);
             if (ImGui::SliderFloat("e", &e, 0.0f, 1.0f, "%.2f"))
-                body.setCor(e);
+                state.setRestitution(i, e);
         }
         ImGui::PopID();
     }
+}
+
+/// A plot with its y scale: the label above it, where it is never cut off; the ends of the range
+/// written at its top and bottom left; and a margin, so that a flat line (E/E0 = 1 from the start)
+/// is drawn inside the frame rather than on its bottom edge. `minSpan` keeps rounding noise from
+/// filling the plot.
+void plotWithScale(const char* id, const std::string& label, const std::vector<float>& values, const char* format,
+                   float minSpan)
+{
+    ImGui::TextUnformatted(label.c_str());
+    float lo = values.empty() ? 0.0f : *std::min_element(values.begin(), values.end());
+    float hi = values.empty() ? 0.0f : *std::max_element(values.begin(), values.end());
+    const float middle = 0.5f * (lo + hi), half = 0.55f * std::max(hi - lo, minSpan);
+    lo = middle - half;
+    hi = middle + half;
+    ImGui::PlotLines(id, values.data(), static_cast<int>(values.size()), 0, nullptr, lo, hi,
+                     ImVec2(ImGui::GetContentRegionAvail().x, 52));
+    const ImVec2 top = ImGui::GetItemRectMin(), bottom = ImGui::GetItemRectMax();
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    const ImU32 colour = ImGui::GetColorU32(ImGuiCol_TextDisabled);
+    draw->AddText(ImVec2(top.x + 4, top.y + 1), colour, fmt::format(fmt::runtime(format), hi).c_str());
+    draw->AddText(ImVec2(top.x + 4, bottom.y - ImGui::GetFontSize() - 1), colour,
+                  fmt::format(fmt::runtime(format), lo).c_str());
 }
 
 void plotsSection(const ViewerState& state)
 {
     const std::size_t shown = std::min<std::size_t>(state.heights.bodies(), 6);
     for (std::size_t i = 0; i < shown; ++i) {
-        const auto& h = state.heights.values(i);
-        const auto& e = state.energies.values(i);
         const std::string& name = state.scene.world.body(i).getName();
-        ImGui::PlotLines(fmt::format("height {}", name).c_str(), h.data(), static_cast<int>(h.size()), 0, nullptr,
-                         FLT_MAX, FLT_MAX, ImVec2(0, 40));
-        ImGui::PlotLines(fmt::format("E/E0 {}", name).c_str(), e.data(), static_cast<int>(e.size()), 0, nullptr,
-                         FLT_MAX, FLT_MAX, ImVec2(0, 40));
-    }
-}
-
-/// The hole in the floor follows the nozzle (it is the nozzle's opening).
-void moveHole(World& world, const BlowDryerField& f)
-{
-    const auto& hole = world.floorHole();
-    if (hole && f.nozzleRadius > 0.0)
-        world.setFloorHole(FloorHole{f.nozzle, f.nozzleRadius, hole->depth});
-}
-
-void dryerSection(ViewerState& state)
-{
-    World& world = state.scene.world;
-    for (std::size_t i = 0; i < world.forceCount(); ++i) {
-        auto* dryer = dynamic_cast<BlowDryer*>(&world.force(i));
-        if (!dryer)
-            continue;
-        BlowDryerField& f = dryer->field();
         ImGui::PushID(static_cast<int>(i));
-        float strength = float(f.strength), height = float(f.height), r0 = float(f.nozzleRadius),
-              top = float(f.topRadius);
-        if (ImGui::SliderFloat("strength (N)", &strength, 0.0f, 200.0f))
-            f.strength = strength;
-        if (ImGui::SliderFloat("height (m)", &height, 0.1f, 10.0f))
-            f.height = height;
-        if (ImGui::SliderFloat("top radius (m)", &top, std::max(r0, 0.01f), 5.0f))
-            f.topRadius = top;
-        float air = float(f.airSpeed), pull = float(f.axisPull);
-        if (ImGui::SliderFloat("air speed (m/s, 0: off)", &air, 0.0f, 60.0f))
-            f.airSpeed = air;
-        if (f.airSpeed > 0.0 && ImGui::SliderFloat("axis pull (kg)", &pull, 0.0f, 5.0f))
-            f.axisPull = pull;
-        int axial = static_cast<int>(f.axialFalloff), radial = static_cast<int>(f.radialFalloff),
-            direction = static_cast<int>(f.direction);
-        if (ImGui::Combo("axial falloff", &axial, kFalloffNames, 3))
-            f.axialFalloff = static_cast<Falloff>(axial);
-        if (ImGui::Combo("radial falloff", &radial, kFalloffNames, 3))
-            f.radialFalloff = static_cast<Falloff>(radial);
-        if (ImGui::Combo("direction", &direction, kDirectionNames, 2))
-            f.direction = static_cast<FlowDirection>(direction);
-        float nozzle[2] = {float(f.nozzle.x), float(f.nozzle.z)};
-        bool moved = ImGui::SliderFloat2("nozzle x, z (m)", nozzle, -5.0f, 5.0f);
-        moved |= ImGui::SliderFloat("nozzle radius (m)", &r0, 0.0f, std::max(float(f.topRadius), 0.01f));
-        if (moved) {
-            f.nozzle.x = nozzle[0];
-            f.nozzle.z = nozzle[1];
-            f.nozzleRadius = r0;
-            moveHole(world, f);
-        }
-        float axis[3] = {float(f.axis.x), float(f.axis.y), float(f.axis.z)};
-        if (ImGui::SliderFloat3("axis", axis, -1.0f, 1.0f) && glm::length(glm::vec3(axis[0], axis[1], axis[2])) > 1e-3f)
-            f.axis = glm::normalize(dvec3(axis[0], axis[1], axis[2]));
+        plotWithScale("##height", fmt::format("height of {} (m)", name), state.heights.values(i), "{:.2f}", 0.1f);
+        plotWithScale("##energy", fmt::format("E/E0 of {}", name), state.energies.values(i), "{:.3f}", 0.01f);
         ImGui::PopID();
     }
 }
 
-} // namespace
-
-void drawPanel(ViewerState& state)
+/// The dryer's push and air; true if any changed.
+bool dryerStrengthControls(BlowDryerField& f)
 {
-    const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - 10, 10), ImGuiCond_FirstUseEver, ImVec2(1, 0));
-    ImGui::SetNextWindowSize(ImVec2(430, io.DisplaySize.y - 20), ImGuiCond_FirstUseEver);
-    ImGui::Begin("pba");
+    bool changed = false;
+    float strength = float(f.strength), air = float(f.airSpeed), pull = float(f.axisPull);
+    if (ImGui::SliderFloat("strength (N)", &strength, 0.0f, 200.0f))
+        f.strength = strength, changed = true;
+    if (ImGui::SliderFloat("air speed (m/s)", &air, 0.0f, 60.0f))
+        f.airSpeed = air, changed = true;
+    if (f.airSpeed > 0.0 && ImGui::SliderFloat("axis pull (kg)", &pull, 0.0f, 5.0f))
+        f.axisPull = pull, changed = true;
+    int axial = static_cast<int>(f.axialFalloff), radial = static_cast<int>(f.radialFalloff),
+        direction = static_cast<int>(f.direction);
+    if (ImGui::Combo("axial falloff", &axial, kFalloffNames, 3))
+        f.axialFalloff = static_cast<Falloff>(axial), changed = true;
+    if (ImGui::Combo("radial falloff", &radial, kFalloffNames, 3))
+        f.radialFalloff = static_cast<Falloff>(radial), changed = true;
+    if (ImGui::Combo("direction", &direction, kDirectionNames, 2))
+        f.direction = static_cast<FlowDirection>(direction), changed = true;
+    return changed;
+}
+
+/// The cone's shape and place; true if any changed.
+bool dryerShapeControls(BlowDryerField& f)
+{
+    bool changed = false;
+    float height = float(f.height), r0 = float(f.nozzleRadius), top = float(f.topRadius);
+    if (ImGui::SliderFloat("height (m)", &height, 0.1f, 10.0f))
+        f.height = height, changed = true;
+    if (ImGui::SliderFloat("top radius (m)", &top, std::max(r0, 0.01f), 5.0f))
+        f.topRadius = top, changed = true;
+    float nozzle[2] = {float(f.nozzle.x), float(f.nozzle.z)};
+    if (ImGui::SliderFloat2("nozzle x, z (m)", nozzle, -5.0f, 5.0f))
+        f.nozzle.x = nozzle[0], f.nozzle.z = nozzle[1], changed = true;
+    if (ImGui::SliderFloat("nozzle radius (m)", &r0, 0.0f, std::max(float(f.topRadius), 0.01f)))
+        f.nozzleRadius = r0, changed = true;
+    float axis[3] = {float(f.axis.x), float(f.axis.y), float(f.axis.z)};
+    if (ImGui::SliderFloat3("axis", axis, -1.0f, 1.0f) && glm::length(glm::vec3(axis[0], axis[1], axis[2])) > 1e-3f)
+        f.axis = glm::normalize(dvec3(axis[0], axis[1], axis[2])), changed = true;
+    return changed;
+}
+
+/// Each blow dryer's settings, set through the state so that reset keeps them.
+void dryerSection(ViewerState& state)
+{
+    const World& world = state.scene.world;
+    for (std::size_t i = 0; i < world.forceCount(); ++i) {
+        const auto* dryer = dynamic_cast<const BlowDryer*>(&world.force(i));
+        if (!dryer)
+            continue;
+        BlowDryerField f = dryer->field();
+        ImGui::PushID(static_cast<int>(i));
+        const bool changed = dryerStrengthControls(f);
+        if (changed | dryerShapeControls(f))
+            state.setDryerField(i, f);
+        ImGui::PopID();
+    }
+}
+
+void panelSections(ViewerState& state)
+{
     if (state.error) {
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.35f, 0.3f, 1.0f));
         ImGui::TextWrapped("%s", state.error->c_str());
@@ -218,8 +239,33 @@ void drawPanel(ViewerState& state)
         dryerSection(state);
     if (ImGui::CollapsingHeader("plots", ImGuiTreeNodeFlags_DefaultOpen))
         plotsSection(state);
-    ImGui::TextDisabled("drag: orbit  right-drag/shift-drag: pan  wheel: zoom  c: camera  Esc: quit");
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("drag: orbit   right-drag or shift-drag: pan   wheel: zoom   c: camera   R: reload scene   "
+                       "Esc: quit");
+    ImGui::PopStyleColor();
+}
+
+} // namespace
+
+float drawPanel(ViewerState& state)
+{
+    // Docked at the right, the full height: the scene is drawn in the rest of the window, so the
+    // panel hides none of the room. Its width can be dragged, within half the window.
+    const ImGuiIO& io = ImGui::GetIO();
+    const float height = io.DisplaySize.y;
+    const float widest = std::max(300.0f, 0.5f * io.DisplaySize.x);
+    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x, 0), ImGuiCond_Always, ImVec2(1, 0));
+    ImGui::SetNextWindowSize(ImVec2(std::min(430.0f, widest), height), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(std::min(300.0f, widest), height), ImVec2(widest, height));
+    const bool open = ImGui::Begin("pba", nullptr, ImGuiWindowFlags_NoMove);
+    const float width = open ? ImGui::GetWindowWidth() : 0.0f;
+    if (open) {
+        ImGui::PushItemWidth(-ImGui::GetFontSize() * 11.0f); // room for the labels on the right
+        panelSections(state);
+        ImGui::PopItemWidth();
+    }
     ImGui::End();
+    return width;
 }
 
 } // namespace pba::app

@@ -26,7 +26,8 @@ Renderer::~Renderer()
 void Renderer::draw(const DrawList& list, const OrbitCamera& camera, int width, int height, const glm::vec3& background)
 {
     glClearColor(background.r, background.g, background.b, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT); // the whole target: the viewport may be narrower
+    glViewport(0, 0, width, height);
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);

@@ -15,7 +15,8 @@ public:
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
-    /// Clears to `background` and draws: floor, lines and sprites with depth, then the
+    /// Clears the target to `background` and draws into its bottom-left width x height (the
+    /// viewer's room beside its panel, or the whole image): floor, lines and sprites with depth, then the
     /// translucent triangles blended on top without writing depth.
     void draw(const DrawList& list, const OrbitCamera& camera, int width, int height,
               const glm::vec3& background = glm::vec3(0.11f, 0.12f, 0.15f));

@@ -53,21 +53,43 @@ TEST(PbaRender, BadOutputIsBadInputAndLeavesNothing)
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0);
 }
 
-// The real window, on a virtual X server: the panel and the particles are in the screenshot.
+namespace {
+
+/// `pba view ARGS` in a window on a virtual X server.
+CommandResult runView(const std::string& args)
+{
+    return runShell("xvfb-run -a -s '-screen 0 1280x720x24' " + std::string(PBA_BINARY) + " view " + args);
+}
+
+std::vector<unsigned char> loadRgba(const std::filesystem::path& png, int& w, int& h)
+{
+    int channels = 0;
+    unsigned char* data = stbi_load(png.c_str(), &w, &h, &channels, 4);
+    if (!data)
+        return {};
+    std::vector<unsigned char> pixels(data, data + static_cast<std::size_t>(w) * h * 4);
+    stbi_image_free(data);
+    return pixels;
+}
+
+} // namespace
+
+// The real window, on a virtual X server: the panel and the particles are in the screenshot,
+// the particles left of the panel, which is docked at the right and covers none of the scene.
 TEST(PbaView, WindowUnderXvfbShowsThePanelAndTheParticles)
 {
     const auto dir = freshDir("view_xvfb");
     const auto png = dir / "view.png";
-    const CommandResult r = runShell("xvfb-run -a -s '-screen 0 1280x720x24' " + std::string(PBA_BINARY) +
-                                     " view integrators --frames 30 --screenshot " + png.string());
+    const CommandResult r = runView("integrators --time 0.5 --screenshot " + png.string());
     ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
-    int w = 0, h = 0, channels = 0;
-    unsigned char* data = stbi_load(png.c_str(), &w, &h, &channels, 4);
-    ASSERT_NE(data, nullptr);
+    EXPECT_NE(r.out.find("t = 0.5 s"), std::string::npos) << r.out;
+    int w = 0, h = 0;
+    const std::vector<unsigned char> data = loadRgba(png, w, h);
+    ASSERT_FALSE(data.empty());
     int red = 0, green = 0, panelBlue = 0;
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
-            const unsigned char* p = data + (static_cast<std::size_t>(y) * w + x) * 4;
+            const unsigned char* p = data.data() + (static_cast<std::size_t>(y) * w + x) * 4;
             if (p[0] > 150 && p[1] < 110 && p[2] < 110)
                 ++red; // the forward Euler particle
             if (p[1] > 130 && p[0] < 110 && p[2] < 130)
@@ -76,10 +98,36 @@ TEST(PbaView, WindowUnderXvfbShowsThePanelAndTheParticles)
                 ++panelBlue; // ImGui's blue widgets in the panel on the right
         }
     }
-    stbi_image_free(data);
     EXPECT_GT(red, 30);
     EXPECT_GT(green, 30);
     EXPECT_GT(panelBlue, 2000);
+}
+
+// Synthetic frames to exactly the time asked for: the same picture on every run and machine,
+// whatever the frame rate (`--frames N` reached a different simulated time on each).
+TEST(PbaView, TimeAndScreenshotAreReproducible)
+{
+    const auto dir = freshDir("view_repro");
+    ASSERT_EQ(runView("blow-dryer --time 1.5 --screenshot " + (dir / "a.png").string()).exitCode, 0);
+    ASSERT_EQ(runView("blow-dryer --time 1.5 --screenshot " + (dir / "b.png").string()).exitCode, 0);
+    int wa = 0, ha = 0, wb = 0, hb = 0;
+    const std::vector<unsigned char> a = loadRgba(dir / "a.png", wa, ha), b = loadRgba(dir / "b.png", wb, hb);
+    ASSERT_FALSE(a.empty());
+    EXPECT_EQ(wa, 1280);
+    EXPECT_EQ(ha, 720);
+    EXPECT_TRUE(a == b) << "two captures at 1.5 s differ";
+}
+
+TEST(PbaView, ScreenshotNeedsTimeAndBadTimesAreRefused)
+{
+    const auto dir = freshDir("view_usage");
+    const std::string png = (dir / "x.png").string();
+    EXPECT_EQ(runPba("view integrators --frames 10 --screenshot " + png).exitCode, 2);
+    EXPECT_EQ(runPba("view integrators --time -1 --screenshot " + png).exitCode, 2);
+    EXPECT_EQ(runPba("view integrators --time 1 --frames 10").exitCode, 2);
+    EXPECT_EQ(runPba("view integrators --duration 1 --time 2 --screenshot " + png).exitCode, 2);
+    EXPECT_EQ(runPba("view integrators --time 1 --screenshot " + (dir / "missing/x.png").string()).exitCode, 2);
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0);
 }
 
 // Without ffmpeg on the PATH the error names the package to install, and nothing is left behind.

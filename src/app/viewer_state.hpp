@@ -1,0 +1,84 @@
+#pragma once
+// What the viewer runs and shows, apart from the window: the scene, the start of the run, the
+// fixed-timestep clock, the panel's settings and the plots' history. Everything here works
+// without a display, so the viewer's logic (reset, reload, keys, capture at a time) is tested
+// without one.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "key_input.hpp"
+#include "pba/blow_dryer.hpp"
+#include "pba/clock.hpp"
+#include "pba/scene/scene.hpp"
+#include "render/camera.hpp"
+#include "render/world_view.hpp"
+
+namespace pba::app {
+
+/// Recent samples of one quantity per body, for ImGui's plots.
+class History {
+public:
+    static constexpr std::size_t kLength = 600;
+    void resize(std::size_t bodies) { m_values.assign(bodies, {}); }
+    void push(std::size_t body, float value);
+    void clear();
+    const std::vector<float>& values(std::size_t body) const { return m_values[body]; }
+    std::size_t bodies() const { return m_values.size(); }
+
+private:
+    std::vector<std::vector<float>> m_values;
+};
+
+struct ViewerState {
+    Scene scene;
+    Scene loaded;  ///< the scene as loaded (file and command-line options): what reload restores
+    World initial; ///< where reset restarts: the loaded world with the panel's settings applied
+    FixedTimestepClock clock{0.01};
+    render::ViewSettings settings;
+    render::Trails trails;
+    render::OrbitCamera camera;
+    History heights;
+    History energies;
+    bool paused = false;
+    int pendingSteps = 0; ///< single steps asked for and not yet taken: each press is one
+    bool quit = false;
+    float timeScale = 1.0f;
+    int stepsThisFrame = 0;
+    float frameRate = 0.0f;
+    /// `pba view --duration`: the simulated time at which the run pauses (play goes on past it).
+    std::optional<double> pauseAt;
+    /// The drawn state's alpha when the clock's does not apply: after a synthetic frame, or at
+    /// the pause at pauseAt, the state shown is exactly at that time.
+    std::optional<double> shownAlpha;
+    std::optional<std::string> error; ///< a non-finite state: shown in the panel, the viewer pauses
+    std::string scenePath;            ///< the panel's text box
+
+    void load(Scene newScene);
+    /// Restarts the run from `initial`: the scene's start with the panel's settings (integrators,
+    /// restitutions, collision response, blow dryers, dt) kept.
+    void reset();
+    /// The scene as loaded, the panel's changes undone.
+    void reload();
+
+    // Panel edits: applied to the live world and to `initial`, so a reset keeps them.
+    void setIntegrator(std::size_t body, Integrator integrator);
+    void setRestitution(std::size_t body, double cor);
+    void setCollisionResponse(CollisionResponse response);
+    void setDt(double dt);
+    /// The blow dryer that is force `force` (its floor hole follows the nozzle).
+    void setDryerField(std::size_t force, const BlowDryerField& field);
+
+    /// Feeds one frame of real time (scaled by timeScale) to the clock and steps the world.
+    void advance(double frameSeconds);
+    /// A synthetic frame: steps to exactly simulated time t (from the start of the run) and
+    /// shows the state at t, whatever the clock.
+    void advanceTo(double t);
+    void stepWorld(std::uint64_t steps);
+    void record();
+    void apply(ViewerCommand command);
+    /// The alpha the world is drawn with.
+    double alpha() const { return shownAlpha.value_or(clock.alpha()); }
+};
+
+} // namespace pba::app

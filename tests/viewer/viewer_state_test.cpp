@@ -1,0 +1,156 @@
+// The viewer's logic without a window: reset keeps the panel's settings and reload restores
+// the scene's, key commands each count, and synthetic frames reach exactly a simulated time,
+// the same state `pba render` draws there.
+#include <gtest/gtest.h>
+
+#include "frame_steps.hpp"
+#include "viewer_state.hpp"
+
+using namespace pba;
+using namespace pba::app;
+
+namespace {
+
+ViewerState loaded(const char* scene)
+{
+    ViewerState state;
+    state.load(loadScene(scene));
+    return state;
+}
+
+/// The force index of the scene's blow dryer.
+std::size_t dryerIndex(const World& world)
+{
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        if (dynamic_cast<const BlowDryer*>(&world.force(i)))
+            return i;
+    throw std::logic_error("no blow dryer");
+}
+
+const BlowDryerField& dryerField(const World& world)
+{
+    return dynamic_cast<const BlowDryer&>(world.force(dryerIndex(world))).field();
+}
+
+} // namespace
+
+TEST(ViewerState, ResetRestartsWithTheIntegratorAndRestitutionChosenInThePanel)
+{
+    ViewerState state = loaded("integrators");
+    const dvec3 start = state.scene.world.body(1).getPos();
+    state.advanceTo(0.5);
+    state.setIntegrator(1, Integrator::RK4);
+    state.setRestitution(1, 0.5);
+    state.setCollisionResponse(CollisionResponse::Exact);
+    state.setDt(0.002);
+    EXPECT_EQ(state.scene.world.body(1).getIntegrator(), Integrator::RK4) << "applied live too";
+
+    state.reset();
+    const World& world = state.scene.world;
+    EXPECT_EQ(world.time(), 0.0);
+    EXPECT_EQ(world.body(1).getPos(), start);
+    EXPECT_EQ(world.body(1).getIntegrator(), Integrator::RK4);
+    EXPECT_EQ(world.body(1).getCor(), 0.5);
+    EXPECT_EQ(world.collisionResponse(), CollisionResponse::Exact);
+    EXPECT_EQ(state.clock.dt(), 0.002);
+    EXPECT_EQ(world.body(2).getIntegrator(), Integrator::SemiImplicitEuler) << "the others untouched";
+}
+
+TEST(ViewerState, ReloadRestoresTheScenesOwnSettings)
+{
+    ViewerState state = loaded("integrators");
+    state.setIntegrator(1, Integrator::RK4);
+    state.setRestitution(1, 0.5);
+    state.setCollisionResponse(CollisionResponse::Exact);
+    state.setDt(0.002);
+    state.advanceTo(0.3);
+    state.apply(ViewerCommand::ReloadScene);
+    const World& world = state.scene.world;
+    EXPECT_EQ(world.time(), 0.0);
+    EXPECT_EQ(world.body(1).getIntegrator(), Integrator::ForwardEuler);
+    EXPECT_EQ(world.body(1).getCor(), 1.0);
+    EXPECT_EQ(world.collisionResponse(), CollisionResponse::Reflect);
+    EXPECT_EQ(state.clock.dt(), 0.01);
+    // And reset after a reload restarts with the scene's settings too.
+    state.reset();
+    EXPECT_EQ(state.scene.world.body(1).getIntegrator(), Integrator::ForwardEuler);
+}
+
+TEST(ViewerState, ResetKeepsTheBlowDryersSettingsAndItsHoleFollowsTheNozzle)
+{
+    ViewerState state = loaded("blow-dryer");
+    BlowDryerField f = dryerField(state.scene.world);
+    const double sceneStrength = f.strength;
+    f.strength = 20.0;
+    f.nozzle.x = 0.5;
+    state.setDryerField(dryerIndex(state.scene.world), f);
+    state.advanceTo(0.2);
+    state.reset();
+    EXPECT_EQ(dryerField(state.scene.world).strength, 20.0);
+    EXPECT_EQ(dryerField(state.scene.world).nozzle.x, 0.5);
+    ASSERT_TRUE(state.scene.world.floorHole());
+    EXPECT_EQ(state.scene.world.floorHole()->centre.x, 0.5);
+    state.reload();
+    EXPECT_EQ(dryerField(state.scene.world).strength, sceneStrength);
+    EXPECT_EQ(state.scene.world.floorHole()->centre.x, 0.0);
+}
+
+// `pba view --time T` and `pba render --time T` step with the same function: the same steps,
+// the same state, and the state drawn at exactly T, however the frames were cut.
+TEST(ViewerState, SyntheticFramesReachExactlyTheTimeAsRenderDoes)
+{
+    for (const double t : {0.0, 0.005, 1.2, 2.0, 2.0051}) {
+        ViewerState state = loaded("blow-dryer");
+        for (int frame = 0; double(frame) / 60 < t; ++frame)
+            state.advanceTo(double(frame) / 60);
+        state.advanceTo(t);
+        Scene rendered = loadScene("blow-dryer");
+        const double alpha = stepToFrame(rendered, t);
+        EXPECT_EQ(state.scene.world.stepCount(), rendered.world.stepCount()) << t;
+        EXPECT_EQ(state.scene.world.body(0).getPos(), rendered.world.body(0).getPos()) << t;
+        EXPECT_EQ(state.alpha(), alpha) << t;
+        EXPECT_NEAR(render::drawnTime(state.scene.world, state.alpha(), true), t, 1e-12) << t;
+    }
+    ViewerState state = loaded("blow-dryer");
+    state.advanceTo(2.0);
+    EXPECT_EQ(state.scene.world.stepCount(), 400u) << "2 s of 0.005 s steps, not one more";
+}
+
+TEST(ViewerState, DurationPausesTheRunAtExactlyThatTime)
+{
+    ViewerState state = loaded("integrators");
+    state.pauseAt = 0.5;
+    for (int frame = 0; frame < 100 && !state.paused; ++frame)
+        state.advance(0.07); // frames that do not divide 0.5 s nor the 0.01 s step
+    ASSERT_TRUE(state.paused);
+    EXPECT_EQ(state.scene.world.stepCount(), 50u);
+    EXPECT_NEAR(render::drawnTime(state.scene.world, state.alpha(), true), 0.5, 1e-12);
+    state.advance(0.07);
+    EXPECT_EQ(state.scene.world.stepCount(), 50u) << "paused";
+    state.apply(ViewerCommand::TogglePause); // play goes on past it
+    state.advance(0.07);
+    EXPECT_GT(state.scene.world.stepCount(), 50u);
+    state.reset(); // and a restart pauses there again
+    state.paused = false;
+    for (int frame = 0; frame < 100 && !state.paused; ++frame)
+        state.advance(0.07);
+    EXPECT_EQ(state.scene.world.stepCount(), 50u);
+}
+
+TEST(ViewerState, EveryStepCommandOfAFrameIsTaken)
+{
+    ViewerState state = loaded("integrators");
+    KeyInput keys;
+    for (int n = 0; n < 3; ++n) {
+        keys.onKey(46 /* GLFW_KEY_PERIOD */, 1 /* GLFW_PRESS */, 0);
+        keys.onKey(46, 0 /* GLFW_RELEASE */, 0);
+    }
+    for (const ViewerCommand command : keys.take())
+        state.apply(command);
+    state.advance(1.0 / 60);
+    EXPECT_TRUE(state.paused);
+    EXPECT_EQ(state.scene.world.stepCount(), 3u);
+    EXPECT_EQ(state.alpha(), 1.0) << "a single step shows the state it made";
+    state.apply(ViewerCommand::Quit);
+    EXPECT_TRUE(state.quit);
+}
