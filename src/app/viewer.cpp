@@ -51,14 +51,16 @@ void applyKeys(ViewerState& state, KeyInput& keys)
         state.apply(command);
 }
 
-/// One frame of the capture (`--time T`): the synthetic frame k shows t = k / kCaptureFps, the
-/// last one exactly T; a few frames more at T let ImGui's self-sizing windows settle. Returns
-/// whether the frame shown is the capture's last.
-bool captureFrame(ViewerState& state, int frame, double until)
+/// Where a frame of the capture (`--time T`) is.
+enum class CaptureFrame { Before, AtTime, Last };
+
+/// The capture's synthetic frame k shows t = k / kCaptureFps, the last ones exactly T: a few
+/// frames at T let ImGui's self-sizing windows settle before the picture is taken.
+CaptureFrame captureFrame(ViewerState& state, int frame, double until)
 {
     const double t = std::min(double(frame) / kCaptureFps, until);
     state.advanceTo(t);
-    return t == until && frame >= 2;
+    return t < until ? CaptureFrame::Before : frame >= 2 ? CaptureFrame::Last : CaptureFrame::AtTime;
 }
 
 } // namespace
@@ -87,10 +89,13 @@ int runViewer(Scene scene, const ViewerRun& run)
         const auto now = std::chrono::steady_clock::now();
         double seconds = std::chrono::duration<double>(now - last).count();
         last = now;
-        const bool captured = capturing && captureFrame(state, frame, captureUntil);
+        const CaptureFrame at = capturing ? captureFrame(state, frame, captureUntil) : CaptureFrame::AtTime;
+        const bool captured = capturing && at == CaptureFrame::Last;
         if (capturing)
             seconds = 1.0 / kCaptureFps;
-        state.frameRate = seconds > 0.0 ? 0.9f * state.frameRate + 0.1f * float(1.0 / seconds) : state.frameRate;
+        state.frameRate = capturing ? float(kCaptureFps)
+                          : seconds > 0.0 ? 0.9f * state.frameRate + 0.1f * float(1.0 / seconds)
+                                          : state.frameRate;
 
         imgui.beginFrame(0, 0, float(seconds));
         if (!capturing) {
@@ -107,9 +112,11 @@ int runViewer(Scene scene, const ViewerRun& run)
 
         int width = 0, height = 0;
         window.framebufferSize(width, height);
-        render::buildDrawList(state.scene.world, state.initial, state.alpha(), state.settings, &state.trails, list);
         window.bindForDrawing();
-        renderer.draw(list, state.camera, std::max(width - int(panel), 1), std::max(height, 1)); // beside the panel
+        if (at != CaptureFrame::Before) { // a capture's frames before T are not shown: not drawn (a million particles are slow)
+            render::buildDrawList(state.scene.world, state.initial, state.alpha(), state.settings, &state.trails, list);
+            renderer.draw(list, state.camera, std::max(width - int(panel), 1), std::max(height, 1)); // beside the panel
+        }
         imgui.endFrame();
         if (captured && shot) {
             render::writePng(*shot, width, height, window.readPixels());
@@ -120,7 +127,8 @@ int runViewer(Scene scene, const ViewerRun& run)
             capturing = false;
             state.paused = true;
         }
-        window.swap();
+        if (at != CaptureFrame::Before)
+            window.swap();
     }
     return kExitSuccess;
 }
