@@ -36,6 +36,8 @@ int runView(const ViewOptions& options)
         if (!std::isfinite(*options.time) || *options.time < 0.0)
             throw UsageError(fmt::format("--time: must be finite and not negative, got {}", *options.time));
         stepCount(*options.time, scene.dt, "--time");
+        if (*options.time * kCaptureFps > 1e9) // the capture's frames are counted in an int
+            throw UsageError(fmt::format("--time: {:g} s is more than 1e9 frames of 1/{} s", *options.time, kCaptureFps));
         if (options.scene.duration && *options.time > *options.scene.duration)
             throw UsageError(fmt::format("--time: {:g} s is past --duration {:g} s", *options.time, *options.scene.duration));
     }

@@ -121,6 +121,8 @@ int runViewer(Scene scene, const ViewerRun& run)
         if (captured && shot) {
             render::writePng(*shot, width, height, window.readPixels());
             fmt::print("wrote {} (t = {:g} s)\n", *run.screenshot, captureUntil);
+            if (state.error)
+                fmt::print(stderr, "pba: error: {}: {}\n", state.scene.source, *state.error);
             return state.error ? kExitSimulationFailure : kExitSuccess;
         }
         if (captured) { // the window stays open, paused at the time asked for
@@ -132,4 +134,5 @@ int runViewer(Scene scene, const ViewerRun& run)
     }
     return kExitSuccess;
 }
+
 } // namespace pba::app
