@@ -76,9 +76,12 @@ int runRender(const RenderOptions& options)
     double alpha = 0.0;
     try {
         for (long frame = 0; frame < frames; ++frame) {
-            alpha = stepToFrame(scene, double(frame) / options.fps);
+            // A PNG's last frame is at exactly --time, not at the last frame of 1/fps before it
+            // (the frames before it only feed the trails).
+            const bool last = frame == frames - 1;
+            alpha = stepToFrame(scene, kind == OutputKind::Png && last ? until : double(frame) / options.fps);
             trails.record(scene.world, alpha, settings);
-            if (kind != OutputKind::Png || frame == frames - 1)
+            if (kind != OutputKind::Png || last)
                 sink.add(renderer.render(scene.world, initial, alpha, settings, &trails, scene.name, scene.dt));
             progress.update(frame + 1);
         }

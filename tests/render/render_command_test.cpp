@@ -152,6 +152,9 @@ TEST(PbaRender, FramesCoverExactlyTheTimeAskedFor)
     EXPECT_NE(slow.err.find("t = 10 s"), std::string::npos) << slow.err;
     const CommandResult at = runPba("render integrators --time 1.2 --size 64x48 --out " + (dir / "b.png").string());
     EXPECT_NE(at.err.find("t = 1.2 s"), std::string::npos) << at.err;
+    // Between two frames of 1/60 s: still exactly the time asked for.
+    const CommandResult between = runPba("render integrators --time 0.64 --size 64x48 --out " + (dir / "d.png").string());
+    EXPECT_NE(between.err.find("t = 0.64 s"), std::string::npos) << between.err;
     const CommandResult video =
         runPba("render integrators --fps 2 --duration 20 --size 64x48 --out " + (dir / "c.mp4").string());
     ASSERT_EQ(video.exitCode, 0) << video.err;
