@@ -241,9 +241,9 @@ std::string reflectGain(const StudyConfig& config, const StudyResult& result)
                                        r->energyRatioEnd, r->dt, r->bounces);
         }
         const std::string subject = same ? "both end" : fmt::format("{} ends", integratorName(gaining[k]));
-        text += fmt::format("{}{} at {} after {} s", k > 0 ? "; " : "", subject, numbers, config.duration);
+        if (!numbers.empty())
+            text += fmt::format("{}{} at {} after {} s. ", k > 0 ? "With it " : "", subject, numbers, config.duration);
     }
-    text += ". ";
     // A step that ends a depth d below the floor is mirrored to d above it with its velocity
     // reversed; the time spent below is not given back, so the bounce starts at height d with
     // the end-of-step speed, v^2 = v_c^2 + 2 g d: the energy grows by 2 m g d, the next apex by

@@ -51,16 +51,28 @@ std::size_t firstMoving(const World& world)
     return first;
 }
 
+/// How far line k of n is moved from its integrator's colour: 0 for the typical one, towards
+/// black before it, towards white after it.
+double shadeOf(std::size_t k, std::size_t typical, std::size_t n)
+{
+    if (k < typical)
+        return -0.45 * double(typical - k) / double(typical);
+    if (k > typical)
+        return 0.45 * double(k - typical) / double(n - 1 - typical);
+    return 0.0;
+}
+
 std::string heightPlot(const std::filesystem::path& dir, const StudyConfig& config, const StudyResult& result)
 {
     const CollisionResponse collision = config.collisions.front();
-    // The smallest dt, a typical one and a large one: each integrator's line in three shades of
-    // its colour, darkest for the smallest dt.
+    // The smallest dt, a typical one and a large one: each integrator's line in shades of its
+    // colour, its own for the typical dt, darker for smaller dt and lighter for larger.
     std::vector<double> shown{config.dts.front()};
     for (double target : {0.01, 0.05})
         if (double dt = closest(config.dts, target); std::find(shown.begin(), shown.end(), dt) == shown.end())
             shown.push_back(dt);
     std::sort(shown.begin(), shown.end());
+    const auto typical = std::size_t(std::find(shown.begin(), shown.end(), closest(config.dts, 0.01)) - shown.begin());
     const World& world = config.scene.world;
     const std::size_t first = firstMoving(world);
     const auto exact = first < world.bodyCount() ? ExactSolution::find(world, first) : std::nullopt;
@@ -86,7 +98,7 @@ std::string heightPlot(const std::filesystem::path& dir, const StudyConfig& conf
                 continue;
             const std::string file = fmt::format("h_{}_{}.dat", integratorName(integrator), shown[k]);
             writeSeries(dir / file, r->series, false);
-            const double shade = shown.size() == 1 ? 0.0 : -0.45 + 0.9 * double(k) / double(shown.size() - 1);
+            const double shade = shadeOf(k, typical, shown.size());
             line += fmt::format("'{}' with lines lw 1.5 lc rgb '{}' title 'dt = {}', ", file, colour(integrator, shade),
                                 shown[k]);
         }
