@@ -102,7 +102,8 @@ std::string forwardEuler(const StudyConfig& config, const StudyResult& result)
             text += ": in flight under gravity alone that adds exactly m g² dt² / 2 of energy every step, whichever "
                     "way the particle moves";
         else if (exact && exact->kind() == ExactSolution::Kind::Oscillator)
-            text += ": on an undamped spring that multiplies the energy by 1 + ω² dt² every step";
+            text += ": on an undamped spring that multiplies the energy by 1 + ω² dt² every step, for as long as "
+                    "the swing stays short of the anchor";
         text += growing ? ", so the larger dt, the more it gains.\n\n" : ".\n\n";
     } else {
         text += "\n\n";
