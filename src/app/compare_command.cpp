@@ -1,4 +1,5 @@
 // `pba compare`: the integrator study as a reproducible report.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -11,6 +12,7 @@
 #include "compare_report.hpp"
 #include "io/output_file.hpp"
 #include "progress.hpp"
+#include "study/findings.hpp"
 #include "scene_options.hpp"
 
 namespace pba::app {
@@ -26,6 +28,17 @@ struct CompareOptions {
     std::optional<double> duration;
     int jobs = 0;
 };
+
+/// Keeps the first of each repeated entry, in the order given.
+template <class T>
+void dropRepeats(std::vector<T>& list)
+{
+    std::vector<T> kept;
+    for (const T& x : list)
+        if (std::find(kept.begin(), kept.end(), x) == kept.end())
+            kept.push_back(x);
+    list = std::move(kept);
+}
 
 study::StudyConfig makeConfig(const CompareOptions& options)
 {
@@ -66,7 +79,12 @@ study::StudyConfig makeConfig(const CompareOptions& options)
     for (double dt : config.dts)
         if (!(std::isfinite(dt) && dt > 0))
             throw UsageError(fmt::format("--dt: every dt must be finite and positive, got {}", dt));
+    // Each value once: a repeated dt would be a repeated column, and a fit through two equal dt
+    // has no slope.
     std::sort(config.dts.begin(), config.dts.end());
+    config.dts.erase(std::unique(config.dts.begin(), config.dts.end()), config.dts.end());
+    dropRepeats(config.integrators);
+    dropRepeats(config.collisions);
     for (double dt : config.dts)
         stepCount(config.duration, dt, "--duration");
     config.jobs = options.jobs > 0 ? options.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
@@ -91,13 +109,16 @@ int runCompare(const CompareOptions& options)
                            "gnuplot-nox\n");
     writeReport(dir / "report.md", config, result, plots);
     folder.commit();
-    for (CollisionResponse c : config.collisions)
-        fmt::print("E(end)/E(0), {} response, first moving particle of {}:\n{}\n", collisionResponseName(c),
+    const auto responses = study::distinctResponses(config, result);
+    for (CollisionResponse c : responses)
+        fmt::print("E(end)/E(0), {}, first moving particle of {}:\n{}\n",
+                   responses.size() < config.collisions.size() ? "every collision response (nothing collides)"
+                                                               : fmt::format("{} response", collisionResponseName(c)),
                    config.scene.name, energyTable(config, result, c, false));
     fmt::print("order of accuracy (spring):");
     for (const auto& o : result.orders)
-        fmt::print("  {} {:.2f} (expected {})", integratorName(o.integrator), o.measured, o.expected);
-    fmt::print("\n\n{}", findings(config, result));
+        fmt::print("  {} {} (expected {})", integratorName(o.integrator), study::orderText(o), o.expected);
+    fmt::print("\n\n{}", study::findings(config, result));
     progress.finish(fmt::format("wrote {}/report.md, results.csv, orders.csv{} ({} runs)", options.out,
                                 plots ? " and plots" : "", result.runs.size()));
     return kExitSuccess;

@@ -11,13 +11,15 @@ namespace pba::app {
 std::string energyTable(const study::StudyConfig& config, const study::StudyResult& result,
                         CollisionResponse collision, bool markdown);
 
+/// The table's title: the response it is for, or that every response gave it when nothing collided.
+std::string energyTableHeading(const study::StudyConfig& config, const study::StudyResult& result,
+                               CollisionResponse collision);
+
 void writeResultsCsv(const std::filesystem::path& path, const study::StudyResult& result);
 void writeOrdersCsv(const std::filesystem::path& path, const study::StudyResult& result);
 /// Draws height.png, energy.png and convergence.png with gnuplot; returns false (and writes
 /// nothing) if gnuplot is missing.
 bool writePlots(const std::filesystem::path& dir, const study::StudyConfig& config, const study::StudyResult& result);
-/// The findings, one paragraph each, stated from the measured numbers.
-std::string findings(const study::StudyConfig& config, const study::StudyResult& result);
 void writeReport(const std::filesystem::path& path, const study::StudyConfig& config, const study::StudyResult& result,
                  bool withPlots);
 

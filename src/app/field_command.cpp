@@ -186,17 +186,22 @@ int drawSlice(const Scene& scene, const FieldOptions& options)
     const std::string script = fmt::format(
         "set terminal pngcairo size 1100,900 font 'sans,12'\n"
         "set output 'slice.png'\n"
-        "set title sprintf('%s: blow dryer force in the vertical plane through its axis ({dir}, {axial} axial, "
-        "{radial} radial falloff)', ARG1) noenhanced\n"
+        "set title sprintf('%s: blow dryer force in the vertical plane through its axis', ARG1) . \"\\n({dir}, "
+        "{axial} axial, {radial} radial falloff{saturated})\" noenhanced\n"
         "set xlabel 'across the axis (m)'\nset ylabel 'along the axis, from the nozzle (m)'\n"
-        "set cblabel '|F| (N){saturated}' offset 1,0\nset size ratio -1\nset xrange [{s0}:{s1}]\nset yrange [{h0}:{h1}]\n"
+        // A short colour-bar label, well clear of the tick labels; the saturation note is in the title.
+        "set cblabel '|F| (N)' offset 2,0\nset size ratio -1\nset xrange [{s0}:{s1}]\nset yrange [{h0}:{h1}]\n"
         "set cbrange [0:{max}]\nset palette defined (0 '#0d0887', 0.25 '#7e03a8', 0.5 '#cc4778', 0.75 '#f89540', 1 '#f0f921')\n"
-        "set key top right box opaque\n"
+        // A dark legend, so that the white direction arrow shows in it as it does on the picture.
+        "set key top right box lc rgb 'gray70' opaque fc rgb '#2b2b3a' textcolor rgb 'white'\n"
         "plot 'magnitude.dat' with image notitle, "
         "'arrows.dat' with vectors head filled size screen 0.008,20 lc rgb '#ffffff' title 'direction', "
         "'cone.dat' with lines lw 2 dt 2 lc rgb '#00c0ff' title 'cone edge', "
         "'floor.dat' with lines lw 4 lc rgb '#808080' title 'floor and grille'\n",
-        fmt::arg("saturated", maxMagnitude > 1.001 * scale ? fmt::format(", up to {:.0f} near the nozzle", maxMagnitude) : ""),
+        fmt::arg("saturated", maxMagnitude > 1.001 * scale
+                                  ? fmt::format("; colours saturate at {:.4g} N, the force reaches {:.0f} N near the nozzle",
+                                                scale, maxMagnitude)
+                                  : ""),
         fmt::arg("dir", flowDirectionName(f.direction)), fmt::arg("axial", falloffName(f.axialFalloff)),
         fmt::arg("radial", falloffName(f.radialFalloff)), fmt::arg("s0", frame.sMin), fmt::arg("s1", frame.sMax),
         fmt::arg("h0", frame.hMin), fmt::arg("h1", frame.hMax), fmt::arg("max", std::max(scale, 1e-9)));

@@ -6,18 +6,14 @@
 
 #include "pba/blow_dryer.hpp"
 #include "pba/forces.hpp"
+#include "palette.hpp"
 
 namespace pba::render {
 
 glm::vec4 integratorColour(Integrator integrator)
 {
-    switch (integrator) {
-    case Integrator::ForwardEuler: return {0.93f, 0.33f, 0.27f, 1.0f};      // red: gains energy
-    case Integrator::SemiImplicitEuler: return {0.30f, 0.75f, 0.38f, 1.0f}; // green
-    case Integrator::VelocityVerlet: return {0.27f, 0.55f, 0.95f, 1.0f};    // blue
-    case Integrator::RK4: return {0.95f, 0.70f, 0.20f, 1.0f};               // amber
-    }
-    return {1, 1, 1, 1};
+    const auto [r, g, b] = palette::channels(palette::integratorRgb(integrator));
+    return {r, g, b, 1.0f};
 }
 
 glm::vec4 bodyColour(const Body& body)

@@ -121,7 +121,7 @@ std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator
 
 OrderResult measureOrder(const Scene& spring, Integrator integrator, const std::vector<double>& dts, double window)
 {
-    OrderResult order{integrator, dts, {}, kNaN, integratorOrder(integrator)};
+    OrderResult order{integrator, dts, {}, {}, kNaN, integratorOrder(integrator)};
     for (double dt : dts) {
         const auto runs = measureRun(spring, integrator, CollisionResponse::Exact, dt, window);
         order.errors.push_back(runs.empty() ? kNaN : runs.front().maxPositionError);
@@ -129,8 +129,9 @@ OrderResult measureOrder(const Scene& spring, Integrator integrator, const std::
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int n = 0;
     for (std::size_t i = 0; i < dts.size(); ++i) {
-        if (dts[i] > 0.02 + 1e-12 || !(order.errors[i] > 1e-11))
+        if (dts[i] > kOrderMaxDt + 1e-12 || !(order.errors[i] > kOrderRoundingError))
             continue;
+        order.fitted.push_back(dts[i]);
         const double x = std::log(dts[i]), y = std::log(order.errors[i]);
         sx += x;
         sy += y;

@@ -43,11 +43,17 @@ struct ParticleResult {
     Series series;
 };
 
+/// The order is fitted where the error behaves as C dt^p: dt small enough for the leading term
+/// to dominate, error large enough to stand above rounding.
+inline constexpr double kOrderMaxDt = 0.02;        ///< s
+inline constexpr double kOrderRoundingError = 1e-11; ///< m
+
 struct OrderResult {
     Integrator integrator{};
     std::vector<double> dts;
     std::vector<double> errors; ///< max position error over the window, m
-    double measured = 0.0;      ///< least-squares slope of log(error) against log(dt)
+    std::vector<double> fitted; ///< the dt in the asymptotic range, the fit's points
+    double measured = 0.0;      ///< least-squares slope of log(error) against log(dt); NaN with fewer than two points
     int expected = 0;
 };
 
@@ -65,7 +71,8 @@ std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator
                                        double dt, double duration);
 
 /// Order of accuracy from the spring scene: max position error over [0, window] for each dt;
-/// the slope is fitted over the dt <= 0.02 whose error stands above rounding (> 1e-11 m).
+/// the slope is fitted over the dt <= kOrderMaxDt whose error stands above rounding
+/// (> kOrderRoundingError), and is NaN unless there are two of them.
 OrderResult measureOrder(const Scene& spring, Integrator integrator, const std::vector<double>& dts, double window);
 
 } // namespace pba::study

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <stb_image.h>
 
 #include "support/run_command.hpp"
 
@@ -44,6 +45,36 @@ TEST(PbaField, DrawsTheSliceAsAPng)
     ASSERT_GT(bytes.size(), 10000u);
     EXPECT_EQ(bytes.substr(1, 3), "PNG");
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1) << "no temporary files left";
+}
+
+TEST(PbaField, TheLegendIsDarkSoTheWhiteDirectionArrowShowsInIt)
+{
+    const auto dir = freshDir("field_legend");
+    const auto png = dir / "field.png";
+    ASSERT_EQ(runPba("field blow-dryer --slice --out " + png.string()).exitCode, 0);
+    int w = 0, h = 0, n = 0;
+    unsigned char* data = stbi_load(png.c_str(), &w, &h, &n, 3);
+    ASSERT_NE(data, nullptr);
+    // The legend's box is the one area of the legend's background colour (#2b2b3a); inside it,
+    // the white arrow sample and the white text.
+    int x0 = w, y0 = h, x1 = -1, y1 = -1;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const unsigned char* p = data + 3 * (y * w + x);
+            if (p[0] == 0x2b && p[1] == 0x2b && p[2] == 0x3a) {
+                x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+            }
+        }
+    int white = 0;
+    for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+            const unsigned char* p = data + 3 * (y * w + x);
+            white += p[0] > 240 && p[1] > 240 && p[2] > 240;
+        }
+    stbi_image_free(data);
+    ASSERT_GT(x1 - x0, 100) << "no dark legend";
+    ASSERT_GT(y1 - y0, 30) << "no dark legend";
+    EXPECT_GT(white, 100) << "nothing white in the legend";
 }
 
 TEST(PbaField, BadUsageIsExitTwo)

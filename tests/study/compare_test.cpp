@@ -3,11 +3,15 @@
 
 #include <cmath>
 #include <fstream>
+#include <regex>
 #include <set>
 #include <sstream>
 
 #include <stb_image.h>
 
+#include "render/palette.hpp"
+#include "study/findings.hpp"
+#include "study/plots.hpp"
 #include "study/study.hpp"
 #include "support/run_command.hpp"
 
@@ -36,6 +40,33 @@ std::vector<const study::ParticleResult*> select(Integrator integrator, Collisio
         if (r.integrator == integrator && r.collision == collision && r.particle == "forward-euler")
             rows.push_back(&r);
     return rows; // in increasing dt
+}
+
+/// A short study of `scene` over the given dt.
+study::StudyResult shortStudy(study::StudyConfig& config, const std::string& scene, std::vector<double> dts,
+                              double duration)
+{
+    config.scene = loadScene(scene);
+    config.dts = std::move(dts);
+    config.duration = duration;
+    config.jobs = 2;
+    return study::runStudy(config);
+}
+
+/// What a report must never say, whatever the dt: a number that is not one, a range or a
+/// comparison of one value with itself, a heading with nothing under it.
+void expectEverySentenceMeaningful(const std::string& text)
+{
+    EXPECT_EQ(std::regex_search(text, std::regex("nan", std::regex::icase)), false) << text;
+    EXPECT_FALSE(std::regex_search(text, std::regex(R"(from ([0-9.e-]*[0-9]) to \1(?![0-9]|\.[0-9]))"))) << text;
+    EXPECT_FALSE(std::regex_search(text, std::regex(R"(at dt = ([0-9.e-]*[0-9])(?![0-9]|\.[0-9])(?:(?!\. )[^\n])*at dt = \1(?![0-9]|\.[0-9]))"))) << text;
+    std::size_t start = 0;
+    while (start < text.size()) {
+        const std::size_t end = std::min(text.find("\n\n", start), text.size());
+        const std::string paragraph = text.substr(start, end - start);
+        EXPECT_FALSE(std::regex_match(paragraph, std::regex(R"(\s*\*\*[^*]*\*\*\s*)"))) << "empty paragraph in\n" << text;
+        start = end + 2;
+    }
 }
 
 } // namespace
@@ -127,9 +158,171 @@ TEST(PbaCompare, WritesEveryRowAndPlotsAndIsTheSameWhateverTheJobs)
     EXPECT_NE(one.out.find("order of accuracy"), std::string::npos);
 }
 
+TEST(PbaCompare, OneDtReportReadsTrueAndTheSpringHasOneTable)
+{
+    const auto dir = freshDir("compare_short");
+    const CommandResult one = runPba("compare --duration 2 --dt 0.3 --out " + (dir / "one").string());
+    ASSERT_EQ(one.exitCode, 0) << one.err;
+    const std::string report = readFile(dir / "one/report.md");
+    expectEverySentenceMeaningful(report);
+    EXPECT_NE(report.find("dt = 0.3 s."), std::string::npos) << report;
+    EXPECT_NE(report.find("| not measured |"), std::string::npos) << report;
+    EXPECT_EQ(one.out.find("nan"), std::string::npos) << one.out;
+
+    const CommandResult spring = runPba("compare spring --duration 2 --dt 0.01,0.02 --out " + (dir / "spring").string());
+    ASSERT_EQ(spring.exitCode, 0) << spring.err;
+    const std::string springReport = readFile(dir / "spring/report.md");
+    std::size_t tables = 0;
+    for (std::size_t at = springReport.find("## Energy at the end"); at != std::string::npos;
+         at = springReport.find("## Energy at the end", at + 1))
+        ++tables;
+    EXPECT_EQ(tables, 1u) << springReport;
+    EXPECT_NE(springReport.find("nothing collides"), std::string::npos) << springReport;
+}
+
 TEST(PbaCompare, BadOptionsAreBadInput)
 {
     EXPECT_EQ(runPba("compare --integrators leapfrog --out /tmp/x").exitCode, 2);
     EXPECT_EQ(runPba("compare --collisions bounce --out /tmp/x").exitCode, 2);
     EXPECT_EQ(runPba("compare --dt 0.01,-1 --out /tmp/x").exitCode, 2);
+}
+
+TEST(IntegratorFindings, OneDtGivesNoRangeNoComparisonAndNoOrder)
+{
+    study::StudyConfig config;
+    const auto result = shortStudy(config, "integrators", {0.3}, 3.0);
+    const std::string text = study::findings(config, result);
+    expectEverySentenceMeaningful(text);
+    EXPECT_NE(text.find("at dt = 0.3"), std::string::npos) << text;
+    // An order needs two dt in the asymptotic range, and the report says so instead of a number.
+    EXPECT_NE(text.find("are not measured"), std::string::npos) << text;
+    EXPECT_NE(text.find("none of the dt given is"), std::string::npos) << text;
+    EXPECT_EQ(text.find("Each halving"), std::string::npos) << text;
+    for (const auto& o : result.orders)
+        EXPECT_EQ(study::orderText(o), "not measured");
+    EXPECT_EQ(study::describeDts(config.dts), "dt = 0.3 s");
+}
+
+TEST(IntegratorFindings, TwoDtWithOneInTheAsymptoticRangeSayWhyThereIsNoOrder)
+{
+    study::StudyConfig config;
+    const auto result = shortStudy(config, "integrators", {0.01, 0.05}, 3.0);
+    const std::string text = study::findings(config, result);
+    expectEverySentenceMeaningful(text);
+    EXPECT_NE(text.find("at dt = 0.01 and"), std::string::npos) << text;
+    EXPECT_NE(text.find("only 0.01 is"), std::string::npos) << text;
+    EXPECT_EQ(text.find("Each halving"), std::string::npos) << text;
+    EXPECT_EQ(study::describeDts(config.dts), "dt = 0.01 and 0.05 s");
+}
+
+TEST(IntegratorFindings, TwoDtInTheAsymptoticRangeGiveAnOrder)
+{
+    study::StudyConfig config;
+    const auto result = shortStudy(config, "integrators", {0.005, 0.01}, 3.0);
+    const std::string text = study::findings(config, result);
+    expectEverySentenceMeaningful(text);
+    for (const auto& o : result.orders) {
+        EXPECT_EQ(o.fitted.size(), 2u);
+        EXPECT_NEAR(o.measured, o.expected, 0.3) << integratorName(o.integrator);
+    }
+    EXPECT_NE(text.find("Each halving"), std::string::npos) << text;
+}
+
+TEST(IntegratorFindings, EightDtStateEveryFinding)
+{
+    study::StudyConfig config;
+    config.scene = loadScene("integrators");
+    const std::string text = study::findings(config, defaultStudy());
+    expectEverySentenceMeaningful(text);
+    for (const char* finding : {"**Forward Euler gains energy.**", "collision response decides the verdict",
+                                "with exact impacts is exact", "gain energy with `reflect`", "Each halving"})
+        EXPECT_NE(text.find(finding), std::string::npos) << finding << " missing from\n" << text;
+    EXPECT_NE(text.find("over every dt from 0.0005 to 0.1"), std::string::npos) << text;
+    EXPECT_EQ(study::describeDts(config.dts), "dt from 0.0005 to 0.1 s (8 values)");
+}
+
+TEST(IntegratorFindings, ReflectGainOfVerletAndRK4IsTheMirrorsAndExplained)
+{
+    // With `reflect`, a step ending a depth d below the floor is mirrored to d above it with the
+    // end-of-step speed: the apex rises by 2 d, d in [0, |v| dt). Verlet and RK4 are exact in
+    // flight, so each bounce's relative gain lies in (0, 2 |v| dt / h], |v| the largest impact
+    // speed, sqrt(2 g h E(end)/E(0)).
+    const double h = 2.0, g = 9.81;
+    for (Integrator integrator : {Integrator::VelocityVerlet, Integrator::RK4})
+        for (const auto* r : select(integrator, CollisionResponse::Reflect)) {
+            ASSERT_GT(r->bounces, 0u);
+            EXPECT_GT(r->energyRatioEnd, 1.0) << "dt " << r->dt;
+            const double perBounce = std::pow(r->energyRatioEnd, 1.0 / double(r->bounces)) - 1.0;
+            EXPECT_LE(perBounce, 2.0 * std::sqrt(2.0 * g * h * r->energyRatioEnd) * r->dt / h) << "dt " << r->dt;
+        }
+    study::StudyConfig config;
+    config.scene = loadScene("integrators");
+    const std::string text = study::findings(config, defaultStudy());
+    EXPECT_NE(text.find("**velocity-verlet and rk4 gain energy with `reflect`.**"), std::string::npos) << text;
+    EXPECT_NE(text.find("the time it spent below the surface is not given back"), std::string::npos) << text;
+    const auto* atTypical = study::findRun(defaultStudy(), Integrator::VelocityVerlet, CollisionResponse::Reflect, 0.01);
+    ASSERT_NE(atTypical, nullptr);
+    char measured[64];
+    std::snprintf(measured, sizeof measured, "%.4f times the start at dt = 0.01", atTypical->energyRatioEnd);
+    EXPECT_NE(text.find(measured), std::string::npos) << measured << " missing from\n" << text;
+
+    // No gain, no sentence: without `reflect` the paragraph is not there.
+    study::StudyConfig exactOnly;
+    exactOnly.collisions = {CollisionResponse::Exact};
+    const auto result = shortStudy(exactOnly, "integrators", {0.01, 0.1}, 3.0);
+    EXPECT_EQ(study::findings(exactOnly, result).find("with `reflect`"), std::string::npos);
+}
+
+TEST(IntegratorFindings, NothingCollidesOnTheSpringSoOneResponseStandsForAll)
+{
+    study::StudyConfig config;
+    const auto result = shortStudy(config, "spring", {0.005, 0.01, 0.02}, 2.0);
+    EXPECT_FALSE(study::anyCollision(result));
+    EXPECT_EQ(study::distinctResponses(config, result).size(), 1u);
+    const std::string text = study::findings(config, result);
+    expectEverySentenceMeaningful(text);
+    EXPECT_NE(text.find("**Nothing collides.**"), std::string::npos) << text;
+    std::size_t mentions = 0;
+    for (std::size_t at = text.find("response"); at != std::string::npos; at = text.find("response", at + 1))
+        ++mentions;
+    EXPECT_EQ(mentions, 1u) << "only the sentence that says they are alike names the responses:\n" << text;
+
+    const auto dir = freshDir("spring_plots");
+    const std::string script = study::plotScript(dir, config, result);
+    EXPECT_EQ(script.find("collision response"), std::string::npos) << script;
+    EXPECT_EQ(script.find("exact response"), std::string::npos) << script;
+    EXPECT_NE(script.find("set multiplot layout 1,1 title 'energy"), std::string::npos) << script;
+}
+
+TEST(IntegratorPlots, EachIntegratorsLineIsInItsPaletteColour)
+{
+    study::StudyConfig config;
+    config.scene = loadScene("integrators");
+    const auto dir = freshDir("palette_plots");
+    const std::string script = study::plotScript(dir, config, defaultStudy());
+    // One section per picture, from its `set output` to the next.
+    for (const char* picture : study::kPlotFiles) {
+        const std::size_t begin = script.find(std::string("set output '") + picture + "'");
+        ASSERT_NE(begin, std::string::npos) << picture;
+        const std::string section = script.substr(begin, script.find("set output", begin + 1) - begin);
+        for (Integrator integrator : kAllIntegrators) {
+            const std::string colour = "lc rgb '" + palette::hex(palette::integratorRgb(integrator)) + "'";
+            EXPECT_NE(section.find(colour), std::string::npos) << picture << ": " << integratorName(integrator);
+        }
+        // No line left to gnuplot's default colours.
+        std::istringstream lines(section);
+        for (std::string line; std::getline(lines, line);)
+            for (std::size_t at = line.find("with line"); at != std::string::npos; at = line.find("with line", at + 1))
+                EXPECT_NE(line.substr(at, line.find(", ", at) - at).find("lc rgb"), std::string::npos) << line;
+    }
+    EXPECT_EQ(palette::hex(palette::kForwardEuler), "#ed5445");
+}
+
+TEST(IntegratorPlots, PanelsFitTheNumberOfIntegrators)
+{
+    study::StudyConfig config;
+    config.integrators = {Integrator::RK4, Integrator::VelocityVerlet};
+    const auto result = shortStudy(config, "integrators", {0.01}, 2.0);
+    const std::string script = study::plotScript(freshDir("two_panels"), config, result);
+    EXPECT_NE(script.find("set multiplot layout 1,2 title 'height"), std::string::npos) << script;
 }

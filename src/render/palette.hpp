@@ -1,0 +1,63 @@
+#pragma once
+// The integrators' colours, defined once for every picture pba makes: the viewer and `pba
+// render` draw each body in its integrator's colour, and the gnuplot figures of `pba compare`
+// draw each integrator's line in the same one, so a reader learns the colours once. Plain
+// numbers, no OpenGL: the plotting code includes this header too.
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "pba/integrator.hpp"
+
+namespace pba::palette {
+
+/// An sRGB colour as 0xrrggbb.
+using Rgb = std::uint32_t;
+
+inline constexpr Rgb kForwardEuler = 0xed5445;      // red: gains energy
+inline constexpr Rgb kSemiImplicitEuler = 0x4cbf61; // green
+inline constexpr Rgb kVelocityVerlet = 0x458cf2;    // blue
+inline constexpr Rgb kRK4 = 0xf2b233;               // amber
+inline constexpr Rgb kFixed = 0xb2b2b8;             // grey: a body that does not move
+
+constexpr Rgb integratorRgb(Integrator integrator)
+{
+    switch (integrator) {
+    case Integrator::ForwardEuler: return kForwardEuler;
+    case Integrator::SemiImplicitEuler: return kSemiImplicitEuler;
+    case Integrator::VelocityVerlet: return kVelocityVerlet;
+    case Integrator::RK4: return kRK4;
+    }
+    return 0xffffff;
+}
+
+/// The colour's channels from 0 to 1.
+constexpr std::array<float, 3> channels(Rgb rgb)
+{
+    return {float((rgb >> 16) & 0xff) / 255.0f, float((rgb >> 8) & 0xff) / 255.0f, float(rgb & 0xff) / 255.0f};
+}
+
+/// "#rrggbb", as gnuplot's `lc rgb '#rrggbb'` and HTML take it.
+inline std::string hex(Rgb rgb)
+{
+    std::string out = "#";
+    for (int shift = 20; shift >= 0; shift -= 4)
+        out += "0123456789abcdef"[(rgb >> shift) & 0xf];
+    return out;
+}
+
+/// The colour moved towards black (amount < 0) or white (amount > 0), amount in [-1, 1]: shades
+/// of one integrator's colour for its lines at several dt.
+constexpr Rgb shade(Rgb rgb, double amount)
+{
+    Rgb out = 0;
+    for (int shift : {16, 8, 0}) {
+        const double c = double((rgb >> shift) & 0xff);
+        const double target = amount < 0 ? 0.0 : 255.0;
+        const double a = amount < 0 ? -amount : amount;
+        out |= Rgb(c + (target - c) * a + 0.5) << shift;
+    }
+    return out;
+}
+
+} // namespace pba::palette

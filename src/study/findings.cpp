@@ -1,0 +1,367 @@
+#include "findings.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "exact_solution.hpp"
+
+namespace pba::study {
+
+namespace {
+
+bool has(const std::vector<Integrator>& list, Integrator x) { return std::find(list.begin(), list.end(), x) != list.end(); }
+bool has(const std::vector<CollisionResponse>& list, CollisionResponse x)
+{
+    return std::find(list.begin(), list.end(), x) != list.end();
+}
+
+/// One integrator's rows for one response, in increasing dt.
+std::vector<const ParticleResult*> rowsOf(const StudyConfig& config, const StudyResult& result, Integrator integrator,
+                                          CollisionResponse collision)
+{
+    std::vector<const ParticleResult*> rows;
+    for (double dt : config.dts)
+        if (const ParticleResult* r = findRun(result, integrator, collision, dt))
+            rows.push_back(r);
+    return rows;
+}
+
+/// The exact solution of the first moving particle, the one the report follows.
+std::optional<ExactSolution> firstExact(const StudyConfig& config)
+{
+    const World& world = config.scene.world;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (!world.body(i).isFixed())
+            return ExactSolution::find(world, i);
+    return std::nullopt;
+}
+
+/// "at dt = 0.3", "at dt = 0.01 and 0.05", "over every dt from 0.0005 to 0.1".
+std::string overDts(const std::vector<double>& dts)
+{
+    if (dts.size() == 1)
+        return fmt::format("at dt = {}", dts.front());
+    if (dts.size() == 2)
+        return fmt::format("at dt = {} and {}", dts.front(), dts.back());
+    return fmt::format("over every dt from {} to {}", dts.front(), dts.back());
+}
+
+/// "1.0123 times the start at dt = 0.01" or "... at dt = 0.01 and 1.5 times at dt = 0.1".
+std::string endRatios(const std::vector<const ParticleResult*>& rows)
+{
+    std::string text = fmt::format("{:.4f} times the start at dt = {}", rows.front()->energyRatioEnd, rows.front()->dt);
+    if (rows.size() > 1)
+        text += fmt::format(" and {:.4f} times at dt = {}", rows.back()->energyRatioEnd, rows.back()->dt);
+    return text;
+}
+
+std::string nothingCollides(const StudyConfig& config, const StudyResult& result)
+{
+    if (anyCollision(result) || config.collisions.size() < 2)
+        return "";
+    std::string names;
+    for (CollisionResponse c : config.collisions)
+        names += fmt::format("{}`{}`", names.empty() ? "" : ", ", collisionResponseName(c));
+    return fmt::format("**Nothing collides.** No particle met a surface in any run, so the collision responses ({}) "
+                       "never acted and give the same numbers: the tables and plots show them once.\n\n",
+                       names);
+}
+
+std::string forwardEuler(const StudyConfig& config, const StudyResult& result)
+{
+    if (!has(config.integrators, Integrator::ForwardEuler))
+        return "";
+    const auto responses = distinctResponses(config, result);
+    std::string numbers;
+    bool gains = true, growing = true, any = false;
+    for (CollisionResponse c : responses) {
+        const auto rows = rowsOf(config, result, Integrator::ForwardEuler, c);
+        if (rows.empty())
+            continue;
+        any = true;
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            gains = gains && rows[i]->energyRatioEnd > 1.0;
+            growing = growing && rows.size() > 1 && (i == 0 || rows[i]->energyRatioEnd > rows[i - 1]->energyRatioEnd);
+        }
+        numbers += responses.size() > 1 ? fmt::format("With the `{}` response its", collisionResponseName(c)) : "Its";
+        numbers += fmt::format(" energy after {} s is {}. ", config.duration, endRatios(rows));
+    }
+    if (!any)
+        return "";
+    std::string text = gains ? "**Forward Euler gains energy.** " : "**Forward Euler.** ";
+    text += numbers;
+    if (gains) {
+        // dE per step, unit mass: gravity g dt (v_n) + (v_{n+1}^2 - v_n^2)/2 = g^2 dt^2 / 2; spring:
+        // E_{n+1} = E_n (1 + w^2 dt^2). Both from moving with the start's velocity and force.
+        const auto exact = firstExact(config);
+        text += "It moves each step with the velocity, and accelerates it with the force, of the step's start";
+        if (exact && exact->kind() == ExactSolution::Kind::Bounce)
+            text += ": in flight under gravity alone that adds exactly m g² dt² / 2 of energy every step, whichever "
+                    "way the particle moves";
+        else if (exact && exact->kind() == ExactSolution::Kind::Oscillator)
+            text += ": on an undamped spring that multiplies the energy by 1 + ω² dt² every step, for as long as "
+                    "the swing stays short of the anchor";
+        text += growing ? ", so the larger dt, the more it gains.\n\n" : ".\n\n";
+    } else {
+        text += "\n\n";
+    }
+    return text;
+}
+
+/// With collisions: how the response decides whether semi-implicit Euler keeps its bounce.
+std::string semiImplicitEulerBounces(const StudyConfig& config, const StudyResult& result)
+{
+    std::string reflectText, exactText;
+    if (has(config.collisions, CollisionResponse::Reflect)) {
+        double worst = 0, largest = 0;
+        for (const auto* r : rowsOf(config, result, Integrator::SemiImplicitEuler, CollisionResponse::Reflect))
+            if (r->dt <= 0.05 + 1e-12) {
+                worst = std::max(worst, std::abs(r->meanEnergyRatio - 1));
+                largest = r->dt;
+            }
+        if (largest > 0 && worst <= 0.05)
+            reflectText = fmt::format("With the classic `reflect` response its energy, averaged over the run, stays "
+                                      "within {:.1f}% of the start {} (at any one instant it swings by about "
+                                      "g |v| dt / 2 per unit mass around that): the practical's observation that it "
+                                      "keeps its bounce. ",
+                                      100 * worst, largest < 0.05 ? fmt::format("up to dt = {}", largest)
+                                                                  : "for every dt up to 0.05");
+    }
+    if (has(config.collisions, CollisionResponse::Exact)) {
+        // The row nearest dt = 0.05 from below, else the smallest dt: the loss at a typical large dt.
+        const ParticleResult* chosen = nullptr;
+        for (const auto* r : rowsOf(config, result, Integrator::SemiImplicitEuler, CollisionResponse::Exact))
+            if (!chosen || r->dt <= 0.05 + 1e-12)
+                chosen = r;
+        if (chosen && chosen->bounces > 0 && chosen->energyRatioEnd < 1.0)
+            exactText = fmt::format("With the `exact` time-of-impact response it loses energy at every bounce and "
+                                    "ends at {:.3f} of its start energy at dt = {}{}: between bounces it conserves "
+                                    "the shadow energy E - m g v dt / 2, and each bounce, by reversing v, lowers that "
+                                    "level by m g |v| dt{}.",
+                                    chosen->energyRatioEnd, chosen->dt,
+                                    chosen->energyRatioEnd < 0.01 ? " (it has come to rest on the ground)" : "",
+                                    reflectText.empty() ? "" : "; the mirror of `reflect` happens to undo the shift");
+    }
+    if (reflectText.empty() && exactText.empty())
+        return "";
+    const bool both = !reflectText.empty() && !exactText.empty();
+    return (both ? "**Semi-implicit Euler: the collision response decides the verdict.** " : "**Semi-implicit Euler.** ") +
+           reflectText + exactText + "\n\n";
+}
+
+std::string semiImplicitEuler(const StudyConfig& config, const StudyResult& result)
+{
+    if (!has(config.integrators, Integrator::SemiImplicitEuler))
+        return "";
+    if (anyCollision(result))
+        return semiImplicitEulerBounces(config, result);
+    const auto rows = rowsOf(config, result, Integrator::SemiImplicitEuler, config.collisions.front());
+    if (rows.empty())
+        return "";
+    const auto exact = firstExact(config);
+    const bool spring = exact && exact->kind() == ExactSolution::Kind::Oscillator;
+    return fmt::format("**Semi-implicit Euler.** Its energy after {} s is {}{}.\n\n", config.duration, endRatios(rows),
+                       spring ? ": on the undamped spring it is symplectic, it keeps a shadow energy close to the true "
+                                "one, so its error swings but does not grow as forward Euler's does"
+                              : "");
+}
+
+std::string exactWithExactImpacts(const StudyConfig& config, const StudyResult& result, Integrator integrator)
+{
+    if (!has(config.integrators, integrator) || !has(config.collisions, CollisionResponse::Exact))
+        return "";
+    double period = 0, apex = 0;
+    std::vector<double> dts;
+    for (const auto* r : rowsOf(config, result, integrator, CollisionResponse::Exact))
+        if (!std::isnan(r->periodError) && !std::isnan(r->apexRatioLast)) {
+            period = std::max(period, std::abs(r->periodError));
+            apex = std::max(apex, std::abs(r->apexRatioLast - 1));
+            dts.push_back(r->dt);
+        }
+    if (dts.empty() || period > 1e-6 || apex > 1e-6)
+        return "";
+    return fmt::format("**{} with exact impacts is exact.** Its bounce period is off by at most {:.1e} and its last "
+                       "apex by at most {:.1e} (relative) {}: it integrates constant gravity exactly and the time of "
+                       "impact adds no error.\n\n",
+                       integratorName(integrator), period, apex, overDts(dts));
+}
+
+/// The gain of an integrator exact in flight, with the reflect response: the response's own.
+std::string reflectGain(const StudyConfig& config, const StudyResult& result)
+{
+    if (!has(config.collisions, CollisionResponse::Reflect) || !anyCollision(result))
+        return "";
+    std::vector<Integrator> gaining;
+    std::vector<const ParticleResult*> shown; // of the first gaining integrator
+    for (Integrator integrator : {Integrator::VelocityVerlet, Integrator::RK4}) {
+        if (!has(config.integrators, integrator))
+            continue;
+        std::vector<const ParticleResult*> rows;
+        for (const auto* r : rowsOf(config, result, integrator, CollisionResponse::Reflect))
+            if (r->bounces > 0 && r->energyRatioEnd > 1.0 + 1e-6)
+                rows.push_back(r);
+        if (rows.empty())
+            continue;
+        if (gaining.empty()) {
+            // The dt nearest 0.01 and the largest: a typical step and the worst.
+            const auto typical = std::min_element(rows.begin(), rows.end(), [](const auto* a, const auto* b) {
+                return std::abs(std::log(a->dt / 0.01)) < std::abs(std::log(b->dt / 0.01));
+            });
+            shown.push_back(*typical);
+            if (rows.back() != *typical)
+                shown.push_back(rows.back());
+        }
+        gaining.push_back(integrator);
+    }
+    if (gaining.empty())
+        return "";
+    const bool same = gaining.size() == 2 && [&] {
+        for (const auto* r : shown) {
+            const auto* other = findRun(result, gaining[1], CollisionResponse::Reflect, r->dt);
+            if (!other || std::abs(other->energyRatioEnd - r->energyRatioEnd) > 1e-6)
+                return false;
+        }
+        return true;
+    }();
+    std::string who = std::string(integratorName(gaining[0]));
+    if (gaining.size() == 2)
+        who += fmt::format(" and {}", integratorName(gaining[1]));
+    std::string text = fmt::format("**{} {} energy with `reflect`.** With the `reflect` response ", who,
+                                   gaining.size() == 2 ? "gain" : "gains");
+    for (std::size_t k = 0; k < gaining.size(); ++k) {
+        if (k == 1 && same)
+            break;
+        std::string numbers;
+        for (const auto* first : shown) {
+            const auto* r = findRun(result, gaining[k], CollisionResponse::Reflect, first->dt);
+            if (r && r->bounces > 0 && r->energyRatioEnd > 1.0 + 1e-6)
+                numbers += fmt::format("{}{:.4f} times the start at dt = {} ({} bounces)", numbers.empty() ? "" : " and ",
+                                       r->energyRatioEnd, r->dt, r->bounces);
+        }
+        const std::string subject = same ? "both end" : fmt::format("{} ends", integratorName(gaining[k]));
+        if (!numbers.empty())
+            text += fmt::format("{}{} at {} after {} s. ", k > 0 ? "With it " : "", subject, numbers, config.duration);
+    }
+    // A step that ends a depth d below the floor is mirrored to d above it with its velocity
+    // reversed; the time spent below is not given back, so the bounce starts at height d with
+    // the end-of-step speed, v^2 = v_c^2 + 2 g d: the energy grows by 2 m g d, the next apex by
+    // 2 d. d is spread over [0, |v| dt), so the mean gain is m g |v| dt a bounce.
+    text += "The mirror adds it, not the integrator: a step that ends a depth d below the floor is put d above it "
+            "with its velocity reversed, but the time it spent below the surface is not given back, so the bounce "
+            "starts at height d with the speed it had at the end of the step, larger than the speed at contact "
+            "(v² = v_c² + 2 g d). Each bounce adds 2 m g d, with d anywhere from 0 to |v| dt: about m g |v| dt on "
+            "average, for any integrator";
+    const auto exact = firstExact(config);
+    if (!exact || exact->kind() != ExactSolution::Kind::Bounce) {
+        text += ".\n\n";
+        return text;
+    }
+    const double h = exact->height(), v = std::sqrt(2.0 * exact->gravity() * h);
+    std::string measured, predicted;
+    for (const auto* r : shown) {
+        const std::string sep = measured.empty() ? "" : " and ";
+        measured += fmt::format("{}{:.1f}% at dt = {}", sep, 100 * (std::pow(r->energyRatioEnd, 1.0 / double(r->bounces)) - 1),
+                                r->dt);
+        predicted += fmt::format("{}{:.1f}%", sep, 100 * v * r->dt / h);
+    }
+    text += fmt::format(". Velocity Verlet and RK4 follow the flight under gravity exactly, so here the mirror is the "
+                        "whole story: the measured gain per bounce, (E(end)/E(0))^(1/bounces) - 1, is {}, against "
+                        "|v| dt / h = {} for the first impact speed |v| = √(2 g h) = {:.2f} m/s and drop height "
+                        "h = {} m.\n\n",
+                        measured, predicted, v, h);
+    return text;
+}
+
+/// "none of the dt given is" or "of the dt given only 0.01 is", for the fit's points.
+std::string inRange(const std::vector<double>& fitted)
+{
+    return fitted.empty() ? std::string("none of the dt given is")
+                          : fmt::format("of the dt given only {} is", fitted.front());
+}
+
+std::string orders(const StudyResult& result)
+{
+    if (result.orders.empty())
+        return "";
+    std::vector<std::string> measured;
+    std::vector<const OrderResult*> missing;
+    for (const auto& o : result.orders) {
+        if (std::isnan(o.measured))
+            missing.push_back(&o);
+        else
+            measured.push_back(fmt::format("{} {:.2f} (expected {})", integratorName(o.integrator), o.measured, o.expected));
+    }
+    std::string text = "**Orders of accuracy** measured on the harmonic oscillator: ";
+    for (std::size_t i = 0; i < measured.size(); ++i)
+        text += measured[i] + (i + 1 < measured.size() ? "; " : ". Each halving of dt divides the error by 2 to the order.");
+    if (missing.empty())
+        return text + "\n";
+    const bool alike = std::all_of(missing.begin(), missing.end(), [&](const OrderResult* o) { return o->fitted == missing.front()->fitted; });
+    std::string why;
+    if (alike) {
+        why = inRange(missing.front()->fitted);
+    } else {
+        for (const OrderResult* o : missing)
+            why += fmt::format("{}for {} {}", why.empty() ? "" : "; ", integratorName(o->integrator), inRange(o->fitted));
+    }
+    std::string names;
+    for (const OrderResult* o : missing)
+        names += fmt::format("{}{}", names.empty() ? "" : ", ", integratorName(o->integrator));
+    const std::string rule = fmt::format("an order is the slope of log(error) against log(dt) and needs at least two "
+                                         "dt in the asymptotic range, dt ≤ {} s with an error above rounding ({:g} m), "
+                                         "and {}",
+                                         kOrderMaxDt, kOrderRoundingError, why);
+    if (measured.empty())
+        return fmt::format("**Orders of accuracy** on the harmonic oscillator are not measured: {}.\n", rule);
+    text += fmt::format(" {} {} no order: {}{}.", names, missing.size() > 1 ? "have" : "has", rule,
+                        missing.size() > 1 && alike ? " for them" : "");
+    return text + "\n";
+}
+
+} // namespace
+
+const ParticleResult* findRun(const StudyResult& result, Integrator integrator, CollisionResponse collision, double dt)
+{
+    for (const auto& r : result.runs)
+        if (r.integrator == integrator && r.collision == collision && r.dt == dt)
+            return &r;
+    return nullptr;
+}
+
+bool anyCollision(const StudyResult& result)
+{
+    return std::any_of(result.runs.begin(), result.runs.end(), [](const ParticleResult& r) { return r.bounces > 0; });
+}
+
+std::vector<CollisionResponse> distinctResponses(const StudyConfig& config, const StudyResult& result)
+{
+    if (anyCollision(result) || config.collisions.empty())
+        return config.collisions;
+    return {config.collisions.front()};
+}
+
+std::string describeDts(const std::vector<double>& dts)
+{
+    if (dts.size() == 1)
+        return fmt::format("dt = {} s", dts.front());
+    if (dts.size() == 2)
+        return fmt::format("dt = {} and {} s", dts.front(), dts.back());
+    return fmt::format("dt from {} to {} s ({} values)", dts.front(), dts.back(), dts.size());
+}
+
+std::string orderText(const OrderResult& order)
+{
+    return std::isnan(order.measured) ? "not measured" : fmt::format("{:.2f}", order.measured);
+}
+
+std::string findings(const StudyConfig& config, const StudyResult& result)
+{
+    return nothingCollides(config, result) + forwardEuler(config, result) + semiImplicitEuler(config, result) +
+           exactWithExactImpacts(config, result, Integrator::VelocityVerlet) +
+           exactWithExactImpacts(config, result, Integrator::RK4) + reflectGain(config, result) + orders(result);
+}
+
+} // namespace pba::study

@@ -1,0 +1,32 @@
+#pragma once
+// The integrator study's findings in words, each sentence stated from the measured numbers and
+// only where they bear it out: a report must read true for any scene and any set of dt.
+#include <string>
+#include <vector>
+
+#include "study.hpp"
+
+namespace pba::study {
+
+/// The first moving particle's result for one configuration, or null.
+const ParticleResult* findRun(const StudyResult& result, Integrator integrator, CollisionResponse collision, double dt);
+
+/// True if some particle met a surface in some run. Otherwise the collision responses never
+/// acted, and every response gives the same numbers.
+bool anyCollision(const StudyResult& result);
+
+/// The collision responses whose results differ: all those studied, or only the first when
+/// nothing collided.
+std::vector<CollisionResponse> distinctResponses(const StudyConfig& config, const StudyResult& result);
+
+/// "dt = 0.3 s", "dt = 0.01 and 0.05 s", "dt from 0.0005 to 0.1 s (8 values)".
+std::string describeDts(const std::vector<double>& dts);
+
+/// The measured order as "1.02", or "not measured" when fewer than two dt were in the
+/// asymptotic range.
+std::string orderText(const OrderResult& order);
+
+/// The findings, one paragraph each, in Markdown.
+std::string findings(const StudyConfig& config, const StudyResult& result);
+
+} // namespace pba::study

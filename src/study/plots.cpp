@@ -1,0 +1,179 @@
+#include "plots.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "exact_solution.hpp"
+#include "findings.hpp"
+#include "render/palette.hpp"
+
+namespace pba::study {
+
+namespace {
+
+double closest(const std::vector<double>& values, double target)
+{
+    return *std::min_element(values.begin(), values.end(),
+                             [&](double a, double b) { return std::abs(std::log(a / target)) < std::abs(std::log(b / target)); });
+}
+
+void writeSeries(const std::filesystem::path& path, const Series& s, bool energy)
+{
+    std::ofstream out(path);
+    for (std::size_t i = 0; i < s.t.size(); ++i)
+        out << s.t[i] << ' ' << (energy ? s.energyRatio[i] : s.y[i]) << '\n';
+}
+
+std::string colour(Integrator integrator, double shade = 0.0)
+{
+    return palette::hex(palette::shade(palette::integratorRgb(integrator), shade));
+}
+
+/// One panel per integrator, laid out so that none is left empty.
+std::string multiplot(std::size_t panels, const std::string& output, const std::string& title)
+{
+    const std::size_t columns = panels == 1 ? 1 : 2, rows = panels <= 2 ? 1 : 2;
+    return fmt::format("set terminal pngcairo size {},{} font 'sans,10'\nset output '{}'\n"
+                       "set multiplot layout {},{} title '{}'\n",
+                       columns == 1 ? 900 : 1400, rows == 1 ? 480 : 900, output, rows, columns, title);
+}
+
+/// The first moving particle, the one the plots follow.
+std::size_t firstMoving(const World& world)
+{
+    std::size_t first = 0;
+    while (first < world.bodyCount() && world.body(first).isFixed())
+        ++first;
+    return first;
+}
+
+/// How far line k of n is moved from its integrator's colour: 0 for the typical one, towards
+/// black before it, towards white after it.
+double shadeOf(std::size_t k, std::size_t typical, std::size_t n)
+{
+    if (k < typical)
+        return -0.45 * double(typical - k) / double(typical);
+    if (k > typical)
+        return 0.45 * double(k - typical) / double(n - 1 - typical);
+    return 0.0;
+}
+
+std::string heightPlot(const std::filesystem::path& dir, const StudyConfig& config, const StudyResult& result)
+{
+    const CollisionResponse collision = config.collisions.front();
+    // The smallest dt, a typical one and a large one: each integrator's line in shades of its
+    // colour, its own for the typical dt, darker for smaller dt and lighter for larger.
+    std::vector<double> shown{config.dts.front()};
+    for (double target : {0.01, 0.05})
+        if (double dt = closest(config.dts, target); std::find(shown.begin(), shown.end(), dt) == shown.end())
+            shown.push_back(dt);
+    std::sort(shown.begin(), shown.end());
+    const auto typical = std::size_t(std::find(shown.begin(), shown.end(), closest(config.dts, 0.01)) - shown.begin());
+    const World& world = config.scene.world;
+    const std::size_t first = firstMoving(world);
+    const auto exact = first < world.bodyCount() ? ExactSolution::find(world, first) : std::nullopt;
+    if (exact) {
+        std::ofstream out(dir / "exact.dat");
+        for (int i = 0; i <= 4000; ++i) {
+            const double t = config.duration * i / 4000.0;
+            out << t << ' ' << exact->position(t).y << '\n';
+        }
+    }
+    const double start = first < world.bodyCount() ? world.body(first).getPos().y : 0.0;
+    // Without collisions every response gives the same motion: naming one would mislead.
+    const std::string title = anyCollision(result)
+                                  ? fmt::format("height against time ({} collision response)", collisionResponseName(collision))
+                                  : std::string("height against time");
+    std::string script = multiplot(config.integrators.size(), "height.png", title) +
+                         "set xlabel 't (s)'\nset ylabel 'y (m)'\nset key outside right\n";
+    for (Integrator integrator : config.integrators) {
+        std::string line = fmt::format("set title '{}'\nplot ", integratorName(integrator));
+        for (std::size_t k = 0; k < shown.size(); ++k) {
+            const ParticleResult* r = findRun(result, integrator, collision, shown[k]);
+            if (!r)
+                continue;
+            const std::string file = fmt::format("h_{}_{}.dat", integratorName(integrator), shown[k]);
+            writeSeries(dir / file, r->series, false);
+            const double shade = shadeOf(k, typical, shown.size());
+            line += fmt::format("'{}' with lines lw 1.5 lc rgb '{}' title 'dt = {}', ", file, colour(integrator, shade),
+                                shown[k]);
+        }
+        if (exact)
+            line += "'exact.dat' with lines lw 1 dt 2 lc rgb 'black' title 'exact', ";
+        line += fmt::format("{} with lines lc rgb 'gray50' dt 3 title 'start height'\n", start);
+        script += line;
+    }
+    return script + "unset multiplot\n";
+}
+
+std::string energyPlot(const std::filesystem::path& dir, const StudyConfig& config, const StudyResult& result)
+{
+    const double dt = closest(config.dts, 0.01);
+    const auto responses = distinctResponses(config, result);
+    const bool collides = anyCollision(result);
+    std::string script = fmt::format("set terminal pngcairo size {},500 font 'sans,10'\nset output 'energy.png'\n"
+                                     "set multiplot layout 1,{} title 'energy over its start value, dt = {} s'\n"
+                                     "set xlabel 't (s)'\nset ylabel 'E / E0'\nset key inside top left\n",
+                                     responses.size() == 1 ? 900 : 1400, responses.size(), dt);
+    for (CollisionResponse collision : responses) {
+        std::string line = collides ? fmt::format("set title '{} response'\nplot ", collisionResponseName(collision))
+                                    : std::string("unset title\nplot ");
+        // The last integrator thinner and dashed over the others, so that two on the same curve
+        // (velocity Verlet and RK4 are both exact in flight) both stay visible.
+        line += "1 with lines lc rgb 'gray50' dt 3 title 'exact', ";
+        for (Integrator integrator : config.integrators) {
+            const ParticleResult* r = findRun(result, integrator, collision, dt);
+            if (!r)
+                continue;
+            const bool last = integrator == config.integrators.back() && config.integrators.size() > 1;
+            const std::string file = fmt::format("e_{}_{}.dat", integratorName(integrator), collisionResponseName(collision));
+            writeSeries(dir / file, r->series, true);
+            line += fmt::format("'{}' with lines {} lc rgb '{}' title '{}', ", file, last ? "lw 1.8 dt (10,6)" : "lw 2.5",
+                                colour(integrator), integratorName(integrator));
+        }
+        script += line.substr(0, line.size() - 2) + "\n";
+    }
+    return script + "unset multiplot\n";
+}
+
+std::string convergencePlot(const std::filesystem::path& dir, const StudyResult& result)
+{
+    std::string plot;
+    for (const auto& o : result.orders) {
+        const std::string file = fmt::format("order_{}.dat", integratorName(o.integrator));
+        std::ofstream out(dir / file);
+        for (std::size_t i = 0; i < o.dts.size(); ++i)
+            if (o.errors[i] > 0)
+                out << o.dts[i] << ' ' << o.errors[i] << '\n';
+        const std::string order = std::isnan(o.measured) ? std::string("order not measured: fewer than two dt in range")
+                                                         : fmt::format("measured order {:.2f}", o.measured);
+        plot += fmt::format("'{}' with linespoints lw 2 pt 7 ps 0.8 lc rgb '{}' title '{} ({})', ", file,
+                            colour(o.integrator), integratorName(o.integrator), order);
+    }
+    // The dt axis spans the dt measured, with a margin; a single dt gets a decade around it.
+    const std::vector<double> dts = result.orders.empty() ? std::vector<double>{} : result.orders.front().dts;
+    const std::string xrange = dts.size() == 1 ? fmt::format("set xrange [{}:{}]\nset xtics add ('{}' {})\n", dts.front() / 3,
+                                                                         dts.front() * 3, dts.front(), dts.front())
+                                               : "set autoscale xfix\nset offsets graph 0.04, graph 0.04, 0, 0\n";
+    // The legend goes under the plot, so the plot keeps the picture's width.
+    return "set terminal pngcairo size 900,800 font 'sans,11'\nset output 'convergence.png'\n"
+           "set title \"position error against dt on the spring (harmonic oscillator)\"\n"
+           "set logscale xy\nset format y '10^{%L}'\nset xlabel 'dt (s)'\nset ylabel 'max position error over 2 s (m)'\n"
+           "set grid\n" + xrange + "set key below maxrows 4\nplot " +
+           plot +
+           "0.5*x with lines dt 2 lc rgb 'gray40' title 'slope 1', 0.5*x**2 with lines dt 3 lc rgb 'gray40' title "
+           "'slope 2', 0.02*x**4 with lines dt 4 lc rgb 'gray40' title 'slope 4'\n";
+}
+
+} // namespace
+
+std::string plotScript(const std::filesystem::path& dir, const StudyConfig& config, const StudyResult& result)
+{
+    return heightPlot(dir, config, result) + energyPlot(dir, config, result) + convergencePlot(dir, result);
+}
+
+} // namespace pba::study
