@@ -18,7 +18,10 @@ glm::vec4 integratorColour(Integrator integrator)
 
 glm::vec4 bodyColour(const Body& body)
 {
-    return body.isFixed() ? glm::vec4(0.70f, 0.70f, 0.72f, 1.0f) : integratorColour(body.getIntegrator());
+    if (!body.isFixed())
+        return integratorColour(body.getIntegrator());
+    const auto [r, g, b] = palette::channels(palette::kFixed);
+    return {r, g, b, 1.0f};
 }
 
 float drawnRadius(const Body& body, const ViewSettings& settings)
