@@ -202,6 +202,14 @@ bool dryerShapeControls(BlowDryerField& f)
     return changed;
 }
 
+bool hasDryer(const World& world)
+{
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        if (dynamic_cast<const BlowDryer*>(&world.force(i)))
+            return true;
+    return false;
+}
+
 /// Each blow dryer's settings, set through the state so that reset keeps them.
 void dryerSection(ViewerState& state)
 {
@@ -235,7 +243,7 @@ void panelSections(ViewerState& state)
         viewSection(state);
     if (ImGui::CollapsingHeader("particles", ImGuiTreeNodeFlags_DefaultOpen))
         particlesSection(state);
-    if (ImGui::CollapsingHeader("blow dryer", ImGuiTreeNodeFlags_DefaultOpen))
+    if (hasDryer(state.scene.world) && ImGui::CollapsingHeader("blow dryer", ImGuiTreeNodeFlags_DefaultOpen))
         dryerSection(state);
     if (ImGui::CollapsingHeader("plots", ImGuiTreeNodeFlags_DefaultOpen))
         plotsSection(state);
