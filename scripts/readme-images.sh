@@ -19,6 +19,12 @@ still blow-dryer-flow 12 640x480 # taller: the legend leaves all five balls in v
 "$pba" render blow-dryer-swarm --size 640x360 --time 1.5 --out "$out/blow-dryer-swarm.png"
 "$pba" field blow-dryer-flow --slice --out "$out/field-blow-dryer-flow.png"
 
+# The integrator study's height plot (its colours are the viewer's), and the viewer itself with
+# its panel, captured at an exact simulated time under a virtual display.
+"$pba" compare --out "$work/study" > /dev/null
+cp "$work/study/height.png" "$out/compare-height.png"
+xvfb-run -a -s "-screen 0 1280x720x24" "$pba" view integrators --time 1.3 --screenshot "$out/viewer.png"
+
 gif() { # SCENE SECONDS SIZE: the first SECONDS at 12 frames a second, a palette of its own
   "$pba" render "$1" --duration "$2" --fps 12 --size "$3" --out "$work/$1.mp4"
   ffmpeg -v error -y -i "$work/$1.mp4" -vf "palettegen=max_colors=96" "$work/$1-palette.png"
