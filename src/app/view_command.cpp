@@ -63,7 +63,8 @@ void addViewCommand(CLI::App& root, Action& selected)
     view->footer("\nKeys: space pause/play, '.' or right arrow single step, r reset, i toggle interpolation,\n"
                  "      c reset the camera, Esc quit.\n"
                  "Mouse: drag to orbit, right-drag or shift-drag to pan, wheel to zoom.\n"
-                 "Without a display: xvfb-run -a -s \"-screen 0 1280x720x24\" pba view\n");
+                 "Without a display: `pba render SCENE --out pba-out/shot.png --time T` draws the same picture;\n"
+                 "under xvfb-run the window is invisible and runs until --frames N (or --time T) ends it.\n");
     view->callback([options, &selected] { selected = [options] { return runView(*options); }; });
 }
 
