@@ -330,11 +330,12 @@ void addBenchCommand(CLI::App& root, Action& selected)
                                                    "on 1 and all cores, the heap-Particle baseline, the bandwidth bound");
     bench->add_flag("--json", options->json, "Print {\"results\": [...]} instead of a table");
     bench->add_flag("--quick", options->quick, "Measure briefly, at N = 1e3 and 1e5 (for scripted checks)");
-    bench->add_option("--windows", options->windows, "Windows timed per row (default 6, 1 with --quick)")
-        ->check(CLI::Range(1, 100));
+    bench->add_option("--windows", options->windows, "Windows timed per row, 1 to 100 (default 6, 1 with --quick)")
+        ->check(CLI::Range(1, 100))
+        ->option_text("N");
     bench->add_option("--sizes", options->sizes, "Comma-separated particle counts (default 1e3,1e5,1e6,1e7)")
         ->delimiter(',')
-        ->type_name("N,N");
+        ->option_text("N,...");
     bench->footer("\nThe workload is the blow-dryer-swarm scene (gravity, the blow dryer, the room's walls and the\n"
                   "hole) at dt = 0.002. Each row of a size is timed in 6 windows (--windows; one with --quick),\n"
                   "each the same work: from the scene's first state, as many steps as filled a first quarter\n"

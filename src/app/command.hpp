@@ -42,6 +42,8 @@ void addRenderCommand(CLI::App& root, Action& selected);
 void addViewCommand(CLI::App& root, Action& selected);
 void addCompareCommand(CLI::App& root, Action& selected);
 void addBenchCommand(CLI::App& root, Action& selected);
+void addScenesCommand(CLI::App& root, Action& selected);
+void addHelpCommand(CLI::App& root, Action& selected);
 
 /// `pba` with no arguments: the default scene in a window when there is a display,
 /// otherwise rendered to an MP4 and a PNG in `directory`.

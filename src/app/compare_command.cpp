@@ -131,25 +131,25 @@ void addCompareCommand(CLI::App& root, Action& selected)
     auto options = std::make_shared<CompareOptions>();
     CLI::App* compare = root.add_subcommand("compare", "The integrator study: every integrator, collision response "
                                                        "and dt against the exact solution, as tables, plots and a report");
-    compare->add_option("scene", options->scene, "Built-in scene name or path (default integrators)")->type_name("SCENE");
+    addScenePositional(*compare, options->scene, "integrators");
     compare->add_option("--out", options->out, "Directory for report.md, results.csv, orders.csv and the PNG plots "
                                                "(default pba-compare)")
         ->type_name("DIR");
     compare->add_option("--integrators", options->integrators, "Comma-separated integrators (default all four)")
         ->delimiter(',')
-        ->type_name("A,B");
+        ->option_text("NAME,...");
     compare->add_option("--collisions", options->collisions, "Comma-separated collision responses (default all three)")
         ->delimiter(',')
-        ->type_name("A,B");
+        ->option_text("MODE,...");
     compare->add_option("--dt", options->dts, "Comma-separated timesteps (default 0.0005,0.001,0.002,0.005,0.01,0.02,"
                                               "0.05,0.1)")
         ->delimiter(',')
-        ->type_name("DT,DT");
+        ->option_text("DT,...");
     compare->add_option("--duration", options->duration, "Simulated time of each run (default the scene's)")
         ->type_name("SECONDS");
     compare->add_option("--jobs", options->jobs, "Runs in parallel (default all cores); results do not depend on it")
         ->type_name("N");
-    compare->footer("\nExample: pba compare --out study && open study/report.md\n");
+    compare->footer("\nExample: pba compare --out pba-out/study && open pba-out/study/report.md\n");
     compare->callback([options, &selected] { selected = [options] { return runCompare(*options); }; });
 }
 

@@ -16,6 +16,7 @@
 #include "io/output_file.hpp"
 #include "pba/blow_dryer.hpp"
 #include "pba/scene/scene.hpp"
+#include "scene_options.hpp"
 
 namespace pba::app {
 
@@ -228,22 +229,21 @@ void addFieldCommand(CLI::App& root, Action& selected)
     auto options = std::make_shared<FieldOptions>();
     CLI::App* field = root.add_subcommand("field", "Inspect a scene's force fields: the force at a point, or a "
                                                    "picture of the blow dryer's field");
-    options->scene = "blow-dryer";
-    field->add_option("scene", options->scene, "Built-in scene name or path to a JSON scene file")
-        ->type_name("SCENE")
-        ->default_str("blow-dryer");
+    addScenePositional(*field, options->scene, "blow-dryer");
     field->add_option("--at", options->at, "Print the force on a unit-mass particle at rest at this point "
                                            "(each field's share and the total, gravity included)")
         ->delimiter(',')
-        ->type_name("X,Y,Z")
-        ->expected(3);
+        ->expected(3)
+        ->option_text("X,Y,Z");
     field->add_flag("--json", options->json, "With --at: print {\"total\": [x,y,z], \"forces\": [...]} instead");
     field->add_flag("--slice", options->slice, "Draw the field in the vertical plane through the dryer's axis: "
                                                "magnitude colour map, arrows, the cone and the floor");
     field->add_option("--out", options->out, "With --slice: the PNG to write")->type_name("FILE.png");
-    field->add_option("--resolution", options->resolution, "With --slice: colour map samples across the picture")
-        ->check(CLI::Range(16, 2000));
-    field->footer("\nExamples:\n  pba field blow-dryer --at 0,1,0\n  pba field blow-dryer-flow --slice --out field.png\n");
+    field->add_option("--resolution", options->resolution,
+                      "With --slice: colour map samples across the picture, 16 to 2000 (default 240)")
+        ->check(CLI::Range(16, 2000))
+        ->option_text("N");
+    field->footer("\nExamples:\n  pba field blow-dryer --at 0,1,0\n  pba field blow-dryer-flow --slice --out pba-out/field.png\n");
     field->callback([options, &selected] { selected = [options] { return runField(*options); }; });
 }
 

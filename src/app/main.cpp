@@ -11,6 +11,7 @@
 #include "command.hpp"
 #include "io/output_file.hpp"
 #include "pba/scene/scene.hpp"
+#include "scene_options.hpp"
 
 int main(int argc, char** argv)
 {
@@ -24,8 +25,14 @@ int main(int argc, char** argv)
     CLI::App app{"pba: a physics-based animation lab. Particles, integrators and fixed timesteps you can see and "
                  "measure.",
                  "pba"};
-    app.footer("Exit status: 0 success, 1 other failure, 2 bad input or usage, 3 simulation failure "
-               "(non-finite state).\nRun `pba COMMAND --help` for the options of a command.");
+    app.footer(fmt::format("\nWithout a COMMAND, pba shows the {0} scene in a window; with no display it renders it\n"
+                           "instead, which takes about 20 s, to pba-out/{0}.mp4 and pba-out/{0}.png.\n\n"
+                           "Exit status: 0 success, 1 other failure, 2 bad input or usage, 3 simulation failure "
+                           "(non-finite state).\nRun `pba help COMMAND` or `pba COMMAND --help` for the options of a "
+                           "command.",
+                           kDefaultScene));
+    listScenesInHelp(app);
+    app.set_version_flag("--version", fmt::format("pba {}", PBA_VERSION), "Print the version and exit");
     app.require_subcommand(0, 1);
     Action selected;
     addSimCommand(app, selected);
@@ -34,14 +41,14 @@ int main(int argc, char** argv)
     addViewCommand(app, selected);
     addCompareCommand(app, selected);
     addBenchCommand(app, selected);
+    addScenesCommand(app, selected);
+    addHelpCommand(app, selected);
 
     std::vector<std::string> args(argv + 1, argv + argc);
     std::reverse(args.begin(), args.end()); // CLI11 takes the arguments in reverse order
     try {
         app.parse(args);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForAllHelp& e) {
+    } catch (const CLI::Success& e) { // --help, --version
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         fmt::print(stderr, "pba: error: {}\n", e.what());

@@ -100,6 +100,9 @@ int runRender(const RenderOptions& options)
 
 int renderDefaultScene(const std::string& directory)
 {
+    // Twenty seconds of silence look like a hang: say what is coming before the work starts.
+    fmt::print(stderr, "pba: no display: rendering the {} scene to {}/{}.mp4 and {}/{}.png (about 20 s)...\n",
+               kDefaultScene, directory, kDefaultScene, directory, kDefaultScene);
     std::filesystem::create_directories(directory);
     RenderOptions options;
     options.scene.scene = kDefaultScene;
@@ -111,9 +114,10 @@ int renderDefaultScene(const std::string& directory)
     options.time = 10.0;
     if (const int code = runRender(options); code != kExitSuccess)
         return code;
-    fmt::print("no display: rendered the {} scene instead of opening a window:\n  {}/{}.mp4\n  {}/{}.png\n"
-               "(run `xvfb-run -a -s \"-screen 0 1280x720x24\" pba view` for the window on a machine without one)\n",
-               kDefaultScene, directory, kDefaultScene, directory, kDefaultScene);
+    fmt::print("no display: rendered the {0} scene instead of opening a window:\n  {1}/{0}.mp4\n  {1}/{0}.png\n"
+               "Other scenes and moments: `pba render SCENE --out {1}/SCENE.png --time T` (or .mp4), or\n"
+               "`pba view SCENE --time T --screenshot {1}/shot.png` under xvfb-run (`pba scenes` lists them).\n",
+               kDefaultScene, directory);
     return kExitSuccess;
 }
 
@@ -134,9 +138,9 @@ void addRenderCommand(CLI::App& root, Action& selected)
     render->add_flag("--no-trails", options->noTrails, "Do not draw the particles' fading trails");
     render->add_flag("--lanes", options->lanes, "Integrator lanes: a ghost of the exact solution beside each particle "
                                                 "that has one (the integrators and spring scenes)");
-    render->footer("\nExamples:\n  pba render integrators --out integrators.png --time 1.2\n"
-                   "  pba render blow-dryer --out blow-dryer.mp4 --duration 10\n"
-                   "  pba render spring --out frames/ --fps 30\n");
+    render->footer("\nExamples:\n  pba render integrators --out pba-out/integrators.png --time 1.2\n"
+                   "  pba render blow-dryer --out pba-out/blow-dryer.mp4 --duration 10\n"
+                   "  pba render spring --out pba-out/frames/ --fps 30\n");
     render->callback([options, &selected] { selected = [options] { return runRender(*options); }; });
 }
 

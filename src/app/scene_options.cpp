@@ -1,6 +1,8 @@
 #include "scene_options.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -8,13 +10,37 @@
 
 namespace pba::app {
 
+std::string builtinSceneList()
+{
+    std::vector<std::string> names = builtinSceneNames();
+    std::sort(names.begin(), names.end()); // by name, not by file name: blow-dryer before blow-dryer-flow
+    std::size_t width = 0;
+    for (const auto& name : names)
+        width = std::max(width, name.size());
+    std::string text = "Built-in scenes (SCENE may also be a path to a JSON scene file, see docs/scenes.md):";
+    for (const auto& name : names)
+        text += fmt::format("\n  {:<{}}  {}", name, width, builtinSceneSummary(name));
+    return text;
+}
+
+void listScenesInHelp(CLI::App& command)
+{
+    // CLI11 prints this callback's text, a line break, then the footer string (the examples).
+    command.footer([] { return builtinSceneList(); });
+}
+
+void addScenePositional(CLI::App& command, std::string& scene, const std::string& defaultScene)
+{
+    scene = defaultScene;
+    command.add_option("SCENE", scene,
+                       fmt::format("A built-in scene (listed below) or a JSON scene file (default {})", defaultScene))
+        ->type_name("");
+    listScenesInHelp(command);
+}
+
 void addSceneOptions(CLI::App& command, SceneOptions& options, const std::string& defaultScene)
 {
-    options.scene = defaultScene;
-    command.add_option("scene", options.scene,
-                       "Built-in scene name or path to a JSON scene file (see `docs/scenes.md`)")
-        ->default_str(defaultScene)
-        ->type_name("SCENE");
+    addScenePositional(command, options.scene, defaultScene);
     command.add_option("--dt", options.dt, "Fixed physics timestep in seconds (overrides the scene)")
         ->type_name("SECONDS");
     command.add_option("--duration", options.duration, "Simulated time in seconds (overrides the scene)")

@@ -18,8 +18,18 @@ struct SceneOptions {
     std::optional<std::string> collision;
 };
 
-/// Adds the positional SCENE (with `defaultScene`) and --dt, --duration, --integrator, --collision.
+/// Adds the positional SCENE (with `defaultScene`) and --dt, --duration, --integrator, --collision,
+/// and the list of built-in scenes to the command's help.
 void addSceneOptions(CLI::App& command, SceneOptions& options, const std::string& defaultScene);
+
+/// The positional SCENE alone (for commands without the overrides), and the scene list in the help.
+void addScenePositional(CLI::App& command, std::string& scene, const std::string& defaultScene);
+
+/// "Built-in scenes ...:" and one line per scene with its summary, for help texts and `pba scenes`.
+std::string builtinSceneList();
+
+/// Puts builtinSceneList() at the end of the command's help, before its own footer.
+void listScenesInHelp(CLI::App& command);
 
 /// The most steps one run may take: beyond it a run is a typo (dt 1e-12), and would not end.
 inline constexpr double kMaxSteps = 1e10;

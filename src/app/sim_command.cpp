@@ -227,7 +227,7 @@ void addSimCommand(CLI::App& root, Action& selected)
 {
     auto options = std::make_shared<SimOptions>();
     CLI::App* sim = root.add_subcommand("sim", "Run a scene without drawing it and print a per-body summary");
-    sim->footer("\nExamples:\n  pba sim integrators --dt 0.05 --integrator rk4\n  pba sim bouncing-cube --out run.csv --frame-rate 30\n");
+    sim->footer("\nExamples:\n  pba sim integrators --dt 0.05 --integrator rk4\n  pba sim bouncing-cube --out pba-out/run.csv --frame-rate 30\n");
     addSceneOptions(*sim, options->scene, kDefaultScene);
     sim->add_option("--out", options->out,
                     "Write one CSV row per body per physics step (step 0 included) to this file; columns "

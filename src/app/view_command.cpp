@@ -92,7 +92,9 @@ void addViewCommand(CLI::App& root, Action& selected)
                  "      settings), R (shift+r) reload the scene's own settings, i toggle interpolation,\n"
                  "      c reset the camera, Esc quit.\n"
                  "Mouse: drag to orbit, right-drag or shift-drag to pan, wheel to zoom.\n"
-                 "Without a display: xvfb-run -a -s \"-screen 0 1280x720x24\" pba view --time 2 --screenshot shot.png\n");
+                 "Without a display: `pba render SCENE --out pba-out/frame.png --time T` draws the scene, or\n"
+                 "xvfb-run -a -s \"-screen 0 1280x720x24\" pba view SCENE --time T --screenshot pba-out/shot.png\n"
+                 "captures the window with its panel (the invisible window closes after the shot).\n");
     view->callback([options, &selected] { selected = [options] { return runView(*options); }; });
 }
 

@@ -58,6 +58,22 @@ bool syncTree(const fs::path& folder)
 
 fs::path parentOf(const fs::path& p) { return p.parent_path().empty() ? fs::path(".") : p.parent_path(); }
 
+/// The folder an output goes into must exist, or be one folder short of it: `pba-out/x.png` in a
+/// fresh clone makes pba-out (Temporary does, once the work is done and writing starts), while a
+/// missing folder above that (`typo/pba-out/x.png`) is more likely a mistake than a wish.
+void requireParentFolder(const fs::path& requested, const fs::path& target)
+{
+    const fs::path parent = parentOf(target);
+    std::error_code ec;
+    if (fs::is_directory(parent, ec))
+        return;
+    if (fs::exists(parent, ec))
+        throw BadOutput(fmt::format("{}: cannot be written: {} is not a folder", describe(requested), parent.string()));
+    if (!fs::is_directory(parentOf(parent), ec))
+        throw BadOutput(fmt::format("{}: cannot be written: the folder {} does not exist (a missing last folder is "
+                                    "made, not a path of them)", describe(requested), parentOf(parent).string()));
+}
+
 } // namespace
 
 fs::path resolveOutputFile(const fs::path& requested)
@@ -79,9 +95,7 @@ fs::path resolveOutputFile(const fs::path& requested)
     if (fs::exists(status) && !fs::is_regular_file(status))
         throw BadOutput(fmt::format("{}: is not a regular file (a device, FIFO or socket): give a file path",
                                     describe(requested)));
-    if (!fs::is_directory(parentOf(target)))
-        throw BadOutput(fmt::format("{}: cannot be written: the folder {} does not exist", describe(requested),
-                                    parentOf(target).string()));
+    requireParentFolder(requested, target);
     return target;
 }
 
@@ -97,14 +111,21 @@ fs::path resolveOutputFolder(const fs::path& requested)
     const fs::file_status status = fs::status(target, ec);
     if (fs::exists(status) && !fs::is_directory(status))
         throw BadOutput(fmt::format("{}: exists and is not a folder", describe(requested)));
-    if (!fs::is_directory(parentOf(target)))
-        throw BadOutput(fmt::format("{}: cannot be written: the folder {} does not exist", describe(requested),
-                                    parentOf(target).string()));
+    requireParentFolder(requested, target);
     return target;
 }
 
 Temporary::Temporary(fs::path target, Kind kind) : m_target(std::move(target)), m_kind(kind)
 {
+    std::error_code made;
+    if (const fs::path parent = parentOf(m_target); !fs::is_directory(parent, made)) {
+        // The one missing folder requireParentFolder let through; kept even if the write fails
+        // (an empty folder, not a partial output).
+        fs::create_directory(parent, made);
+        if (!fs::is_directory(parent, made))
+            throw BadOutput(fmt::format("{}: cannot be written: the folder {} cannot be made: {}", describe(m_target),
+                                        parent.string(), made ? made.message() : "it is not a folder"));
+    }
     m_temporary = m_target;
     m_temporary += fmt::format(".tmp-{}", ::getpid());
     {

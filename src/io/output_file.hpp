@@ -24,15 +24,16 @@ public:
 /// The file an output path names. A symbolic link is followed to its target, which is the file
 /// replaced (the link stays a link). Throws BadOutput for an empty path, a directory, anything
 /// that is not a regular file (a device such as /dev/null, a FIFO, a socket) or a folder that
-/// does not exist.
+/// does not exist, unless it is the last one of the path (its parent exists): Temporary makes it.
 std::filesystem::path resolveOutputFile(const std::filesystem::path& requested);
 
 /// The same for a folder output: an existing folder (replaced as a whole) or a new one in an
-/// existing folder. Throws BadOutput otherwise.
+/// existing folder, or in a missing one whose parent exists. Throws BadOutput otherwise.
 std::filesystem::path resolveOutputFolder(const std::filesystem::path& requested);
 
 /// A temporary file or folder beside its target (`TARGET.tmp-PID`), removed when this object
-/// dies uncommitted and when the program is stopped by SIGINT or SIGTERM.
+/// dies uncommitted and when the program is stopped by SIGINT or SIGTERM. Makes the target's
+/// folder if it is missing (the one folder the resolve functions let through).
 class Temporary {
 public:
     enum class Kind { File, Folder };

@@ -2,6 +2,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "pba/scene/scene.hpp"
 
 namespace pba {
@@ -24,6 +26,17 @@ std::string_view builtinSceneText(std::string_view name)
         if (detail::kBuiltinScenes[i].first == name)
             return detail::kBuiltinScenes[i].second;
     return {};
+}
+
+std::string builtinSceneSummary(std::string_view name)
+{
+    const std::string_view text = builtinSceneText(name);
+    if (text.empty())
+        return {};
+    const auto document = nlohmann::json::parse(text.begin(), text.end(), nullptr, false);
+    if (!document.is_object() || !document.contains("summary") || !document["summary"].is_string())
+        return {};
+    return document["summary"].get<std::string>();
 }
 
 } // namespace pba

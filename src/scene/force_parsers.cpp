@@ -112,9 +112,11 @@ std::unique_ptr<Force> parseBlowDryer(ObjectReader& reader, World& world)
 const std::vector<ForceType>& forceTypes()
 {
     static const std::vector<ForceType> types{
-        {"spring", &parseSpring},
-        {"drag", &parseDrag},
-        {"blow-dryer", &parseBlowDryer},
+        {"spring", &parseSpring, {"particle", "anchor", "stiffness", "rest_length", "damping"}},
+        {"drag", &parseDrag, {"coefficient"}},
+        {"blow-dryer", &parseBlowDryer,
+         {"nozzle", "axis", "height", "nozzle_radius", "top_radius", "strength", "axial_falloff", "radial_falloff",
+          "direction", "air_speed", "axis_pull", "grille_depth"}},
     };
     return types;
 }

@@ -18,6 +18,7 @@ using ForceParser = std::unique_ptr<Force> (*)(ObjectReader& reader, World& worl
 struct ForceType {
     const char* name;
     ForceParser parse;
+    std::vector<std::string> keys; ///< the keys its parser reads, besides "type"
 };
 
 const std::vector<ForceType>& forceTypes();

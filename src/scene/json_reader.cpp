@@ -1,6 +1,8 @@
 #include "json_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -21,13 +23,65 @@ std::string typeName(const Json& value)
         return "an object";
     return "null";
 }
+std::string unknownKeyReason(const std::string& key, const std::vector<std::string>& known)
+{
+    if (const auto close = closestName(key, known))
+        return fmt::format("unknown key (did you mean \"{}\"?)", *close);
+    return fmt::format("unknown key (expected one of: {})", fmt::join(known, ", "));
+}
 } // namespace
+
+std::size_t editDistance(std::string_view a, std::string_view b)
+{
+    // d[i][j]: distance between the first i characters of a and the first j of b.
+    std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+    for (std::size_t i = 0; i <= a.size(); ++i)
+        d[i][0] = i;
+    for (std::size_t j = 0; j <= b.size(); ++j)
+        d[0][j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i)
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        }
+    return d[a.size()][b.size()];
+}
+
+std::optional<std::string> closestName(std::string_view word, const std::vector<std::string>& candidates)
+{
+    // Two edits turn "dt" into any two-letter key: short words allow one.
+    const std::size_t allowed = std::clamp<std::size_t>(word.size() / 3, 1, 2);
+    std::optional<std::string> best;
+    std::size_t bestDistance = allowed + 1;
+    bool tie = false;
+    for (const auto& candidate : candidates) {
+        const std::size_t distance = editDistance(word, candidate);
+        if (distance < bestDistance) {
+            best = candidate;
+            bestDistance = distance;
+            tie = false;
+        } else if (distance == bestDistance && best && *best != candidate) {
+            tie = true;
+        }
+    }
+    return tie ? std::nullopt : best;
+}
 
 ObjectReader::ObjectReader(const Json& value, std::string path, const std::string& file)
     : m_value(value), m_path(std::move(path)), m_file(file)
 {
     if (!value.is_object())
         failHere(fmt::format("expected an object, got {}", typeName(value)));
+}
+
+void ObjectReader::expectKeys(std::vector<std::string> known)
+{
+    m_known = std::move(known);
+    for (const auto& item : m_value.items())
+        if (std::find(m_known.begin(), m_known.end(), item.key()) == m_known.end())
+            fail(item.key(), unknownKeyReason(item.key(), m_known));
 }
 
 std::string ObjectReader::pathOf(const std::string& key) const { return m_path.empty() ? key : m_path + "." + key; }
@@ -44,6 +98,10 @@ void ObjectReader::failHere(const std::string& reason) const
 
 const Json& ObjectReader::require(const std::string& key)
 {
+    // A key read but not declared would be refused as unknown in every file that gives it.
+    if (!m_known.empty() && std::find(m_known.begin(), m_known.end(), key) == m_known.end())
+        throw std::logic_error(fmt::format("scene reader: {} is read but not in its object's expected keys",
+                                           pathOf(key)));
     if (!m_value.contains(key))
         fail(key, "is required but missing");
     m_read.insert(key);
@@ -137,7 +195,7 @@ void ObjectReader::finish() const
 {
     for (const auto& item : m_value.items())
         if (!m_read.count(item.key()))
-            fail(item.key(), "unknown key (a typo?)");
+            fail(item.key(), m_known.empty() ? "unknown key (a typo?)" : "is not used here");
 }
 
 } // namespace pba::scene_detail

@@ -6,6 +6,8 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -20,6 +22,11 @@ class ObjectReader {
 public:
     /// Throws unless `value` is an object.
     ObjectReader(const Json& value, std::string path, const std::string& file);
+
+    /// Declares the keys this object may hold and reports the first other one, with the known key
+    /// it is closest to. Called before anything is read: a typo ("stifness") must be named rather
+    /// than the required key it hides ("stiffness is missing") or a later error it causes.
+    void expectKeys(std::vector<std::string> known);
 
     bool has(const std::string& key) const { return m_value.contains(key); }
     /// The path of a field of this object, e.g. "particles[1].mass".
@@ -55,6 +62,15 @@ private:
     std::string m_path;
     const std::string& m_file;
     std::set<std::string> m_read;
+    std::vector<std::string> m_known; ///< empty until expectKeys()
 };
+
+/// Edit distance with transpositions (optimal string alignment): "stifness" is 1 from
+/// "stiffness", "mass" 2 from "max".
+std::size_t editDistance(std::string_view a, std::string_view b);
+
+/// The candidate closest to `word` if it is close enough to be a typo of it (at most 2 edits,
+/// and at most a third of its length, at least 1); none when two are equally close.
+std::optional<std::string> closestName(std::string_view word, const std::vector<std::string>& candidates);
 
 } // namespace pba::scene_detail

@@ -1,4 +1,5 @@
 // Scene files to Worlds. The order of reading follows docs/scenes.md.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <optional>
@@ -33,11 +34,13 @@ void readSurfaces(ObjectReader& root, World& world)
         root.fail("room", "a scene has either a ground or a room, not both");
     if (root.has("ground")) {
         ObjectReader ground = root.object("ground");
+        ground.expectKeys({"height"});
         world.setGround(ground.number("height", 0.0));
         ground.finish();
     }
     if (root.has("room")) {
         ObjectReader room = root.object("room");
+        room.expectKeys({"min", "max"});
         const Aabb box{room.vec3("min"), room.vec3("max")};
         for (int i = 0; i < 3; ++i)
             if (!(box.min[i] < box.max[i]))
@@ -84,6 +87,7 @@ void readParticle(const Json& value, const std::string& path, const std::string&
                   std::set<std::string>& names)
 {
     ObjectReader reader(value, path, file);
+    reader.expectKeys({"name", "position", "velocity", "mass", "restitution", "integrator", "fixed"});
     Particle p;
     const std::string name = readName(reader, "name");
     if (name.empty())
@@ -173,12 +177,15 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
                std::set<std::string>& names)
 {
     ObjectReader reader(value, path, file);
+    reader.expectKeys({"name", "count", "region", "velocity", "velocity_jitter", "mass", "restitution", "integrator",
+                       "seed"});
     SwarmDesc desc;
     desc.name = readName(reader, "name");
     if (desc.name.empty() || !names.insert(desc.name).second)
         reader.fail("name", desc.name.empty() ? "must not be empty" : fmt::format("'{}' is already taken", desc.name));
     desc.count = readCount(reader, "count", 1e8);
     ObjectReader region = reader.object("region");
+    region.expectKeys({"min", "max"});
     desc.regionMin = region.vec3("min");
     desc.regionMax = region.vec3("max");
     for (int i = 0; i < 3; ++i)
@@ -228,9 +235,28 @@ bool swarmFieldsFit(const World& world)
     return true;
 }
 
+/// A force's keys depend on its type; while the type is missing or unknown, any key of any
+/// force type is let through so that the type's own error comes first.
+void expectForceKeys(ObjectReader& reader, const Json& value)
+{
+    std::vector<std::string> keys{"type"};
+    const auto& types = scene_detail::forceTypes();
+    const bool typed = value.contains("type") && value["type"].is_string();
+    const auto known = std::find_if(types.begin(), types.end(), [&](const auto& t) {
+        return typed && value["type"].get<std::string>() == t.name;
+    });
+    for (auto t = types.begin(); t != types.end(); ++t)
+        if (known == types.end() || t == known)
+            keys.insert(keys.end(), t->keys.begin(), t->keys.end());
+    std::sort(keys.begin() + 1, keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    reader.expectKeys(std::move(keys));
+}
+
 void readForce(const Json& value, const std::string& path, const std::string& file, World& world)
 {
     ObjectReader reader(value, path, file);
+    expectForceKeys(reader, value);
     const std::string type = reader.string("type");
     for (const auto& known : scene_detail::forceTypes()) {
         if (type == known.name) {
@@ -242,10 +268,12 @@ void readForce(const Json& value, const std::string& path, const std::string& fi
             return;
         }
     }
-    std::string names;
+    std::vector<std::string> names;
     for (const auto& known : scene_detail::forceTypes())
-        names += (names.empty() ? "" : ", ") + std::string(known.name);
-    reader.fail("type", fmt::format("unknown force type '{}' (expected one of: {})", type, names));
+        names.emplace_back(known.name);
+    if (const auto close = scene_detail::closestName(type, names))
+        reader.fail("type", fmt::format("unknown force type '{}' (did you mean \"{}\"?)", type, *close));
+    reader.fail("type", fmt::format("unknown force type '{}' (expected one of: {})", type, fmt::join(names, ", ")));
 }
 
 /// Every particle's energy must be finite at the start: a velocity of 1e300 m/s is a valid
@@ -264,9 +292,12 @@ void requireFiniteEnergies(const World& world, const std::string& file)
 Scene readScene(const Json& document, const std::string& file)
 {
     ObjectReader root(document, "", file);
+    root.expectKeys({"name", "summary", "description", "dt", "duration", "gravity", "collision_response", "ground",
+                     "room", "particles", "swarms", "forces"});
     Scene scene;
     scene.source = file;
     scene.name = readName(root, "name", "unnamed");
+    scene.summary = readName(root, "summary", "");
     scene.description = root.string("description", "");
     scene.dt = root.positive("dt", 0.01);
     scene.duration = root.positive("duration", 10.0);
@@ -371,11 +402,12 @@ Scene loadScene(std::string_view nameOrPath)
     const std::filesystem::path path{std::string(nameOrPath)};
     if (path.has_parent_path() || path.extension() == ".json" || std::filesystem::exists(path))
         return loadSceneFile(path);
-    std::string names;
-    for (const auto& name : builtinSceneNames())
-        names += (names.empty() ? "" : ", ") + name;
+    const std::vector<std::string> names = builtinSceneNames();
+    if (const auto close = scene_detail::closestName(nameOrPath, names))
+        throw SceneError(std::string(nameOrPath), "(scene)",
+                         fmt::format("neither a built-in scene nor a file (did you mean \"{}\"?)", *close));
     throw SceneError(std::string(nameOrPath), "(scene)",
-                     fmt::format("neither a built-in scene ({}) nor a file", names));
+                     fmt::format("neither a built-in scene ({}) nor a file", fmt::join(names, ", ")));
 }
 
 } // namespace pba

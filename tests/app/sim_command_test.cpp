@@ -104,6 +104,26 @@ INSTANTIATE_TEST_SUITE_P(
                     BadRun{"integrators --frame-rate 0", "--frame-rate"},
                     BadRun{"integrators --no-such-option", "no-such-option"}));
 
+// The issue's two typos, as a student meets them: one line on stderr naming the file, the key
+// and the key it is close to, exit 2.
+TEST(PbaSim, AMisspeltSceneKeyIsNamedWithTheKeyItIsCloseTo)
+{
+    const auto dir = freshDir("sim_typo");
+    const std::string spring = R"("forces": [{"type": "spring", "particle": "b", "anchor": [0, 2, 0], )";
+    std::ofstream(dir / "partcles.json") << R"({"partcles": [{"name": "b", "position": [0, 1, 0]}], )" << spring
+                                         << R"("stiffness": 1}]})";
+    std::ofstream(dir / "stifness.json") << R"({"particles": [{"name": "b", "position": [0, 1, 0]}], )" << spring
+                                         << R"("stifness": 1}]})";
+    CommandResult r = runPba("sim " + (dir / "partcles.json").string());
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err, "pba: error: " + (dir / "partcles.json").string() +
+                         ": partcles: unknown key (did you mean \"particles\"?)\n");
+    r = runPba("sim " + (dir / "stifness.json").string());
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err, "pba: error: " + (dir / "stifness.json").string() +
+                         ": forces[0].stifness: unknown key (did you mean \"stiffness\"?)\n");
+}
+
 TEST(PbaSim, UnwritableOutputIsBadInput)
 {
     const CommandResult r = runPba("sim integrators --out /nonexistent/dir/run.csv");

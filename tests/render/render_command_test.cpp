@@ -45,10 +45,12 @@ TEST(PbaRender, BadOutputIsBadInputAndLeavesNothing)
 {
     const auto dir = freshDir("render_bad");
     EXPECT_EQ(runPba("render integrators --out " + (dir / "x.gif").string()).exitCode, 2);
-    EXPECT_EQ(runPba("render integrators --out " + (dir / "missing/x.png").string()).exitCode, 2);
+    // A missing last folder is made (pba-out/ in a fresh clone); two missing are refused.
+    EXPECT_EQ(runPba("render integrators --out " + (dir / "missing/deeper/x.png").string()).exitCode, 2);
     // Found before any frame is drawn: a long video into a missing folder fails at once.
-    EXPECT_EQ(runPba("render integrators --duration 1000 --out " + (dir / "missing/x.mp4").string()).exitCode, 2);
-    EXPECT_EQ(runPba("render integrators --out " + (dir / "missing/frames/").string()).exitCode, 2);
+    EXPECT_EQ(runPba("render integrators --duration 1000 --out " + (dir / "missing/deeper/x.mp4").string()).exitCode,
+              2);
+    EXPECT_EQ(runPba("render integrators --out " + (dir / "missing/deeper/frames/").string()).exitCode, 2);
     EXPECT_EQ(runPba("render integrators --size 12 --out " + (dir / "x.png").string()).exitCode, 2);
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0);
 }
@@ -126,7 +128,7 @@ TEST(PbaView, ScreenshotNeedsTimeAndBadTimesAreRefused)
     EXPECT_EQ(runPba("view integrators --time -1 --screenshot " + png).exitCode, 2);
     EXPECT_EQ(runPba("view integrators --time 1 --frames 10").exitCode, 2);
     EXPECT_EQ(runPba("view integrators --duration 1 --time 2 --screenshot " + png).exitCode, 2);
-    EXPECT_EQ(runPba("view integrators --time 1 --screenshot " + (dir / "missing/x.png").string()).exitCode, 2);
+    EXPECT_EQ(runPba("view integrators --time 1 --screenshot " + (dir / "missing/deeper/x.png").string()).exitCode, 2);
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0);
 }
 

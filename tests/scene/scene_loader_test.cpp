@@ -205,3 +205,77 @@ TEST(SceneLoader, MissingFileAndUnknownNameAreErrors)
     }
     EXPECT_THROW(loadScene("no-such-scene"), SceneError);
 }
+
+/// The one-line message parseScene gives for `json`, or "accepted".
+std::string errorOf(const std::string& json)
+{
+    try {
+        parseScene(json, "scene.json");
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    return "accepted";
+}
+
+// A misspelt key used to surface as whatever its absence caused next: "partcles" dropped the
+// particles and the spring then found no particle named 'b'; "stifness" made stiffness missing.
+// Each object's keys are now checked before anything of it is read.
+TEST(SceneLoader, AnUnknownKeyIsReportedFirstWithTheKnownKeyItIsCloseTo)
+{
+    EXPECT_EQ(errorOf(R"({"partcles": [{"name": "b", "position": [0, 1, 0]}],
+                          "forces": [{"type": "spring", "particle": "b", "anchor": [0, 2, 0], "stiffness": 1}]})"),
+              R"(scene.json: partcles: unknown key (did you mean "particles"?))");
+    EXPECT_EQ(errorOf(R"({"particles": [{"name": "b", "position": [0, 1, 0]}],
+                          "forces": [{"type": "spring", "particle": "b", "anchor": [0, 2, 0], "stifness": 1}]})"),
+              R"(scene.json: forces[0].stifness: unknown key (did you mean "stiffness"?))");
+    // In a particle, before its bad mass; in a swarm's region; in a blow dryer; in the room.
+    EXPECT_EQ(errorOf(R"({"particles": [{"name": "b", "position": [0, 1, 0], "mass": 0, "velcoity": [1, 0, 0]}]})"),
+              R"(scene.json: particles[0].velcoity: unknown key (did you mean "velocity"?))");
+    EXPECT_EQ(errorOf(expand(R"(@swarms{"region": {"min": [0, 1, 0], "mx": [1, 2, 1]}})")),
+              R"(scene.json: swarms[0].region.mx: unknown key (did you mean "max"?))");
+    EXPECT_EQ(errorOf(expand(R"(@forces{"nozle_radius": 0.1})")),
+              R"(scene.json: forces[0].nozle_radius: unknown key (did you mean "nozzle_radius"?))");
+    EXPECT_EQ(errorOf(R"({"room": {"min": [0, 0, 0], "max": [1, 1, 1], "Max": 2}})"),
+              R"(scene.json: room.Max: unknown key (did you mean "max"?))");
+    // A force's type is a key too; a misspelt type value gets the same help.
+    EXPECT_EQ(errorOf(R"({"forces": [{"tpye": "drag", "coefficient": 1}]})"),
+              R"(scene.json: forces[0].tpye: unknown key (did you mean "type"?))");
+    EXPECT_EQ(errorOf(R"({"forces": [{"type": "sprign"}]})"),
+              R"(scene.json: forces[0].type: unknown force type 'sprign' (did you mean "spring"?))");
+    // A key of another force type is unknown in this one.
+    EXPECT_EQ(errorOf(R"({"forces": [{"type": "drag", "coefficient": 1, "stiffness": 2}]})"),
+              "scene.json: forces[0].stiffness: unknown key (expected one of: type, coefficient)");
+}
+
+TEST(SceneLoader, AnUnknownKeyFarFromEveryKnownOneGetsNoSuggestion)
+{
+    const std::string error = errorOf(R"({"particles": [{"name": "b", "position": [0, 1, 0], "colour": "red"}]})");
+    EXPECT_EQ(error.rfind("scene.json: particles[0].colour: unknown key (expected one of: name, position,", 0), 0u)
+        << error;
+    EXPECT_EQ(error.find("did you mean"), std::string::npos) << error;
+    // Two edits are too many for a three-letter key ("max" is not a typo of "mass").
+    EXPECT_EQ(errorOf(R"({"particles": [{"name": "b", "position": [0, 1, 0], "max": 1}]})").find("did you mean"),
+              std::string::npos);
+    EXPECT_EQ(errorOf(R"({"wind": [1, 0, 0]})").find("did you mean"), std::string::npos);
+}
+
+TEST(SceneLoader, AMisspeltBuiltinSceneNameGetsASuggestion)
+{
+    try {
+        loadScene("integrator");
+        FAIL();
+    } catch (const SceneError& e) {
+        EXPECT_STREQ(e.what(), R"(integrator: (scene): neither a built-in scene nor a file (did you mean "integrators"?))");
+    }
+}
+
+TEST(SceneLoader, EveryBuiltinSceneHasAOneLineSummary)
+{
+    for (const auto& name : builtinSceneNames()) {
+        const std::string summary = builtinSceneSummary(name);
+        EXPECT_FALSE(summary.empty()) << name;
+        EXPECT_LE(summary.size(), 80u) << name; // fits a help line
+        EXPECT_EQ(loadScene(name).summary, summary) << name;
+    }
+    EXPECT_EQ(builtinSceneSummary("no-such-scene"), "");
+}

@@ -14,6 +14,7 @@ namespace pba {
 /// A scene as loaded: the world at t = 0 plus how long and with which dt to run it.
 struct Scene {
     std::string name;
+    std::string summary;     ///< one line for lists (`pba scenes`, --help)
     std::string description;
     double dt = 0.01;        ///< s
     double duration = 10.0;  ///< s
@@ -47,5 +48,8 @@ Scene loadScene(std::string_view nameOrPath);
 std::vector<std::string> builtinSceneNames();
 /// The JSON text of a built-in scene, or an empty view if there is none of that name.
 std::string_view builtinSceneText(std::string_view name);
+/// The one-line summary of a built-in scene (its "summary"), read without building its world
+/// (a swarm's arrays are not allocated to list it); empty if there is no such scene.
+std::string builtinSceneSummary(std::string_view name);
 
 } // namespace pba

@@ -1,0 +1,121 @@
+// What a student reads first: `pba --help`, each command's --help, `pba help`, `pba scenes`,
+// `pba --version`. Every scene-taking command names the built-in scenes, and no option shows
+// CLI11's own placeholders (INT:INT in [16 - 2000], X,Y,Z x 3, TEXT) instead of words.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "pba/scene/scene.hpp"
+#include "support/run_command.hpp"
+
+using namespace pba::test;
+
+namespace {
+
+const std::vector<std::string> kSceneCommands{"", "sim", "field", "render", "view", "compare"};
+const std::vector<std::string> kCommands{"", "sim", "field", "render", "view", "compare", "bench", "scenes", "help"};
+
+std::string helpOf(const std::string& command)
+{
+    const CommandResult r = runPba(command.empty() ? "--help" : command + " --help");
+    EXPECT_EQ(r.exitCode, 0) << command << ": " << r.err;
+    EXPECT_EQ(r.err, "") << command;
+    return r.out;
+}
+
+} // namespace
+
+TEST(PbaHelp, EverySceneTakingCommandListsTheBuiltinScenesWithTheirSummaries)
+{
+    for (const auto& command : kSceneCommands) {
+        const std::string help = helpOf(command);
+        for (const auto& name : pba::builtinSceneNames()) {
+            const std::regex line("\n  " + name + " +" + std::regex_replace(pba::builtinSceneSummary(name),
+                                                                             std::regex(R"([.^$|()\[\]{}*+?\\])"),
+                                                                             R"(\$&)") + "\n");
+            EXPECT_TRUE(std::regex_search(help, line)) << "pba " << command << " --help lacks " << name << "\n" << help;
+        }
+    }
+}
+
+TEST(PbaHelp, NoOptionShowsCli11Placeholders)
+{
+    for (const auto& command : kCommands) {
+        const std::string help = helpOf(command);
+        for (const char* leak : {"INT", "FLOAT", "TEXT", "UINT", " in [", " x 3", " x 2", "=blow-dryer"})
+            EXPECT_EQ(help.find(leak), std::string::npos) << "pba " << command << " --help shows '" << leak << "'\n"
+                                                           << help;
+    }
+}
+
+TEST(PbaHelp, HelpCommandPrintsWhatHelpFlagPrints)
+{
+    for (const auto& command : kCommands) {
+        const CommandResult word = runPba("help " + command);
+        EXPECT_EQ(word.exitCode, 0) << command << ": " << word.err;
+        EXPECT_EQ(word.out, helpOf(command)) << "pba help " << command;
+    }
+    const CommandResult unknown = runPba("help simulate");
+    EXPECT_EQ(unknown.exitCode, 2);
+    EXPECT_NE(unknown.err.find("help: no command 'simulate'"), std::string::npos) << unknown.err;
+    EXPECT_EQ(unknown.out, "");
+}
+
+TEST(PbaHelp, VersionIsOneLine)
+{
+    const CommandResult r = runPba("--version");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(std::regex_match(r.out, std::regex(R"(pba \d+\.\d+\.\d+\n)"))) << r.out;
+}
+
+TEST(PbaHelp, ScenesCommandListsEveryBuiltinSceneOnALineOfItsOwn)
+{
+    const CommandResult r = runPba("scenes");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    const auto names = pba::builtinSceneNames();
+    for (const auto& name : names)
+        EXPECT_NE(r.out.find("\n  " + name + " "), std::string::npos) << name << "\n" << r.out;
+    // A heading and one line per scene, each short enough for a terminal.
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), static_cast<long>(names.size()) + 1) << r.out;
+    std::size_t start = 0;
+    for (std::size_t end; (end = r.out.find('\n', start)) != std::string::npos; start = end + 1)
+        EXPECT_LE(end - start, 100u) << r.out.substr(start, end - start);
+}
+
+// Bare `pba` without a display spends about 20 s rendering: the help says so, and where to.
+TEST(PbaHelp, TopHelpSaysWhatBarePbaDoes)
+{
+    const std::string help = helpOf("");
+    for (const char* expected : {"pba-out/blow-dryer.mp4", "about 20 s", "pba help COMMAND", "Exit status"})
+        EXPECT_NE(help.find(expected), std::string::npos) << expected << "\n" << help;
+    for (const char* command : {"scenes", "help"})
+        EXPECT_NE(help.find(std::string("\n  ") + command + " "), std::string::npos) << command;
+}
+
+// The README's examples write under pba-out/, which a fresh clone does not have: a missing last
+// folder is made, a path of missing folders is still refused (a typo, most likely).
+TEST(PbaOutputs, AMissingLastFolderIsMadeButNotAPathOfThem)
+{
+    const auto dir = freshDir("out_folder");
+    RunOptions inDir;
+    inDir.workDir = dir;
+    CommandResult r = runPbaArgv({"sim", "bouncing-cube", "--duration", "0.1", "--out", "pba-out/run.csv"}, inDir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir / "pba-out/run.csv"));
+    std::filesystem::remove_all(dir / "pba-out");
+    r = runPbaArgv({"compare", "--duration", "1", "--out", "pba-out/study"}, inDir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir / "pba-out/study/report.md"));
+
+    r = runPbaArgv({"sim", "bouncing-cube", "--duration", "0.1", "--out", "typo/pba-out/run.csv"}, inDir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("the folder typo does not exist"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "typo"));
+    // A bad scene writes nothing, not even the folder.
+    r = runPbaArgv({"sim", "no-such-scene", "--out", "new/run.csv"}, inDir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_FALSE(std::filesystem::exists(dir / "new"));
+}
