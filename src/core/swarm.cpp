@@ -13,6 +13,8 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 
+#include "surface_tests.hpp"
+
 namespace pba {
 
 namespace {

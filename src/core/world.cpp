@@ -7,6 +7,8 @@
 #include "pba/blow_dryer.hpp"
 #include "pba/forces.hpp"
 
+#include "collision_rules.hpp"
+
 namespace pba {
 
 NonFiniteStateError::NonFiniteStateError(std::string body, std::uint64_t step, double time, std::string quantity)

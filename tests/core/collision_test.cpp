@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "core/surface_tests.hpp"
 #include "pba/forces.hpp"
 #include "pba/scene/scene.hpp"
 #include "pba/world.hpp"

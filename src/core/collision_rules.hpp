@@ -1,0 +1,391 @@
+#pragma once
+// The three collision responses of pba/collision.hpp as rules for one body: the exact response
+// (time of impact, bounce, rest of the step), reflect and clamp (after a full step), and the
+// last line of defence that keeps every body inside. Each is a template over the scalar type
+// and the acceleration, and written over the primitives PlaneT and AxisPlaneT share, so the
+// same rule serves a double-precision Particle and a float swarm's vectorised passes.
+// Private to the core.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <span>
+#include <utility>
+
+#include "pba/collision.hpp"
+#include "pba/integrator.hpp"
+#include "time_of_impact.hpp"
+
+namespace pba {
+
+namespace collision_detail {
+
+/// How many impacts one step may resolve before the rest of it is clamped (a body
+/// wedged in a corner with e close to 1 would otherwise loop).
+inline constexpr int kMaxEvents = 16;
+
+template <class T>
+inline T contactTolerance(const PlaneT<T>& plane)
+{
+    return T(64) * std::numeric_limits<T>::epsilon() * (T(1) + std::abs(plane.offset));
+}
+
+/// Moves x onto the plane along its normal (Sterbenz: exact when x is near the plane).
+template <class T>
+inline void snapOnto(const PlaneT<T>& plane, Vec3<T>& x)
+{
+    x -= plane.distance(x) * plane.normal;
+}
+
+/// Puts a body in the shaft below a hole (`inShaft`) that is at or beyond the shaft's side wall
+/// back just inside it, and reflects its outward radial velocity with restitution. Selects
+/// rather than branches, as pushBack, so a swarm's vectorised pass runs it too: a body that is
+/// not at the wall is left as it was. Returns whether it moved the body; counts the bounce.
+/// `plane` is a PlaneT or an AxisPlaneT, as for every function of the rule below.
+template <class Geometry, class T>
+inline bool pushIntoShaft(const Geometry& plane, T restitution, bool inShaft, Vec3<T>& x, Vec3<T>& v, int& bounces)
+{
+    const auto rho = plane.fromHoleAxis(x);
+    const T r = glm::length(rho);
+    const bool atWall = inShaft & !(r < plane.holeRadius) & (r > T(0));
+    const auto out = rho / (r > T(0) ? r : T(1)); // read only at the wall, where r > 0
+    Vec3<T> pushed = x;
+    plane.moveInPlane(pushed, -(r - plane.holeRadius * (T(1) - T(16) * std::numeric_limits<T>::epsilon())) * out);
+    const T vr = plane.alongInPlane(v, out);
+    const bool bounce = atWall & (vr > T(0));
+    Vec3<T> reflected = v;
+    plane.moveInPlane(reflected, -((T(1) + restitution) * vr) * out);
+    // Whole selects, not x -= (atWall ? ... : 0) * out: away from the wall nothing changes, not
+    // even the sign of a zero.
+    x = Vec3<T>(atWall ? pushed.x : x.x, atWall ? pushed.y : x.y, atWall ? pushed.z : x.z);
+    v = Vec3<T>(bounce ? reflected.x : v.x, bounce ? reflected.y : v.y, bounce ? reflected.z : v.z);
+    bounces += int(bounce);
+    return atWall;
+}
+
+/// Keeps a body that is in the shaft below a hole within the shaft's radius (pushIntoShaft).
+template <class Geometry, class T>
+inline int keepInShaft(const Geometry& plane, T restitution, Vec3<T>& x, Vec3<T>& v)
+{
+    int bounces = 0;
+    pushIntoShaft(plane, restitution, true, x, v, bounces);
+    return bounces;
+}
+
+/// Whether a body that ended the step at x, from `start`, is excused from `plane` by its hole:
+/// it is over the hole, or it was already in the shaft below. Bitwise operators rather than
+/// && and ||, so a swarm loop can evaluate it for every particle without branches.
+template <class Geometry, class T>
+inline bool throughHole(const Geometry& plane, const Vec3<T>& start, const Vec3<T>& x)
+{
+    const auto rho = plane.fromHoleAxis(x);
+    return (plane.holeRadius > T(0)) &
+           ((glm::dot(rho, rho) < plane.holeRadius * plane.holeRadius) | (plane.distance(start) < T(0)));
+}
+
+/// A body lies on a plane when it touches it and does not move away from it.
+template <class T>
+inline bool restsOn(const PlaneT<T>& plane, const Vec3<T>& x, const Vec3<T>& v)
+{
+    return std::abs(plane.distance(x)) <= contactTolerance(plane) && glm::dot(plane.normal, v) <= T(0) &&
+           !plane.overHole(x);
+}
+
+/// Last line of defence for every mode: a body never ends a step outside. `start` is where
+/// the step began: a body that was in a hole's shaft is kept in the shaft.
+template <class T>
+inline int keepInside(std::span<const PlaneT<T>> planes, T restitution, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v)
+{
+    int bounces = 0;
+    for (const PlaneT<T>& plane : planes) {
+        if (plane.distance(x) < T(0)) {
+            if (throughHole(plane, start, x)) {
+                bounces += keepInShaft(plane, restitution, x, v);
+                continue;
+            }
+            snapOnto(plane, x);
+            const T vn = glm::dot(plane.normal, v);
+            if (vn < T(0))
+                v -= vn * plane.normal;
+        }
+    }
+    return bounces;
+}
+
+/// The reflect and clamp rules' share for one plane: a body that ended the step beyond `plane`
+/// (and not through its hole) is moved back along the normal by `back` times its depth (2:
+/// mirrored across the plane, 1: put on it), and its normal velocity reflected with
+/// restitution if it still moves outward. A body in the plane's shaft is kept within the
+/// shaft's side wall (pushIntoShaft): the wall is a surface of the pass like the plane itself,
+/// not left to the last line of defence, because particles that fall into the hole slide
+/// around the wall at the grille for good (16,000 a step of a million-particle swarm, each
+/// through the whole rule one by one: a third of its step). Written with selects instead of
+/// branches, so the same function serves one body and a vectorised loop over a swarm's arrays;
+/// a body that is inside is left exactly as it was. Returns whether it moved the body; counts
+/// the bounce. `kMayHaveHole` false, for a plane known to have none, skips the shaft's
+/// arithmetic (a swarm's pass picks it per plane; it changes no result). `plane` is a PlaneT or
+/// an AxisPlaneT.
+template <bool kMayHaveHole = true, class Geometry, class T>
+inline bool pushBack(const Geometry& plane, T restitution, T back, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
+                     int& bounces)
+{
+    const T d = plane.distance(x);
+    const bool excused = kMayHaveHole && throughHole(plane, start, x);
+    const bool beyond = (d < T(0)) & !excused;
+    plane.moveAlong(x, -(beyond ? back * d : T(0)));
+    const T vn = plane.along(v);
+    const bool bounce = beyond & (vn < T(0));
+    plane.moveAlong(v, -(bounce ? (T(1) + restitution) * vn : T(0)));
+    bounces += int(bounce);
+    if constexpr (kMayHaveHole)
+        return pushIntoShaft(plane, restitution, (d < T(0)) & excused, x, v, bounces) | beyond;
+    else
+        return beyond;
+}
+
+/// The indices in `planes` of the walls facing +axis and -axis (the inner one of each; -1 when there
+/// is none), leaving out walls with a hole unless `withHoles`.
+template <class T>
+inline std::array<int, 2> wallsOnAxis(std::span<const PlaneT<T>> planes, int axis, bool withHoles)
+{
+    std::array<int, 2> walls{-1, -1};
+    for (std::size_t p = 0; p < planes.size(); ++p) {
+        if (planes[p].axis() != axis || (!withHoles && planes[p].holeRadius > T(0)))
+            continue;
+        // Of two walls on one side the inner one (a larger offset on either side: the floor, not
+        // the grille below its hole): a point clear of it is clear of the other.
+        int& wall = walls[planes[p].normal[axis] > T(0) ? 0 : 1];
+        if (wall < 0 || planes[p].offset > planes[std::size_t(wall)].offset)
+            wall = static_cast<int>(p);
+    }
+    return walls;
+}
+
+} // namespace collision_detail
+
+/// The exact response. Returns the number of bounces during the step.
+///
+/// Resting contact: a body on a surface whose net acceleration pushes into it is held
+/// there by removing the normal components of its velocity and acceleration (the
+/// surface's normal force), so it neither sinks nor bounces an endless number of
+/// zero-length times. With e < 1 a rebound too weak to leave the surface for one full
+/// step (slower than |a.n| dt) becomes such a contact; with e = 1 no energy may be
+/// lost, so every rebound is kept.
+template <class T, class Accel>
+inline int stepExact(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
+                     Vec3<T>& v, T dt, Accel&& accel)
+{
+    using namespace collision_detail;
+    constexpr std::size_t kMaxPlanes = 8;
+    std::array<bool, kMaxPlanes> contact{};
+    auto constrained = [&](const Vec3<T>& px, const Vec3<T>& pv) {
+        Vec3<T> a = accel(px, pv);
+        for (std::size_t p = 0; p < planes.size() && p < kMaxPlanes; ++p) {
+            const T an = glm::dot(planes[p].normal, a);
+            if (contact[p] && an < T(0))
+                a -= an * planes[p].normal;
+        }
+        return a;
+    };
+    const Vec3<T> start = x;
+    int bounces = 0;
+    T remaining = dt;
+    for (int event = 0; event < kMaxEvents && remaining > T(0); ++event) {
+        for (std::size_t p = 0; p < planes.size() && p < kMaxPlanes; ++p) {
+            contact[p] = false; // decide each plane afresh with the unconstrained acceleration
+            if (restsOn(planes[p], x, v) && glm::dot(planes[p].normal, accel(x, v)) < T(0)) {
+                contact[p] = true;
+                snapOnto(planes[p], x);
+                v -= glm::dot(planes[p].normal, v) * planes[p].normal;
+            }
+        }
+        std::optional<T> tau;
+        std::size_t hit = 0;
+        for (std::size_t p = 0; p < planes.size() && p < kMaxPlanes; ++p) {
+            if (contact[p])
+                continue;
+            const auto t = timeOfImpactWithHole(integrator, planes[p], x, v, remaining, constrained);
+            if (t && (!tau || *t < *tau)) {
+                tau = t;
+                hit = p;
+            }
+        }
+        if (!tau) {
+            integrate(integrator, x, v, remaining, constrained);
+            remaining = T(0);
+            break;
+        }
+        if (*tau > T(0))
+            integrate(integrator, x, v, *tau, constrained);
+        const PlaneT<T>& plane = planes[hit];
+        snapOnto(plane, x);
+        const T vn = glm::dot(plane.normal, v);
+        const T an = glm::dot(plane.normal, accel(x, v));
+        if (vn < T(0)) {
+            v -= (T(1) + restitution) * vn * plane.normal;
+            ++bounces;
+            if (restitution < T(1) && an < T(0) && -restitution * vn < -an * dt)
+                v -= glm::dot(plane.normal, v) * plane.normal; // too weak to leave: rest
+        }
+        remaining -= *tau;
+    }
+    bounces += keepInside(planes, restitution, start, x, v);
+    return bounces;
+}
+
+/// One plane's share of a pass of the reflect rule: mirror the body back across it.
+template <bool kMayHaveHole = true, class Geometry, class T>
+inline bool mirrorBack(const Geometry& plane, T restitution, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
+                       int& bounces)
+{
+    return collision_detail::pushBack<kMayHaveHole>(plane, restitution, T(2), start, x, v, bounces);
+}
+
+/// The clamp rule's share for one plane: put the body back on it.
+template <bool kMayHaveHole = true, class Geometry, class T>
+inline bool snapBack(const Geometry& plane, T restitution, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
+                     int& bounces)
+{
+    return collision_detail::pushBack<kMayHaveHole>(plane, restitution, T(1), start, x, v, bounces);
+}
+
+/// Two opposite walls of a box, neither with a hole: the slab lo <= x[axis] <= hi.
+template <class T>
+struct SlabT {
+    int axis;
+    T lo, hi;
+};
+
+/// The slabs among `planes` (at most one an axis), so the reflect rule can fold a body into
+/// each in one go. Returns how many there are.
+template <class T>
+inline int boxSlabs(std::span<const PlaneT<T>> planes, std::array<SlabT<T>, 3>& slabs)
+{
+    int count = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        const auto [low, high] = collision_detail::wallsOnAxis(planes, axis, false);
+        if (low >= 0 && high >= 0 && planes[std::size_t(low)].offset < -planes[std::size_t(high)].offset)
+            slabs[std::size_t(count++)] =
+                SlabT<T>{axis, planes[std::size_t(low)].offset, -planes[std::size_t(high)].offset};
+    }
+    return count;
+}
+
+/// The reflect rule between a slab's two walls in closed form, for a body still beyond one after
+/// a pass (faster than the room is wide in a step). Mirroring it across that wall, then across
+/// the other, and so on until it is inside, puts it where its coordinate folds into the slab:
+/// the slab's mirror images repeat every 2 (hi - lo). Its velocity along the axis changes sign
+/// and keeps e of its size at every wall it is moving towards when mirrored: the first one if it
+/// moved outward, every later one if it still moves at all. Branch-free like pushBack, so a swarm runs
+/// it as a vectorised loop; a body inside the slab is left exactly as it was. Beyond 2^22 slab
+/// widths (or not finite) it is left to the last line of defence. Returns the bounces, in T
+/// (an int here would stop GCC vectorising the swarm's loop, whose sum this is).
+template <class T>
+inline T foldIntoSlab(const SlabT<T>& slab, T restitution, T& c, T& cv)
+{
+    constexpr int kBits = 22;
+    const T width = slab.hi - slab.lo;
+    const T u = c - slab.lo;
+    const T q = u / width;
+    const bool below = u < T(0);
+    const bool fold = (below | (q > T(1))) & (std::abs(q) < T(1 << kBits));
+    const T walls = below ? std::ceil(-q) : std::ceil(q) - T(1);
+    const T period = T(2) * width;
+    const T r = u - period * std::floor(u / period);
+    const T folded = std::clamp(r <= width ? r : period - r, T(0), width);
+    c = fold ? slab.lo + folded : c;
+    const T first = (below ? -cv : cv) > T(0) ? T(1) : T(0);
+    const T later = cv != T(0) ? walls - T(1) : T(0);
+    const T moving = fold ? first + later : T(0);
+    const T hits = restitution > T(0) ? moving : std::min(moving, T(1)); // e = 0: the first stops it
+    // e^hits by squaring, written out for each bit: a straight line a vectorised loop can hold.
+    const int bits = static_cast<int>(hits);
+    T factor = T(1), power = restitution;
+    [&]<int... kBit>(std::integer_sequence<int, kBit...>) {
+        ((factor *= (bits >> kBit & 1) ? power : T(1), power *= power), ...);
+    }(std::make_integer_sequence<int, kBits + 1>{});
+    cv *= (bits & 1) ? -factor : factor;
+    return hits;
+}
+
+/// The classic response's rule, applied after a full step from `start`: mirror the body back
+/// across every surface it passed, repeatedly, so even a body fast enough to cross the room ends
+/// inside; one still outside after a pass is folded into the box's slabs first. Split from the
+/// step so swarms can integrate a whole block first and then apply it; a swarm runs the first
+/// pass (`passesDone` 1) and the fold (2) itself and calls this only for the bodies still outside.
+template <class T>
+inline int reflectAfterStep(std::span<const PlaneT<T>> planes, T restitution, const Vec3<T>& start, Vec3<T>& x,
+                            Vec3<T>& v, int passesDone = 0)
+{
+    int bounces = 0;
+    for (int pass = passesDone; pass < collision_detail::kMaxEvents; ++pass) {
+        if (pass == 1) {
+            std::array<SlabT<T>, 3> slabs;
+            const int count = boxSlabs(planes, slabs);
+            for (int s = 0; s < count; ++s) {
+                const SlabT<T>& slab = slabs[std::size_t(s)];
+                bounces += static_cast<int>(foldIntoSlab(slab, restitution, x[slab.axis], v[slab.axis]));
+            }
+        }
+        bool mirrored = false;
+        for (const PlaneT<T>& plane : planes)
+            mirrored |= mirrorBack(plane, restitution, start, x, v, bounces);
+        if (!mirrored)
+            break;
+    }
+    return bounces + collision_detail::keepInside(planes, restitution, start, x, v);
+}
+
+/// The clamp response's rule after a full step from `start`: put the body back on every
+/// surface it passed (`passesDone` 1: a swarm has done that pass, only the last line of
+/// defence remains).
+template <class T>
+inline int clampAfterStep(std::span<const PlaneT<T>> planes, T restitution, const Vec3<T>& start, Vec3<T>& x,
+                          Vec3<T>& v, int passesDone = 0)
+{
+    int bounces = 0;
+    if (passesDone == 0)
+        for (const PlaneT<T>& plane : planes)
+            snapBack(plane, restitution, start, x, v, bounces);
+    return bounces + collision_detail::keepInside(planes, restitution, start, x, v);
+}
+
+/// The classic response: a full step, then reflectAfterStep.
+template <class T, class Accel>
+inline int stepReflect(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
+                       Vec3<T>& v, T dt, Accel&& accel)
+{
+    const Vec3<T> start = x;
+    integrate(integrator, x, v, dt, accel);
+    return reflectAfterStep(planes, restitution, start, x, v);
+}
+
+/// A full step, then clampAfterStep.
+template <class T, class Accel>
+inline int stepClamp(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
+                     Vec3<T>& v, T dt, Accel&& accel)
+{
+    const Vec3<T> start = x;
+    integrate(integrator, x, v, dt, accel);
+    return clampAfterStep(planes, restitution, start, x, v);
+}
+
+/// One step of a body with the chosen response; returns the number of bounces.
+template <class T, class Accel>
+inline int stepWithCollisions(CollisionResponse response, Integrator integrator, std::span<const PlaneT<T>> planes,
+                              T restitution, Vec3<T>& x, Vec3<T>& v, T dt, Accel&& accel)
+{
+    if (planes.empty()) {
+        integrate(integrator, x, v, dt, accel);
+        return 0;
+    }
+    switch (response) {
+    case CollisionResponse::Exact: return stepExact(integrator, planes, restitution, x, v, dt, accel);
+    case CollisionResponse::Reflect: return stepReflect(integrator, planes, restitution, x, v, dt, accel);
+    case CollisionResponse::Clamp: return stepClamp(integrator, planes, restitution, x, v, dt, accel);
+    }
+    return 0;
+}
+
+} // namespace pba
