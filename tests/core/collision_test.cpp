@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <random>
 #include <vector>
@@ -502,4 +503,29 @@ TEST(World, CopiesAreDeepAndInterpolationBlendsStates)
     EXPECT_EQ(b.body(1).getPos().y, 2.0);
     const State mid = a.interpolatedState(1, 0.5);
     EXPECT_DOUBLE_EQ(mid.pos.y, 0.5 * (a.previousState(1).pos.y + a.body(1).getPos().y));
+}
+
+// The declared one-body step of pba/collision.hpp (for a program that steps its own point
+// against planes) is the World's rule: a ball dropped from rest with velocity Verlet and the
+// exact response, 50 steps of 0.01 s before it lands at t = sqrt(4 / g) = 0.64 s, is where
+// x = h - g t^2 / 2 puts it (velocity Verlet is exact for constant acceleration), and it equals
+// the World's ball bit for bit.
+TEST(Collision, TheDeclaredOneBodyStepIsTheWorldsRule)
+{
+    const std::array<Plane, 1> ground = groundPlanes(0.0);
+    dvec3 x(0, 2, 0), v(0.0);
+    const std::function<dvec3(const dvec3&, const dvec3&)> gravity = [](const dvec3&, const dvec3&) {
+        return dvec3(0, -kG, 0);
+    };
+    World world = dropWorld(Integrator::VelocityVerlet, CollisionResponse::Exact, 2.0);
+    int bounces = 0;
+    for (int i = 0; i < 50; ++i) {
+        bounces += stepWithCollisions(CollisionResponse::Exact, Integrator::VelocityVerlet,
+                                      std::span<const Plane>(ground), 1.0, x, v, 0.01, gravity);
+        world.step(0.01);
+    }
+    EXPECT_EQ(bounces, 0);
+    EXPECT_NEAR(x.y, 2.0 - 0.5 * kG * 0.25, 1e-12);
+    EXPECT_EQ(x, world.body(0).getPos());
+    EXPECT_EQ(v, world.body(0).getVel());
 }
