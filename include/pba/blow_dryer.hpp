@@ -35,6 +35,7 @@
 #include <cmath>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "pba/force.hpp"
 #include "pba/math.hpp"
@@ -259,11 +260,24 @@ public:
     {
         return blowDryerForce(m_field, x, v);
     }
+    bool addToSwarmFields(SwarmFields& fields) const override;
     const BlowDryerField& field() const { return m_field; }
     BlowDryerField& field() { return m_field; }
 
 private:
     BlowDryerField m_field;
 };
+
+class World;
+
+/// A blow dryer among a world's forces: its index (World::force) and its field.
+struct WorldDryer {
+    std::size_t force;
+    BlowDryerField field;
+};
+
+/// The world's blow dryers in the order of its forces (what the viewer's settings, the renderer's
+/// cones, `pba field` and the jet's read-outs work on), found through the ForceVisitor.
+std::vector<WorldDryer> blowDryers(const World& world);
 
 } // namespace pba

@@ -12,6 +12,7 @@ public:
     std::string_view type() const override { return "gravity"; }
     dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const override;
     double potentialEnergy(std::size_t index, const Body& body, const dvec3& x) const override;
+    bool addToSwarmFields(SwarmFields& fields) const override;
     const dvec3& acceleration() const { return m_g; }
     void setAcceleration(const dvec3& g) { m_g = g; }
 
@@ -32,6 +33,7 @@ public:
     explicit Drag(double coefficient) : m_coefficient(coefficient) {}
     std::string_view type() const override { return "drag"; }
     dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const override;
+    bool addToSwarmFields(SwarmFields& fields) const override;
     double coefficient() const { return m_coefficient; }
 
 private:
@@ -51,6 +53,8 @@ inline Vec3<T> springForce(const Vec3<T>& anchor, T stiffness, T restLength, T d
     return -(stiffness * (length - restLength) + damping * glm::dot(v, u)) * u;
 }
 
+/// It acts on one named particle, so it cannot act on a swarm (addToSwarmFields' default): a
+/// World with swarms refuses it.
 class Spring final : public ForceBase<Spring> {
 public:
     Spring(std::size_t particle, const dvec3& anchor, double stiffness, double restLength, double damping)

@@ -34,7 +34,8 @@ struct SwarmDesc {
 };
 
 /// The uniform fields that act on swarm particles, in float: gravity, linear drag and blow
-/// dryers. (Springs tie one named particle, so they never act on swarms.)
+/// dryers. Each force adds its own (Force::addToSwarmFields); one that cannot, such as a spring
+/// tied to one named particle, is refused by a World with swarms.
 struct SwarmFields {
     Vec3<float> gravity{0.0f};
     float drag = 0.0f;

@@ -78,6 +78,7 @@ public:
     std::optional<std::size_t> findBody(std::string_view name) const;
 
     // ---- swarms: many identical particles as float arrays, stepped with the same rules ----
+    /// Throws std::invalid_argument if a force of the world cannot act on a swarm.
     Swarm& addSwarm(const SwarmDesc& desc);
     std::size_t swarmCount() const { return m_swarms.size(); }
     Swarm& swarm(std::size_t i) { return m_swarms[i]; }
@@ -93,6 +94,8 @@ public:
     SwarmFields swarmFields() const;
 
     // ---- forces ----
+    /// Throws std::invalid_argument if the world has swarms and the force cannot act on them
+    /// (Force::addToSwarmFields).
     Force& addForce(std::unique_ptr<Force> force);
     std::size_t forceCount() const { return m_forces.size(); }
     Force& force(std::size_t i) { return *m_forces[i]; }

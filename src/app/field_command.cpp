@@ -102,15 +102,15 @@ SliceFrame sliceFrame(const World& world, const BlowDryerField& f)
     return frame;
 }
 
-dvec3 dryerForce(const std::vector<const BlowDryer*>& dryers, const dvec3& x)
+dvec3 dryerForce(const std::vector<WorldDryer>& dryers, const dvec3& x)
 {
     dvec3 sum(0.0);
-    for (const BlowDryer* dryer : dryers)
-        sum += blowDryerForce(dryer->field(), x);
+    for (const WorldDryer& dryer : dryers)
+        sum += blowDryerForce(dryer.field, x);
     return sum;
 }
 
-void writeSliceData(const std::vector<const BlowDryer*>& dryers, const SliceFrame& fr, int resolution, double scale,
+void writeSliceData(const std::vector<WorldDryer>& dryers, const SliceFrame& fr, int resolution, double scale,
                     const std::filesystem::path& dir, double& maxMagnitude)
 {
     const int ns = resolution;
@@ -163,21 +163,18 @@ int drawSlice(const Scene& scene, const FieldOptions& options)
 {
     if (!options.out)
         throw UsageError("--slice needs --out FILE.png");
-    std::vector<const BlowDryer*> dryers;
-    for (std::size_t i = 0; i < scene.world.forceCount(); ++i)
-        if (const auto* dryer = dynamic_cast<const BlowDryer*>(&scene.world.force(i)))
-            dryers.push_back(dryer);
+    const std::vector<WorldDryer> dryers = blowDryers(scene.world);
     if (dryers.empty())
         throw UsageError(fmt::format("{}: scene has no blow-dryer force to slice", scene.source));
     const std::filesystem::path target = io::resolveOutputFile(*options.out); // before any work
-    const BlowDryerField& f = dryers.front()->field();
+    const BlowDryerField& f = dryers.front().field;
     const SliceFrame frame = sliceFrame(scene.world, f);
     ScratchDir dir("pba-field");
     // The colours and arrows are scaled by the strongest dryer's strength (its push at the nozzle):
     // the axis pull, where a scene has one, is far stronger near the nozzle and saturates.
     double scale = 0.0;
-    for (const BlowDryer* dryer : dryers)
-        scale = std::max(scale, std::abs(dryer->field().strength));
+    for (const WorldDryer& dryer : dryers)
+        scale = std::max(scale, std::abs(dryer.field.strength));
     double maxMagnitude = 0.0;
     writeSliceData(dryers, frame, options.resolution, scale, dir.path(), maxMagnitude);
     if (scale <= 0.0)

@@ -202,27 +202,14 @@ bool dryerShapeControls(BlowDryerField& f)
     return changed;
 }
 
-bool hasDryer(const World& world)
-{
-    for (std::size_t i = 0; i < world.forceCount(); ++i)
-        if (dynamic_cast<const BlowDryer*>(&world.force(i)))
-            return true;
-    return false;
-}
-
 /// Each blow dryer's settings, set through the state so that reset keeps them.
 void dryerSection(ViewerState& state)
 {
-    const World& world = state.scene.world;
-    for (std::size_t i = 0; i < world.forceCount(); ++i) {
-        const auto* dryer = dynamic_cast<const BlowDryer*>(&world.force(i));
-        if (!dryer)
-            continue;
-        BlowDryerField f = dryer->field();
-        ImGui::PushID(static_cast<int>(i));
-        const bool changed = dryerStrengthControls(f);
-        if (changed | dryerShapeControls(f))
-            state.setDryerField(i, f);
+    for (WorldDryer dryer : blowDryers(state.scene.world)) {
+        ImGui::PushID(static_cast<int>(dryer.force));
+        const bool changed = dryerStrengthControls(dryer.field);
+        if (changed | dryerShapeControls(dryer.field))
+            state.setDryerField(dryer.force, dryer.field);
         ImGui::PopID();
     }
 }
@@ -243,7 +230,7 @@ void panelSections(ViewerState& state)
         viewSection(state);
     if (ImGui::CollapsingHeader("particles", ImGuiTreeNodeFlags_DefaultOpen))
         particlesSection(state);
-    if (hasDryer(state.scene.world) && ImGui::CollapsingHeader("blow dryer", ImGuiTreeNodeFlags_DefaultOpen))
+    if (!blowDryers(state.scene.world).empty() && ImGui::CollapsingHeader("blow dryer", ImGuiTreeNodeFlags_DefaultOpen))
         dryerSection(state);
     if (ImGui::CollapsingHeader("plots", ImGuiTreeNodeFlags_DefaultOpen))
         plotsSection(state);

@@ -82,10 +82,19 @@ namespace {
 /// The hole in the floor follows the nozzle (it is the nozzle's opening).
 void setDryer(World& world, std::size_t force, const BlowDryerField& field)
 {
-    auto* dryer = dynamic_cast<BlowDryer*>(&world.force(force));
-    if (!dryer)
+    struct Setter final : ForceEditor {
+        const BlowDryerField& field;
+        bool set = false;
+        explicit Setter(const BlowDryerField& f) : field(f) {}
+        void visit(BlowDryer& dryer) override
+        {
+            dryer.field() = field;
+            set = true;
+        }
+    } setter(field);
+    world.force(force).accept(setter);
+    if (!setter.set)
         return;
-    dryer->field() = field;
     const auto& hole = world.floorHole();
     if (hole && field.nozzleRadius > 0.0)
         world.setFloorHole(FloorHole{field.nozzle, field.nozzleRadius, hole->depth});

@@ -1,6 +1,7 @@
 #include "pba/forces.hpp"
 
 #include "pba/body.hpp"
+#include "pba/swarm.hpp"
 
 namespace pba {
 
@@ -11,7 +12,19 @@ double Gravity::potentialEnergy(std::size_t, const Body& body, const dvec3& x) c
     return -body.getMass() * glm::dot(m_g, x);
 }
 
+bool Gravity::addToSwarmFields(SwarmFields& fields) const
+{
+    fields.gravity += Vec3<float>(m_g);
+    return true;
+}
+
 dvec3 Drag::force(std::size_t, const Body&, const dvec3&, const dvec3& v) const { return dragForce(m_coefficient, v); }
+
+bool Drag::addToSwarmFields(SwarmFields& fields) const
+{
+    fields.drag += float(m_coefficient);
+    return true;
+}
 
 dvec3 Spring::force(std::size_t index, const Body&, const dvec3& x, const dvec3& v) const
 {

@@ -69,8 +69,25 @@ std::optional<std::size_t> World::findBody(std::string_view name) const
     return std::nullopt;
 }
 
+namespace {
+
+/// A force that cannot act on a swarm, in a world with one, would act on the bodies alone and
+/// silently leave the swarm out: refused, naming the force's type and the swarm.
+void requireActsOnSwarms(const Force& force, const std::string& swarm)
+{
+    SwarmFields probe;
+    if (!force.addToSwarmFields(probe))
+        throw std::invalid_argument(
+            fmt::format("a {} force cannot act on swarm '{}': a swarm feels gravity, drag and blow dryers only",
+                        force.type(), swarm));
+}
+
+} // namespace
+
 Swarm& World::addSwarm(const SwarmDesc& desc)
 {
+    for (const auto& force : m_forces)
+        requireActsOnSwarms(*force, desc.name);
     m_swarms.emplace_back(desc);
     return m_swarms.back();
 }
@@ -78,14 +95,8 @@ Swarm& World::addSwarm(const SwarmDesc& desc)
 SwarmFields World::swarmFields() const
 {
     SwarmFields fields;
-    for (const auto& force : m_forces) {
-        if (const auto* gravity = dynamic_cast<const Gravity*>(force.get()))
-            fields.gravity += Vec3<float>(gravity->acceleration());
-        else if (const auto* drag = dynamic_cast<const Drag*>(force.get()))
-            fields.drag += float(drag->coefficient());
-        else if (const auto* dryer = dynamic_cast<const BlowDryer*>(force.get()))
-            fields.dryers.push_back(dryer->field().as<float>());
-    }
+    for (const auto& force : m_forces)
+        force->addToSwarmFields(fields); // each can: addForce and addSwarm refuse the others
     return fields;
 }
 
@@ -103,17 +114,21 @@ void World::stepSwarms(double dt)
 
 Force& World::addForce(std::unique_ptr<Force> force)
 {
+    if (!m_swarms.empty())
+        requireActsOnSwarms(*force, m_swarms.front().name());
     m_forces.push_back(std::move(force));
     return *m_forces.back();
 }
 
 dvec3 World::gravity() const
 {
-    dvec3 g(0.0);
+    struct GravitySum final : ForceVisitor {
+        dvec3 g{0.0};
+        void visit(const Gravity& gravity) override { g += gravity.acceleration(); }
+    } sum;
     for (const auto& force : m_forces)
-        if (const auto* gravity = dynamic_cast<const Gravity*>(force.get()))
-            g += gravity->acceleration();
-    return g;
+        force->accept(sum);
+    return sum.g;
 }
 
 void World::setGround(double height)

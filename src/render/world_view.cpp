@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "pba/blow_dryer.hpp"
 #include "pba/forces.hpp"
@@ -72,6 +73,18 @@ void Trails::record(const World& world, double alpha, const ViewSettings& settin
 }
 
 namespace {
+
+/// The world's anchored springs, drawn as coils and kept in the camera's frame.
+std::vector<const Spring*> springs(const World& world)
+{
+    struct Finder final : ForceVisitor {
+        std::vector<const Spring*> found;
+        void visit(const Spring& spring) override { found.push_back(&spring); }
+    } finder;
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        world.force(i).accept(finder);
+    return finder.found;
+}
 
 void addSurfaces(const World& world, DrawList& out)
 {
@@ -217,11 +230,11 @@ void buildDrawList(const World& world, const World& initial, double alpha, const
 {
     out.clear();
     addSurfaces(world, out);
-    for (std::size_t i = 0; i < world.forceCount(); ++i)
-        if (const auto* dryer = dynamic_cast<const BlowDryer*>(&world.force(i)); dryer && settings.cone)
-            addCone(dryer->field(), settings.fieldArrows, out);
-    for (std::size_t i = 0; i < world.forceCount(); ++i)
-        if (const auto* spring = dynamic_cast<const Spring*>(&world.force(i)); spring && spring->particle() < world.bodyCount())
+    if (settings.cone)
+        for (const WorldDryer& dryer : blowDryers(world))
+            addCone(dryer.field, settings.fieldArrows, out);
+    for (const Spring* spring : springs(world))
+        if (spring->particle() < world.bodyCount())
             addSpring(*spring, drawnCentre(world, spring->particle(), alpha, settings), out);
     addBodies(world, initial, alpha, settings, trails, out);
     // Swarms keep no previous state (24 bytes a particle is the budget): drawn where they are.
@@ -241,11 +254,10 @@ OrbitCamera frameWorld(const World& world)
         lo = glm::min(lo, glm::vec3(world.body(i).getPos()));
         hi = glm::max(hi, glm::vec3(world.body(i).getPos()));
     }
-    for (std::size_t i = 0; i < world.forceCount(); ++i)
-        if (const auto* spring = dynamic_cast<const Spring*>(&world.force(i))) {
-            lo = glm::min(lo, glm::vec3(spring->anchor()));
-            hi = glm::max(hi, glm::vec3(spring->anchor()));
-        }
+    for (const Spring* spring : springs(world)) {
+        lo = glm::min(lo, glm::vec3(spring->anchor()));
+        hi = glm::max(hi, glm::vec3(spring->anchor()));
+    }
     if (world.bodyCount() == 0)
         lo = hi = glm::vec3(0.0f);
     if (world.ground())

@@ -5,6 +5,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <vector>
 
 #include <fmt/format.h>
@@ -260,7 +261,12 @@ void readForce(const Json& value, const std::string& path, const std::string& fi
     const std::string type = reader.string("type");
     for (const auto& known : scene_detail::forceTypes()) {
         if (type == known.name) {
-            world.addForce(known.parse(reader, world));
+            std::unique_ptr<Force> force = known.parse(reader, world);
+            try {
+                world.addForce(std::move(force));
+            } catch (const std::invalid_argument& refused) { // one that cannot act on the scene's swarms
+                reader.failHere(refused.what());
+            }
             reader.finish();
             if (!swarmFieldsFit(world))
                 reader.failHere("its numbers, as the accelerations they give the scene's swarms, cannot be "

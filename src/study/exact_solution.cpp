@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "pba/forces.hpp"
 
@@ -20,10 +21,31 @@ std::optional<double> floorHeight(const World& world)
 
 bool onlyGravity(const World& world)
 {
+    struct Counter final : ForceVisitor {
+        std::size_t gravities = 0;
+        void visit(const Gravity&) override { ++gravities; }
+    } counter;
     for (std::size_t i = 0; i < world.forceCount(); ++i)
-        if (!dynamic_cast<const Gravity*>(&world.force(i)))
-            return false;
-    return true;
+        world.force(i).accept(counter);
+    return counter.gravities == world.forceCount();
+}
+
+/// The springs on `particle` (the oscillator's exact solution needs the one spring's numbers).
+std::vector<const Spring*> springsOn(const World& world, std::size_t particle)
+{
+    struct Finder final : ForceVisitor {
+        std::size_t particle = 0;
+        std::vector<const Spring*> found;
+        void visit(const Spring& spring) override
+        {
+            if (spring.particle() == particle)
+                found.push_back(&spring);
+        }
+    } finder;
+    finder.particle = particle;
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        world.force(i).accept(finder);
+    return finder.found;
 }
 
 } // namespace
@@ -44,9 +66,8 @@ std::optional<ExactSolution> ExactSolution::find(const World& world, std::size_t
         return exact;
     }
     if (world.planes().empty() && g == dvec3(0.0)) {
-        for (std::size_t i = 0; i < world.forceCount(); ++i) {
-            const auto* spring = dynamic_cast<const Spring*>(&world.force(i));
-            if (!spring || spring->particle() != particle || spring->damping() != 0.0 || world.forceCount() != 2)
+        for (const Spring* spring : springsOn(world, particle)) {
+            if (spring->damping() != 0.0 || world.forceCount() != 2)
                 continue;
             const dvec3 d = body.getPos() - spring->anchor();
             if (glm::length(d) == 0.0)

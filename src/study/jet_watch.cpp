@@ -8,9 +8,8 @@ namespace pba::study {
 
 JetWatch::JetWatch(const World& world)
 {
-    for (std::size_t i = 0; i < world.forceCount() && !m_field; ++i)
-        if (const auto* dryer = dynamic_cast<const BlowDryer*>(&world.force(i)))
-            m_field = dryer->field();
+    if (const auto dryers = blowDryers(world); !dryers.empty())
+        m_field = dryers.front().field;
     if (!m_field)
         return;
     const double g = glm::length(world.gravity());

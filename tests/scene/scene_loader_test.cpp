@@ -247,6 +247,24 @@ TEST(SceneLoader, AnUnknownKeyIsReportedFirstWithTheKnownKeyItIsCloseTo)
               "scene.json: forces[0].stiffness: unknown key (expected one of: type, coefficient)");
 }
 
+// A force that cannot act on a swarm used to act on the particles alone and silently leave the
+// swarm out; now the scene is refused at the force, naming its type and the swarm.
+TEST(SceneLoader, AForceThatCannotActOnTheScenesSwarmsIsRefusedAtTheForce)
+{
+    const std::string scene = R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]},
+        "particles": [{"name": "a", "position": [0, 1, 0]}],
+        "swarms": [{"name": "s", "count": 10, "region": {"min": [0, 1, 0], "max": [1, 2, 1]}, "seed": 1}],
+        "forces": [{"type": "drag", "coefficient": 0.1}, {"type": "blow-dryer", "nozzle": [0, 0, 0], "height": 3,
+                    "nozzle_radius": 0.2, "top_radius": 1, "strength": 30},
+                   {"type": "spring", "particle": "a", "anchor": [0, 2, 0], "stiffness": 1}]})";
+    EXPECT_EQ(errorOf(scene), "scene.json: forces[2]: a spring force cannot act on swarm 's': a swarm feels gravity, "
+                              "drag and blow dryers only");
+    // The same spring without the swarm is a scene.
+    nlohmann::json noSwarm = nlohmann::json::parse(scene);
+    noSwarm.erase("swarms");
+    EXPECT_EQ(errorOf(noSwarm.dump()), "accepted");
+}
+
 TEST(SceneLoader, AnUnknownKeyFarFromEveryKnownOneGetsNoSuggestion)
 {
     const std::string error = errorOf(R"({"particles": [{"name": "b", "position": [0, 1, 0], "colour": "red"}]})");
