@@ -73,4 +73,37 @@ private:
     double m_damping;
 };
 
+/// Damped spring between two bodies a and b. With d = x_b - x_a and u = d/|d|, b feels
+/// F = -(k (|d| - L) + c (v_b - v_a) . u) u and a feels -F: the damping acts along the spring on
+/// the relative velocity only, so it never slows the pair's centre of mass. Potential energy
+/// k (|d| - L)^2 / 2, split half to each end in the per-body read-out. The two bodies'
+/// forces depend on each other's states, so the World integrates them together (couplings).
+class TwoBodySpring final : public ForceBase<TwoBodySpring> {
+public:
+    TwoBodySpring(std::size_t a, std::size_t b, double stiffness, double restLength, double damping)
+        : m_a(a), m_b(b), m_stiffness(stiffness), m_restLength(restLength), m_damping(damping) {}
+    std::string_view type() const override { return "spring"; }
+    /// Zero: the force on one end needs the other end's trial state (see accumulate).
+    dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const override;
+    void accumulate(const BodyStates& in, std::span<dvec3> forces) const override;
+    double potentialEnergyShare(std::size_t index, const BodyStates& in) const override;
+    double totalPotentialEnergy(const BodyStates& in) const override;
+    void appendCouplings(std::vector<std::pair<std::size_t, std::size_t>>& pairs) const override;
+
+    std::size_t first() const { return m_a; }
+    std::size_t second() const { return m_b; }
+    double stiffness() const { return m_stiffness; }
+    double restLength() const { return m_restLength; }
+    double damping() const { return m_damping; }
+
+private:
+    double energy(const BodyStates& in) const;
+
+    std::size_t m_a;
+    std::size_t m_b;
+    double m_stiffness;
+    double m_restLength;
+    double m_damping;
+};
+
 } // namespace pba
