@@ -315,7 +315,39 @@ World::Coupling World::couple() const
     return coupling;
 }
 
-bool World::isCoupled(std::size_t i) const { return couple().coupled[i] != 0; }
+bool World::isCoupled(std::size_t i) const
+{
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    for (const auto& force : m_forces)
+        force->appendCouplings(pairs);
+    return !m_bodies[i]->isFixed() &&
+           std::any_of(pairs.begin(), pairs.end(), [i](const auto& p) { return p.first == i || p.second == i; });
+}
+
+std::vector<std::size_t> World::coupledGroup(std::size_t i) const
+{
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    for (const auto& force : m_forces)
+        force->appendCouplings(pairs);
+    std::vector<std::uint8_t> inGroup(m_bodies.size(), 0);
+    inGroup[i] = 1;
+    // Grow the group until no pair of moving bodies adds to it: a few passes for a chain
+    // listed in order, at worst one per body (a read-out, not part of the step).
+    for (bool grew = !m_bodies[i]->isFixed(); grew;) {
+        grew = false;
+        for (const auto& [a, b] : pairs) {
+            if (m_bodies[a]->isFixed() || m_bodies[b]->isFixed() || inGroup[a] == inGroup[b])
+                continue;
+            inGroup[a] = inGroup[b] = 1;
+            grew = true;
+        }
+    }
+    std::vector<std::size_t> group;
+    for (std::size_t k = 0; k < m_bodies.size(); ++k)
+        if (inGroup[k] != 0)
+            group.push_back(k);
+    return group;
+}
 
 void World::integrateIndependent(const Coupling& coupling, double dt)
 {
