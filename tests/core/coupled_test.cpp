@@ -319,3 +319,49 @@ TEST(Coupled, ACopiedWorldStepsLikeTheOriginal)
     b = a;
     EXPECT_EQ(b.stepCount(), a.stepCount());
 }
+
+TEST(Coupled, ASpringToAFixedParticleIsTheAnchoredSpring)
+{
+    // One kernel for both forms, and the integrators' one implementation for a body (Vec3)
+    // and for a group (Vec3Array): the same arithmetic, so the same numbers to the last bit.
+    for (const Integrator integrator : kAllIntegrators) {
+        const dvec3 anchor(0.2, 3.0, -0.1);
+        World anchored;
+        World joined;
+        for (World* w : {&anchored, &joined}) {
+            w->addForce(std::make_unique<Gravity>(dvec3(0, -9.81, 0)));
+            w->addParticle(particleAt(dvec3(0.5, 1.8, 0.3), dvec3(0.4, 0, 0), integrator, 0.7));
+        }
+        anchored.addForce(std::make_unique<Spring>(0, anchor, 30.0, 0.8, 0.4));
+        Particle end = particleAt(anchor, dvec3(0.0), integrator);
+        end.setFixed(true);
+        joined.addParticle(end);
+        joined.addForce(std::make_unique<TwoBodySpring>(1, 0, 30.0, 0.8, 0.4));
+        ASSERT_TRUE(joined.isCoupled(0));
+        for (int n = 0; n < 300; ++n) {
+            anchored.step(0.01);
+            joined.step(0.01);
+        }
+        EXPECT_EQ(anchored.body(0).getPos(), joined.body(0).getPos()) << integratorName(integrator);
+        EXPECT_EQ(anchored.body(0).getVel(), joined.body(0).getVel()) << integratorName(integrator);
+        EXPECT_EQ(joined.body(1).getPos(), anchor);
+    }
+}
+
+TEST(Coupled, ANonFiniteGroupIsReportedAndRolledBack)
+{
+    // Forward Euler far beyond its stability limit on a stiff pair: the state overflows.
+    World world = pairWorld(Integrator::ForwardEuler);
+    world.addForce(std::make_unique<TwoBodySpring>(0, 1, 1e12, kL, 0.0));
+    State before;
+    try {
+        for (int n = 0; n < 10000; ++n) {
+            before = world.body(0).getState();
+            world.step(0.1);
+        }
+        FAIL() << "expected a NonFiniteStateError";
+    } catch (const NonFiniteStateError& e) {
+        EXPECT_EQ(world.body(0).getPos(), before.pos);
+        EXPECT_EQ(world.body(0).getVel(), before.vel);
+    }
+}
