@@ -75,7 +75,7 @@ private:
     Mesh m_mesh;          ///< mesh used to represent the body
     double m_mass = 1.0;  ///< mass, kg
     double m_cor = 1.0;   ///< coefficient of restitution in [0, 1]
-    dvec3 m_acc{0.0};     ///< acceleration of the last step, m/s^2
+    dvec3 m_acc{0.0};     ///< acceleration at the start of the last step (its first force evaluation), m/s^2
     dvec3 m_vel{0.0};     ///< velocity, m/s
     dvec3 m_pos{0.0};     ///< position, m
     std::string m_name;

@@ -53,8 +53,7 @@ inline Vec3<T> springForce(const Vec3<T>& anchor, T stiffness, T restLength, T d
     return -(stiffness * (length - restLength) + damping * glm::dot(v, u)) * u;
 }
 
-/// It acts on one named particle, so it cannot act on a swarm (addToSwarmFields' default): a
-/// World with swarms refuses it.
+/// It ties one named particle: a swarm in the same world feels nothing of it.
 class Spring final : public ForceBase<Spring> {
 public:
     Spring(std::size_t particle, const dvec3& anchor, double stiffness, double restLength, double damping)
@@ -62,6 +61,8 @@ public:
     std::string_view type() const override { return "spring"; }
     dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const override;
     double potentialEnergy(std::size_t index, const Body& body, const dvec3& x) const override;
+    /// Nothing to add, and nothing missing: a spring acts on its named particle only.
+    bool addToSwarmFields(SwarmFields& /*fields*/) const override { return true; }
 
     std::size_t particle() const { return m_particle; }
     const dvec3& anchor() const { return m_anchor; }
@@ -72,6 +73,41 @@ public:
 private:
     std::size_t m_particle;
     dvec3 m_anchor;
+    double m_stiffness;
+    double m_restLength;
+    double m_damping;
+};
+
+/// Damped spring between two bodies a and b. With d = x_b - x_a and u = d/|d|, b feels
+/// F = -(k (|d| - L) + c (v_b - v_a) . u) u and a feels -F: the damping acts along the spring on
+/// the relative velocity only, so it never slows the pair's centre of mass. Potential energy
+/// k (|d| - L)^2 / 2, split half to each end in the per-body read-out. The two bodies'
+/// forces depend on each other's states, so the World integrates them together (couplings).
+class TwoBodySpring final : public ForceBase<TwoBodySpring> {
+public:
+    TwoBodySpring(std::size_t a, std::size_t b, double stiffness, double restLength, double damping)
+        : m_a(a), m_b(b), m_stiffness(stiffness), m_restLength(restLength), m_damping(damping) {}
+    std::string_view type() const override { return "spring"; }
+    /// Zero: the force on one end needs the other end's trial state (see accumulate).
+    dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const override;
+    void accumulate(const BodyStates& in, std::span<dvec3> forces) const override;
+    double potentialEnergyShare(std::size_t index, const BodyStates& in) const override;
+    double totalPotentialEnergy(const BodyStates& in) const override;
+    void appendCouplings(std::vector<std::pair<std::size_t, std::size_t>>& pairs) const override;
+    /// Nothing to add, and nothing missing: it acts on its two named bodies only.
+    bool addToSwarmFields(SwarmFields& /*fields*/) const override { return true; }
+
+    std::size_t first() const { return m_a; }
+    std::size_t second() const { return m_b; }
+    double stiffness() const { return m_stiffness; }
+    double restLength() const { return m_restLength; }
+    double damping() const { return m_damping; }
+
+private:
+    double energy(const BodyStates& in) const;
+
+    std::size_t m_a;
+    std::size_t m_b;
     double m_stiffness;
     double m_restLength;
     double m_damping;

@@ -1,9 +1,10 @@
 #pragma once
-// The integrators, one implementation each. They are templates over the scalar
-// type and over the acceleration function, so the same code steps a single
-// double-precision Particle and, inlined into a loop, a float swarm.
+// The integrators, one implementation each. They are templates over the state type
+// (a Vec3<T>, or a Vec3Array holding a whole coupled group), the scalar type and the
+// acceleration function, so the same code steps a single double-precision Particle, a
+// group of bodies joined by springs as one system, and, inlined into a loop, a float swarm.
 //
-// `accel(x, v)` returns the acceleration at a trial state. Multi-stage methods
+// `accel(x, v)` returns the acceleration at a trial state (of every body of the group). Multi-stage methods
 // call it at their intermediate states: forces may depend on position and
 // velocity (springs, drag, the blow dryer), so reusing the start-of-step force
 // would silently lower their order.
@@ -27,18 +28,18 @@ std::optional<Integrator> integratorFromName(std::string_view name);
 int integratorOrder(Integrator integrator);
 
 /// x(t+dt) = x + v dt, v(t+dt) = v + a(x, v) dt. First order; gains energy on oscillators.
-template <class T, class Accel>
-inline void forwardEuler(Vec3<T>& x, Vec3<T>& v, T dt, Accel&& accel)
+template <class X, class T, class Accel>
+inline void forwardEuler(X& x, X& v, T dt, Accel&& accel)
 {
-    const Vec3<T> a = accel(x, v);
+    const X a = accel(x, v);
     x += v * dt;
     v += a * dt;
 }
 
 /// Symplectic (semi-implicit) Euler: the velocity first, then the position with the new velocity.
 /// First order, but it conserves a shadow energy, so oscillation energy stays bounded.
-template <class T, class Accel>
-inline void semiImplicitEuler(Vec3<T>& x, Vec3<T>& v, T dt, Accel&& accel)
+template <class X, class T, class Accel>
+inline void semiImplicitEuler(X& x, X& v, T dt, Accel&& accel)
 {
     v += accel(x, v) * dt;
     x += v * dt;
@@ -47,39 +48,39 @@ inline void semiImplicitEuler(Vec3<T>& x, Vec3<T>& v, T dt, Accel&& accel)
 /// Velocity Verlet: x += v dt + a dt^2 / 2, then v += (a0 + a1) dt / 2. Second order,
 /// symplectic for position-only forces; the end acceleration is taken at the predicted
 /// velocity v + a0 dt so velocity-dependent forces remain usable.
-template <class T, class Accel>
-inline void velocityVerlet(Vec3<T>& x, Vec3<T>& v, T dt, Accel&& accel)
+template <class X, class T, class Accel>
+inline void velocityVerlet(X& x, X& v, T dt, Accel&& accel)
 {
     const T half = T(0.5);
-    const Vec3<T> a0 = accel(x, v);
+    const X a0 = accel(x, v);
     // x moves first and a1 is taken there: no copy of the new position to assign afterwards,
     // which in a large inlined swarm loop GCC kept in memory and so stopped vectorising.
     x = x + v * dt + a0 * (half * dt * dt);
-    const Vec3<T> a1 = accel(x, v + a0 * dt);
+    const X a1 = accel(x, v + a0 * dt);
     v += (a0 + a1) * (half * dt);
 }
 
 /// Classic fourth-order Runge-Kutta on the first-order system (x' = v, v' = a(x, v)).
-template <class T, class Accel>
-inline void rk4(Vec3<T>& x, Vec3<T>& v, T dt, Accel&& accel)
+template <class X, class T, class Accel>
+inline void rk4(X& x, X& v, T dt, Accel&& accel)
 {
     const T half = T(0.5) * dt;
     const T sixth = dt / T(6);
-    const Vec3<T> k1x = v;
-    const Vec3<T> k1v = accel(x, v);
-    const Vec3<T> k2x = v + k1v * half;
-    const Vec3<T> k2v = accel(x + k1x * half, k2x);
-    const Vec3<T> k3x = v + k2v * half;
-    const Vec3<T> k3v = accel(x + k2x * half, k3x);
-    const Vec3<T> k4x = v + k3v * dt;
-    const Vec3<T> k4v = accel(x + k3x * dt, k4x);
+    const X k1x = v;
+    const X k1v = accel(x, v);
+    const X k2x = v + k1v * half;
+    const X k2v = accel(x + k1x * half, k2x);
+    const X k3x = v + k2v * half;
+    const X k3v = accel(x + k2x * half, k3x);
+    const X k4x = v + k3v * dt;
+    const X k4v = accel(x + k3x * dt, k4x);
     x += (k1x + T(2) * (k2x + k3x) + k4x) * sixth;
     v += (k1v + T(2) * (k2v + k3v) + k4v) * sixth;
 }
 
 /// One step of the named integrator.
-template <class T, class Accel>
-inline void integrate(Integrator integrator, Vec3<T>& x, Vec3<T>& v, T dt, Accel&& accel)
+template <class X, class T, class Accel>
+inline void integrate(Integrator integrator, X& x, X& v, T dt, Accel&& accel)
 {
     switch (integrator) {
     case Integrator::ForwardEuler: forwardEuler(x, v, dt, accel); return;

@@ -3,6 +3,7 @@
 #include "pba/blow_dryer.hpp"
 #include "pba/body.hpp"
 #include "pba/clock.hpp"
+#include "pba/clone_ptr.hpp"
 #include "pba/collision.hpp"
 #include "pba/force.hpp"
 #include "pba/forces.hpp"
@@ -10,4 +11,5 @@
 #include "pba/mesh.hpp"
 #include "pba/particle.hpp"
 #include "pba/state.hpp"
+#include "pba/vec3_array.hpp"
 #include "pba/world.hpp"

@@ -1,13 +1,22 @@
 #pragma once
 // The World owns bodies, forces and the surfaces that bound them, and advances them by
-// a fixed dt. The step runs in named phases:
-//   1. store previous states (for the renderer's interpolation)
-//   2. integrate each moving body with its own integrator, resolving collisions on the way
-//      (forces are summed at every trial state an integrator asks for)
-//   3. step the swarms (float arrays, all cores) with the same integrator, force and
+// a fixed dt. The step runs in named phases over every body and swarm (the way Box2D's
+// solver stages and Jolt's step jobs are named):
+//   1. store previous states (for the renderer's interpolation and the rollback)
+//   2. couple: bodies joined (transitively) by forces between bodies, such as a two-body
+//      spring, form a coupled group that shares one integrator
+//   3. integrate the independent bodies, each with its own integrator, with collisions along
+//      its own path (the exact time of impact): forces are summed at every trial state
+//   4. integrate the coupled bodies, one system per integrator: every stage of the integrator
+//      evaluates every force for every body of the system at that stage's state (RK4 of a
+//      coupled system is RK4 of the whole system)
+//   5. collide the coupled bodies: each one found behind a surface gets the reflect or clamp
+//      rule of its own (exact acts as reflect for them)
+//   6. step the swarms (float arrays, all cores) with the same integrator, force and
 //      collision templates
-//   4. check the new states are finite
+//   7. check that every state (bodies and swarms) is finite
 // It knows no window, no file format and no clock: frame time never reaches it.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -19,6 +28,7 @@
 #include <vector>
 
 #include "pba/body.hpp"
+#include "pba/clone_ptr.hpp"
 #include "pba/collision.hpp"
 #include "pba/force.hpp"
 #include "pba/particle.hpp"
@@ -63,8 +73,8 @@ private:
 class World {
 public:
     World() = default;
-    World(const World& other);
-    World& operator=(const World& other);
+    World(const World&) = default;
+    World& operator=(const World&) = default;
     World(World&&) noexcept = default;
     World& operator=(World&&) noexcept = default;
     ~World() = default;
@@ -120,7 +130,8 @@ public:
     // ---- stepping ----
     /// Advances every moving body and swarm by exactly dt. Throws NonFiniteStateError (bodies,
     /// and with setSwarmRollback swarms, back at their state before the step) if a state stops
-    /// being finite.
+    /// being finite, and std::invalid_argument (before moving anything) if two moving bodies
+    /// coupled by a force use different integrators.
     void step(double dt);
     double time() const { return m_time; }
     /// The time of the previous states (before the last step).
@@ -134,22 +145,49 @@ public:
     std::uint64_t bounceCount(std::size_t i) const { return m_bounces[i]; }
 
     // ---- physics read-outs ----
-    /// Net force over mass on body i at the trial state (x, v); zero for a fixed body.
+    /// Net force over mass on body i at the trial state (x, v), every other body at its
+    /// current state; zero for a fixed body.
     dvec3 acceleration(std::size_t i, const dvec3& x, const dvec3& v) const;
     double kineticEnergy(std::size_t i) const;
+    /// Body i's potential energy: its share of each force's (a force between bodies splits its
+    /// energy among them, a two-body spring half to each end), so the shares add up to
+    /// totalPotentialEnergy.
     double potentialEnergy(std::size_t i) const;
     double energy(std::size_t i) const { return kineticEnergy(i) + potentialEnergy(i); }
+    /// Every force's potential energy, each interaction counted once.
+    double totalPotentialEnergy() const;
+    /// Kinetic plus potential energy of all bodies (swarms not included).
+    double totalEnergy() const;
+    /// Whether body i is integrated in a coupled group (it moves, and a force couples it to a body).
+    bool isCoupled(std::size_t i) const;
+    /// The moving bodies joined to body i (transitively, through moving bodies) by forces
+    /// between bodies, i included, in index order: the group that shares one integrator.
+    std::vector<std::size_t> coupledGroup(std::size_t i) const;
 
 private:
+    /// The bodies integrated together: coupled[i] for a moving body some force couples, and
+    /// those bodies by integrator (one system each).
+    struct Coupling {
+        std::vector<std::uint8_t> coupled;
+        std::array<std::vector<std::size_t>, kAllIntegrators.size()> systems;
+    };
+
     void rebuildPlanes();
     void storePreviousStates();
-    void integrateBodies(double dt);
+    Coupling couple() const;
+    void integrateIndependent(const Coupling& coupling, double dt);
+    void integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members, double dt);
+    void collideCoupled(const Coupling& coupling);
+    void checkFinite(double dt);
+    void advanceClock(double dt);
+    dvec3 aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const;
+    BodyStates currentStates(std::vector<State>& storage) const;
     void stepSwarms(double dt);
     std::optional<std::pair<std::size_t, std::string>> firstNonFinite() const;
     void rollBack();
 
-    std::vector<std::unique_ptr<Body>> m_bodies;
-    std::vector<std::unique_ptr<Force>> m_forces;
+    std::vector<ClonePtr<Body>> m_bodies;
+    std::vector<ClonePtr<Force>> m_forces;
     std::vector<Swarm> m_swarms;
     int m_threads = 0;
     bool m_swarmRollback = false;

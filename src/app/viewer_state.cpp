@@ -55,8 +55,11 @@ void ViewerState::reload()
 
 void ViewerState::setIntegrator(std::size_t body, Integrator integrator)
 {
-    scene.world.body(body).setIntegrator(integrator);
-    initial.body(body).setIntegrator(integrator);
+    // Bodies joined by springs share one integrator: the whole group changes with this one.
+    for (const std::size_t i : scene.world.coupledGroup(body)) {
+        scene.world.body(i).setIntegrator(integrator);
+        initial.body(i).setIntegrator(integrator);
+    }
 }
 
 void ViewerState::setRestitution(std::size_t body, double cor)

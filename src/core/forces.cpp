@@ -42,3 +42,40 @@ double Spring::potentialEnergy(std::size_t index, const Body&, const dvec3& x) c
 }
 
 } // namespace pba
+
+namespace pba {
+
+dvec3 TwoBodySpring::force(std::size_t, const Body&, const dvec3&, const dvec3&) const { return dvec3(0.0); }
+
+void TwoBodySpring::accumulate(const BodyStates& in, std::span<dvec3> forces) const
+{
+    const State& a = in.states[m_a];
+    const State& b = in.states[m_b];
+    // b seen from a is the anchored spring's kernel with the anchor at a and b's velocity
+    // relative to a: one kernel for both forms.
+    const dvec3 onB = springForce(a.pos, m_stiffness, m_restLength, m_damping, b.pos, b.vel - a.vel);
+    if (!in.bodies[m_a]->isFixed())
+        forces[m_a] -= onB;
+    if (!in.bodies[m_b]->isFixed())
+        forces[m_b] += onB;
+}
+
+double TwoBodySpring::energy(const BodyStates& in) const
+{
+    const double stretch = glm::length(in.states[m_b].pos - in.states[m_a].pos) - m_restLength;
+    return 0.5 * m_stiffness * stretch * stretch;
+}
+
+double TwoBodySpring::potentialEnergyShare(std::size_t index, const BodyStates& in) const
+{
+    return index == m_a || index == m_b ? 0.5 * energy(in) : 0.0;
+}
+
+double TwoBodySpring::totalPotentialEnergy(const BodyStates& in) const { return energy(in); }
+
+void TwoBodySpring::appendCouplings(std::vector<std::pair<std::size_t, std::size_t>>& pairs) const
+{
+    pairs.emplace_back(m_a, m_b);
+}
+
+} // namespace pba

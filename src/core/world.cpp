@@ -1,11 +1,13 @@
 #include "pba/world.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
 #include "pba/blow_dryer.hpp"
 #include "pba/forces.hpp"
+#include "pba/vec3_array.hpp"
 
 #include "collision_rules.hpp"
 
@@ -23,29 +25,6 @@ NonFiniteStateError NonFiniteStateError::inSwarm(const std::string& swarm, std::
                                                  double time, std::string quantity)
 {
     return NonFiniteStateError(fmt::format("{}[{}]", swarm, index), step, time, std::move(quantity));
-}
-
-World::World(const World& other)
-    : m_swarms(other.m_swarms), m_threads(other.m_threads), m_swarmRollback(other.m_swarmRollback), m_previous(other.m_previous), m_bounces(other.m_bounces), m_ground(other.m_ground), m_room(other.m_room),
-      m_hole(other.m_hole),
-      m_planes(other.m_planes), m_response(other.m_response), m_time(other.m_time), m_previousTime(other.m_previousTime), m_steps(other.m_steps),
-      m_lastDt(other.m_lastDt), m_baseTime(other.m_baseTime), m_baseSteps(other.m_baseSteps)
-{
-    m_bodies.reserve(other.m_bodies.size());
-    for (const auto& body : other.m_bodies)
-        m_bodies.push_back(body->clone());
-    m_forces.reserve(other.m_forces.size());
-    for (const auto& force : other.m_forces)
-        m_forces.push_back(force->clone());
-}
-
-World& World::operator=(const World& other)
-{
-    if (this != &other) {
-        World copy(other);
-        *this = std::move(copy);
-    }
-    return *this;
 }
 
 Body& World::addBody(std::unique_ptr<Body> body)
@@ -182,15 +161,38 @@ void World::rebuildPlanes()
     }
 }
 
+dvec3 World::aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const
+{
+    const Body& b = *m_bodies[i];
+    dvec3 f(0.0);
+    for (const auto& force : m_forces)
+        f += force->force(i, b, x, v);
+    return f / b.getMass();
+}
+
+BodyStates World::currentStates(std::vector<State>& storage) const
+{
+    storage.resize(m_bodies.size());
+    for (std::size_t i = 0; i < m_bodies.size(); ++i)
+        storage[i] = m_bodies[i]->getState();
+    return BodyStates{m_bodies, storage, {}};
+}
+
 dvec3 World::acceleration(std::size_t i, const dvec3& x, const dvec3& v) const
 {
     const Body& b = *m_bodies[i];
     if (b.isFixed())
         return dvec3(0.0);
-    dvec3 f(0.0);
+    std::vector<State> states;
+    BodyStates in = currentStates(states);
+    states[i] = State{x, v};
+    std::vector<std::uint8_t> wanted(m_bodies.size(), 0);
+    wanted[i] = 1;
+    in.wanted = wanted;
+    std::vector<dvec3> forces(m_bodies.size(), dvec3(0.0));
     for (const auto& force : m_forces)
-        f += force->force(i, b, x, v);
-    return f / b.getMass();
+        force->accumulate(in, forces);
+    return forces[i] / b.getMass();
 }
 
 State World::interpolatedState(std::size_t i, double alpha) const
@@ -206,19 +208,49 @@ double World::kineticEnergy(std::size_t i) const
 
 double World::potentialEnergy(std::size_t i) const
 {
-    const Body& b = *m_bodies[i];
+    std::vector<State> states;
+    const BodyStates in = currentStates(states);
     double e = 0.0;
     for (const auto& force : m_forces)
-        e += force->potentialEnergy(i, b, b.getPos());
+        e += force->potentialEnergyShare(i, in);
+    return e;
+}
+
+double World::totalPotentialEnergy() const
+{
+    std::vector<State> states;
+    const BodyStates in = currentStates(states);
+    double e = 0.0;
+    for (const auto& force : m_forces)
+        e += force->totalPotentialEnergy(in);
+    return e;
+}
+
+double World::totalEnergy() const
+{
+    double e = totalPotentialEnergy();
+    for (std::size_t i = 0; i < m_bodies.size(); ++i)
+        e += kineticEnergy(i);
     return e;
 }
 
 void World::step(double dt)
 {
+    const Coupling coupling = couple(); // first: a mixed coupled group throws before anything moves
     storePreviousStates();
-    integrateBodies(dt);
+    integrateIndependent(coupling, dt);
+    for (std::size_t k = 0; k < kAllIntegrators.size(); ++k)
+        if (!coupling.systems[k].empty())
+            integrateCoupled(kAllIntegrators[k], coupling.systems[k], dt);
+    collideCoupled(coupling);
     stepSwarms(dt);
-    // The check phase: every body, and every swarm (whose step checked its blocks).
+    checkFinite(dt);
+    advanceClock(dt);
+}
+
+void World::checkFinite(double dt)
+{
+    // Every body, and every swarm (whose step checked its blocks).
     if (const auto bad = firstNonFinite()) {
         rollBack();
         throw NonFiniteStateError(m_bodies[bad->first]->getName(), m_steps + 1, m_time + dt, bad->second);
@@ -230,6 +262,10 @@ void World::step(double dt)
             rollBack();
             throw error;
         }
+}
+
+void World::advanceClock(double dt)
+{
     // t = t0 + k dt from the last change of dt, rather than a running sum, so the time of
     // step n is n dt to rounding instead of drifting by n rounding errors.
     m_previousTime = m_time;
@@ -264,19 +300,155 @@ void World::rollBack()
             m_swarms[s].restoreState(m_swarmsBefore[s]);
 }
 
-void World::integrateBodies(double dt)
+World::Coupling World::couple() const
+{
+    Coupling coupling;
+    coupling.coupled.assign(m_bodies.size(), 0);
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    for (const auto& force : m_forces) {
+        pairs.clear();
+        force->appendCouplings(pairs);
+        for (const auto& [a, b] : pairs) {
+            const Body& first = *m_bodies[a];
+            const Body& second = *m_bodies[b];
+            // Pairs with a fixed end couple nothing between moving bodies, so they put no
+            // condition on the integrators; a moving end is still integrated as coupled,
+            // since its force needs the other end's state.
+            if (!first.isFixed() && !second.isFixed() && first.getIntegrator() != second.getIntegrator())
+                throw std::invalid_argument(fmt::format(
+                    "bodies '{}' and '{}' are coupled by a {} but use different integrators ({} and {}): "
+                    "bodies coupled by forces must share one integrator",
+                    first.getName(), second.getName(), force->type(), integratorName(first.getIntegrator()),
+                    integratorName(second.getIntegrator())));
+            coupling.coupled[a] = first.isFixed() ? 0 : 1;
+            coupling.coupled[b] = second.isFixed() ? 0 : 1;
+        }
+    }
+    for (std::size_t i = 0; i < m_bodies.size(); ++i)
+        if (coupling.coupled[i] != 0) {
+            const auto k = std::find(kAllIntegrators.begin(), kAllIntegrators.end(), m_bodies[i]->getIntegrator());
+            coupling.systems[std::size_t(k - kAllIntegrators.begin())].push_back(i);
+        }
+    return coupling;
+}
+
+bool World::isCoupled(std::size_t i) const
+{
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    for (const auto& force : m_forces)
+        force->appendCouplings(pairs);
+    return !m_bodies[i]->isFixed() &&
+           std::any_of(pairs.begin(), pairs.end(), [i](const auto& p) { return p.first == i || p.second == i; });
+}
+
+std::vector<std::size_t> World::coupledGroup(std::size_t i) const
+{
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    for (const auto& force : m_forces)
+        force->appendCouplings(pairs);
+    std::vector<std::uint8_t> inGroup(m_bodies.size(), 0);
+    inGroup[i] = 1;
+    // Grow the group until no pair of moving bodies adds to it: a few passes for a chain
+    // listed in order, at worst one per body (a read-out, not part of the step).
+    for (bool grew = !m_bodies[i]->isFixed(); grew;) {
+        grew = false;
+        for (const auto& [a, b] : pairs) {
+            if (m_bodies[a]->isFixed() || m_bodies[b]->isFixed() || inGroup[a] == inGroup[b])
+                continue;
+            inGroup[a] = inGroup[b] = 1;
+            grew = true;
+        }
+    }
+    std::vector<std::size_t> group;
+    for (std::size_t k = 0; k < m_bodies.size(); ++k)
+        if (inGroup[k] != 0)
+            group.push_back(k);
+    return group;
+}
+
+void World::integrateIndependent(const Coupling& coupling, double dt)
 {
     for (std::size_t i = 0; i < m_bodies.size(); ++i) {
         Body& b = *m_bodies[i];
-        if (b.isFixed())
+        if (b.isFixed() || coupling.coupled[i] != 0)
             continue;
-        auto accel = [this, i](const dvec3& x, const dvec3& v) { return acceleration(i, x, v); };
+        // Every integrator's first evaluation is at the start state: that one is kept as the
+        // body's acceleration, rather than evaluating all the forces once more after the step.
+        bool first = true;
+        dvec3 startAcc(0.0);
+        auto accel = [this, i, &first, &startAcc](const dvec3& x, const dvec3& v) {
+            const dvec3 a = aloneAcceleration(i, x, v);
+            if (first) {
+                startAcc = a;
+                first = false;
+            }
+            return a;
+        };
         State s = b.getState();
         const int bounces = stepWithCollisions(m_response, b.getIntegrator(), std::span<const Plane>(m_planes),
                                                b.getCor(), s.pos, s.vel, dt, accel);
         m_bounces[i] += static_cast<std::uint64_t>(bounces);
         b.setState(s);
-        b.setAcc(accel(s.pos, s.vel));
+        b.setAcc(startAcc);
+    }
+}
+
+void World::integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members, double dt)
+{
+    const std::size_t n = members.size();
+    Vec3Array x(n);
+    Vec3Array v(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        x[k] = m_previous[members[k]].pos;
+        v[k] = m_previous[members[k]].vel;
+    }
+    // Every body of the world sits at its start-of-step state except the system's, which take
+    // each stage's trial state: no force couples the system to a body outside it.
+    std::vector<State> trial(m_previous);
+    std::vector<std::uint8_t> wanted(m_bodies.size(), 0);
+    for (const std::size_t i : members)
+        wanted[i] = 1;
+    std::vector<dvec3> forces(m_bodies.size());
+    const BodyStates in{m_bodies, trial, wanted};
+    bool first = true;
+    auto accel = [&](const Vec3Array& xs, const Vec3Array& vs) {
+        for (std::size_t k = 0; k < n; ++k)
+            trial[members[k]] = State{xs[k], vs[k]};
+        std::fill(forces.begin(), forces.end(), dvec3(0.0));
+        for (const auto& force : m_forces)
+            force->accumulate(in, forces);
+        Vec3Array a(n);
+        for (std::size_t k = 0; k < n; ++k)
+            a[k] = forces[members[k]] / m_bodies[members[k]]->getMass();
+        if (first) { // the first stage is at the start state: the bodies' acceleration
+            for (std::size_t k = 0; k < n; ++k)
+                m_bodies[members[k]]->setAcc(a[k]);
+            first = false;
+        }
+        return a;
+    };
+    integrate(integrator, x, v, dt, accel);
+    for (std::size_t k = 0; k < n; ++k)
+        m_bodies[members[k]]->setState(State{x[k], v[k]});
+}
+
+void World::collideCoupled(const Coupling& coupling)
+{
+    if (m_planes.empty())
+        return;
+    const std::span<const Plane> planes(m_planes);
+    for (std::size_t i = 0; i < m_bodies.size(); ++i) {
+        if (coupling.coupled[i] == 0)
+            continue;
+        // A coupled body has no path of its own to find a time of impact on (its group moved
+        // as one), so exact acts as reflect: mirror back what ended behind a surface.
+        Body& b = *m_bodies[i];
+        State s = b.getState();
+        const int bounces = m_response == CollisionResponse::Clamp
+                                ? clampAfterStep(planes, b.getCor(), m_previous[i].pos, s.pos, s.vel)
+                                : reflectAfterStep(planes, b.getCor(), m_previous[i].pos, s.pos, s.vel);
+        b.setState(s);
+        m_bounces[i] += static_cast<std::uint64_t>(bounces);
     }
 }
 

@@ -74,16 +74,21 @@ void Trails::record(const World& world, double alpha, const ViewSettings& settin
 
 namespace {
 
-/// The world's anchored springs, drawn as coils and kept in the camera's frame.
-std::vector<const Spring*> springs(const World& world)
+/// The world's springs, drawn as coils: anchored ones (kept in the camera's frame) and those
+/// between two bodies.
+struct Springs final : ForceVisitor {
+    std::vector<const Spring*> anchored;
+    std::vector<const TwoBodySpring*> between;
+    void visit(const Spring& spring) override { anchored.push_back(&spring); }
+    void visit(const TwoBodySpring& spring) override { between.push_back(&spring); }
+};
+
+Springs springs(const World& world)
 {
-    struct Finder final : ForceVisitor {
-        std::vector<const Spring*> found;
-        void visit(const Spring& spring) override { found.push_back(&spring); }
-    } finder;
+    Springs finder;
     for (std::size_t i = 0; i < world.forceCount(); ++i)
         world.force(i).accept(finder);
-    return finder.found;
+    return finder;
 }
 
 void addSurfaces(const World& world, DrawList& out)
@@ -201,26 +206,41 @@ void addBodies(const World& world, const World& initial, double alpha, const Vie
     }
 }
 
-/// A spring as a zigzag from its anchor to its particle, the anchor as a small grey ball.
-void addSpring(const Spring& spring, const glm::vec3& end, DrawList& out)
+/// A spring as a zigzag from one end to the other.
+void addCoil(const glm::vec3& from, const glm::vec3& to, DrawList& out)
 {
-    const glm::vec3 anchor(spring.anchor());
-    const glm::vec3 along = end - anchor;
+    const glm::vec3 along = to - from;
     glm::vec3 side = glm::cross(along, glm::vec3(0, 0, 1));
     if (glm::length(side) < 1e-6f)
         side = glm::vec3(1, 0, 0);
     side = 0.08f * glm::normalize(side);
     const int coils = 16;
     const glm::vec4 colour(0.85f, 0.85f, 0.9f, 1.0f);
-    glm::vec3 previous = anchor;
+    glm::vec3 previous = from;
     for (int k = 1; k <= coils; ++k) {
         const float t = float(k) / float(coils + 1);
-        const glm::vec3 next = anchor + t * along + (k % 2 ? side : -side);
+        const glm::vec3 next = from + t * along + (k % 2 ? side : -side);
         out.addLine(previous, next, colour);
         previous = next;
     }
-    out.addLine(previous, end, colour);
-    out.sprites.push_back({anchor, 0.05f, glm::vec4(0.6f, 0.6f, 0.65f, 1.0f)});
+    out.addLine(previous, to, colour);
+}
+
+void addSprings(const World& world, double alpha, const ViewSettings& settings, DrawList& out)
+{
+    const Springs found = springs(world);
+    const std::size_t n = world.bodyCount();
+    for (const Spring* spring : found.anchored) {
+        if (spring->particle() >= n)
+            continue;
+        const glm::vec3 anchor(spring->anchor());
+        addCoil(anchor, drawnCentre(world, spring->particle(), alpha, settings), out);
+        out.sprites.push_back({anchor, 0.05f, glm::vec4(0.6f, 0.6f, 0.65f, 1.0f)}); // the anchor, a small ball
+    }
+    for (const TwoBodySpring* spring : found.between)
+        if (spring->first() < n && spring->second() < n)
+            addCoil(drawnCentre(world, spring->first(), alpha, settings),
+                    drawnCentre(world, spring->second(), alpha, settings), out);
 }
 
 } // namespace
@@ -233,9 +253,7 @@ void buildDrawList(const World& world, const World& initial, double alpha, const
     if (settings.cone)
         for (const WorldDryer& dryer : blowDryers(world))
             addCone(dryer.field, settings.fieldArrows, out);
-    for (const Spring* spring : springs(world))
-        if (spring->particle() < world.bodyCount())
-            addSpring(*spring, drawnCentre(world, spring->particle(), alpha, settings), out);
+    addSprings(world, alpha, settings, out);
     addBodies(world, initial, alpha, settings, trails, out);
     // Swarms keep no previous state (24 bytes a particle is the budget): drawn where they are.
     for (std::size_t s = 0; s < world.swarmCount(); ++s) {
@@ -254,7 +272,7 @@ OrbitCamera frameWorld(const World& world)
         lo = glm::min(lo, glm::vec3(world.body(i).getPos()));
         hi = glm::max(hi, glm::vec3(world.body(i).getPos()));
     }
-    for (const Spring* spring : springs(world)) {
+    for (const Spring* spring : springs(world).anchored) {
         lo = glm::min(lo, glm::vec3(spring->anchor()));
         hi = glm::max(hi, glm::vec3(spring->anchor()));
     }

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -12,17 +14,57 @@ namespace pba::scene_detail {
 
 namespace {
 
-std::unique_ptr<Force> parseSpring(ObjectReader& reader, World& world)
+std::size_t readParticle(ObjectReader& reader, const std::string& key, const std::string& name, const World& world)
 {
-    const std::string name = reader.string("particle");
     const auto index = world.findBody(name);
     if (!index)
-        reader.fail("particle", fmt::format("no particle named '{}'", name));
+        reader.fail(key, fmt::format("no particle named '{}'", name));
+    return *index;
+}
+
+/// `"particles": ["a", "b"]`: a spring between two particles, which then move as one coupled
+/// group and so must share one integrator (unless one of them is fixed).
+std::unique_ptr<Force> parseTwoBodySpring(ObjectReader& reader, World& world)
+{
+    if (reader.has("particle"))
+        reader.fail("particle", "give either \"particle\" (with an anchor) or \"particles\" (two of them), not both");
+    if (reader.has("anchor"))
+        reader.fail("anchor", "a spring between two particles has no anchor");
+    std::vector<std::string> names;
+    const Json& value = reader.raw("particles");
+    if (value.is_array())
+        for (const Json& item : value)
+            if (item.is_string())
+                names.push_back(item.get<std::string>());
+    if (!value.is_array() || value.size() != 2 || names.size() != 2)
+        reader.fail("particles", "expected an array of two particle names");
+    const std::size_t a = readParticle(reader, "particles", names[0], world);
+    const std::size_t b = readParticle(reader, "particles", names[1], world);
+    if (a == b)
+        reader.fail("particles", fmt::format("joins '{}' to itself: name two different particles", names[0]));
+    const Body& first = world.body(a);
+    const Body& second = world.body(b);
+    if (!first.isFixed() && !second.isFixed() && first.getIntegrator() != second.getIntegrator())
+        reader.fail("particles", fmt::format("the spring joins '{}' ({}) and '{}' ({}): particles joined by springs "
+                                             "move as one system and must share one integrator",
+                                             names[0], integratorName(first.getIntegrator()), names[1],
+                                             integratorName(second.getIntegrator())));
+    const double stiffness = reader.positive("stiffness");
+    const double restLength = reader.nonNegative("rest_length", 0.0);
+    const double damping = reader.nonNegative("damping", 0.0);
+    return std::make_unique<TwoBodySpring>(a, b, stiffness, restLength, damping);
+}
+
+std::unique_ptr<Force> parseSpring(ObjectReader& reader, World& world)
+{
+    if (reader.has("particles"))
+        return parseTwoBodySpring(reader, world);
+    const std::size_t index = readParticle(reader, "particle", reader.string("particle"), world);
     const dvec3 anchor = reader.vec3("anchor");
     const double stiffness = reader.positive("stiffness");
     const double restLength = reader.nonNegative("rest_length", 0.0);
     const double damping = reader.nonNegative("damping", 0.0);
-    return std::make_unique<Spring>(*index, anchor, stiffness, restLength, damping);
+    return std::make_unique<Spring>(index, anchor, stiffness, restLength, damping);
 }
 
 std::unique_ptr<Force> parseDrag(ObjectReader& reader, World&)
@@ -112,7 +154,7 @@ std::unique_ptr<Force> parseBlowDryer(ObjectReader& reader, World& world)
 const std::vector<ForceType>& forceTypes()
 {
     static const std::vector<ForceType> types{
-        {"spring", &parseSpring, {"particle", "anchor", "stiffness", "rest_length", "damping"}},
+        {"spring", &parseSpring, {"particle", "particles", "anchor", "stiffness", "rest_length", "damping"}},
         {"drag", &parseDrag, {"coefficient"}},
         {"blow-dryer", &parseBlowDryer,
          {"nozzle", "axis", "height", "nozzle_radius", "top_radius", "strength", "axial_falloff", "radial_falloff",

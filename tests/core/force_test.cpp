@@ -106,7 +106,7 @@ TEST(Force, OneThatCannotActOnASwarmIsRefusedNamingItsType)
     EXPECT_EQ(world.forceCount(), 1u);
     // The other way round: a swarm is not added to a world with such a force.
     World bodies;
-    bodies.addForce(std::make_unique<Spring>(0, dvec3(0.0), 1.0, 1.0, 0.0));
+    bodies.addForce(std::make_unique<Wind>(2.0));
     EXPECT_THROW(bodies.addSwarm(smallSwarm()), std::invalid_argument);
     EXPECT_EQ(bodies.swarmCount(), 0u);
 }

@@ -247,22 +247,19 @@ TEST(SceneLoader, AnUnknownKeyIsReportedFirstWithTheKnownKeyItIsCloseTo)
               "scene.json: forces[0].stiffness: unknown key (expected one of: type, coefficient)");
 }
 
-// A force that cannot act on a swarm used to act on the particles alone and silently leave the
-// swarm out; now the scene is refused at the force, naming its type and the swarm.
-TEST(SceneLoader, AForceThatCannotActOnTheScenesSwarmsIsRefusedAtTheForce)
+// Springs tie named particles: a scene with swarms takes them, and the swarm feels nothing of
+// them. (Every other scene force type acts on swarms too; a program's own force that cannot is
+// refused by the World: tests/core/force_test.cpp.)
+TEST(SceneLoader, ASpringInASwarmSceneTiesOnlyItsParticle)
 {
     const std::string scene = R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]},
-        "particles": [{"name": "a", "position": [0, 1, 0]}],
+        "particles": [{"name": "a", "position": [0, 1, 0]}, {"name": "b", "position": [0.5, 1, 0]}],
         "swarms": [{"name": "s", "count": 10, "region": {"min": [0, 1, 0], "max": [1, 2, 1]}, "seed": 1}],
         "forces": [{"type": "drag", "coefficient": 0.1}, {"type": "blow-dryer", "nozzle": [0, 0, 0], "height": 3,
                     "nozzle_radius": 0.2, "top_radius": 1, "strength": 30},
-                   {"type": "spring", "particle": "a", "anchor": [0, 2, 0], "stiffness": 1}]})";
-    EXPECT_EQ(errorOf(scene), "scene.json: forces[2]: a spring force cannot act on swarm 's': a swarm feels gravity, "
-                              "drag and blow dryers only");
-    // The same spring without the swarm is a scene.
-    nlohmann::json noSwarm = nlohmann::json::parse(scene);
-    noSwarm.erase("swarms");
-    EXPECT_EQ(errorOf(noSwarm.dump()), "accepted");
+                   {"type": "spring", "particle": "a", "anchor": [0, 2, 0], "stiffness": 1},
+                   {"type": "spring", "particles": ["a", "b"], "stiffness": 1, "rest_length": 0.5}]})";
+    EXPECT_EQ(errorOf(scene), "accepted");
 }
 
 TEST(SceneLoader, AnUnknownKeyFarFromEveryKnownOneGetsNoSuggestion)

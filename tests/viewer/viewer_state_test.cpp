@@ -154,3 +154,23 @@ TEST(ViewerState, EveryStepCommandOfAFrameIsTaken)
     state.apply(ViewerCommand::Quit);
     EXPECT_TRUE(state.quit);
 }
+
+TEST(ViewerState, ChoosingAnIntegratorChangesTheWholeCoupledGroup)
+{
+    // Particles joined by springs share one integrator: the panel's choice for one of them
+    // moves the group with it (and the reset state too), so the next step cannot refuse it.
+    ViewerState state;
+    state.load(parseScene(R"({ "particles": [
+        { "name": "a", "position": [0, 1, 0] }, { "name": "b", "position": [1, 1, 0] },
+        { "name": "c", "position": [2, 1, 0] }, { "name": "alone", "position": [3, 1, 0] } ],
+      "forces": [ { "type": "spring", "particles": ["a", "b"], "stiffness": 10, "rest_length": 1 },
+                  { "type": "spring", "particles": ["c", "b"], "stiffness": 10, "rest_length": 1 } ] })",
+                          "group.json"));
+    state.setIntegrator(2, Integrator::RK4);
+    for (std::size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(state.scene.world.body(i).getIntegrator(), Integrator::RK4) << i;
+        EXPECT_EQ(state.initial.body(i).getIntegrator(), Integrator::RK4) << i;
+    }
+    EXPECT_EQ(state.scene.world.body(3).getIntegrator(), Integrator::SemiImplicitEuler);
+    EXPECT_NO_THROW(state.stepWorld(10));
+}

@@ -1,0 +1,46 @@
+#pragma once
+// The state of a group of coupled bodies as one vector: a position (or velocity, or
+// acceleration) per body, with the vector-space operations the integrators use. The same
+// integrator templates then step one body (Vec3) or a whole coupled group (Vec3Array): RK4
+// of a coupled system is RK4 of the whole system, not of each body in turn.
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "pba/math.hpp"
+
+namespace pba {
+
+class Vec3Array {
+public:
+    Vec3Array() = default;
+    explicit Vec3Array(std::size_t n) : m_items(n, dvec3(0.0)) {}
+
+    std::size_t size() const { return m_items.size(); }
+    dvec3& operator[](std::size_t i) { return m_items[i]; }
+    const dvec3& operator[](std::size_t i) const { return m_items[i]; }
+    auto begin() { return m_items.begin(); }
+    auto end() { return m_items.end(); }
+    auto begin() const { return m_items.begin(); }
+    auto end() const { return m_items.end(); }
+
+    Vec3Array& operator+=(const Vec3Array& other)
+    {
+        for (std::size_t i = 0; i < m_items.size(); ++i)
+            m_items[i] += other.m_items[i];
+        return *this;
+    }
+    friend Vec3Array operator+(Vec3Array a, const Vec3Array& b) { return a += b; }
+    friend Vec3Array operator*(Vec3Array a, double s)
+    {
+        for (dvec3& u : a.m_items)
+            u *= s;
+        return a;
+    }
+    friend Vec3Array operator*(double s, Vec3Array a) { return std::move(a) * s; }
+
+private:
+    std::vector<dvec3> m_items;
+};
+
+} // namespace pba
