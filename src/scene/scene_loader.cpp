@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "fabric_readers.hpp"
 #include "force_parsers.hpp"
 #include "json_reader.hpp"
 #include "pba/forces.hpp"
@@ -24,10 +25,49 @@ SceneError::SceneError(std::string file, std::string field, std::string reason)
 {
 }
 
+namespace scene_detail {
+
+Integrator readIntegrator(ObjectReader& reader, const std::string& key, Integrator fallback)
+{
+    if (!reader.has(key))
+        return fallback;
+    const std::string name = reader.string(key);
+    const auto integrator = integratorFromName(name);
+    if (!integrator)
+        reader.fail(key, fmt::format("unknown integrator '{}' (expected forward-euler, semi-implicit-euler, "
+                                     "velocity-verlet or rk4)", name));
+    return *integrator;
+}
+
+bool insideSurfaces(const World& world, const dvec3& x)
+{
+    for (const Plane& plane : world.planes())
+        if (plane.distance(x) < 0.0)
+            return false;
+    return true;
+}
+
+/// A name (of the scene, a particle, a swarm): it goes into summaries, CSV rows, pictures and
+/// titles, so control characters (a newline, a tab, an escape) are refused.
+std::string readName(ObjectReader& reader, const std::string& key, const std::optional<std::string>& fallback)
+{
+    const std::string name = fallback ? reader.string(key, *fallback) : reader.string(key);
+    for (const char c : name)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            reader.fail(key, fmt::format("contains a control character (code {}); names are one line of text",
+                                         static_cast<int>(static_cast<unsigned char>(c))));
+    return name;
+}
+
+} // namespace scene_detail
+
 namespace {
 
 using scene_detail::Json;
 using scene_detail::ObjectReader;
+using scene_detail::insideSurfaces;
+using scene_detail::readIntegrator;
+using scene_detail::readName;
 
 void readSurfaces(ObjectReader& root, World& world)
 {
@@ -52,38 +92,6 @@ void readSurfaces(ObjectReader& root, World& world)
     }
 }
 
-Integrator readIntegrator(ObjectReader& reader, const std::string& key, Integrator fallback)
-{
-    if (!reader.has(key))
-        return fallback;
-    const std::string name = reader.string(key);
-    const auto integrator = integratorFromName(name);
-    if (!integrator)
-        reader.fail(key, fmt::format("unknown integrator '{}' (expected forward-euler, semi-implicit-euler, "
-                                     "velocity-verlet or rk4)", name));
-    return *integrator;
-}
-
-bool inside(const World& world, const dvec3& x)
-{
-    for (const Plane& plane : world.planes())
-        if (plane.distance(x) < 0.0)
-            return false;
-    return true;
-}
-
-/// A name (of the scene, a particle, a swarm): it goes into summaries, CSV rows, pictures and
-/// titles, so control characters (a newline, a tab, an escape) are refused.
-std::string readName(ObjectReader& reader, const std::string& key, const std::optional<std::string>& fallback = {})
-{
-    const std::string name = fallback ? reader.string(key, *fallback) : reader.string(key);
-    for (const char c : name)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-            reader.fail(key, fmt::format("contains a control character (code {}); names are one line of text",
-                                         static_cast<int>(static_cast<unsigned char>(c))));
-    return name;
-}
-
 void readParticle(const Json& value, const std::string& path, const std::string& file, World& world,
                   std::set<std::string>& names)
 {
@@ -106,7 +114,7 @@ void readParticle(const Json& value, const std::string& path, const std::string&
     p.setCor(restitution);
     p.setIntegrator(readIntegrator(reader, "integrator", Integrator::SemiImplicitEuler));
     p.setFixed(reader.boolean("fixed", false));
-    if (!inside(world, p.getPos()))
+    if (!insideSurfaces(world, p.getPos()))
         reader.fail("position", "lies outside the ground or room");
     reader.finish();
     world.addParticle(p);
@@ -193,7 +201,7 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
         if (desc.regionMin[i] > desc.regionMax[i])
             region.fail("min", fmt::format("must not be above max (axis {})", "xyz"[i]));
     region.finish();
-    if (!inside(world, desc.regionMin) || !inside(world, desc.regionMax))
+    if (!insideSurfaces(world, desc.regionMin) || !insideSurfaces(world, desc.regionMax))
         reader.fail("region", "lies outside the ground or room");
     desc.velocity = reader.vec3("velocity", dvec3(0.0));
     desc.velocityJitter = reader.nonNegative("velocity_jitter", 0.0);
@@ -299,7 +307,7 @@ Scene readScene(const Json& document, const std::string& file)
 {
     ObjectReader root(document, "", file);
     root.expectKeys({"name", "summary", "description", "dt", "duration", "gravity", "collision_response", "ground",
-                     "room", "particles", "swarms", "forces"});
+                     "room", "particles", "ropes", "cloths", "swarms", "forces"});
     Scene scene;
     scene.source = file;
     scene.name = readName(root, "name", "unnamed");
@@ -325,6 +333,13 @@ Scene readScene(const Json& document, const std::string& file)
     std::set<std::string> names;
     root.array("particles", [&](const Json& value, const std::string& path, std::size_t) {
         readParticle(value, path, file, scene.world, names);
+    });
+    const scene_detail::FabricTarget fabric{scene.world, names, scene.fabric};
+    root.array("ropes", [&](const Json& value, const std::string& path, std::size_t) {
+        scene_detail::readRope(value, path, file, fabric);
+    });
+    root.array("cloths", [&](const Json& value, const std::string& path, std::size_t) {
+        scene_detail::readCloth(value, path, file, fabric);
     });
     root.array("swarms", [&](const Json& value, const std::string& path, std::size_t) {
         readSwarm(value, path, file, scene.world, names);

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "pba/fabric.hpp"
 #include "pba/world.hpp"
 
 namespace pba {
@@ -19,6 +20,7 @@ struct Scene {
     double dt = 0.01;        ///< s
     double duration = 10.0;  ///< s
     World world;
+    FabricLayout fabric;     ///< which of the world's particles form its ropes and cloths
     std::string source;      ///< file path, or "builtin:NAME"
 };
 

@@ -1,0 +1,29 @@
+#pragma once
+// The `ropes` and `cloths` of a scene: each builds its particles and the two-body springs
+// between them (docs/scenes.md), and records which particles it made for the renderer.
+#include <set>
+#include <string>
+
+#include "json_reader.hpp"
+#include "pba/fabric.hpp"
+#include "pba/world.hpp"
+
+namespace pba::scene_detail {
+
+/// The context a rope or cloth is read in: its particles' names must be new, and their layout
+/// is added to `layout`.
+struct FabricTarget {
+    World& world;
+    std::set<std::string>& names;
+    FabricLayout& layout;
+};
+
+void readRope(const Json& value, const std::string& path, const std::string& file, FabricTarget target);
+void readCloth(const Json& value, const std::string& path, const std::string& file, FabricTarget target);
+
+// Shared with the particles' reader (scene_loader.cpp).
+Integrator readIntegrator(ObjectReader& reader, const std::string& key, Integrator fallback);
+bool insideSurfaces(const World& world, const dvec3& x);
+std::string readName(ObjectReader& reader, const std::string& key, const std::optional<std::string>& fallback = {});
+
+} // namespace pba::scene_detail
