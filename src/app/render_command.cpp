@@ -66,6 +66,7 @@ int runRender(const RenderOptions& options)
     render::ViewSettings settings;
     settings.fieldArrows = options.arrows;
     settings.trails = !options.noTrails;
+    settings.fabric = scene.fabric;
     if (options.lanes)
         settings.ghost = exactGhosts(scene.world);
     render::OffscreenRenderer renderer(width, height);

@@ -26,6 +26,7 @@ void ViewerState::load(Scene newScene)
     scene.world.setSwarmRollback(true); // a failed step pauses on the last finite state, swarms too
     scenePath = scene.source;
     camera = render::frameWorld(scene.world);
+    settings.fabric = scene.fabric;
     initial = scene.world;
     if (settings.ghost)
         settings.ghost = exactGhosts(initial);

@@ -7,6 +7,7 @@ void DrawList::clear()
     sprites.clear();
     lines.clear();
     triangles.clear();
+    surfaces.clear();
     floor.reset();
 }
 

@@ -21,6 +21,13 @@ struct ColouredVertex {
     glm::vec4 colour;
 };
 
+/// A vertex of a lit surface (a cloth): shaded from its normal on both sides.
+struct LitVertex {
+    glm::vec3 position;
+    glm::vec3 normal;
+    glm::vec4 colour;
+};
+
 /// A checkered rectangle in the plane y = height, with an optional round hole.
 struct Floor {
     glm::vec2 min{-1.0f}; ///< x, z
@@ -35,6 +42,7 @@ struct DrawList {
     std::vector<Sprite> sprites;
     std::vector<ColouredVertex> lines;     ///< pairs of vertices
     std::vector<ColouredVertex> triangles; ///< triples, drawn blended after everything opaque
+    std::vector<LitVertex> surfaces;       ///< triples, opaque and lit, both sides
     std::optional<Floor> floor;
 
     void clear();

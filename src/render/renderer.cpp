@@ -11,7 +11,8 @@ namespace pba::render {
 Renderer::Renderer()
     : m_sprite("sprite", glsl::kSpriteVertex, glsl::kSpriteFragment),
       m_flat("flat", glsl::kFlatVertex, glsl::kFlatFragment),
-      m_floor("floor", glsl::kFloorVertex, glsl::kFloorFragment)
+      m_floor("floor", glsl::kFloorVertex, glsl::kFloorFragment),
+      m_lit("lit", glsl::kLitVertex, glsl::kLitFragment)
 {
     glGenVertexArrays(1, &m_vao);
     glGenBuffers(1, &m_vbo);
@@ -34,7 +35,7 @@ void Renderer::draw(const DrawList& list, const OrbitCamera& camera, int width, 
     glDisable(GL_CULL_FACE);
     const glm::mat4 view = camera.view();
     const glm::mat4 projection = camera.projection(float(width) / float(std::max(height, 1)));
-    for (const Shader* shader : {&m_sprite, &m_flat, &m_floor}) {
+    for (const Shader* shader : {&m_sprite, &m_flat, &m_floor, &m_lit}) {
         shader->use();
         shader->set("uView", view);
         shader->set("uProjection", projection);
@@ -46,6 +47,7 @@ void Renderer::draw(const DrawList& list, const OrbitCamera& camera, int width, 
     if (list.floor)
         drawFloor(*list.floor);
     drawColoured(list.lines, GL_LINES);
+    drawSurfaces(list.surfaces);
     drawSprites(list.sprites);
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -91,6 +93,22 @@ void Renderer::drawColoured(const std::vector<ColouredVertex>& vertices, unsigne
     glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(ColouredVertex),
                           reinterpret_cast<void*>(offsetof(ColouredVertex, colour)));
     glDrawArrays(mode, 0, static_cast<GLsizei>(vertices.size()));
+}
+
+void Renderer::drawSurfaces(const std::vector<LitVertex>& vertices)
+{
+    if (vertices.empty())
+        return;
+    m_lit.use();
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(LitVertex)), vertices.data(),
+                 GL_STREAM_DRAW);
+    glEnableVertexAttribArray(0);
+    glEnableVertexAttribArray(1);
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(LitVertex), reinterpret_cast<void*>(offsetof(LitVertex, position)));
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(LitVertex), reinterpret_cast<void*>(offsetof(LitVertex, normal)));
+    glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(LitVertex), reinterpret_cast<void*>(offsetof(LitVertex, colour)));
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size()));
 }
 
 void Renderer::drawSprites(const std::vector<Sprite>& sprites)

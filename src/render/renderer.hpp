@@ -25,10 +25,12 @@ private:
     void drawFloor(const Floor& floor);
     void drawColoured(const std::vector<ColouredVertex>& vertices, unsigned mode);
     void drawSprites(const std::vector<Sprite>& sprites);
+    void drawSurfaces(const std::vector<LitVertex>& vertices);
 
     Shader m_sprite;
     Shader m_flat;
     Shader m_floor;
+    Shader m_lit;
     unsigned m_vao = 0;
     unsigned m_vbo = 0;
 };

@@ -55,6 +55,37 @@ out vec4 fragColour;
 void main() { fragColour = vColour; }
 )";
 
+// A cloth: lit from its per-vertex normal, two-sided (the back face's normal is turned toward
+// the eye), so a sheet folding over shows its shape from either side.
+inline constexpr const char* kLitVertex = R"(#version 330 core
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aNormal;
+layout(location = 2) in vec4 aColour;
+uniform mat4 uView;
+uniform mat4 uProjection;
+out vec3 vNormal;
+out vec4 vColour;
+void main() {
+    gl_Position = uProjection * uView * vec4(aPosition, 1.0);
+    vNormal = mat3(uView) * aNormal;
+    vColour = aColour;
+}
+)";
+
+inline constexpr const char* kLitFragment = R"(#version 330 core
+in vec3 vNormal;
+in vec4 vColour;
+out vec4 fragColour;
+void main() {
+    vec3 normal = length(vNormal) > 0.0 ? normalize(vNormal) : vec3(0, 0, 1);
+    if (!gl_FrontFacing) normal = -normal;
+    vec3 light = normalize(vec3(-0.4, 0.7, 0.6));
+    float diffuse = abs(dot(normal, light));
+    float specular = pow(max(dot(reflect(-light, normal), vec3(0, 0, 1)), 0.0), 16.0);
+    fragColour = vec4(vColour.rgb * (0.3 + 0.7 * diffuse) + vec3(0.15 * specular), vColour.a);
+}
+)";
+
 inline constexpr const char* kFloorVertex = R"(#version 330 core
 layout(location = 0) in vec3 aPosition;
 uniform mat4 uView;

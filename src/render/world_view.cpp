@@ -174,10 +174,85 @@ void addCone(const BlowDryerField& f, bool arrows, DrawList& out)
         addFieldArrows(f, u, w, out);
 }
 
+/// Whether each body belongs to a rope or cloth (drawn as such, not as a ball with a trail).
+std::vector<bool> fabricMembers(const World& world, const FabricLayout& fabric)
+{
+    std::vector<bool> member(world.bodyCount(), false);
+    auto mark = [&](std::size_t i) {
+        if (i < member.size())
+            member[i] = true;
+    };
+    for (const RopeLayout& rope : fabric.ropes)
+        for (const std::size_t i : rope.particles)
+            mark(i);
+    for (const ClothLayout& cloth : fabric.cloths)
+        for (std::size_t k = 0; k < cloth.width * cloth.height; ++k)
+            mark(cloth.first + k);
+    return member;
+}
+
+/// A rope: a line through its particles with a small bead on each; pins drawn grey.
+void addRope(const World& world, const RopeLayout& rope, double alpha, const ViewSettings& settings, DrawList& out)
+{
+    const glm::vec4 colour(0.92f, 0.74f, 0.42f, 1.0f);
+    for (std::size_t k = 0; k < rope.particles.size(); ++k) {
+        const std::size_t i = rope.particles[k];
+        if (i >= world.bodyCount())
+            return;
+        const glm::vec3 at = drawnPosition(world, i, alpha, settings.interpolate);
+        if (k > 0)
+            out.addLine(drawnPosition(world, rope.particles[k - 1], alpha, settings.interpolate), at, colour);
+        const bool pinned = world.body(i).isFixed();
+        out.sprites.push_back({at, settings.particleRadius * (pinned ? 0.8f : 0.45f), pinned ? bodyColour(world.body(i)) : colour});
+    }
+}
+
+/// A cloth: two triangles a grid cell, each vertex with the normal of the faces around it
+/// (area-weighted by the unnormalised cross products), so the sheet is shaded smoothly.
+void addCloth(const World& world, const ClothLayout& cloth, double alpha, const ViewSettings& settings, DrawList& out)
+{
+    const std::size_t w = cloth.width, h = cloth.height;
+    if (w < 2 || h < 2 || cloth.first + w * h > world.bodyCount())
+        return;
+    std::vector<glm::vec3> x(w * h), n(w * h, glm::vec3(0.0f));
+    for (std::size_t k = 0; k < w * h; ++k)
+        x[k] = drawnPosition(world, cloth.first + k, alpha, settings.interpolate);
+    for (std::size_t j = 0; j + 1 < h; ++j)
+        for (std::size_t i = 0; i + 1 < w; ++i) {
+            const std::size_t a = j * w + i, b = a + 1, c = a + w, d = c + 1;
+            const glm::vec3 face = glm::cross(x[b] - x[a], x[c] - x[a]) + glm::cross(x[c] - x[d], x[b] - x[d]);
+            for (const std::size_t v : {a, b, c, d})
+                n[v] += face;
+        }
+    const glm::vec4 front(0.86f, 0.33f, 0.30f, 1.0f), back(0.95f, 0.62f, 0.45f, 1.0f);
+    for (std::size_t j = 0; j + 1 < h; ++j)
+        for (std::size_t i = 0; i + 1 < w; ++i) {
+            const std::size_t a = j * w + i, b = a + 1, c = a + w, d = c + 1;
+            // A checkered weave, so that the folds can be followed.
+            const glm::vec4 colour = (i / 2 + j / 2) % 2 ? front : glm::mix(front, back, 0.35f);
+            for (const std::size_t v : {a, b, d, a, d, c})
+                out.surfaces.push_back({x[v], n[v], colour});
+        }
+    for (std::size_t k = 0; k < w * h; ++k)
+        if (world.body(cloth.first + k).isFixed())
+            out.sprites.push_back({x[k], settings.particleRadius * 0.8f, bodyColour(world.body(cloth.first + k))});
+}
+
+void addFabric(const World& world, double alpha, const ViewSettings& settings, DrawList& out)
+{
+    for (const RopeLayout& rope : settings.fabric.ropes)
+        addRope(world, rope, alpha, settings, out);
+    for (const ClothLayout& cloth : settings.fabric.cloths)
+        addCloth(world, cloth, alpha, settings, out);
+}
+
 void addBodies(const World& world, const World& initial, double alpha, const ViewSettings& settings,
                const Trails* trails, DrawList& out)
 {
+    const std::vector<bool> fabric = fabricMembers(world, settings.fabric);
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
+        if (fabric[i])
+            continue;
         const glm::vec4 colour = bodyColour(world.body(i));
         const glm::vec3 at = drawnCentre(world, i, alpha, settings);
         out.sprites.push_back({at, drawnRadius(world.body(i), settings), colour});
@@ -237,8 +312,10 @@ void addSprings(const World& world, double alpha, const ViewSettings& settings, 
         addCoil(anchor, drawnCentre(world, spring->particle(), alpha, settings), out);
         out.sprites.push_back({anchor, 0.05f, glm::vec4(0.6f, 0.6f, 0.65f, 1.0f)}); // the anchor, a small ball
     }
+    // A rope's or cloth's own springs are its line or surface, not coils.
+    const std::vector<bool> fabric = fabricMembers(world, settings.fabric);
     for (const TwoBodySpring* spring : found.between)
-        if (spring->first() < n && spring->second() < n)
+        if (spring->first() < n && spring->second() < n && !(fabric[spring->first()] && fabric[spring->second()]))
             addCoil(drawnCentre(world, spring->first(), alpha, settings),
                     drawnCentre(world, spring->second(), alpha, settings), out);
 }
@@ -254,6 +331,7 @@ void buildDrawList(const World& world, const World& initial, double alpha, const
         for (const WorldDryer& dryer : blowDryers(world))
             addCone(dryer.field, settings.fieldArrows, out);
     addSprings(world, alpha, settings, out);
+    addFabric(world, alpha, settings, out);
     addBodies(world, initial, alpha, settings, trails, out);
     // Swarms keep no previous state (24 bytes a particle is the budget): drawn where they are.
     for (std::size_t s = 0; s < world.swarmCount(); ++s) {

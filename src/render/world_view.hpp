@@ -9,6 +9,7 @@
 
 #include "camera.hpp"
 #include "draw_list.hpp"
+#include "pba/fabric.hpp"
 #include "pba/world.hpp"
 
 namespace pba::render {
@@ -24,6 +25,9 @@ struct ViewSettings {
     /// ghost beside the body (nothing where there is no exact solution). Set by the program,
     /// which knows the oracles; the renderer only draws.
     std::function<std::optional<glm::vec3>(std::size_t, double)> ghost;
+    /// Which particles form ropes (drawn as a line of beads) and cloths (a lit surface) rather
+    /// than balls with trails: the scene's layout, set by the program that loaded it.
+    FabricLayout fabric;
 };
 
 /// The colour of each integrator (and grey for fixed bodies), shared by the legend.
