@@ -129,3 +129,28 @@ TEST(HeadlessRender, TheBlowDryerConeIsDrawn)
     const Rgb plain = pixelAt(without, renderer.camera(), glm::vec3(0.0f, 1.75f, 0.0f));
     EXPECT_GT(inCone.b, plain.b + 5);
 }
+
+// A cloth is drawn as a surface: at the middle of one of its cells (no particle there), the
+// picture shows the sheet's red, lit, not the room behind it.
+TEST(HeadlessRender, TheClothIsASurfaceWhereItHangs)
+{
+    Scene scene = loadScene("cloth");
+    for (int n = 0; n < 1000; ++n) // 2 s: fallen and hanging from its pins
+        scene.world.step(scene.dt);
+    const World initial = scene.world;
+    OffscreenRenderer renderer(kWidth, kHeight, false);
+    ViewSettings settings;
+    settings.trails = false;
+    settings.fabric = scene.fabric;
+    const auto image = renderer.render(scene.world, initial, 1.0, settings, nullptr, "", 0.01);
+    const ClothLayout& sheet = scene.fabric.cloths.at(0);
+    for (const auto [i, j] : {std::pair{5, 5}, std::pair{2, 8}, std::pair{8, 2}}) {
+        glm::vec3 centre(0.0f);
+        for (const std::size_t k : {sheet.at(i, j), sheet.at(i + 1, j), sheet.at(i, j + 1), sheet.at(i + 1, j + 1)})
+            centre += 0.25f * glm::vec3(scene.world.body(k).getPos());
+        const Rgb cloth = pixelAt(image, renderer.camera(), centre);
+        EXPECT_GT(cloth.r, cloth.g + 60) << i << "," << j;
+        EXPECT_GT(cloth.r, cloth.b + 60) << i << "," << j;
+        EXPECT_GT(cloth.r, 90) << i << "," << j; // lit, not a dark silhouette
+    }
+}
