@@ -15,6 +15,7 @@ still integrators 6
 still bouncing-cube 3
 still spring 2
 still blow-dryer 6
+still cloth-in-the-dryer 4
 still blow-dryer-flow 12 640x480 # taller: the legend leaves all five balls in view
 "$pba" render blow-dryer-swarm --size 640x360 --time 1.5 --out "$out/blow-dryer-swarm.png"
 "$pba" field blow-dryer-flow --slice --out "$out/field-blow-dryer-flow.png"

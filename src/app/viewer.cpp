@@ -107,7 +107,8 @@ int runViewer(Scene scene, const ViewerRun& run)
         }
         state.trails.record(state.scene.world, state.alpha(), state.settings);
         render::drawLegend(state.scene.world, state.scene.name, state.clock.dt(),
-                           render::drawnTime(state.scene.world, state.alpha(), state.settings.interpolate), true);
+                           render::drawnTime(state.scene.world, state.alpha(), state.settings.interpolate), true,
+                           &state.settings.fabric);
         const float panel = drawPanel(state);
 
         int width = 0, height = 0;

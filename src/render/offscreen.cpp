@@ -24,7 +24,7 @@ std::vector<std::uint8_t> OffscreenRenderer::render(const World& world, const Wo
         // second, so the very first picture runs the legend twice.
         for (int pass = m_legendShown ? 1 : 0; pass < 2; ++pass) {
             m_imgui->beginFrame(width(), height(), 1.0f / 60.0f);
-            drawLegend(world, sceneName, dt, drawnTime(world, alpha, settings.interpolate), true);
+            drawLegend(world, sceneName, dt, drawnTime(world, alpha, settings.interpolate), true, &settings.fabric);
             m_imgui->endFrame();
         }
         m_legendShown = true;

@@ -1,6 +1,8 @@
 #include "overlay.hpp"
 
 #include <algorithm>
+#include <string>
+#include <vector>
 
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
@@ -50,7 +52,30 @@ void ImGuiLayer::endFrame()
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
-void drawLegend(const World& world, const std::string& sceneName, double dt, double shownTime, bool compact)
+namespace {
+
+void fabricLegend(const World& world, const FabricLayout& fabric)
+{
+    auto line = [&](std::size_t first, const std::string& text) {
+        if (first >= world.bodyCount())
+            return;
+        const glm::vec4 c = integratorColour(world.body(first).getIntegrator());
+        ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1.0f), "o");
+        ImGui::SameLine();
+        ImGui::Text("%s  (%s)", text.c_str(), std::string(integratorName(world.body(first).getIntegrator())).c_str());
+    };
+    for (const RopeLayout& rope : fabric.ropes)
+        if (!rope.particles.empty())
+            line(rope.particles.front(), "rope " + rope.name + ": " + std::to_string(rope.particles.size()) + " particles");
+    for (const ClothLayout& cloth : fabric.cloths)
+        line(cloth.first, "cloth " + cloth.name + ": " + std::to_string(cloth.width) + " x " +
+                              std::to_string(cloth.height) + " particles");
+}
+
+} // namespace
+
+void drawLegend(const World& world, const std::string& sceneName, double dt, double shownTime, bool compact,
+                const FabricLayout* fabric)
 {
     // Bottom left: the room's upper half, where balls fly and hover, stays in view.
     ImGui::SetNextWindowPos(ImVec2(10, ImGui::GetIO().DisplaySize.y - 10), ImGuiCond_Always, ImVec2(0, 1));
@@ -67,12 +92,20 @@ void drawLegend(const World& world, const std::string& sceneName, double dt, dou
             ImGui::PopStyleColor();
             ImGui::PopTextWrapPos();
         }
-        const std::size_t shown = compact ? std::min<std::size_t>(world.bodyCount(), 8) : world.bodyCount();
+        if (fabric)
+            fabricLegend(world, *fabric);
+        // The particles that are no rope's or cloth's, each on its line.
+        std::vector<std::size_t> loose;
+        const std::vector<bool> member = fabricMembers(world, fabric ? *fabric : FabricLayout{});
+        for (std::size_t i = 0; i < world.bodyCount(); ++i)
+            if (!member[i])
+                loose.push_back(i);
+        const std::size_t shown = compact ? std::min<std::size_t>(loose.size(), 8) : loose.size();
         bool massesDiffer = false; // then the legend says each mass, which sets its drawn size
-        for (std::size_t i = 1; i < world.bodyCount(); ++i)
-            massesDiffer = massesDiffer || world.body(i).getMass() != world.body(0).getMass();
-        for (std::size_t i = 0; i < shown; ++i) {
-            const Body& body = world.body(i);
+        for (const std::size_t i : loose)
+            massesDiffer = massesDiffer || world.body(i).getMass() != world.body(loose.front()).getMass();
+        for (std::size_t k = 0; k < shown; ++k) {
+            const Body& body = world.body(loose[k]);
             const glm::vec4 c = bodyColour(body);
             ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1.0f), "o");
             ImGui::SameLine();
@@ -84,8 +117,8 @@ void drawLegend(const World& world, const std::string& sceneName, double dt, dou
         }
         if (massesDiffer)
             ImGui::TextDisabled("balls of one density: the heavier, the larger");
-        if (shown < world.bodyCount())
-            ImGui::Text("... and %zu more", world.bodyCount() - shown);
+        if (shown < loose.size())
+            ImGui::Text("... and %zu more", loose.size() - shown);
         for (std::size_t s = 0; s < world.swarmCount(); ++s) {
             const glm::vec4 c = integratorColour(world.swarm(s).integrator());
             ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1.0f), "o");

@@ -4,6 +4,8 @@
 // headless (display size set by hand).
 #include <string>
 
+#include "pba/fabric.hpp"
+
 struct GLFWwindow;
 
 namespace pba {
@@ -27,7 +29,9 @@ private:
     bool m_windowed;
 };
 
-/// A small box naming the scene, the time and each particle in its colour with its integrator.
-void drawLegend(const World& world, const std::string& sceneName, double dt, double shownTime, bool compact = false);
+/// A small box naming the scene, the time and each particle in its colour with its integrator
+/// (a rope or cloth of `fabric` on one line of its own, not particle by particle).
+void drawLegend(const World& world, const std::string& sceneName, double dt, double shownTime, bool compact = false,
+                const FabricLayout* fabric = nullptr);
 
 } // namespace pba::render

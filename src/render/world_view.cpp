@@ -72,6 +72,22 @@ void Trails::record(const World& world, double alpha, const ViewSettings& settin
     }
 }
 
+std::vector<bool> fabricMembers(const World& world, const FabricLayout& fabric)
+{
+    std::vector<bool> member(world.bodyCount(), false);
+    auto mark = [&](std::size_t i) {
+        if (i < member.size())
+            member[i] = true;
+    };
+    for (const RopeLayout& rope : fabric.ropes)
+        for (const std::size_t i : rope.particles)
+            mark(i);
+    for (const ClothLayout& cloth : fabric.cloths)
+        for (std::size_t k = 0; k < cloth.width * cloth.height; ++k)
+            mark(cloth.first + k);
+    return member;
+}
+
 namespace {
 
 /// The world's springs, drawn as coils: anchored ones (kept in the camera's frame) and those
@@ -172,23 +188,6 @@ void addCone(const BlowDryerField& f, bool arrows, DrawList& out)
     }
     if (arrows)
         addFieldArrows(f, u, w, out);
-}
-
-/// Whether each body belongs to a rope or cloth (drawn as such, not as a ball with a trail).
-std::vector<bool> fabricMembers(const World& world, const FabricLayout& fabric)
-{
-    std::vector<bool> member(world.bodyCount(), false);
-    auto mark = [&](std::size_t i) {
-        if (i < member.size())
-            member[i] = true;
-    };
-    for (const RopeLayout& rope : fabric.ropes)
-        for (const std::size_t i : rope.particles)
-            mark(i);
-    for (const ClothLayout& cloth : fabric.cloths)
-        for (std::size_t k = 0; k < cloth.width * cloth.height; ++k)
-            mark(cloth.first + k);
-    return member;
 }
 
 /// A rope: a line through its particles with a small bead on each; pins drawn grey.

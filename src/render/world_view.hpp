@@ -68,6 +68,9 @@ glm::vec3 restingCentre(const World& world, glm::vec3 point, float radius);
 /// The centre of body i's drawn ball: its drawn position resting on the surfaces it touches.
 glm::vec3 drawnCentre(const World& world, std::size_t i, double alpha, const ViewSettings& settings);
 
+/// Whether each body belongs to a rope or cloth (drawn as such, not as a ball with a trail).
+std::vector<bool> fabricMembers(const World& world, const FabricLayout& fabric);
+
 /// Fills `out` with the world. `initial` (the scene at t = 0) gives the start heights.
 void buildDrawList(const World& world, const World& initial, double alpha, const ViewSettings& settings,
                    const Trails* trails, DrawList& out);
