@@ -124,6 +124,23 @@ TEST(PbaSim, AMisspeltSceneKeyIsNamedWithTheKeyItIsCloseTo)
                          ": forces[0].stifness: unknown key (did you mean \"stiffness\"?)\n");
 }
 
+TEST(PbaSim, ABadClothOrRopeIsExit2NamingTheField)
+{
+    const auto dir = freshDir("sim_bad_fabric");
+    const std::string room = R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, )";
+    std::ofstream(dir / "corner.json") << room << R"("cloths": [{"name": "c", "origin": [-1, 3, -1], )"
+                                       << R"("across": [2, 0, 0], "down": [0, 0, 2], "columns": 4, "rows": 4, )"
+                                       << R"("stiffness": {"structural": 10}, "pinned": ["top-centre"]}]})";
+    std::ofstream(dir / "count.json") << room << R"("ropes": [{"name": "r", "from": [-1, 3, 0], "to": [1, 3, 0], )"
+                                      << R"("count": 1, "stiffness": 10}]})";
+    CommandResult r = runPba("sim " + (dir / "corner.json").string());
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find(": cloths[0].pinned: unknown corner 'top-centre'"), std::string::npos) << r.err;
+    r = runPba("sim " + (dir / "count.json").string());
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find(": ropes[0].count: must be a whole number from 2"), std::string::npos) << r.err;
+}
+
 TEST(PbaSim, UnwritableOutputIsBadInput)
 {
     const CommandResult r = runPba("sim integrators --out /nonexistent/dir/run.csv");
