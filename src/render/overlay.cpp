@@ -66,7 +66,8 @@ void fabricLegend(const World& world, const FabricLayout& fabric)
     };
     for (const RopeLayout& rope : fabric.ropes)
         if (!rope.particles.empty())
-            line(rope.particles.front(), "rope " + rope.name + ": " + std::to_string(rope.particles.size()) + " particles");
+            line(rope.particles.front(),
+                 "rope " + rope.name + ": " + std::to_string(rope.particles.size()) + " particles");
     for (const ClothLayout& cloth : fabric.cloths)
         line(cloth.first, "cloth " + cloth.name + ": " + std::to_string(cloth.width) + " x " +
                               std::to_string(cloth.height) + " particles");

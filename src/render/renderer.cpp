@@ -105,9 +105,12 @@ void Renderer::drawSurfaces(const std::vector<LitVertex>& vertices)
     glEnableVertexAttribArray(0);
     glEnableVertexAttribArray(1);
     glEnableVertexAttribArray(2);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(LitVertex), reinterpret_cast<void*>(offsetof(LitVertex, position)));
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(LitVertex), reinterpret_cast<void*>(offsetof(LitVertex, normal)));
-    glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(LitVertex), reinterpret_cast<void*>(offsetof(LitVertex, colour)));
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(LitVertex),
+                          reinterpret_cast<void*>(offsetof(LitVertex, position)));
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(LitVertex),
+                          reinterpret_cast<void*>(offsetof(LitVertex, normal)));
+    glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(LitVertex),
+                          reinterpret_cast<void*>(offsetof(LitVertex, colour)));
     glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size()));
 }
 

@@ -202,7 +202,8 @@ void addRope(const World& world, const RopeLayout& rope, double alpha, const Vie
         if (k > 0)
             out.addLine(drawnPosition(world, rope.particles[k - 1], alpha, settings.interpolate), at, colour);
         const bool pinned = world.body(i).isFixed();
-        out.sprites.push_back({at, settings.particleRadius * (pinned ? 0.8f : 0.45f), pinned ? bodyColour(world.body(i)) : colour});
+        out.sprites.push_back(
+            {at, settings.particleRadius * (pinned ? 0.8f : 0.45f), pinned ? bodyColour(world.body(i)) : colour});
     }
 }
 

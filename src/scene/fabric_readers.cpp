@@ -110,8 +110,8 @@ void readRope(const Json& value, const std::string& path, const std::string& fil
     RopeLayout rope{shared.name, {}};
     for (std::size_t k = 0; k < count; ++k) {
         const dvec3 at = from + (double(k) / double(count - 1)) * (to - from);
-        rope.particles.push_back(
-            addFabricParticle(reader, k == 0 ? "from" : "to", target, shared, fmt::format("{}[{}]", shared.name, k), at));
+        const std::string name = fmt::format("{}[{}]", shared.name, k);
+        rope.particles.push_back(addFabricParticle(reader, k == 0 ? "from" : "to", target, shared, name, at));
     }
     for (const std::size_t pin : pins)
         target.world.body(rope.particles[pin]).setFixed(true);
@@ -223,7 +223,8 @@ void readCloth(const Json& value, const std::string& path, const std::string& fi
     ClothLayout cloth{shared.name, target.world.bodyCount(), columns, rows};
     for (std::size_t j = 0; j < rows; ++j)
         for (std::size_t i = 0; i < columns; ++i) {
-            const dvec3 at = origin + (double(i) / double(columns - 1)) * across + (double(j) / double(rows - 1)) * down;
+            const dvec3 at =
+                origin + (double(i) / double(columns - 1)) * across + (double(j) / double(rows - 1)) * down;
             addFabricParticle(reader, "origin", target, shared, fmt::format("{}[{},{}]", shared.name, i, j), at);
         }
     for (const GridIndex& pin : pins)

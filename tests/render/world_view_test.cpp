@@ -38,3 +38,37 @@ TEST(WorldView, ABallInACornerRestsOnBothWallsButNotOverTheHole)
     EXPECT_EQ(restingCentre(scene.world, overHole, 0.5f * r), overHole);
     EXPECT_NEAR(restingCentre(scene.world, glm::vec3(1.0f, 0.3f * r, 0.0f), 0.5f * r).y, 0.5f * r, 1e-6f);
 }
+
+// A cloth is two lit triangles a cell, each vertex with the normal of the faces around it (a flat sheet's
+// is its plane's), its own springs drawn as no coils and its particles as no balls but
+// its pins; without the layout the same world is drawn particle by particle.
+TEST(WorldView, AClothIsASurfaceAndARopeALineOfBeads)
+{
+    Scene scene = loadScene("cloth");
+    ViewSettings settings;
+    settings.trails = false;
+    settings.referenceLines = false;
+    settings.fabric = scene.fabric;
+    DrawList list;
+    buildDrawList(scene.world, scene.world, 1.0, settings, nullptr, list);
+    const ClothLayout& sheet = scene.fabric.cloths.at(0);
+    EXPECT_EQ(list.surfaces.size(), 6 * (sheet.width - 1) * (sheet.height - 1));
+    for (const LitVertex& v : list.surfaces) { // flat and horizontal at the start: the normal is vertical
+        EXPECT_NEAR(std::abs(glm::normalize(v.normal).y), 1.0f, 1e-5f);
+    }
+    EXPECT_EQ(list.sprites.size(), 2u); // the two pinned corners
+    const std::size_t roomEdges = 2 * 12;
+    EXPECT_EQ(list.lines.size(), roomEdges); // no coils
+
+    settings.fabric = {};
+    buildDrawList(scene.world, scene.world, 1.0, settings, nullptr, list);
+    EXPECT_TRUE(list.surfaces.empty());
+    EXPECT_EQ(list.sprites.size(), scene.world.bodyCount());
+
+    Scene rope = loadScene("rope");
+    settings.fabric = rope.fabric;
+    buildDrawList(rope.world, rope.world, 1.0, settings, nullptr, list);
+    const std::size_t beads = rope.fabric.ropes.at(0).particles.size();
+    EXPECT_EQ(list.sprites.size(), beads);
+    EXPECT_EQ(list.lines.size(), roomEdges + 2 * (beads - 1));
+}

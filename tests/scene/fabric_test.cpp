@@ -72,8 +72,8 @@ TEST(Fabric, ClothSpringsStartAtRest)
     const Scene scene = parseScene(cloth(4, 4), "test");
     for (std::size_t i = 0; i < scene.world.forceCount(); ++i)
         if (const auto* s = dynamic_cast<const TwoBodySpring*>(&scene.world.force(i)))
-            EXPECT_DOUBLE_EQ(s->restLength(),
-                             glm::length(scene.world.body(s->first()).getPos() - scene.world.body(s->second()).getPos()));
+            EXPECT_DOUBLE_EQ(s->restLength(), glm::length(scene.world.body(s->first()).getPos() -
+                                                          scene.world.body(s->second()).getPos()));
 }
 
 TEST(Fabric, ClothPinsByCornerNameAndGridIndex)
@@ -116,7 +116,8 @@ TEST(Fabric, BadKeysNameTheirField)
     EXPECT_EQ(errorField(cloth(4, 4, R"(, "pinned": [[4, 0]])")), "cloths[0].pinned");
     EXPECT_EQ(errorField(cloth(4, 4, R"(, "pinned": [[0, -1]])")), "cloths[0].pinned");
     EXPECT_EQ(errorField(roomScene("cloths", R"({ "name": "c", "origin": [-1, 3, -1], "across": [2, 0, 0],
-        "down": [0, 0, 2], "columns": 3, "rows": 3, "stiffness": { "structral": 1 } })")), "cloths[0].stiffness.structral");
+        "down": [0, 0, 2], "columns": 3, "rows": 3, "stiffness": { "structral": 1 } })")),
+              "cloths[0].stiffness.structral");
     EXPECT_EQ(errorField(roomScene("ropes", R"({ "name": "r", "from": [-2, 3, 0], "to": [2, 3, 0], "count": 1,
         "stiffness": 3 })")), "ropes[0].count");
     EXPECT_EQ(errorField(roomScene("ropes", R"({ "name": "r", "from": [-2, 3, 0], "to": [2, 3, 0], "count": 4,
