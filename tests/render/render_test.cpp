@@ -144,7 +144,7 @@ TEST(HeadlessRender, TheClothIsASurfaceWhereItHangs)
     settings.fabric = scene.fabric;
     const auto image = renderer.render(scene.world, initial, 1.0, settings, nullptr, "", 0.01);
     const ClothLayout& sheet = scene.fabric.cloths.at(0);
-    for (const auto [i, j] : {std::pair{5, 5}, std::pair{2, 8}, std::pair{8, 2}}) {
+    for (const auto& [i, j] : {std::pair{5, 5}, std::pair{2, 8}, std::pair{8, 2}}) {
         glm::vec3 centre(0.0f);
         for (const std::size_t k : {sheet.at(i, j), sheet.at(i + 1, j), sheet.at(i, j + 1), sheet.at(i + 1, j + 1)})
             centre += 0.25f * glm::vec3(scene.world.body(k).getPos());

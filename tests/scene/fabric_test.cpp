@@ -50,7 +50,7 @@ std::string errorField(const std::string& json)
 
 TEST(Fabric, ClothBuildsItsGridAndEachKindOfSpring)
 {
-    for (const auto [w, h] : {std::pair{2, 2}, std::pair{3, 5}, std::pair{7, 4}}) {
+    for (const auto& [w, h] : {std::pair{2, 2}, std::pair{3, 5}, std::pair{7, 4}}) {
         const Scene scene = parseScene(cloth(w, h), "test");
         const World& world = scene.world;
         ASSERT_EQ(world.bodyCount(), std::size_t(w * h));
@@ -70,10 +70,12 @@ TEST(Fabric, ClothBuildsItsGridAndEachKindOfSpring)
 TEST(Fabric, ClothSpringsStartAtRest)
 {
     const Scene scene = parseScene(cloth(4, 4), "test");
-    for (std::size_t i = 0; i < scene.world.forceCount(); ++i)
-        if (const auto* s = dynamic_cast<const TwoBodySpring*>(&scene.world.force(i)))
+    for (std::size_t i = 0; i < scene.world.forceCount(); ++i) {
+        if (const auto* s = dynamic_cast<const TwoBodySpring*>(&scene.world.force(i))) {
             EXPECT_DOUBLE_EQ(s->restLength(), glm::length(scene.world.body(s->first()).getPos() -
                                                           scene.world.body(s->second()).getPos()));
+        }
+    }
 }
 
 TEST(Fabric, ClothPinsByCornerNameAndGridIndex)
