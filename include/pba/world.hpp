@@ -160,6 +160,8 @@ public:
     double totalEnergy() const;
     /// Whether body i is integrated in a coupled group (it moves, and a force couples it to a body).
     bool isCoupled(std::size_t i) const;
+    /// Whether any moving body is coupled: then `exact` acts as `reflect` on those bodies.
+    bool hasCoupledBodies() const;
     /// The moving bodies joined to body i (transitively, through moving bodies) by forces
     /// between bodies, i included, in index order: the group that shares one integrator.
     std::vector<std::size_t> coupledGroup(std::size_t i) const;

@@ -341,6 +341,15 @@ bool World::isCoupled(std::size_t i) const
            std::any_of(pairs.begin(), pairs.end(), [i](const auto& p) { return p.first == i || p.second == i; });
 }
 
+bool World::hasCoupledBodies() const
+{
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    for (const auto& force : m_forces)
+        force->appendCouplings(pairs);
+    return std::any_of(pairs.begin(), pairs.end(),
+                       [this](const auto& p) { return !m_bodies[p.first]->isFixed() || !m_bodies[p.second]->isFixed(); });
+}
+
 std::vector<std::size_t> World::coupledGroup(std::size_t i) const
 {
     std::vector<std::pair<std::size_t, std::size_t>> pairs;

@@ -95,6 +95,10 @@ TEST(TwoBodySpring, RunsThroughPbaSimAndMixedIsExitTwo)
     const CommandResult ok = runPba("sim " + (dir / "pair.json").string() + " --duration 2");
     EXPECT_EQ(ok.exitCode, 0) << ok.err;
     EXPECT_NE(ok.out.find("pair"), std::string::npos) << ok.out;
+    // The header says what the collision response does to the pair (see docs/scenes.md).
+    const CommandResult exact = runPba("sim " + (dir / "pair.json").string() + " --duration 0.1 --collision exact");
+    EXPECT_NE(exact.out.find("collision response exact (reflect for bodies joined by springs)"), std::string::npos)
+        << exact.out;
     // --integrator sets every moving particle's after loading: the group stays consistent.
     const CommandResult overridden = runPba("sim " + (dir / "pair.json").string() + " --integrator forward-euler");
     EXPECT_EQ(overridden.exitCode, 0) << overridden.err;
