@@ -1,0 +1,220 @@
+#include "stability.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "pba/forces.hpp"
+
+namespace pba::study {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr std::size_t kSeriesPoints = 2000;
+
+/// The stiffness of the world's springs as a list of terms k u u^T coupling two moving bodies
+/// (or one, for an anchored spring or a spring to a fixed body), at the start state.
+struct StiffnessTerm {
+    std::size_t a, b; ///< b == kNone: a spring from a to something fixed
+    double k;
+    dvec3 u;
+};
+constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+
+class StiffnessCollector final : public ForceVisitor {
+public:
+    explicit StiffnessCollector(const World& world) : m_world(world) {}
+    std::vector<StiffnessTerm> terms;
+    bool degenerate = false;
+
+    void visit(const Spring& s) override { add(s.particle(), kNone, s.anchor(), s.stiffness()); }
+    void visit(const TwoBodySpring& s) override
+    {
+        add(s.first(), s.second(), m_world.body(s.second()).getPos(), s.stiffness());
+    }
+
+private:
+    void add(std::size_t a, std::size_t b, const dvec3& other, double k)
+    {
+        const bool aMoves = !m_world.body(a).isFixed();
+        const bool bMoves = b != kNone && !m_world.body(b).isFixed();
+        if (!aMoves && !bMoves)
+            return;
+        const dvec3 d = other - m_world.body(a).getPos();
+        const double length = glm::length(d);
+        if (!(length > 0.0)) {
+            degenerate = true;
+            return;
+        }
+        // A spring to a fixed body is a spring to an anchor at that body's place.
+        if (aMoves)
+            terms.push_back({a, bMoves ? b : kNone, k, d / length});
+        else
+            terms.push_back({b, kNone, k, d / length});
+    }
+
+    const World& m_world;
+};
+
+/// y = M^-1/2 K M^-1/2 x over every body (fixed ones stay zero): symmetric, with the
+/// eigenvalues of M^-1 K, so the power iteration's Rayleigh quotient converges monotonically.
+void applySymmetric(const std::vector<StiffnessTerm>& terms, const std::vector<double>& invSqrtMass,
+                    const std::vector<dvec3>& x, std::vector<dvec3>& y)
+{
+    std::fill(y.begin(), y.end(), dvec3(0.0));
+    for (const auto& t : terms) {
+        const dvec3 xa = x[t.a] * invSqrtMass[t.a];
+        const dvec3 xb = t.b == kNone ? dvec3(0.0) : x[t.b] * invSqrtMass[t.b];
+        const dvec3 f = t.k * glm::dot(t.u, xa - xb) * t.u; // K's blocks: +k u u^T on the diagonal, -k u u^T off it
+        y[t.a] += f * invSqrtMass[t.a];
+        if (t.b != kNone)
+            y[t.b] -= f * invSqrtMass[t.b];
+    }
+}
+
+double dot(const std::vector<dvec3>& a, const std::vector<dvec3>& b)
+{
+    double s = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        s += glm::dot(a[i], b[i]);
+    return s;
+}
+
+/// Largest eigenvalue of the symmetric positive semi-definite operator by power iteration,
+/// started from a vector that alternates in sign from body to body (the shape of the highest
+/// mode of a chain or a grid, so the iteration starts close to it) and differs per axis.
+double largestEigenvalue(const std::vector<StiffnessTerm>& terms, const std::vector<double>& invSqrtMass,
+                         const std::vector<std::uint8_t>& moving)
+{
+    const std::size_t n = invSqrtMass.size();
+    std::vector<dvec3> x(n, dvec3(0.0)), y(n);
+    for (std::size_t i = 0; i < n; ++i)
+        if (moving[i])
+            x[i] = (i % 2 == 0 ? 1.0 : -1.0) * dvec3(1.0, 0.8 + 0.1 * std::sin(double(i)), 0.6 + 0.1 * std::cos(double(i)));
+    double lambda = 0.0;
+    // The error of the Rayleigh quotient shrinks as (lambda_2 / lambda_1)^(2 k): close
+    // eigenvalues (long chains) need many iterations, so the loop runs until the quotient
+    // stops changing at rounding, not for a fixed count.
+    for (int iteration = 0; iteration < 200000; ++iteration) {
+        const double norm = std::sqrt(dot(x, x));
+        if (!(norm > 0.0))
+            return 0.0;
+        for (auto& v : x)
+            v /= norm;
+        applySymmetric(terms, invSqrtMass, x, y);
+        const double next = dot(x, y);
+        std::swap(x, y);
+        if (iteration > 10 && std::abs(next - lambda) <= 1e-15 * std::abs(next))
+            return next;
+        lambda = next;
+    }
+    return lambda;
+}
+
+} // namespace
+
+std::optional<double> highestFrequency(const World& world)
+{
+    StiffnessCollector collector(world);
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        world.force(i).accept(collector);
+    if (collector.terms.empty() || collector.degenerate)
+        return std::nullopt;
+    const std::size_t n = world.bodyCount();
+    std::vector<double> invSqrtMass(n, 0.0);
+    std::vector<std::uint8_t> moving(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        if (!world.body(i).isFixed()) {
+            invSqrtMass[i] = 1.0 / std::sqrt(world.body(i).getMass());
+            moving[i] = 1;
+        }
+    const double lambda = largestEigenvalue(collector.terms, invSqrtMass, moving);
+    if (!(lambda > 0.0))
+        return std::nullopt;
+    return std::sqrt(lambda);
+}
+
+double theoryDtLimit(Integrator integrator, double omega)
+{
+    switch (integrator) {
+    case Integrator::ForwardEuler:
+        return kNaN;
+    case Integrator::SemiImplicitEuler:
+    case Integrator::VelocityVerlet:
+        return 2.0 / omega;
+    case Integrator::RK4:
+        return 2.0 * std::sqrt(2.0) / omega;
+    }
+    return kNaN;
+}
+
+StabilityRun runStability(const Scene& scene, Integrator integrator, double dt, double omega,
+                          const StabilityCriterion& criterion)
+{
+    World world = scene.world;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (!world.body(i).isFixed())
+            world.body(i).setIntegrator(integrator);
+    const double e0 = world.totalEnergy();
+    const double bound = e0 + (criterion.energyFactor - 1.0) * std::abs(e0);
+    const double horizon = criterion.periods * 2.0 * std::numbers::pi / omega;
+    const auto steps = static_cast<std::uint64_t>(std::ceil(horizon / dt));
+    const std::uint64_t stride = std::max<std::uint64_t>(1, steps / kSeriesPoints);
+    StabilityRun run{dt, true, {}};
+    auto sample = [&](double e) {
+        run.series.t.push_back(world.time());
+        run.series.energyRatio.push_back(e0 != 0.0 ? e / e0 : 1.0);
+    };
+    sample(e0);
+    for (std::uint64_t n = 1; n <= steps; ++n) {
+        try {
+            world.step(dt);
+        } catch (const NonFiniteStateError&) {
+            run.stable = false;
+            return run;
+        }
+        const double e = world.totalEnergy();
+        if (!(e <= bound)) { // NaN included
+            run.stable = false;
+            sample(e);
+            return run;
+        }
+        if (n % stride == 0 || n == steps)
+            sample(e);
+    }
+    return run;
+}
+
+StabilityResult measureStabilityLimit(const Scene& scene, Integrator integrator, double omega,
+                                      const StabilityCriterion& criterion)
+{
+    StabilityResult result{integrator, omega, theoryDtLimit(integrator, omega), kNaN, {}, {}};
+    auto stable = [&](double dt) { return runStability(scene, integrator, dt, omega, criterion).stable; };
+    // Bracket [lo, hi] with lo stable and hi not, from omega dt = 1, within 2^-20 .. 2^6.
+    double lo = 1.0 / omega, hi = lo;
+    if (stable(lo)) {
+        for (hi = 2.0 * lo; stable(hi); hi *= 2.0) {
+            lo = hi;
+            if (hi * omega > 64.0)
+                return result;
+        }
+    } else {
+        for (lo = 0.5 * hi; !stable(lo); lo *= 0.5) {
+            hi = lo;
+            if (lo * omega < 1e-3) // beyond 300,000 steps a run
+                return result;
+        }
+    }
+    while (hi - lo > criterion.tolerance * lo) {
+        const double mid = 0.5 * (lo + hi);
+        (stable(mid) ? lo : hi) = mid;
+    }
+    result.measuredDt = lo;
+    result.below = runStability(scene, integrator, lo * (1.0 - kStabilityMargin), omega, criterion);
+    result.above = runStability(scene, integrator, lo * (1.0 + kStabilityMargin), omega, criterion);
+    return result;
+}
+
+} // namespace pba::study
