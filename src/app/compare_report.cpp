@@ -38,7 +38,7 @@ std::string energyTable(const study::StudyConfig& config, const study::StudyResu
         out += markdown ? fmt::format("| {}", integratorName(integrator)) : fmt::format("{:<20}", integratorName(integrator));
         for (double dt : config.dts) {
             const ParticleResult* r = study::findRun(result, integrator, collision, dt);
-            const std::string value = r ? fmt::format("{:.4f}", r->energyRatioEnd) : "-";
+            const std::string value = r ? study::ratioText(r->energyRatioEnd) : "-";
             out += markdown ? " | " + value : fmt::format("{:>10}", value);
         }
         out += markdown ? " |\n" : "\n";
