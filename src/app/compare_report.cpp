@@ -126,7 +126,8 @@ std::string stabilitySection(const study::StudyConfig& config, const study::Stud
         omega, period);
     out += fmt::format(
         "A dt counts as **stable** when the energy (kinetic + potential, all bodies) stays finite and never rises above "
-        "E0 + {:g} |E0| ({:g} times a positive start) over {:g} periods of the highest mode ({:.4g} s). The largest "
+        "E0 + {:g} |E0| ({:g} times a positive start) over {:g} periods of the highest mode ({:.4g} s), and no spring "
+        "is stretched to twice its rest length or through zero, where the linear theory ends. The largest "
         "stable dt is bracketed by doubling or halving from omega dt = 1 and bisected until the bracket is {:g} of it "
         "wide. The factor is large on purpose: a stable run near its limit swings far from its start (semi-implicit "
         "Euler released at rest reaches E0 / (1 - omega dt / 2)), while above a limit the energy grows geometrically "
@@ -140,9 +141,9 @@ std::string stabilitySection(const study::StudyConfig& config, const study::Stud
         if (std::isnan(s.theoryDt) && !std::isnan(s.measuredDt))
             out += fmt::format(
                 "\nForward Euler's number is the criterion's, not a limit of the method: its energy grows by "
-                "1 + (omega dt)^2 every step, about exp(2 pi P omega dt) over P periods, so it reaches {:g} E0 over "
-                "{:g} periods at omega dt = ln({:g}) / (2 pi {:g}) = {:.4g} (measured {:.4g}); a longer horizon or a "
-                "tighter factor gives a smaller dt, without end.\n",
+                "1 + (omega dt)^2 every step, about exp(2 pi P omega dt) over P periods, so a single oscillator "
+                "reaches {:g} E0 over {:g} periods at omega dt = ln({:g}) / (2 pi {:g}) = {:.4g} (measured here: "
+                "{:.4g}); a longer horizon or a tighter factor gives a smaller dt, without end.\n",
                 c.energyFactor, c.periods, c.energyFactor, c.periods,
                 std::log(c.energyFactor) / (2.0 * std::numbers::pi * c.periods), omega * s.measuredDt);
     if (withPlots)

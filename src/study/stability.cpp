@@ -58,6 +58,40 @@ private:
     const World& m_world;
 };
 
+/// A spring's ends and rest length, to tell when a run has left the linear regime.
+struct SpringSpan {
+    std::size_t a, b; ///< b == kNone: anchored at `anchor`
+    dvec3 anchor;
+    double restLength;
+};
+
+class SpanCollector final : public ForceVisitor {
+public:
+    std::vector<SpringSpan> spans;
+    void visit(const Spring& s) override { add({s.particle(), kNone, s.anchor(), s.restLength()}); }
+    void visit(const TwoBodySpring& s) override { add({s.first(), s.second(), dvec3(0.0), s.restLength()}); }
+
+private:
+    void add(const SpringSpan& span)
+    {
+        if (span.restLength > 0.0) // a zero-length spring has no side to turn inside out
+            spans.push_back(span);
+    }
+};
+
+/// True if some spring is stretched to twice its rest length or compressed through zero: past
+/// that the linearisation the theory rests on is gone (the spring turns inside out), and a
+/// blown-up chain or cloth can tangle into a bounded but meaningless state rather than grow.
+bool leftLinearRegime(const World& world, const std::vector<SpringSpan>& spans)
+{
+    for (const auto& s : spans) {
+        const dvec3 other = s.b == kNone ? s.anchor : world.body(s.b).getPos();
+        if (!(std::abs(glm::length(world.body(s.a).getPos() - other) - s.restLength) < s.restLength))
+            return true;
+    }
+    return false;
+}
+
 /// y = M^-1/2 K M^-1/2 x over every body (fixed ones stay zero): symmetric, with the
 /// eigenvalues of M^-1 K, so the power iteration's Rayleigh quotient converges monotonically.
 void applySymmetric(const std::vector<StiffnessTerm>& terms, const std::vector<double>& invSqrtMass,
@@ -157,6 +191,9 @@ StabilityRun runStability(const Scene& scene, Integrator integrator, double dt, 
     for (std::size_t i = 0; i < world.bodyCount(); ++i)
         if (!world.body(i).isFixed())
             world.body(i).setIntegrator(integrator);
+    SpanCollector springs;
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        world.force(i).accept(springs);
     const double e0 = world.totalEnergy();
     const double bound = e0 + (criterion.energyFactor - 1.0) * std::abs(e0);
     const double horizon = criterion.periods * 2.0 * std::numbers::pi / omega;
@@ -176,7 +213,7 @@ StabilityRun runStability(const Scene& scene, Integrator integrator, double dt, 
             return run;
         }
         const double e = world.totalEnergy();
-        if (!(e <= bound)) { // NaN included
+        if (!(e <= bound) || leftLinearRegime(world, springs.spans)) { // NaN included
             run.stable = false;
             sample(e);
             return run;

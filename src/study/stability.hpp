@@ -14,7 +14,8 @@ namespace pba::study {
 
 /// What "stable" means: the world's energy (kinetic + potential) never rises above
 /// E(0) + (energyFactor - 1) |E(0)| over `periods` periods 2 pi / omega_max of the highest mode,
-/// and stays finite. The factor is large because a stable run near its limit swings far: semi-
+/// stays finite, and no spring (of positive rest length L) leaves lengths (0, 2 L), where the
+/// linear theory ends. The factor is large because a stable run near its limit swings far: semi-
 /// implicit Euler released at rest reaches E(0) / (1 - omega dt / 2) and stays bounded there,
 /// while above a limit the energy grows geometrically with every step and crosses any bound
 /// within a few periods.
