@@ -120,7 +120,7 @@ std::string stabilitySection(const study::StudyConfig& config, const study::Stud
         "largest eigenvalue of M^-1 K, found by power iteration, with K the springs' stiffness matrix at the start "
         "state (blocks +-k u u^T, the geometric term left out; fixed particles drop out). For an undamped oscillator "
         "of that frequency the theory allows dt < 2 / omega for semi-implicit Euler and velocity Verlet, "
-        "dt <= 2 sqrt(2) / omega for RK4 (slightly dissipative below it), and no dt for forward Euler, which gains "
+        "dt <= 2 sqrt(2) / omega for RK4 (dissipative below it: slightly at small omega dt, strongly near the limit), and no dt for forward Euler, which gains "
         "energy at every step. The theory counts the springs alone; the runs are the whole scene, its other forces "
         "and surfaces included.\n\n",
         omega, period);
@@ -149,7 +149,7 @@ std::string stabilitySection(const study::StudyConfig& config, const study::Stud
     if (withPlots)
         out += fmt::format("\n![stability](stability.png)\n\nEach panel: E/E0 at dt {:g}% below (darker, solid) and "
                            "{:g}% above (lighter, dashed) the measured limit; a run above it stops where it crosses "
-                           "the bound.\n",
+                           "the bound or a spring leaves the linear regime.\n",
                            100 * study::kStabilityMargin, 100 * study::kStabilityMargin);
     return out + "\n";
 }

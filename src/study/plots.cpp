@@ -211,7 +211,9 @@ std::string stabilityPlot(const std::filesystem::path& dir, const StudyConfig& c
                 out << run->series.t[i] * omega / (2.0 * std::numbers::pi) << ' ' << run->series.energyRatio[i] << '\n';
             line += fmt::format("'{}' with lines {} lc rgb '{}' title 'dt = {:.4g} s ({})', ", file,
                                 below ? "lw 2" : "lw 2 dt (8,4)", colour(s.integrator, below ? -0.3 : 0.35), run->dt,
-                                run->stable ? "stable" : "crosses the bound");
+                                run->stable              ? "stable"
+                                : run->leftLinearRegime ? "a spring leaves (0, 2L)"
+                                                         : "crosses the bound");
         }
         script += line + fmt::format("{} with lines lc rgb 'gray30' dt 2 title '{}', 1 with lines lc rgb 'gray60' dt 3 "
                                      "title 'E_0'\n",

@@ -199,7 +199,7 @@ StabilityRun runStability(const Scene& scene, Integrator integrator, double dt, 
     const double horizon = criterion.periods * 2.0 * std::numbers::pi / omega;
     const auto steps = static_cast<std::uint64_t>(std::ceil(horizon / dt));
     const std::uint64_t stride = std::max<std::uint64_t>(1, steps / kSeriesPoints);
-    StabilityRun run{dt, true, {}};
+    StabilityRun run{dt, true, false, {}};
     auto sample = [&](double e) {
         run.series.t.push_back(world.time());
         run.series.energyRatio.push_back(e0 != 0.0 ? e / e0 : 1.0);
@@ -213,8 +213,10 @@ StabilityRun runStability(const Scene& scene, Integrator integrator, double dt, 
             return run;
         }
         const double e = world.totalEnergy();
-        if (!(e <= bound) || leftLinearRegime(world, springs.spans)) { // NaN included
+        const bool bounded = e <= bound; // false for NaN too
+        if (!bounded || leftLinearRegime(world, springs.spans)) {
             run.stable = false;
+            run.leftLinearRegime = bounded;
             sample(e);
             return run;
         }

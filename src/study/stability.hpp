@@ -41,6 +41,7 @@ double theoryDtLimit(Integrator integrator, double omega);
 struct StabilityRun {
     double dt = 0.0;
     bool stable = false;
+    bool leftLinearRegime = false; ///< unstable because a spring left lengths (0, 2 L), not by the energy bound
     Series series; ///< t and E/E(0) (y unused)
 };
 
