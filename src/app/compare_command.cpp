@@ -122,7 +122,8 @@ int runCompare(const CompareOptions& options)
     if (result.omegaMax) {
         fmt::print("\nstability limit in dt (omega_max {:.6g} rad/s):", *result.omegaMax);
         for (const auto& s : result.stability)
-            fmt::print("  {} {:.5g} s (theory {})", integratorName(s.integrator), s.measuredDt,
+            fmt::print("  {} {} (theory {})", integratorName(s.integrator),
+                       std::isnan(s.measuredDt) ? std::string("not measured") : fmt::format("{:.5g} s", s.measuredDt),
                        std::isnan(s.theoryDt) ? std::string("none") : fmt::format("{:.5g} s", s.theoryDt));
     }
     fmt::print("\n\n{}", study::findings(config, result));

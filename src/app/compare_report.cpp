@@ -94,7 +94,7 @@ namespace {
 std::string stabilityRow(const study::StudyResult& result, const study::StabilityResult& s)
 {
     const double omega = *result.omegaMax;
-    const std::string measured = std::isnan(s.measuredDt) ? std::string("not bracketed (omega dt from 0.001 to 64)")
+    const std::string measured = std::isnan(s.measuredDt) ? "not measured: " + s.unmeasured
                                                           : fmt::format("{:.5g}", s.measuredDt);
     const std::string omegaDt = std::isnan(s.measuredDt) ? std::string("-") : fmt::format("{:.4g}", omega * s.measuredDt);
     if (std::isnan(s.theoryDt))

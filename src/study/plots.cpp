@@ -197,9 +197,11 @@ std::string stabilityPlot(const std::filesystem::path& dir, const StudyConfig& c
     for (const auto& s : result.stability) {
         const std::string name(integratorName(s.integrator));
         const std::string theory = std::isnan(s.theoryDt) ? std::string("theory: none, gains energy at every dt") : fmt::format("theory {:.4g} s", s.theoryDt);
-        script += fmt::format("set title '{}: limit measured {:.4g} s, {}'\nplot ", name, s.measuredDt, theory);
+        const std::string measured = std::isnan(s.measuredDt) ? std::string("limit not measured")
+                                                              : fmt::format("limit measured {:.4g} s", s.measuredDt);
+        script += fmt::format("set title '{}: {}, {}'\nplot ", name, measured, theory);
         if (std::isnan(s.measuredDt)) {
-            script += "1 with lines lc rgb 'gray50' dt 3 title 'limit not bracketed'\n";
+            script += fmt::format("1 with lines lc rgb 'gray50' dt 3 title 'not measured: {}'\n", s.unmeasured);
             continue;
         }
         std::string line;

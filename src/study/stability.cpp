@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include <fmt/format.h>
+
 #include "pba/forces.hpp"
 
 namespace pba::study {
@@ -63,13 +65,14 @@ struct SpringSpan {
     std::size_t a, b; ///< b == kNone: anchored at `anchor`
     dvec3 anchor;
     double restLength;
+    double stiffness;
 };
 
 class SpanCollector final : public ForceVisitor {
 public:
     std::vector<SpringSpan> spans;
-    void visit(const Spring& s) override { add({s.particle(), kNone, s.anchor(), s.restLength()}); }
-    void visit(const TwoBodySpring& s) override { add({s.first(), s.second(), dvec3(0.0), s.restLength()}); }
+    void visit(const Spring& s) override { add({s.particle(), kNone, s.anchor(), s.restLength(), s.stiffness()}); }
+    void visit(const TwoBodySpring& s) override { add({s.first(), s.second(), dvec3(0.0), s.restLength(), s.stiffness()}); }
 
 private:
     void add(const SpringSpan& span)
@@ -148,6 +151,14 @@ double largestEigenvalue(const std::vector<StiffnessTerm>& terms, const std::vec
 }
 
 } // namespace
+
+bool hasMovingSprings(const World& world)
+{
+    StiffnessCollector collector(world);
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        world.force(i).accept(collector);
+    return !collector.terms.empty();
+}
 
 std::optional<double> highestFrequency(const World& world)
 {
@@ -229,21 +240,55 @@ StabilityRun runStability(const Scene& scene, Integrator integrator, double dt, 
 StabilityResult measureStabilityLimit(const Scene& scene, Integrator integrator, double omega,
                                       const StabilityCriterion& criterion)
 {
-    StabilityResult result{integrator, omega, theoryDtLimit(integrator, omega), kNaN, {}, {}};
-    auto stable = [&](double dt) { return runStability(scene, integrator, dt, omega, criterion).stable; };
-    // Bracket [lo, hi] with lo stable and hi not, from omega dt = 1, within 2^-20 .. 2^6.
+    StabilityResult result{integrator, omega, theoryDtLimit(integrator, omega), kNaN, {}, {}, {}};
+    // "No energy" is measured against the springs' own scale, sum k L^2 / 2 (each stretched by its
+    // rest length): a cloth at rest keeps rounding-sized energies that no bound can be set by.
+    SpanCollector springs;
+    for (std::size_t i = 0; i < scene.world.forceCount(); ++i)
+        scene.world.force(i).accept(springs);
+    double scale = 0.0;
+    for (const auto& span : springs.spans)
+        scale += 0.5 * span.stiffness * span.restLength * span.restLength;
+    if (!(std::abs(scene.world.totalEnergy()) > 1e-12 * scale)) {
+        result.unmeasured = "the scene starts with no energy (at rest at equilibrium): no bound to set";
+        return result;
+    }
+    // The last two runs' reasons: a spring that leaves its linear range at the same time at dt
+    // and dt / 2 does so by the scene's own motion (a hanging cloth stretching), not the
+    // integrator's, and halving further would only cost time.
+    bool leftLinear = false, leftLinearBefore = false;
+    double leftAt = -1.0, leftAtBefore = -2.0;
+    auto stable = [&](double dt) {
+        const StabilityRun run = runStability(scene, integrator, dt, omega, criterion);
+        leftLinearBefore = leftLinear;
+        leftAtBefore = leftAt;
+        leftLinear = run.leftLinearRegime;
+        leftAt = run.series.t.empty() ? -1.0 : run.series.t.back();
+        return run.stable;
+    };
+    // Bracket [lo, hi] with lo stable and hi not, from omega dt = 1.
     double lo = 1.0 / omega, hi = lo;
     if (stable(lo)) {
         for (hi = 2.0 * lo; stable(hi); hi *= 2.0) {
             lo = hi;
-            if (hi * omega > 64.0)
+            if (hi * omega >= kMaxOmegaDt) {
+                result.unmeasured = fmt::format("stable up to omega dt = {:g}", kMaxOmegaDt);
                 return result;
+            }
         }
     } else {
         for (lo = 0.5 * hi; !stable(lo); lo *= 0.5) {
             hi = lo;
-            if (lo * omega < 1e-3) // beyond 300,000 steps a run
+            if (leftLinear && leftLinearBefore && std::abs(leftAt - leftAtBefore) <= 0.1 * leftAt) {
+                result.unmeasured = fmt::format("a spring leaves lengths (0, 2 L) at t = {:.3g} s whatever the dt: "
+                                                "the scene leaves the linear regime the theory is for",
+                                                leftAt);
                 return result;
+            }
+            if (0.5 * lo * omega < kMinOmegaDt) {
+                result.unmeasured = fmt::format("unstable down to omega dt = {:g}", lo * omega);
+                return result;
+            }
         }
     }
     while (hi - lo > criterion.tolerance * lo) {

@@ -5,6 +5,7 @@
 // bisects on dt for the largest dt whose energy stays bounded over a number of periods of that
 // mode.
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "pba/scene/scene.hpp"
@@ -31,6 +32,9 @@ struct StabilityCriterion {
 /// length, is left out); fixed bodies drop out. Empty if the world has no spring acting on a
 /// moving body, or a spring has no direction (zero length).
 std::optional<double> highestFrequency(const World& world);
+/// Whether some spring acts on a moving body: cheap, unlike highestFrequency, whose power
+/// iteration takes seconds on a large cloth (its highest modes lie close together).
+bool hasMovingSprings(const World& world);
 
 /// The largest stable dt an undamped harmonic oscillator of frequency omega allows: 2 / omega
 /// for semi-implicit Euler and velocity Verlet, 2 sqrt(2) / omega for RK4; NaN for forward
@@ -49,10 +53,15 @@ struct StabilityResult {
     Integrator integrator{};
     double omegaMax = 0.0;
     double theoryDt = 0.0;   ///< NaN: no finite limit (forward Euler)
-    double measuredDt = 0.0; ///< the bisection's largest stable dt; NaN if none was bracketed
+    double measuredDt = 0.0; ///< the bisection's largest stable dt; NaN if not measured
+    std::string unmeasured;  ///< why measuredDt is NaN ("" when measured)
     StabilityRun below;      ///< at measuredDt (1 - kStabilityMargin)
     StabilityRun above;      ///< at measuredDt (1 + kStabilityMargin)
 };
+
+/// The bracket's range: below kMinOmegaDt a run of 50 periods is 60,000 steps and more.
+inline constexpr double kMinOmegaDt = 0.005;
+inline constexpr double kMaxOmegaDt = 64.0;
 
 /// How far below and above the measured limit the plotted runs are, relative.
 inline constexpr double kStabilityMargin = 0.02;
@@ -62,8 +71,10 @@ inline constexpr double kStabilityMargin = 0.02;
 StabilityRun runStability(const Scene& scene, Integrator integrator, double dt, double omega,
                           const StabilityCriterion& criterion);
 
-/// Brackets the limit (doubling or halving dt from 1 / omega) and bisects it to the criterion's
-/// tolerance, then runs just below and just above it for the plot.
+/// Brackets the limit (doubling or halving dt from 1 / omega, within omega dt from kMinOmegaDt
+/// to kMaxOmegaDt) and bisects it to the criterion's tolerance, then runs just below and just
+/// above it for the plot. Not measured (NaN, with the reason) for a scene that starts with no
+/// energy, which leaves no bound to set, or a limit outside the bracket's range.
 StabilityResult measureStabilityLimit(const Scene& scene, Integrator integrator, double omega,
                                       const StabilityCriterion& criterion);
 

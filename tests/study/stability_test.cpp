@@ -104,6 +104,18 @@ TEST(StabilityLimit, OnAChainTheMeasuredLimitsAgreeWithTheTheory)
     }
 }
 
+// At rest at equilibrium the energy is zero: no bound relative to it, so nothing is measured,
+// and the reason is given rather than a limit.
+TEST(StabilityLimit, NotMeasuredForASceneWithoutEnergy)
+{
+    Scene scene;
+    scene.world = chain(3, 100.0, 1.0, 0.5);
+    const auto r = study::measureStabilityLimit(scene, Integrator::RK4, *study::highestFrequency(scene.world),
+                                                study::StabilityCriterion{});
+    EXPECT_TRUE(std::isnan(r.measuredDt));
+    EXPECT_NE(r.unmeasured.find("no energy"), std::string::npos) << r.unmeasured;
+}
+
 TEST(StabilityLimit, ForwardEulerHasNoTheoryAndItsMeasureIsTheCriterionsOwn)
 {
     const Scene scene = loadScene("stiff-spring");
