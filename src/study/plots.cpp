@@ -181,15 +181,16 @@ std::string stabilityPlot(const std::filesystem::path& dir, const StudyConfig& c
 {
     const double omega = *result.omegaMax;
     const double factor = config.stability.energyFactor;
-    // The convergence plot before this one leaves log axes set: start from linear ones. The
-    // y range stops short of RK4's decay just below its limit, which would squeeze the rest.
+    // The convergence plot before this one leaves log axes (and, for one dt, an extra x tic) set:
+    // start from plain ones. The y range stops short of RK4's decay just below its limit, which
+    // would squeeze the rest.
     std::string script =
         multiplot(result.stability.size(), kStabilityPlotFile,
                   fmt::format("E / E_0 just below and just above each measured stability limit ({:g}% either side), "
                               "ω_{{max}} = {:.4g} rad/s",
                               100 * kStabilityMargin, omega),
                   560) +
-        fmt::format("unset logscale\nset logscale y\nset format y '10^{{%L}}'\nset format x '%g'\n"
+        fmt::format("unset logscale\nunset xtics\nset xtics\nset logscale y\nset format y '10^{{%L}}'\nset format x '%g'\n"
                     "set yrange [1e-3:{}]\nset xrange [0:{}]\nset grid\nset offsets 0, 0, 0, 0\n"
                     "set xlabel 't / (2π / ω_{{max}})   (periods of the highest mode)'\nset ylabel 'E / E_0'\n"
                     "set key below width 2\n",
