@@ -97,12 +97,13 @@ int runCompare(const CompareOptions& options)
     // The folder is written beside its target and swapped in whole: a failed study leaves the
     // previous one untouched, not a mix of new tables and an old report.
     io::Temporary folder(io::resolveOutputFolder(options.out), io::Temporary::Kind::Folder);
-    const auto runs = static_cast<long>(config.integrators.size() * (config.collisions.size() * config.dts.size() + 1));
-    Progress progress("comparing", runs);
+    Progress progress("comparing", study::studyTaskCount(config));
     const study::StudyResult result = study::runStudy(config, [&](long done, long) { progress.update(done); });
     const std::filesystem::path dir = folder.path();
     writeResultsCsv(dir / "results.csv", result);
     writeOrdersCsv(dir / "orders.csv", result);
+    if (!result.stability.empty())
+        writeStabilityCsv(dir / "stability.csv", result);
     const bool plots = writePlots(dir, config, result);
     if (!plots)
         fmt::print(stderr, "pba: gnuplot is not installed, so there are no plots: install the Debian package "
@@ -118,9 +119,17 @@ int runCompare(const CompareOptions& options)
     fmt::print("order of accuracy (spring):");
     for (const auto& o : result.orders)
         fmt::print("  {} {} (expected {})", integratorName(o.integrator), study::orderText(o), o.expected);
+    if (result.omegaMax) {
+        fmt::print("\nstability limit in dt (omega_max {:.6g} rad/s):", *result.omegaMax);
+        for (const auto& s : result.stability)
+            fmt::print("  {} {} (theory {})", integratorName(s.integrator),
+                       std::isnan(s.measuredDt) ? std::string("not measured") : fmt::format("{:.5g} s", s.measuredDt),
+                       std::isnan(s.theoryDt) ? std::string("none") : fmt::format("{:.5g} s", s.theoryDt));
+    }
     fmt::print("\n\n{}", study::findings(config, result));
-    progress.finish(fmt::format("wrote {}/report.md, results.csv, orders.csv{} ({} runs)", options.out,
-                                plots ? " and plots" : "", result.runs.size()));
+    progress.finish(fmt::format("wrote {}/report.md, results.csv, orders.csv{}{} ({} runs)", options.out,
+                                result.stability.empty() ? "" : ", stability.csv", plots ? " and plots" : "",
+                                result.runs.size()));
     return kExitSuccess;
 }
 

@@ -1,6 +1,7 @@
 #include "compare_report.hpp"
 
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -37,7 +38,7 @@ std::string energyTable(const study::StudyConfig& config, const study::StudyResu
         out += markdown ? fmt::format("| {}", integratorName(integrator)) : fmt::format("{:<20}", integratorName(integrator));
         for (double dt : config.dts) {
             const ParticleResult* r = study::findRun(result, integrator, collision, dt);
-            const std::string value = r ? fmt::format("{:.4f}", r->energyRatioEnd) : "-";
+            const std::string value = r ? study::ratioText(r->energyRatioEnd) : "-";
             out += markdown ? " | " + value : fmt::format("{:>10}", value);
         }
         out += markdown ? " |\n" : "\n";
@@ -78,6 +79,81 @@ void writeOrdersCsv(const std::filesystem::path& path, const study::StudyResult&
     file.commit();
 }
 
+void writeStabilityCsv(const std::filesystem::path& path, const study::StudyResult& result)
+{
+    AtomicFile file(path);
+    file.stream() << "integrator,omega_max,measured_dt_limit,theory_dt_limit\n";
+    for (const auto& s : result.stability)
+        file.stream() << fmt::format("{},{},{},{}\n", integratorName(s.integrator), s.omegaMax, number(s.measuredDt),
+                                     std::isnan(s.theoryDt) ? std::string("none") : number(s.theoryDt));
+    file.commit();
+}
+
+namespace {
+
+std::string stabilityRow(const study::StudyResult& result, const study::StabilityResult& s)
+{
+    const double omega = *result.omegaMax;
+    const std::string measured = std::isnan(s.measuredDt) ? "not measured: " + s.unmeasured
+                                                          : fmt::format("{:.5g}", s.measuredDt);
+    const std::string omegaDt = std::isnan(s.measuredDt) ? std::string("-") : fmt::format("{:.4g}", omega * s.measuredDt);
+    if (std::isnan(s.theoryDt))
+        return fmt::format("| {} | none: gains energy at every dt | {} | {} | - |\n", integratorName(s.integrator),
+                           measured, omegaDt);
+    const std::string ratio = std::isnan(s.measuredDt) ? std::string("-") : fmt::format("{:.4f}", s.measuredDt / s.theoryDt);
+    return fmt::format("| {} | {:.5g} (omega dt = {:.4g}) | {} | {} | {} |\n", integratorName(s.integrator), s.theoryDt,
+                       omega * s.theoryDt, measured, omegaDt, ratio);
+}
+
+} // namespace
+
+std::string stabilitySection(const study::StudyConfig& config, const study::StudyResult& result, bool withPlots)
+{
+    if (result.stability.empty())
+        return "";
+    const double omega = *result.omegaMax;
+    const auto& c = config.stability;
+    const double period = 2.0 * std::numbers::pi / omega;
+    std::string out = "## Stability limits\n\n";
+    out += fmt::format(
+        "The scene's highest natural frequency is omega_max = {:.6g} rad/s (period {:.4g} s): the square root of the "
+        "largest eigenvalue of M^-1 K, found by power iteration, with K the springs' stiffness matrix at the start "
+        "state (blocks +-k u u^T, the geometric term left out; fixed particles drop out). For an undamped oscillator "
+        "of that frequency the theory allows dt < 2 / omega for semi-implicit Euler and velocity Verlet, "
+        "dt <= 2 sqrt(2) / omega for RK4 (dissipative below it: slightly at small omega dt, strongly near the limit), and no dt for forward Euler, which gains "
+        "energy at every step. The theory counts the springs alone; the runs are the whole scene, its other forces "
+        "and surfaces included.\n\n",
+        omega, period);
+    out += fmt::format(
+        "A dt counts as **stable** when the energy (kinetic + potential, all bodies) stays finite and never rises above "
+        "E0 + {:g} |E0| ({:g} times a positive start) over {:g} periods of the highest mode ({:.4g} s), and no spring "
+        "is stretched to twice its rest length or through zero, where the linear theory ends. The largest "
+        "stable dt is bracketed by doubling or halving from omega dt = 1 and bisected until the bracket is {:g} of it "
+        "wide. The factor is large on purpose: a stable run near its limit swings far from its start (semi-implicit "
+        "Euler released at rest reaches E0 / (1 - omega dt / 2)), while above a limit the energy grows geometrically "
+        "and crosses any bound within a few periods.\n\n",
+        c.energyFactor - 1.0, c.energyFactor, c.periods, c.periods * period, c.tolerance);
+    out += "| integrator | theory dt limit (s) | measured dt limit (s) | omega dt measured | measured / theory |\n"
+           "|---|---:|---:|---:|---:|\n";
+    for (const auto& s : result.stability)
+        out += stabilityRow(result, s);
+    for (const auto& s : result.stability)
+        if (std::isnan(s.theoryDt) && !std::isnan(s.measuredDt))
+            out += fmt::format(
+                "\nForward Euler's number is the criterion's, not a limit of the method: its energy grows by "
+                "1 + (omega dt)^2 every step, about exp(2 pi P omega dt) over P periods, so a single oscillator "
+                "reaches {:g} E0 over {:g} periods at omega dt = ln({:g}) / (2 pi {:g}) = {:.4g} (measured here: "
+                "{:.4g}); a longer horizon or a tighter factor gives a smaller dt, without end.\n",
+                c.energyFactor, c.periods, c.energyFactor, c.periods,
+                std::log(c.energyFactor) / (2.0 * std::numbers::pi * c.periods), omega * s.measuredDt);
+    if (withPlots)
+        out += fmt::format("\n![stability](stability.png)\n\nEach panel: E/E0 at dt {:g}% below (darker, solid) and "
+                           "{:g}% above (lighter, dashed) the measured limit; a run above it stops where it crosses "
+                           "the bound or a spring leaves the linear regime.\n",
+                           100 * study::kStabilityMargin, 100 * study::kStabilityMargin);
+    return out + "\n";
+}
+
 bool writePlots(const std::filesystem::path& dir, const study::StudyConfig& config, const study::StudyResult& result)
 {
     if (!gnuplotAvailable())
@@ -86,6 +162,8 @@ bool writePlots(const std::filesystem::path& dir, const study::StudyConfig& conf
     runGnuplot(study::plotScript(scratch.path(), config, result), scratch.path());
     for (const char* name : study::kPlotFiles)
         publish(scratch.path() / name, dir / name);
+    if (!result.stability.empty())
+        publish(scratch.path() / study::kStabilityPlotFile, dir / study::kStabilityPlotFile);
     return true;
 }
 
@@ -105,10 +183,11 @@ void writeReport(const std::filesystem::path& path, const study::StudyConfig& co
            "|---|---:|---:|\n";
     for (const auto& o : result.orders)
         out << fmt::format("| {} | {} | {} |\n", integratorName(o.integrator), study::orderText(o), o.expected);
+    out << "\n" << stabilitySection(config, result, withPlots);
     if (withPlots)
-        out << "\n## Plots\n\n![height](height.png)\n\n![energy](energy.png)\n\n![convergence](convergence.png)\n";
+        out << "## Plots\n\n![height](height.png)\n\n![energy](energy.png)\n\n![convergence](convergence.png)\n";
     else
-        out << "\n(No plots: gnuplot is not installed; install the Debian package gnuplot-nox.)\n";
+        out << "(No plots: gnuplot is not installed; install the Debian package gnuplot-nox.)\n";
     file.commit();
 }
 

@@ -17,7 +17,12 @@ std::string energyTableHeading(const study::StudyConfig& config, const study::St
 
 void writeResultsCsv(const std::filesystem::path& path, const study::StudyResult& result);
 void writeOrdersCsv(const std::filesystem::path& path, const study::StudyResult& result);
-/// Draws height.png, energy.png and convergence.png with gnuplot; returns false (and writes
+/// One row per integrator of the stability study; theory_dt_limit is `none` for forward Euler.
+/// Call only for a result with a stability study (a scene with springs).
+void writeStabilityCsv(const std::filesystem::path& path, const study::StudyResult& result);
+/// The report's stability section (Markdown, from its heading), or "" without a stability study.
+std::string stabilitySection(const study::StudyConfig& config, const study::StudyResult& result, bool withPlots);
+/// Draws height.png, energy.png, convergence.png and (with springs) stability.png with gnuplot; returns false (and writes
 /// nothing) if gnuplot is missing.
 bool writePlots(const std::filesystem::path& dir, const study::StudyConfig& config, const study::StudyResult& result);
 void writeReport(const std::filesystem::path& path, const study::StudyConfig& config, const study::StudyResult& result,

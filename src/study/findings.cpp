@@ -52,9 +52,9 @@ std::string overDts(const std::vector<double>& dts)
 /// "1.0123 times the start at dt = 0.01" or "... at dt = 0.01 and 1.5 times at dt = 0.1".
 std::string endRatios(const std::vector<const ParticleResult*>& rows)
 {
-    std::string text = fmt::format("{:.4f} times the start at dt = {}", rows.front()->energyRatioEnd, rows.front()->dt);
+    std::string text = fmt::format("{} times the start at dt = {}", ratioText(rows.front()->energyRatioEnd), rows.front()->dt);
     if (rows.size() > 1)
-        text += fmt::format(" and {:.4f} times at dt = {}", rows.back()->energyRatioEnd, rows.back()->dt);
+        text += fmt::format(" and {} times at dt = {}", ratioText(rows.back()->energyRatioEnd), rows.back()->dt);
     return text;
 }
 
@@ -355,6 +355,11 @@ std::string describeDts(const std::vector<double>& dts)
 std::string orderText(const OrderResult& order)
 {
     return std::isnan(order.measured) ? "not measured" : fmt::format("{:.2f}", order.measured);
+}
+
+std::string ratioText(double ratio)
+{
+    return std::abs(ratio) < 1e4 ? fmt::format("{:.4f}", ratio) : fmt::format("{:.4g}", ratio);
 }
 
 std::string findings(const StudyConfig& config, const StudyResult& result)

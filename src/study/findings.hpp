@@ -26,6 +26,10 @@ std::string describeDts(const std::vector<double>& dts);
 /// asymptotic range.
 std::string orderText(const OrderResult& order);
 
+/// An energy ratio to four decimals ("1.0123"), or to four significant digits from 10^4 up
+/// ("9.504e+49"): a run past its stability limit ends many orders of magnitude up.
+std::string ratioText(double ratio);
+
 /// The findings, one paragraph each, in Markdown.
 std::string findings(const StudyConfig& config, const StudyResult& result);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <optional>
 
 #include <fmt/format.h>
@@ -34,12 +35,13 @@ std::string colour(Integrator integrator, double shade = 0.0)
 }
 
 /// One panel per integrator, laid out so that none is left empty.
-std::string multiplot(std::size_t panels, const std::string& output, const std::string& title)
+std::string multiplot(std::size_t panels, const std::string& output, const std::string& title, int rowHeight = 450)
 {
     const std::size_t columns = panels == 1 ? 1 : 2, rows = panels <= 2 ? 1 : 2;
     return fmt::format("set terminal pngcairo size {},{} font 'sans,10'\nset output '{}'\n"
                        "set multiplot layout {},{} title '{}'\n",
-                       columns == 1 ? 900 : 1400, rows == 1 ? 480 : 900, output, rows, columns, title);
+                       columns == 1 ? 900 : 1400, rows == 1 ? rowHeight + 30 : 2 * rowHeight, output, rows, columns,
+                       title);
 }
 
 /// The first moving particle, the one the plots follow.
@@ -169,11 +171,68 @@ std::string convergencePlot(const std::filesystem::path& dir, const StudyResult&
            "'slope 2', 0.02*x**4 with lines dt 4 lc rgb 'gray40' title 'slope 4'\n";
 }
 
+/// The bound a stable run stays under, for the plot's key.
+std::string boundText(double factor) { return fmt::format("bound: {:g} E_0", factor); }
+
+/// One panel per integrator: E/E0 against time in periods of the highest mode, on a log scale,
+/// at dt just below the measured limit (the integrator's colour, darker) and just above it
+/// (lighter, dashed, ending where it crosses the bound).
+std::string stabilityPlot(const std::filesystem::path& dir, const StudyConfig& config, const StudyResult& result)
+{
+    const double omega = *result.omegaMax;
+    const double factor = config.stability.energyFactor;
+    // The convergence plot before this one leaves log axes (and, for one dt, an extra x tic) set:
+    // start from plain ones. The y range stops short of RK4's decay just below its limit, which
+    // would squeeze the rest.
+    std::string script =
+        multiplot(result.stability.size(), kStabilityPlotFile,
+                  fmt::format("E / E_0 just below and just above each measured stability limit ({:g}% either side), "
+                              "ω_{{max}} = {:.4g} rad/s",
+                              100 * kStabilityMargin, omega),
+                  560) +
+        fmt::format("unset logscale\nunset xtics\nset xtics\nset logscale y\nset format y '10^{{%L}}'\nset format x '%g'\n"
+                    "set yrange [1e-3:{}]\nset xrange [0:{}]\nset grid\nset offsets 0, 0, 0, 0\n"
+                    "set xlabel 't / (2π / ω_{{max}})   (periods of the highest mode)'\nset ylabel 'E / E_0'\n"
+                    "set key below width 2\n",
+                    factor * 30.0, config.stability.periods);
+    for (const auto& s : result.stability) {
+        const std::string name(integratorName(s.integrator));
+        const std::string theory = std::isnan(s.theoryDt) ? std::string("theory: none, gains energy at every dt") : fmt::format("theory {:.4g} s", s.theoryDt);
+        const std::string measured = std::isnan(s.measuredDt) ? std::string("limit not measured")
+                                                              : fmt::format("limit measured {:.4g} s", s.measuredDt);
+        script += fmt::format("set title '{}: {}, {}'\nplot ", name, measured, theory);
+        if (std::isnan(s.measuredDt)) {
+            script += fmt::format("1 with lines lc rgb 'gray50' dt 3 title 'not measured: {}'\n", s.unmeasured);
+            continue;
+        }
+        std::string line;
+        for (const auto* run : {&s.below, &s.above}) {
+            const bool below = run == &s.below;
+            const std::string file = fmt::format("s_{}_{}.dat", name, below ? "below" : "above");
+            std::ofstream out(dir / file);
+            for (std::size_t i = 0; i < run->series.t.size(); ++i)
+                out << run->series.t[i] * omega / (2.0 * std::numbers::pi) << ' ' << run->series.energyRatio[i] << '\n';
+            line += fmt::format("'{}' with lines {} lc rgb '{}' title 'dt = {:.4g} s ({})', ", file,
+                                below ? "lw 2" : "lw 2 dt (8,4)", colour(s.integrator, below ? -0.3 : 0.35), run->dt,
+                                run->stable              ? "stable"
+                                : run->leftLinearRegime ? "a spring leaves (0, 2L)"
+                                                         : "crosses the bound");
+        }
+        script += line + fmt::format("{} with lines lc rgb 'gray30' dt 2 title '{}', 1 with lines lc rgb 'gray60' dt 3 "
+                                     "title 'E_0'\n",
+                                     factor, boundText(factor));
+    }
+    return script + "unset multiplot\n";
+}
+
 } // namespace
 
 std::string plotScript(const std::filesystem::path& dir, const StudyConfig& config, const StudyResult& result)
 {
-    return heightPlot(dir, config, result) + energyPlot(dir, config, result) + convergencePlot(dir, result);
+    std::string script = heightPlot(dir, config, result) + energyPlot(dir, config, result) + convergencePlot(dir, result);
+    if (!result.stability.empty())
+        script += stabilityPlot(dir, config, result);
+    return script;
 }
 
 } // namespace pba::study

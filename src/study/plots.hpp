@@ -12,6 +12,8 @@ namespace pba::study {
 
 /// The pictures the script draws, in its working folder.
 inline constexpr std::array<const char*, 3> kPlotFiles{"height.png", "energy.png", "convergence.png"};
+/// Drawn too for a scene with springs (when the result has a stability study).
+inline constexpr const char* kStabilityPlotFile = "stability.png";
 
 /// Writes the data files into `dir` and returns the script that draws kPlotFiles from them
 /// (run it with `dir` as the working folder).

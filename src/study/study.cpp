@@ -144,6 +144,13 @@ OrderResult measureOrder(const Scene& spring, Integrator integrator, const std::
     return order;
 }
 
+long studyTaskCount(const StudyConfig& config)
+{
+    const std::size_t n = config.integrators.size();
+    const std::size_t limits = hasMovingSprings(config.scene.world) ? n : 0; // the count shown, not a promise
+    return static_cast<long>(n * config.collisions.size() * config.dts.size() + n + limits);
+}
+
 StudyResult runStudy(const StudyConfig& config, const std::function<void(long, long)>& progress)
 {
     struct Task {
@@ -157,19 +164,27 @@ StudyResult runStudy(const StudyConfig& config, const std::function<void(long, l
             for (double dt : config.dts)
                 tasks.push_back({integrator, collision, dt});
     const Scene spring = loadScene("spring");
-    const std::size_t total = tasks.size() + config.integrators.size();
-    std::vector<std::vector<ParticleResult>> runs(tasks.size());
     StudyResult result;
-    result.orders.resize(config.integrators.size());
+    result.omegaMax = highestFrequency(config.scene.world);
+    const std::size_t orders = config.integrators.size();
+    const std::size_t limits = result.omegaMax ? config.integrators.size() : 0;
+    const std::size_t total = tasks.size() + orders + limits;
+    std::vector<std::vector<ParticleResult>> runs(tasks.size());
+    result.orders.resize(orders);
+    result.stability.resize(limits);
     std::atomic<std::size_t> next{0};
     std::atomic<long> done{0};
     auto worker = [&] {
         for (std::size_t i; (i = next.fetch_add(1)) < total; ++done) {
             if (i < tasks.size())
                 runs[i] = measureRun(config.scene, tasks[i].integrator, tasks[i].collision, tasks[i].dt, config.duration);
-            else
+            else if (i < tasks.size() + orders)
                 result.orders[i - tasks.size()] =
                     measureOrder(spring, config.integrators[i - tasks.size()], config.dts, result.orderWindow);
+            else
+                result.stability[i - tasks.size() - orders] =
+                    measureStabilityLimit(config.scene, config.integrators[i - tasks.size() - orders],
+                                          *result.omegaMax, config.stability);
         }
     };
     std::vector<std::thread> threads;

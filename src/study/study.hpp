@@ -4,10 +4,13 @@
 // accuracy on the harmonic oscillator. Runs are independent and deterministic, so the results
 // do not depend on how many run at once.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "pba/scene/scene.hpp"
+#include "series.hpp"
+#include "stability.hpp"
 
 namespace pba::study {
 
@@ -18,11 +21,8 @@ struct StudyConfig {
     std::vector<double> dts{0.0005, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1};
     double duration = 10.0;
     int jobs = 1;
-};
-
-/// One particle's time series, thinned to at most a few thousand samples for plotting.
-struct Series {
-    std::vector<double> t, y, energyRatio;
+    /// What the stability study (scenes with springs only) counts as stable.
+    StabilityCriterion stability;
 };
 
 /// What one particle did in one run. NaN where a measure does not apply (no exact solution,
@@ -61,7 +61,15 @@ struct StudyResult {
     std::vector<ParticleResult> runs; ///< in (integrator, collision, dt, particle) order
     std::vector<OrderResult> orders;
     double orderWindow = 2.0;         ///< s, the time window of the order study
+    /// The scene's highest natural frequency, rad/s; empty without springs on moving bodies,
+    /// and then there is no stability study.
+    std::optional<double> omegaMax;
+    std::vector<StabilityResult> stability; ///< one per integrator, in the config's order
 };
+
+/// The runs runStudy reports progress in: the study's runs, the order fits and, for a scene
+/// with springs, the stability limits.
+long studyTaskCount(const StudyConfig& config);
 
 /// `progress(done, total)` is called from the calling thread only.
 StudyResult runStudy(const StudyConfig& config, const std::function<void(long, long)>& progress = {});

@@ -1,0 +1,304 @@
+#include "stability.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "pba/forces.hpp"
+
+namespace pba::study {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr std::size_t kSeriesPoints = 2000;
+
+/// The stiffness of the world's springs as a list of terms k u u^T coupling two moving bodies
+/// (or one, for an anchored spring or a spring to a fixed body), at the start state.
+struct StiffnessTerm {
+    std::size_t a, b; ///< b == kNone: a spring from a to something fixed
+    double k;
+    dvec3 u;
+};
+constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+
+class StiffnessCollector final : public ForceVisitor {
+public:
+    explicit StiffnessCollector(const World& world) : m_world(world) {}
+    std::vector<StiffnessTerm> terms;
+    bool degenerate = false;
+
+    void visit(const Spring& s) override { add(s.particle(), kNone, s.anchor(), s.stiffness()); }
+    void visit(const TwoBodySpring& s) override
+    {
+        add(s.first(), s.second(), m_world.body(s.second()).getPos(), s.stiffness());
+    }
+
+private:
+    void add(std::size_t a, std::size_t b, const dvec3& other, double k)
+    {
+        const bool aMoves = !m_world.body(a).isFixed();
+        const bool bMoves = b != kNone && !m_world.body(b).isFixed();
+        if (!aMoves && !bMoves)
+            return;
+        const dvec3 d = other - m_world.body(a).getPos();
+        const double length = glm::length(d);
+        if (!(length > 0.0)) {
+            degenerate = true;
+            return;
+        }
+        // A spring to a fixed body is a spring to an anchor at that body's place.
+        if (aMoves)
+            terms.push_back({a, bMoves ? b : kNone, k, d / length});
+        else
+            terms.push_back({b, kNone, k, d / length});
+    }
+
+    const World& m_world;
+};
+
+/// A spring's ends and rest length, to tell when a run has left the linear regime.
+struct SpringSpan {
+    std::size_t a, b; ///< b == kNone: anchored at `anchor`
+    dvec3 anchor;
+    double restLength;
+    double stiffness;
+};
+
+class SpanCollector final : public ForceVisitor {
+public:
+    std::vector<SpringSpan> spans;
+    void visit(const Spring& s) override { add({s.particle(), kNone, s.anchor(), s.restLength(), s.stiffness()}); }
+    void visit(const TwoBodySpring& s) override { add({s.first(), s.second(), dvec3(0.0), s.restLength(), s.stiffness()}); }
+
+private:
+    void add(const SpringSpan& span)
+    {
+        if (span.restLength > 0.0) // a zero-length spring has no side to turn inside out
+            spans.push_back(span);
+    }
+};
+
+/// True if some spring is stretched to twice its rest length or compressed through zero: past
+/// that the linearisation the theory rests on is gone (the spring turns inside out), and a
+/// blown-up chain or cloth can tangle into a bounded but meaningless state rather than grow.
+bool leftLinearRegime(const World& world, const std::vector<SpringSpan>& spans)
+{
+    for (const auto& s : spans) {
+        const dvec3 other = s.b == kNone ? s.anchor : world.body(s.b).getPos();
+        if (!(std::abs(glm::length(world.body(s.a).getPos() - other) - s.restLength) < s.restLength))
+            return true;
+    }
+    return false;
+}
+
+/// y = M^-1/2 K M^-1/2 x over every body (fixed ones stay zero): symmetric, with the
+/// eigenvalues of M^-1 K, so the power iteration's Rayleigh quotient converges monotonically.
+void applySymmetric(const std::vector<StiffnessTerm>& terms, const std::vector<double>& invSqrtMass,
+                    const std::vector<dvec3>& x, std::vector<dvec3>& y)
+{
+    std::fill(y.begin(), y.end(), dvec3(0.0));
+    for (const auto& t : terms) {
+        const dvec3 xa = x[t.a] * invSqrtMass[t.a];
+        const dvec3 xb = t.b == kNone ? dvec3(0.0) : x[t.b] * invSqrtMass[t.b];
+        const dvec3 f = t.k * glm::dot(t.u, xa - xb) * t.u; // K's blocks: +k u u^T on the diagonal, -k u u^T off it
+        y[t.a] += f * invSqrtMass[t.a];
+        if (t.b != kNone)
+            y[t.b] -= f * invSqrtMass[t.b];
+    }
+}
+
+double dot(const std::vector<dvec3>& a, const std::vector<dvec3>& b)
+{
+    double s = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        s += glm::dot(a[i], b[i]);
+    return s;
+}
+
+/// Largest eigenvalue of the symmetric positive semi-definite operator by power iteration,
+/// started from a vector that alternates in sign from body to body (the shape of the highest
+/// mode of a chain or a grid, so the iteration starts close to it) and differs per axis.
+double largestEigenvalue(const std::vector<StiffnessTerm>& terms, const std::vector<double>& invSqrtMass,
+                         const std::vector<std::uint8_t>& moving)
+{
+    const std::size_t n = invSqrtMass.size();
+    std::vector<dvec3> x(n, dvec3(0.0)), y(n);
+    for (std::size_t i = 0; i < n; ++i)
+        if (moving[i])
+            x[i] = (i % 2 == 0 ? 1.0 : -1.0) * dvec3(1.0, 0.8 + 0.1 * std::sin(double(i)), 0.6 + 0.1 * std::cos(double(i)));
+    double lambda = 0.0;
+    // The error of the Rayleigh quotient shrinks as (lambda_2 / lambda_1)^(2 k): close
+    // eigenvalues (long chains) need many iterations, so the loop runs until the quotient
+    // stops changing at rounding, not for a fixed count.
+    for (int iteration = 0; iteration < 200000; ++iteration) {
+        const double norm = std::sqrt(dot(x, x));
+        if (!(norm > 0.0))
+            return 0.0;
+        for (auto& v : x)
+            v /= norm;
+        applySymmetric(terms, invSqrtMass, x, y);
+        const double next = dot(x, y);
+        std::swap(x, y);
+        if (iteration > 10 && std::abs(next - lambda) <= 1e-15 * std::abs(next))
+            return next;
+        lambda = next;
+    }
+    return lambda;
+}
+
+} // namespace
+
+bool hasMovingSprings(const World& world)
+{
+    StiffnessCollector collector(world);
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        world.force(i).accept(collector);
+    return !collector.terms.empty();
+}
+
+std::optional<double> highestFrequency(const World& world)
+{
+    StiffnessCollector collector(world);
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        world.force(i).accept(collector);
+    if (collector.terms.empty() || collector.degenerate)
+        return std::nullopt;
+    const std::size_t n = world.bodyCount();
+    std::vector<double> invSqrtMass(n, 0.0);
+    std::vector<std::uint8_t> moving(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        if (!world.body(i).isFixed()) {
+            invSqrtMass[i] = 1.0 / std::sqrt(world.body(i).getMass());
+            moving[i] = 1;
+        }
+    const double lambda = largestEigenvalue(collector.terms, invSqrtMass, moving);
+    if (!(lambda > 0.0))
+        return std::nullopt;
+    return std::sqrt(lambda);
+}
+
+double theoryDtLimit(Integrator integrator, double omega)
+{
+    switch (integrator) {
+    case Integrator::ForwardEuler:
+        return kNaN;
+    case Integrator::SemiImplicitEuler:
+    case Integrator::VelocityVerlet:
+        return 2.0 / omega;
+    case Integrator::RK4:
+        return 2.0 * std::sqrt(2.0) / omega;
+    }
+    return kNaN;
+}
+
+StabilityRun runStability(const Scene& scene, Integrator integrator, double dt, double omega,
+                          const StabilityCriterion& criterion)
+{
+    World world = scene.world;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (!world.body(i).isFixed())
+            world.body(i).setIntegrator(integrator);
+    SpanCollector springs;
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        world.force(i).accept(springs);
+    const double e0 = world.totalEnergy();
+    const double bound = e0 + (criterion.energyFactor - 1.0) * std::abs(e0);
+    const double horizon = criterion.periods * 2.0 * std::numbers::pi / omega;
+    const auto steps = static_cast<std::uint64_t>(std::ceil(horizon / dt));
+    const std::uint64_t stride = std::max<std::uint64_t>(1, steps / kSeriesPoints);
+    StabilityRun run{dt, true, false, {}};
+    auto sample = [&](double e) {
+        run.series.t.push_back(world.time());
+        run.series.energyRatio.push_back(e0 != 0.0 ? e / e0 : 1.0);
+    };
+    sample(e0);
+    for (std::uint64_t n = 1; n <= steps; ++n) {
+        try {
+            world.step(dt);
+        } catch (const NonFiniteStateError&) {
+            run.stable = false;
+            return run;
+        }
+        const double e = world.totalEnergy();
+        const bool bounded = e <= bound; // false for NaN too
+        if (!bounded || leftLinearRegime(world, springs.spans)) {
+            run.stable = false;
+            run.leftLinearRegime = bounded;
+            sample(e);
+            return run;
+        }
+        if (n % stride == 0 || n == steps)
+            sample(e);
+    }
+    return run;
+}
+
+StabilityResult measureStabilityLimit(const Scene& scene, Integrator integrator, double omega,
+                                      const StabilityCriterion& criterion)
+{
+    StabilityResult result{integrator, omega, theoryDtLimit(integrator, omega), kNaN, {}, {}, {}};
+    // "No energy" is measured against the springs' own scale, sum k L^2 / 2 (each stretched by its
+    // rest length): a cloth at rest keeps rounding-sized energies that no bound can be set by.
+    SpanCollector springs;
+    for (std::size_t i = 0; i < scene.world.forceCount(); ++i)
+        scene.world.force(i).accept(springs);
+    double scale = 0.0;
+    for (const auto& span : springs.spans)
+        scale += 0.5 * span.stiffness * span.restLength * span.restLength;
+    if (!(std::abs(scene.world.totalEnergy()) > 1e-12 * scale)) {
+        result.unmeasured = "the scene starts with no energy (at rest at equilibrium): no bound to set";
+        return result;
+    }
+    // The last two runs' reasons: a spring that leaves its linear range at the same time at dt
+    // and dt / 2 does so by the scene's own motion (a hanging cloth stretching), not the
+    // integrator's, and halving further would only cost time.
+    bool leftLinear = false, leftLinearBefore = false;
+    double leftAt = -1.0, leftAtBefore = -2.0;
+    auto stable = [&](double dt) {
+        const StabilityRun run = runStability(scene, integrator, dt, omega, criterion);
+        leftLinearBefore = leftLinear;
+        leftAtBefore = leftAt;
+        leftLinear = run.leftLinearRegime;
+        leftAt = run.series.t.empty() ? -1.0 : run.series.t.back();
+        return run.stable;
+    };
+    // Bracket [lo, hi] with lo stable and hi not, from omega dt = 1.
+    double lo = 1.0 / omega, hi = lo;
+    if (stable(lo)) {
+        for (hi = 2.0 * lo; stable(hi); hi *= 2.0) {
+            lo = hi;
+            if (hi * omega >= kMaxOmegaDt) {
+                result.unmeasured = fmt::format("stable up to omega dt = {:g}", kMaxOmegaDt);
+                return result;
+            }
+        }
+    } else {
+        for (lo = 0.5 * hi; !stable(lo); lo *= 0.5) {
+            hi = lo;
+            if (leftLinear && leftLinearBefore && std::abs(leftAt - leftAtBefore) <= 0.1 * leftAt) {
+                result.unmeasured = fmt::format("a spring leaves lengths (0, 2 L) at t = {:.3g} s whatever the dt: "
+                                                "the scene leaves the linear regime the theory is for",
+                                                leftAt);
+                return result;
+            }
+            if (0.5 * lo * omega < kMinOmegaDt) {
+                result.unmeasured = fmt::format("unstable down to omega dt = {:g}", lo * omega);
+                return result;
+            }
+        }
+    }
+    while (hi - lo > criterion.tolerance * lo) {
+        const double mid = 0.5 * (lo + hi);
+        (stable(mid) ? lo : hi) = mid;
+    }
+    result.measuredDt = lo;
+    result.below = runStability(scene, integrator, lo * (1.0 - kStabilityMargin), omega, criterion);
+    result.above = runStability(scene, integrator, lo * (1.0 + kStabilityMargin), omega, criterion);
+    return result;
+}
+
+} // namespace pba::study
