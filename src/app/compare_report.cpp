@@ -38,7 +38,7 @@ std::string energyTable(const study::StudyConfig& config, const study::StudyResu
         out += markdown ? fmt::format("| {}", integratorName(integrator)) : fmt::format("{:<20}", integratorName(integrator));
         for (double dt : config.dts) {
             const ParticleResult* r = study::findRun(result, integrator, collision, dt);
-            const std::string value = r ? study::ratioText(r->energyRatioEnd) : "-";
+            const std::string value = !r ? "-" : std::isnan(r->blewUpAt) ? study::ratioText(r->energyRatioEnd) : "blew up";
             out += markdown ? " | " + value : fmt::format("{:>10}", value);
         }
         out += markdown ? " |\n" : "\n";
@@ -59,12 +59,12 @@ void writeResultsCsv(const std::filesystem::path& path, const study::StudyResult
     AtomicFile file(path);
     auto& out = file.stream();
     out << "integrator,collision,dt,particle,steps,energy_ratio_end,mean_energy_ratio,max_energy_deviation,bounces,"
-           "apex_ratio_last,period_error,max_position_error\n";
+           "apex_ratio_last,period_error,max_position_error,blew_up_at\n";
     for (const auto& r : result.runs)
-        out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", integratorName(r.integrator),
+        out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", integratorName(r.integrator),
                            collisionResponseName(r.collision), r.dt, csvField(r.particle), r.steps, number(r.energyRatioEnd),
                            number(r.meanEnergyRatio), number(r.maxEnergyDeviation), r.bounces, number(r.apexRatioLast), number(r.periodError),
-                           number(r.maxPositionError));
+                           number(r.maxPositionError), number(r.blewUpAt));
     file.commit();
 }
 

@@ -2,7 +2,9 @@
 
 #include <atomic>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <mutex>
 #include <thread>
 
 #include "exact_solution.hpp"
@@ -88,21 +90,31 @@ std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator
         t.sample(world);
     }
     std::vector<State> before(trackers.size());
-    for (std::uint64_t n = 0; n < steps; ++n) {
-        for (std::size_t k = 0; k < trackers.size(); ++k) {
-            trackers[k].beforeStep(world);
-            before[k] = world.body(trackers[k].index).getState();
+    // An unstable run (forward Euler on a cloth at a large dt) is a result, not a failure of
+    // the study: it stops where the state stopped being finite and says when.
+    double blewUpAt = kNaN;
+    try {
+        for (std::uint64_t n = 0; n < steps; ++n) {
+            for (std::size_t k = 0; k < trackers.size(); ++k) {
+                trackers[k].beforeStep(world);
+                before[k] = world.body(trackers[k].index).getState();
+            }
+            world.step(dt);
+            for (std::size_t k = 0; k < trackers.size(); ++k) {
+                trackers[k].afterStep(world, before[k]);
+                trackers[k].sample(world);
+            }
         }
-        world.step(dt);
-        for (std::size_t k = 0; k < trackers.size(); ++k) {
-            trackers[k].afterStep(world, before[k]);
-            trackers[k].sample(world);
-        }
+    } catch (const NonFiniteStateError& error) {
+        blewUpAt = error.time();
     }
     std::vector<ParticleResult> results;
     for (auto& t : trackers) {
         ParticleResult& r = t.result;
-        r.energyRatioEnd = t.e0 != 0.0 ? world.energy(t.index) / t.e0 : 1.0;
+        r.blewUpAt = blewUpAt;
+        r.energyRatioEnd = !std::isnan(blewUpAt) ? std::numeric_limits<double>::infinity()
+                           : t.e0 != 0.0       ? world.energy(t.index) / t.e0
+                                               : 1.0;
         r.bounces = world.bounceCount(t.index);
         const bool bounce = t.exact && t.exact->kind() == ExactSolution::Kind::Bounce;
         r.apexRatioLast = bounce && !std::isnan(t.lastApex) ? t.lastApex / t.exact->height() : kNaN;
@@ -174,8 +186,10 @@ StudyResult runStudy(const StudyConfig& config, const std::function<void(long, l
     result.stability.resize(limits);
     std::atomic<std::size_t> next{0};
     std::atomic<long> done{0};
+    std::exception_ptr failure; // the first run that threw, rethrown once every thread has joined
+    std::mutex failureMutex;
     auto worker = [&] {
-        for (std::size_t i; (i = next.fetch_add(1)) < total; ++done) {
+        for (std::size_t i; (i = next.fetch_add(1)) < total; ++done) try {
             if (i < tasks.size())
                 runs[i] = measureRun(config.scene, tasks[i].integrator, tasks[i].collision, tasks[i].dt, config.duration);
             else if (i < tasks.size() + orders)
@@ -185,6 +199,10 @@ StudyResult runStudy(const StudyConfig& config, const std::function<void(long, l
                 result.stability[i - tasks.size() - orders] =
                     measureStabilityLimit(config.scene, config.integrators[i - tasks.size() - orders],
                                           *result.omegaMax, config.stability);
+        } catch (...) {
+            const std::lock_guard lock(failureMutex);
+            if (!failure)
+                failure = std::current_exception();
         }
     };
     std::vector<std::thread> threads;
@@ -199,6 +217,8 @@ StudyResult runStudy(const StudyConfig& config, const std::function<void(long, l
     main.join();
     for (auto& t : threads)
         t.join();
+    if (failure)
+        std::rethrow_exception(failure);
     if (progress)
         progress(static_cast<long>(total), static_cast<long>(total));
     for (auto& run : runs)

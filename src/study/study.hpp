@@ -5,6 +5,7 @@
 // do not depend on how many run at once.
 #include <functional>
 #include <optional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,9 @@ struct ParticleResult {
     double apexRatioLast = 0.0;      ///< apex after the last bounce / drop height
     double periodError = 0.0;        ///< (measured mean period - exact) / exact
     double maxPositionError = 0.0;   ///< max |x(t) - x_exact(t)|, m
+    /// The time at which the run's state stopped being finite (NaN when it did not): the run
+    /// stops there, its energy ratios read infinite and its series end there.
+    double blewUpAt = std::numeric_limits<double>::quiet_NaN();
     Series series;
 };
 

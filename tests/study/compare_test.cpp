@@ -135,7 +135,7 @@ TEST(PbaCompare, WritesEveryRowAndPlotsAndIsTheSameWhateverTheJobs)
         std::stringstream fields(line);
         for (std::string cell; std::getline(fields, cell, ',');)
             cells.push_back(cell);
-        ASSERT_EQ(cells.size(), 12u) << line;
+        ASSERT_EQ(cells.size(), 13u) << line;
         for (std::size_t i = 4; i < cells.size(); ++i)
             EXPECT_NO_THROW((void)std::stod(cells[i])) << line;
         keys.insert(cells[0] + cells[1] + cells[2] + cells[3]);

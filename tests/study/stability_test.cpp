@@ -198,3 +198,17 @@ TEST(StabilityPlot, EachIntegratorsLinesAreShadesOfItsPaletteColour)
         for (std::size_t at = line.find("with line"); at != std::string::npos; at = line.find("with line", at + 1))
             EXPECT_NE(line.substr(at, line.find(", ", at) - at).find("lc rgb"), std::string::npos) << line;
 }
+
+// A run that blows up is a result of the study, not its end: forward Euler on stiff-spring at
+// dt = 0.1 (omega dt = 3) grows by sqrt(1 + 9) a step and overflows after about 600 steps.
+TEST(StabilityStudy, ARunThatBlowsUpIsRecordedNotThrown)
+{
+    const Scene scene = loadScene("stiff-spring");
+    const auto runs = study::measureRun(scene, Integrator::ForwardEuler, CollisionResponse::Exact, 0.1, 100.0);
+    ASSERT_FALSE(runs.empty());
+    EXPECT_GT(runs.front().blewUpAt, 10.0);
+    EXPECT_LT(runs.front().blewUpAt, 100.0);
+    EXPECT_TRUE(std::isinf(runs.front().energyRatioEnd));
+    const auto stable = study::measureRun(scene, Integrator::SemiImplicitEuler, CollisionResponse::Exact, 0.01, 1.0);
+    EXPECT_TRUE(std::isnan(stable.front().blewUpAt));
+}
