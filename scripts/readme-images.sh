@@ -24,6 +24,8 @@ still blow-dryer-flow 12 640x480 # taller: the legend leaves all five balls in v
 # its panel, captured at an exact simulated time under a virtual display.
 "$pba" compare --out "$work/study" > /dev/null
 cp "$work/study/height.png" "$out/compare-height.png"
+"$pba" compare stiff-spring --out "$work/stiff" > /dev/null
+cp "$work/stiff/stability.png" "$out/stability.png"
 xvfb-run -a -s "-screen 0 1280x720x24" "$pba" view integrators --time 1.3 --screenshot "$out/viewer.png"
 
 gif() { # SCENE SECONDS SIZE: the first SECONDS at 12 frames a second, a palette of its own

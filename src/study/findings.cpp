@@ -189,6 +189,18 @@ std::string exactWithExactImpacts(const StudyConfig& config, const StudyResult& 
                        integratorName(integrator), period, apex, overDts(dts));
 }
 
+/// Whether a run's gain can be the mirror's: it stayed finite and its dt is below the
+/// integrator's measured stability limit (past it, springs gain energy whatever the response).
+bool belowStabilityLimit(const StudyResult& result, const ParticleResult& run)
+{
+    if (!std::isnan(run.blewUpAt))
+        return false;
+    for (const auto& limit : result.stability)
+        if (limit.integrator == run.integrator && !std::isnan(limit.measuredDt) && run.dt >= limit.measuredDt)
+            return false;
+    return true;
+}
+
 /// The gain of an integrator exact in flight, with the reflect response: the response's own.
 std::string reflectGain(const StudyConfig& config, const StudyResult& result)
 {
@@ -201,7 +213,7 @@ std::string reflectGain(const StudyConfig& config, const StudyResult& result)
             continue;
         std::vector<const ParticleResult*> rows;
         for (const auto* r : rowsOf(config, result, integrator, CollisionResponse::Reflect))
-            if (r->bounces > 0 && r->energyRatioEnd > 1.0 + 1e-6)
+            if (r->bounces > 0 && r->energyRatioEnd > 1.0 + 1e-6 && belowStabilityLimit(result, *r))
                 rows.push_back(r);
         if (rows.empty())
             continue;
@@ -237,7 +249,7 @@ std::string reflectGain(const StudyConfig& config, const StudyResult& result)
         std::string numbers;
         for (const auto* first : shown) {
             const auto* r = findRun(result, gaining[k], CollisionResponse::Reflect, first->dt);
-            if (r && r->bounces > 0 && r->energyRatioEnd > 1.0 + 1e-6)
+            if (r && r->bounces > 0 && r->energyRatioEnd > 1.0 + 1e-6 && belowStabilityLimit(result, *r))
                 numbers += fmt::format("{}{:.4f} times the start at dt = {} ({} bounces)", numbers.empty() ? "" : " and ",
                                        r->energyRatioEnd, r->dt, r->bounces);
         }
