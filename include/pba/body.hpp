@@ -42,7 +42,11 @@ public:
     void setVel(const dvec3& vel) { m_vel = vel; }
     void setVel(int i, double v) { m_vel[i] = v; }
     /// Moves the body and keeps the mesh's translation in sync.
-    void setPos(const dvec3& pos);
+    void setPos(const dvec3& pos)
+    {
+        m_pos = pos;
+        m_mesh.setPos(glm::vec3(pos));
+    }
     void setPos(int i, double p);
     /// Throws std::invalid_argument unless mass is finite and positive.
     void setMass(double mass);
@@ -64,7 +68,11 @@ public:
     void setFixed(bool fixed) { m_fixed = fixed; }
 
     State getState() const { return {m_pos, m_vel}; }
-    void setState(const State& state);
+    void setState(const State& state)
+    {
+        setPos(state.pos);
+        m_vel = state.vel;
+    }
 
 protected:
     Body() = default;
@@ -72,15 +80,18 @@ protected:
     Body& operator=(const Body&) = default;
 
 private:
-    Mesh m_mesh;          ///< mesh used to represent the body
+    // What a step reads and writes comes first, in the object's first cache lines (the mesh's
+    // translation, which setPos writes, right after): a cloth's step visits every body's object
+    // twice, and each line fewer is felt.
     double m_mass = 1.0;  ///< mass, kg
     double m_cor = 1.0;   ///< coefficient of restitution in [0, 1]
     dvec3 m_acc{0.0};     ///< acceleration at the start of the last step (its first force evaluation), m/s^2
     dvec3 m_vel{0.0};     ///< velocity, m/s
     dvec3 m_pos{0.0};     ///< position, m
-    std::string m_name;
     Integrator m_integrator = Integrator::SemiImplicitEuler;
     bool m_fixed = false;
+    Mesh m_mesh;          ///< mesh used to represent the body
+    std::string m_name;
 };
 
 } // namespace pba

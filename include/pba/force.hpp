@@ -25,6 +25,7 @@ class Gravity;
 class Drag;
 class Spring;
 class TwoBodySpring;
+class SpringNetwork;
 class BlowDryer;
 struct SwarmFields;
 
@@ -47,6 +48,7 @@ public:
     virtual void visit(Ref<Drag>) {}
     virtual void visit(Ref<Spring>) {}
     virtual void visit(Ref<TwoBodySpring>) {}
+    virtual void visit(Ref<SpringNetwork>) {}
     virtual void visit(Ref<BlowDryer>) {}
     /// Any other force: one of a program's own.
     virtual void visit(Ref<Force>) {}
@@ -58,11 +60,38 @@ using ForceEditor = BasicForceVisitor<false>;
 struct BodyStates {
     std::span<const ClonePtr<Body>> bodies; ///< every body of the world (mass, name, fixed)
     std::span<const State> states;          ///< one per body: the trial state to evaluate at
-    /// wanted[i] != 0: body i's force is needed. Empty: every moving body's. A force may skip
-    /// the bodies not wanted (their accumulators are not read) but never needs to.
+    /// wanted[i] != 0: body i's force is needed (the World wants moving bodies only). Empty:
+    /// every moving body's. A force may skip the bodies not wanted and the fixed ones (their
+    /// accumulators are not read) but never needs to.
     std::span<const std::uint8_t> wanted;
+    /// One per body, or empty: then each body's own. The World passes the masses it read at the
+    /// start of the step, so a force on every body need not visit every body's object for it.
+    std::span<const double> masses;
 
+    /// Whether body i is wanted (every body is when there is no list), fixed or not.
     bool wants(std::size_t i) const { return wanted.empty() || wanted[i] != 0; }
+    /// Whether body i's force is needed: wanted, or with no wanted list, not fixed.
+    bool moving(std::size_t i) const { return wanted.empty() ? !isFixed(i) : wanted[i] != 0; }
+    bool isFixed(std::size_t i) const;
+    double mass(std::size_t i) const;
+};
+
+/// What forces add to, one entry per body of the world: the force through the body's centre,
+/// and the torque about it (a wrench). A particle has no use for torque, so `torques` may be
+/// empty; a force applied at a point off the centre (a rigid body's) adds the torque of its
+/// lever arm only where there is somewhere to put it.
+struct Accumulators {
+    std::span<dvec3> forces;
+    std::span<dvec3> torques; ///< empty when no body of the world can turn
+
+    void add(std::size_t i, const dvec3& force) { forces[i] += force; }
+    /// A force applied at `arm` from body i's centre of mass: the same force, and arm x force.
+    void addAt(std::size_t i, const dvec3& force, const dvec3& arm)
+    {
+        forces[i] += force;
+        if (!torques.empty())
+            torques[i] += glm::cross(arm, force);
+    }
 };
 
 class Force {
@@ -74,10 +103,10 @@ public:
     /// other bodies being where they are. A force between bodies, which needs their trial states
     /// too, returns zero here and acts through accumulate.
     virtual dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const = 0;
-    /// Adds this force to forces[i] for every moving body i it acts on, at the trial states
-    /// `in.states`. The default calls force(i, ...) for each wanted moving body, so a force on
-    /// one body at a time only writes force().
-    virtual void accumulate(const BodyStates& in, std::span<dvec3> forces) const;
+    /// Adds this force to the accumulators of every moving body it acts on, for all of them in
+    /// one call, at the trial states `in.states`. The default calls force(i, ...) for each wanted
+    /// moving body in turn, so a force on one body at a time only writes force().
+    virtual void accumulate(const BodyStates& in, Accumulators& out) const;
     /// Potential energy of the body at x for conservative forces; 0 for the others.
     virtual double potentialEnergy(std::size_t /*index*/, const Body& /*body*/, const dvec3& /*x*/) const { return 0.0; }
     /// Body `index`'s share of this force's potential energy at the states `in.states`. The

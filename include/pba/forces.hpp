@@ -11,6 +11,8 @@ public:
     explicit Gravity(const dvec3& g) : m_g(g) {}
     std::string_view type() const override { return "gravity"; }
     dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const override;
+    /// On all cores (each body's force the same whichever thread computes it).
+    void accumulate(const BodyStates& in, Accumulators& out) const override;
     double potentialEnergy(std::size_t index, const Body& body, const dvec3& x) const override;
     bool addToSwarmFields(SwarmFields& fields) const override;
     const dvec3& acceleration() const { return m_g; }
@@ -33,6 +35,8 @@ public:
     explicit Drag(double coefficient) : m_coefficient(coefficient) {}
     std::string_view type() const override { return "drag"; }
     dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const override;
+    /// On all cores.
+    void accumulate(const BodyStates& in, Accumulators& out) const override;
     bool addToSwarmFields(SwarmFields& fields) const override;
     double coefficient() const { return m_coefficient; }
 
@@ -49,7 +53,7 @@ inline Vec3<T> springForce(const Vec3<T>& anchor, T stiffness, T restLength, T d
     const T length = glm::length(d);
     if (length <= T(0))
         return Vec3<T>(T(0)); // direction undefined at the anchor: no force rather than NaN
-    const Vec3<T> u = d / length;
+    const Vec3<T> u = d * (T(1) / length); // one division rather than three
     return -(stiffness * (length - restLength) + damping * glm::dot(v, u)) * u;
 }
 
@@ -60,6 +64,8 @@ public:
         : m_particle(particle), m_anchor(anchor), m_stiffness(stiffness), m_restLength(restLength), m_damping(damping) {}
     std::string_view type() const override { return "spring"; }
     dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const override;
+    /// Its one particle only, rather than asking every body of the world for a zero.
+    void accumulate(const BodyStates& in, Accumulators& out) const override;
     double potentialEnergy(std::size_t index, const Body& body, const dvec3& x) const override;
     /// Nothing to add, and nothing missing: a spring acts on its named particle only.
     bool addToSwarmFields(SwarmFields& /*fields*/) const override { return true; }
@@ -90,7 +96,7 @@ public:
     std::string_view type() const override { return "spring"; }
     /// Zero: the force on one end needs the other end's trial state (see accumulate).
     dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const override;
-    void accumulate(const BodyStates& in, std::span<dvec3> forces) const override;
+    void accumulate(const BodyStates& in, Accumulators& out) const override;
     double potentialEnergyShare(std::size_t index, const BodyStates& in) const override;
     double totalPotentialEnergy(const BodyStates& in) const override;
     void appendCouplings(std::vector<std::pair<std::size_t, std::size_t>>& pairs) const override;

@@ -27,20 +27,20 @@ public:
     glm::mat4 getModel() const { return m_translate * m_rotate * m_scale; }
 
     glm::vec3 getPos() const { return glm::vec3(m_translate[3]); }
-    void setPos(const glm::vec3& position);
-    void setPos(int i, float p);
+    void setPos(const glm::vec3& position) { m_translate[3] = glm::vec4(position, 1.0f); }
+    void setPos(int i, float p) { m_translate[3][i] = p; }
 
     void translate(const glm::vec3& offset);
     void rotate(float angle, const glm::vec3& axis);
     void scale(const glm::vec3& factors);
 
 private:
+    glm::mat4 m_translate{1.0f}; // first: a body's setPos writes it every step
+    glm::mat4 m_rotate{1.0f};
+    glm::mat4 m_scale{1.0f};
     std::vector<glm::vec3> m_vertices;
     std::vector<glm::vec3> m_normals;
     std::vector<std::uint32_t> m_indices;
-    glm::mat4 m_translate{1.0f};
-    glm::mat4 m_rotate{1.0f};
-    glm::mat4 m_scale{1.0f};
 };
 
 } // namespace pba

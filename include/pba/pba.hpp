@@ -10,6 +10,7 @@
 #include "pba/integrator.hpp"
 #include "pba/mesh.hpp"
 #include "pba/particle.hpp"
+#include "pba/spring_network.hpp"
 #include "pba/state.hpp"
 #include "pba/vec3_array.hpp"
 #include "pba/world.hpp"

@@ -17,6 +17,8 @@ public:
     explicit Vec3Array(std::size_t n) : m_items(n, dvec3(0.0)) {}
 
     std::size_t size() const { return m_items.size(); }
+    /// Keeps the storage: a buffer reused every step allocates once.
+    void resize(std::size_t n) { m_items.resize(n); }
     dvec3& operator[](std::size_t i) { return m_items[i]; }
     const dvec3& operator[](std::size_t i) const { return m_items[i]; }
     auto begin() { return m_items.begin(); }

@@ -34,6 +34,7 @@
 #include "pba/particle.hpp"
 #include "pba/state.hpp"
 #include "pba/swarm.hpp"
+#include "pba/vec3_array.hpp"
 
 namespace pba {
 
@@ -93,7 +94,8 @@ public:
     std::size_t swarmCount() const { return m_swarms.size(); }
     Swarm& swarm(std::size_t i) { return m_swarms[i]; }
     const Swarm& swarm(std::size_t i) const { return m_swarms[i]; }
-    /// Threads for stepping swarms: 0 (the default) uses all cores; results do not depend on it.
+    /// Threads for stepping swarms and coupled bodies (a cloth): 0 (the default) uses all cores;
+    /// results do not depend on it.
     void setThreads(int threads) { m_threads = threads; }
     /// Keep a copy of every swarm before each step, so that a failed step rolls the swarms back
     /// with the bodies (the viewer pauses on the last finite state). Off by default: the copy
@@ -154,6 +156,10 @@ public:
     /// totalPotentialEnergy.
     double potentialEnergy(std::size_t i) const;
     double energy(std::size_t i) const { return kineticEnergy(i) + potentialEnergy(i); }
+    /// Every body's energy(i) at once. One body's potential energy reads every body's state, so
+    /// asking for each of a cloth's 16,384 bodies in turn would cost bodies squared; this
+    /// gathers the states once.
+    std::vector<double> energies() const;
     /// Every force's potential energy, each interaction counted once.
     double totalPotentialEnergy() const;
     /// Kinetic plus potential energy of all bodies (swarms not included).
@@ -168,33 +174,55 @@ public:
 
 private:
     /// The bodies integrated together: coupled[i] for a moving body some force couples, and
-    /// those bodies by integrator (one system each).
+    /// those bodies by integrator (one system each). Kept from step to step (a cloth's 97,000
+    /// springs are not walked every step) with what it was made from: each body's fixed flag and
+    /// integrator, which a program may change between steps.
     struct Coupling {
         std::vector<std::uint8_t> coupled;
         std::array<std::vector<std::size_t>, kAllIntegrators.size()> systems;
+        std::vector<std::uint8_t> madeFrom;
+    };
+    /// integrateCoupled's buffers, reused so that a step allocates (almost) nothing.
+    struct CoupledScratch {
+        Vec3Array x, v, acc; ///< the system's state, and its acceleration at the start
+        std::vector<State> trial;
+        std::vector<dvec3> forces;
+        std::vector<std::uint8_t> wanted;
     };
 
     void rebuildPlanes();
     void storePreviousStates();
-    Coupling couple() const;
+    const Coupling& couple();
+    Coupling makeCoupling() const;
     void integrateIndependent(const Coupling& coupling, double dt);
     void integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members, double dt);
-    void collideCoupled(const Coupling& coupling);
+    void collideAndStore(const std::vector<std::size_t>& members);
+    void noteIfNotFinite(std::size_t i, const State& state);
     void checkFinite(double dt);
     void advanceClock(double dt);
     dvec3 aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const;
     BodyStates currentStates(std::vector<State>& storage) const;
     void stepSwarms(double dt);
-    std::optional<std::pair<std::size_t, std::string>> firstNonFinite() const;
     void rollBack();
 
     std::vector<ClonePtr<Body>> m_bodies;
     std::vector<ClonePtr<Force>> m_forces;
+    /// Every force's coupled pairs (Force::appendCouplings), gathered as the forces are added.
+    std::vector<std::pair<std::size_t, std::size_t>> m_couplings;
+    std::vector<std::size_t> m_couplingForce; ///< the force of each pair, for the messages
+    Coupling m_coupling;
+    CoupledScratch m_scratch;
     std::vector<Swarm> m_swarms;
     int m_threads = 0;
     bool m_swarmRollback = false;
     std::vector<std::vector<float>> m_swarmsBefore; ///< with m_swarmRollback: each swarm before the step
     std::vector<State> m_previous;
+    /// What storePreviousStates read of each body besides its state: mass, restitution, and
+    /// the key of its coupling (fixed flag and integrator).
+    std::vector<double> m_masses, m_cors;
+    std::vector<std::uint8_t> m_keys;
+    /// The lowest index of a body whose state the step made not finite; bodyCount() if none.
+    std::size_t m_firstNonFinite = 0;
     std::vector<std::uint64_t> m_bounces;
     std::optional<double> m_ground;
     std::optional<Aabb> m_room;

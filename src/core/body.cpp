@@ -14,12 +14,6 @@ void Body::setMesh(Mesh mesh)
     m_mesh.setPos(glm::vec3(m_pos));
 }
 
-void Body::setPos(const dvec3& pos)
-{
-    m_pos = pos;
-    m_mesh.setPos(glm::vec3(pos));
-}
-
 void Body::setPos(int i, double p)
 {
     m_pos[i] = p;
@@ -38,12 +32,6 @@ void Body::setCor(double cor)
     if (!(cor >= 0.0 && cor <= 1.0))
         throw std::invalid_argument(fmt::format("restitution must be in [0, 1], got {}", cor));
     m_cor = cor;
-}
-
-void Body::setState(const State& state)
-{
-    setPos(state.pos);
-    m_vel = state.vel;
 }
 
 } // namespace pba

@@ -4,13 +4,18 @@
 
 namespace pba {
 
-void Force::accumulate(const BodyStates& in, std::span<dvec3> forces) const
+bool BodyStates::isFixed(std::size_t i) const { return bodies[i]->isFixed(); }
+
+double BodyStates::mass(std::size_t i) const
 {
-    for (std::size_t i = 0; i < in.bodies.size(); ++i) {
-        const Body& body = *in.bodies[i];
-        if (in.wants(i) && !body.isFixed())
-            forces[i] += force(i, body, in.states[i].pos, in.states[i].vel);
-    }
+    return masses.empty() ? bodies[i]->getMass() : masses[i];
+}
+
+void Force::accumulate(const BodyStates& in, Accumulators& out) const
+{
+    for (std::size_t i = 0; i < in.bodies.size(); ++i)
+        if (in.moving(i))
+            out.add(i, force(i, *in.bodies[i], in.states[i].pos, in.states[i].vel));
 }
 
 double Force::potentialEnergyShare(std::size_t index, const BodyStates& in) const

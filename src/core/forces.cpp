@@ -3,9 +3,19 @@
 #include "pba/body.hpp"
 #include "pba/swarm.hpp"
 
+#include "parallel.hpp"
+
 namespace pba {
 
 dvec3 Gravity::force(std::size_t, const Body& body, const dvec3&, const dvec3&) const { return body.getMass() * m_g; }
+
+void Gravity::accumulate(const BodyStates& in, Accumulators& out) const
+{
+    detail::forEachIndex(in.bodies.size(), [&](std::size_t i) {
+        if (in.moving(i))
+            out.add(i, in.mass(i) * m_g);
+    });
+}
 
 double Gravity::potentialEnergy(std::size_t, const Body& body, const dvec3& x) const
 {
@@ -20,6 +30,14 @@ bool Gravity::addToSwarmFields(SwarmFields& fields) const
 
 dvec3 Drag::force(std::size_t, const Body&, const dvec3&, const dvec3& v) const { return dragForce(m_coefficient, v); }
 
+void Drag::accumulate(const BodyStates& in, Accumulators& out) const
+{
+    detail::forEachIndex(in.bodies.size(), [&](std::size_t i) {
+        if (in.moving(i))
+            out.add(i, dragForce(m_coefficient, in.states[i].vel));
+    });
+}
+
 bool Drag::addToSwarmFields(SwarmFields& fields) const
 {
     fields.drag += float(m_coefficient);
@@ -31,6 +49,13 @@ dvec3 Spring::force(std::size_t index, const Body&, const dvec3& x, const dvec3&
     if (index != m_particle)
         return dvec3(0.0);
     return springForce(m_anchor, m_stiffness, m_restLength, m_damping, x, v);
+}
+
+void Spring::accumulate(const BodyStates& in, Accumulators& out) const
+{
+    if (in.moving(m_particle))
+        out.add(m_particle, force(m_particle, *in.bodies[m_particle], in.states[m_particle].pos,
+                                  in.states[m_particle].vel));
 }
 
 double Spring::potentialEnergy(std::size_t index, const Body&, const dvec3& x) const
@@ -47,17 +72,17 @@ namespace pba {
 
 dvec3 TwoBodySpring::force(std::size_t, const Body&, const dvec3&, const dvec3&) const { return dvec3(0.0); }
 
-void TwoBodySpring::accumulate(const BodyStates& in, std::span<dvec3> forces) const
+void TwoBodySpring::accumulate(const BodyStates& in, Accumulators& out) const
 {
     const State& a = in.states[m_a];
     const State& b = in.states[m_b];
     // b seen from a is the anchored spring's kernel with the anchor at a and b's velocity
     // relative to a: one kernel for both forms.
     const dvec3 onB = springForce(a.pos, m_stiffness, m_restLength, m_damping, b.pos, b.vel - a.vel);
-    if (!in.bodies[m_a]->isFixed())
-        forces[m_a] -= onB;
-    if (!in.bodies[m_b]->isFixed())
-        forces[m_b] += onB;
+    if (in.moving(m_a))
+        out.add(m_a, -onB);
+    if (in.moving(m_b))
+        out.add(m_b, onB);
 }
 
 double TwoBodySpring::energy(const BodyStates& in) const

@@ -16,10 +16,6 @@ Mesh Mesh::quad()
                 {n, n, n, n}, {0, 1, 2, 0, 2, 3});
 }
 
-void Mesh::setPos(const glm::vec3& position) { m_translate[3] = glm::vec4(position, 1.0f); }
-
-void Mesh::setPos(int i, float p) { m_translate[3][i] = p; }
-
 void Mesh::translate(const glm::vec3& offset) { m_translate = glm::translate(m_translate, offset); }
 
 void Mesh::rotate(float angle, const glm::vec3& axis) { m_rotate = glm::rotate(m_rotate, angle, axis); }

@@ -4,12 +4,14 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <tbb/parallel_reduce.h>
 
 #include "pba/blow_dryer.hpp"
 #include "pba/forces.hpp"
 #include "pba/vec3_array.hpp"
 
 #include "collision_rules.hpp"
+#include "parallel.hpp"
 
 namespace pba {
 
@@ -95,6 +97,11 @@ Force& World::addForce(std::unique_ptr<Force> force)
 {
     if (!m_swarms.empty())
         requireActsOnSwarms(*force, m_swarms.front().name());
+    const std::size_t before = m_couplings.size();
+    force->appendCouplings(m_couplings);
+    m_couplingForce.resize(m_couplings.size(), m_forces.size());
+    if (m_couplings.size() != before)
+        m_coupling.madeFrom.clear(); // new couplings: make the coupling anew at the next step
     m_forces.push_back(std::move(force));
     return *m_forces.back();
 }
@@ -175,7 +182,7 @@ BodyStates World::currentStates(std::vector<State>& storage) const
     storage.resize(m_bodies.size());
     for (std::size_t i = 0; i < m_bodies.size(); ++i)
         storage[i] = m_bodies[i]->getState();
-    return BodyStates{m_bodies, storage, {}};
+    return BodyStates{m_bodies, storage, {}, {}};
 }
 
 dvec3 World::acceleration(std::size_t i, const dvec3& x, const dvec3& v) const
@@ -190,8 +197,9 @@ dvec3 World::acceleration(std::size_t i, const dvec3& x, const dvec3& v) const
     wanted[i] = 1;
     in.wanted = wanted;
     std::vector<dvec3> forces(m_bodies.size(), dvec3(0.0));
+    Accumulators out{forces, {}};
     for (const auto& force : m_forces)
-        force->accumulate(in, forces);
+        force->accumulate(in, out);
     return forces[i] / b.getMass();
 }
 
@@ -216,6 +224,19 @@ double World::potentialEnergy(std::size_t i) const
     return e;
 }
 
+std::vector<double> World::energies() const
+{
+    std::vector<State> states;
+    const BodyStates in = currentStates(states);
+    std::vector<double> e(m_bodies.size());
+    for (std::size_t i = 0; i < m_bodies.size(); ++i) {
+        e[i] = kineticEnergy(i);
+        for (const auto& force : m_forces)
+            e[i] += force->potentialEnergyShare(i, in);
+    }
+    return e;
+}
+
 double World::totalPotentialEnergy() const
 {
     std::vector<State> states;
@@ -234,15 +255,23 @@ double World::totalEnergy() const
     return e;
 }
 
+namespace {
+
+bool isFinite(const dvec3& u) { return std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z); }
+
+} // namespace
+
 void World::step(double dt)
 {
-    const Coupling coupling = couple(); // first: a mixed coupled group throws before anything moves
-    storePreviousStates();
-    integrateIndependent(coupling, dt);
-    for (std::size_t k = 0; k < kAllIntegrators.size(); ++k)
-        if (!coupling.systems[k].empty())
-            integrateCoupled(kAllIntegrators[k], coupling.systems[k], dt);
-    collideCoupled(coupling);
+    m_firstNonFinite = m_bodies.size();
+    detail::onCores(m_threads, [&] {
+        storePreviousStates();
+        const Coupling& coupling = couple(); // a mixed coupled group throws before anything moves
+        integrateIndependent(coupling, dt);
+        for (std::size_t k = 0; k < kAllIntegrators.size(); ++k)
+            if (!coupling.systems[k].empty())
+                integrateCoupled(kAllIntegrators[k], coupling.systems[k], dt);
+    });
     stepSwarms(dt);
     checkFinite(dt);
     advanceClock(dt);
@@ -250,10 +279,13 @@ void World::step(double dt)
 
 void World::checkFinite(double dt)
 {
-    // Every body, and every swarm (whose step checked its blocks).
-    if (const auto bad = firstNonFinite()) {
+    // Every body (the integration phases checked each as they wrote it), and every swarm
+    // (whose step checked its blocks).
+    if (m_firstNonFinite < m_bodies.size()) {
+        const Body& bad = *m_bodies[m_firstNonFinite];
+        const std::string quantity = isFinite(bad.getPos()) ? "velocity" : "position";
         rollBack();
-        throw NonFiniteStateError(m_bodies[bad->first]->getName(), m_steps + 1, m_time + dt, bad->second);
+        throw NonFiniteStateError(bad.getName(), m_steps + 1, m_time + dt, quantity);
     }
     for (const Swarm& swarm : m_swarms)
         if (const auto& bad = swarm.nonFinite()) {
@@ -278,10 +310,31 @@ void World::advanceClock(double dt)
     m_time = m_baseTime + static_cast<double>(m_steps - m_baseSteps) * dt;
 }
 
+namespace {
+
+/// What a body's coupling depends on, in a byte: whether it is fixed, and its integrator.
+std::uint8_t couplingKey(const Body& body)
+{
+    return static_cast<std::uint8_t>((body.isFixed() ? 0x80 : 0) | static_cast<int>(body.getIntegrator()));
+}
+
+} // namespace
+
 void World::storePreviousStates()
 {
-    for (std::size_t i = 0; i < m_bodies.size(); ++i)
-        m_previous[i] = m_bodies[i]->getState();
+    // One visit to each body's object for all the step reads of it: a 128 x 128 cloth's 16,384
+    // heap objects are slow memory, and each further pass over them cost as much as its springs.
+    const std::size_t n = m_bodies.size();
+    m_masses.resize(n);
+    m_cors.resize(n);
+    m_keys.resize(n);
+    detail::forEachIndex(n, [this](std::size_t i) {
+        const Body& b = *m_bodies[i];
+        m_previous[i] = b.getState();
+        m_masses[i] = b.getMass();
+        m_cors[i] = b.getCor();
+        m_keys[i] = couplingKey(b);
+    });
     if (m_swarmRollback) {
         m_swarmsBefore.resize(m_swarms.size());
         for (std::size_t s = 0; s < m_swarms.size(); ++s)
@@ -300,61 +353,59 @@ void World::rollBack()
             m_swarms[s].restoreState(m_swarmsBefore[s]);
 }
 
-World::Coupling World::couple() const
+const World::Coupling& World::couple()
+{
+    if (m_coupling.madeFrom != m_keys) // the keys read by storePreviousStates
+        m_coupling = makeCoupling();
+    return m_coupling;
+}
+
+World::Coupling World::makeCoupling() const
 {
     Coupling coupling;
     coupling.coupled.assign(m_bodies.size(), 0);
-    std::vector<std::pair<std::size_t, std::size_t>> pairs;
-    for (const auto& force : m_forces) {
-        pairs.clear();
-        force->appendCouplings(pairs);
-        for (const auto& [a, b] : pairs) {
-            const Body& first = *m_bodies[a];
-            const Body& second = *m_bodies[b];
-            // Pairs with a fixed end couple nothing between moving bodies, so they put no
-            // condition on the integrators; a moving end is still integrated as coupled,
-            // since its force needs the other end's state.
-            if (!first.isFixed() && !second.isFixed() && first.getIntegrator() != second.getIntegrator())
-                throw std::invalid_argument(fmt::format(
-                    "bodies '{}' and '{}' are coupled by a {} but use different integrators ({} and {}): "
-                    "bodies coupled by forces must share one integrator",
-                    first.getName(), second.getName(), force->type(), integratorName(first.getIntegrator()),
-                    integratorName(second.getIntegrator())));
-            coupling.coupled[a] = first.isFixed() ? 0 : 1;
-            coupling.coupled[b] = second.isFixed() ? 0 : 1;
-        }
+    for (std::size_t k = 0; k < m_couplings.size(); ++k) {
+        const auto [a, b] = m_couplings[k];
+        const Body& first = *m_bodies[a];
+        const Body& second = *m_bodies[b];
+        // Pairs with a fixed end couple nothing between moving bodies, so they put no
+        // condition on the integrators; a moving end is still integrated as coupled,
+        // since its force needs the other end's state.
+        if (!first.isFixed() && !second.isFixed() && first.getIntegrator() != second.getIntegrator())
+            throw std::invalid_argument(fmt::format(
+                "bodies '{}' and '{}' are coupled by a {} but use different integrators ({} and {}): "
+                "bodies coupled by forces must share one integrator",
+                first.getName(), second.getName(), m_forces[m_couplingForce[k]]->type(),
+                integratorName(first.getIntegrator()), integratorName(second.getIntegrator())));
+        coupling.coupled[a] = first.isFixed() ? 0 : 1;
+        coupling.coupled[b] = second.isFixed() ? 0 : 1;
     }
-    for (std::size_t i = 0; i < m_bodies.size(); ++i)
+    coupling.madeFrom = m_keys;
+    for (std::size_t i = 0; i < m_bodies.size(); ++i) {
         if (coupling.coupled[i] != 0) {
             const auto k = std::find(kAllIntegrators.begin(), kAllIntegrators.end(), m_bodies[i]->getIntegrator());
             coupling.systems[std::size_t(k - kAllIntegrators.begin())].push_back(i);
         }
+    }
     return coupling;
 }
 
 bool World::isCoupled(std::size_t i) const
 {
-    std::vector<std::pair<std::size_t, std::size_t>> pairs;
-    for (const auto& force : m_forces)
-        force->appendCouplings(pairs);
-    return !m_bodies[i]->isFixed() &&
-           std::any_of(pairs.begin(), pairs.end(), [i](const auto& p) { return p.first == i || p.second == i; });
+    return !m_bodies[i]->isFixed() && std::any_of(m_couplings.begin(), m_couplings.end(),
+                                                  [i](const auto& p) { return p.first == i || p.second == i; });
 }
 
 bool World::hasCoupledBodies() const
 {
-    std::vector<std::pair<std::size_t, std::size_t>> pairs;
-    for (const auto& force : m_forces)
-        force->appendCouplings(pairs);
-    return std::any_of(pairs.begin(), pairs.end(),
-                       [this](const auto& p) { return !m_bodies[p.first]->isFixed() || !m_bodies[p.second]->isFixed(); });
+    return std::any_of(m_couplings.begin(), m_couplings.end(), [this](const auto& p) {
+        return !m_bodies[p.first]->isFixed() || !m_bodies[p.second]->isFixed();
+    });
 }
 
 std::vector<std::size_t> World::coupledGroup(std::size_t i) const
 {
-    std::vector<std::pair<std::size_t, std::size_t>> pairs;
-    for (const auto& force : m_forces)
-        force->appendCouplings(pairs);
+    const auto& pairs = m_couplings;
     std::vector<std::uint8_t> inGroup(m_bodies.size(), 0);
     inGroup[i] = 1;
     // Grow the group until no pair of moving bodies adds to it: a few passes for a chain
@@ -378,9 +429,13 @@ std::vector<std::size_t> World::coupledGroup(std::size_t i) const
 void World::integrateIndependent(const Coupling& coupling, double dt)
 {
     for (std::size_t i = 0; i < m_bodies.size(); ++i) {
-        Body& b = *m_bodies[i];
-        if (b.isFixed() || coupling.coupled[i] != 0)
+        if (coupling.coupled[i] != 0) // first: it needs no visit to the body's object
             continue;
+        Body& b = *m_bodies[i];
+        if (b.isFixed()) {
+            noteIfNotFinite(i, b.getState()); // a program may have put it anywhere
+            continue;
+        }
         // Every integrator's first evaluation is at the start state: that one is kept as the
         // body's acceleration, rather than evaluating all the forces once more after the step.
         bool first = true;
@@ -399,78 +454,86 @@ void World::integrateIndependent(const Coupling& coupling, double dt)
         m_bounces[i] += static_cast<std::uint64_t>(bounces);
         b.setState(s);
         b.setAcc(startAcc);
+        noteIfNotFinite(i, s);
     }
 }
 
 void World::integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members, double dt)
 {
     const std::size_t n = members.size();
-    Vec3Array x(n);
-    Vec3Array v(n);
-    for (std::size_t k = 0; k < n; ++k) {
-        x[k] = m_previous[members[k]].pos;
-        v[k] = m_previous[members[k]].vel;
-    }
+    CoupledScratch& s = m_scratch;
+    s.x.resize(n);
+    s.v.resize(n);
+    s.acc.resize(n);
+    detail::forEachIndex(n, [&](std::size_t k) {
+        s.x[k] = m_previous[members[k]].pos;
+        s.v[k] = m_previous[members[k]].vel;
+    });
     // Every body of the world sits at its start-of-step state except the system's, which take
     // each stage's trial state: no force couples the system to a body outside it.
-    std::vector<State> trial(m_previous);
-    std::vector<std::uint8_t> wanted(m_bodies.size(), 0);
+    s.trial = m_previous;
+    s.wanted.assign(m_bodies.size(), 0);
     for (const std::size_t i : members)
-        wanted[i] = 1;
-    std::vector<dvec3> forces(m_bodies.size());
-    const BodyStates in{m_bodies, trial, wanted};
+        s.wanted[i] = 1;
+    s.forces.resize(m_bodies.size());
+    const BodyStates in{m_bodies, s.trial, s.wanted, m_masses};
+    Accumulators out{s.forces, {}};
     bool first = true;
     auto accel = [&](const Vec3Array& xs, const Vec3Array& vs) {
-        for (std::size_t k = 0; k < n; ++k)
-            trial[members[k]] = State{xs[k], vs[k]};
-        std::fill(forces.begin(), forces.end(), dvec3(0.0));
+        detail::forEachIndex(n, [&](std::size_t k) {
+            s.trial[members[k]] = State{xs[k], vs[k]};
+            s.forces[members[k]] = dvec3(0.0);
+        });
         for (const auto& force : m_forces)
-            force->accumulate(in, forces);
+            force->accumulate(in, out);
         Vec3Array a(n);
-        for (std::size_t k = 0; k < n; ++k)
-            a[k] = forces[members[k]] / m_bodies[members[k]]->getMass();
+        detail::forEachIndex(n, [&](std::size_t k) { a[k] = s.forces[members[k]] / m_masses[members[k]]; });
         if (first) { // the first stage is at the start state: the bodies' acceleration
-            for (std::size_t k = 0; k < n; ++k)
-                m_bodies[members[k]]->setAcc(a[k]);
+            s.acc = a;
             first = false;
         }
         return a;
     };
-    integrate(integrator, x, v, dt, accel);
-    for (std::size_t k = 0; k < n; ++k)
-        m_bodies[members[k]]->setState(State{x[k], v[k]});
+    integrate(integrator, s.x, s.v, dt, accel);
+    collideAndStore(members);
 }
 
-void World::collideCoupled(const Coupling& coupling)
+void World::collideAndStore(const std::vector<std::size_t>& members)
 {
-    if (m_planes.empty())
-        return;
+    // Collisions, the bodies' new states and the check that they are finite in one pass, so
+    // each body's object is visited once here: a cloth's bodies are many and far apart.
     const std::span<const Plane> planes(m_planes);
-    for (std::size_t i = 0; i < m_bodies.size(); ++i) {
-        if (coupling.coupled[i] == 0)
-            continue;
-        // A coupled body has no path of its own to find a time of impact on (its group moved
-        // as one), so exact acts as reflect: mirror back what ended behind a surface.
-        Body& b = *m_bodies[i];
-        State s = b.getState();
-        const int bounces = m_response == CollisionResponse::Clamp
-                                ? clampAfterStep(planes, b.getCor(), m_previous[i].pos, s.pos, s.vel)
-                                : reflectAfterStep(planes, b.getCor(), m_previous[i].pos, s.pos, s.vel);
-        b.setState(s);
-        m_bounces[i] += static_cast<std::uint64_t>(bounces);
-    }
+    const CoupledScratch& s = m_scratch;
+    const std::size_t n = members.size();
+    const std::size_t bad = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, n, 2048), m_bodies.size(),
+        [&](const tbb::blocked_range<std::size_t>& r, std::size_t lowest) {
+            for (std::size_t k = r.begin(); k < r.end(); ++k) {
+                const std::size_t i = members[k];
+                // A coupled body has no path of its own to find a time of impact on (its group
+                // moved as one), so exact acts as reflect: mirror back what ended behind a surface.
+                State end{s.x[k], s.v[k]};
+                if (!planes.empty())
+                    m_bounces[i] += static_cast<std::uint64_t>(
+                        m_response == CollisionResponse::Clamp
+                            ? clampAfterStep(planes, m_cors[i], m_previous[i].pos, end.pos, end.vel)
+                            : reflectAfterStep(planes, m_cors[i], m_previous[i].pos, end.pos, end.vel));
+                Body& b = *m_bodies[i];
+                b.setState(end);
+                b.setAcc(s.acc[k]);
+                if (!isFinite(end.pos) || !isFinite(end.vel))
+                    lowest = std::min(lowest, i);
+            }
+            return lowest;
+        },
+        [](std::size_t a, std::size_t b) { return std::min(a, b); });
+    m_firstNonFinite = std::min(m_firstNonFinite, bad);
 }
 
-std::optional<std::pair<std::size_t, std::string>> World::firstNonFinite() const
+void World::noteIfNotFinite(std::size_t i, const State& state)
 {
-    auto finite = [](const dvec3& u) { return std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z); };
-    for (std::size_t i = 0; i < m_bodies.size(); ++i) {
-        if (!finite(m_bodies[i]->getPos()))
-            return std::pair{i, std::string("position")};
-        if (!finite(m_bodies[i]->getVel()))
-            return std::pair{i, std::string("velocity")};
-    }
-    return std::nullopt;
+    if (!isFinite(state.pos) || !isFinite(state.vel))
+        m_firstNonFinite = std::min(m_firstNonFinite, i);
 }
 
 } // namespace pba

@@ -171,8 +171,17 @@ TEST(Force, TheEditorChangesTheForceItVisits)
     World world;
     world.addForce(std::make_unique<BlowDryer>(BlowDryerField{}));
     struct Stronger final : ForceEditor {
-        void visit(BlowDryer& dryer) override { dryer.field().strength = 45.0; }
+        void visit(BlowDryer& dryer) override
+        {
+            BlowDryerField field = dryer.field();
+            field.strength = 45.0;
+            dryer.setField(field);
+        }
     } stronger;
     world.force(0).accept(stronger);
     EXPECT_EQ(blowDryers(world).at(0).field.strength, 45.0);
+    // The force follows the new field (its kernel is made anew, not left at the old strength).
+    Particle p;
+    const dvec3 x(0.0, 0.1, 0.0);
+    EXPECT_EQ(world.force(0).force(0, p, x, dvec3(0.0)), blowDryerForce(blowDryers(world).at(0).field, x));
 }

@@ -1,0 +1,34 @@
+#pragma once
+// How the core shares work among cores: every loop split this way gives each index the same
+// result whatever thread computes it, so a world's results do not depend on its thread count.
+#include <cstddef>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+namespace pba::detail {
+
+/// Runs fn on `threads` cores: 0 (or as many as there are) runs it in the default arena rather
+/// than making a new one every step.
+template <class F>
+decltype(auto) onCores(int threads, F&& fn)
+{
+    if (threads <= 0 || threads >= tbb::this_task_arena::max_concurrency())
+        return fn();
+    tbb::task_arena arena(threads);
+    return arena.execute(fn);
+}
+
+/// fn(i) for every i < n, a few thousand indices a task (below that, starting a thread costs
+/// more than the work: a rope's or a few particles' loop runs on the calling thread).
+template <class F>
+void forEachIndex(std::size_t n, F&& fn)
+{
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 2048), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i)
+            fn(i);
+    });
+}
+
+} // namespace pba::detail
