@@ -92,7 +92,7 @@ void setDryer(World& world, std::size_t force, const BlowDryerField& field)
         explicit Setter(const BlowDryerField& f) : field(f) {}
         void visit(BlowDryer& dryer) override
         {
-            dryer.field() = field;
+            dryer.setField(field);
             set = true;
         }
     } setter(field);
@@ -163,10 +163,10 @@ void ViewerState::stepWorld(std::uint64_t steps)
 void ViewerState::record()
 {
     const World& world = scene.world;
+    const std::vector<double> now = world.energies(), start = initial.energies();
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
         heights.push(i, float(world.body(i).getPos().y));
-        const double e0 = initial.energy(i);
-        energies.push(i, float(e0 != 0.0 ? world.energy(i) / e0 : 1.0));
+        energies.push(i, float(start[i] != 0.0 ? now[i] / start[i] : 1.0));
     }
 }
 

@@ -7,6 +7,7 @@
 
 #include "pba/blow_dryer.hpp"
 #include "pba/forces.hpp"
+#include "pba/spring_network.hpp"
 #include "palette.hpp"
 
 namespace pba::render {
@@ -94,9 +95,14 @@ namespace {
 /// between two bodies.
 struct Springs final : ForceVisitor {
     std::vector<const Spring*> anchored;
-    std::vector<const TwoBodySpring*> between;
+    std::vector<std::pair<std::size_t, std::size_t>> between; ///< the two bodies of each
     void visit(const Spring& spring) override { anchored.push_back(&spring); }
-    void visit(const TwoBodySpring& spring) override { between.push_back(&spring); }
+    void visit(const TwoBodySpring& spring) override { between.emplace_back(spring.first(), spring.second()); }
+    void visit(const SpringNetwork& springs) override
+    {
+        for (std::size_t s = 0; s < springs.size(); ++s)
+            between.emplace_back(springs.link(s).a, springs.link(s).b);
+    }
 };
 
 Springs springs(const World& world)
@@ -314,10 +320,9 @@ void addSprings(const World& world, double alpha, const ViewSettings& settings, 
     }
     // A rope's or cloth's own springs are its line or surface, not coils.
     const std::vector<bool> fabric = fabricMembers(world, settings.fabric);
-    for (const TwoBodySpring* spring : found.between)
-        if (spring->first() < n && spring->second() < n && !(fabric[spring->first()] && fabric[spring->second()]))
-            addCoil(drawnCentre(world, spring->first(), alpha, settings),
-                    drawnCentre(world, spring->second(), alpha, settings), out);
+    for (const auto& [a, b] : found.between)
+        if (a < n && b < n && !(fabric[a] && fabric[b]))
+            addCoil(drawnCentre(world, a, alpha, settings), drawnCentre(world, b, alpha, settings), out);
 }
 
 } // namespace

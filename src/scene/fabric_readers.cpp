@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "pba/forces.hpp"
+#include "pba/spring_network.hpp"
 
 namespace pba::scene_detail {
 
@@ -54,12 +54,20 @@ std::size_t addFabricParticle(ObjectReader& reader, const std::string& key, Fabr
     return target.world.bodyCount() - 1;
 }
 
-/// A spring at rest where the two particles start.
-void join(World& world, std::size_t a, std::size_t b, double stiffness, double damping)
-{
-    const double rest = glm::length(world.body(a).getPos() - world.body(b).getPos());
-    world.addForce(std::make_unique<TwoBodySpring>(a, b, stiffness, rest, damping));
-}
+/// A rope's or a cloth's springs, added to the world as one force (a SpringNetwork: evaluated
+/// in one call, on all cores) when they are all known.
+struct Springs {
+    World& world;
+    std::vector<SpringNetwork::Link> links;
+
+    /// A spring at rest where the two particles start.
+    void join(std::size_t a, std::size_t b, double stiffness, double damping)
+    {
+        const double rest = glm::length(world.body(a).getPos() - world.body(b).getPos());
+        links.push_back({a, b, stiffness, rest, damping});
+    }
+    void addToWorld() { world.addForce(std::make_unique<SpringNetwork>(links)); }
+};
 
 std::size_t readWholeCount(ObjectReader& reader, const std::string& key, std::size_t limit)
 {
@@ -115,11 +123,13 @@ void readRope(const Json& value, const std::string& path, const std::string& fil
     }
     for (const std::size_t pin : pins)
         target.world.body(rope.particles[pin]).setFixed(true);
+    Springs springs{target.world, {}};
     for (std::size_t k = 0; k + 1 < count; ++k)
-        join(target.world, rope.particles[k], rope.particles[k + 1], stiffness, damping);
+        springs.join(rope.particles[k], rope.particles[k + 1], stiffness, damping);
     if (bending > 0.0)
         for (std::size_t k = 0; k + 2 < count; ++k)
-            join(target.world, rope.particles[k], rope.particles[k + 2], bending, damping);
+            springs.join(rope.particles[k], rope.particles[k + 2], bending, damping);
+    springs.addToWorld();
     target.layout.ropes.push_back(std::move(rope));
 }
 
@@ -179,22 +189,24 @@ ClothStiffness readClothStiffness(ObjectReader& reader)
 /// a column (they resist folding, not stretching).
 void joinCloth(World& world, const ClothLayout& cloth, const ClothStiffness& k, double damping)
 {
+    Springs springs{world, {}};
     const std::size_t w = cloth.width, h = cloth.height;
     for (std::size_t j = 0; j < h; ++j)
         for (std::size_t i = 0; i < w; ++i) {
             if (i + 1 < w)
-                join(world, cloth.at(i, j), cloth.at(i + 1, j), k.structural, damping);
+                springs.join(cloth.at(i, j), cloth.at(i + 1, j), k.structural, damping);
             if (j + 1 < h)
-                join(world, cloth.at(i, j), cloth.at(i, j + 1), k.structural, damping);
+                springs.join(cloth.at(i, j), cloth.at(i, j + 1), k.structural, damping);
             if (k.shear > 0.0 && i + 1 < w && j + 1 < h) {
-                join(world, cloth.at(i, j), cloth.at(i + 1, j + 1), k.shear, damping);
-                join(world, cloth.at(i + 1, j), cloth.at(i, j + 1), k.shear, damping);
+                springs.join(cloth.at(i, j), cloth.at(i + 1, j + 1), k.shear, damping);
+                springs.join(cloth.at(i + 1, j), cloth.at(i, j + 1), k.shear, damping);
             }
             if (k.bending > 0.0 && i + 2 < w)
-                join(world, cloth.at(i, j), cloth.at(i + 2, j), k.bending, damping);
+                springs.join(cloth.at(i, j), cloth.at(i + 2, j), k.bending, damping);
             if (k.bending > 0.0 && j + 2 < h)
-                join(world, cloth.at(i, j), cloth.at(i, j + 2), k.bending, damping);
+                springs.join(cloth.at(i, j), cloth.at(i, j + 2), k.bending, damping);
         }
+    springs.addToWorld();
 }
 
 } // namespace

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "pba/forces.hpp"
+#include "pba/spring_network.hpp"
 
 namespace pba::study {
 
@@ -35,6 +36,13 @@ public:
     void visit(const TwoBodySpring& s) override
     {
         add(s.first(), s.second(), m_world.body(s.second()).getPos(), s.stiffness());
+    }
+    void visit(const SpringNetwork& springs) override
+    {
+        for (std::size_t s = 0; s < springs.size(); ++s) {
+            const SpringNetwork::Link l = springs.link(s);
+            add(l.a, l.b, m_world.body(l.b).getPos(), l.stiffness);
+        }
     }
 
 private:
@@ -73,6 +81,13 @@ public:
     std::vector<SpringSpan> spans;
     void visit(const Spring& s) override { add({s.particle(), kNone, s.anchor(), s.restLength(), s.stiffness()}); }
     void visit(const TwoBodySpring& s) override { add({s.first(), s.second(), dvec3(0.0), s.restLength(), s.stiffness()}); }
+    void visit(const SpringNetwork& springs) override
+    {
+        for (std::size_t s = 0; s < springs.size(); ++s) {
+            const SpringNetwork::Link l = springs.link(s);
+            add({l.a, l.b, dvec3(0.0), l.restLength, l.stiffness});
+        }
+    }
 
 private:
     void add(const SpringSpan& span)

@@ -29,10 +29,11 @@ struct Tracker {
     double previousTime = 0.0;
     std::size_t stride = 1;
 
-    void sample(const World& world)
+    /// `energies`: World::energies() now (one pass for every tracker).
+    void sample(const World& world, const std::vector<double>& energies)
     {
         const Body& b = world.body(index);
-        const double ratio = e0 != 0.0 ? world.energy(index) / e0 : 1.0;
+        const double ratio = e0 != 0.0 ? energies[index] / e0 : 1.0;
         result.maxEnergyDeviation = std::max(result.maxEnergyDeviation, std::abs(ratio - 1.0));
         if (world.stepCount() > 0)
             result.meanEnergyRatio += ratio / double(result.steps);
@@ -72,11 +73,12 @@ std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator
     World world = scene.world;
     world.setCollisionResponse(collision);
     std::vector<Tracker> trackers;
+    const std::vector<double> startEnergies = world.energies();
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
         if (world.body(i).isFixed())
             continue;
         world.body(i).setIntegrator(integrator);
-        Tracker t{i, ExactSolution::find(world, i), world.energy(i), {}};
+        Tracker t{i, ExactSolution::find(world, i), startEnergies[i], {}};
         t.result.particle = world.body(i).getName();
         trackers.push_back(std::move(t));
     }
@@ -87,7 +89,7 @@ std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator
         t.result.dt = dt;
         t.result.steps = steps;
         t.stride = std::max<std::size_t>(1, static_cast<std::size_t>(steps / kSeriesPoints));
-        t.sample(world);
+        t.sample(world, startEnergies);
     }
     std::vector<State> before(trackers.size());
     // An unstable run (forward Euler on a cloth at a large dt) is a result, not a failure of
@@ -100,20 +102,22 @@ std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator
                 before[k] = world.body(trackers[k].index).getState();
             }
             world.step(dt);
+            const std::vector<double> energies = world.energies();
             for (std::size_t k = 0; k < trackers.size(); ++k) {
                 trackers[k].afterStep(world, before[k]);
-                trackers[k].sample(world);
+                trackers[k].sample(world, energies);
             }
         }
     } catch (const NonFiniteStateError& error) {
         blewUpAt = error.time();
     }
     std::vector<ParticleResult> results;
+    const std::vector<double> endEnergies = world.energies();
     for (auto& t : trackers) {
         ParticleResult& r = t.result;
         r.blewUpAt = blewUpAt;
         r.energyRatioEnd = !std::isnan(blewUpAt) ? std::numeric_limits<double>::infinity()
-                           : t.e0 != 0.0       ? world.energy(t.index) / t.e0
+                           : t.e0 != 0.0       ? endEnergies[t.index] / t.e0
                                                : 1.0;
         r.bounces = world.bounceCount(t.index);
         const bool bounce = t.exact && t.exact->kind() == ExactSolution::Kind::Bounce;

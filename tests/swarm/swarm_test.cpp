@@ -14,6 +14,18 @@ using namespace pba;
 
 namespace {
 
+/// Changes every blow dryer of the world through its setter (which remakes its kernel).
+template <class Edit>
+void editDryers(World& world, Edit&& edit)
+{
+    for (std::size_t f = 0; f < world.forceCount(); ++f)
+        if (auto* dryer = dynamic_cast<BlowDryer*>(&world.force(f))) {
+            BlowDryerField field = dryer->field();
+            edit(field);
+            dryer->setField(field);
+        }
+}
+
 /// The blow-dryer-swarm scene with n particles.
 World swarmWorld(std::size_t n, CollisionResponse response = CollisionResponse::Reflect)
 {
@@ -87,9 +99,8 @@ TEST(Swarm, ParticlesSlidingInTheShaftStayWithinItsWallAsParticlesDo)
     constexpr float kHoleRadius = 0.25f; // the blow-dryer-swarm scene's nozzle radius
     for (CollisionResponse response : {CollisionResponse::Reflect, CollisionResponse::Clamp}) {
         World world = swarmWorld(64, response);
-        for (std::size_t f = 0; f < world.forceCount(); ++f)
-            if (auto* dryer = dynamic_cast<BlowDryer*>(&world.force(f)))
-                dryer->field().strength = 0.5 * 9.81 * world.swarm(0).mass();
+        const double strength = 0.5 * 9.81 * world.swarm(0).mass();
+        editDryers(world, [&](BlowDryerField& field) { field.strength = strength; });
         Swarm& swarm = world.swarm(0);
         for (std::size_t i = 0; i < swarm.size(); ++i) {
             const float angle = 0.37f * float(i);
@@ -124,9 +135,8 @@ TEST(Swarm, FollowsParticlesWithDragAndATiltedDryer)
             World world = swarmWorld(64);
             if (drag)
                 world.addForce(std::make_unique<Drag>(0.4));
-            for (std::size_t f = 0; f < world.forceCount(); ++f)
-                if (auto* dryer = dynamic_cast<BlowDryer*>(&world.force(f)); dryer && tilted)
-                    dryer->field().axis = glm::normalize(dvec3(0.3, 1.0, -0.2));
+            if (tilted)
+                editDryers(world, [](BlowDryerField& field) { field.axis = glm::normalize(dvec3(0.3, 1.0, -0.2)); });
             ASSERT_EQ(world.swarmFields().drag, drag ? 0.4f : 0.0f);
             addParticlesLike(world, world.swarm(0));
             for (int n = 0; n < 500; ++n)
@@ -148,11 +158,10 @@ TEST(Swarm, FollowsParticlesWithTheDryersAirTerms)
         for (Integrator integrator : kAllIntegrators) {
             World world = swarmWorld(64, response);
             world.swarm(0).setIntegrator(integrator);
-            for (std::size_t f = 0; f < world.forceCount(); ++f)
-                if (auto* dryer = dynamic_cast<BlowDryer*>(&world.force(f))) {
-                    dryer->field().airSpeed = 15.0;
-                    dryer->field().axisPull = 1.0;
-                }
+            editDryers(world, [](BlowDryerField& field) {
+                field.airSpeed = 15.0;
+                field.axisPull = 1.0;
+            });
             ASSERT_TRUE(SwarmKernelFields(world.swarmFields(), 1.0f).air);
             addParticlesLike(world, world.swarm(0));
             for (int n = 0; n < 500; ++n)
@@ -313,8 +322,15 @@ TEST(PbaBench, QuickJsonHasEveryLayout)
     const auto json = nlohmann::json::parse(r.out);
     std::set<std::string> layouts;
     double bound = 0.0;
+    nlohmann::json scene, cloth = nlohmann::json::array();
     for (const auto& row : json["results"]) {
         layouts.insert(row["layout"].get<std::string>());
+        if (row["layout"] == "scene")
+            scene = row;
+        if (row["layout"] == "cloth") {
+            cloth.push_back(row);
+            continue;
+        }
         for (const char* key : {"integrator", "n", "threads", "particle_steps_per_s", "particle_steps_per_s_median",
                                 "bytes_per_particle"})
             EXPECT_TRUE(row.contains(key)) << key;
@@ -328,8 +344,21 @@ TEST(PbaBench, QuickJsonHasEveryLayout)
             EXPECT_DOUBLE_EQ(row["fraction_of_bound"].get<double>(), rate / bound);
         }
     }
-    EXPECT_EQ(layouts, (std::set<std::string>{"bound", "baseline", "swarm", "scene"}));
-    const auto& scene = json["results"].back();
+    EXPECT_EQ(layouts, (std::set<std::string>{"bound", "baseline", "swarm", "scene", "cloth"}));
+    // The cloth: 128 x 128 on 1 thread and on all cores, one spring evaluation per spring a step.
+    ASSERT_GE(cloth.size(), 1u);
+    EXPECT_EQ(cloth.front()["threads"], 1);
+    EXPECT_EQ(cloth.back()["threads"], json["machine"]["cores"]);
+    for (const auto& row : cloth) {
+        EXPECT_EQ(row["scene"], "cloth-in-the-dryer");
+        EXPECT_EQ(row["integrator"], "semi-implicit-euler");
+        EXPECT_EQ(row["n"], 16384);
+        EXPECT_EQ(row["springs"], 97026);
+        const double steps = row["steps_per_s"].get<double>();
+        EXPECT_GT(steps, 0.0);
+        EXPECT_LE(row["steps_per_s_median"].get<double>(), steps);
+        EXPECT_DOUBLE_EQ(row["spring_evaluations_per_s"].get<double>(), steps * 97026.0);
+    }
     EXPECT_EQ(scene["scene"], "fountain-1m");
     EXPECT_EQ(scene["n"], 1000000);
     EXPECT_GT(scene["steps_per_s"].get<double>(), 0.0);
