@@ -20,22 +20,29 @@ public:
     const std::vector<glm::vec3>& normals() const { return m_normals; }
     const std::vector<std::uint32_t>& indices() const { return m_indices; }
 
-    const glm::mat4& getTranslate() const { return m_translate; }
+    /// The translation as a matrix (the mesh keeps only its position: a body's setPos writes it
+    /// every step, and 12 bytes share the body's hot cache lines where a matrix would not).
+    glm::mat4 getTranslate() const
+    {
+        glm::mat4 t(1.0f);
+        t[3] = glm::vec4(m_position, 1.0f);
+        return t;
+    }
     const glm::mat4& getRotate() const { return m_rotate; }
     const glm::mat4& getScale() const { return m_scale; }
     /// Model matrix: translate * rotate * scale.
-    glm::mat4 getModel() const { return m_translate * m_rotate * m_scale; }
+    glm::mat4 getModel() const { return getTranslate() * m_rotate * m_scale; }
 
-    glm::vec3 getPos() const { return glm::vec3(m_translate[3]); }
-    void setPos(const glm::vec3& position) { m_translate[3] = glm::vec4(position, 1.0f); }
-    void setPos(int i, float p) { m_translate[3][i] = p; }
+    glm::vec3 getPos() const { return m_position; }
+    void setPos(const glm::vec3& position) { m_position = position; }
+    void setPos(int i, float p) { m_position[i] = p; }
 
     void translate(const glm::vec3& offset);
     void rotate(float angle, const glm::vec3& axis);
     void scale(const glm::vec3& factors);
 
 private:
-    glm::mat4 m_translate{1.0f}; // first: a body's setPos writes it every step
+    glm::vec3 m_position{0.0f}; // first: a body's setPos writes it every step
     glm::mat4 m_rotate{1.0f};
     glm::mat4 m_scale{1.0f};
     std::vector<glm::vec3> m_vertices;

@@ -16,7 +16,7 @@ Mesh Mesh::quad()
                 {n, n, n, n}, {0, 1, 2, 0, 2, 3});
 }
 
-void Mesh::translate(const glm::vec3& offset) { m_translate = glm::translate(m_translate, offset); }
+void Mesh::translate(const glm::vec3& offset) { m_position += offset; }
 
 void Mesh::rotate(float angle, const glm::vec3& axis) { m_rotate = glm::rotate(m_rotate, angle, axis); }
 
