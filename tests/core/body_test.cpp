@@ -22,6 +22,8 @@ TEST(Particle, DefaultsFollowThePractical)
     EXPECT_FALSE(p.isFixed());
     EXPECT_EQ(p.getMesh().vertices().size(), 4u);
     EXPECT_EQ(p.getMesh().indices().size(), 6u);
+    // Every particle's quad is one geometry, not a copy each (a cloth has thousands).
+    EXPECT_EQ(Particle().getMesh().vertices().data(), p.getMesh().vertices().data());
     EXPECT_FLOAT_EQ(p.getScale()[0][0], 0.1f);
     EXPECT_FLOAT_EQ(p.getScale()[1][1], 0.1f);
     // Rotated by pi/2 about x: the quad's +y axis maps to +z, so it lies in the xz plane.
