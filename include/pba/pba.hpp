@@ -8,6 +8,7 @@
 #include "pba/force.hpp"
 #include "pba/forces.hpp"
 #include "pba/integrator.hpp"
+#include "pba/mass_properties.hpp"
 #include "pba/mesh.hpp"
 #include "pba/particle.hpp"
 #include "pba/spring_network.hpp"
