@@ -11,8 +11,6 @@
 
 namespace pba {
 
-using glm::dmat3;
-
 struct MassProperties {
     double mass = 0.0;    ///< kg
     dvec3 centre{0.0};    ///< centre of mass in the shape's own frame, m

@@ -6,6 +6,7 @@
 
 namespace pba {
 
+using glm::dmat3;
 using glm::dvec3;
 template <class T>
 using Vec3 = glm::vec<3, T, glm::defaultp>;

@@ -11,6 +11,8 @@
 #include "pba/mass_properties.hpp"
 #include "pba/mesh.hpp"
 #include "pba/particle.hpp"
+#include "pba/rigid_body.hpp"
+#include "pba/rotation.hpp"
 #include "pba/spring_network.hpp"
 #include "pba/state.hpp"
 #include "pba/vec3_array.hpp"
