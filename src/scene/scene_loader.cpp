@@ -292,16 +292,34 @@ void readForce(const Json& value, const std::string& path, const std::string& fi
 
 /// Every particle's energy must be finite at the start: a velocity of 1e300 m/s is a valid
 /// number whose kinetic energy is not, and would fail the first step with no field to blame.
-void requireFiniteEnergies(const World& world, const std::string& file)
+/// The scene key that made body i: particles[i] itself, or the rope or cloth it belongs to.
+std::string bodyKey(std::size_t i, const FabricLayout& fabric)
+{
+    for (std::size_t r = 0; r < fabric.ropes.size(); ++r)
+        for (const std::size_t p : fabric.ropes[r].particles)
+            if (p == i)
+                return fmt::format("ropes[{}]", r);
+    for (std::size_t c = 0; c < fabric.cloths.size(); ++c) {
+        const ClothLayout& cloth = fabric.cloths[c];
+        if (i >= cloth.first && i < cloth.first + cloth.width * cloth.height)
+            return fmt::format("cloths[{}]", c);
+    }
+    return fmt::format("particles[{}]", i);
+}
+
+void requireFiniteEnergies(const World& world, const FabricLayout& fabric, const std::string& file)
 {
     const std::vector<double> energies = world.energies();
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
         if (std::isfinite(energies[i]))
             continue;
-        const std::string path = fmt::format("particles[{}]", i);
+        const std::string key = bodyKey(i, fabric);
+        const bool own = key.rfind("particles[", 0) == 0; // a particle's own entry has the fields
+        const std::string who = own ? "" : fmt::format("its particle '{}': ", world.body(i).getName());
         if (!std::isfinite(world.kineticEnergy(i)))
-            throw SceneError(file, path + ".velocity", "too large: the kinetic energy m v^2 / 2 is not finite");
-        throw SceneError(file, path + ".position", "too far: the potential energy is not finite");
+            throw SceneError(file, own ? key + ".velocity" : key,
+                             who + "too large: the kinetic energy m v^2 / 2 is not finite");
+        throw SceneError(file, own ? key + ".position" : key, who + "too far: the potential energy is not finite");
     }
 }
 
@@ -350,7 +368,7 @@ Scene readScene(const Json& document, const std::string& file)
         readForce(value, path, file, scene.world);
     });
     root.finish();
-    requireFiniteEnergies(scene.world, file);
+    requireFiniteEnergies(scene.world, scene.fabric, file);
     return scene;
 }
 

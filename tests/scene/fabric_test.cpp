@@ -135,6 +135,9 @@ TEST(Fabric, BadKeysNameTheirField)
         "stiffness": 3, "pinned": ["middle"] })")), "ropes[0].pinned");
     EXPECT_EQ(errorField(roomScene("ropes", R"({ "name": "r", "from": [-2, 3, 0], "to": [9, 3, 0], "count": 4,
         "stiffness": 3 })")), "ropes[0].to"); // its far end outside the room
+    // A rope particle whose energy overflows is named by its rope, not as particles[i].
+    EXPECT_EQ(errorField(R"({ "ropes": [ { "name": "r", "from": [0, 1e300, 0], "to": [0, 1.5e300, 0],
+        "count": 3, "mass": 1e10, "stiffness": 3 } ] })"), "ropes[0]");
 }
 
 TEST(Fabric, BuiltInScenesLoadAndRunFinite)
