@@ -323,6 +323,7 @@ TEST(PbaBench, QuickJsonHasEveryLayout)
     std::set<std::string> layouts;
     double bound = 0.0;
     nlohmann::json scene, cloth = nlohmann::json::array();
+    std::set<std::string> swarmPhases;
     for (const auto& row : json["results"]) {
         layouts.insert(row["layout"].get<std::string>());
         if (row["layout"] == "scene")
@@ -341,10 +342,14 @@ TEST(PbaBench, QuickJsonHasEveryLayout)
         if (row["layout"] == "bound")
             bound = rate;
         if (row["layout"] == "swarm") {
+            swarmPhases.insert(row["phase"].get<std::string>());
+            // The baseline is timed in flight only: a landed row has no ratio to it.
+            EXPECT_EQ(row["times_baseline"].get<double>() > 0.0, row["phase"] == "flight");
             EXPECT_DOUBLE_EQ(row["fraction_of_bound"].get<double>(), rate / bound);
         }
     }
     EXPECT_EQ(layouts, (std::set<std::string>{"bound", "baseline", "swarm", "scene", "cloth"}));
+    EXPECT_EQ(swarmPhases, (std::set<std::string>{"flight", "landed"}));
     // The cloth: 128 x 128 on 1 thread and on all cores, one spring evaluation per spring a step.
     ASSERT_GE(cloth.size(), 1u);
     EXPECT_EQ(cloth.front()["threads"], 1);
