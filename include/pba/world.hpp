@@ -180,6 +180,8 @@ private:
     struct Coupling {
         std::vector<std::uint8_t> coupled;
         std::array<std::vector<std::size_t>, kAllIntegrators.size()> systems;
+        /// Per system, one flag per body of the world: its members (the forces' wanted list).
+        std::array<std::vector<std::uint8_t>, kAllIntegrators.size()> wanted;
         std::vector<std::uint8_t> madeFrom;
     };
     /// integrateCoupled's buffers, reused so that a step allocates (almost) nothing.
@@ -187,7 +189,6 @@ private:
         Vec3Array x, v, acc; ///< the system's state, and its acceleration at the start
         std::vector<State> trial;
         std::vector<dvec3> forces;
-        std::vector<std::uint8_t> wanted;
     };
 
     void rebuildPlanes();
@@ -195,7 +196,8 @@ private:
     const Coupling& couple();
     Coupling makeCoupling() const;
     void integrateIndependent(const Coupling& coupling, double dt);
-    void integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members, double dt);
+    void integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members,
+                          std::span<const std::uint8_t> wanted, double dt);
     void collideAndStore(const std::vector<std::size_t>& members);
     void noteIfNotFinite(std::size_t i, const State& state);
     void checkFinite(double dt);

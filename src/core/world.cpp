@@ -270,7 +270,7 @@ void World::step(double dt)
         integrateIndependent(coupling, dt);
         for (std::size_t k = 0; k < kAllIntegrators.size(); ++k)
             if (!coupling.systems[k].empty())
-                integrateCoupled(kAllIntegrators[k], coupling.systems[k], dt);
+                integrateCoupled(kAllIntegrators[k], coupling.systems[k], coupling.wanted[k], dt);
     });
     stepSwarms(dt);
     checkFinite(dt);
@@ -328,9 +328,11 @@ void World::storePreviousStates()
     m_masses.resize(n);
     m_cors.resize(n);
     m_keys.resize(n);
+    m_scratch.trial.resize(n);
     detail::forEachIndex(n, [this](std::size_t i) {
         const Body& b = *m_bodies[i];
         m_previous[i] = b.getState();
+        m_scratch.trial[i] = m_previous[i]; // the coupled systems' stages start from here
         m_masses[i] = b.getMass();
         m_cors[i] = b.getCor();
         m_keys[i] = couplingKey(b);
@@ -386,6 +388,13 @@ World::Coupling World::makeCoupling() const
             const auto k = std::find(kAllIntegrators.begin(), kAllIntegrators.end(), m_bodies[i]->getIntegrator());
             coupling.systems[std::size_t(k - kAllIntegrators.begin())].push_back(i);
         }
+    }
+    for (std::size_t k = 0; k < kAllIntegrators.size(); ++k) {
+        if (coupling.systems[k].empty())
+            continue;
+        coupling.wanted[k].assign(m_bodies.size(), 0);
+        for (const std::size_t i : coupling.systems[k])
+            coupling.wanted[k][i] = 1;
     }
     return coupling;
 }
@@ -458,7 +467,8 @@ void World::integrateIndependent(const Coupling& coupling, double dt)
     }
 }
 
-void World::integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members, double dt)
+void World::integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members,
+                             std::span<const std::uint8_t> wanted, double dt)
 {
     const std::size_t n = members.size();
     CoupledScratch& s = m_scratch;
@@ -469,14 +479,11 @@ void World::integrateCoupled(Integrator integrator, const std::vector<std::size_
         s.x[k] = m_previous[members[k]].pos;
         s.v[k] = m_previous[members[k]].vel;
     });
-    // Every body of the world sits at its start-of-step state except the system's, which take
-    // each stage's trial state: no force couples the system to a body outside it.
-    s.trial = m_previous;
-    s.wanted.assign(m_bodies.size(), 0);
-    for (const std::size_t i : members)
-        s.wanted[i] = 1;
+    // Every body of the world sits at its start-of-step state (storePreviousStates put it in
+    // s.trial) except the system's, which take each stage's trial state. (A system integrated
+    // before this one leaves its bodies at its last stage: no force couples two systems.)
     s.forces.resize(m_bodies.size());
-    const BodyStates in{m_bodies, s.trial, s.wanted, m_masses};
+    const BodyStates in{m_bodies, s.trial, wanted, m_masses};
     Accumulators out{s.forces, {}};
     bool first = true;
     auto accel = [&](const Vec3Array& xs, const Vec3Array& vs) {
@@ -487,11 +494,13 @@ void World::integrateCoupled(Integrator integrator, const std::vector<std::size_
         for (const auto& force : m_forces)
             force->accumulate(in, out);
         Vec3Array a(n);
-        detail::forEachIndex(n, [&](std::size_t k) { a[k] = s.forces[members[k]] / m_masses[members[k]]; });
-        if (first) { // the first stage is at the start state: the bodies' acceleration
-            s.acc = a;
-            first = false;
-        }
+        // The first stage is at the start state: the bodies' acceleration, kept in s.acc.
+        detail::forEachIndex(n, [&](std::size_t k) {
+            a[k] = s.forces[members[k]] / m_masses[members[k]];
+            if (first)
+                s.acc[k] = a[k];
+        });
+        first = false;
         return a;
     };
     integrate(integrator, s.x, s.v, dt, accel);
