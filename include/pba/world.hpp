@@ -180,6 +180,7 @@ private:
     struct Coupling {
         std::vector<std::uint8_t> coupled;
         std::array<std::vector<std::size_t>, kAllIntegrators.size()> systems;
+        std::vector<std::size_t> independent; ///< every other body, fixed ones too, in order
         /// Per system, one flag per body of the world: its members (the forces' wanted list).
         std::array<std::vector<std::uint8_t>, kAllIntegrators.size()> wanted;
         std::vector<std::uint8_t> madeFrom;

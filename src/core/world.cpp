@@ -387,6 +387,8 @@ World::Coupling World::makeCoupling() const
         if (coupling.coupled[i] != 0) {
             const auto k = std::find(kAllIntegrators.begin(), kAllIntegrators.end(), m_bodies[i]->getIntegrator());
             coupling.systems[std::size_t(k - kAllIntegrators.begin())].push_back(i);
+        } else {
+            coupling.independent.push_back(i);
         }
     }
     for (std::size_t k = 0; k < kAllIntegrators.size(); ++k) {
@@ -437,9 +439,7 @@ std::vector<std::size_t> World::coupledGroup(std::size_t i) const
 
 void World::integrateIndependent(const Coupling& coupling, double dt)
 {
-    for (std::size_t i = 0; i < m_bodies.size(); ++i) {
-        if (coupling.coupled[i] != 0) // first: it needs no visit to the body's object
-            continue;
+    for (const std::size_t i : coupling.independent) {
         Body& b = *m_bodies[i];
         if (b.isFixed()) {
             noteIfNotFinite(i, b.getState()); // a program may have put it anywhere
