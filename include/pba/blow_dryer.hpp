@@ -167,7 +167,9 @@ inline bool inBlowDryerShaft(const BlowDryerKernelT<T>& f, const Vec3<T>& d)
 /// 1 / (q root), gave both, but chained root, product, division and products one after another,
 /// and a swarm loop over a block in L1 measured slower that way: the out-of-order core had
 /// less to do while it waited.
-template <DryerAxis kAxis = DryerAxis::Any, bool kAir = false, class T>
+/// `kPull` false leaves out the pull's arithmetic (its division among it) for a kernel whose
+/// pull is zero, where it adds nothing: the same force.
+template <DryerAxis kAxis = DryerAxis::Any, bool kAir = false, class T, bool kPull = kAir>
 inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x, const Vec3<T>& v = Vec3<T>(T(0)))
 {
     constexpr bool kUp = kAxis == DryerAxis::Up;
@@ -200,11 +202,13 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x, co
     const T along = inShaft ? f.shaftPush : scale * f.height;
     T radial = inside ? scale * f.flowSpread * inverseRadius : T(0);
     Vec3<T> extra(T(0));
-    if constexpr (kAir) {
+    if constexpr (kPull) {
         // The pull: beta U^2 w dw/dr rho / r, with w = A(1 - s) Rf(u) and dw/dr = -A(1 - s) Rf'(u) / q.
         const T a = f.axialProfile.inRange(T(1) - s);
         const T pullPerR = f.pull * a * a * f.radial.inRange(u) * f.radial.slope(u) * inverseRadius / r;
         radial -= (inside & (r > T(0))) ? pullPerR : T(0);
+    }
+    if constexpr (kAir) {
         // The air drag's velocity term, where the air blows (its push is the force above).
         const T drag = (inside | inShaft) ? f.airDrag : T(0);
         extra = -drag * v;

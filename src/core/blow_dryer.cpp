@@ -13,16 +13,21 @@ void BlowDryer::accumulate(const BodyStates& in, Accumulators& out) const
 {
     // An upward axis (every built-in scene's) picks coordinates instead of projecting on it, as
     // in a swarm's loop: the same values, found with fewer multiplications.
-    auto each = [&](auto axis) {
+    // Without a pull (axis_pull 0, as in every built-in scene) its arithmetic is left out.
+    auto each = [&](auto axis, auto pull) {
         detail::forEachIndex(in.bodies.size(), [&](std::size_t i) {
             if (in.moving(i))
-                out.add(i, blowDryerForce<decltype(axis)::value, true>(m_kernel, in.states[i].pos, in.states[i].vel));
+                out.add(i, blowDryerForce<decltype(axis)::value, true, double, decltype(pull)::value>(
+                               m_kernel, in.states[i].pos, in.states[i].vel));
         });
     };
-    if (m_field.axis == dvec3(0.0, 1.0, 0.0))
-        each(std::integral_constant<DryerAxis, DryerAxis::Up>{});
+    using Up = std::integral_constant<DryerAxis, DryerAxis::Up>;
+    using Any = std::integral_constant<DryerAxis, DryerAxis::Any>;
+    const bool up = m_field.axis == dvec3(0.0, 1.0, 0.0);
+    if (m_kernel.pull != 0.0)
+        up ? each(Up{}, std::true_type{}) : each(Any{}, std::true_type{});
     else
-        each(std::integral_constant<DryerAxis, DryerAxis::Any>{});
+        up ? each(Up{}, std::false_type{}) : each(Any{}, std::false_type{});
 }
 
 bool BlowDryer::addToSwarmFields(SwarmFields& fields) const

@@ -465,3 +465,26 @@ TEST(BlowDryerAir, TheAirTermsHoldABallInTheJetThatTheSeedsFieldLoses)
         }
     }
 }
+
+// Leaving out the pull's arithmetic (kPull false) for a kernel without a pull changes nothing:
+// the same force to the bit, inside the cone, in the shaft and outside.
+TEST(BlowDryerField, WithoutAPullTheShortKernelGivesTheSameForce)
+{
+    BlowDryerField field;
+    field.strength = 3.0;
+    field.height = 2.0;
+    field.nozzleRadius = 0.2;
+    field.topRadius = 1.0;
+    field.direction = FlowDirection::ConeFlow;
+    field.airSpeed = 10.0;
+    field.shaft = true;
+    const BlowDryerKernelT<double> kernel(field);
+    ASSERT_EQ(kernel.pull, 0.0);
+    for (const dvec3 x : {dvec3(0.1, 0.5, -0.2), dvec3(0.0, 1.0, 0.0), dvec3(0.05, -0.1, 0.0), dvec3(3.0, 1.0, 0.0)}) {
+        const dvec3 v(0.3, -1.0, 0.2);
+        EXPECT_EQ((blowDryerForce<DryerAxis::Up, true, double, false>(kernel, x, v)),
+                  (blowDryerForce<DryerAxis::Up, true>(kernel, x, v)));
+        EXPECT_EQ((blowDryerForce<DryerAxis::Any, true, double, false>(kernel, x, v)),
+                  (blowDryerForce<DryerAxis::Any, true>(kernel, x, v)));
+    }
+}
