@@ -20,14 +20,7 @@ void requirePositive(double value, const char* what)
         throw std::invalid_argument(fmt::format("a shape's {} must be finite and positive, got {}", what, value));
 }
 
-dmat3 diagonal(double x, double y, double z)
-{
-    dmat3 m(0.0);
-    m[0][0] = x;
-    m[1][1] = y;
-    m[2][2] = z;
-    return m;
-}
+dmat3 diagonal(double x, double y, double z) { return dmat3(dvec3(x, 0.0, 0.0), dvec3(0.0, y, 0.0), dvec3(0.0, 0.0, z)); }
 
 /// Eberly's subexpressions of one coordinate over a triangle's three vertices: the sums that
 /// the integrals of 1, w, w^2 and w^3 over the triangle's projection reduce to.

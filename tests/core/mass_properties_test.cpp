@@ -23,14 +23,7 @@ void expectNear(const dmat3& actual, const dmat3& expected, double tolerance)
             EXPECT_NEAR(actual[c][r], expected[c][r], tolerance) << "[" << c << "][" << r << "]";
 }
 
-dmat3 diagonal(double x, double y, double z)
-{
-    dmat3 m(0.0);
-    m[0][0] = x;
-    m[1][1] = y;
-    m[2][2] = z;
-    return m;
-}
+dmat3 diagonal(double x, double y, double z) { return dmat3(dvec3(x, 0.0, 0.0), dvec3(0.0, y, 0.0), dvec3(0.0, 0.0, z)); }
 
 /// A box's eight corners around `centre` and its twelve triangles, counter-clockwise from outside.
 struct BoxMesh {
