@@ -2,19 +2,23 @@
 // The World owns bodies, forces and the surfaces that bound them, and advances them by
 // a fixed dt. The step runs in named phases over every body and swarm (the way Box2D's
 // solver stages and Jolt's step jobs are named):
-//   1. store previous states (for the renderer's interpolation and the rollback)
+//   1. store previous states (for the renderer's interpolation and the rollback), reading
+//      each body's object once for all the step needs of it (state, mass, restitution, key)
 //   2. couple: bodies joined (transitively) by forces between bodies, such as a two-body
-//      spring, form a coupled group that shares one integrator
+//      spring, form a coupled group that shares one integrator (kept from step to step, made
+//      anew when a body's fixed flag or integrator changes)
 //   3. integrate the independent bodies, each with its own integrator, with collisions along
 //      its own path (the exact time of impact): forces are summed at every trial state
 //   4. integrate the coupled bodies, one system per integrator: every stage of the integrator
 //      evaluates every force for every body of the system at that stage's state (RK4 of a
 //      coupled system is RK4 of the whole system)
-//   5. collide the coupled bodies: each one found behind a surface gets the reflect or clamp
-//      rule of its own (exact acts as reflect for them)
+//   5. collide and store the coupled bodies: each one found behind a surface gets the
+//      reflect or clamp rule of its own (exact acts as reflect for them), in the pass that
+//      writes their new states
 //   6. step the swarms (float arrays, all cores) with the same integrator, force and
 //      collision templates
-//   7. check that every state (bodies and swarms) is finite
+//   7. check that every state (bodies and swarms) is finite: each was checked as it was
+//      written; here the first one that is not rolls the step back and throws
 // It knows no window, no file format and no clock: frame time never reaches it.
 #include <array>
 #include <cstdint>
