@@ -131,6 +131,17 @@ public:
     const std::optional<Aabb>& room() const { return m_room; }
     std::span<const Plane> planes() const { return m_planes; }
     CollisionResponse collisionResponse() const { return m_response; }
+    /// The rule coupled bodies get: a coupled body has no path of its own to find a time of
+    /// impact on (its group moves as one), so `exact` acts as `reflect` for it.
+    CollisionResponse coupledCollisionResponse() const
+    {
+        return m_response == CollisionResponse::Exact ? CollisionResponse::Reflect : m_response;
+    }
+    /// Whether some bodies get another rule than collisionResponse(): coupled ones under `exact`.
+    bool coupledBodiesReflect() const
+    {
+        return coupledCollisionResponse() != m_response && hasCoupledBodies();
+    }
     void setCollisionResponse(CollisionResponse response) { m_response = response; }
 
     // ---- stepping ----
@@ -177,12 +188,11 @@ public:
     std::vector<std::size_t> coupledGroup(std::size_t i) const;
 
 private:
-    /// The bodies integrated together: coupled[i] for a moving body some force couples, and
-    /// those bodies by integrator (one system each). Kept from step to step (a cloth's 97,000
+    /// The bodies integrated together: the moving bodies some force couples, by integrator (one
+    /// system each), and the others. Kept from step to step (a cloth's 97,000
     /// springs are not walked every step) with what it was made from: each body's fixed flag and
     /// integrator, which a program may change between steps.
     struct Coupling {
-        std::vector<std::uint8_t> coupled;
         std::array<std::vector<std::size_t>, kAllIntegrators.size()> systems;
         std::vector<std::size_t> independent; ///< every other body, fixed ones too, in order
         /// Per system, one flag per body of the world: its members (the forces' wanted list).

@@ -96,6 +96,34 @@ struct Subject {
     std::vector<double> rates;
 };
 
+/// Times the subjects' windows in turn, round after round (measureSize says why): each first
+/// takes as many steps as fill minTime, then every window restarts it and takes that many.
+template <class S>
+void timeInTurn(std::vector<S>& subjects, std::size_t perStep, double minTime, int repeats)
+{
+    for (S& subject : subjects) {
+        subject.step(); // warm caches and page in memory
+        subject.steps = stepsIn(minTime, subject.step);
+    }
+    for (int r = 0; r < repeats; ++r)
+        for (S& subject : subjects) {
+            subject.restart();
+            subject.rates.push_back(timedRate(perStep, subject.steps, subject.step));
+        }
+}
+
+/// A world that a subject steps, and restarts from where it began.
+struct Restartable {
+    std::function<void()> step, restart;
+};
+
+Restartable restartable(World world)
+{
+    auto first = std::make_shared<const World>(std::move(world));
+    auto current = std::make_shared<World>(*first);
+    return {[current] { current->step(0.002); }, [current, first] { *current = *first; }};
+}
+
 /// The blow-dryer-swarm scene's world with n particles of the given integrator.
 World swarmWorld(std::size_t n, Integrator integrator, int threads)
 {
@@ -231,27 +259,20 @@ std::vector<ClothRow> measureCloth(double minTime, int repeats, int cores)
 {
     struct ClothSubject {
         ClothRow row;
-        World first, current;
+        std::function<void()> step, restart;
         long steps = 0;
         std::vector<double> rates;
     };
     std::vector<ClothSubject> subjects;
     for (int threads : {1, cores}) {
         World world = clothWorld(threads);
-        ClothRow row{threads, world.bodyCount(), springCount(world), 0.0, 0.0};
-        subjects.push_back({row, world, world, 0, {}});
+        const ClothRow row{threads, world.bodyCount(), springCount(world), 0.0, 0.0};
+        Restartable r = restartable(std::move(world));
+        subjects.push_back({row, std::move(r.step), std::move(r.restart), 0, {}});
         if (threads == cores)
             break;
     }
-    for (ClothSubject& s : subjects) {
-        s.current.step(0.002); // warm caches
-        s.steps = stepsIn(minTime, [&s] { s.current.step(0.002); });
-    }
-    for (int r = 0; r < repeats; ++r)
-        for (ClothSubject& s : subjects) {
-            s.current = s.first;
-            s.rates.push_back(timedRate(1, s.steps, [&s] { s.current.step(0.002); }));
-        }
+    timeInTurn(subjects, 1, minTime, repeats);
     std::vector<ClothRow> rows;
     for (ClothSubject& s : subjects) {
         s.row.stepsPerSecond = best(s.rates);
@@ -303,10 +324,8 @@ std::vector<Row> measureSize(std::size_t n, double minTime, int repeats, int cor
     subjects.push_back(
         {Row{"bound", "", "", n, cores, 0.0, 24.0, 1.0, 0.0}, [&state] { boundPass(state); }, [] {}, 0, {}});
     const auto add = [&](Row row, World world) {
-        auto first = std::make_shared<const World>(std::move(world));
-        auto current = std::make_shared<World>(*first);
-        subjects.push_back({std::move(row), [current] { current->step(0.002); },
-                            [current, first] { *current = *first; }, 0, {}});
+        Restartable r = restartable(std::move(world));
+        subjects.push_back({std::move(row), std::move(r.step), std::move(r.restart), 0, {}});
     };
     if (n <= 1000000)
         add(Row{"baseline", "semi-implicit-euler", "flight", n, 1, 0.0, 0.0, 0.0, 1.0}, baselineWorld(n));
@@ -323,15 +342,7 @@ std::vector<Row> measureSize(std::size_t n, double minTime, int repeats, int cor
                 if (threads == cores)
                     break;
             }
-    for (Subject& subject : subjects) {
-        subject.step(); // warm caches and page in memory
-        subject.steps = stepsIn(minTime, subject.step);
-    }
-    for (int r = 0; r < repeats; ++r)
-        for (Subject& subject : subjects) {
-            subject.restart();
-            subject.rates.push_back(timedRate(n, subject.steps, subject.step));
-        }
+    timeInTurn(subjects, n, minTime, repeats);
     const std::vector<double>& boundRates = subjects.front().rates; // the bound is pushed first
     const double bound = best(boundRates);
     const auto baselineRow = std::find_if(subjects.begin(), subjects.end(),

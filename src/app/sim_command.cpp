@@ -127,10 +127,9 @@ void printJetSummary(const World& world, const study::JetWatch& jet)
 void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary,
                   const study::JetWatch& jet)
 {
-    const bool reflectsCoupled = world.collisionResponse() == CollisionResponse::Exact && world.hasCoupledBodies();
     fmt::print("scene {}: {} steps of dt = {} s, t = {} s, collision response {}{}\n", scene.name, world.stepCount(),
                scene.dt, world.time(), collisionResponseName(world.collisionResponse()),
-               reflectsCoupled ? " (reflect for bodies joined by springs)" : "");
+               world.coupledBodiesReflect() ? " (reflect for bodies joined by springs)" : "");
     if (world.bodyCount() == 0) {
         printSwarmSummary(world);
         printJetSummary(world, jet);

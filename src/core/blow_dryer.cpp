@@ -15,10 +15,9 @@ void BlowDryer::accumulate(const BodyStates& in, Accumulators& out) const
     // in a swarm's loop: the same values, found with fewer multiplications.
     // Without a pull (axis_pull 0, as in every built-in scene) its arithmetic is left out.
     auto each = [&](auto axis, auto pull) {
-        detail::forEachIndex(in.bodies.size(), [&](std::size_t i) {
-            if (in.moving(i))
-                out.add(i, blowDryerForce<decltype(axis)::value, true, double, decltype(pull)::value>(
-                               m_kernel, in.states[i].pos, in.states[i].vel));
+        detail::addToEachMoving(in, out, [&](std::size_t i) {
+            return blowDryerForce<decltype(axis)::value, true, double, decltype(pull)::value>(
+                m_kernel, in.states[i].pos, in.states[i].vel);
         });
     };
     using Up = std::integral_constant<DryerAxis, DryerAxis::Up>;

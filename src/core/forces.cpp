@@ -11,10 +11,7 @@ dvec3 Gravity::force(std::size_t, const Body& body, const dvec3&, const dvec3&) 
 
 void Gravity::accumulate(const BodyStates& in, Accumulators& out) const
 {
-    detail::forEachIndex(in.bodies.size(), [&](std::size_t i) {
-        if (in.moving(i))
-            out.add(i, in.mass(i) * m_g);
-    });
+    detail::addToEachMoving(in, out, [&](std::size_t i) { return in.mass(i) * m_g; });
 }
 
 double Gravity::potentialEnergy(std::size_t, const Body& body, const dvec3& x) const
@@ -32,10 +29,7 @@ dvec3 Drag::force(std::size_t, const Body&, const dvec3&, const dvec3& v) const 
 
 void Drag::accumulate(const BodyStates& in, Accumulators& out) const
 {
-    detail::forEachIndex(in.bodies.size(), [&](std::size_t i) {
-        if (in.moving(i))
-            out.add(i, dragForce(m_coefficient, in.states[i].vel));
-    });
+    detail::addToEachMoving(in, out, [&](std::size_t i) { return dragForce(m_coefficient, in.states[i].vel); });
 }
 
 bool Drag::addToSwarmFields(SwarmFields& fields) const

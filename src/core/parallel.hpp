@@ -7,6 +7,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "pba/force.hpp"
+
 namespace pba::detail {
 
 /// Runs fn on `threads` cores: 0 (or as many as there are) runs it in the default arena rather
@@ -28,6 +30,18 @@ void forEachIndex(std::size_t n, F&& fn)
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 2048), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t i = r.begin(); i < r.end(); ++i)
             fn(i);
+    });
+}
+
+/// A force on one body at a time, for all of them: adds forceOn(i) to every moving body's
+/// accumulator, on all cores (each body's sum is the same whichever thread computes it). The
+/// built-in forces on one body (gravity, drag, the blow dryer) accumulate with it.
+template <class F>
+void addToEachMoving(const BodyStates& in, Accumulators& out, F&& forceOn)
+{
+    forEachIndex(in.bodies.size(), [&](std::size_t i) {
+        if (in.moving(i))
+            out.add(i, forceOn(i));
     });
 }
 

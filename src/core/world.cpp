@@ -365,7 +365,7 @@ const World::Coupling& World::couple()
 World::Coupling World::makeCoupling() const
 {
     Coupling coupling;
-    coupling.coupled.assign(m_bodies.size(), 0);
+    std::vector<std::uint8_t> coupled(m_bodies.size(), 0); // a moving body some force couples
     for (std::size_t k = 0; k < m_couplings.size(); ++k) {
         const auto [a, b] = m_couplings[k];
         const Body& first = *m_bodies[a];
@@ -379,12 +379,12 @@ World::Coupling World::makeCoupling() const
                 "bodies coupled by forces must share one integrator",
                 first.getName(), second.getName(), m_forces[m_couplingForce[k]]->type(),
                 integratorName(first.getIntegrator()), integratorName(second.getIntegrator())));
-        coupling.coupled[a] = first.isFixed() ? 0 : 1;
-        coupling.coupled[b] = second.isFixed() ? 0 : 1;
+        coupled[a] = first.isFixed() ? 0 : 1;
+        coupled[b] = second.isFixed() ? 0 : 1;
     }
     coupling.madeFrom = m_keys;
     for (std::size_t i = 0; i < m_bodies.size(); ++i) {
-        if (coupling.coupled[i] != 0) {
+        if (coupled[i] != 0) {
             const auto k = std::find(kAllIntegrators.begin(), kAllIntegrators.end(), m_bodies[i]->getIntegrator());
             coupling.systems[std::size_t(k - kAllIntegrators.begin())].push_back(i);
         } else {
@@ -519,12 +519,10 @@ void World::collideAndStore(const std::vector<std::size_t>& members)
         [&](const tbb::blocked_range<std::size_t>& r, std::size_t lowest) {
             for (std::size_t k = r.begin(); k < r.end(); ++k) {
                 const std::size_t i = members[k];
-                // A coupled body has no path of its own to find a time of impact on (its group
-                // moved as one), so exact acts as reflect: mirror back what ended behind a surface.
                 State end{s.x[k], s.v[k]};
                 if (!planes.empty())
                     m_bounces[i] += static_cast<std::uint64_t>(
-                        m_response == CollisionResponse::Clamp
+                        coupledCollisionResponse() == CollisionResponse::Clamp
                             ? clampAfterStep(planes, m_cors[i], m_previous[i].pos, end.pos, end.vel)
                             : reflectAfterStep(planes, m_cors[i], m_previous[i].pos, end.pos, end.vel));
                 Body& b = *m_bodies[i];

@@ -89,10 +89,8 @@ void drawLegend(const World& world, const std::string& sceneName, double dt, dou
         if (!world.planes().empty()) { // wrapped within the picture, however narrow
             ImGui::PushTextWrapPos(std::max(200.0f, ImGui::GetIO().DisplaySize.x - 40.0f));
             ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-            const bool reflectsCoupled =
-                world.collisionResponse() == CollisionResponse::Exact && world.hasCoupledBodies();
             ImGui::TextWrapped("collisions: %s%s", std::string(collisionResponseSummary(world.collisionResponse())).c_str(),
-                               reflectsCoupled ? "; bodies joined by springs: reflect" : "");
+                               world.coupledBodiesReflect() ? "; bodies joined by springs: reflect" : "");
             ImGui::PopStyleColor();
             ImGui::PopTextWrapPos();
         }
