@@ -16,15 +16,29 @@
 
 namespace pba {
 
-enum class Integrator { ForwardEuler, SemiImplicitEuler, VelocityVerlet, RK4 };
+/// ImplicitGyroscopic is semi-implicit Euler whose rotation takes the implicit gyroscopic step
+/// (rotation.hpp): it differs from SemiImplicitEuler only for a body that turns.
+enum class Integrator { ForwardEuler, SemiImplicitEuler, VelocityVerlet, RK4, ImplicitGyroscopic };
 
+/// The four methods of the integrator study: what moves a point (a particle, a swarm).
 inline constexpr std::array<Integrator, 4> kAllIntegrators{
     Integrator::ForwardEuler, Integrator::SemiImplicitEuler, Integrator::VelocityVerlet, Integrator::RK4};
+/// Every method a body may name: the four, and the rigid bodies' fifth.
+inline constexpr std::array<Integrator, 5> kEveryIntegrator{Integrator::ForwardEuler, Integrator::SemiImplicitEuler,
+                                                            Integrator::VelocityVerlet, Integrator::RK4,
+                                                            Integrator::ImplicitGyroscopic};
 
-/// Scene and command-line name: "forward-euler", "semi-implicit-euler", "velocity-verlet", "rk4".
+/// The method that moves a point: ImplicitGyroscopic's translation is semi-implicit Euler.
+constexpr Integrator translationalMethod(Integrator integrator)
+{
+    return integrator == Integrator::ImplicitGyroscopic ? Integrator::SemiImplicitEuler : integrator;
+}
+
+/// Scene and command-line name: "forward-euler", "semi-implicit-euler", "velocity-verlet", "rk4",
+/// "implicit-gyroscopic".
 std::string_view integratorName(Integrator integrator);
 std::optional<Integrator> integratorFromName(std::string_view name);
-/// Global order of accuracy: 1, 1, 2, 4.
+/// Global order of accuracy: 1, 1, 2, 4, 1.
 int integratorOrder(Integrator integrator);
 
 /// x(t+dt) = x + v dt, v(t+dt) = v + a(x, v) dt. First order; gains energy on oscillators.
@@ -84,7 +98,8 @@ inline void integrate(Integrator integrator, X& x, X& v, T dt, Accel&& accel)
 {
     switch (integrator) {
     case Integrator::ForwardEuler: forwardEuler(x, v, dt, accel); return;
-    case Integrator::SemiImplicitEuler: semiImplicitEuler(x, v, dt, accel); return;
+    case Integrator::SemiImplicitEuler:
+    case Integrator::ImplicitGyroscopic: semiImplicitEuler(x, v, dt, accel); return;
     case Integrator::VelocityVerlet: velocityVerlet(x, v, dt, accel); return;
     case Integrator::RK4: rk4(x, v, dt, accel); return;
     }

@@ -11,13 +11,14 @@ std::string_view integratorName(Integrator integrator)
     case Integrator::SemiImplicitEuler: return "semi-implicit-euler";
     case Integrator::VelocityVerlet: return "velocity-verlet";
     case Integrator::RK4: return "rk4";
+    case Integrator::ImplicitGyroscopic: return "implicit-gyroscopic";
     }
     return "?";
 }
 
 std::optional<Integrator> integratorFromName(std::string_view name)
 {
-    for (Integrator integrator : kAllIntegrators)
+    for (Integrator integrator : kEveryIntegrator)
         if (integratorName(integrator) == name)
             return integrator;
     return std::nullopt;
@@ -27,7 +28,8 @@ int integratorOrder(Integrator integrator)
 {
     switch (integrator) {
     case Integrator::ForwardEuler:
-    case Integrator::SemiImplicitEuler: return 1;
+    case Integrator::SemiImplicitEuler:
+    case Integrator::ImplicitGyroscopic: return 1;
     case Integrator::VelocityVerlet: return 2;
     case Integrator::RK4: return 4;
     }

@@ -642,6 +642,7 @@ std::uint64_t stepSwarmRange(Integrator integrator, const Arrays& a, std::size_t
     case Integrator::ForwardEuler:
         return stepBlocks<Integrator::ForwardEuler>(a, begin, end, fields, restitution, dt, planes, response);
     case Integrator::SemiImplicitEuler:
+    case Integrator::ImplicitGyroscopic: // a point does not turn
         return stepBlocks<Integrator::SemiImplicitEuler>(a, begin, end, fields, restitution, dt, planes,
                                                          response);
     case Integrator::VelocityVerlet:

@@ -64,7 +64,8 @@ inline std::optional<T> timeOfImpact(Integrator integrator, const PlaneT<T>& pla
     const T an = glm::dot(plane.normal, accel(x, v));
     switch (integrator) {
     case Integrator::ForwardEuler: return firstQuadraticCrossing(c0, c1, T(0), limit);
-    case Integrator::SemiImplicitEuler: return firstQuadraticCrossing(c0, c1, an, limit);
+    case Integrator::SemiImplicitEuler:
+    case Integrator::ImplicitGyroscopic: return firstQuadraticCrossing(c0, c1, an, limit);
     case Integrator::VelocityVerlet: return firstQuadraticCrossing(c0, c1, T(0.5) * an, limit);
     case Integrator::RK4: break;
     }

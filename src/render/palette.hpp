@@ -18,6 +18,7 @@ inline constexpr Rgb kForwardEuler = 0xed5445;      // red: gains energy
 inline constexpr Rgb kSemiImplicitEuler = 0x4cbf61; // green
 inline constexpr Rgb kVelocityVerlet = 0x458cf2;    // blue
 inline constexpr Rgb kRK4 = 0xf2b233;               // amber
+inline constexpr Rgb kImplicitGyroscopic = 0xa66bd9; // violet
 inline constexpr Rgb kFixed = 0xb2b2b8;             // grey: a body that does not move
 
 constexpr Rgb integratorRgb(Integrator integrator)
@@ -27,6 +28,7 @@ constexpr Rgb integratorRgb(Integrator integrator)
     case Integrator::SemiImplicitEuler: return kSemiImplicitEuler;
     case Integrator::VelocityVerlet: return kVelocityVerlet;
     case Integrator::RK4: return kRK4;
+    case Integrator::ImplicitGyroscopic: return kImplicitGyroscopic;
     }
     return 0xffffff;
 }

@@ -202,6 +202,7 @@ double theoryDtLimit(Integrator integrator, double omega)
     case Integrator::ForwardEuler:
         return kNaN;
     case Integrator::SemiImplicitEuler:
+    case Integrator::ImplicitGyroscopic:
     case Integrator::VelocityVerlet:
         return 2.0 / omega;
     case Integrator::RK4:
