@@ -4,6 +4,7 @@
 #include "pba/body.hpp"
 #include "pba/mass_properties.hpp"
 #include "pba/rotation.hpp"
+#include "pba/shape.hpp"
 
 namespace pba {
 
@@ -11,8 +12,11 @@ class RigidBody : public Body {
 public:
     /// A unit cube of 1 kg at rest, unrotated.
     RigidBody();
+    /// A body of this shape at this uniform density (kg/m^3): its mass and inertia tensor are
+    /// the shape's, its mesh is drawn from it. std::invalid_argument for a bad shape or density.
+    RigidBody(const Shape& shape, double density);
     /// A body with these mass properties (its mass and its inertia about its centre of mass,
-    /// in its own frame; the centre is taken as the body's position).
+    /// in its own frame; the centre is taken as the body's position), shaped as a unit cube.
     explicit RigidBody(const MassProperties& properties);
     std::unique_ptr<Body> clone() const override { return std::make_unique<RigidBody>(*this); }
 
@@ -29,6 +33,11 @@ public:
     /// 1/2 omega . L.
     double getRotationalKineticEnergy() const;
     const Rotation& getRotation() const { return m_rotation; }
+    const Shape& getShape() const { return m_shape; }
+    /// The shape's contact points (contactPointsOf), body frame, about the centre of mass.
+    const std::vector<dvec3>& getContactPoints() const { return m_contactPoints; }
+    /// Coulomb friction coefficient against the room's surfaces.
+    double getFriction() const { return m_friction; }
 
     // ---- set methods ----
     /// Sets the mass (Body::setMass) and the inertia tensor together. std::invalid_argument
@@ -41,9 +50,20 @@ public:
     void setAngularVelocity(const dvec3& omega);
     /// Orientation and momentum at once (what an integrator writes back).
     void setRotation(const Rotation& rotation);
+    /// The shape and its mass properties at `density`, its contact points and its mesh.
+    void setShape(const Shape& shape, double density);
+    /// The shape with the given mass instead of a density.
+    void setShapeWithMass(const Shape& shape, double mass);
+    /// std::invalid_argument unless finite and non-negative.
+    void setFriction(double friction);
 
 private:
+    void adoptShape(const Shape& shape);
+
     Rotation m_rotation;
+    Shape m_shape;
+    std::vector<dvec3> m_contactPoints;
+    double m_friction = 0.5;
     dmat3 m_inertiaBody{1.0 / 6.0};
     dmat3 m_inverseInertiaBody{6.0};
 };

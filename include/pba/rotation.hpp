@@ -8,6 +8,9 @@
 // L rather than omega is the state because it is what a torque changes and what stays constant
 // without one: Euler's equations, with their gyroscopic term I_w' omega, follow from it. Every
 // method renormalises q at the end of its step.
+#include <span>
+#include <vector>
+
 #include <glm/gtc/quaternion.hpp>
 
 #include "pba/integrator.hpp"
@@ -36,55 +39,27 @@ inline dquat orientationRate(const dquat& q, const dvec3& omega)
     return dquat(0.0, omega.x, omega.y, omega.z) * q * 0.5;
 }
 
-/// One step of the rotational equations with the named integrator, the torque (world frame)
-/// `torque(q, L)` evaluated at the method's stages as the forces are. The methods mirror the
-/// translational ones: forward Euler moves q with the start's omega; semi-implicit Euler first
-/// changes L, then moves q with the omega of the new L; velocity Verlet kicks L by half a step,
-/// drifts q by the midpoint rule with that L, and kicks again (second order); RK4 is the
-/// classic method on (q, L).
-template <class Torque>
-inline void integrateRotation(Integrator integrator, Rotation& s, const dmat3& inverseInertiaBody, double dt,
-                              Torque&& torque)
-{
-    const auto rate = [&](const dquat& q, const dvec3& l) {
-        return orientationRate(q, angularVelocity(q, inverseInertiaBody, l));
-    };
-    dquat& q = s.orientation;
-    dvec3& l = s.momentum;
-    switch (integrator) {
-    case Integrator::ForwardEuler: {
-        const dvec3 tau = torque(q, l);
-        q = q + rate(q, l) * dt;
-        l += tau * dt;
-        break;
-    }
-    case Integrator::SemiImplicitEuler:
-        l += torque(q, l) * dt;
-        q = q + rate(q, l) * dt;
-        break;
-    case Integrator::VelocityVerlet: {
-        const dvec3 half = l + torque(q, l) * (0.5 * dt);
-        const dquat mid = glm::normalize(q + rate(q, half) * (0.5 * dt));
-        q = q + rate(mid, half) * dt;
-        l = half + torque(glm::normalize(q), half) * (0.5 * dt);
-        break;
-    }
-    case Integrator::RK4: {
-        const dquat q1 = rate(q, l);
-        const dvec3 l1 = torque(q, l);
-        const dquat q2 = rate(q + q1 * (0.5 * dt), l + l1 * (0.5 * dt));
-        const dvec3 l2 = torque(q + q1 * (0.5 * dt), l + l1 * (0.5 * dt));
-        const dquat q3 = rate(q + q2 * (0.5 * dt), l + l2 * (0.5 * dt));
-        const dvec3 l3 = torque(q + q2 * (0.5 * dt), l + l2 * (0.5 * dt));
-        const dquat q4 = rate(q + q3 * dt, l + l3 * dt);
-        const dvec3 l4 = torque(q + q3 * dt, l + l3 * dt);
-        q = q + (q1 + (q2 + q3) * 2.0 + q4) * (dt / 6.0);
-        l += (l1 + (l2 + l3) * 2.0 + l4) * (dt / 6.0);
-        break;
-    }
-    }
-    q = glm::normalize(q);
-}
+/// A rigid body's whole state as the integrators move it: the translation's (x, v) and the
+/// rotation's (q, L).
+struct RigidState {
+    dvec3 x{0.0};
+    dvec3 v{0.0};
+    Rotation rotation;
+};
+
+/// What the forces do to a body at a stage: the force through its centre of mass and the torque
+/// about it (world frame).
+struct Wrench {
+    dvec3 force{0.0};
+    dvec3 torque{0.0};
+};
+
+/// What a body's motion needs of its mass.
+struct RigidInertia {
+    double inverseMass = 1.0;
+    dmat3 inertiaBody{1.0};
+    dmat3 inverseInertiaBody{1.0};
+};
 
 /// The implicit gyroscopic step (Catto, GDC 2015; Bullet's btRigidBody::computeGyroscopicImpulseImplicit_Body):
 /// the torque is applied explicitly, then the body-frame equation I (w1 - w0) + dt w1 x I w1 = 0
@@ -110,6 +85,153 @@ inline void implicitGyroscopicStep(Rotation& s, const dmat3& inertiaBody, const 
     s.orientation = glm::normalize(s.orientation + orientationRate(s.orientation, omega) * dt);
     const dmat3 r1 = glm::mat3_cast(s.orientation);
     s.momentum = r1 * (inertiaBody * (glm::transpose(r1) * omega));
+}
+
+
+namespace rigid_detail {
+
+/// dq/dt at a stage whose q is not exactly unit (RK4's and Verlet's intermediate stages): omega
+/// from the normalised orientation, applied to q itself.
+inline dquat rate(const dquat& q, const dmat3& inverseInertiaBody, const dvec3& momentum)
+{
+    return orientationRate(q, angularVelocity(glm::normalize(q), inverseInertiaBody, momentum));
+}
+
+/// s + h * (the derivative whose rates are d): x' = v_d, v' = F/m, q' = rate, L' = tau.
+struct Derivative {
+    dvec3 dx, dv;
+    dquat dq;
+    dvec3 dl;
+};
+
+inline Derivative derivative(const RigidState& s, const Wrench& w, const RigidInertia& m)
+{
+    return {s.v, w.force * m.inverseMass, rate(s.rotation.orientation, m.inverseInertiaBody, s.rotation.momentum),
+            w.torque};
+}
+
+inline RigidState advance(const RigidState& s, const Derivative& d, double h)
+{
+    return {s.x + d.dx * h, s.v + d.dv * h, Rotation{s.rotation.orientation + d.dq * h, s.rotation.momentum + d.dl * h}};
+}
+
+} // namespace rigid_detail
+
+/// One step of the named integrator for a system of rigid bodies, translation and rotation
+/// together: `wrenches(stage, out)` fills out[k] with the force and torque on body k at the
+/// stage's states (every body's at once, so forces between them see one consistent stage, and
+/// a force at a point couples a body's translation and rotation). The methods are the
+/// translational ones (integrator.hpp) applied to (x, q; v, L):
+///  - forward Euler moves x and q with the start's v and omega;
+///  - semi-implicit Euler first changes v and L, then moves x and q with the new ones;
+///  - velocity Verlet drifts x with the start's acceleration and q by the midpoint rule with L
+///    kicked by half a step, evaluates there (at the predicted v and L), and kicks again;
+///  - RK4 is the classic method on the whole state;
+///  - implicit-gyroscopic is semi-implicit Euler with the rotation's implicit gyroscopic step.
+/// q is renormalised at the end of every step; the stages a force sees have unit q.
+template <class Wrenches>
+inline void stepRigidSystem(Integrator integrator, std::span<RigidState> states, std::span<const RigidInertia> inertia,
+                            double dt, Wrenches&& wrenches)
+{
+    using namespace rigid_detail;
+    const std::size_t n = states.size();
+    std::vector<Wrench> w(n);
+    std::vector<RigidState> stage(n);
+    auto evaluate = [&](const std::vector<RigidState>& at) {
+        std::vector<RigidState> unit = at;
+        for (RigidState& s : unit)
+            s.rotation.orientation = glm::normalize(s.rotation.orientation);
+        wrenches(std::span<const RigidState>(unit), std::span<Wrench>(w));
+    };
+    const std::vector<RigidState> start(states.begin(), states.end());
+    evaluate(start);
+    switch (integrator) {
+    case Integrator::ForwardEuler:
+        for (std::size_t k = 0; k < n; ++k)
+            states[k] = advance(start[k], derivative(start[k], w[k], inertia[k]), dt);
+        break;
+    case Integrator::SemiImplicitEuler:
+        for (std::size_t k = 0; k < n; ++k) {
+            RigidState& s = states[k];
+            s.v += w[k].force * (inertia[k].inverseMass * dt);
+            s.rotation.momentum += w[k].torque * dt;
+            s.x += s.v * dt;
+            s.rotation.orientation += rate(s.rotation.orientation, inertia[k].inverseInertiaBody, s.rotation.momentum) * dt;
+        }
+        break;
+    case Integrator::ImplicitGyroscopic:
+        for (std::size_t k = 0; k < n; ++k) {
+            RigidState& s = states[k];
+            s.v += w[k].force * (inertia[k].inverseMass * dt);
+            s.x += s.v * dt;
+            implicitGyroscopicStep(s.rotation, inertia[k].inertiaBody, inertia[k].inverseInertiaBody, w[k].torque, dt);
+        }
+        break;
+    case Integrator::VelocityVerlet: {
+        const std::vector<Wrench> w0 = w;
+        for (std::size_t k = 0; k < n; ++k) {
+            const RigidState& s0 = start[k];
+            const dvec3 a0 = w0[k].force * inertia[k].inverseMass;
+            const dvec3 half = s0.rotation.momentum + w0[k].torque * (0.5 * dt);
+            const dquat& q0 = s0.rotation.orientation;
+            const dquat mid = glm::normalize(q0 + rate(q0, inertia[k].inverseInertiaBody, half) * (0.5 * dt));
+            stage[k] = {s0.x + s0.v * dt + a0 * (0.5 * dt * dt), s0.v + a0 * dt,
+                        Rotation{q0 + rate(mid, inertia[k].inverseInertiaBody, half) * dt,
+                                 s0.rotation.momentum + w0[k].torque * dt}};
+        }
+        evaluate(stage);
+        for (std::size_t k = 0; k < n; ++k) {
+            const RigidState& s0 = start[k];
+            states[k] = {stage[k].x, s0.v + (w0[k].force + w[k].force) * (0.5 * dt * inertia[k].inverseMass),
+                         Rotation{stage[k].rotation.orientation,
+                                  s0.rotation.momentum + (w0[k].torque + w[k].torque) * (0.5 * dt)}};
+        }
+        break;
+    }
+    case Integrator::RK4: {
+        std::vector<Derivative> k1(n), k2(n), k3(n);
+        for (std::size_t k = 0; k < n; ++k) {
+            k1[k] = derivative(start[k], w[k], inertia[k]);
+            stage[k] = advance(start[k], k1[k], 0.5 * dt);
+        }
+        evaluate(stage);
+        for (std::size_t k = 0; k < n; ++k) {
+            k2[k] = derivative(stage[k], w[k], inertia[k]);
+            stage[k] = advance(start[k], k2[k], 0.5 * dt);
+        }
+        evaluate(stage);
+        for (std::size_t k = 0; k < n; ++k) {
+            k3[k] = derivative(stage[k], w[k], inertia[k]);
+            stage[k] = advance(start[k], k3[k], dt);
+        }
+        evaluate(stage);
+        for (std::size_t k = 0; k < n; ++k) {
+            const Derivative k4 = derivative(stage[k], w[k], inertia[k]);
+            const Derivative sum{k1[k].dx + (k2[k].dx + k3[k].dx) * 2.0 + k4.dx, k1[k].dv + (k2[k].dv + k3[k].dv) * 2.0 + k4.dv,
+                                 k1[k].dq + (k2[k].dq + k3[k].dq) * 2.0 + k4.dq, k1[k].dl + (k2[k].dl + k3[k].dl) * 2.0 + k4.dl};
+            states[k] = advance(start[k], sum, dt / 6.0);
+        }
+        break;
+    }
+    }
+    for (RigidState& s : states)
+        s.rotation.orientation = glm::normalize(s.rotation.orientation);
+}
+
+/// One step of the rotational equations alone (a body with no translation to speak of), the
+/// torque (world frame) `torque(q, L)` evaluated at the method's stages: stepRigidSystem for one
+/// body that feels no force.
+template <class Torque>
+inline void integrateRotation(Integrator integrator, Rotation& s, const dmat3& inverseInertiaBody, double dt,
+                              Torque&& torque)
+{
+    RigidState state{dvec3(0.0), dvec3(0.0), s};
+    const RigidInertia inertia{1.0, glm::inverse(inverseInertiaBody), inverseInertiaBody};
+    stepRigidSystem(integrator, std::span<RigidState>(&state, 1), std::span<const RigidInertia>(&inertia, 1), dt,
+                    [&](std::span<const RigidState> at, std::span<Wrench> out) {
+                        out[0] = Wrench{dvec3(0.0), torque(at[0].rotation.orientation, at[0].rotation.momentum)};
+                    });
+    s = state.rotation;
 }
 
 } // namespace pba

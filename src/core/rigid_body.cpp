@@ -7,12 +7,40 @@
 
 namespace pba {
 
-RigidBody::RigidBody() : RigidBody(boxMassProperties(dvec3(1.0), 1.0)) {}
+RigidBody::RigidBody() : RigidBody(Shape::box(dvec3(1.0)), 1.0) {}
+
+RigidBody::RigidBody(const Shape& shape, double density) { setShape(shape, density); }
 
 RigidBody::RigidBody(const MassProperties& properties)
 {
-    setMesh(Mesh::quad());
+    adoptShape(Shape::box(dvec3(1.0)));
     setMassProperties(properties);
+}
+
+void RigidBody::adoptShape(const Shape& shape)
+{
+    m_shape = shape;
+    m_contactPoints = contactPointsOf(shape);
+    setMesh(drawMeshOf(shape));
+}
+
+void RigidBody::setShape(const Shape& shape, double density)
+{
+    setMassProperties(massPropertiesOf(shape, density));
+    adoptShape(shape);
+}
+
+void RigidBody::setShapeWithMass(const Shape& shape, double mass)
+{
+    setMassProperties(massPropertiesOf(shape, 1.0).withMass(mass));
+    adoptShape(shape);
+}
+
+void RigidBody::setFriction(double friction)
+{
+    if (!(friction >= 0.0 && std::isfinite(friction)))
+        throw std::invalid_argument(fmt::format("a friction coefficient must be finite and non-negative, got {}", friction));
+    m_friction = friction;
 }
 
 void RigidBody::setMassProperties(const MassProperties& properties)
