@@ -56,6 +56,13 @@ public:
 using ForceVisitor = BasicForceVisitor<true>;
 using ForceEditor = BasicForceVisitor<false>;
 
+/// How a body is turned at a trial state: a rigid body's orientation (body to world) and
+/// angular velocity (world frame); a particle's is the identity and zero.
+struct Pose {
+    dquat orientation{1.0, 0.0, 0.0, 0.0};
+    dvec3 angularVelocity{0.0};
+};
+
 /// The world's bodies at the trial states of one force evaluation.
 struct BodyStates {
     std::span<const ClonePtr<Body>> bodies; ///< every body of the world (mass, name, fixed)
@@ -67,6 +74,9 @@ struct BodyStates {
     /// One per body, or empty: then each body's own. The World passes the masses it read at the
     /// start of the step, so a force on every body need not visit every body's object for it.
     std::span<const double> masses;
+    /// One per body, or empty when no body of the world turns: a force applied at a point of a
+    /// body (body-local offsets, surface samples) finds it at orientation(i).
+    std::span<const Pose> poses;
 
     /// Whether body i is wanted (every body is when there is no list), fixed or not.
     bool wants(std::size_t i) const { return wanted.empty() || wanted[i] != 0; }
@@ -74,6 +84,11 @@ struct BodyStates {
     bool moving(std::size_t i) const { return wanted.empty() ? !isFixed(i) : wanted[i] != 0; }
     bool isFixed(std::size_t i) const;
     double mass(std::size_t i) const;
+    const Pose& pose(std::size_t i) const
+    {
+        static const Pose unturned;
+        return poses.empty() ? unturned : poses[i];
+    }
 };
 
 /// What forces add to, one entry per body of the world: the force through the body's centre,

@@ -15,6 +15,10 @@
 //   5. collide and store the coupled bodies: each one found behind a surface gets the
 //      reflect or clamp rule of its own (exact acts as reflect for them), in the pass that
 //      writes their new states
+//   5b. integrate the rigid bodies, one system per integrator, translation and rotation together
+//      (stepRigidSystem: every stage evaluates every force, with torques, at that stage's states
+//      and poses), then resolve each one's contacts with the room (resolvePlaneContacts:
+//      impulses with restitution and friction; the collision response names the particles' rule)
 //   6. step the swarms (float arrays, all cores) with the same integrator, force and
 //      collision templates
 //   7. check that every state (bodies and swarms) is finite: each was checked as it was
@@ -36,6 +40,7 @@
 #include "pba/collision.hpp"
 #include "pba/force.hpp"
 #include "pba/particle.hpp"
+#include "pba/rigid_body.hpp"
 #include "pba/state.hpp"
 #include "pba/swarm.hpp"
 #include "pba/vec3_array.hpp"
@@ -158,6 +163,12 @@ public:
     const State& previousState(std::size_t i) const { return m_previous[i]; }
     /// Blend of previous and current state for rendering, alpha in [0, 1).
     State interpolatedState(std::size_t i, double alpha) const;
+    /// Body i's orientation blended (slerp) between the previous and the current step, as
+    /// interpolatedState blends its position; the identity for a body that does not turn.
+    dquat interpolatedOrientation(std::size_t i, double alpha) const;
+    /// Whether body i is a RigidBody (it turns, and meets the room with contact impulses).
+    bool isRigid(std::size_t i) const { return m_isRigid[i] != 0; }
+    bool hasRigidBodies() const;
     /// Bounces of body i since the start.
     std::uint64_t bounceCount(std::size_t i) const { return m_bounces[i]; }
 
@@ -165,6 +176,7 @@ public:
     /// Net force over mass on body i at the trial state (x, v), every other body at its
     /// current state; zero for a fixed body.
     dvec3 acceleration(std::size_t i, const dvec3& x, const dvec3& v) const;
+    /// Translational kinetic energy, and a rigid body's rotational 1/2 omega . L.
     double kineticEnergy(std::size_t i) const;
     /// Body i's potential energy: its share of each force's (a force between bodies splits its
     /// energy among them, a two-body spring half to each end), so the shares add up to
@@ -195,6 +207,9 @@ private:
     struct Coupling {
         std::array<std::vector<std::size_t>, kAllIntegrators.size()> systems;
         std::vector<std::size_t> independent; ///< every other body, fixed ones too, in order
+        /// The moving rigid bodies, by integrator (kEveryIntegrator's order), and their wanted lists.
+        std::array<std::vector<std::size_t>, kEveryIntegrator.size()> rigid;
+        std::array<std::vector<std::uint8_t>, kEveryIntegrator.size()> rigidWanted;
         /// Per system, one flag per body of the world: its members (the forces' wanted list).
         std::array<std::vector<std::uint8_t>, kAllIntegrators.size()> wanted;
         std::vector<std::uint8_t> madeFrom;
@@ -214,6 +229,8 @@ private:
     void integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members,
                           std::span<const std::uint8_t> wanted, double dt);
     void collideAndStore(const std::vector<std::size_t>& members);
+    void integrateRigid(Integrator integrator, const std::vector<std::size_t>& members,
+                        std::span<const std::uint8_t> wanted, double dt);
     void noteIfNotFinite(std::size_t i, const State& state);
     void checkFinite(double dt);
     void advanceClock(double dt);
@@ -234,6 +251,12 @@ private:
     bool m_swarmRollback = false;
     std::vector<std::vector<float>> m_swarmsBefore; ///< with m_swarmRollback: each swarm before the step
     std::vector<State> m_previous;
+    std::vector<Rotation> m_previousRotation; ///< rigid bodies' (the identity for the others)
+    std::vector<std::uint8_t> m_isRigid;
+    std::vector<Pose> m_poses;      ///< each body's pose at the current stage (BodyStates::poses)
+    std::vector<dvec3> m_torques;   ///< the torques' accumulators
+    std::vector<RigidState> m_rigidStates;
+    std::vector<RigidInertia> m_rigidInertia;
     /// What storePreviousStates read of each body besides its state: mass, restitution, and
     /// the key of its coupling (fixed flag and integrator).
     std::vector<double> m_masses, m_cors;

@@ -12,6 +12,7 @@
 
 #include "collision_rules.hpp"
 #include "parallel.hpp"
+#include "rigid_contact.hpp"
 
 namespace pba {
 
@@ -31,6 +32,10 @@ NonFiniteStateError NonFiniteStateError::inSwarm(const std::string& swarm, std::
 
 Body& World::addBody(std::unique_ptr<Body> body)
 {
+    const auto* rigid = dynamic_cast<const RigidBody*>(body.get());
+    m_isRigid.push_back(rigid ? 1 : 0);
+    m_previousRotation.push_back(rigid ? rigid->getRotation() : Rotation{});
+    m_poses.push_back(rigid ? Pose{rigid->getOrientation(), rigid->getAngularVelocity()} : Pose{});
     m_previous.push_back(body->getState());
     m_bounces.push_back(0);
     m_bodies.push_back(std::move(body));
@@ -182,7 +187,7 @@ BodyStates World::currentStates(std::vector<State>& storage) const
     storage.resize(m_bodies.size());
     for (std::size_t i = 0; i < m_bodies.size(); ++i)
         storage[i] = m_bodies[i]->getState();
-    return BodyStates{m_bodies, storage, {}, {}};
+    return BodyStates{m_bodies, storage, {}, {}, {}};
 }
 
 dvec3 World::acceleration(std::size_t i, const dvec3& x, const dvec3& v) const
@@ -208,10 +213,24 @@ State World::interpolatedState(std::size_t i, double alpha) const
     return interpolate(m_previous[i], m_bodies[i]->getState(), alpha);
 }
 
+dquat World::interpolatedOrientation(std::size_t i, double alpha) const
+{
+    if (!isRigid(i))
+        return dquat(1.0, 0.0, 0.0, 0.0);
+    const dquat& now = static_cast<const RigidBody&>(*m_bodies[i]).getOrientation();
+    return glm::slerp(m_previousRotation[i].orientation, now, alpha);
+}
+
+bool World::hasRigidBodies() const
+{
+    return std::any_of(m_isRigid.begin(), m_isRigid.end(), [](std::uint8_t r) { return r != 0; });
+}
+
 double World::kineticEnergy(std::size_t i) const
 {
     const Body& b = *m_bodies[i];
-    return 0.5 * b.getMass() * glm::dot(b.getVel(), b.getVel());
+    const double translation = 0.5 * b.getMass() * glm::dot(b.getVel(), b.getVel());
+    return isRigid(i) ? translation + static_cast<const RigidBody&>(b).getRotationalKineticEnergy() : translation;
 }
 
 double World::potentialEnergy(std::size_t i) const
@@ -271,6 +290,9 @@ void World::step(double dt)
         for (std::size_t k = 0; k < kAllIntegrators.size(); ++k)
             if (!coupling.systems[k].empty())
                 integrateCoupled(kAllIntegrators[k], coupling.systems[k], coupling.wanted[k], dt);
+        for (std::size_t k = 0; k < kEveryIntegrator.size(); ++k)
+            if (!coupling.rigid[k].empty())
+                integrateRigid(kEveryIntegrator[k], coupling.rigid[k], coupling.rigidWanted[k], dt);
     });
     stepSwarms(dt);
     checkFinite(dt);
@@ -283,7 +305,9 @@ void World::checkFinite(double dt)
     // (whose step checked its blocks).
     if (m_firstNonFinite < m_bodies.size()) {
         const Body& bad = *m_bodies[m_firstNonFinite];
-        const std::string quantity = isFinite(bad.getPos()) ? "velocity" : "position";
+        std::string quantity = isFinite(bad.getPos()) ? "velocity" : "position";
+        if (isRigid(m_firstNonFinite) && isFinite(bad.getPos()) && isFinite(bad.getVel()))
+            quantity = "angular velocity";
         rollBack();
         throw NonFiniteStateError(bad.getName(), m_steps + 1, m_time + dt, quantity);
     }
@@ -336,6 +360,11 @@ void World::storePreviousStates()
         m_masses[i] = b.getMass();
         m_cors[i] = b.getCor();
         m_keys[i] = couplingKey(b);
+        if (m_isRigid[i] != 0) {
+            const auto& rigid = static_cast<const RigidBody&>(b);
+            m_previousRotation[i] = rigid.getRotation();
+            m_poses[i] = Pose{rigid.getOrientation(), rigid.getAngularVelocity()};
+        }
     });
     if (m_swarmRollback) {
         m_swarmsBefore.resize(m_swarms.size());
@@ -348,8 +377,11 @@ void World::rollBack()
 {
     // So a viewer can pause on the last finite state instead of drawing garbage (previous and
     // current then coincide: nothing moves between them).
-    for (std::size_t i = 0; i < m_bodies.size(); ++i)
+    for (std::size_t i = 0; i < m_bodies.size(); ++i) {
         m_bodies[i]->setState(m_previous[i]);
+        if (isRigid(i))
+            static_cast<RigidBody&>(*m_bodies[i]).setRotation(m_previousRotation[i]);
+    }
     if (m_swarmRollback)
         for (std::size_t s = 0; s < m_swarms.size() && s < m_swarmsBefore.size(); ++s)
             m_swarms[s].restoreState(m_swarmsBefore[s]);
@@ -370,10 +402,17 @@ World::Coupling World::makeCoupling() const
         const auto [a, b] = m_couplings[k];
         const Body& first = *m_bodies[a];
         const Body& second = *m_bodies[b];
+        for (const std::size_t end : {a, b})
+            if (isRigid(end))
+                throw std::invalid_argument(fmt::format(
+                    "rigid body '{}' is joined to another body by a {}: forces between bodies act on particles only "
+                    "(a rigid body's spring is anchored)",
+                    m_bodies[end]->getName(), m_forces[m_couplingForce[k]]->type()));
         // Pairs with a fixed end couple nothing between moving bodies, so they put no
         // condition on the integrators; a moving end is still integrated as coupled,
         // since its force needs the other end's state.
-        if (!first.isFixed() && !second.isFixed() && first.getIntegrator() != second.getIntegrator())
+        if (!first.isFixed() && !second.isFixed() &&
+            translationalMethod(first.getIntegrator()) != translationalMethod(second.getIntegrator()))
             throw std::invalid_argument(fmt::format(
                 "bodies '{}' and '{}' are coupled by a {} but use different integrators ({} and {}): "
                 "bodies coupled by forces must share one integrator",
@@ -384,9 +423,13 @@ World::Coupling World::makeCoupling() const
     }
     coupling.madeFrom = m_keys;
     for (std::size_t i = 0; i < m_bodies.size(); ++i) {
+        const Integrator integrator = m_bodies[i]->getIntegrator();
         if (coupled[i] != 0) {
-            const auto k = std::find(kAllIntegrators.begin(), kAllIntegrators.end(), m_bodies[i]->getIntegrator());
+            const auto k = std::find(kAllIntegrators.begin(), kAllIntegrators.end(), translationalMethod(integrator));
             coupling.systems[std::size_t(k - kAllIntegrators.begin())].push_back(i);
+        } else if (isRigid(i) && !m_bodies[i]->isFixed()) {
+            const auto k = std::find(kEveryIntegrator.begin(), kEveryIntegrator.end(), integrator);
+            coupling.rigid[std::size_t(k - kEveryIntegrator.begin())].push_back(i);
         } else {
             coupling.independent.push_back(i);
         }
@@ -397,6 +440,13 @@ World::Coupling World::makeCoupling() const
         coupling.wanted[k].assign(m_bodies.size(), 0);
         for (const std::size_t i : coupling.systems[k])
             coupling.wanted[k][i] = 1;
+    }
+    for (std::size_t k = 0; k < kEveryIntegrator.size(); ++k) {
+        if (coupling.rigid[k].empty())
+            continue;
+        coupling.rigidWanted[k].assign(m_bodies.size(), 0);
+        for (const std::size_t i : coupling.rigid[k])
+            coupling.rigidWanted[k][i] = 1;
     }
     return coupling;
 }
@@ -483,7 +533,7 @@ void World::integrateCoupled(Integrator integrator, const std::vector<std::size_
     // s.trial) except the system's, which take each stage's trial state. (A system integrated
     // before this one leaves its bodies at its last stage: no force couples two systems.)
     s.forces.resize(m_bodies.size());
-    const BodyStates in{m_bodies, s.trial, wanted, m_masses};
+    const BodyStates in{m_bodies, s.trial, wanted, m_masses, {}};
     Accumulators out{s.forces, {}};
     bool first = true;
     auto accel = [&](const Vec3Array& xs, const Vec3Array& vs) {
@@ -535,6 +585,75 @@ void World::collideAndStore(const std::vector<std::size_t>& members)
         },
         [](std::size_t a, std::size_t b) { return std::min(a, b); });
     m_firstNonFinite = std::min(m_firstNonFinite, bad);
+}
+
+void World::integrateRigid(Integrator integrator, const std::vector<std::size_t>& members,
+                           std::span<const std::uint8_t> wanted, double dt)
+{
+    const std::size_t n = members.size();
+    const dvec3 g = gravity();
+    m_rigidStates.resize(n);
+    m_rigidInertia.resize(n);
+    std::vector<double> startEnergy(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        const auto& b = static_cast<const RigidBody&>(*m_bodies[members[k]]);
+        m_rigidStates[k] = RigidState{b.getPos(), b.getVel(), b.getRotation()};
+        m_rigidInertia[k] = RigidInertia{1.0 / b.getMass(), b.getInertiaBody(), b.getInverseInertiaBody()};
+        startEnergy[k] = energyInGravity(m_rigidStates[k], m_rigidInertia[k], g);
+    }
+    // As integrateCoupled: the other bodies stay at their start-of-step states and poses while
+    // the system's take each stage's.
+    m_scratch.forces.resize(m_bodies.size());
+    m_torques.resize(m_bodies.size());
+    const BodyStates in{m_bodies, m_scratch.trial, wanted, m_masses, m_poses};
+    Accumulators out{m_scratch.forces, m_torques};
+    std::vector<dvec3> startAcc(n);
+    bool first = true;
+    stepRigidSystem(integrator, std::span<RigidState>(m_rigidStates), std::span<const RigidInertia>(m_rigidInertia), dt,
+                    [&](std::span<const RigidState> at, std::span<Wrench> wrenches) {
+                        for (std::size_t k = 0; k < n; ++k) {
+                            const std::size_t i = members[k];
+                            m_scratch.trial[i] = State{at[k].x, at[k].v};
+                            const Rotation& r = at[k].rotation;
+                            m_poses[i] = Pose{r.orientation, angularVelocity(r.orientation,
+                                                                             m_rigidInertia[k].inverseInertiaBody, r.momentum)};
+                            m_scratch.forces[i] = m_torques[i] = dvec3(0.0);
+                        }
+                        for (const auto& force : m_forces)
+                            force->accumulate(in, out);
+                        for (std::size_t k = 0; k < n; ++k) {
+                            const std::size_t i = members[k];
+                            wrenches[k] = Wrench{m_scratch.forces[i], m_torques[i]};
+                            if (first)
+                                startAcc[k] = m_scratch.forces[i] * m_rigidInertia[k].inverseMass;
+                        }
+                        first = false;
+                    });
+    // Below this speed a contact does not bounce: one step of gravity's, twice over.
+    const double restingSpeed = 2.0 * glm::length(g) * dt;
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = members[k];
+        auto& b = static_cast<RigidBody&>(*m_bodies[i]);
+        RigidState& s = m_rigidStates[k];
+        if (!m_planes.empty()) {
+            const ContactBody body{b.getShape(), b.getContactPoints(), m_rigidInertia[k], b.getCor(), b.getFriction(), g};
+            const RigidState start{b.getPos(), b.getVel(), b.getRotation()};
+            const double reference = std::max(startEnergy[k], energyInGravity(s, m_rigidInertia[k], g));
+            const ContactStep contactStep{start, dt, driftWeight(integrator), restingSpeed, reference};
+            m_bounces[i] += resolvePlaneContacts(body, m_planes, contactStep, s) ? 1 : 0;
+        }
+        b.setState(State{s.x, s.v});
+        b.setAcc(startAcc[k]);
+        const bool turnFinite = std::isfinite(glm::dot(s.rotation.momentum, s.rotation.momentum)) &&
+                                std::isfinite(glm::dot(glm::vec<4, double>(s.rotation.orientation.x, s.rotation.orientation.y,
+                                                                            s.rotation.orientation.z, s.rotation.orientation.w),
+                                                       glm::vec<4, double>(1.0)));
+        if (turnFinite)
+            b.setRotation(s.rotation);
+        else
+            m_firstNonFinite = std::min(m_firstNonFinite, i);
+        noteIfNotFinite(i, State{s.x, s.v});
+    }
 }
 
 void World::noteIfNotFinite(std::size_t i, const State& state)

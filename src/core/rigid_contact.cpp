@@ -1,0 +1,222 @@
+#include "rigid_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace pba {
+
+namespace {
+
+struct Contact {
+    dvec3 normal;    ///< into the room
+    dvec3 arm;       ///< from the centre of mass to the point, world frame
+    double gap;      ///< the point's distance from the surface (negative: beyond it)
+    int surface;     ///< the plane's index; planes.size() + p for plane p's shaft wall
+    double normalMass = 0.0, target = 0.0, normalImpulse = 0.0;
+    dvec3 tangent[2] = {dvec3(0.0), dvec3(0.0)};
+    double tangentMass[2] = {0.0, 0.0};
+    double tangentImpulse[2] = {0.0, 0.0};
+};
+
+/// Two unit vectors that complete n to an orthonormal frame.
+void tangentsOf(const dvec3& n, dvec3 (&t)[2])
+{
+    const dvec3 other = std::abs(n.x) < 0.57735 ? dvec3(1.0, 0.0, 0.0) : dvec3(0.0, 1.0, 0.0);
+    t[0] = glm::normalize(glm::cross(n, other));
+    t[1] = glm::cross(n, t[0]);
+}
+
+/// Every point of the body at pose (x, r) that could meet a surface, with its gap: each contact
+/// point against each plane (a sphere's point nearest the plane). A point over a floor hole
+/// meets no floor; a body whose centre is below the floor and over the hole is in the hole's
+/// shaft, and its points meet the shaft's wall instead.
+void candidates(const ContactBody& body, std::span<const Plane> planes, const dvec3& x, const dmat3& r,
+                std::vector<Contact>& out)
+{
+    std::vector<dvec3> arms;
+    for (const dvec3& p : body.points)
+        arms.push_back(r * p);
+    const bool sphere = body.shape.type == ShapeType::Sphere;
+    for (std::size_t p = 0; p < planes.size(); ++p) {
+        const Plane& plane = planes[p];
+        const int shaft = int(planes.size() + p);
+        const bool inShaft = plane.holeRadius > 0.0 && plane.distance(x) < 0.0 && plane.overHole(x);
+        if (sphere && inShaft) {
+            // The point nearest the shaft's wall: on the sphere's equator, away from the axis.
+            const dvec3 rho = plane.fromHoleAxis(x);
+            const double len = glm::length(rho);
+            if (len > 0.0)
+                out.push_back(Contact{-rho / len, rho / len * body.shape.radius,
+                                      plane.holeRadius - len - body.shape.radius, shaft});
+            continue;
+        }
+        if (sphere)
+            arms.assign(1, -body.shape.radius * plane.normal);
+        for (const dvec3& arm : arms) {
+            const dvec3 at = x + arm;
+            if (inShaft) {
+                const dvec3 rho = plane.fromHoleAxis(at);
+                const double len = glm::length(rho);
+                if (len > 0.0)
+                    out.push_back(Contact{-rho / len, arm, plane.holeRadius - len, shaft});
+            } else if (!(plane.holeRadius > 0.0 && plane.overHole(at))) {
+                out.push_back(Contact{plane.normal, arm, plane.distance(at), int(p)});
+            }
+        }
+    }
+}
+
+/// 1 / (1/m + (I^-1 (r x u)) . (r x u)): the mass the point r feels along u.
+double massAlong(const dvec3& arm, const dvec3& u, double inverseMass, const dmat3& inverseInertiaWorld)
+{
+    const dvec3 ru = glm::cross(arm, u);
+    return 1.0 / (inverseMass + glm::dot(ru, inverseInertiaWorld * ru));
+}
+
+/// Gauss-Seidel over the contacts, with accumulated impulses, until no impulse changes by more
+/// than a part in 1e12 of the largest (a flat landing's four corners need a few dozen sweeps to
+/// share it evenly). Friction first, then the normal impulse, so that the normal constraint (no
+/// sinking) is the one met last in each sweep, as Box2D orders them.
+void solveImpulses(std::vector<Contact>& contacts, double friction, double inverseMass, const dmat3& inverseInertia,
+                   dvec3& v, dvec3& momentum)
+{
+    dvec3 omega = inverseInertia * momentum;
+    const auto pointVelocity = [&](const Contact& c) { return v + glm::cross(omega, c.arm); };
+    const auto apply = [&](const Contact& c, const dvec3& impulse) {
+        v += impulse * inverseMass;
+        momentum += glm::cross(c.arm, impulse);
+        omega = inverseInertia * momentum;
+    };
+    constexpr int kMaxSweeps = 500;
+    for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
+        double change = 0.0, largest = 0.0;
+        for (Contact& c : contacts) {
+            const double limit = friction * c.normalImpulse;
+            const dvec3 u = pointVelocity(c);
+            double wanted[2];
+            for (int t = 0; t < 2; ++t)
+                wanted[t] = c.tangentImpulse[t] - c.tangentMass[t] * glm::dot(c.tangent[t], u);
+            const double length = std::sqrt(wanted[0] * wanted[0] + wanted[1] * wanted[1]);
+            const double scale = length > limit ? limit / length : 1.0;
+            dvec3 frictionImpulse(0.0);
+            for (int t = 0; t < 2; ++t) {
+                const double next = wanted[t] * scale;
+                frictionImpulse += (next - c.tangentImpulse[t]) * c.tangent[t];
+                change = std::max(change, std::abs(next - c.tangentImpulse[t]));
+                c.tangentImpulse[t] = next;
+            }
+            apply(c, frictionImpulse);
+            const double vn = glm::dot(c.normal, pointVelocity(c));
+            const double next = std::max(c.normalImpulse + c.normalMass * (c.target - vn), 0.0);
+            apply(c, (next - c.normalImpulse) * c.normal);
+            change = std::max(change, std::abs(next - c.normalImpulse));
+            c.normalImpulse = next;
+            largest = std::max(largest, next);
+        }
+        if (change <= 1e-12 * largest)
+            break;
+    }
+}
+
+/// Moves the body at its end pose out of every surface a point is still beyond (what the
+/// linearised contacts leave: a turning body's points move on arcs), along each surface's
+/// normal by its deepest point's gap.
+bool pushOut(const ContactBody& body, std::span<const Plane> planes, RigidState& s)
+{
+    bool moved = false;
+    std::vector<Contact> end;
+    candidates(body, planes, s.x, glm::mat3_cast(s.rotation.orientation), end);
+    for (std::size_t surface = 0; surface < 2 * planes.size(); ++surface) {
+        const Contact* deepest = nullptr;
+        for (const Contact& c : end)
+            if (c.surface == int(surface) && c.gap < 0.0 && (!deepest || c.gap < deepest->gap))
+                deepest = &c;
+        if (deepest) {
+            s.x -= deepest->gap * deepest->normal;
+            moved = true;
+        }
+    }
+    return moved;
+}
+
+} // namespace
+
+double driftWeight(Integrator integrator)
+{
+    switch (integrator) {
+    case Integrator::ForwardEuler: return 0.0;
+    case Integrator::SemiImplicitEuler:
+    case Integrator::ImplicitGyroscopic: return 1.0;
+    case Integrator::VelocityVerlet:
+    case Integrator::RK4: return 0.5;
+    }
+    return 1.0;
+}
+
+double energyInGravity(const RigidState& s, const RigidInertia& inertia, const dvec3& gravity)
+{
+    const double mass = 1.0 / inertia.inverseMass;
+    const dvec3 omega = angularVelocity(s.rotation.orientation, inertia.inverseInertiaBody, s.rotation.momentum);
+    return 0.5 * mass * glm::dot(s.v, s.v) + 0.5 * glm::dot(omega, s.rotation.momentum) - mass * glm::dot(gravity, s.x);
+}
+
+bool resolvePlaneContacts(const ContactBody& body, std::span<const Plane> planes, const ContactStep& step,
+                          RigidState& s)
+{
+    const RigidState& start = step.start;
+    const dmat3 r = glm::mat3_cast(start.rotation.orientation);
+    const double inverseMass = body.inertia.inverseMass;
+    const dmat3 inverseInertia = r * body.inertia.inverseInertiaBody * glm::transpose(r);
+    const dvec3 omega = inverseInertia * s.rotation.momentum; // the end's, at the start's pose
+    std::vector<Contact> contacts;
+    candidates(body, planes, start.x, r, contacts);
+    // A point takes part if, at the end's velocity, it would reach its surface within the step.
+    bool bounced = false;
+    std::erase_if(contacts, [&](Contact& c) {
+        const double arriving = glm::dot(c.normal, s.v + glm::cross(omega, c.arm));
+        if (c.gap + std::min(arriving, 0.0) * step.dt > 0.0 && c.gap > 0.0)
+            return true;
+        // Faster than resting, it bounces: leaves at e times its arriving speed. Slower, it may
+        // close the gap but not cross it (a speculative contact: a body at rest stays at rest,
+        // with no velocity that would make it jitter, and no penetration to push it out of).
+        const bool bounce = arriving < -step.restingSpeed;
+        c.target = bounce ? -body.restitution * arriving : std::max(c.gap, 0.0) / -step.dt;
+        bounced = bounced || bounce;
+        c.normalMass = massAlong(c.arm, c.normal, inverseMass, inverseInertia);
+        tangentsOf(c.normal, c.tangent);
+        for (int t = 0; t < 2; ++t)
+            c.tangentMass[t] = massAlong(c.arm, c.tangent[t], inverseMass, inverseInertia);
+        return false;
+    });
+    if (!contacts.empty()) {
+        const dvec3 v0 = s.v, l0 = s.rotation.momentum;
+        solveImpulses(contacts, body.friction, inverseMass, inverseInertia, s.v, s.rotation.momentum);
+        // The impulses act at the start of the step: the end pose moves by the part of the step's
+        // drift that the end velocity drives (driftWeight).
+        const double drift = step.driftWeight * step.dt;
+        s.x += (s.v - v0) * drift;
+        const dvec3 turn = inverseInertia * (s.rotation.momentum - l0);
+        s.rotation.orientation =
+            glm::normalize(s.rotation.orientation + orientationRate(start.rotation.orientation, turn) * drift);
+    }
+    const bool pushed = pushOut(body, planes, s);
+    // No contact leaves the body with more energy than it started the step with, or would have
+    // ended it with untouched: what the linearised contacts and the push-out would add is taken
+    // from its motion (v and L scaled alike).
+    const double excess = energyInGravity(s, body.inertia, body.gravity) - step.referenceEnergy;
+    if (excess > 0.0 && (pushed || !contacts.empty())) {
+        const double kinetic = energyInGravity(RigidState{dvec3(0.0), s.v, s.rotation}, body.inertia, body.gravity);
+        const double keep = kinetic > excess ? std::sqrt(1.0 - excess / kinetic) : 0.0;
+        s.v *= keep;
+        s.rotation.momentum *= keep;
+        // Too little motion to take it from (a slow bounce, whose linearised contact leaves the
+        // body a little higher than its arc would): the body ends that much lower instead.
+        const double g2 = glm::dot(body.gravity, body.gravity);
+        if (kinetic < excess && g2 > 0.0)
+            s.x += body.gravity * ((excess - kinetic) * inverseMass / g2);
+    }
+    return bounced;
+}
+
+} // namespace pba
