@@ -33,9 +33,25 @@ struct BodySummary {
     double highest = -INFINITY;
 };
 
-void writeCsvHeader(std::ostream& out) { out << "step,t,body,x,y,z,vx,vy,vz,energy\n"; }
+/// A scene with rigid bodies adds each body's orientation and angular velocity (world frame)
+/// after its energy: 1,0,0,0,0,0,0 for a particle, which does not turn.
+void writeCsvHeader(std::ostream& out, bool turning)
+{
+    out << "step,t,body,x,y,z,vx,vy,vz,energy" << (turning ? ",qw,qx,qy,qz,wx,wy,wz\n" : "\n");
+}
 
-void writeCsvRows(std::ostream& out, const World& world)
+/// The rigid-body columns of body i (see writeCsvHeader).
+std::string turnColumns(const World& world, std::size_t i)
+{
+    if (!world.isRigid(i))
+        return ",1,0,0,0,0,0,0";
+    const auto& b = static_cast<const RigidBody&>(world.body(i));
+    const dquat& q = b.getOrientation();
+    const dvec3 w = b.getAngularVelocity();
+    return fmt::format(",{},{},{},{},{},{},{}", q.w, q.x, q.y, q.z, w.x, w.y, w.z);
+}
+
+void writeCsvRows(std::ostream& out, const World& world, bool turning)
 {
     // {} formats doubles as the shortest text that reads back to the same value:
     // exact, and identical for identical runs.
@@ -44,13 +60,13 @@ void writeCsvRows(std::ostream& out, const World& world)
         const Body& b = world.body(i);
         const dvec3& x = b.getPos();
         const dvec3& v = b.getVel();
-        out << fmt::format("{},{},{},{},{},{},{},{},{},{}\n", world.stepCount(), world.time(), csvField(b.getName()), x.x, x.y,
-                           x.z, v.x, v.y, v.z, energies[i]);
+        out << fmt::format("{},{},{},{},{},{},{},{},{},{}{}\n", world.stepCount(), world.time(), csvField(b.getName()),
+                           x.x, x.y, x.z, v.x, v.y, v.z, energies[i], turning ? turnColumns(world, i) : "");
     }
 }
 
 /// Swarm particles as CSV rows, named NAME[i]; only on request (a million rows a step).
-void writeSwarmRows(std::ostream& out, const World& world)
+void writeSwarmRows(std::ostream& out, const World& world, bool turning)
 {
     const dvec3 g = world.gravity();
     for (std::size_t s = 0; s < world.swarmCount(); ++s) {
@@ -58,9 +74,9 @@ void writeSwarmRows(std::ostream& out, const World& world)
         for (std::size_t i = 0; i < swarm.size(); ++i) {
             const Vec3<float> x = swarm.position(i), v = swarm.velocity(i);
             const double energy = swarm.mass() * (0.5 * glm::dot(v, v) - glm::dot(Vec3<float>(g), x));
-            out << fmt::format("{},{},{},{},{},{},{},{},{},{}\n", world.stepCount(), world.time(),
+            out << fmt::format("{},{},{},{},{},{},{},{},{},{}{}\n", world.stepCount(), world.time(),
                                csvField(fmt::format("{}[{}]", swarm.name(), i)),
-                               x.x, x.y, x.z, v.x, v.y, v.z, energy);
+                               x.x, x.y, x.z, v.x, v.y, v.z, energy, turning ? ",1,0,0,0,0,0,0" : "");
         }
     }
 }
@@ -163,7 +179,7 @@ int runSim(const SimOptions& options)
     std::unique_ptr<AtomicFile> csv;
     if (options.out) {
         csv = std::make_unique<AtomicFile>(*options.out);
-        writeCsvHeader(csv->stream());
+        writeCsvHeader(csv->stream(), scene.world.hasRigidBodies());
     }
 
     World& world = scene.world;
@@ -188,9 +204,9 @@ int runSim(const SimOptions& options)
         for (std::size_t i = 0; i < world.bodyCount(); ++i)
             summary[i].highest = std::max(summary[i].highest, world.body(i).getPos().y);
         if (csv)
-            writeCsvRows(csv->stream(), world);
+            writeCsvRows(csv->stream(), world, world.hasRigidBodies());
         if (csv && options.swarmParticles)
-            writeSwarmRows(csv->stream(), world);
+            writeSwarmRows(csv->stream(), world, world.hasRigidBodies());
     };
 
     // The number of steps depends on dt and duration alone. With --frame-rate the clock
@@ -240,7 +256,8 @@ void addSimCommand(CLI::App& root, Action& selected)
     addSceneOptions(*sim, options->scene, kDefaultScene);
     sim->add_option("--out", options->out,
                     "Write one CSV row per body per physics step (step 0 included) to this file; columns "
-                    "step,t,body,x,y,z,vx,vy,vz,energy")
+                    "step,t,body,x,y,z,vx,vy,vz,energy, and with rigid bodies in the scene qw,qx,qy,qz,wx,wy,wz "
+                    "(orientation and world-frame angular velocity; 1,0,0,0,0,0,0 for particles)")
         ->type_name("FILE.csv");
     sim->add_option("--frame-rate", options->frameRate,
                     "Drive the fixed-timestep clock with synthetic frames of 1/HZ seconds (the results do not "

@@ -13,6 +13,7 @@
 #include "fabric_readers.hpp"
 #include "force_parsers.hpp"
 #include "json_reader.hpp"
+#include "rigid_body_reader.hpp"
 #include "pba/forces.hpp"
 #include "pba/swarm.hpp"
 #include "pba/scene/scene.hpp"
@@ -35,7 +36,7 @@ Integrator readIntegrator(ObjectReader& reader, const std::string& key, Integrat
     const auto integrator = integratorFromName(name);
     if (!integrator)
         reader.fail(key, fmt::format("unknown integrator '{}' (expected forward-euler, semi-implicit-euler, "
-                                     "velocity-verlet or rk4)", name));
+                                     "velocity-verlet, rk4 or implicit-gyroscopic)", name));
     return *integrator;
 }
 
@@ -293,8 +294,14 @@ void readForce(const Json& value, const std::string& path, const std::string& fi
 /// Every particle's energy must be finite at the start: a velocity of 1e300 m/s is a valid
 /// number whose kinetic energy is not, and would fail the first step with no field to blame.
 /// The scene key that made body i: particles[i] itself, or the rope or cloth it belongs to.
-std::string bodyKey(std::size_t i, const FabricLayout& fabric)
+std::string bodyKey(std::size_t i, const World& world, const FabricLayout& fabric)
 {
+    if (world.isRigid(i)) {
+        std::size_t k = 0;
+        for (std::size_t j = 0; j < i; ++j)
+            k += world.isRigid(j) ? 1 : 0;
+        return fmt::format("rigid_bodies[{}]", k);
+    }
     for (std::size_t r = 0; r < fabric.ropes.size(); ++r)
         for (const std::size_t p : fabric.ropes[r].particles)
             if (p == i)
@@ -313,8 +320,9 @@ void requireFiniteEnergies(const World& world, const FabricLayout& fabric, const
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
         if (std::isfinite(energies[i]))
             continue;
-        const std::string key = bodyKey(i, fabric);
-        const bool own = key.rfind("particles[", 0) == 0; // a particle's own entry has the fields
+        const std::string key = bodyKey(i, world, fabric);
+        // A particle's or rigid body's own entry has the fields.
+        const bool own = key.rfind("particles[", 0) == 0 || key.rfind("rigid_bodies[", 0) == 0;
         const std::string who = own ? "" : fmt::format("its particle '{}': ", world.body(i).getName());
         if (!std::isfinite(world.kineticEnergy(i)))
             throw SceneError(file, own ? key + ".velocity" : key,
@@ -323,11 +331,11 @@ void requireFiniteEnergies(const World& world, const FabricLayout& fabric, const
     }
 }
 
-Scene readScene(const Json& document, const std::string& file)
+Scene readScene(const Json& document, const std::string& file, const std::filesystem::path& directory)
 {
     ObjectReader root(document, "", file);
     root.expectKeys({"name", "summary", "description", "dt", "duration", "gravity", "collision_response", "ground",
-                     "room", "particles", "ropes", "cloths", "swarms", "forces"});
+                     "room", "particles", "ropes", "cloths", "rigid_bodies", "swarms", "forces"});
     Scene scene;
     scene.source = file;
     scene.name = readName(root, "name", "unnamed");
@@ -361,6 +369,9 @@ Scene readScene(const Json& document, const std::string& file)
     root.array("cloths", [&](const Json& value, const std::string& path, std::size_t) {
         scene_detail::readCloth(value, path, file, fabric);
     });
+    root.array("rigid_bodies", [&](const Json& value, const std::string& path, std::size_t) {
+        scene_detail::readRigidBody(value, path, file, directory, scene.world, names);
+    });
     root.array("swarms", [&](const Json& value, const std::string& path, std::size_t) {
         readSwarm(value, path, file, scene.world, names);
     });
@@ -381,7 +392,9 @@ std::string parseErrorReason(const nlohmann::json::exception& error)
 
 } // namespace
 
-Scene parseScene(std::string_view json, const std::string& source)
+namespace {
+
+Scene parseScene(std::string_view json, const std::string& source, const std::filesystem::path& directory)
 {
     // A NUL byte would end the document early, silently dropping what follows it.
     if (const auto nul = json.find('\0'); nul != std::string_view::npos)
@@ -417,8 +430,12 @@ Scene parseScene(std::string_view json, const std::string& source)
     }
     if (duplicate)
         throw SceneError(source, "(document)", *duplicate);
-    return readScene(document, source);
+    return readScene(document, source, directory);
 }
+
+} // namespace
+
+Scene parseScene(std::string_view json, const std::string& source) { return parseScene(json, source, {}); }
 
 Scene loadSceneFile(const std::filesystem::path& path)
 {
@@ -431,7 +448,8 @@ Scene loadSceneFile(const std::filesystem::path& path)
         throw SceneError(path.string(), "(file)", "cannot be opened for reading");
     std::ostringstream text;
     text << in.rdbuf();
-    return parseScene(text.str(), path.string());
+    const std::filesystem::path directory = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    return parseScene(text.str(), path.string(), directory);
 }
 
 Scene loadScene(std::string_view nameOrPath)
