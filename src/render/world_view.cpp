@@ -252,6 +252,22 @@ void addFabric(const World& world, double alpha, const ViewSettings& settings, D
         addCloth(world, cloth, alpha, settings, out);
 }
 
+/// A rigid body: its mesh, lit, at its pose (the position blended and the orientation slerped
+/// between the last two steps), after the mesh's own local rotation and scale.
+void addRigidBody(const World& world, std::size_t i, double alpha, const ViewSettings& settings, DrawList& out)
+{
+    const Body& body = world.body(i);
+    const Mesh& mesh = body.getMesh();
+    const glm::vec3 at = drawnPosition(world, i, alpha, settings.interpolate);
+    const glm::mat4 pose = glm::mat4(glm::mat3_cast(glm::quat(world.interpolatedOrientation(i, settings.interpolate ? alpha : 1.0))));
+    const glm::mat4 model = pose * mesh.getRotate() * mesh.getScale();
+    const glm::mat3 normals = glm::transpose(glm::inverse(glm::mat3(model)));
+    const glm::vec4 colour = bodyColour(body);
+    for (const std::uint32_t k : mesh.indices())
+        out.surfaces.push_back({at + glm::vec3(model * glm::vec4(mesh.vertices()[k], 1.0f)),
+                                glm::normalize(normals * mesh.normals()[k]), colour});
+}
+
 void addBodies(const World& world, const World& initial, double alpha, const ViewSettings& settings,
                const Trails* trails, DrawList& out)
 {
@@ -259,6 +275,10 @@ void addBodies(const World& world, const World& initial, double alpha, const Vie
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
         if (fabric[i])
             continue;
+        if (world.isRigid(i)) {
+            addRigidBody(world, i, alpha, settings, out);
+            continue;
+        }
         const glm::vec4 colour = bodyColour(world.body(i));
         const glm::vec3 at = drawnCentre(world, i, alpha, settings);
         out.sprites.push_back({at, drawnRadius(world.body(i), settings), colour});
