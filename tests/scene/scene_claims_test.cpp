@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "pba/blow_dryer.hpp"
 #include "pba/scene/scene.hpp"
@@ -219,12 +220,82 @@ TEST(SceneClaims, StiffSpringFollowsItsExactSolution)
     EXPECT_GT(worst, 1e-4);
 }
 
+// "By t = 6 s every die lies still on one of its faces, its centre 15 cm above the floor, and
+// stays there to the end of the run."
+TEST(SceneClaims, DiceComeToRestOnAFaceBySixSeconds)
+{
+    Scene scene = loadScene("dice");
+    World& world = scene.world;
+    for (long n = 0; n < std::lround(scene.duration / scene.dt); ++n) {
+        world.step(scene.dt);
+        if (world.time() < 6.0 - 1e-9)
+            continue;
+        for (std::size_t i = 0; i < world.bodyCount(); ++i) {
+            const auto& die = static_cast<const RigidBody&>(world.body(i));
+            ASSERT_NEAR(die.getPos().y, 0.15, 1e-4) << die.getName() << " at t = " << world.time();
+            ASSERT_LT(glm::length(die.getVel()), 1e-6) << die.getName() << " at t = " << world.time();
+            ASSERT_LT(glm::length(die.getAngularVelocity()), 1e-6) << die.getName() << " at t = " << world.time();
+        }
+    }
+}
+
+// "at t = 2 v0 / (7 mu g) = 0.29 s; from then on it rolls at 5/7 v0 = 2.14 m/s".
+TEST(SceneClaims, RollingBallRollsFromTheClosedFormTime)
+{
+    Scene scene = loadScene("rolling");
+    World& world = scene.world;
+    const auto& ball = static_cast<const RigidBody&>(world.body(0));
+    const double r = 0.2, v0 = 3.0, tRoll = 2.0 * v0 / (7.0 * 0.3 * 9.81);
+    EXPECT_NEAR(tRoll, 0.29, 0.005);
+    double rolledAt = -1.0;
+    for (long n = 0; n < std::lround(scene.duration / scene.dt); ++n) {
+        world.step(scene.dt);
+        const double slip = ball.getVel().x + ball.getAngularVelocity().z * r;
+        if (rolledAt < 0.0 && std::abs(slip) < 1e-6)
+            rolledAt = world.time();
+    }
+    EXPECT_NEAR(rolledAt, tRoll, 0.01 * tRoll);
+    EXPECT_NEAR(ball.getVel().x, 5.0 / 7.0 * v0, 0.005);
+    EXPECT_NEAR(5.0 / 7.0 * v0, 2.14, 0.005);
+}
+
+// "It turns over every 2.93 s, half the period T = 5.86 s that the complete elliptic integral of
+// the first kind gives ... RK4 keeps its energy and |L| to 1e-9".
+TEST(SceneClaims, TennisRacketFlipsEveryHalfEllipticPeriod)
+{
+    Scene scene = loadScene("tennis-racket");
+    World& world = scene.world;
+    const auto& racket = static_cast<const RigidBody&>(world.body(0));
+    const dmat3& inertia = racket.getInertiaBody();
+    const double a = inertia[1][1], b = inertia[2][2], c = inertia[0][0]; // y < z < x
+    const double e = racket.getRotationalKineticEnergy();
+    const double l2 = glm::dot(racket.getAngularMomentum(), racket.getAngularMomentum());
+    const double k2 = (c - b) * (l2 - 2.0 * e * a) / ((b - a) * (2.0 * e * c - l2));
+    const double period = 4.0 * std::comp_ellint_1(std::sqrt(k2)) * std::sqrt(a * b * c / ((b - a) * (2.0 * e * c - l2)));
+    EXPECT_NEAR(period, 5.86, 0.005);
+    std::vector<double> flips;
+    double previous = 1.0, worst = 0.0;
+    for (long n = 0; n < std::lround(scene.duration / scene.dt); ++n) {
+        world.step(scene.dt);
+        const dvec3 w = glm::transpose(glm::mat3_cast(racket.getOrientation())) * racket.getAngularVelocity();
+        if (w.z * previous < 0.0)
+            flips.push_back(world.time());
+        previous = w.z;
+        worst = std::max({worst, std::abs(racket.getRotationalKineticEnergy() / e - 1.0),
+                          std::abs(glm::dot(racket.getAngularMomentum(), racket.getAngularMomentum()) / l2 - 1.0)});
+    }
+    ASSERT_GE(flips.size(), 6u);
+    for (std::size_t k = 1; k < flips.size(); ++k)
+        EXPECT_NEAR(flips[k] - flips[k - 1], period / 2.0, 0.01 * period / 2.0);
+    EXPECT_LT(worst, 1e-9);
+}
+
 // Every built-in scene has a test above (the rope's and the cloth's are in fabric_test.cpp).
 TEST(SceneClaims, EveryBuiltInSceneIsCovered)
 {
     const std::vector<std::string> covered{"blow-dryer", "blow-dryer-flow", "blow-dryer-swarm", "bouncing-cube",
-                                           "cloth", "cloth-in-the-dryer", "fountain-1m", "integrators", "rope",
-                                           "spring", "stiff-spring"};
+                                           "cloth", "cloth-in-the-dryer", "dice", "fountain-1m", "integrators",
+                                           "rolling", "rope", "spring", "stiff-spring", "tennis-racket"};
     std::vector<std::string> names = builtinSceneNames();
     std::sort(names.begin(), names.end());
     EXPECT_EQ(names, covered);
