@@ -89,8 +89,18 @@ void drawLegend(const World& world, const std::string& sceneName, double dt, dou
         if (!world.planes().empty()) { // wrapped within the picture, however narrow
             ImGui::PushTextWrapPos(std::max(200.0f, ImGui::GetIO().DisplaySize.x - 40.0f));
             ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-            ImGui::TextWrapped("collisions: %s%s", std::string(collisionResponseSummary(world.collisionResponse())).c_str(),
-                               world.coupledBodiesReflect() ? "; bodies joined by springs: reflect" : "");
+            // The collision response is the points' rule: rigid bodies meet the room with contact
+            // impulses whatever it is.
+            bool points = world.swarmCount() > 0;
+            for (std::size_t i = 0; i < world.bodyCount() && !points; ++i)
+                points = !world.isRigid(i);
+            if (points)
+                ImGui::TextWrapped("collisions: %s%s%s",
+                                   std::string(collisionResponseSummary(world.collisionResponse())).c_str(),
+                                   world.coupledBodiesReflect() ? "; bodies joined by springs: reflect" : "",
+                                   world.hasRigidBodies() ? "; rigid bodies: contact impulses" : "");
+            else
+                ImGui::TextWrapped("contacts: impulses with each body's restitution and friction");
             ImGui::PopStyleColor();
             ImGui::PopTextWrapPos();
         }
