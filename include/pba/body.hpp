@@ -3,6 +3,7 @@
 // Particle derives from it today; rigid bodies will add orientation, angular
 // velocity and an inertia tensor in a subclass of their own.
 #include <memory>
+#include <span>
 #include <string>
 
 #include "pba/integrator.hpp"
@@ -12,11 +13,28 @@
 
 namespace pba {
 
+/// A point of a body's surface, in its own frame, and its share of the whole surface's area:
+/// where a force spread over the surface (the blow dryer's) acts on an extended body.
+struct SurfaceSample {
+    dvec3 point{0.0};
+    double share = 0.0; ///< the shares of a body's samples add up to 1
+};
+
+/// A body's surface samples, and whether they turn with it (a sphere's need not: its surface is
+/// the same in every orientation, and samples fixed in the world keep a ball on the jet's axis
+/// free of torque to rounding).
+struct Surface {
+    std::span<const SurfaceSample> samples; ///< empty: a point (a particle)
+    bool turnsWithBody = true;
+};
+
 class alignas(64) Body {
 public:
     virtual ~Body() = default;
     /// Deep copy through the base class, so a World (and a scene's reset) can copy its bodies.
     virtual std::unique_ptr<Body> clone() const = 0;
+    /// Where forces spread over a surface act: none for a point.
+    virtual Surface surface() const { return {}; }
 
     // ---- get methods (the practical's names) ----
     Mesh& getMesh() { return m_mesh; }

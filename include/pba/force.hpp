@@ -100,6 +100,13 @@ struct Accumulators {
     std::span<dvec3> torques; ///< empty when no body of the world can turn
 
     void add(std::size_t i, const dvec3& force) { forces[i] += force; }
+    /// A force and a torque about body i's centre of mass (the sum of forces at several points).
+    void add(std::size_t i, const dvec3& force, const dvec3& torque)
+    {
+        forces[i] += force;
+        if (!torques.empty())
+            torques[i] += torque;
+    }
     /// A force applied at `arm` from body i's centre of mass: the same force, and arm x force.
     void addAt(std::size_t i, const dvec3& force, const dvec3& arm)
     {

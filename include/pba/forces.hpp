@@ -32,16 +32,19 @@ inline Vec3<T> dragForce(T coefficient, const Vec3<T>& v)
 
 class Drag final : public ForceBase<Drag> {
 public:
-    explicit Drag(double coefficient) : m_coefficient(coefficient) {}
+    /// `angular`: the rotational drag, a torque -angular omega on a turning body (N m s).
+    explicit Drag(double coefficient, double angular = 0.0) : m_coefficient(coefficient), m_angular(angular) {}
     std::string_view type() const override { return "drag"; }
     dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const override;
     /// On all cores.
     void accumulate(const BodyStates& in, Accumulators& out) const override;
     bool addToSwarmFields(SwarmFields& fields) const override;
     double coefficient() const { return m_coefficient; }
+    double angularCoefficient() const { return m_angular; }
 
 private:
     double m_coefficient;
+    double m_angular;
 };
 
 /// Damped spring between a fixed anchor and one particle:
@@ -60,13 +63,19 @@ inline Vec3<T> springForce(const Vec3<T>& anchor, T stiffness, T restLength, T d
 /// It ties one named particle: a swarm in the same world feels nothing of it.
 class Spring final : public ForceBase<Spring> {
 public:
-    Spring(std::size_t particle, const dvec3& anchor, double stiffness, double restLength, double damping)
-        : m_particle(particle), m_anchor(anchor), m_stiffness(stiffness), m_restLength(restLength), m_damping(damping) {}
+    /// `attachment`: where on the body the spring is tied, in the body's own frame (a rigid
+    /// body's point; a particle's is its centre, zero).
+    Spring(std::size_t particle, const dvec3& anchor, double stiffness, double restLength, double damping,
+           const dvec3& attachment = dvec3(0.0))
+        : m_particle(particle), m_anchor(anchor), m_stiffness(stiffness), m_restLength(restLength), m_damping(damping),
+          m_attachment(attachment) {}
     std::string_view type() const override { return "spring"; }
     dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const override;
     /// Its one particle only, rather than asking every body of the world for a zero.
     void accumulate(const BodyStates& in, Accumulators& out) const override;
     double potentialEnergy(std::size_t index, const Body& body, const dvec3& x) const override;
+    /// With the attachment where the body's pose puts it.
+    double potentialEnergyShare(std::size_t index, const BodyStates& in) const override;
     /// Nothing to add, and nothing missing: a spring acts on its named particle only.
     bool addToSwarmFields(SwarmFields& /*fields*/) const override { return true; }
 
@@ -75,6 +84,7 @@ public:
     double stiffness() const { return m_stiffness; }
     double restLength() const { return m_restLength; }
     double damping() const { return m_damping; }
+    const dvec3& attachment() const { return m_attachment; }
 
 private:
     std::size_t m_particle;
@@ -82,6 +92,7 @@ private:
     double m_stiffness;
     double m_restLength;
     double m_damping;
+    dvec3 m_attachment;
 };
 
 /// Damped spring between two bodies a and b. With d = x_b - x_a and u = d/|d|, b feels

@@ -19,6 +19,8 @@ public:
     /// in its own frame; the centre is taken as the body's position), shaped as a unit cube.
     explicit RigidBody(const MassProperties& properties);
     std::unique_ptr<Body> clone() const override { return std::make_unique<RigidBody>(*this); }
+    /// The shape's surface samples (a sphere's fixed in the world's orientation).
+    Surface surface() const override { return {m_surfaceSamples, m_shape.type != ShapeType::Sphere}; }
 
     // ---- get methods ----
     const dquat& getOrientation() const { return m_rotation.orientation; }
@@ -63,6 +65,7 @@ private:
     Rotation m_rotation;
     Shape m_shape;
     std::vector<dvec3> m_contactPoints;
+    std::vector<SurfaceSample> m_surfaceSamples;
     double m_friction = 0.5;
     dmat3 m_inertiaBody{1.0 / 6.0};
     dmat3 m_inverseInertiaBody{6.0};

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "pba/body.hpp"
 #include "pba/mass_properties.hpp"
 #include "pba/math.hpp"
 #include "pba/mesh.hpp"
@@ -45,6 +46,11 @@ MassProperties massPropertiesOf(const Shape& shape, double density);
 /// none: its contact is the point of the sphere closest to each plane (see sphereRadius).
 std::vector<dvec3> contactPointsOf(const Shape& shape);
 inline constexpr int kCylinderRimPoints = 24;
+
+/// Points spread over the shape's surface, each with its share of the area (the shares add up to
+/// 1): a box's faces and a cylinder's caps and side in a grid of cells, a sphere in rings of
+/// equal area about its y axis, a mesh's triangles at their centroids.
+std::vector<SurfaceSample> surfaceSamplesOf(const Shape& shape);
 
 /// A drawable mesh of the shape (positions, outward normals, triangles), flat-shaded faces for a
 /// box or a mesh, smooth for a sphere or a cylinder's side.

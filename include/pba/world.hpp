@@ -235,7 +235,8 @@ private:
     void checkFinite(double dt);
     void advanceClock(double dt);
     dvec3 aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const;
-    BodyStates currentStates(std::vector<State>& storage) const;
+    /// Every body's state (and, in a world with rigid bodies, its pose) as the read-outs see it.
+    BodyStates currentStates(std::vector<State>& storage, std::vector<Pose>& poses) const;
     void stepSwarms(double dt);
     void rollBack();
 

@@ -1,5 +1,7 @@
 #include "pba/blow_dryer.hpp"
 
+#include "pba/body.hpp"
+
 #include <type_traits>
 
 #include "pba/swarm.hpp"
@@ -9,16 +11,51 @@
 
 namespace pba {
 
+namespace {
+
+/// The field over a body's surface: at each sample's point and velocity, weighted by its share
+/// of the area, so that a body wholly in a uniform field feels what a particle at its centre
+/// would, and one across the jet's edge or off its axis feels a torque. A point (no samples)
+/// feels the field at its centre.
+template <class At>
+void addSpreadOverSurface(const BodyStates& in, std::size_t i, const At& at, Accumulators& out)
+{
+    const State& s = in.states[i];
+    const Surface surface = in.bodies[i]->surface();
+    if (surface.samples.empty()) {
+        out.add(i, at(s.pos, s.vel));
+        return;
+    }
+    const Pose& pose = in.pose(i);
+    const dmat3 r = surface.turnsWithBody ? glm::mat3_cast(pose.orientation) : dmat3(1.0);
+    dvec3 force(0.0), torque(0.0);
+    for (const SurfaceSample& sample : surface.samples) {
+        const dvec3 arm = r * sample.point;
+        const dvec3 f = sample.share * at(s.pos + arm, s.vel + glm::cross(pose.angularVelocity, arm));
+        force += f;
+        torque += glm::cross(arm, f);
+    }
+    out.add(i, force, torque);
+}
+
+} // namespace
+
 void BlowDryer::accumulate(const BodyStates& in, Accumulators& out) const
 {
     // An upward axis (every built-in scene's) picks coordinates instead of projecting on it, as
     // in a swarm's loop: the same values, found with fewer multiplications.
     // Without a pull (axis_pull 0, as in every built-in scene) its arithmetic is left out.
     auto each = [&](auto axis, auto pull) {
-        detail::addToEachMoving(in, out, [&](std::size_t i) {
-            return blowDryerForce<decltype(axis)::value, true, double, decltype(pull)::value>(
-                m_kernel, in.states[i].pos, in.states[i].vel);
-        });
+        const auto at = [&](const dvec3& x, const dvec3& v) {
+            return blowDryerForce<decltype(axis)::value, true, double, decltype(pull)::value>(m_kernel, x, v);
+        };
+        if (in.poses.empty()) // no body of the world turns: every one is a point
+            detail::addToEachMoving(in, out, [&](std::size_t i) { return at(in.states[i].pos, in.states[i].vel); });
+        else
+            detail::forEachIndex(in.bodies.size(), [&](std::size_t i) {
+                if (in.moving(i))
+                    addSpreadOverSurface(in, i, at, out);
+            });
     };
     using Up = std::integral_constant<DryerAxis, DryerAxis::Up>;
     using Any = std::integral_constant<DryerAxis, DryerAxis::Any>;

@@ -29,7 +29,14 @@ dvec3 Drag::force(std::size_t, const Body&, const dvec3&, const dvec3& v) const 
 
 void Drag::accumulate(const BodyStates& in, Accumulators& out) const
 {
-    detail::addToEachMoving(in, out, [&](std::size_t i) { return dragForce(m_coefficient, in.states[i].vel); });
+    if (m_angular == 0.0 || in.poses.empty() || out.torques.empty()) {
+        detail::addToEachMoving(in, out, [&](std::size_t i) { return dragForce(m_coefficient, in.states[i].vel); });
+        return;
+    }
+    detail::forEachIndex(in.bodies.size(), [&](std::size_t i) {
+        if (in.moving(i))
+            out.add(i, dragForce(m_coefficient, in.states[i].vel), -m_angular * in.poses[i].angularVelocity);
+    });
 }
 
 bool Drag::addToSwarmFields(SwarmFields& fields) const
@@ -47,9 +54,29 @@ dvec3 Spring::force(std::size_t index, const Body&, const dvec3& x, const dvec3&
 
 void Spring::accumulate(const BodyStates& in, Accumulators& out) const
 {
-    if (in.moving(m_particle))
-        out.add(m_particle, force(m_particle, *in.bodies[m_particle], in.states[m_particle].pos,
-                                  in.states[m_particle].vel));
+    if (!in.moving(m_particle))
+        return;
+    const State& s = in.states[m_particle];
+    if (m_attachment == dvec3(0.0)) {
+        out.add(m_particle, force(m_particle, *in.bodies[m_particle], s.pos, s.vel));
+        return;
+    }
+    // Tied to a point of a turning body: the spring pulls that point, moving with v + omega x r,
+    // and so turns the body too.
+    const Pose& pose = in.pose(m_particle);
+    const dvec3 arm = glm::mat3_cast(pose.orientation) * m_attachment;
+    const dvec3 f = springForce(m_anchor, m_stiffness, m_restLength, m_damping, s.pos + arm,
+                                s.vel + glm::cross(pose.angularVelocity, arm));
+    out.addAt(m_particle, f, arm);
+}
+
+double Spring::potentialEnergyShare(std::size_t index, const BodyStates& in) const
+{
+    if (index != m_particle)
+        return 0.0;
+    const dvec3 arm = glm::mat3_cast(in.pose(index).orientation) * m_attachment;
+    const double stretch = glm::length(in.states[index].pos + arm - m_anchor) - m_restLength;
+    return 0.5 * m_stiffness * stretch * stretch;
 }
 
 double Spring::potentialEnergy(std::size_t index, const Body&, const dvec3& x) const

@@ -21,6 +21,7 @@ void RigidBody::adoptShape(const Shape& shape)
 {
     m_shape = shape;
     m_contactPoints = contactPointsOf(shape);
+    m_surfaceSamples = surfaceSamplesOf(shape);
     setMesh(drawMeshOf(shape));
 }
 

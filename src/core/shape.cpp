@@ -98,6 +98,97 @@ std::vector<dvec3> contactPointsOf(const Shape& shape)
 
 namespace {
 
+/// Every sample's area over the total: the shares.
+std::vector<SurfaceSample> shared(std::vector<SurfaceSample> samples)
+{
+    double total = 0.0;
+    for (const SurfaceSample& s : samples)
+        total += s.share;
+    for (SurfaceSample& s : samples)
+        s.share /= total;
+    return samples;
+}
+
+std::vector<SurfaceSample> boxSamples(const dvec3& size)
+{
+    constexpr int kCells = 4; // a face's cells a side
+    std::vector<SurfaceSample> samples;
+    for (int axis = 0; axis < 3; ++axis) {
+        const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+        const double area = size[u] * size[w] / (kCells * kCells);
+        for (const double side : {-0.5, 0.5})
+            for (int i = 0; i < kCells; ++i)
+                for (int j = 0; j < kCells; ++j) {
+                    dvec3 p(0.0);
+                    p[axis] = side * size[axis];
+                    p[u] = ((i + 0.5) / kCells - 0.5) * size[u];
+                    p[w] = ((j + 0.5) / kCells - 0.5) * size[w];
+                    samples.push_back({p, area});
+                }
+    }
+    return samples;
+}
+
+std::vector<SurfaceSample> sphereSamples(double radius)
+{
+    // Bands of equal height have equal area (Archimedes): each band's points at its middle.
+    constexpr int kBands = 8, kAround = 16;
+    std::vector<SurfaceSample> samples;
+    for (int b = 0; b < kBands; ++b) {
+        const double y = radius * (-1.0 + (2.0 * b + 1.0) / kBands);
+        for (int k = 0; k < kAround; ++k) {
+            const dvec3 ring = onRim(k, kAround, std::sqrt(radius * radius - y * y), y);
+            samples.push_back({ring, 1.0});
+        }
+    }
+    return samples;
+}
+
+std::vector<SurfaceSample> cylinderSamples(double radius, double height)
+{
+    constexpr int kAround = 16, kRows = 4, kRings = 3;
+    std::vector<SurfaceSample> samples;
+    const double side = 2.0 * std::numbers::pi * radius * height / (kAround * kRows);
+    for (int row = 0; row < kRows; ++row)
+        for (int k = 0; k < kAround; ++k)
+            samples.push_back({onRim(k, kAround, radius, ((row + 0.5) / kRows - 0.5) * height), side});
+    for (const double y : {-0.5 * height, 0.5 * height})
+        for (int ring = 0; ring < kRings; ++ring) {
+            // Rings of equal area on the cap: radii between sqrt(ring / kRings) R and the next.
+            const double inner = radius * std::sqrt(double(ring) / kRings), outer = radius * std::sqrt(double(ring + 1) / kRings);
+            const double area = std::numbers::pi * (outer * outer - inner * inner) / kAround;
+            for (int k = 0; k < kAround; ++k)
+                samples.push_back({onRim(k, kAround, 0.5 * (inner + outer), y), area});
+        }
+    return samples;
+}
+
+std::vector<SurfaceSample> meshSamples(const Shape& shape)
+{
+    std::vector<SurfaceSample> samples;
+    for (std::size_t t = 0; t + 2 < shape.triangles.size(); t += 3) {
+        const dvec3 &a = shape.vertices[shape.triangles[t]], &b = shape.vertices[shape.triangles[t + 1]],
+                    &c = shape.vertices[shape.triangles[t + 2]];
+        samples.push_back({(a + b + c) / 3.0, 0.5 * glm::length(glm::cross(b - a, c - a))});
+    }
+    return samples;
+}
+
+} // namespace
+
+std::vector<SurfaceSample> surfaceSamplesOf(const Shape& shape)
+{
+    switch (shape.type) {
+    case ShapeType::Box: return shared(boxSamples(shape.size));
+    case ShapeType::Sphere: return shared(sphereSamples(shape.radius));
+    case ShapeType::Cylinder: return shared(cylinderSamples(shape.radius, shape.height));
+    case ShapeType::Mesh: return shared(meshSamples(shape));
+    }
+    return {};
+}
+
+namespace {
+
 /// Triangles with their own vertices (flat shading): each face's normal at its three corners.
 struct MeshBuilder {
     std::vector<glm::vec3> positions, normals;

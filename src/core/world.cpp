@@ -182,12 +182,21 @@ dvec3 World::aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) co
     return f / b.getMass();
 }
 
-BodyStates World::currentStates(std::vector<State>& storage) const
+BodyStates World::currentStates(std::vector<State>& storage, std::vector<Pose>& poses) const
 {
     storage.resize(m_bodies.size());
     for (std::size_t i = 0; i < m_bodies.size(); ++i)
         storage[i] = m_bodies[i]->getState();
-    return BodyStates{m_bodies, storage, {}, {}, {}};
+    poses.clear();
+    if (hasRigidBodies()) {
+        poses.resize(m_bodies.size());
+        for (std::size_t i = 0; i < m_bodies.size(); ++i)
+            if (isRigid(i)) {
+                const auto& rigid = static_cast<const RigidBody&>(*m_bodies[i]);
+                poses[i] = Pose{rigid.getOrientation(), rigid.getAngularVelocity()};
+            }
+    }
+    return BodyStates{m_bodies, storage, {}, {}, poses};
 }
 
 dvec3 World::acceleration(std::size_t i, const dvec3& x, const dvec3& v) const
@@ -196,7 +205,8 @@ dvec3 World::acceleration(std::size_t i, const dvec3& x, const dvec3& v) const
     if (b.isFixed())
         return dvec3(0.0);
     std::vector<State> states;
-    BodyStates in = currentStates(states);
+    std::vector<Pose> poses;
+    BodyStates in = currentStates(states, poses);
     states[i] = State{x, v};
     std::vector<std::uint8_t> wanted(m_bodies.size(), 0);
     wanted[i] = 1;
@@ -236,7 +246,8 @@ double World::kineticEnergy(std::size_t i) const
 double World::potentialEnergy(std::size_t i) const
 {
     std::vector<State> states;
-    const BodyStates in = currentStates(states);
+    std::vector<Pose> poses;
+    const BodyStates in = currentStates(states, poses);
     double e = 0.0;
     for (const auto& force : m_forces)
         e += force->potentialEnergyShare(i, in);
@@ -246,7 +257,8 @@ double World::potentialEnergy(std::size_t i) const
 std::vector<double> World::energies() const
 {
     std::vector<State> states;
-    const BodyStates in = currentStates(states);
+    std::vector<Pose> poses;
+    const BodyStates in = currentStates(states, poses);
     std::vector<double> e(m_bodies.size());
     for (std::size_t i = 0; i < m_bodies.size(); ++i) {
         e[i] = kineticEnergy(i);
@@ -259,7 +271,8 @@ std::vector<double> World::energies() const
 double World::totalPotentialEnergy() const
 {
     std::vector<State> states;
-    const BodyStates in = currentStates(states);
+    std::vector<Pose> poses;
+    const BodyStates in = currentStates(states, poses);
     double e = 0.0;
     for (const auto& force : m_forces)
         e += force->totalPotentialEnergy(in);

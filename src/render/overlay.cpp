@@ -127,7 +127,10 @@ void drawLegend(const World& world, const std::string& sceneName, double dt, dou
             else
                 ImGui::Text("%s  (%s)", body.getName().c_str(), integrator.c_str());
         }
-        if (massesDiffer)
+        bool balls = false; // particles, drawn as balls sized by mass (a rigid body is drawn as its shape)
+        for (const std::size_t i : loose)
+            balls = balls || !world.isRigid(i);
+        if (massesDiffer && balls)
             ImGui::TextDisabled("balls of one density: the heavier, the larger");
         if (shown < loose.size())
             ImGui::Text("... and %zu more", loose.size() - shown);

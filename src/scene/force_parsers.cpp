@@ -18,7 +18,7 @@ std::size_t readParticle(ObjectReader& reader, const std::string& key, const std
 {
     const auto index = world.findBody(name);
     if (!index)
-        reader.fail(key, fmt::format("no particle named '{}'", name));
+        reader.fail(key, fmt::format("no particle or rigid body named '{}'", name));
     return *index;
 }
 
@@ -30,6 +30,8 @@ std::unique_ptr<Force> parseTwoBodySpring(ObjectReader& reader, World& world)
         reader.fail("particle", "give either \"particle\" (with an anchor) or \"particles\" (two of them), not both");
     if (reader.has("anchor"))
         reader.fail("anchor", "a spring between two particles has no anchor");
+    if (reader.has("attachment"))
+        reader.fail("attachment", "a spring between two particles ties their centres (an attachment is a rigid body's)");
     std::vector<std::string> names;
     const Json& value = reader.raw("particles");
     if (value.is_array())
@@ -64,12 +66,16 @@ std::unique_ptr<Force> parseSpring(ObjectReader& reader, World& world)
     const double stiffness = reader.positive("stiffness");
     const double restLength = reader.nonNegative("rest_length", 0.0);
     const double damping = reader.nonNegative("damping", 0.0);
-    return std::make_unique<Spring>(index, anchor, stiffness, restLength, damping);
+    const dvec3 attachment = reader.vec3("attachment", dvec3(0.0));
+    if (attachment != dvec3(0.0) && !world.isRigid(index))
+        reader.fail("attachment", fmt::format("'{}' is a particle, a point: only a rigid body has points to tie a "
+                                              "spring to", reader.string("particle")));
+    return std::make_unique<Spring>(index, anchor, stiffness, restLength, damping, attachment);
 }
 
 std::unique_ptr<Force> parseDrag(ObjectReader& reader, World&)
 {
-    return std::make_unique<Drag>(reader.nonNegative("coefficient"));
+    return std::make_unique<Drag>(reader.nonNegative("coefficient"), reader.nonNegative("angular_coefficient", 0.0));
 }
 
 template <class Enum>
@@ -154,8 +160,8 @@ std::unique_ptr<Force> parseBlowDryer(ObjectReader& reader, World& world)
 const std::vector<ForceType>& forceTypes()
 {
     static const std::vector<ForceType> types{
-        {"spring", &parseSpring, {"particle", "particles", "anchor", "stiffness", "rest_length", "damping"}},
-        {"drag", &parseDrag, {"coefficient"}},
+        {"spring", &parseSpring, {"particle", "particles", "anchor", "stiffness", "rest_length", "damping", "attachment"}},
+        {"drag", &parseDrag, {"coefficient", "angular_coefficient"}},
         {"blow-dryer", &parseBlowDryer,
          {"nozzle", "axis", "height", "nozzle_radius", "top_radius", "strength", "axial_falloff", "radial_falloff",
           "direction", "air_speed", "axis_pull", "grille_depth"}},

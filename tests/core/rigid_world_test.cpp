@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "pba/blow_dryer.hpp"
 #include "pba/forces.hpp"
 
 using namespace pba;
@@ -250,4 +251,88 @@ TEST(RigidWorld, ARigidBodyOnATwoBodySpringIsRefusedByName)
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find("'crate'"), std::string::npos) << e.what();
     }
+}
+
+namespace {
+
+/// The blow dryer's wrench on one rigid body at rest at its current pose.
+Wrench dryerWrench(const RigidBody& body, const BlowDryerField& field)
+{
+    std::vector<ClonePtr<Body>> bodies;
+    bodies.emplace_back(body.clone());
+    const std::vector<State> states{body.getState()};
+    const std::vector<Pose> poses{Pose{body.getOrientation(), body.getAngularVelocity()}};
+    std::vector<dvec3> forces(1, dvec3(0.0)), torques(1, dvec3(0.0));
+    Accumulators out{forces, torques};
+    BlowDryer(field).accumulate(BodyStates{bodies, states, {}, {}, poses}, out);
+    return {forces[0], torques[0]};
+}
+
+BlowDryerField testJet()
+{
+    BlowDryerField f;
+    f.height = 3.0;
+    f.nozzleRadius = 0.2;
+    f.topRadius = 1.2;
+    f.strength = 50.0;
+    f.direction = FlowDirection::ConeFlow;
+    return f;
+}
+
+} // namespace
+
+// The dryer acts over the surface: a ball centred on the jet's axis feels no torque, one off the
+// axis does, and a small body feels what a particle at its centre would.
+TEST(RigidWorld, DryerOverTheSurfaceTurnsOnlyWhatIsOffTheAxis)
+{
+    const BlowDryerField jet = testJet();
+    RigidBody ball(Shape::sphere(0.2), 100.0);
+    ball.setOrientation(glm::angleAxis(0.7, glm::normalize(dvec3(1.0, 2.0, 3.0))));
+    ball.setPos(dvec3(0.0, 1.0, 0.0));
+    const Wrench onAxis = dryerWrench(ball, jet);
+    EXPECT_GT(onAxis.force.y, 1.0);
+    EXPECT_LT(glm::length(onAxis.torque), 1e-12 * glm::length(onAxis.force));
+    ball.setPos(dvec3(0.35, 1.0, 0.0));
+    EXPECT_GT(glm::length(dryerWrench(ball, jet).torque), 1e-3 * glm::length(onAxis.force) * 0.2);
+    RigidBody box(Shape::box(dvec3(0.3, 0.1, 0.2)), 100.0);
+    box.setPos(dvec3(0.4, 1.0, 0.1));
+    EXPECT_GT(glm::length(dryerWrench(box, jet).torque), 1e-3);
+    RigidBody speck(Shape::box(dvec3(1e-4)), 100.0);
+    speck.setPos(dvec3(0.3, 1.2, -0.1));
+    const dvec3 point = blowDryerForce(jet, speck.getPos());
+    EXPECT_LT(glm::length(dryerWrench(speck, jet).force - point), 1e-3 * glm::length(point));
+}
+
+// Tied by a corner to an anchored spring, a box swings and twists; with no damping its energy
+// (kinetic with the spin, gravity's and the spring's) stays constant to RK4's accuracy.
+TEST(RigidWorld, BoxOnASpringAtACornerSwingsTwistsAndKeepsItsEnergy)
+{
+    World world = roomWorld();
+    RigidBody& box = addRigid(world, Shape::box(dvec3(0.3, 0.2, 0.1)), 300.0, dvec3(0.4, 2.5, 0.2));
+    box.setIntegrator(Integrator::RK4);
+    world.addForce(std::make_unique<Spring>(0, dvec3(0.0, 3.5, 0.0), 200.0, 0.6, 0.0, dvec3(0.15, 0.1, 0.05)));
+    const double e0 = world.totalEnergy();
+    double worst = 0.0, spin = 0.0;
+    for (int n = 0; n < 3000; ++n) {
+        world.step(0.001);
+        worst = std::max(worst, std::abs(world.totalEnergy() / e0 - 1.0));
+        spin = std::max(spin, glm::length(box.getAngularVelocity()));
+    }
+    EXPECT_LT(worst, 1e-6);
+    EXPECT_GT(spin, 1.0); // it twists
+}
+
+// Angular drag -k omega on a ball spinning in zero gravity: omega(t) = omega0 exp(-k t / I).
+TEST(RigidWorld, AngularDragSlowsASpinExponentially)
+{
+    World world = roomWorld(0.0);
+    RigidBody& ball = addRigid(world, Shape::sphere(0.3), 500.0, dvec3(0.0, 2.0, 0.0));
+    ball.setIntegrator(Integrator::RK4);
+    ball.setAngularVelocity(dvec3(0.0, 5.0, 1.0));
+    const double k = 0.4, inertia = ball.getInertiaBody()[0][0];
+    world.addForce(std::make_unique<Drag>(0.0, k));
+    for (int n = 0; n < 1000; ++n)
+        world.step(0.001);
+    const dvec3 expected = dvec3(0.0, 5.0, 1.0) * std::exp(-k * world.time() / inertia);
+    EXPECT_LT(glm::length(ball.getAngularVelocity() - expected), 1e-9 * glm::length(expected));
 }

@@ -131,7 +131,7 @@ INSTANTIATE_TEST_SUITE_P(
                              "particles[0].position", "outside"},
                     BadScene{R"({"forces": [{"type": "magnet"}]})", "forces[0].type", "unknown force type"},
                     BadScene{R"({"particles": [{"name": "a", "position": [0, 1, 0]}], "forces": [{"type": "spring", "particle": "zz", "anchor": [0,0,0], "stiffness": 1}]})",
-                             "forces[0].particle", "no particle named"},
+                             "forces[0].particle", "no particle or rigid body named"},
                     BadScene{R"({"particles": [{"name": "a", "position": [0, 1, 0]}], "forces": [{"type": "spring", "particle": "a", "anchor": [0,0,0], "stiffness": -1}]})",
                              "forces[0].stiffness", "must be positive"},
                     BadScene{R"({"forces": [{"type": "drag", "coefficient": -1}]})", "forces[0].coefficient",
@@ -244,7 +244,7 @@ TEST(SceneLoader, AnUnknownKeyIsReportedFirstWithTheKnownKeyItIsCloseTo)
               R"(scene.json: forces[0].type: unknown force type 'sprign' (did you mean "spring"?))");
     // A key of another force type is unknown in this one.
     EXPECT_EQ(errorOf(R"({"forces": [{"type": "drag", "coefficient": 1, "stiffness": 2}]})"),
-              "scene.json: forces[0].stiffness: unknown key (expected one of: type, coefficient)");
+              "scene.json: forces[0].stiffness: unknown key (expected one of: type, angular_coefficient, coefficient)");
 }
 
 // Springs tie named particles: a scene with swarms takes them, and the swarm feels nothing of
