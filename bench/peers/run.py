@@ -121,12 +121,13 @@ def time_windows(args, n, workers, steps, rates):
     """Rounds of one window per implementation, in turn (the order rotates each round)."""
     for r in range(args.windows):
         turn = workers[r % len(workers):] + workers[:r % len(workers)]
+        taken = {}
         for w in turn:
             if w.name == "numpy" and r >= args.numpy_windows:
                 continue
-            answer = w.ask(f"window {steps[w.name]}")
-            rates.setdefault(w.name, []).append(answer["particle_steps_per_s"])
-        log(f"  round {r + 1}: " + ", ".join(f"{name} {v[-1]:.3g}" for name, v in rates.items()))
+            taken[w.name] = w.ask(f"window {steps[w.name]}")["particle_steps_per_s"]
+            rates.setdefault(w.name, []).append(taken[w.name])
+        log(f"  round {r + 1}: " + ", ".join(f"{name} {rate:.3g}" for name, rate in taken.items()))
 
 
 def steps_for(args, n):
