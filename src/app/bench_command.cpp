@@ -559,11 +559,12 @@ void addBenchCommand(CLI::App& root, Action& selected)
     bench->add_option("--sizes", options->sizes, "Comma-separated particle counts (default 1e3,1e5,1e6,1e7)")
         ->delimiter(',')
         ->option_text("N,...");
-    bench->add_flag("--peer-worker", options->peerWorker,
+    CLI::Option* peerWorker = bench->add_flag("--peer-worker", options->peerWorker,
                     "For bench/peers/run.py: only the semi-implicit Euler swarm on all cores at the one size "
                     "of --sizes, its windows taken on request from standard input (see bench/peers/run.py)");
     bench->add_option("--phase", options->phase, "With --peer-worker: flight (from t = 0) or landed (from t = 2 s)")
         ->check(CLI::IsMember({"flight", "landed"}))
+        ->needs(peerWorker)
         ->option_text("PHASE");
     bench->footer("\nThe workload is the blow-dryer-swarm scene (gravity, the blow dryer, the room's walls and the\n"
                   "hole) at dt = 0.002, each swarm row in two phases: in flight, from the scene's first state,\n"
