@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every Debian package pba needs to build, test, render and plot. Idempotent.
+# Installs every Debian package pba needs to build, test, render and plot (and the NumPy and Numba
+# of bench/peers, whose validation is a test). Idempotent.
 # Run as root (or through sudo) on Debian 12.
 set -euo pipefail
 packages=(
@@ -9,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth ffmpeg gnuplot-nox
   clang-14 libfuzzer-14-dev libclang-rt-14-dev
+  python3-numba python3-numpy
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <functional>
+#include <iostream>
 #include <limits>
 #include <memory>
+#include <sstream>
 #include <thread>
 
 #include <fmt/format.h>
@@ -15,6 +18,7 @@
 #include <tbb/task_arena.h>
 
 #include "command.hpp"
+#include "pba/blow_dryer.hpp"
 #include "pba/scene/scene.hpp"
 #include "pba/spring_network.hpp"
 
@@ -29,6 +33,8 @@ struct BenchOptions {
     bool quick = false;
     int windows = 0; ///< 0: the default (6, one with --quick)
     std::vector<double> sizes;
+    bool peerWorker = false; ///< --peer-worker: one row, windows on request (bench/peers/run.py)
+    std::string phase = "flight";
 };
 
 struct Row {
@@ -376,8 +382,95 @@ std::string table(const std::vector<Row>& rows)
     return out;
 }
 
+/// Statistics of the swarm the peers are validated against (bench/peers/): the mean height, the
+/// fractions of the particles in the dryer's cone (insideBlowDryerCone, in double) and in its
+/// hole's shaft, and an order-free checksum of the state's bits (the sum of the six arrays' floats
+/// read as 32-bit integers, modulo 2^64), which two implementations share only when their states
+/// are the same to the bit.
+nlohmann::json swarmStatistics(const World& world, double t)
+{
+    const Swarm& swarm = world.swarm(0);
+    const BlowDryerField field = blowDryers(world).front().field;
+    const std::size_t n = swarm.size();
+    double height = 0.0;
+    std::size_t inCone = 0, inShaft = 0;
+    std::uint64_t bits = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec3<float> x = swarm.position(i), v = swarm.velocity(i);
+        height += double(x.y);
+        inCone += insideBlowDryerCone(field, dvec3(x)) ? 1 : 0;
+        inShaft += insideBlowDryerShaft(field, dvec3(x)) ? 1 : 0;
+        for (const float c : {x.x, x.y, x.z, v.x, v.y, v.z}) {
+            std::uint32_t word;
+            std::memcpy(&word, &c, sizeof word);
+            bits += word;
+        }
+    }
+    const double count = double(std::max<std::size_t>(n, 1));
+    return {{"t", t}, {"n", n}, {"mean_height", height / count}, {"cone_fraction", double(inCone) / count},
+            {"shaft_fraction", double(inShaft) / count}, {"state_bits_sum", bits}};
+}
+
+/// `pba bench --peer-worker`: the semi-implicit Euler swarm of blow-dryer-swarm on all cores, at
+/// the one size given, from the phase's start state (the scene's first state, or its state at
+/// kLandedTime), driven line by line from standard input by bench/peers/run.py, which takes
+/// its windows in turn with the Python peers' (its own process, so interleaved across them):
+///   window STEPS   restart from the start state, time STEPS steps, print {"seconds", "steps", ...}
+///   stats          print swarmStatistics of the current state
+/// Each answer is one JSON line; the first line, {"ready": ...}, follows the setup.
+int runPeerWorker(const BenchOptions& options)
+{
+    if (options.sizes.size() != 1)
+        throw UsageError("--peer-worker: give exactly one size with --sizes");
+    const double size = options.sizes.front();
+    if (!(size >= 1.0 && size <= 1e8 && size == std::floor(size)))
+        throw UsageError(fmt::format("--sizes: the size must be a whole number from 1 to 1e8, got {}", size));
+    if (options.phase != "flight" && options.phase != "landed")
+        throw UsageError(fmt::format("--phase: flight or landed, got '{}'", options.phase));
+    const auto n = static_cast<std::size_t>(size);
+    const bool landed = options.phase == "landed";
+    const double startTime = landed ? kLandedTime : 0.0;
+    const World first = landed ? landedWorld(n) : swarmWorld(n, Integrator::SemiImplicitEuler, 0);
+    World world = first;
+    double t = startTime;
+    const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    fmt::print("{}\n", nlohmann::json{{"ready", true}, {"n", n}, {"phase", options.phase}, {"t", t},
+                                      {"threads", cores}}.dump());
+    std::fflush(stdout);
+    for (std::string line; std::getline(std::cin, line);) {
+        std::istringstream words(line);
+        std::string command;
+        words >> command;
+        nlohmann::json answer;
+        if (command == "window") {
+            long steps = 0;
+            if (!(words >> steps) || steps < 1)
+                throw UsageError(fmt::format("--peer-worker: 'window STEPS' with STEPS >= 1, got '{}'", line));
+            world = first;
+            const auto start = Clock::now();
+            for (long k = 0; k < steps; ++k)
+                world.step(0.002);
+            const double elapsed = seconds(start);
+            t = startTime + 0.002 * double(steps);
+            answer = {{"seconds", elapsed}, {"steps", steps}, {"t", t},
+                      {"particle_steps_per_s", double(n) * double(steps) / elapsed}};
+        } else if (command == "stats") {
+            answer = swarmStatistics(world, t);
+        } else if (command.empty()) {
+            continue;
+        } else {
+            throw UsageError(fmt::format("--peer-worker: unknown command '{}' (window STEPS, stats)", line));
+        }
+        fmt::print("{}\n", answer.dump());
+        std::fflush(stdout);
+    }
+    return kExitSuccess;
+}
+
 int runBench(const BenchOptions& options)
 {
+    if (options.peerWorker)
+        return runPeerWorker(options);
     std::vector<std::size_t> sizes;
     for (double s : options.sizes.empty() ? std::vector<double>{1e3, 1e5, 1e6, 1e7} : options.sizes) {
         // A swarm of the scene's particles: a whole number of them, at least one, at most what
@@ -466,6 +559,13 @@ void addBenchCommand(CLI::App& root, Action& selected)
     bench->add_option("--sizes", options->sizes, "Comma-separated particle counts (default 1e3,1e5,1e6,1e7)")
         ->delimiter(',')
         ->option_text("N,...");
+    CLI::Option* peerWorker = bench->add_flag("--peer-worker", options->peerWorker,
+                    "For bench/peers/run.py: only the semi-implicit Euler swarm on all cores at the one size "
+                    "of --sizes, its windows taken on request from standard input (see bench/peers/run.py)");
+    bench->add_option("--phase", options->phase, "With --peer-worker: flight (from t = 0) or landed (from t = 2 s)")
+        ->check(CLI::IsMember({"flight", "landed"}))
+        ->needs(peerWorker)
+        ->option_text("PHASE");
     bench->footer("\nThe workload is the blow-dryer-swarm scene (gravity, the blow dryer, the room's walls and the\n"
                   "hole) at dt = 0.002, each swarm row in two phases: in flight, from the scene's first state,\n"
                   "and landed, from its state at t = 2 s (most of the rain on the floor, where the collision\n"
