@@ -46,7 +46,8 @@ void addSceneOptions(CLI::App& command, SceneOptions& options, const std::string
     command.add_option("--duration", options.duration, "Simulated time in seconds (overrides the scene)")
         ->type_name("SECONDS");
     command.add_option("--integrator", options.integrator,
-                       "forward-euler, semi-implicit-euler, velocity-verlet or rk4, for every moving particle")
+                       "forward-euler, semi-implicit-euler, velocity-verlet, rk4 or implicit-gyroscopic (semi-implicit Euler with the "
+                       "implicit gyroscopic step for a rigid body's rotation), for every moving body")
         ->type_name("NAME");
     command.add_option("--collision", options.collision,
                        "Collision response: exact (time of impact), reflect (mirror back) or clamp (put back)")
@@ -79,7 +80,8 @@ Scene loadSceneWithOverrides(const SceneOptions& options)
         const auto integrator = integratorFromName(*options.integrator);
         if (!integrator)
             throw UsageError(fmt::format("--integrator: unknown integrator '{}' (expected forward-euler, "
-                                         "semi-implicit-euler, velocity-verlet or rk4)", *options.integrator));
+                                         "semi-implicit-euler, velocity-verlet, rk4 or implicit-gyroscopic)",
+                                         *options.integrator));
         for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
             if (!scene.world.body(i).isFixed())
                 scene.world.body(i).setIntegrator(*integrator);

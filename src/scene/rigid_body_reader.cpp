@@ -125,10 +125,14 @@ void readRigidBody(const Json& value, const std::string& path, const std::string
     const Shape shape = readShape(reader, directory);
     if (reader.has("density") && reader.has("mass"))
         reader.fail("mass", "give a density or a mass, not both");
-    if (reader.has("mass"))
-        body->setShapeWithMass(shape, reader.positive("mass"));
-    else
-        body->setShape(shape, reader.positive("density", 1000.0));
+    try {
+        if (reader.has("mass"))
+            body->setShapeWithMass(shape, reader.positive("mass"));
+        else
+            body->setShape(shape, reader.positive("density", 1000.0));
+    } catch (const std::invalid_argument& error) { // sizes whose mass or inertia overflow, or underflow to zero
+        reader.fail(reader.has("mass") ? "mass" : "density", fmt::format("gives no usable mass properties: {}", error.what()));
+    }
     body->setPos(reader.vec3("position"));
     body->setOrientation(readOrientation(reader));
     body->setVel(reader.vec3("velocity", dvec3(0.0)));

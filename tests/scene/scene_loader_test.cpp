@@ -100,6 +100,7 @@ TEST_P(BadSceneTest, IsReportedWithFieldAndReason)
 #define D(change) "@forces{" change "}"
 #define S(change) "@swarms{" change "}"
 #define P(extra) R"({"particles": [{"name": "a", "position": [0, 1, 0])" extra "}]}"
+#define R(extra) R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "rigid_bodies": [{"name": "r", "position": [0, 1, 0])" extra "}]}"
 INSTANTIATE_TEST_SUITE_P(
     SceneLoader, BadSceneTest,
     testing::Values(BadScene{"{", "(document)", "malformed JSON"},
@@ -165,10 +166,98 @@ INSTANTIATE_TEST_SUITE_P(
                     BadScene{P(R"(, "mass": 1, "mass": 2)"), "(document)", "particles: duplicate key 'mass'"},
                     BadScene{P(R"(, "velocity": [1e300, 0, 0])"), "particles[0].velocity", "kinetic energy"},
                     BadScene{R"({"particles": [{"name": "a\tb", "position": [0, 1, 0]}]})", "particles[0].name",
-                             "control character"}));
+                             "control character"},
+                    BadScene{R(R"(, "shape": {"type": "cone"})"), "rigid_bodies[0].shape.type", "unknown shape 'cone'"},
+                    BadScene{R(""), "rigid_bodies[0].shape", "missing"},
+                    BadScene{R(R"(, "shape": {"type": "box", "size": [1, 0, 1]})"), "rigid_bodies[0].shape.size",
+                             "every side must be positive"},
+                    BadScene{R(R"(, "shape": {"type": "sphere", "radius": -1})"), "rigid_bodies[0].shape.radius",
+                             "must be positive"},
+                    BadScene{R(R"(, "shape": {"type": "cylinder", "radius": 1})"), "rigid_bodies[0].shape.height", "missing"},
+                    BadScene{R(R"(, "shape": {"type": "box", "size": [1, 1, 1], "radius": 2})"),
+                             "rigid_bodies[0].shape.radius", "unknown key"},
+                    BadScene{R(R"(, "shape": {"type": "mesh", "path": "die.obj"})"), "rigid_bodies[0].shape.path",
+                             "cannot name a mesh file"},
+                    BadScene{R(R"(, "shape": {"type": "sphere", "radius": 0.1}, "orientation": [0, 0, 0, 0])"),
+                             "rigid_bodies[0].orientation", "must not be zero"},
+                    BadScene{R(R"(, "shape": {"type": "sphere", "radius": 0.1}, "orientation": [1, 0, 0])"),
+                             "rigid_bodies[0].orientation", "four finite numbers"},
+                    BadScene{R(R"(, "shape": {"type": "sphere", "radius": 0.1}, "mass": 1, "density": 2)"),
+                             "rigid_bodies[0].mass", "not both"},
+                    BadScene{R(R"(, "shape": {"type": "box", "size": [1e200, 1e200, 1e200]})"), "rigid_bodies[0].density",
+                             "no usable mass properties"},
+                    BadScene{R(R"(, "shape": {"type": "sphere", "radius": 0.1}, "friction": -1)"),
+                             "rigid_bodies[0].friction", "must not be negative"},
+                    BadScene{R(R"(, "shape": {"type": "sphere", "radius": 0.1}, "restitution": 2)"),
+                             "rigid_bodies[0].restitution", "must be in [0, 1]"},
+                    BadScene{R(R"(, "shape": {"type": "sphere", "radius": 0.1}, "angular_velocity": [1e300, 0, 0])"),
+                             "rigid_bodies[0].angular_velocity", "not finite"},
+                    BadScene{R(R"(, "shape": {"type": "sphere", "radius": 0.1}, "position": [9, 1, 0])"), "(document)",
+                             "duplicate key 'position'"},
+                    BadScene{R"({"particles": [{"name": "a", "position": [0, 1, 0]}], "forces": [{"type": "spring", "particle": "a", "anchor": [0,2,0], "stiffness": 1, "attachment": [0.1, 0, 0]}]})",
+                             "forces[0].attachment", "only a rigid body"}));
+#undef R
 #undef S
 #undef D
 #undef P
+
+// A rigid body of each shape, an OBJ mesh read relative to the scene file, and the defaults.
+TEST(SceneLoader, RigidBodiesOfEveryShapeLoadWithTheirKeys)
+{
+    const std::string dir = testing::TempDir();
+    std::ofstream(dir + "/pba_tetra.obj") << "# a tetrahedron\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                             "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2/1/1 3/1/1 4/1/1\n";
+    const std::string path = dir + "/pba_rigid_scene.json";
+    std::ofstream(path) << R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "rigid_bodies": [
+        {"name": "box", "shape": {"type": "box", "size": [0.2, 0.4, 0.6]}, "density": 500, "position": [0, 1, 0],
+         "orientation": [2, 0, 0, 0], "velocity": [1, 2, 3], "angular_velocity": [0, 1, 0], "restitution": 0.3,
+         "friction": 0.7, "integrator": "implicit-gyroscopic"},
+        {"name": "ball", "shape": {"type": "sphere", "radius": 0.1}, "mass": 2, "position": [1, 1, 0]},
+        {"name": "can", "shape": {"type": "cylinder", "radius": 0.1, "height": 0.3}, "position": [-1, 1, 0], "fixed": true},
+        {"name": "tetra", "shape": {"type": "mesh", "path": "pba_tetra.obj"}, "position": [0, 2, 1]}]})";
+    const Scene scene = loadScene(path);
+    const World& world = scene.world;
+    ASSERT_EQ(world.bodyCount(), 4u);
+    for (std::size_t i = 0; i < 4; ++i)
+        EXPECT_TRUE(world.isRigid(i));
+    const auto& box = static_cast<const RigidBody&>(world.body(0));
+    EXPECT_NEAR(box.getMass(), 500.0 * 0.2 * 0.4 * 0.6, 1e-12);
+    EXPECT_EQ(box.getOrientation(), dquat(1.0, 0.0, 0.0, 0.0)); // normalised
+    EXPECT_EQ(box.getCor(), 0.3);
+    EXPECT_EQ(box.getFriction(), 0.7);
+    EXPECT_EQ(box.getIntegrator(), Integrator::ImplicitGyroscopic);
+    EXPECT_NEAR(glm::length(box.getAngularVelocity() - dvec3(0.0, 1.0, 0.0)), 0.0, 1e-12);
+    const auto& ball = static_cast<const RigidBody&>(world.body(1));
+    EXPECT_EQ(ball.getMass(), 2.0);
+    EXPECT_EQ(ball.getCor(), 0.5);      // the default
+    EXPECT_EQ(ball.getFriction(), 0.5); // the default
+    EXPECT_TRUE(world.body(2).isFixed());
+    const auto& tetra = static_cast<const RigidBody&>(world.body(3));
+    EXPECT_NEAR(tetra.getMass(), 1000.0 / 6.0, 1e-9); // the default density, 1000 kg/m^3
+    EXPECT_EQ(tetra.getShape().type, ShapeType::Mesh);
+}
+
+// A mesh that is not closed, or an OBJ line that cannot be read, is refused naming the file.
+TEST(SceneLoader, ABadMeshFileIsRefusedWithTheReason)
+{
+    const std::string dir = testing::TempDir();
+    std::ofstream(dir + "/pba_open.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::ofstream(dir + "/pba_badline.obj") << "v 0 0 0\nv 1 0 0\nf 1 2 9\n";
+    for (const auto& [file, reason] : {std::pair{"pba_open.obj", "closed"}, std::pair{"pba_badline.obj", "line 3"},
+                                       std::pair{"pba_missing.obj", "cannot be opened"}}) {
+        const std::string path = dir + "/pba_bad_mesh_scene.json";
+        std::ofstream(path) << R"({"rigid_bodies": [{"name": "m", "shape": {"type": "mesh", "path": ")" << file
+                            << R"("}, "position": [0, 1, 0]}]})";
+        try {
+            loadScene(path);
+            FAIL() << file;
+        } catch (const SceneError& e) {
+            EXPECT_EQ(e.field(), "rigid_bodies[0].shape.path") << e.what();
+            EXPECT_NE(e.reason().find(file), std::string::npos) << e.what();
+            EXPECT_NE(e.reason().find(reason), std::string::npos) << e.what();
+        }
+    }
+}
 
 // Text after a NUL byte was silently ignored; swarms that cannot fit in memory were made
 // anyway, and killed by the kernel or std::bad_alloc long after.
