@@ -326,3 +326,33 @@ TEST(IntegratorPlots, PanelsFitTheNumberOfIntegrators)
     const std::string script = study::plotScript(freshDir("two_panels"), config, result);
     EXPECT_NE(script.find("set multiplot layout 1,2 title 'height"), std::string::npos) << script;
 }
+
+// On a scene with rigid bodies `pba compare` studies rotation: a row per integrator and dt, the
+// drift and flip plots, the period's plot where the exact period is known; --collisions is
+// refused there (rigid bodies have no collision responses to compare).
+TEST(PbaCompare, RigidSceneGetsTheRotationStudy)
+{
+    const auto dir = freshDir("compare-rigid");
+    const CommandResult r = runPba("compare tennis-racket --duration 7 --dt 0.002,0.01 --out " + (dir / "racket").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("flip period error"), std::string::npos) << r.out;
+    std::istringstream csv(readFile(dir / "racket/results.csv"));
+    std::string line;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "integrator,dt,body,steps,energy_ratio_end,max_energy_drift,max_momentum_drift,flips,flip_period,"
+                    "exact_period,blew_up_at");
+    int rows = 0;
+    while (std::getline(csv, line))
+        ++rows;
+    EXPECT_EQ(rows, 10); // five integrators, two dt
+    for (const char* picture : {"drift.png", "flip.png", "period.png"}) {
+        int w = 0, h = 0, channels = 0;
+        stbi_uc* pixels = stbi_load((dir / "racket" / picture).string().c_str(), &w, &h, &channels, 3);
+        EXPECT_NE(pixels, nullptr) << picture;
+        EXPECT_GT(w, 600) << picture;
+        stbi_image_free(pixels);
+    }
+    EXPECT_NE(readFile(dir / "racket/report.md").find("T_exact = 5.86"), std::string::npos);
+    EXPECT_EQ(runPba("compare dice --collisions exact --out " + (dir / "dice").string()).exitCode, 2);
+    EXPECT_FALSE(std::filesystem::exists(dir / "dice"));
+}

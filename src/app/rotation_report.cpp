@@ -1,0 +1,127 @@
+#include "rotation_report.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "atomic_file.hpp"
+#include "csv.hpp"
+#include "gnuplot.hpp"
+#include "study/rotation_plots.hpp"
+
+namespace pba::app {
+
+namespace {
+
+std::string number(double x) { return std::isnan(x) ? "nan" : fmt::format("{}", x); }
+
+const study::RotationRun* findRun(const study::RotationResult& result, Integrator integrator, double dt)
+{
+    for (const auto& r : result.runs)
+        if (r.integrator == integrator && r.dt == dt)
+            return &r;
+    return nullptr;
+}
+
+std::string cell(const study::RotationRun* r, RotationMeasure measure, double exactPeriod)
+{
+    if (!r)
+        return "-";
+    if (!std::isnan(r->blewUpAt))
+        return "blew up";
+    switch (measure) {
+    case RotationMeasure::EnergyDrift: return fmt::format("{:.2e}", r->maxEnergyDrift);
+    case RotationMeasure::MomentumDrift: return fmt::format("{:.2e}", r->maxMomentumDrift);
+    case RotationMeasure::PeriodError:
+        return std::isnan(r->flipPeriod) ? "no flips" : fmt::format("{:+.2e}", r->flipPeriod / exactPeriod - 1.0);
+    }
+    return "?";
+}
+
+} // namespace
+
+std::string rotationTable(const study::RotationConfig& config, const study::RotationResult& result,
+                          RotationMeasure measure, bool markdown)
+{
+    std::string out = markdown ? "| integrator" : fmt::format("{:<21}", "integrator \\ dt");
+    for (double dt : config.dts)
+        out += markdown ? fmt::format(" | {}", dt) : fmt::format("{:>10}", dt);
+    out += markdown ? " |\n|---" : "\n";
+    if (markdown) {
+        for (std::size_t i = 0; i < config.dts.size(); ++i)
+            out += "|---:";
+        out += "|\n";
+    }
+    for (Integrator integrator : config.integrators) {
+        out += markdown ? fmt::format("| {}", integratorName(integrator)) : fmt::format("{:<21}", integratorName(integrator));
+        for (double dt : config.dts) {
+            const std::string value = cell(findRun(result, integrator, dt), measure, result.exactPeriod);
+            out += markdown ? " | " + value : fmt::format("{:>10}", value);
+        }
+        out += markdown ? " |\n" : "\n";
+    }
+    return out;
+}
+
+void writeRotationCsv(const std::filesystem::path& path, const study::RotationResult& result)
+{
+    AtomicFile file(path);
+    auto& out = file.stream();
+    out << "integrator,dt,body,steps,energy_ratio_end,max_energy_drift,max_momentum_drift,flips,flip_period,"
+           "exact_period,blew_up_at\n";
+    for (const auto& r : result.runs)
+        out << fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", integratorName(r.integrator), r.dt, csvField(result.body),
+                           r.steps, number(r.energyRatioEnd), number(r.maxEnergyDrift), number(r.maxMomentumDrift),
+                           r.flips, number(r.flipPeriod), number(result.exactPeriod), number(r.blewUpAt));
+    file.commit();
+}
+
+bool writeRotationPlots(const std::filesystem::path& dir, const study::RotationConfig& config,
+                        const study::RotationResult& result)
+{
+    if (!gnuplotAvailable())
+        return false;
+    ScratchDir scratch("pba-compare");
+    runGnuplot(study::rotationPlotScript(scratch.path(), config, result), scratch.path(), {result.body});
+    for (const char* name : study::kRotationPlotFiles)
+        publish(scratch.path() / name, dir / name);
+    if (!std::isnan(result.exactPeriod))
+        publish(scratch.path() / study::kPeriodPlotFile, dir / study::kPeriodPlotFile);
+    return true;
+}
+
+void writeRotationReport(const std::filesystem::path& path, const study::RotationConfig& config,
+                         const study::RotationResult& result, bool withPlots)
+{
+    AtomicFile file(path);
+    auto& out = file.stream();
+    out << fmt::format("# Rotation study: {}\n\n", config.scene.name);
+    out << fmt::format("Scene `{}`, {} s of simulated time, every integrator at every dt, following the rigid body "
+                       "`{}`. Its energy includes the rotational term 1/2 omega . L; |L| is its angular momentum "
+                       "about its centre of mass, conserved only while no torque acts (no contact, no force at a "
+                       "point). The columns of `results.csv` are described in docs/compare.md.\n\n",
+                       config.scene.name, config.duration, result.body);
+    out << "## Largest energy drift, max |E/E0 - 1|\n\n" << rotationTable(config, result, RotationMeasure::EnergyDrift, true);
+    out << "\n## Largest drift of |L|, max ||L|/|L0| - 1|\n\n"
+        << rotationTable(config, result, RotationMeasure::MomentumDrift, true);
+    if (!std::isnan(result.exactPeriod))
+        out << fmt::format("\n## Flip period against the exact one\n\nSpun near its intermediate axis, a free body "
+                           "flips over and back with the period T = 4 K(k) sqrt(a b c / ((b - a)(2 E c - L^2))) (K the "
+                           "complete elliptic integral of the first kind): here T_exact = {:.6f} s. Each cell is "
+                           "(T - T_exact) / T_exact.\n\n",
+                           result.exactPeriod)
+            << rotationTable(config, result, RotationMeasure::PeriodError, true);
+    else
+        out << "\nNo flip period: the body has two equal moments of inertia, or spins exactly about an axis.\n";
+    out << "\n";
+    if (withPlots) {
+        out << "## Plots\n\n![drift](drift.png)\n\n![flip](flip.png)\n";
+        if (!std::isnan(result.exactPeriod))
+            out << "\n![period](period.png)\n";
+    } else {
+        out << "(No plots: gnuplot is not installed; install the Debian package gnuplot-nox.)\n";
+    }
+    file.commit();
+}
+
+} // namespace pba::app

@@ -1,0 +1,137 @@
+#include "rotation_study.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pba::study {
+
+std::optional<std::size_t> studiedRigidBody(const World& world)
+{
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (world.isRigid(i) && !world.body(i).isFixed())
+            return i;
+    return std::nullopt;
+}
+
+namespace {
+
+/// The principal moments of a body whose inertia is diagonal in its own frame (every built-in
+/// shape's), and which axis is the intermediate one (-1 if two are equal).
+int intermediateAxisOf(const dmat3& inertia)
+{
+    const double m[3] = {inertia[0][0], inertia[1][1], inertia[2][2]};
+    for (int axis = 0; axis < 3; ++axis) {
+        const double a = m[(axis + 1) % 3], c = m[(axis + 2) % 3];
+        if ((a < m[axis] && m[axis] < c) || (c < m[axis] && m[axis] < a))
+            return axis;
+    }
+    return -1;
+}
+
+bool finite(const RigidBody& b)
+{
+    const dvec3 x = b.getPos(), v = b.getVel(), l = b.getAngularMomentum();
+    const dquat q = b.getOrientation();
+    return std::isfinite(x.x + x.y + x.z + v.x + v.y + v.z + l.x + l.y + l.z + q.w + q.x + q.y + q.z);
+}
+
+RotationRun runOne(const Scene& scene, std::size_t body, int axis, Integrator integrator, double dt, double duration)
+{
+    Scene copy = scene;
+    World& world = copy.world;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (!world.body(i).isFixed())
+            world.body(i).setIntegrator(integrator);
+    const auto& b = static_cast<const RigidBody&>(world.body(body));
+    RotationRun run;
+    run.integrator = integrator;
+    run.dt = dt;
+    const double e0 = world.energy(body), l0 = glm::length(b.getAngularMomentum());
+    const auto steps = static_cast<std::uint64_t>(std::llround(duration / dt));
+    const std::uint64_t every = std::max<std::uint64_t>(1, steps / 2000); // about 2000 samples a series
+    const auto omegaAbout = [&] {
+        return axis < 0 ? 0.0 : (glm::transpose(glm::mat3_cast(b.getOrientation())) * b.getAngularVelocity())[axis];
+    };
+    double previous = omegaAbout();
+    std::vector<double> flips;
+    for (std::uint64_t n = 1; n <= steps; ++n) {
+        try {
+            world.step(dt);
+        } catch (const NonFiniteStateError&) {
+            run.blewUpAt = world.time() + dt;
+            break;
+        }
+        if (!finite(b)) {
+            run.blewUpAt = world.time();
+            break;
+        }
+        const double e = world.energy(body) / e0;
+        run.maxEnergyDrift = std::max(run.maxEnergyDrift, std::abs(e - 1.0));
+        if (l0 > 0.0)
+            run.maxMomentumDrift = std::max(run.maxMomentumDrift, std::abs(glm::length(b.getAngularMomentum()) / l0 - 1.0));
+        const double w = omegaAbout();
+        if (w * previous < 0.0) // the crossing, interpolated within the step (not rounded to a step)
+            flips.push_back(world.time() - dt * w / (w - previous));
+        previous = w;
+        if (n % every == 0) {
+            run.t.push_back(world.time());
+            run.energyRatio.push_back(e);
+            run.intermediateOmega.push_back(w);
+        }
+        run.steps = n;
+        run.energyRatioEnd = e;
+    }
+    run.flips = flips.size();
+    // The component changes sign twice a period: a period is the time from one sign change to
+    // the one after next, averaged over all of them.
+    if (flips.size() >= 3)
+        run.flipPeriod = 2.0 * (flips.back() - flips.front()) / double(flips.size() - 1);
+    return run;
+}
+
+} // namespace
+
+double torqueFreeFlipPeriod(const RigidBody& body)
+{
+    const dmat3& inertia = body.getInertiaBody();
+    if (intermediateAxisOf(inertia) < 0)
+        return kNaN;
+    double m[3] = {inertia[0][0], inertia[1][1], inertia[2][2]};
+    std::sort(m, m + 3);
+    double a = m[0];
+    const double b = m[1];
+    double c = m[2];
+    const double e = body.getRotationalKineticEnergy();
+    const double l2 = glm::dot(body.getAngularMomentum(), body.getAngularMomentum());
+    if (l2 > 2.0 * e * b) // the other side of the separatrix: the same formula with a and c swapped
+        std::swap(a, c);
+    const double k2 = (c - b) * (l2 - 2.0 * e * a) / ((b - a) * (2.0 * e * c - l2));
+    // On an axis there is no flip; on the separatrix (k = 1: spinning exactly about the
+    // intermediate axis, to rounding) the period is infinite.
+    if (!(k2 > 0.0 && k2 < 1.0 - 1e-9))
+        return kNaN;
+    return 4.0 * std::comp_ellint_1(std::sqrt(k2)) * std::sqrt(a * b * c / ((b - a) * (2.0 * e * c - l2)));
+}
+
+RotationResult runRotationStudy(const RotationConfig& config, const std::function<void(long, long)>& progress)
+{
+    RotationResult result;
+    const World& world = config.scene.world;
+    const std::optional<std::size_t> body = studiedRigidBody(world);
+    if (!body)
+        return result;
+    const auto& b = static_cast<const RigidBody&>(world.body(*body));
+    result.body = b.getName();
+    result.intermediateAxis = intermediateAxisOf(b.getInertiaBody());
+    result.exactPeriod = torqueFreeFlipPeriod(b);
+    const long total = long(config.integrators.size() * config.dts.size());
+    for (Integrator integrator : config.integrators)
+        for (double dt : config.dts) {
+            result.runs.push_back(runOne(config.scene, *body, result.intermediateAxis, integrator, dt, config.duration));
+            if (progress)
+                progress(long(result.runs.size()), total);
+        }
+    return result;
+}
+
+} // namespace pba::study
