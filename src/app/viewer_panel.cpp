@@ -14,7 +14,8 @@ namespace pba::app {
 
 namespace {
 
-constexpr const char* kIntegratorNames[] = {"forward-euler", "semi-implicit-euler", "velocity-verlet", "rk4"};
+constexpr const char* kIntegratorNames[] = {"forward-euler", "semi-implicit-euler", "velocity-verlet", "rk4",
+                                            "implicit-gyroscopic"};
 constexpr const char* kFalloffNames[] = {"linear", "quadratic", "smooth"};
 constexpr const char* kDirectionNames[] = {"vertical", "cone-flow"};
 constexpr const char* kResponseNames[] = {"exact", "reflect", "clamp"}; // in CollisionResponse's order
@@ -111,15 +112,25 @@ void particlesSection(ViewerState& state)
         ImGui::SameLine();
         ImGui::Text("  y = %.3f m   E/E0 = %.4f", body.getPos().y, e0 != 0.0 ? world.energy(i) / e0 : 1.0);
         if (!body.isFixed()) {
+            // A rigid body may take the fifth method (its rotation's implicit gyroscopic step); a
+            // particle the four of the study.
+            const bool rigid = world.isRigid(i);
             int integrator = static_cast<int>(body.getIntegrator());
             ImGui::SetNextItemWidth(170);
-            if (ImGui::Combo("integrator", &integrator, kIntegratorNames, 4))
+            if (ImGui::Combo("integrator", &integrator, kIntegratorNames, rigid ? 5 : 4))
                 state.setIntegrator(i, static_cast<Integrator>(integrator));
             ImGui::SameLine();
             float e = float(body.getCor());
             ImGui::SetNextItemWidth(100);
             if (ImGui::SliderFloat("e", &e, 0.0f, 1.0f, "%.2f"))
                 state.setRestitution(i, e);
+            if (rigid) {
+                ImGui::SameLine();
+                float mu = float(static_cast<const RigidBody&>(body).getFriction());
+                ImGui::SetNextItemWidth(100);
+                if (ImGui::SliderFloat("mu", &mu, 0.0f, 1.5f, "%.2f"))
+                    state.setFriction(i, mu);
+            }
         }
         ImGui::PopID();
     }

@@ -69,6 +69,14 @@ void ViewerState::setRestitution(std::size_t body, double cor)
     initial.body(body).setCor(cor);
 }
 
+void ViewerState::setFriction(std::size_t body, double friction)
+{
+    if (!scene.world.isRigid(body))
+        return; // a particle has no friction
+    static_cast<RigidBody&>(scene.world.body(body)).setFriction(friction);
+    static_cast<RigidBody&>(initial.body(body)).setFriction(friction);
+}
+
 void ViewerState::setCollisionResponse(CollisionResponse response)
 {
     scene.world.setCollisionResponse(response);

@@ -64,6 +64,8 @@ struct ViewerState {
     // Panel edits: applied to the live world and to `initial`, so a reset keeps them.
     void setIntegrator(std::size_t body, Integrator integrator);
     void setRestitution(std::size_t body, double cor);
+    /// A rigid body's Coulomb friction (nothing for a particle).
+    void setFriction(std::size_t body, double friction);
     void setCollisionResponse(CollisionResponse response);
     void setDt(double dt);
     /// The blow dryer that is force `force` (its floor hole follows the nozzle).

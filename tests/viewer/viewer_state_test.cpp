@@ -56,6 +56,28 @@ TEST(ViewerState, ResetRestartsWithTheIntegratorAndRestitutionChosenInThePanel)
     EXPECT_EQ(world.body(2).getIntegrator(), Integrator::SemiImplicitEuler) << "the others untouched";
 }
 
+// The panel edits a rigid body's restitution, friction and integrator (the fifth among them)
+// live, and a reset keeps them; a particle has no friction to set.
+TEST(ViewerState, PanelEditsARigidBodysRestitutionFrictionAndIntegrator)
+{
+    ViewerState state = loaded("dice");
+    state.advanceTo(0.5);
+    state.setIntegrator(0, Integrator::ImplicitGyroscopic);
+    state.setRestitution(0, 0.1);
+    state.setFriction(0, 0.9);
+    const auto& live = static_cast<const RigidBody&>(state.scene.world.body(0));
+    EXPECT_EQ(live.getFriction(), 0.9) << "applied live";
+    state.reset();
+    const auto& die = static_cast<const RigidBody&>(state.scene.world.body(0));
+    EXPECT_EQ(state.scene.world.time(), 0.0);
+    EXPECT_EQ(die.getIntegrator(), Integrator::ImplicitGyroscopic);
+    EXPECT_EQ(die.getCor(), 0.1);
+    EXPECT_EQ(die.getFriction(), 0.9);
+    ViewerState particles = loaded("integrators");
+    particles.setFriction(1, 0.9); // nothing to set, and no error
+    EXPECT_FALSE(particles.scene.world.isRigid(1));
+}
+
 TEST(ViewerState, ReloadRestoresTheScenesOwnSettings)
 {
     ViewerState state = loaded("integrators");
