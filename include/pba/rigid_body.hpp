@@ -1,12 +1,25 @@
 #pragma once
 // A body with extent: the practical's "rigid bodies ... their density and inertia tensor". Its
 // translation is Body's; it adds an orientation, the angular momentum and the inertia tensor.
+#include <array>
+#include <memory>
+
 #include "pba/body.hpp"
 #include "pba/mass_properties.hpp"
 #include "pba/rotation.hpp"
 #include "pba/shape.hpp"
 
 namespace pba {
+
+/// The impulse a contact point took against a surface in the last step: what the contact solver
+/// starts from in the next (warm starting, as Box2D does), so that a body resting on the floor
+/// needs a sweep or two instead of dozens.
+struct ContactImpulse {
+    int point = 0;   ///< the contact point's index (contactPointsOf)
+    int surface = 0; ///< the plane's index, or planes + p for plane p's shaft wall
+    double normal = 0.0;
+    double tangent[2] = {0.0, 0.0};
+};
 
 class RigidBody : public Body {
 public:
@@ -20,7 +33,7 @@ public:
     explicit RigidBody(const MassProperties& properties);
     std::unique_ptr<Body> clone() const override { return std::make_unique<RigidBody>(*this); }
     /// The shape's surface samples (a sphere's fixed in the world's orientation).
-    Surface surface() const override { return {m_surfaceSamples, m_shape.type != ShapeType::Sphere}; }
+    Surface surface() const override { return {m_form->surfaceSamples, m_form->shape.type != ShapeType::Sphere}; }
 
     // ---- get methods ----
     const dquat& getOrientation() const { return m_rotation.orientation; }
@@ -35,9 +48,11 @@ public:
     /// 1/2 omega . L.
     double getRotationalKineticEnergy() const;
     const Rotation& getRotation() const { return m_rotation; }
-    const Shape& getShape() const { return m_shape; }
+    const Shape& getShape() const { return m_form->shape; }
     /// The shape's contact points (contactPointsOf), body frame, about the centre of mass.
-    const std::vector<dvec3>& getContactPoints() const { return m_contactPoints; }
+    const std::vector<dvec3>& getContactPoints() const { return m_form->contactPoints; }
+    /// How far the shape reaches from its centre of mass.
+    double getBoundingRadius() const { return m_form->boundingRadius; }
     /// Coulomb friction coefficient against the room's surfaces.
     double getFriction() const { return m_friction; }
 
@@ -58,14 +73,29 @@ public:
     void setShapeWithMass(const Shape& shape, double mass);
     /// std::invalid_argument unless finite and non-negative.
     void setFriction(double friction);
+    /// The contact solver's memory of the last step's impulses (see ContactImpulse): at most
+    /// kRememberedContacts, kept in the object itself (the solver visits it anyway).
+    static constexpr std::size_t kRememberedContacts = 8;
+    struct ContactMemory {
+        std::array<ContactImpulse, kRememberedContacts> impulses;
+        std::size_t count = 0;
+    };
+    ContactMemory& contactMemory() { return m_contactMemory; }
 
 private:
     void adoptShape(const Shape& shape);
 
     Rotation m_rotation;
-    Shape m_shape;
-    std::vector<dvec3> m_contactPoints;
-    std::vector<SurfaceSample> m_surfaceSamples;
+    /// What the shape gives the body and never changes: shared by copies of the body (10,000
+    /// copied dice read one set of corners, which stays in cache).
+    struct Form {
+        Shape shape;
+        std::vector<dvec3> contactPoints;
+        std::vector<SurfaceSample> surfaceSamples;
+        double boundingRadius = 0.0;
+    };
+    std::shared_ptr<const Form> m_form;
+    ContactMemory m_contactMemory;
     double m_friction = 0.5;
     dmat3 m_inertiaBody{1.0 / 6.0};
     dmat3 m_inverseInertiaBody{6.0};

@@ -128,48 +128,71 @@ inline RigidState advance(const RigidState& s, const Derivative& d, double h)
 ///    kicked by half a step, evaluates there (at the predicted v and L), and kicks again;
 ///  - RK4 is the classic method on the whole state;
 ///  - implicit-gyroscopic is semi-implicit Euler with the rotation's implicit gyroscopic step.
-/// q is renormalised at the end of every step; the stages a force sees have unit q.
-template <class Wrenches>
+/// q is renormalised at the end of every step; the stages a force sees have unit q. `forEach(n,
+/// fn)` runs fn(k) for every body k < n: in order by default, or spread over cores by a caller
+/// whose bodies are many (each body's arithmetic is its own, so the result is the same).
+struct InOrder {
+    template <class F>
+    void operator()(std::size_t n, F&& fn) const
+    {
+        for (std::size_t k = 0; k < n; ++k)
+            fn(k);
+    }
+};
+
+/// The stepper's working arrays: a caller that steps many bodies every frame keeps one and
+/// passes it, so that a step allocates nothing.
+struct RigidStepBuffers {
+    std::vector<Wrench> w, w0;
+    std::vector<RigidState> start, stage, unit;
+    std::vector<rigid_detail::Derivative> k1, k2, k3;
+};
+
+template <class Wrenches, class ForEach = InOrder>
 inline void stepRigidSystem(Integrator integrator, std::span<RigidState> states, std::span<const RigidInertia> inertia,
-                            double dt, Wrenches&& wrenches)
+                            double dt, Wrenches&& wrenches, ForEach&& forEach = {}, RigidStepBuffers* buffers = nullptr)
 {
     using namespace rigid_detail;
     const std::size_t n = states.size();
-    std::vector<Wrench> w(n);
-    std::vector<RigidState> stage(n);
+    RigidStepBuffers own;
+    RigidStepBuffers& b = buffers ? *buffers : own;
+    auto& [w, w0, start, stage, unit, k1, k2, k3] = b;
+    w.resize(n);
+    stage.resize(n);
+    unit.resize(n);
     auto evaluate = [&](const std::vector<RigidState>& at) {
-        std::vector<RigidState> unit = at;
-        for (RigidState& s : unit)
-            s.rotation.orientation = glm::normalize(s.rotation.orientation);
+        forEach(n, [&](std::size_t k) {
+            unit[k] = at[k];
+            unit[k].rotation.orientation = glm::normalize(at[k].rotation.orientation);
+        });
         wrenches(std::span<const RigidState>(unit), std::span<Wrench>(w));
     };
-    const std::vector<RigidState> start(states.begin(), states.end());
+    start.assign(states.begin(), states.end());
     evaluate(start);
     switch (integrator) {
     case Integrator::ForwardEuler:
-        for (std::size_t k = 0; k < n; ++k)
-            states[k] = advance(start[k], derivative(start[k], w[k], inertia[k]), dt);
+        forEach(n, [&](std::size_t k) { states[k] = advance(start[k], derivative(start[k], w[k], inertia[k]), dt); });
         break;
     case Integrator::SemiImplicitEuler:
-        for (std::size_t k = 0; k < n; ++k) {
+        forEach(n, [&](std::size_t k) {
             RigidState& s = states[k];
             s.v += w[k].force * (inertia[k].inverseMass * dt);
             s.rotation.momentum += w[k].torque * dt;
             s.x += s.v * dt;
             s.rotation.orientation += rate(s.rotation.orientation, inertia[k].inverseInertiaBody, s.rotation.momentum) * dt;
-        }
+        });
         break;
     case Integrator::ImplicitGyroscopic:
-        for (std::size_t k = 0; k < n; ++k) {
+        forEach(n, [&](std::size_t k) {
             RigidState& s = states[k];
             s.v += w[k].force * (inertia[k].inverseMass * dt);
             s.x += s.v * dt;
             implicitGyroscopicStep(s.rotation, inertia[k].inertiaBody, inertia[k].inverseInertiaBody, w[k].torque, dt);
-        }
+        });
         break;
     case Integrator::VelocityVerlet: {
-        const std::vector<Wrench> w0 = w;
-        for (std::size_t k = 0; k < n; ++k) {
+        w0 = w;
+        forEach(n, [&](std::size_t k) {
             const RigidState& s0 = start[k];
             const dvec3 a0 = w0[k].force * inertia[k].inverseMass;
             const dvec3 half = s0.rotation.momentum + w0[k].torque * (0.5 * dt);
@@ -178,44 +201,43 @@ inline void stepRigidSystem(Integrator integrator, std::span<RigidState> states,
             stage[k] = {s0.x + s0.v * dt + a0 * (0.5 * dt * dt), s0.v + a0 * dt,
                         Rotation{q0 + rate(mid, inertia[k].inverseInertiaBody, half) * dt,
                                  s0.rotation.momentum + w0[k].torque * dt}};
-        }
+        });
         evaluate(stage);
-        for (std::size_t k = 0; k < n; ++k) {
+        forEach(n, [&](std::size_t k) {
             const RigidState& s0 = start[k];
             states[k] = {stage[k].x, s0.v + (w0[k].force + w[k].force) * (0.5 * dt * inertia[k].inverseMass),
                          Rotation{stage[k].rotation.orientation,
                                   s0.rotation.momentum + (w0[k].torque + w[k].torque) * (0.5 * dt)}};
-        }
+        });
         break;
     }
     case Integrator::RK4: {
-        std::vector<Derivative> k1(n), k2(n), k3(n);
-        for (std::size_t k = 0; k < n; ++k) {
+        k1.resize(n), k2.resize(n), k3.resize(n);
+        forEach(n, [&](std::size_t k) {
             k1[k] = derivative(start[k], w[k], inertia[k]);
             stage[k] = advance(start[k], k1[k], 0.5 * dt);
-        }
+        });
         evaluate(stage);
-        for (std::size_t k = 0; k < n; ++k) {
+        forEach(n, [&](std::size_t k) {
             k2[k] = derivative(stage[k], w[k], inertia[k]);
             stage[k] = advance(start[k], k2[k], 0.5 * dt);
-        }
+        });
         evaluate(stage);
-        for (std::size_t k = 0; k < n; ++k) {
+        forEach(n, [&](std::size_t k) {
             k3[k] = derivative(stage[k], w[k], inertia[k]);
             stage[k] = advance(start[k], k3[k], dt);
-        }
+        });
         evaluate(stage);
-        for (std::size_t k = 0; k < n; ++k) {
+        forEach(n, [&](std::size_t k) {
             const Derivative k4 = derivative(stage[k], w[k], inertia[k]);
             const Derivative sum{k1[k].dx + (k2[k].dx + k3[k].dx) * 2.0 + k4.dx, k1[k].dv + (k2[k].dv + k3[k].dv) * 2.0 + k4.dv,
                                  k1[k].dq + (k2[k].dq + k3[k].dq) * 2.0 + k4.dq, k1[k].dl + (k2[k].dl + k3[k].dl) * 2.0 + k4.dl};
             states[k] = advance(start[k], sum, dt / 6.0);
-        }
+        });
         break;
     }
     }
-    for (RigidState& s : states)
-        s.rotation.orientation = glm::normalize(s.rotation.orientation);
+    forEach(n, [&](std::size_t k) { states[k].rotation.orientation = glm::normalize(states[k].rotation.orientation); });
 }
 
 /// One step of the rotational equations alone (a body with no translation to speak of), the

@@ -231,6 +231,9 @@ private:
     void collideAndStore(const std::vector<std::size_t>& members);
     void integrateRigid(Integrator integrator, const std::vector<std::size_t>& members,
                         std::span<const std::uint8_t> wanted, double dt);
+    void stepRigid(Integrator integrator, const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                   double dt);
+    void resolveRigidContacts(Integrator integrator, const std::vector<std::size_t>& members, const dvec3& g, double dt);
     void noteIfNotFinite(std::size_t i, const State& state);
     void checkFinite(double dt);
     void advanceClock(double dt);
@@ -256,8 +259,14 @@ private:
     std::vector<std::uint8_t> m_isRigid;
     std::vector<Pose> m_poses;      ///< each body's pose at the current stage (BodyStates::poses)
     std::vector<dvec3> m_torques;   ///< the torques' accumulators
-    std::vector<RigidState> m_rigidStates;
-    std::vector<RigidInertia> m_rigidInertia;
+    /// integrateRigid's buffers, reused from step to step.
+    struct RigidScratch {
+        std::vector<RigidState> states, start;
+        std::vector<RigidInertia> inertia;
+        std::vector<dvec3> startAcc;
+        RigidStepBuffers buffers;
+    };
+    RigidScratch m_rigidScratch;
     /// What storePreviousStates read of each body besides its state: mass, restitution, and
     /// the key of its coupling (fixed flag and integrator).
     std::vector<double> m_masses, m_cors;

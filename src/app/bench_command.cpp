@@ -225,6 +225,43 @@ SceneRun runScene(bool quick)
     return run;
 }
 
+/// The dice row: kDice 10 cm dice (manyDice) thrown into the dice scene's room, semi-implicit
+/// Euler with contacts on all cores, stepped as a program would from the throw through their
+/// landing (bounces, slides, new contacts every step: the solver's hardest time) to rest, timed
+/// half a simulated second at a time; the row's rate is its slowest span (a program must keep up
+/// with it), the whole run's beside it. (--quick: two spans of 10 steps, in flight.)
+constexpr std::size_t kDice = 10000;
+constexpr double kDiceDuration = 4.0;
+
+struct DiceRun {
+    int threads = 1;
+    double stepsPerSecond = 0.0, overallStepsPerSecond = 0.0;
+    int spans = 0, spanSteps = 0;
+};
+
+DiceRun runDice(bool quick, int cores)
+{
+    Scene scene = manyDice(kDice);
+    World& world = scene.world;
+    world.setThreads(0);
+    DiceRun run;
+    run.threads = cores;
+    run.spanSteps = quick ? 10 : static_cast<int>(std::lround(0.5 / scene.dt));
+    run.spans = quick ? 2 : static_cast<int>(std::lround(kDiceDuration / 0.5));
+    double slowest = std::numeric_limits<double>::infinity(), total = 0.0;
+    for (int span = 0; span < run.spans; ++span) {
+        const auto start = Clock::now();
+        for (int k = 0; k < run.spanSteps; ++k)
+            world.step(scene.dt);
+        const double elapsed = seconds(start);
+        slowest = std::min(slowest, run.spanSteps / elapsed);
+        total += elapsed;
+    }
+    run.stepsPerSecond = slowest;
+    run.overallStepsPerSecond = double(run.spans) * run.spanSteps / total;
+    return run;
+}
+
 /// The cloth row's side: 128 x 128 particles, 97,026 springs.
 constexpr int kClothSide = 128;
 
@@ -497,6 +534,9 @@ int runBench(const BenchOptions& options)
         fmt::print(stderr, "stepping a {} x {} cloth\n", kClothSide, kClothSide);
     const std::vector<ClothRow> cloth = measureCloth(minTime, repeats, cores);
     if (!options.json)
+        fmt::print(stderr, "throwing {} dice\n", kDice);
+    const DiceRun dice = runDice(options.quick, cores);
+    if (!options.json)
         fmt::print(stderr, "stepping fountain-1m through its whole duration\n");
     const SceneRun fountain = runScene(options.quick);
     const Row& scene = fountain.row;
@@ -523,6 +563,10 @@ int runBench(const BenchOptions& options)
                                       {"steps_per_s", c.stepsPerSecond},
                                       {"steps_per_s_median", c.medianStepsPerSecond},
                                       {"spring_evaluations_per_s", c.stepsPerSecond * double(c.springs)}});
+        out["results"].push_back({{"layout", "dice"}, {"scene", "dice"}, {"integrator", "semi-implicit-euler"},
+                                  {"n", kDice}, {"threads", dice.threads}, {"steps_per_s", dice.stepsPerSecond},
+                                  {"steps_per_s_overall", dice.overallStepsPerSecond}, {"spans", dice.spans},
+                                  {"steps_per_span", dice.spanSteps}});
         out["machine"] = {{"cores", cores}};
         fmt::print("{}\n", out.dump(2));
     } else {
@@ -535,6 +579,9 @@ int runBench(const BenchOptions& options)
         fmt::print("(cloth-in-the-dryer at {} x {}, springs and dryer scaled with the particles' mass: "
                    "semi-implicit Euler, gravity, the dryer and the room; target 1,000 steps/s on all cores)\n",
                    kClothSide, kClothSide);
+        fmt::print("\ndice ({} rigid boxes, {} threads, {} spans of {} steps from the throw): {:.0f} physics steps/s in "
+                   "the slowest span, {:.0f} over the whole run (target 200)\n",
+                   kDice, dice.threads, dice.spans, dice.spanSteps, dice.stepsPerSecond, dice.overallStepsPerSecond);
         fmt::print("\nfountain-1m ({} particles, {} threads, {} spans of {} steps): {:.0f} physics steps/s in its "
                    "slowest span, {:.0f} over the whole run (target 480: 8 steps a 60 Hz frame)\n",
                    scene.n, scene.threads, fountain.spans, fountain.spanSteps, scene.stepsPerSecond,
@@ -550,7 +597,7 @@ void addBenchCommand(CLI::App& root, Action& selected)
     auto options = std::make_shared<BenchOptions>();
     CLI::App* bench = root.add_subcommand("bench", "Measure particle-steps per second: swarms with each integrator "
                                                    "on 1 and all cores, the heap-Particle baseline, the bandwidth "
-                                                   "bound, a 128 x 128 cloth");
+                                                   "bound, a 128 x 128 cloth, 10,000 dice");
     bench->add_flag("--json", options->json, "Print {\"results\": [...]} instead of a table");
     bench->add_flag("--quick", options->quick, "Measure briefly, at N = 1e3 and 1e5 (for scripted checks)");
     bench->add_option("--windows", options->windows, "Windows timed per row, 1 to 100 (default 6, 1 with --quick)")
@@ -581,6 +628,11 @@ void addBenchCommand(CLI::App& root, Action& selected)
                   "so that each moves as in the 10 x 10 built-in), semi-implicit Euler at dt = 0.002, on 1\n"
                   "thread and on all cores, windows as above: physics steps per second and spring evaluations\n"
                   "per second (one per spring a step). Its states are the same on any number of threads.\n"
+                  "Then the dice row: 10,000 rigid 10 cm boxes thrown into the dice scene's room (they pass through\n"
+                  "each other: rigid against rigid is not simulated), semi-implicit Euler with contacts on all\n"
+                  "cores, stepped from the throw through the landing to rest (4 s), timed half a second at a\n"
+                  "time: physics steps per second in the slowest half second and over the run. Its states are\n"
+                  "the same on any number of threads.\n"
                   "Last, the fountain-1m scene is stepped as a program would through its whole 10 s, timed a\n"
                   "simulated second at a time (two spans of 4 steps with --quick); its physics steps per second\n"
                   "are reported for its slowest second (the one a real-time program must keep up with) and for\n"

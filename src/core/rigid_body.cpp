@@ -1,5 +1,6 @@
 #include "pba/rigid_body.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -19,9 +20,12 @@ RigidBody::RigidBody(const MassProperties& properties)
 
 void RigidBody::adoptShape(const Shape& shape)
 {
-    m_shape = shape;
-    m_contactPoints = contactPointsOf(shape);
-    m_surfaceSamples = surfaceSamplesOf(shape);
+    Form form{shape, contactPointsOf(shape), surfaceSamplesOf(shape), 0.0};
+    for (const dvec3& p : form.contactPoints)
+        form.boundingRadius = std::max(form.boundingRadius, glm::length(p));
+    if (shape.type == ShapeType::Sphere)
+        form.boundingRadius = shape.radius;
+    m_form = std::make_shared<const Form>(std::move(form));
     setMesh(drawMeshOf(shape));
 }
 

@@ -4,6 +4,7 @@
 #include <span>
 
 #include "pba/collision.hpp"
+#include "pba/rigid_body.hpp"
 #include "pba/rotation.hpp"
 #include "pba/shape.hpp"
 
@@ -17,6 +18,9 @@ struct ContactBody {
     double restitution;
     double friction;
     dvec3 gravity; ///< the world's gravitational acceleration
+    double boundingRadius; ///< how far the shape reaches from its centre
+    /// In: the last step's impulses (warm start); out: this step's.
+    RigidBody::ContactMemory* memory = nullptr;
 };
 
 /// The step the contacts end.
@@ -27,9 +31,6 @@ struct ContactStep {
     double driftWeight;
     /// Below this speed a point arriving at a surface does not bounce.
     double restingSpeed;
-    /// The energy (energyInGravity) the contacts may not leave the body above: the larger of
-    /// the step's start and its untouched end (the work of the other forces is kept).
-    double referenceEnergy;
 };
 
 /// How much of a method's position update its end velocity drives, for constant forces:
@@ -51,7 +52,8 @@ double energyInGravity(const RigidState& s, const RigidInertia& inertia, const d
 /// the result does not depend on the contacts' order (a box landing flat on four corners
 /// rebounds flat). The impulses act at the start of the step: the end pose moves by the part of
 /// the drift the end velocity drives. What a turning body's arcs still leave beyond a surface
-/// is pushed out, and no contact leaves the body with more than step.referenceEnergy: any
+/// is pushed out, and no contact leaves the body with more energy (energyInGravity) than the
+/// larger of the step's start and its untouched end (the work of the other forces is kept): any
 /// excess is taken from its motion. Returns whether a point bounced.
 bool resolvePlaneContacts(const ContactBody& body, std::span<const Plane> planes, const ContactStep& step,
                           RigidState& s);

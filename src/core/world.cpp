@@ -376,7 +376,8 @@ void World::storePreviousStates()
         if (m_isRigid[i] != 0) {
             const auto& rigid = static_cast<const RigidBody&>(b);
             m_previousRotation[i] = rigid.getRotation();
-            m_poses[i] = Pose{rigid.getOrientation(), rigid.getAngularVelocity()};
+            if (b.isFixed()) // a moving one's pose is set at each stage of its system's step
+                m_poses[i] = Pose{rigid.getOrientation(), rigid.getAngularVelocity()};
         }
     });
     if (m_swarmRollback) {
@@ -603,70 +604,93 @@ void World::collideAndStore(const std::vector<std::size_t>& members)
 void World::integrateRigid(Integrator integrator, const std::vector<std::size_t>& members,
                            std::span<const std::uint8_t> wanted, double dt)
 {
+    // Three passes over the system's bodies, each on all cores (every body's arithmetic is its
+    // own, so the result does not depend on the thread count): gather, step, contact and store.
     const std::size_t n = members.size();
     const dvec3 g = gravity();
-    m_rigidStates.resize(n);
-    m_rigidInertia.resize(n);
-    std::vector<double> startEnergy(n);
-    for (std::size_t k = 0; k < n; ++k) {
+    RigidScratch& r = m_rigidScratch;
+    r.states.resize(n);
+    r.inertia.resize(n);
+    r.startAcc.resize(n);
+    detail::forEachIndex(n, [&](std::size_t k) {
         const auto& b = static_cast<const RigidBody&>(*m_bodies[members[k]]);
-        m_rigidStates[k] = RigidState{b.getPos(), b.getVel(), b.getRotation()};
-        m_rigidInertia[k] = RigidInertia{1.0 / b.getMass(), b.getInertiaBody(), b.getInverseInertiaBody()};
-        startEnergy[k] = energyInGravity(m_rigidStates[k], m_rigidInertia[k], g);
-    }
+        r.states[k] = RigidState{b.getPos(), b.getVel(), b.getRotation()};
+        r.inertia[k] = RigidInertia{1.0 / b.getMass(), b.getInertiaBody(), b.getInverseInertiaBody()};
+    });
+    r.start = r.states;
+    stepRigid(integrator, members, wanted, dt);
+    resolveRigidContacts(integrator, members, g, dt);
+}
+
+void World::stepRigid(Integrator integrator, const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                      double dt)
+{
     // As integrateCoupled: the other bodies stay at their start-of-step states and poses while
     // the system's take each stage's.
+    RigidScratch& r = m_rigidScratch;
+    const std::size_t n = members.size();
     m_scratch.forces.resize(m_bodies.size());
     m_torques.resize(m_bodies.size());
     const BodyStates in{m_bodies, m_scratch.trial, wanted, m_masses, m_poses};
     Accumulators out{m_scratch.forces, m_torques};
-    std::vector<dvec3> startAcc(n);
     bool first = true;
-    stepRigidSystem(integrator, std::span<RigidState>(m_rigidStates), std::span<const RigidInertia>(m_rigidInertia), dt,
-                    [&](std::span<const RigidState> at, std::span<Wrench> wrenches) {
-                        for (std::size_t k = 0; k < n; ++k) {
-                            const std::size_t i = members[k];
-                            m_scratch.trial[i] = State{at[k].x, at[k].v};
-                            const Rotation& r = at[k].rotation;
-                            m_poses[i] = Pose{r.orientation, angularVelocity(r.orientation,
-                                                                             m_rigidInertia[k].inverseInertiaBody, r.momentum)};
-                            m_scratch.forces[i] = m_torques[i] = dvec3(0.0);
-                        }
-                        for (const auto& force : m_forces)
-                            force->accumulate(in, out);
-                        for (std::size_t k = 0; k < n; ++k) {
-                            const std::size_t i = members[k];
-                            wrenches[k] = Wrench{m_scratch.forces[i], m_torques[i]};
-                            if (first)
-                                startAcc[k] = m_scratch.forces[i] * m_rigidInertia[k].inverseMass;
-                        }
-                        first = false;
-                    });
+    const auto wrenches = [&](std::span<const RigidState> at, std::span<Wrench> result) {
+        detail::forEachIndex(n, [&](std::size_t k) {
+            const std::size_t i = members[k];
+            m_scratch.trial[i] = State{at[k].x, at[k].v};
+            const Rotation& turn = at[k].rotation;
+            m_poses[i] = Pose{turn.orientation, angularVelocity(turn.orientation, r.inertia[k].inverseInertiaBody, turn.momentum)};
+            m_scratch.forces[i] = m_torques[i] = dvec3(0.0);
+        });
+        for (const auto& force : m_forces)
+            force->accumulate(in, out);
+        detail::forEachIndex(n, [&](std::size_t k) {
+            const std::size_t i = members[k];
+            result[k] = Wrench{m_scratch.forces[i], m_torques[i]};
+            if (first) // the first stage is at the start: the bodies' acceleration
+                r.startAcc[k] = m_scratch.forces[i] * r.inertia[k].inverseMass;
+        });
+        first = false;
+    };
+    const auto onCores = [](std::size_t count, const auto& fn) { detail::forEachIndex(count, fn); };
+    stepRigidSystem(integrator, std::span<RigidState>(r.states), std::span<const RigidInertia>(r.inertia), dt, wrenches,
+                    onCores, &r.buffers);
+}
+
+void World::resolveRigidContacts(Integrator integrator, const std::vector<std::size_t>& members, const dvec3& g, double dt)
+{
     // Below this speed a contact does not bounce: one step of gravity's, twice over.
     const double restingSpeed = 2.0 * glm::length(g) * dt;
-    for (std::size_t k = 0; k < n; ++k) {
-        const std::size_t i = members[k];
-        auto& b = static_cast<RigidBody&>(*m_bodies[i]);
-        RigidState& s = m_rigidStates[k];
-        if (!m_planes.empty()) {
-            const ContactBody body{b.getShape(), b.getContactPoints(), m_rigidInertia[k], b.getCor(), b.getFriction(), g};
-            const RigidState start{b.getPos(), b.getVel(), b.getRotation()};
-            const double reference = std::max(startEnergy[k], energyInGravity(s, m_rigidInertia[k], g));
-            const ContactStep contactStep{start, dt, driftWeight(integrator), restingSpeed, reference};
-            m_bounces[i] += resolvePlaneContacts(body, m_planes, contactStep, s) ? 1 : 0;
-        }
-        b.setState(State{s.x, s.v});
-        b.setAcc(startAcc[k]);
-        const bool turnFinite = std::isfinite(glm::dot(s.rotation.momentum, s.rotation.momentum)) &&
-                                std::isfinite(glm::dot(glm::vec<4, double>(s.rotation.orientation.x, s.rotation.orientation.y,
-                                                                            s.rotation.orientation.z, s.rotation.orientation.w),
-                                                       glm::vec<4, double>(1.0)));
-        if (turnFinite)
-            b.setRotation(s.rotation);
-        else
-            m_firstNonFinite = std::min(m_firstNonFinite, i);
-        noteIfNotFinite(i, State{s.x, s.v});
-    }
+    RigidScratch& r = m_rigidScratch;
+    const std::size_t n = members.size();
+    const std::size_t bad = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, n, 256), m_bodies.size(),
+        [&](const tbb::blocked_range<std::size_t>& range, std::size_t lowest) {
+            for (std::size_t k = range.begin(); k < range.end(); ++k) {
+                const std::size_t i = members[k];
+                auto& b = static_cast<RigidBody&>(*m_bodies[i]);
+                RigidState& s = r.states[k];
+                if (!m_planes.empty()) {
+                    const ContactBody body{b.getShape(), b.getContactPoints(), r.inertia[k], b.getCor(), b.getFriction(),
+                                           g, b.getBoundingRadius(), &b.contactMemory()};
+                    const ContactStep step{r.start[k], dt, driftWeight(integrator), restingSpeed};
+                    m_bounces[i] += resolvePlaneContacts(body, m_planes, step, s) ? 1 : 0;
+                }
+                if (!isFinite(s.x) || !isFinite(s.v) || !isFinite(s.rotation.momentum) ||
+                    !std::isfinite(s.rotation.orientation.w + s.rotation.orientation.x + s.rotation.orientation.y +
+                                   s.rotation.orientation.z)) {
+                    lowest = std::min(lowest, i);
+                    b.setState(State{s.x, s.v}); // the rollback restores it; the message reads it
+                    continue;
+                }
+                b.setState(State{s.x, s.v});
+                b.setRotation(s.rotation);
+                b.setAcc(r.startAcc[k]);
+            }
+            return lowest;
+        },
+        [](std::size_t a, std::size_t b) { return std::min(a, b); });
+    m_firstNonFinite = std::min(m_firstNonFinite, bad);
 }
 
 void World::noteIfNotFinite(std::size_t i, const State& state)

@@ -322,7 +322,7 @@ TEST(PbaBench, QuickJsonHasEveryLayout)
     const auto json = nlohmann::json::parse(r.out);
     std::set<std::string> layouts;
     double bound = 0.0;
-    nlohmann::json scene, cloth = nlohmann::json::array();
+    nlohmann::json scene, dice, cloth = nlohmann::json::array();
     std::set<std::string> swarmPhases;
     for (const auto& row : json["results"]) {
         layouts.insert(row["layout"].get<std::string>());
@@ -330,6 +330,10 @@ TEST(PbaBench, QuickJsonHasEveryLayout)
             scene = row;
         if (row["layout"] == "cloth") {
             cloth.push_back(row);
+            continue;
+        }
+        if (row["layout"] == "dice") {
+            dice = row;
             continue;
         }
         for (const char* key : {"integrator", "n", "threads", "particle_steps_per_s", "particle_steps_per_s_median",
@@ -348,7 +352,13 @@ TEST(PbaBench, QuickJsonHasEveryLayout)
             EXPECT_DOUBLE_EQ(row["fraction_of_bound"].get<double>(), rate / bound);
         }
     }
-    EXPECT_EQ(layouts, (std::set<std::string>{"bound", "baseline", "swarm", "scene", "cloth"}));
+    EXPECT_EQ(layouts, (std::set<std::string>{"bound", "baseline", "swarm", "scene", "cloth", "dice"}));
+    // The dice: 10,000 on all cores, the slowest span's rate never above the whole run's.
+    EXPECT_EQ(dice["n"], 10000);
+    EXPECT_EQ(dice["threads"], json["machine"]["cores"]);
+    EXPECT_EQ(dice["integrator"], "semi-implicit-euler");
+    EXPECT_GT(dice["steps_per_s"].get<double>(), 0.0);
+    EXPECT_LE(dice["steps_per_s"].get<double>(), dice["steps_per_s_overall"].get<double>());
     EXPECT_EQ(swarmPhases, (std::set<std::string>{"flight", "landed"}));
     // The cloth: 128 x 128 on 1 thread and on all cores, one spring evaluation per spring a step.
     ASSERT_GE(cloth.size(), 1u);

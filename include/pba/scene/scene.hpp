@@ -53,6 +53,13 @@ Scene loadScene(std::string_view nameOrPath);
 /// particles, 97,026 springs) and of the tests that step it on any number of threads.
 Scene resizedClothInTheDryer(int side);
 
+/// The built-in dice scene's room, gravity and dice (restitution, friction) with `count` 10 cm
+/// dice instead of four, each thrown from its own place in the room's lower half with its own
+/// velocity, spin and orientation (numbers that depend on the die's index alone). The workload
+/// of `pba bench`'s dice row (10,000 dice; rigid against rigid is not simulated, so they pass
+/// through each other) and of the tests that step it on any number of threads.
+Scene manyDice(std::size_t count);
+
 /// The built-in scenes, shipped as files in scenes/ and compiled into the library.
 std::vector<std::string> builtinSceneNames();
 /// The JSON text of a built-in scene, or an empty view if there is none of that name.
