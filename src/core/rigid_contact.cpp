@@ -8,16 +8,34 @@ namespace pba {
 
 namespace {
 
+/// One direction an impulse acts in at a contact point: what an impulse of 1 along it does to
+/// the body (v by u / m, L by r x u, omega by I^-1 (r x u)) and the mass the point feels along it,
+/// worked out once so that each sweep is dot products and additions.
+struct Row {
+    dvec3 u{0.0};        ///< the direction, unit
+    dvec3 angular{0.0};  ///< r x u
+    dvec3 response{0.0}; ///< I^-1 (r x u), world frame
+    double mass = 0.0;   ///< 1 / (1/m + (r x u) . I^-1 (r x u))
+    double impulse = 0.0; ///< accumulated
+
+    void setUp(const dvec3& direction, const dvec3& arm, double inverseMass, const dmat3& inverseInertia)
+    {
+        u = direction;
+        angular = glm::cross(arm, direction);
+        response = inverseInertia * angular;
+        mass = 1.0 / (inverseMass + glm::dot(angular, response));
+    }
+    double speed(const dvec3& v, const dvec3& omega) const { return glm::dot(u, v) + glm::dot(angular, omega); }
+};
+
 struct Contact {
     dvec3 normal;    ///< into the room
     dvec3 arm;       ///< from the centre of mass to the point, world frame
     double gap;      ///< the point's distance from the surface (negative: beyond it)
     int surface;     ///< the plane's index; planes.size() + p for plane p's shaft wall
     int point = 0;   ///< the contact point's index
-    double normalMass = 0.0, target = 0.0, normalImpulse = 0.0;
-    dvec3 tangent[2] = {dvec3(0.0), dvec3(0.0)};
-    double tangentMass[2] = {0.0, 0.0};
-    double tangentImpulse[2] = {0.0, 0.0};
+    double target = 0.0; ///< the normal speed the point should leave with
+    Row along{}, across[2]{};
 };
 
 /// Two unit vectors that complete n to an orthonormal frame.
@@ -81,53 +99,44 @@ void candidates(const ContactBody& body, std::span<const Plane> planes, const dv
 }
 
 /// 1 / (1/m + (I^-1 (r x u)) . (r x u)): the mass the point r feels along u.
-double massAlong(const dvec3& arm, const dvec3& u, double inverseMass, const dmat3& inverseInertiaWorld)
-{
-    const dvec3 ru = glm::cross(arm, u);
-    return 1.0 / (inverseMass + glm::dot(ru, inverseInertiaWorld * ru));
-}
-
 /// Gauss-Seidel over the contacts, with accumulated impulses, until no impulse changes by more
-/// than a part in 1e12 of the largest (a flat landing's four corners need a few dozen sweeps to
-/// share it evenly; a contact that persists starts from its last step's impulses, which are
-/// applied first). Friction first, then the normal impulse, so that the normal constraint (no
-/// sinking) is the one met last in each sweep, as Box2D orders them.
+/// than a part in 1e9 of the largest, or 32 sweeps (a flat landing's four corners need a few
+/// dozen to share it evenly; a contact that persists starts from its last step's impulses,
+/// applied first, and most need one). Friction first, then the normal impulse, so that the
+/// normal constraint (no sinking) is the one met last in each sweep, as Box2D orders them.
 void solveImpulses(std::vector<Contact>& contacts, double friction, double inverseMass, const dmat3& inverseInertia,
                    dvec3& v, dvec3& momentum)
 {
     dvec3 omega = inverseInertia * momentum;
-    const auto pointVelocity = [&](const Contact& c) { return v + glm::cross(omega, c.arm); };
-    const auto apply = [&](const Contact& c, const dvec3& impulse) {
-        v += impulse * inverseMass;
-        momentum += glm::cross(c.arm, impulse);
-        omega = inverseInertia * momentum;
+    const auto apply = [&](const Row& row, double impulse) {
+        v += (impulse * inverseMass) * row.u;
+        momentum += impulse * row.angular;
+        omega += impulse * row.response;
     };
     for (const Contact& c : contacts)
-        apply(c, c.normalImpulse * c.normal + c.tangentImpulse[0] * c.tangent[0] + c.tangentImpulse[1] * c.tangent[1]);
+        for (const Row* row : {&c.along, &c.across[0], &c.across[1]})
+            apply(*row, row->impulse);
     constexpr int kMaxSweeps = 32;
     for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
         double change = 0.0, largest = 0.0;
         for (Contact& c : contacts) {
-            const double limit = friction * c.normalImpulse;
-            const dvec3 u = pointVelocity(c);
+            const double limit = friction * c.along.impulse;
             double wanted[2];
             for (int t = 0; t < 2; ++t)
-                wanted[t] = c.tangentImpulse[t] - c.tangentMass[t] * glm::dot(c.tangent[t], u);
+                wanted[t] = c.across[t].impulse - c.across[t].mass * c.across[t].speed(v, omega);
             const double length = std::sqrt(wanted[0] * wanted[0] + wanted[1] * wanted[1]);
             const double scale = length > limit ? limit / length : 1.0;
-            dvec3 frictionImpulse(0.0);
-            for (int t = 0; t < 2; ++t) {
-                const double next = wanted[t] * scale;
-                frictionImpulse += (next - c.tangentImpulse[t]) * c.tangent[t];
-                change = std::max(change, std::abs(next - c.tangentImpulse[t]));
-                c.tangentImpulse[t] = next;
+            for (Row& row : c.across) {
+                const double next = wanted[&row - c.across] * scale;
+                apply(row, next - row.impulse);
+                change = std::max(change, std::abs(next - row.impulse));
+                row.impulse = next;
             }
-            apply(c, frictionImpulse);
-            const double vn = glm::dot(c.normal, pointVelocity(c));
-            const double next = std::max(c.normalImpulse + c.normalMass * (c.target - vn), 0.0);
-            apply(c, (next - c.normalImpulse) * c.normal);
-            change = std::max(change, std::abs(next - c.normalImpulse));
-            c.normalImpulse = next;
+            Row& n = c.along;
+            const double next = std::max(n.impulse + n.mass * (c.target - n.speed(v, omega)), 0.0);
+            apply(n, next - n.impulse);
+            change = std::max(change, std::abs(next - n.impulse));
+            n.impulse = next;
             largest = std::max(largest, next);
         }
         if (change <= 1e-9 * largest)
@@ -204,10 +213,11 @@ bool resolvePlaneContacts(const ContactBody& body, std::span<const Plane> planes
         const bool bounce = arriving < -step.restingSpeed;
         c.target = bounce ? -body.restitution * arriving : std::max(c.gap, 0.0) / -step.dt;
         bounced = bounced || bounce;
-        c.normalMass = massAlong(c.arm, c.normal, inverseMass, inverseInertia);
-        tangentsOf(c.normal, c.tangent);
+        dvec3 tangent[2];
+        tangentsOf(c.normal, tangent);
+        c.along.setUp(c.normal, c.arm, inverseMass, inverseInertia);
         for (int t = 0; t < 2; ++t)
-            c.tangentMass[t] = massAlong(c.arm, c.tangent[t], inverseMass, inverseInertia);
+            c.across[t].setUp(tangent[t], c.arm, inverseMass, inverseInertia);
         return false;
     });
     if (body.memory) {
@@ -219,9 +229,9 @@ bool resolvePlaneContacts(const ContactBody& body, std::span<const Plane> planes
             for (std::size_t k = 0; k < body.memory->count; ++k)
                 if (remembered[k].point == c.point && remembered[k].surface == c.surface &&
                     c.target == std::max(c.gap, 0.0) / -step.dt) {
-                    c.normalImpulse = remembered[k].normal;
-                    c.tangentImpulse[0] = remembered[k].tangent[0];
-                    c.tangentImpulse[1] = remembered[k].tangent[1];
+                    c.along.impulse = remembered[k].normal;
+                    c.across[0].impulse = remembered[k].tangent[0];
+                    c.across[1].impulse = remembered[k].tangent[1];
                 }
         body.memory->count = 0;
     }
@@ -231,9 +241,9 @@ bool resolvePlaneContacts(const ContactBody& body, std::span<const Plane> planes
         solveImpulses(contacts, body.friction, inverseMass, inverseInertia, s.v, s.rotation.momentum);
         if (body.memory)
             for (const Contact& c : contacts)
-                if (c.normalImpulse > 0.0 && body.memory->count < RigidBody::kRememberedContacts)
-                    body.memory->impulses[body.memory->count++] = {c.point, c.surface, c.normalImpulse,
-                                                                   {c.tangentImpulse[0], c.tangentImpulse[1]}};
+                if (c.along.impulse > 0.0 && body.memory->count < RigidBody::kRememberedContacts)
+                    body.memory->impulses[body.memory->count++] = {c.point, c.surface, c.along.impulse,
+                                                                   {c.across[0].impulse, c.across[1].impulse}};
         // The impulses act at the start of the step: the end pose moves by the part of the step's
         // drift that the end velocity drives (driftWeight).
         const double drift = step.driftWeight * step.dt;
