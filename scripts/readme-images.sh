@@ -17,6 +17,7 @@ still spring 2
 still blow-dryer 6
 still cloth-in-the-dryer 4
 still blow-dryer-flow 12 640x480 # taller: the legend leaves all five balls in view
+"$pba" render dice --size 960x540 --out "$out/dice.png" # at the end: every die at rest
 "$pba" render blow-dryer-swarm --size 640x360 --time 1.5 --out "$out/blow-dryer-swarm.png"
 "$pba" field blow-dryer-flow --slice --out "$out/field-blow-dryer-flow.png"
 
@@ -26,6 +27,8 @@ still blow-dryer-flow 12 640x480 # taller: the legend leaves all five balls in v
 cp "$work/study/height.png" "$out/compare-height.png"
 "$pba" compare stiff-spring --out "$work/stiff" > /dev/null
 cp "$work/stiff/stability.png" "$out/stability.png"
+"$pba" compare tennis-racket --integrators rk4,implicit-gyroscopic --out "$work/racket" > /dev/null
+cp "$work/racket/flip.png" "$out/tennis-racket-flip.png"
 xvfb-run -a -s "-screen 0 1280x720x24" "$pba" view integrators --time 1.3 --screenshot "$out/viewer.png"
 
 gif() { # SCENE SECONDS SIZE: the first SECONDS at 12 frames a second, a palette of its own
