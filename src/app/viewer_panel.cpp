@@ -124,11 +124,10 @@ void particlesSection(ViewerState& state)
             ImGui::SetNextItemWidth(100);
             if (ImGui::SliderFloat("e", &e, 0.0f, 1.0f, "%.2f"))
                 state.setRestitution(i, e);
-            if (rigid) {
-                ImGui::SameLine();
+            if (rigid) { // on a line of its own: the panel is too narrow for a third control
                 float mu = float(static_cast<const RigidBody&>(body).getFriction());
-                ImGui::SetNextItemWidth(100);
-                if (ImGui::SliderFloat("mu", &mu, 0.0f, 1.5f, "%.2f"))
+                ImGui::SetNextItemWidth(170);
+                if (ImGui::SliderFloat("friction (mu)", &mu, 0.0f, 1.5f, "%.2f"))
                     state.setFriction(i, mu);
             }
         }
