@@ -190,6 +190,26 @@ struct SceneRun {
     int spans = 0, spanSteps = 0;
 };
 
+/// A world stepped as a program steps it, `spans` spans of `spanSteps` steps, each timed: the
+/// slowest span's steps per second, and the seconds of the whole run.
+struct SpanTimes {
+    double slowest = 0.0, total = 0.0;
+};
+
+SpanTimes timeSpans(World& world, double dt, int spans, int spanSteps)
+{
+    SpanTimes t{std::numeric_limits<double>::infinity(), 0.0};
+    for (int span = 0; span < spans; ++span) {
+        const auto start = Clock::now();
+        for (int k = 0; k < spanSteps; ++k)
+            world.step(dt);
+        const double elapsed = seconds(start);
+        t.slowest = std::min(t.slowest, spanSteps / elapsed);
+        t.total += elapsed;
+    }
+    return t;
+}
+
 /// fountain-1m as a program runs it: a million particles, all cores, steps of the scene's dt
 /// over its whole duration, timed a simulated second at a time (--quick: two spans of 4 steps).
 /// The rain in flight is the cheap part; from about 4 s nearly every particle lies on the floor,
@@ -205,16 +225,7 @@ SceneRun runScene(bool quick)
     SceneRun run;
     run.spanSteps = quick ? 4 : static_cast<int>(std::lround(1.0 / scene.dt));
     run.spans = quick ? 2 : static_cast<int>(std::lround(scene.duration));
-    double slowest = std::numeric_limits<double>::infinity();
-    double total = 0.0;
-    for (int span = 0; span < run.spans; ++span) {
-        const auto start = Clock::now();
-        for (int k = 0; k < run.spanSteps; ++k)
-            world.step(scene.dt);
-        const double elapsed = seconds(start);
-        slowest = std::min(slowest, run.spanSteps / elapsed);
-        total += elapsed;
-    }
+    const auto [slowest, total] = timeSpans(world, scene.dt, run.spans, run.spanSteps);
     const std::size_t n = world.swarm(0).size();
     const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     run.row = Row{"scene", std::string(integratorName(world.swarm(0).integrator())), "", n, cores, slowest * double(n),
@@ -248,15 +259,7 @@ DiceRun runDice(bool quick, int cores)
     run.threads = cores;
     run.spanSteps = quick ? 10 : static_cast<int>(std::lround(0.5 / scene.dt));
     run.spans = quick ? 2 : static_cast<int>(std::lround(kDiceDuration / 0.5));
-    double slowest = std::numeric_limits<double>::infinity(), total = 0.0;
-    for (int span = 0; span < run.spans; ++span) {
-        const auto start = Clock::now();
-        for (int k = 0; k < run.spanSteps; ++k)
-            world.step(scene.dt);
-        const double elapsed = seconds(start);
-        slowest = std::min(slowest, run.spanSteps / elapsed);
-        total += elapsed;
-    }
+    const auto [slowest, total] = timeSpans(world, scene.dt, run.spans, run.spanSteps);
     run.stepsPerSecond = slowest;
     run.overallStepsPerSecond = double(run.spans) * run.spanSteps / total;
     return run;

@@ -41,6 +41,52 @@ void dropRepeats(std::vector<T>& list)
     list = std::move(kept);
 }
 
+/// The run's length: --duration, or the scene's.
+double readDuration(const CompareOptions& options, const Scene& scene)
+{
+    const double duration = options.duration.value_or(scene.duration);
+    if (!(std::isfinite(duration) && duration > 0))
+        throw UsageError(fmt::format("--duration: must be finite and positive, got {}", duration));
+    return duration;
+}
+
+/// --integrators by name, each once (the study's own list when none is given).
+void readIntegrators(const CompareOptions& options, std::vector<Integrator>& integrators)
+{
+    if (!options.integrators.empty()) {
+        integrators.clear();
+        for (const auto& name : options.integrators) {
+            const auto integrator = integratorFromName(name);
+            if (!integrator)
+                throw UsageError(fmt::format("--integrators: unknown integrator '{}'", name));
+            integrators.push_back(*integrator);
+        }
+    }
+    dropRepeats(integrators);
+}
+
+/// --dt (the study's own list when none is given), sorted, each value once (a repeated dt would
+/// be a repeated column, and a fit through two equal dt has no slope), each a run that fits.
+void readDts(const CompareOptions& options, double duration, std::vector<double>& dts)
+{
+    if (!options.dts.empty())
+        dts = options.dts;
+    for (double dt : dts)
+        if (!(std::isfinite(dt) && dt > 0))
+            throw UsageError(fmt::format("--dt: every dt must be finite and positive, got {}", dt));
+    std::sort(dts.begin(), dts.end());
+    dts.erase(std::unique(dts.begin(), dts.end()), dts.end());
+    for (double dt : dts)
+        stepCount(duration, dt, "--duration");
+}
+
+void sayIfNoPlots(bool plots)
+{
+    if (!plots)
+        fmt::print(stderr, "pba: gnuplot is not installed, so there are no plots: install the Debian package "
+                           "gnuplot-nox\n");
+}
+
 study::StudyConfig makeConfig(const CompareOptions& options)
 {
     study::StudyConfig config;
@@ -52,20 +98,10 @@ study::StudyConfig makeConfig(const CompareOptions& options)
         throw UsageError(fmt::format("{}: the study compares particles, and this scene has no moving particle{}",
                                      config.scene.source,
                                      config.scene.world.swarmCount() > 0 ? " (only swarms: try pba sim or pba bench)" : ""));
-    config.duration = options.duration.value_or(config.scene.duration);
-    if (!(std::isfinite(config.duration) && config.duration > 0))
-        throw UsageError(fmt::format("--duration: must be finite and positive, got {}", config.duration));
+    config.duration = readDuration(options, config.scene);
     if (options.jobs < 0 || options.jobs > 256)
         throw UsageError(fmt::format("--jobs: must be from 1 to 256 (0: all cores), got {}", options.jobs));
-    if (!options.integrators.empty()) {
-        config.integrators.clear();
-        for (const auto& name : options.integrators) {
-            const auto integrator = integratorFromName(name);
-            if (!integrator)
-                throw UsageError(fmt::format("--integrators: unknown integrator '{}'", name));
-            config.integrators.push_back(*integrator);
-        }
-    }
+    readIntegrators(options, config.integrators);
     if (!options.collisions.empty()) {
         config.collisions.clear();
         for (const auto& name : options.collisions) {
@@ -75,19 +111,8 @@ study::StudyConfig makeConfig(const CompareOptions& options)
             config.collisions.push_back(*collision);
         }
     }
-    if (!options.dts.empty())
-        config.dts = options.dts;
-    for (double dt : config.dts)
-        if (!(std::isfinite(dt) && dt > 0))
-            throw UsageError(fmt::format("--dt: every dt must be finite and positive, got {}", dt));
-    // Each value once: a repeated dt would be a repeated column, and a fit through two equal dt
-    // has no slope.
-    std::sort(config.dts.begin(), config.dts.end());
-    config.dts.erase(std::unique(config.dts.begin(), config.dts.end()), config.dts.end());
-    dropRepeats(config.integrators);
+    readDts(options, config.duration, config.dts);
     dropRepeats(config.collisions);
-    for (double dt : config.dts)
-        stepCount(config.duration, dt, "--duration");
     config.jobs = options.jobs > 0 ? options.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     return config;
 }
@@ -102,29 +127,10 @@ study::RotationConfig makeRotationConfig(const CompareOptions& options, Scene sc
                                      "impulses whatever the collision response: the rotation study has no responses "
                                      "to compare", scene.source));
     study::RotationConfig config;
-    config.duration = options.duration.value_or(scene.duration);
-    if (!(std::isfinite(config.duration) && config.duration > 0))
-        throw UsageError(fmt::format("--duration: must be finite and positive, got {}", config.duration));
+    config.duration = readDuration(options, scene);
     config.scene = std::move(scene);
-    if (!options.integrators.empty()) {
-        config.integrators.clear();
-        for (const auto& name : options.integrators) {
-            const auto integrator = integratorFromName(name);
-            if (!integrator)
-                throw UsageError(fmt::format("--integrators: unknown integrator '{}'", name));
-            config.integrators.push_back(*integrator);
-        }
-    }
-    if (!options.dts.empty())
-        config.dts = options.dts;
-    for (double dt : config.dts)
-        if (!(std::isfinite(dt) && dt > 0))
-            throw UsageError(fmt::format("--dt: every dt must be finite and positive, got {}", dt));
-    std::sort(config.dts.begin(), config.dts.end());
-    config.dts.erase(std::unique(config.dts.begin(), config.dts.end()), config.dts.end());
-    dropRepeats(config.integrators);
-    for (double dt : config.dts)
-        stepCount(config.duration, dt, "--duration");
+    readIntegrators(options, config.integrators);
+    readDts(options, config.duration, config.dts);
     return config;
 }
 
@@ -138,9 +144,7 @@ int runRotationCompare(const CompareOptions& options, Scene scene)
     const std::filesystem::path dir = folder.path();
     writeRotationCsv(dir / "results.csv", result);
     const bool plots = writeRotationPlots(dir, config, result);
-    if (!plots)
-        fmt::print(stderr, "pba: gnuplot is not installed, so there are no plots: install the Debian package "
-                           "gnuplot-nox\n");
+    sayIfNoPlots(plots);
     writeRotationReport(dir / "report.md", config, result, plots);
     folder.commit();
     fmt::print("largest |E/E0 - 1|, rigid body {} of {}:\n{}\n", result.body, config.scene.name,
@@ -174,9 +178,7 @@ int runCompare(const CompareOptions& options)
     if (!result.stability.empty())
         writeStabilityCsv(dir / "stability.csv", result);
     const bool plots = writePlots(dir, config, result);
-    if (!plots)
-        fmt::print(stderr, "pba: gnuplot is not installed, so there are no plots: install the Debian package "
-                           "gnuplot-nox\n");
+    sayIfNoPlots(plots);
     writeReport(dir / "report.md", config, result, plots);
     folder.commit();
     const auto responses = study::distinctResponses(config, result);

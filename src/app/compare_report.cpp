@@ -21,29 +21,37 @@ std::string number(double x) { return std::isnan(x) ? "nan" : fmt::format("{}", 
 
 } // namespace
 
-std::string energyTable(const study::StudyConfig& config, const study::StudyResult& result, CollisionResponse collision,
-                        bool markdown)
+std::string integratorTable(const std::vector<Integrator>& integrators, const std::vector<double>& dts, bool markdown,
+                            const std::function<std::string(Integrator, double)>& cell)
 {
-    std::string out;
-    out += markdown ? "| integrator" : fmt::format("{:<20}", "integrator \\ dt");
-    for (double dt : config.dts)
+    // Text columns wide enough for the longest name, implicit-gyroscopic.
+    std::string out = markdown ? "| integrator" : fmt::format("{:<21}", "integrator \\ dt");
+    for (double dt : dts)
         out += markdown ? fmt::format(" | {}", dt) : fmt::format("{:>10}", dt);
     out += markdown ? " |\n|---" : "\n";
     if (markdown) {
-        for (std::size_t i = 0; i < config.dts.size(); ++i)
+        for (std::size_t i = 0; i < dts.size(); ++i)
             out += "|---:";
         out += "|\n";
     }
-    for (Integrator integrator : config.integrators) {
-        out += markdown ? fmt::format("| {}", integratorName(integrator)) : fmt::format("{:<20}", integratorName(integrator));
-        for (double dt : config.dts) {
-            const ParticleResult* r = study::findRun(result, integrator, collision, dt);
-            const std::string value = !r ? "-" : std::isnan(r->blewUpAt) ? study::ratioText(r->energyRatioEnd) : "blew up";
+    for (Integrator integrator : integrators) {
+        out += markdown ? fmt::format("| {}", integratorName(integrator)) : fmt::format("{:<21}", integratorName(integrator));
+        for (double dt : dts) {
+            const std::string value = cell(integrator, dt);
             out += markdown ? " | " + value : fmt::format("{:>10}", value);
         }
         out += markdown ? " |\n" : "\n";
     }
     return out;
+}
+
+std::string energyTable(const study::StudyConfig& config, const study::StudyResult& result, CollisionResponse collision,
+                        bool markdown)
+{
+    return integratorTable(config.integrators, config.dts, markdown, [&](Integrator integrator, double dt) {
+        const ParticleResult* r = study::findRun(result, integrator, collision, dt);
+        return !r ? std::string("-") : std::isnan(r->blewUpAt) ? study::ratioText(r->energyRatioEnd) : std::string("blew up");
+    });
 }
 
 std::string energyTableHeading(const study::StudyConfig& config, const study::StudyResult& result,

@@ -1,11 +1,18 @@
 #pragma once
 // Writing the integrator study: results.csv, orders.csv, the plots and report.md.
 #include <filesystem>
+#include <functional>
+#include <vector>
 #include <string>
 
 #include "study/study.hpp"
 
 namespace pba::app {
+
+/// A table of the studies' shape, integrators down and dt across, text or Markdown, each cell
+/// cell(integrator, dt).
+std::string integratorTable(const std::vector<Integrator>& integrators, const std::vector<double>& dts, bool markdown,
+                            const std::function<std::string(Integrator, double)>& cell);
 
 /// The first moving particle's rows, as a table of E(end)/E(0): integrators down, dt across.
 std::string energyTable(const study::StudyConfig& config, const study::StudyResult& result,

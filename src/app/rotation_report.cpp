@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "atomic_file.hpp"
+#include "compare_report.hpp"
 #include "csv.hpp"
 #include "gnuplot.hpp"
 #include "study/rotation_plots.hpp"
@@ -43,24 +44,9 @@ std::string cell(const study::RotationRun* r, RotationMeasure measure, double ex
 std::string rotationTable(const study::RotationConfig& config, const study::RotationResult& result,
                           RotationMeasure measure, bool markdown)
 {
-    std::string out = markdown ? "| integrator" : fmt::format("{:<21}", "integrator \\ dt");
-    for (double dt : config.dts)
-        out += markdown ? fmt::format(" | {}", dt) : fmt::format("{:>10}", dt);
-    out += markdown ? " |\n|---" : "\n";
-    if (markdown) {
-        for (std::size_t i = 0; i < config.dts.size(); ++i)
-            out += "|---:";
-        out += "|\n";
-    }
-    for (Integrator integrator : config.integrators) {
-        out += markdown ? fmt::format("| {}", integratorName(integrator)) : fmt::format("{:<21}", integratorName(integrator));
-        for (double dt : config.dts) {
-            const std::string value = cell(findRun(result, integrator, dt), measure, result.exactPeriod);
-            out += markdown ? " | " + value : fmt::format("{:>10}", value);
-        }
-        out += markdown ? " |\n" : "\n";
-    }
-    return out;
+    return integratorTable(config.integrators, config.dts, markdown, [&](Integrator integrator, double dt) {
+        return cell(findRun(result, integrator, dt), measure, result.exactPeriod);
+    });
 }
 
 void writeRotationCsv(const std::filesystem::path& path, const study::RotationResult& result)
