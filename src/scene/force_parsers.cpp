@@ -3,6 +3,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -44,6 +45,11 @@ std::unique_ptr<Force> parseTwoBodySpring(ObjectReader& reader, World& world)
     const std::size_t b = readParticle(reader, "particles", names[1], world);
     if (a == b)
         reader.fail("particles", fmt::format("joins '{}' to itself: name two different particles", names[0]));
+    for (const auto& [index, name] : {std::pair{a, names[0]}, std::pair{b, names[1]}})
+        if (world.isRigid(index))
+            reader.fail("particles", fmt::format("'{}' is a rigid body: a spring between two bodies joins particles "
+                                                 "(tie a rigid body to an anchor with \"particle\" and \"attachment\")",
+                                                 name));
     const Body& first = world.body(a);
     const Body& second = world.body(b);
     if (!first.isFixed() && !second.isFixed() && first.getIntegrator() != second.getIntegrator())

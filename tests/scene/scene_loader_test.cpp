@@ -195,7 +195,9 @@ INSTANTIATE_TEST_SUITE_P(
                     BadScene{R(R"(, "shape": {"type": "sphere", "radius": 0.1}, "position": [9, 1, 0])"), "(document)",
                              "duplicate key 'position'"},
                     BadScene{R"({"particles": [{"name": "a", "position": [0, 1, 0]}], "forces": [{"type": "spring", "particle": "a", "anchor": [0,2,0], "stiffness": 1, "attachment": [0.1, 0, 0]}]})",
-                             "forces[0].attachment", "only a rigid body"}));
+                             "forces[0].attachment", "only a rigid body"},
+                    BadScene{R"({"particles": [{"name": "a", "position": [0, 1, 0]}], "rigid_bodies": [{"name": "r", "shape": {"type": "sphere", "radius": 0.1}, "position": [0, 2, 0]}], "forces": [{"type": "spring", "particles": ["a", "r"], "stiffness": 1}]})",
+                             "forces[0].particles", "'r' is a rigid body"}));
 #undef R
 #undef S
 #undef D
