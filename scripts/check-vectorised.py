@@ -1,0 +1,83 @@
+#!/usr/bin/env python3
+"""Fails when a hot loop of the swarm step stops vectorising.
+
+The loops are marked in the sources by a comment line `// vectorised: checked` right above the
+`for`. This compiles src/core/swarm.cpp exactly as the build does (its command from
+compile_commands.json) with GCC's vectorisation report (-fopt-info-vec-optimized), and requires
+every marked loop to be reported "vectorized using 64 byte vectors" (the AVX-512 copy that
+target_clones makes) and "using 32 byte vectors" (the AVX2 copy). A change that turns a select
+into a branch, or adds an alias the compiler cannot rule out, makes the loop scalar in every
+copy, runs 4 to 16 times slower, and fails here with the loop's place.
+
+Usage: check-vectorised.py BUILD_DIR SOURCE_DIR. Exits 77 (skipped) where the check does not
+apply: not GCC, not x86-64, or a build whose command lacks -O2/-O3 (the sanitizer build).
+"""
+import json
+import os
+import platform
+import re
+import shlex
+import subprocess
+import sys
+import tempfile
+
+MARKER = "// vectorised: checked"
+
+
+def marked_loops(paths):
+    loops = []
+    for path in paths:
+        with open(path) as f:
+            lines = f.read().splitlines()
+        for i, line in enumerate(lines):
+            if line.strip() == MARKER:
+                loops.append((path, i + 2))  # the next line, 1-based
+    return loops
+
+
+def main():
+    build, source = sys.argv[1], sys.argv[2]
+    if platform.machine() not in ("x86_64", "AMD64"):
+        print("check-vectorised: not x86-64, skipped")
+        return 77
+    with open(os.path.join(build, "compile_commands.json")) as f:
+        commands = json.load(f)
+    swarm = os.path.realpath(os.path.join(source, "src/core/swarm.cpp"))
+    entry = next((c for c in commands if os.path.realpath(c["file"]) == swarm), None)
+    if entry is None:
+        print("check-vectorised: swarm.cpp is not in compile_commands.json")
+        return 1
+    argv = shlex.split(entry["command"]) if "command" in entry else entry["arguments"]
+    version = subprocess.run([argv[0], "--version"], capture_output=True, text=True).stdout
+    if "Free Software Foundation" not in version or not ({"-O2", "-O3"} & set(argv)):
+        print("check-vectorised: not an optimised GCC build, skipped")
+        return 77
+    sources = [swarm, os.path.join(source, "src/core/surface_tests.hpp")]
+    loops = marked_loops(sources)
+    if not loops:
+        print("check-vectorised: no marked loops found")
+        return 1
+    with tempfile.TemporaryDirectory() as tmp:
+        report = os.path.join(tmp, "vec.txt")
+        out = argv.index("-o")
+        argv = argv[:out] + ["-o", os.path.join(tmp, "swarm.o")] + argv[out + 2:]
+        argv.append("-fopt-info-vec-optimized=" + report)
+        subprocess.run(argv, check=True, cwd=entry["directory"])
+        with open(report) as f:
+            text = f.read()
+    failures = []
+    for path, line in loops:
+        name = os.path.basename(path)
+        widths = set(re.findall(r"%s:%d:\d+: optimized: loop vectorized using (\d+) byte vectors" % (re.escape(name), line), text))
+        missing = {"64", "32"} - widths
+        if missing:
+            failures.append("%s:%d: not vectorised with %s byte vectors (report: %s)" % (
+                path, line, " and ".join(sorted(missing, reverse=True)), ", ".join(sorted(widths)) or "none"))
+    for f in failures:
+        print("check-vectorised: " + f)
+    print("check-vectorised: %d marked loops, %d vectorised for AVX-512 and AVX2" % (len(loops), len(loops) - len(failures)))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
