@@ -3,6 +3,8 @@
 // (24 bytes a particle; with the exact response, one byte more remembering whether it is clear
 // of every surface) and stepped by the same integrator, force-kernel and collision templates
 // as a single Particle, instantiated for float and inlined into a loop the compiler vectorises. A Particle stays a readable object; a million of them live here.
+#include <array>
+#include <atomic>
 #include <cstdint>
 #include <algorithm>
 #include <new>
@@ -70,6 +72,16 @@ struct SwarmKernelFields {
     }
 };
 
+/// Where a swarm's step spends its time, phase by phase, summed over its threads: filled while a
+/// swarm has it (Swarm::setPhaseTimes), read by `pba bench --phases`. Each block of 512
+/// particles reads the clock between its phases (a few tens of nanoseconds each), so a timed
+/// step runs a little slower than an untimed one.
+struct SwarmPhaseTimes {
+    enum Phase { Integrate, SurfaceTest, Collide, Check, kCount };
+    static constexpr std::array<const char*, kCount> kNames{"integrate", "surface test", "collide", "check"};
+    std::array<std::atomic<std::uint64_t>, kCount> nanoseconds{};
+};
+
 class Swarm {
 public:
     /// Positions and velocities from a counter-based generator: particle i's values depend on
@@ -105,6 +117,9 @@ public:
         const char* quantity; ///< "position" or "velocity"
     };
     const std::optional<NonFiniteParticle>& nonFinite() const { return m_nonFinite; }
+
+    /// Times each phase of the following steps into `times` (nullptr: stop).
+    void setPhaseTimes(SwarmPhaseTimes* times) { m_phaseTimes = times; }
 
     /// A copy of every particle's state, for a World that rolls a failed step back, and back.
     void saveState(std::vector<float>& out) const { out.assign(m_state.begin(), m_state.end()); }
@@ -162,6 +177,7 @@ private:
     std::vector<std::uint8_t> m_finite; ///< per 512-particle block: all finite after the last step
     std::optional<NonFiniteParticle> m_nonFinite;
     std::vector<PlaneT<float>> m_clearOf; ///< the surfaces m_clear was computed against
+    SwarmPhaseTimes* m_phaseTimes = nullptr; ///< not owned; not copied meaningfully (a copy times into the same)
 };
 
 /// The acceleration a swarm particle feels at (x, v): one inline expression of the same

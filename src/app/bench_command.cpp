@@ -35,6 +35,7 @@ struct BenchOptions {
     std::vector<double> sizes;
     bool peerWorker = false; ///< --peer-worker: one row, windows on request (bench/peers/run.py)
     std::string phase = "flight";
+    bool phases = false; ///< --phases: where a swarm step's time goes, instead of the rows
 };
 
 struct Row {
@@ -507,10 +508,62 @@ int runPeerWorker(const BenchOptions& options)
     return kExitSuccess;
 }
 
+/// --phases: the semi-implicit Euler swarm on all cores, in flight and landed, each step's time
+/// split by phase (SwarmPhaseTimes: thread-time summed over the threads, so on 2 threads the
+/// phases add up to about twice the step's wall time).
+int runPhases(const BenchOptions& options)
+{
+    const std::vector<double> sizes = options.sizes.empty() ? std::vector<double>{1e6} : options.sizes;
+    const int steps = options.quick ? 10 : 200;
+    nlohmann::json out;
+    out["results"] = nlohmann::json::array();
+    std::string table = fmt::format("{:>9} {:<7} {:>8}", "n", "phase", "steps/s");
+    for (const char* name : SwarmPhaseTimes::kNames)
+        table += fmt::format(" {:>18}", fmt::format("{} ms", name));
+    table += "\n";
+    for (double size : sizes) {
+        if (!(size >= 1.0 && size <= 1e8 && size == std::floor(size)))
+            throw UsageError(fmt::format("--sizes: each size must be a whole number from 1 to 1e8, got {}", size));
+        const auto n = static_cast<std::size_t>(size);
+        for (const char* phase : {"flight", "landed"}) {
+            World world = std::string(phase) == "landed" ? landedWorld(n) : swarmWorld(n, Integrator::SemiImplicitEuler, 0);
+            world.setThreads(0);
+            SwarmPhaseTimes times;
+            world.swarm(0).setPhaseTimes(&times);
+            const auto start = Clock::now();
+            for (int k = 0; k < steps; ++k)
+                world.step(0.002);
+            const double rate = steps / seconds(start);
+            nlohmann::json row{{"layout", "phases"}, {"phase", phase}, {"n", n}, {"steps_per_s", rate}};
+            table += fmt::format("{:>9} {:<7} {:>8.1f}", n, phase, rate);
+            double total = 0.0;
+            for (const auto& t : times.nanoseconds)
+                total += double(t.load());
+            for (std::size_t p = 0; p < SwarmPhaseTimes::kCount; ++p) {
+                const double ms = double(times.nanoseconds[p].load()) * 1e-6 / steps;
+                std::string key = SwarmPhaseTimes::kNames[p];
+                std::replace(key.begin(), key.end(), ' ', '_'); // "surface_test_ms"
+                row[key + "_ms"] = ms;
+                table += fmt::format(" {:>10.3f} ({:>4.1f}%)", ms, 100.0 * double(times.nanoseconds[p].load()) / total);
+            }
+            table += "\n";
+            out["results"].push_back(row);
+        }
+    }
+    if (options.json)
+        fmt::print("{}\n", out.dump(2));
+    else
+        fmt::print("{}(semi-implicit Euler, blow-dryer-swarm, all cores, {} steps each; milliseconds of thread time per "
+                   "step, summed over the threads)\n", table, steps);
+    return kExitSuccess;
+}
+
 int runBench(const BenchOptions& options)
 {
     if (options.peerWorker)
         return runPeerWorker(options);
+    if (options.phases)
+        return runPhases(options);
     std::vector<std::size_t> sizes;
     for (double s : options.sizes.empty() ? std::vector<double>{1e3, 1e5, 1e6, 1e7} : options.sizes) {
         // A swarm of the scene's particles: a whole number of them, at least one, at most what
@@ -612,6 +665,10 @@ void addBenchCommand(CLI::App& root, Action& selected)
     CLI::Option* peerWorker = bench->add_flag("--peer-worker", options->peerWorker,
                     "For bench/peers/run.py: only the semi-implicit Euler swarm on all cores at the one size "
                     "of --sizes, its windows taken on request from standard input (see bench/peers/run.py)");
+    bench->add_flag("--phases", options->phases,
+                    "Instead of the rows: where a swarm step's time goes (integrate, surface test, collide, check), "
+                    "in flight and landed, at the sizes of --sizes (default 1e6)")
+        ->excludes(peerWorker);
     bench->add_option("--phase", options->phase, "With --peer-worker: flight (from t = 0) or landed (from t = 2 s)")
         ->check(CLI::IsMember({"flight", "landed"}))
         ->needs(peerWorker)
@@ -639,7 +696,11 @@ void addBenchCommand(CLI::App& root, Action& selected)
                   "Last, the fountain-1m scene is stepped as a program would through its whole 10 s, timed a\n"
                   "simulated second at a time (two spans of 4 steps with --quick); its physics steps per second\n"
                   "are reported for its slowest second (the one a real-time program must keep up with) and for\n"
-                  "the whole run.\n");
+                  "the whole run.\n"
+                  "\nWith --phases it prints instead where a swarm step's time goes: the semi-implicit Euler\n"
+                  "swarm on all cores, in flight and landed, at the sizes of --sizes (default 1e6), 200 steps\n"
+                  "each (10 with --quick), in milliseconds of thread time a step for each phase (integrate,\n"
+                  "surface test, collide, check; timing them slows a step a little).\n");
     bench->callback([options, &selected] { selected = [options] { return runBench(*options); }; });
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <chrono>
 #include <atomic>
 #include <cstring>
 #include <limits>
@@ -107,6 +108,30 @@ struct Arrays {
     float *px, *py, *pz, *vx, *vy, *vz;
     std::uint8_t* clear; ///< 1: the position is clear of every surface (known from the last step)
     std::uint8_t* finite; ///< per block: 1 when its six arrays are all finite after the step
+    SwarmPhaseTimes* phases = nullptr; ///< where to add each phase's time, if anywhere
+};
+
+/// Adds the time since its last lap to a phase's total; does nothing without a SwarmPhaseTimes.
+class PhaseClock {
+public:
+    explicit PhaseClock(SwarmPhaseTimes* times) : m_times(times)
+    {
+        if (m_times)
+            m_last = std::chrono::steady_clock::now();
+    }
+    void lap(SwarmPhaseTimes::Phase phase)
+    {
+        if (!m_times)
+            return;
+        const auto now = std::chrono::steady_clock::now();
+        const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(now - m_last).count();
+        m_times->nanoseconds[phase].fetch_add(static_cast<std::uint64_t>(ns), std::memory_order_relaxed);
+        m_last = now;
+    }
+
+private:
+    SwarmPhaseTimes* m_times;
+    std::chrono::steady_clock::time_point m_last{};
 };
 
 /// Whether n floats are all finite, by their exponent bits: an integer OR over the block, which
@@ -542,7 +567,7 @@ public:
             for (std::size_t c = 0; c < 3; ++c)
                 m_from[c][j] = m_spare[6 + c];
         }
-        const Arrays gathered{m_state[0], m_state[1], m_state[2], m_state[3], m_state[4], m_state[5], nullptr, nullptr};
+        const Arrays gathered{m_state[0], m_state[1], m_state[2], m_state[3], m_state[4], m_state[5], nullptr, nullptr, nullptr};
         const std::uint64_t bounces = collideBlock(gathered, 0, width, m_restitution, m_planes, m_response,
                                                    {m_from[0], m_from[1], m_from[2]}, m_depthBox);
         float* const arrays[6] = {m_a.px, m_a.py, m_a.pz, m_a.vx, m_a.vy, m_a.vz};
@@ -606,6 +631,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
         return swarmAccelerationAll(fields, x, v);
     };
     const bool drag = fields.dragPerMass != 0.0f;
+    PhaseClock clock(a.phases);
     for (std::size_t b = begin; b < end; b += kBlock) {
         const std::size_t n = std::min(kBlock, end - b);
         const auto integrate = [&](auto accel) { integrateBlock<kIntegrator>(a, b, n, dt, start, response, accel); };
@@ -615,8 +641,10 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
             drag ? integrate(oneDryer<DryerAxis::Up, true>(fields)) : integrate(oneDryer<DryerAxis::Up, false>(fields));
         else
             drag ? integrate(oneDryer<DryerAxis::Any, true>(fields)) : integrate(oneDryer<DryerAxis::Any, false>(fields));
+        clock.lap(SwarmPhaseTimes::Integrate);
         const bool exact = response == CollisionResponse::Exact;
         const std::size_t hits = planes.empty() ? 0 : classifyBlock(a, b, n, planes, box, coversAll, exact, hit);
+        clock.lap(SwarmPhaseTimes::SurfaceTest);
         if (hits > 0 && exact) {
             bounces += collideExactly<kIntegrator>(a, b, n, fields, restitution, dt, planes, start, hit);
         } else if (hits > 0 && hits <= kGatherMax && hits < n) {
@@ -625,13 +653,17 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
             bounces += collideBlock(a, b, n, restitution, planes, response, {start[0], start[1], start[2]},
                                     depthBox);
         }
+        clock.lap(SwarmPhaseTimes::Collide);
         // The check phase, while the block is still in L1: swarms are checked every step like
         // bodies, and the flags say where to look for the first bad particle. (After the step,
         // over the whole range, the same check measured 15-25% of a step: the arrays again
         // from L3 or memory.)
         a.finite[b / kBlock] = allFinite(a, b, n);
+        clock.lap(SwarmPhaseTimes::Check);
     }
-    return bounces + gathered.collide();
+    bounces += gathered.collide();
+    clock.lap(SwarmPhaseTimes::Collide);
+    return bounces;
 }
 
 /// Every integrator's loop for a range of particles, compiled three times: for AVX-512
@@ -689,7 +721,8 @@ void Swarm::set(std::size_t i, const Vec3<float>& x, const Vec3<float>& v)
 std::uint64_t Swarm::stepRange(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes,
                                CollisionResponse response, float dt, std::size_t begin, std::size_t end)
 {
-    const Arrays a{array(0), array(1), array(2), array(3), array(4), array(5), m_clear.data(), m_finite.data()};
+    const Arrays a{array(0), array(1), array(2), array(3), array(4), array(5), m_clear.data(), m_finite.data(),
+                   m_phaseTimes};
     return stepSwarmRange(m_integrator, a, begin, end, fields, m_restitution, dt, planes, response);
 }
 

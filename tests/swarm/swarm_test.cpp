@@ -382,3 +382,43 @@ TEST(PbaBench, QuickJsonHasEveryLayout)
     EXPECT_EQ(scene["spans"], 2);
     EXPECT_EQ(scene["steps_per_span"], 4);
 }
+
+// Timing the phases changes nothing: the same states to the bit, and every phase takes time.
+TEST(Swarm, TimingThePhasesLeavesTheStepAsItWas)
+{
+    pba::Scene timed = pba::loadScene("blow-dryer-swarm"), plain = pba::loadScene("blow-dryer-swarm");
+    pba::SwarmPhaseTimes times;
+    timed.world.swarm(0).setPhaseTimes(&times);
+    for (int n = 0; n < 300; ++n) {
+        timed.world.step(timed.dt);
+        plain.world.step(plain.dt);
+    }
+    const pba::Swarm& a = timed.world.swarm(0);
+    const pba::Swarm& b = plain.world.swarm(0);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        ASSERT_EQ(a.position(i), b.position(i)) << i;
+        ASSERT_EQ(a.velocity(i), b.velocity(i)) << i;
+    }
+    for (std::size_t p = 0; p < pba::SwarmPhaseTimes::kCount; ++p)
+        EXPECT_GT(times.nanoseconds[p].load(), 0u) << pba::SwarmPhaseTimes::kNames[p];
+}
+
+// `pba bench --phases --json`: a row per size and phase, each with every phase's milliseconds.
+TEST(PbaBench, PhasesSplitTheSwarmStep)
+{
+    const auto r = pba::test::runPba("bench --phases --quick --json --sizes 20000");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    ASSERT_EQ(json["results"].size(), 2u);
+    std::set<std::string> phases;
+    for (const auto& row : json["results"]) {
+        EXPECT_EQ(row["layout"], "phases");
+        EXPECT_EQ(row["n"], 20000);
+        phases.insert(row["phase"].get<std::string>());
+        for (const char* key : {"integrate_ms", "surface_test_ms", "collide_ms", "check_ms"})
+            EXPECT_GE(row[key].get<double>(), 0.0) << key;
+        EXPECT_GT(row["integrate_ms"].get<double>(), 0.0);
+        EXPECT_GT(row["steps_per_s"].get<double>(), 0.0);
+    }
+    EXPECT_EQ(phases, (std::set<std::string>{"flight", "landed"}));
+}
