@@ -69,8 +69,9 @@ bool writeRotationPlots(const std::filesystem::path& dir, const study::RotationC
         return false;
     ScratchDir scratch("pba-compare");
     runGnuplot(study::rotationPlotScript(scratch.path(), config, result), scratch.path(), {result.body});
-    for (const char* name : study::kRotationPlotFiles)
-        publish(scratch.path() / name, dir / name);
+    publish(scratch.path() / study::kDriftPlotFile, dir / study::kDriftPlotFile);
+    if (result.intermediateAxis >= 0)
+        publish(scratch.path() / study::kFlipPlotFile, dir / study::kFlipPlotFile);
     if (!std::isnan(result.exactPeriod))
         publish(scratch.path() / study::kPeriodPlotFile, dir / study::kPeriodPlotFile);
     return true;
@@ -101,7 +102,9 @@ void writeRotationReport(const std::filesystem::path& path, const study::Rotatio
         out << "\nNo flip period: the body has two equal moments of inertia, or spins exactly about an axis.\n";
     out << "\n";
     if (withPlots) {
-        out << "## Plots\n\n![drift](drift.png)\n\n![flip](flip.png)\n";
+        out << "## Plots\n\n![drift](drift.png)\n";
+        if (result.intermediateAxis >= 0)
+            out << "\n![flip](flip.png)\n";
         if (!std::isnan(result.exactPeriod))
             out << "\n![period](period.png)\n";
     } else {

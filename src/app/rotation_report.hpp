@@ -14,8 +14,8 @@ std::string rotationTable(const study::RotationConfig& config, const study::Rota
                           RotationMeasure measure, bool markdown);
 
 void writeRotationCsv(const std::filesystem::path& path, const study::RotationResult& result);
-/// Draws drift.png, flip.png and (with an exact period) period.png; false (and nothing written)
-/// without gnuplot.
+/// Draws drift.png, flip.png (a body with three different moments) and (with an exact period)
+/// period.png; false (and nothing written) without gnuplot.
 bool writeRotationPlots(const std::filesystem::path& dir, const study::RotationConfig& config,
                         const study::RotationResult& result);
 void writeRotationReport(const std::filesystem::path& path, const study::RotationConfig& config,

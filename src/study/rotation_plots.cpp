@@ -121,7 +121,9 @@ std::string flipPlot(const std::filesystem::path& dir, const RotationConfig& con
 std::string rotationPlotScript(const std::filesystem::path& dir, const RotationConfig& config,
                                const RotationResult& result)
 {
-    std::string script = driftPlot(dir, config, result) + flipPlot(dir, config, result);
+    std::string script = driftPlot(dir, config, result);
+    if (result.intermediateAxis >= 0) // a body with two equal moments has no intermediate axis to follow
+        script += flipPlot(dir, config, result);
     if (!std::isnan(result.exactPeriod))
         script += periodPlot(dir, config, result);
     return script;

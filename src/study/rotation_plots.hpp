@@ -1,7 +1,6 @@
 #pragma once
 // The rotation study's figures as a gnuplot script and the data files it reads, each
 // integrator in its colour (render/palette.hpp), as the particles' study draws them.
-#include <array>
 #include <filesystem>
 #include <string>
 
@@ -9,9 +8,11 @@
 
 namespace pba::study {
 
-/// drift.png (energy and |L| drift against dt) and flip.png (the angular velocity about the
-/// intermediate axis against time); period.png too where the exact flip period is known.
-inline constexpr std::array<const char*, 2> kRotationPlotFiles{"drift.png", "flip.png"};
+/// drift.png (energy and |L| drift against dt); flip.png (the angular velocity about the
+/// intermediate axis against time) for a body with three different moments; period.png too
+/// where the exact flip period is known.
+inline constexpr const char* kDriftPlotFile = "drift.png";
+inline constexpr const char* kFlipPlotFile = "flip.png";
 inline constexpr const char* kPeriodPlotFile = "period.png";
 
 /// Writes the data files into `dir` and returns the script that draws the plots from them; the
