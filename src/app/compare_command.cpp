@@ -80,6 +80,14 @@ void readDts(const CompareOptions& options, double duration, std::vector<double>
         stepCount(duration, dt, "--duration");
 }
 
+/// --jobs: runs at once (0: one a core).
+int readJobs(const CompareOptions& options)
+{
+    if (options.jobs < 0 || options.jobs > 256)
+        throw UsageError(fmt::format("--jobs: must be from 1 to 256 (0: all cores), got {}", options.jobs));
+    return options.jobs > 0 ? options.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
 void sayIfNoPlots(bool plots)
 {
     if (!plots)
@@ -99,8 +107,6 @@ study::StudyConfig makeConfig(const CompareOptions& options)
                                      config.scene.source,
                                      config.scene.world.swarmCount() > 0 ? " (only swarms: try pba sim or pba bench)" : ""));
     config.duration = readDuration(options, config.scene);
-    if (options.jobs < 0 || options.jobs > 256)
-        throw UsageError(fmt::format("--jobs: must be from 1 to 256 (0: all cores), got {}", options.jobs));
     readIntegrators(options, config.integrators);
     if (!options.collisions.empty()) {
         config.collisions.clear();
@@ -113,7 +119,7 @@ study::StudyConfig makeConfig(const CompareOptions& options)
     }
     readDts(options, config.duration, config.dts);
     dropRepeats(config.collisions);
-    config.jobs = options.jobs > 0 ? options.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    config.jobs = readJobs(options);
     return config;
 }
 
@@ -131,6 +137,7 @@ study::RotationConfig makeRotationConfig(const CompareOptions& options, Scene sc
     config.scene = std::move(scene);
     readIntegrators(options, config.integrators);
     readDts(options, config.duration, config.dts);
+    config.jobs = readJobs(options);
     return config;
 }
 

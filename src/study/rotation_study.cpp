@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "parallel_runs.hpp"
+
 namespace pba::study {
 
 std::optional<std::size_t> studiedRigidBody(const World& world)
@@ -124,13 +126,12 @@ RotationResult runRotationStudy(const RotationConfig& config, const std::functio
     result.body = b.getName();
     result.intermediateAxis = intermediateAxisOf(b.getInertiaBody());
     result.exactPeriod = torqueFreeFlipPeriod(b);
-    const long total = long(config.integrators.size() * config.dts.size());
-    for (Integrator integrator : config.integrators)
-        for (double dt : config.dts) {
-            result.runs.push_back(runOne(config.scene, *body, result.intermediateAxis, integrator, dt, config.duration));
-            if (progress)
-                progress(long(result.runs.size()), total);
-        }
+    const std::size_t dts = config.dts.size();
+    result.runs.resize(config.integrators.size() * dts);
+    runInParallel(result.runs.size(), config.jobs, [&](std::size_t i) {
+        result.runs[i] = runOne(config.scene, *body, result.intermediateAxis, config.integrators[i / dts],
+                                config.dts[i % dts], config.duration);
+    }, progress);
     return result;
 }
 

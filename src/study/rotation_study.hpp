@@ -20,6 +20,7 @@ struct RotationConfig {
     std::vector<Integrator> integrators{kEveryIntegrator.begin(), kEveryIntegrator.end()};
     std::vector<double> dts{0.0005, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05};
     double duration = 10.0;
+    int jobs = 1; ///< runs at once; the results do not depend on it
 };
 
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

@@ -1,5 +1,7 @@
 #include "study.hpp"
 
+#include "parallel_runs.hpp"
+
 #include <atomic>
 #include <cmath>
 #include <exception>
@@ -188,43 +190,16 @@ StudyResult runStudy(const StudyConfig& config, const std::function<void(long, l
     std::vector<std::vector<ParticleResult>> runs(tasks.size());
     result.orders.resize(orders);
     result.stability.resize(limits);
-    std::atomic<std::size_t> next{0};
-    std::atomic<long> done{0};
-    std::exception_ptr failure; // the first run that threw, rethrown once every thread has joined
-    std::mutex failureMutex;
-    auto worker = [&] {
-        for (std::size_t i; (i = next.fetch_add(1)) < total; ++done) try {
-            if (i < tasks.size())
-                runs[i] = measureRun(config.scene, tasks[i].integrator, tasks[i].collision, tasks[i].dt, config.duration);
-            else if (i < tasks.size() + orders)
-                result.orders[i - tasks.size()] =
-                    measureOrder(spring, config.integrators[i - tasks.size()], config.dts, result.orderWindow);
-            else
-                result.stability[i - tasks.size() - orders] =
-                    measureStabilityLimit(config.scene, config.integrators[i - tasks.size() - orders],
-                                          *result.omegaMax, config.stability);
-        } catch (...) {
-            const std::lock_guard lock(failureMutex);
-            if (!failure)
-                failure = std::current_exception();
-        }
-    };
-    std::vector<std::thread> threads;
-    for (int j = 1; j < std::max(1, config.jobs); ++j)
-        threads.emplace_back(worker);
-    std::thread main(worker);
-    while (done.load() < static_cast<long>(total)) {
-        if (progress)
-            progress(done.load(), static_cast<long>(total));
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    main.join();
-    for (auto& t : threads)
-        t.join();
-    if (failure)
-        std::rethrow_exception(failure);
-    if (progress)
-        progress(static_cast<long>(total), static_cast<long>(total));
+    runInParallel(total, config.jobs, [&](std::size_t i) {
+        if (i < tasks.size())
+            runs[i] = measureRun(config.scene, tasks[i].integrator, tasks[i].collision, tasks[i].dt, config.duration);
+        else if (i < tasks.size() + orders)
+            result.orders[i - tasks.size()] =
+                measureOrder(spring, config.integrators[i - tasks.size()], config.dts, result.orderWindow);
+        else
+            result.stability[i - tasks.size() - orders] = measureStabilityLimit(
+                config.scene, config.integrators[i - tasks.size() - orders], *result.omegaMax, config.stability);
+    }, progress);
     for (auto& run : runs)
         for (auto& r : run)
             result.runs.push_back(std::move(r));

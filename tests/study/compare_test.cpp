@@ -353,6 +353,12 @@ TEST(PbaCompare, RigidSceneGetsTheRotationStudy)
         stbi_image_free(pixels);
     }
     EXPECT_NE(readFile(dir / "racket/report.md").find("T_exact = 5.86"), std::string::npos);
+    // The runs are independent: the same files whatever --jobs is.
+    const CommandResult one = runPba("compare tennis-racket --duration 7 --dt 0.002,0.01 --jobs 1 --out " +
+                                     (dir / "one").string());
+    ASSERT_EQ(one.exitCode, 0) << one.err;
+    for (const char* file : {"results.csv", "report.md"})
+        EXPECT_EQ(readFile(dir / "racket" / file), readFile(dir / "one" / file)) << file;
     EXPECT_EQ(runPba("compare dice --collisions exact --out " + (dir / "dice").string()).exitCode, 2);
     EXPECT_FALSE(std::filesystem::exists(dir / "dice"));
 }
