@@ -148,6 +148,9 @@ public:
         return coupledCollisionResponse() != m_response && hasCoupledBodies();
     }
     void setCollisionResponse(CollisionResponse response) { m_response = response; }
+    /// Whether the response has anything to act on: a particle or a swarm (rigid bodies meet the
+    /// room with contact impulses whatever it is).
+    bool hasPoints() const;
 
     // ---- stepping ----
     /// Advances every moving body and swarm by exactly dt. Throws NonFiniteStateError (bodies,

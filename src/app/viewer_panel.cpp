@@ -45,7 +45,8 @@ void sceneSection(ViewerState& state)
 /// practical's reflect and the exact response can be compared on the same drop.
 void collisionChoice(ViewerState& state)
 {
-    if (state.scene.world.planes().empty())
+    // The response is the points' rule: a scene of rigid bodies alone (contact impulses) has none.
+    if (state.scene.world.planes().empty() || !state.scene.world.hasPoints())
         return;
     int response = static_cast<int>(state.scene.world.collisionResponse());
     if (ImGui::Combo("collision response", &response, kResponseNames, 3))

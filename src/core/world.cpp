@@ -231,6 +231,11 @@ dquat World::interpolatedOrientation(std::size_t i, double alpha) const
     return glm::slerp(m_previousRotation[i].orientation, now, alpha);
 }
 
+bool World::hasPoints() const
+{
+    return !m_swarms.empty() || std::any_of(m_isRigid.begin(), m_isRigid.end(), [](std::uint8_t r) { return r == 0; });
+}
+
 bool World::hasRigidBodies() const
 {
     return std::any_of(m_isRigid.begin(), m_isRigid.end(), [](std::uint8_t r) { return r != 0; });

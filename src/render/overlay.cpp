@@ -91,10 +91,7 @@ void drawLegend(const World& world, const std::string& sceneName, double dt, dou
             ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
             // The collision response is the points' rule: rigid bodies meet the room with contact
             // impulses whatever it is.
-            bool points = world.swarmCount() > 0;
-            for (std::size_t i = 0; i < world.bodyCount() && !points; ++i)
-                points = !world.isRigid(i);
-            if (points)
+            if (world.hasPoints())
                 ImGui::TextWrapped("collisions: %s%s%s",
                                    std::string(collisionResponseSummary(world.collisionResponse())).c_str(),
                                    world.coupledBodiesReflect() ? "; bodies joined by springs: reflect" : "",
