@@ -156,7 +156,16 @@ inline void stepRigidSystem(Integrator integrator, std::span<RigidState> states,
     const std::size_t n = states.size();
     RigidStepBuffers own;
     RigidStepBuffers& b = buffers ? *buffers : own;
-    auto& [w, w0, start, stage, unit, k1, k2, k3] = b;
+    // Named references rather than a structured binding: the lambdas below capture them (which
+    // clang 14, the fuzz build's compiler, does not allow for bindings).
+    auto& w = b.w;
+    auto& w0 = b.w0;
+    auto& start = b.start;
+    auto& stage = b.stage;
+    auto& unit = b.unit;
+    auto& k1 = b.k1;
+    auto& k2 = b.k2;
+    auto& k3 = b.k3;
     w.resize(n);
     stage.resize(n);
     unit.resize(n);
