@@ -25,6 +25,15 @@ namespace collision_detail {
 /// wedged in a corner with e close to 1 would otherwise loop).
 inline constexpr int kMaxEvents = 16;
 
+/// std::min by value, for the loops over a swarm's arrays: std::min takes and returns
+/// references, and GCC 12 stopped vectorising a swarm's box test ("complicated access pattern")
+/// when a change elsewhere in the step altered how it was inlined. The same result as std::min.
+template <class T>
+inline T lesser(T a, T b)
+{
+    return b < a ? b : a;
+}
+
 template <class T>
 inline T contactTolerance(const PlaneT<T>& plane)
 {
@@ -138,7 +147,9 @@ inline int keepInside(std::span<const PlaneT<T>> planes, T restitution, const Ve
 /// the bounce. `kMayHaveHole` false, for a plane known to have none, skips the shaft's
 /// arithmetic (a swarm's pass picks it per plane; it changes no result). `plane` is a PlaneT or
 /// an AxisPlaneT.
-template <bool kMayHaveHole = true, class Geometry, class T>
+/// `kShaftWall` false leaves the shaft's wall out (its square root and divisions): for a caller
+/// that sees to the bodies in the shaft itself (a swarm's fused pass hands them to the whole rule).
+template <bool kMayHaveHole = true, bool kShaftWall = true, class Geometry, class T>
 inline bool pushBack(const Geometry& plane, T restitution, T back, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
                      int& bounces)
 {
@@ -150,7 +161,7 @@ inline bool pushBack(const Geometry& plane, T restitution, T back, const Vec3<T>
     const bool bounce = beyond & (vn < T(0));
     plane.moveAlong(v, -(bounce ? (T(1) + restitution) * vn : T(0)));
     bounces += int(bounce);
-    if constexpr (kMayHaveHole)
+    if constexpr (kMayHaveHole && kShaftWall)
         return pushIntoShaft(plane, restitution, (d < T(0)) & excused, x, v, bounces) | beyond;
     else
         return beyond;

@@ -18,15 +18,6 @@ namespace pba {
 
 namespace collision_detail {
 
-/// std::min by value, for the loops over a swarm's arrays: std::min takes and returns
-/// references, and GCC 12 stopped vectorising lowerDepthInBox ("complicated access pattern")
-/// when a change elsewhere in the step altered how it was inlined. The same result as std::min.
-template <class T>
-inline T lesser(T a, T b)
-{
-    return b < a ? b : a;
-}
-
 /// lowerClearance's loop for one form of the plane's geometry, taken by value so the stores
 /// to margin cannot change it. For a wall (AxisPlaneT) the distance is one coordinate, and the
 /// loop reads one array instead of three.
@@ -44,34 +35,6 @@ inline std::uint32_t lowerClearanceOf(const Geometry plane, T tolerance, const T
         beyond += static_cast<std::uint32_t>(d < T(0));
     }
     return beyond;
-}
-
-/// lowerDepth's loop for one form of the geometry of a plane with a hole (by value, as
-/// lowerClearanceOf's): points within innerSquared of the hole's axis are not counted.
-template <class Geometry, class T>
-inline void lowerDepthOf(const Geometry plane, T innerSquared, const T* __restrict x, const T* __restrict y,
-                         const T* __restrict z, std::size_t n, T* __restrict depth)
-{
-    // vectorised: checked
-    for (std::size_t k = 0; k < n; ++k) {
-        const Vec3<T> p(x[k], y[k], z[k]);
-        const auto rho = plane.fromHoleAxis(p);
-        const T counted = glm::dot(rho, rho) < innerSquared ? std::numeric_limits<T>::infinity() : plane.distance(p);
-        depth[k] = counted < depth[k] ? counted : depth[k];
-    }
-}
-
-/// lowerDepth's loop for a plane without a hole: the distance alone, which for a wall
-/// (AxisPlaneT) reads one array instead of three.
-template <class Geometry, class T>
-inline void lowerDepthWithoutHole(const Geometry plane, const T* __restrict x, const T* __restrict y,
-                                  const T* __restrict z, std::size_t n, T* __restrict depth)
-{
-    // vectorised: checked
-    for (std::size_t k = 0; k < n; ++k) {
-        const T d = plane.distance(Vec3<T>(x[k], y[k], z[k]));
-        depth[k] = d < depth[k] ? d : depth[k];
-    }
 }
 
 } // namespace collision_detail
@@ -177,94 +140,6 @@ inline std::uint32_t markUnclearInBox(const ClearRegionT<T> region, const T* __r
         count += unclear[k];
     }
     return count;
-}
-
-/// The smallest and the largest of each coordinate over some points. A point is beyond a plane
-/// whose normal is a coordinate axis exactly when the bound on the plane's side is, so one loop
-/// of six minima and maxima tells which of a room's walls, and which other axis-aligned planes
-/// (the grille below a hole), some of a block's points crossed: counting them wall by wall took
-/// six comparisons and six sums a point, and a second loop for each other plane.
-template <class T>
-struct BoundsT {
-    std::array<T, 3> lo, hi;
-
-    /// Whether some of the points are beyond `plane`, whose axis() must be 0, 1 or 2: what
-    /// lowerClearance's count > 0 says of them (its d = sign c - offset < 0 exactly when
-    /// sign c < offset).
-    bool beyond(const PlaneT<T>& plane) const
-    {
-        const int axis = plane.axis();
-        const auto i = static_cast<std::size_t>(axis);
-        return plane.normal[axis] > T(0) ? lo[i] < plane.offset : -hi[i] < plane.offset;
-    }
-};
-
-/// The bounds of n points (SoA arrays); a NaN coordinate is passed over, as lowerClearance
-/// counts it beyond no plane. The minima and maxima are kept lane by lane in whole vectors of
-/// kLanes floats and reduced at the end: GCC does not vectorise a floating-point minimum taken
-/// over a loop (it would reorder it), but it vectorises one taken element by element.
-template <class T>
-inline BoundsT<T> boundsOf(const T* __restrict x, const T* __restrict y, const T* __restrict z, std::size_t n)
-{
-    using collision_detail::lesser;
-    const auto greater = [](T a, T b) { return a < b ? b : a; };
-    constexpr std::size_t kLanes = 64 / sizeof(T);
-    constexpr T kInf = std::numeric_limits<T>::infinity();
-    T x0[kLanes], x1[kLanes], y0[kLanes], y1[kLanes], z0[kLanes], z1[kLanes];
-    std::fill_n(x0, kLanes, kInf), std::fill_n(y0, kLanes, kInf), std::fill_n(z0, kLanes, kInf);
-    std::fill_n(x1, kLanes, -kInf), std::fill_n(y1, kLanes, -kInf), std::fill_n(z1, kLanes, -kInf);
-    std::size_t k = 0;
-    for (; k + kLanes <= n; k += kLanes) {
-        for (std::size_t j = 0; j < kLanes; ++j) {
-            x0[j] = lesser(x0[j], x[k + j]), x1[j] = greater(x1[j], x[k + j]);
-            y0[j] = lesser(y0[j], y[k + j]), y1[j] = greater(y1[j], y[k + j]);
-            z0[j] = lesser(z0[j], z[k + j]), z1[j] = greater(z1[j], z[k + j]);
-        }
-    }
-    for (std::size_t j = 0; k < n; ++k, ++j) // the last, partial vector
-        x0[j] = lesser(x0[j], x[k]), x1[j] = greater(x1[j], x[k]), y0[j] = lesser(y0[j], y[k]),
-        y1[j] = greater(y1[j], y[k]), z0[j] = lesser(z0[j], z[k]), z1[j] = greater(z1[j], z[k]);
-    BoundsT<T> bounds{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}};
-    for (std::size_t j = 0; j < kLanes; ++j) {
-        bounds.lo = {lesser(bounds.lo[0], x0[j]), lesser(bounds.lo[1], y0[j]), lesser(bounds.lo[2], z0[j])};
-        bounds.hi = {greater(bounds.hi[0], x1[j]), greater(bounds.hi[1], y1[j]), greater(bounds.hi[2], z1[j])};
-    }
-    return bounds;
-}
-
-/// lowerDepth for the six walls of a box in one loop, each coordinate read once (as
-/// setClearanceInBox for lowerClearance). A wall with a hole must be left to lowerDepth, which
-/// knows the hole's shaft: give it an infinite bound here.
-template <class T>
-inline void lowerDepthInBox(const std::array<T, 3>& lo, const std::array<T, 3>& hi, const T* __restrict x,
-                            const T* __restrict y, const T* __restrict z, std::size_t n, T* __restrict depth)
-{
-    const T x0 = lo[0], x1 = hi[0], y0 = lo[1], y1 = hi[1], z0 = lo[2], z1 = hi[2];
-    for (std::size_t k = 0; k < n; ++k) {
-        const T a = x[k], b = y[k], c = z[k];
-        using collision_detail::lesser;
-        const T d = lesser(lesser(lesser(a - x0, x1 - a), lesser(b - y0, y1 - b)), lesser(c - z0, z1 - c));
-        depth[k] = d < depth[k] ? d : depth[k];
-    }
-}
-
-/// Lowers depth[k] to point k's signed distance from the plane (no tolerance): a point whose
-/// smallest depth is negative is outside some plane and needs the rest of a collision rule. A
-/// point in the shaft below the plane's hole, within its radius, is where it may be
-/// (keepInShaft would leave it): it does not lower its depth for this plane. "Within" leaves 8
-/// units in the last place for rounding; pushIntoShaft puts a body 16 inside the wall.
-template <class T>
-inline void lowerDepth(const PlaneT<T>& plane, const T* __restrict x, const T* __restrict y, const T* __restrict z,
-                       std::size_t n, T* __restrict depth)
-{
-    const T inner = plane.holeRadius * (T(1) - T(8) * std::numeric_limits<T>::epsilon());
-    const bool hole = plane.holeRadius > T(0);
-    withPlaneGeometry(plane, [&](const auto geometry) {
-        if (hole)
-            collision_detail::lowerDepthOf(geometry, inner * inner, x, y, z, n, depth);
-        else
-            collision_detail::lowerDepthWithoutHole(geometry, x, y, z, n, depth);
-    });
 }
 
 /// Whether x is clear of every plane (see lowerClearance).

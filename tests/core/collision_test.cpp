@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "core/room_surfaces.hpp"
 #include "core/surface_tests.hpp"
 #include "pba/forces.hpp"
 #include "pba/scene/scene.hpp"
@@ -246,40 +247,6 @@ TEST(Collisions, TheShaftWallIsPartOfTheFloorsPass)
     }
 }
 
-// Which axis-aligned planes some points crossed, from the points' bounds, is what counting
-// them plane by plane says: for every wall of a room and a grille below its floor, for counts
-// of points that fill no vector, some and part of one, with points exactly on a wall, and with
-// a NaN among them (beyond no plane) or no point beyond anything.
-TEST(Collisions, TheBoundsOfPointsTellWhichPlanesTheyCrossed)
-{
-    const auto room = roomPlanes(Vec3<float>(-2, 0, -2), Vec3<float>(2, 4, 2));
-    std::vector<PlaneT<float>> planes(room.begin(), room.end());
-    planes.push_back({Vec3<float>(0, 1, 0), -0.05f});
-    std::mt19937 rng(5);
-    for (float spread : {2.1f, 1.9f}) { // some points outside the room, or none
-        std::uniform_real_distribution<float> coordinate(-spread, spread);
-        for (std::size_t n : {std::size_t(1), std::size_t(7), std::size_t(16), std::size_t(37), std::size_t(512)}) {
-            for (int trial = 0; trial < 50; ++trial) {
-                std::vector<float> x(n), y(n), z(n), margin(n);
-                for (std::size_t k = 0; k < n; ++k)
-                    x[k] = coordinate(rng), y[k] = 2.0f + coordinate(rng), z[k] = coordinate(rng);
-                if (trial % 5 == 1)
-                    x[n - 1] = 2.0f, y[0] = 0.0f, z[n / 2] = -2.0f; // on walls, not beyond them
-                if (trial % 5 == 2)
-                    y[n / 2] = std::nanf("");
-                if (trial % 5 == 3)
-                    y[0] = -0.06f; // below the grille
-                const BoundsT<float> bounds = boundsOf(x.data(), y.data(), z.data(), n);
-                for (std::size_t p = 0; p < planes.size(); ++p) {
-                    std::fill(margin.begin(), margin.end(), std::numeric_limits<float>::infinity());
-                    const bool counted = lowerClearance(planes[p], x.data(), y.data(), z.data(), n, margin.data()) > 0;
-                    ASSERT_EQ(bounds.beyond(planes[p]), counted) << "plane " << p << " n " << n << " trial " << trial;
-                }
-            }
-        }
-    }
-}
-
 // A wall's geometry with its axis known when compiled (AxisPlaneT, what a swarm's passes use)
 // gives the rule what the generic plane gives: for each axis and side, with a hole, for bodies
 // beyond the plane, over the hole, in the shaft, at the shaft's wall and clear of it. Without
@@ -426,18 +393,6 @@ TEST(Collisions, TheBoxSurfaceTestAgreesWithThePlaneByPlaneOne)
         notPositive += unclear[k];
     }
     EXPECT_EQ(unclearCount, notPositive);
-    // Depths: the box's walls but the floor (it has a hole: its bound stays infinite and
-    // lowerDepth, which knows the shaft, tests it) give bit for bit the plane-by-plane depths.
-    constexpr float kInf = std::numeric_limits<float>::infinity();
-    std::array<float, 3> lo = box->lo, hi = box->hi;
-    lo[1] = -kInf;
-    std::vector<float> boxDepth(n, kInf), planeDepth(n, kInf);
-    lowerDepthInBox(lo, hi, x.data(), y.data(), z.data(), n, boxDepth.data());
-    lowerDepth(planes[0], x.data(), y.data(), z.data(), n, boxDepth.data());
-    for (const PlaneT<float>& plane : planes)
-        lowerDepth(plane, x.data(), y.data(), z.data(), n, planeDepth.data());
-    for (std::size_t k = 0; k < n; ++k)
-        ASSERT_EQ(boxDepth[k], planeDepth[k]) << "point " << k;
 }
 
 TEST(Collisions, NothingEverEndsAStepOutsideTheRoom)
@@ -528,4 +483,103 @@ TEST(Collision, TheDeclaredOneBodyStepIsTheWorldsRule)
     EXPECT_NEAR(x.y, 2.0 - 0.5 * kG * 0.25, 1e-12);
     EXPECT_EQ(x, world.body(0).getPos());
     EXPECT_EQ(v, world.body(0).getVel());
+}
+
+namespace {
+
+/// A World's surfaces in float: the blow-dryer scenes' room, the hole in its floor and the
+/// grille at the bottom of the hole's shaft (or a ground, with or without the hole).
+std::vector<PlaneT<float>> worldSurfaces(bool room, bool hole)
+{
+    std::vector<PlaneT<float>> planes;
+    if (room) {
+        const auto walls = roomPlanes(Vec3<float>(-2, 0, -2), Vec3<float>(2, 4, 2));
+        planes.assign(walls.begin(), walls.end());
+    } else {
+        planes.push_back(groundPlanes(0.0f)[0]);
+    }
+    if (hole) {
+        planes[0].holeRadius = 0.25f;
+        planes[0].holeCentre = Vec3<float>(0.3f, 0.0f, -0.2f);
+        planes.push_back({Vec3<float>(0, 1, 0), -0.1f});
+    }
+    return planes;
+}
+
+} // namespace
+
+// The swarm's form of a World's surfaces is found for the four a World makes (a ground or a
+// room, with the dryer's hole and grille or without) and for nothing else.
+TEST(Collisions, RoomSurfacesAreFoundForAWorldsPlanesOnly)
+{
+    for (bool room : {false, true})
+        for (bool hole : {false, true}) {
+            const auto planes = worldSurfaces(room, hole);
+            const auto surfaces = roomSurfaces(std::span<const PlaneT<float>>(planes));
+            ASSERT_TRUE(surfaces.has_value()) << room << hole;
+            EXPECT_EQ(surfaces->hasHole(), hole);
+        }
+    auto angled = worldSurfaces(true, false);
+    angled.push_back({glm::normalize(Vec3<float>(-1, 0, -1)), -2.0f});
+    auto swapped = worldSurfaces(true, false);
+    std::swap(swapped[2], swapped[3]);
+    auto grilleWithoutHole = worldSurfaces(true, false);
+    grilleWithoutHole.push_back({Vec3<float>(0, 1, 0), -0.1f});
+    auto holeInAWall = worldSurfaces(true, false);
+    holeInAWall[2].holeRadius = 0.1f;
+    for (const auto& planes : {angled, swapped, grilleWithoutHole, holeInAWall})
+        EXPECT_FALSE(roomSurfaces(std::span<const PlaneT<float>>(planes)).has_value());
+}
+
+// The swarm's collision pass over the floor, its hole and the grille, for a body it says it has
+// finished, gives what a Particle's whole reflect or clamp rule gives, bit for bit: bodies
+// thrown at every surface of the room, over the hole, in the shaft and at its wall, from
+// starts above the floor and in the shaft. The rest, at a wall, the ceiling or the shaft's wall,
+// it hands to that rule.
+TEST(Collisions, TheSwarmsFloorPassIsAParticlesRuleWhereItFinishes)
+{
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> across(-2.3f, 2.3f), height(-0.15f, 4.2f), nearFloor(-0.15f, 0.05f),
+        speed(-6.0f, 6.0f), unit(0.0f, 1.0f);
+    for (bool room : {false, true})
+        for (bool hole : {false, true}) {
+            const auto planes = worldSurfaces(room, hole);
+            const std::span<const PlaneT<float>> span(planes);
+            const RoomSurfacesT<float> surfaces = *roomSurfaces(span);
+            for (CollisionResponse response : {CollisionResponse::Reflect, CollisionResponse::Clamp}) {
+                int finished = 0, handedOn = 0;
+                for (int trial = 0; trial < 20000; ++trial) {
+                    // Half near the floor and the hole, where a landed swarm is.
+                    const bool low = trial % 2 == 0;
+                    const float r = 0.3f * unit(rng), angle = 6.2832f * unit(rng);
+                    Vec3<float> x = low ? Vec3<float>(0.3f + r * std::cos(angle), nearFloor(rng), -0.2f + r * std::sin(angle))
+                                        : Vec3<float>(across(rng), height(rng), across(rng));
+                    const Vec3<float> v(speed(rng), speed(rng), speed(rng));
+                    const Vec3<float> start = x - 0.002f * v + Vec3<float>(0.0f, trial % 3 == 0 ? -0.02f : 0.0f, 0.0f);
+                    Vec3<float> passedX = x, passedV = v;
+                    int bounces = 0;
+                    const float back = response == CollisionResponse::Reflect ? 2.0f : 1.0f;
+                    if (hole)
+                        surfaces.commonPass<true>(0.6f, back, start, passedX, passedV, bounces);
+                    else
+                        surfaces.commonPass<false>(0.6f, back, start, passedX, passedV, bounces);
+                    if (surfaces.needsWholeRule(passedX)) {
+                        ++handedOn;
+                        continue;
+                    }
+                    ++finished;
+                    Vec3<float> ruleV = v;
+                    const int ruleBounces = response == CollisionResponse::Reflect
+                                                ? reflectAfterStep(span, 0.6f, start, x, ruleV)
+                                                : clampAfterStep(span, 0.6f, start, x, ruleV);
+                    ASSERT_EQ(passedX, x) << collisionResponseName(response) << " trial " << trial;
+                    ASSERT_EQ(passedV, ruleV) << collisionResponseName(response) << " trial " << trial;
+                    ASSERT_EQ(bounces, ruleBounces) << collisionResponseName(response) << " trial " << trial;
+                }
+                EXPECT_GT(finished, 10000) << room << hole; // most bodies, the rest handed on
+                if (room || hole) { // a ground alone leaves nothing to the whole rule
+                    EXPECT_GT(handedOn, 100) << room << hole;
+                }
+            }
+        }
 }
