@@ -328,24 +328,40 @@ PassResult passInRoom(float* __restrict px, float* __restrict py, float* __restr
 }
 
 /// A Particle's whole rule, from where the integrator left them, for the particles marked in
-/// `which` (all of them with nullptr) among n of `a` from b. Out of line and scalar, as
-/// collideExactly. The rule starts with the test a Particle's does (inside every plane: nothing
-/// to do). Returns the bounces; clears `finite` if a state it wrote is not.
+/// `which` (all of them with nullptr) among n of `a` from b. In a World's room its first pass
+/// is the room's (RoomSurfacesT::firstPass: the same functions over the same planes in the same
+/// order), the rest only for a particle still outside; among other planes it is the rule as a
+/// Particle runs it, which first tests whether the particle is inside every plane. Out of line
+/// and scalar, as collideExactly. Returns the bounces; clears `finite` if a state it wrote is
+/// not.
 [[gnu::noinline]] std::uint64_t wholeRule(const Arrays& a, std::size_t b, std::size_t n, float restitution,
                                           std::span<const PlaneT<float>> planes, CollisionResponse response,
+                                          const std::optional<RoomSurfacesT<float>>& room,
                                           const StartPositions& start, const std::uint32_t* which, bool& finite)
 {
+    const bool reflect = response == CollisionResponse::Reflect;
     std::uint64_t bounces = 0;
     for (std::size_t k = 0; k < n; ++k) {
         if (which && !which[k])
             continue;
         const std::size_t i = b + k;
         const Vec3<float> from(start[0][k], start[1][k], start[2][k]);
-        Vec3<float> x(a.px[i], a.py[i], a.pz[i]);
-        Vec3<float> v(a.vx[i], a.vy[i], a.vz[i]);
-        const int bounced = response == CollisionResponse::Reflect ? reflectAfterStep(planes, restitution, from, x, v)
-                                                                   : clampAfterStep(planes, restitution, from, x, v);
-        if (bounced == 0 && x == Vec3<float>(a.px[i], a.py[i], a.pz[i]) && v == Vec3<float>(a.vx[i], a.vy[i], a.vz[i]))
+        const Vec3<float> x0(a.px[i], a.py[i], a.pz[i]), v0(a.vx[i], a.vy[i], a.vz[i]);
+        Vec3<float> x = x0, v = v0;
+        int bounced = 0;
+        if (room) {
+            if (room->hasHole())
+                room->firstPass<true>(restitution, reflect ? 2.0f : 1.0f, from, x, v, bounced);
+            else
+                room->firstPass<false>(restitution, reflect ? 2.0f : 1.0f, from, x, v, bounced);
+            if (room->needsWholeRule(x))
+                bounced += reflect ? reflectAfterStep(planes, restitution, from, x, v, 1)
+                                   : clampAfterStep(planes, restitution, from, x, v, 1);
+        } else {
+            bounced = reflect ? reflectAfterStep(planes, restitution, from, x, v)
+                              : clampAfterStep(planes, restitution, from, x, v);
+        }
+        if (bounced == 0 && x == x0 && v == v0)
             continue;
         bounces += static_cast<std::uint64_t>(bounced);
         a.px[i] = x.x, a.py[i] = x.y, a.pz[i] = x.z;
@@ -368,7 +384,7 @@ std::uint64_t collideHits(const Arrays& a, std::size_t b, std::size_t n, float r
                           const std::optional<RoomSurfacesT<float>>& room, const StartPositions& start, bool& finite)
 {
     if (!room)
-        return wholeRule(a, b, n, restitution, planes, response, start, nullptr, finite);
+        return wholeRule(a, b, n, restitution, planes, response, room, start, nullptr, finite);
     alignas(64) std::uint32_t unfinished[kBlock];
     const float back = response == CollisionResponse::Reflect ? 2.0f : 1.0f; // see pushBack
     const auto pass = [&](auto hole) {
@@ -380,7 +396,7 @@ std::uint64_t collideHits(const Arrays& a, std::size_t b, std::size_t n, float r
     finite = finite && result.finite;
     std::uint64_t bounces = static_cast<std::uint64_t>(result.bounces);
     if (result.unfinished > 0)
-        bounces += wholeRule(a, b, n, restitution, planes, response, start, unfinished, finite);
+        bounces += wholeRule(a, b, n, restitution, planes, response, room, start, unfinished, finite);
     return bounces;
 }
 
