@@ -109,6 +109,7 @@ struct Arrays {
     float *px, *py, *pz, *vx, *vy, *vz;
     std::uint8_t* clear; ///< 1: the position is clear of every surface (known from the last step)
     std::uint8_t* finite; ///< per block: 1 when its six arrays are all finite after the step
+    std::uint8_t* crowded; ///< per block: 1 when the collision pass moved most of it last step
     SwarmPhaseTimes* phases = nullptr; ///< where to add each phase's time, if anywhere
 };
 
@@ -279,6 +280,7 @@ template <Integrator kIntegrator>
 struct PassResult {
     int bounces = 0;
     std::uint32_t unfinished = 0;
+    std::uint32_t moved = 0; ///< particles the pass moved, or left to the whole rule
     bool finite = true;
 };
 
@@ -305,7 +307,7 @@ PassResult passInRoom(float* __restrict px, float* __restrict py, float* __restr
                       std::size_t n, const RoomSurfacesT<float> room, float restitution, float back)
 {
     int bounces = 0;
-    std::uint32_t count = 0, nonFinite = 0; // 32 bits, as wide as a float: 16 particles a vector
+    std::uint32_t count = 0, moved = 0, nonFinite = 0; // 32 bits, as wide as a float: 16 particles a vector
     // vectorised: checked
     for (std::size_t k = 0; k < n; ++k) {
         Vec3<float> x(px[k], py[k], pz[k]);
@@ -317,6 +319,7 @@ PassResult passInRoom(float* __restrict px, float* __restrict py, float* __restr
         const bool whole = room.needsWholeRule(passedX);
         unfinished[k] = static_cast<std::uint32_t>(whole);
         count += static_cast<std::uint32_t>(whole);
+        moved += static_cast<std::uint32_t>(whole | (passedX.x != x.x) | (passedX.y != x.y) | (passedX.z != x.z));
         bounces += whole ? 0 : bounced;
         x = Vec3<float>(whole ? x.x : passedX.x, whole ? x.y : passedX.y, whole ? x.z : passedX.z);
         v = Vec3<float>(whole ? v.x : passedV.x, whole ? v.y : passedV.y, whole ? v.z : passedV.z);
@@ -324,7 +327,7 @@ PassResult passInRoom(float* __restrict px, float* __restrict py, float* __restr
         px[k] = x.x, py[k] = x.y, pz[k] = x.z;
         vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
     }
-    return PassResult{bounces, count, nonFinite == 0};
+    return PassResult{bounces, count, moved, nonFinite == 0};
 }
 
 /// A Particle's whole rule, from where the integrator left them, for the particles marked in
@@ -377,12 +380,15 @@ PassResult passInRoom(float* __restrict px, float* __restrict py, float* __restr
 /// plane at an angle: no scene has one, Swarm::step takes any). Compiled once for each
 /// instruction set, apart from the integration loops that call it: the collision code does not
 /// depend on the integrator, and inlined into each integrator's loop it was compiled four times
-/// over. Returns the bounces; clears `finite` if a state it wrote is not.
+/// over. Returns the bounces; clears `finite` if a state it wrote is not; sets `moved` to how
+/// many particles the rule moved (all n among other planes).
 PBA_FOR_EACH_INSTRUCTION_SET
 std::uint64_t collideHits(const Arrays& a, std::size_t b, std::size_t n, float restitution,
                           std::span<const PlaneT<float>> planes, CollisionResponse response,
-                          const std::optional<RoomSurfacesT<float>>& room, const StartPositions& start, bool& finite)
+                          const std::optional<RoomSurfacesT<float>>& room, const StartPositions& start, bool& finite,
+                          std::size_t& moved)
 {
+    moved = n;
     if (!room)
         return wholeRule(a, b, n, restitution, planes, response, room, start, nullptr, finite);
     alignas(64) std::uint32_t unfinished[kBlock];
@@ -394,6 +400,7 @@ std::uint64_t collideHits(const Arrays& a, std::size_t b, std::size_t n, float r
     };
     const PassResult result = room->hasHole() ? pass(std::true_type{}) : pass(std::false_type{});
     finite = finite && result.finite;
+    moved = result.moved;
     std::uint64_t bounces = static_cast<std::uint64_t>(result.bounces);
     if (result.unfinished > 0)
         bounces += wholeRule(a, b, n, restitution, planes, response, room, start, unfinished, finite);
@@ -491,11 +498,13 @@ public:
             for (std::size_t c = 0; c < 3; ++c)
                 m_from[c][j] = m_spare[6 + c];
         }
-        const Arrays gathered{m_state[0], m_state[1], m_state[2], m_state[3], m_state[4], m_state[5], nullptr, nullptr, nullptr};
+        const Arrays gathered{m_state[0], m_state[1], m_state[2], m_state[3], m_state[4], m_state[5],
+                              nullptr,    nullptr,    nullptr,    nullptr};
         // The states the rule wrote are checked by it; the others were checked with their block.
         bool finite = true;
+        std::size_t moved = 0;
         const std::uint64_t bounces = collideHits(gathered, 0, width, m_restitution, m_planes, m_response, m_room,
-                                                  {m_from[0], m_from[1], m_from[2]}, finite);
+                                                  {m_from[0], m_from[1], m_from[2]}, finite, moved);
         float* const arrays[6] = {m_a.px, m_a.py, m_a.pz, m_a.vx, m_a.vy, m_a.vz};
         for (std::size_t j = 0; j < m_count; ++j) {
             for (std::size_t c = 0; c < 6; ++c)
@@ -586,8 +595,15 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
         else
             finite = drag ? integrate(oneDryer<DryerAxis::Any, true>(fields)) : integrate(oneDryer<DryerAxis::Any, false>(fields));
         clock.lap(SwarmPhaseTimes::Integrate);
-        const std::size_t hits = planes.empty() ? 0 : classifyBlock(a, b, n, planes, box, coversAll, exact, hit);
+        // A crowded block (most of it on the floor last step, as a landed swarm is) skips the
+        // surface test and takes the collision pass whole, which leaves a clear particle
+        // exactly as it was: the same result, without a test that would mark most of the
+        // block anyway. It stays crowded while the pass moves more than a batch's worth.
+        std::uint8_t& crowded = a.crowded[b / kBlock];
+        const bool test = !(room && crowded);
+        const std::size_t hits = !test ? n : planes.empty() ? 0 : classifyBlock(a, b, n, planes, box, coversAll, exact, hit);
         clock.lap(SwarmPhaseTimes::SurfaceTest);
+        std::size_t moved = 0;
         if (hits > 0 && exact) {
             bounces += collideExactly<kIntegrator>(a, b, n, fields, restitution, dt, planes, start, hit);
             finite = allFinite(a, b, n);
@@ -595,8 +611,9 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
             bounces += gathered.add(b, n, hit, start); // checked again when the batch is resolved
         } else if (hits > 0) {
             bounces += collideHits(a, b, n, restitution, planes, response, room, {start[0], start[1], start[2]},
-                                   finite);
+                                   finite, moved);
         }
+        crowded = static_cast<std::uint8_t>(moved > kGatherMax);
         clock.lap(SwarmPhaseTimes::Collide);
         a.finite[b / kBlock] = finite;
         clock.lap(SwarmPhaseTimes::Check);
@@ -661,8 +678,8 @@ void Swarm::set(std::size_t i, const Vec3<float>& x, const Vec3<float>& v)
 std::uint64_t Swarm::stepRange(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes,
                                CollisionResponse response, float dt, std::size_t begin, std::size_t end)
 {
-    const Arrays a{array(0), array(1), array(2), array(3), array(4), array(5), m_clear.data(), m_finite.data(),
-                   m_phaseTimes};
+    const Arrays a{array(0),       array(1),        array(2),         array(3),    array(4), array(5),
+                   m_clear.data(), m_finite.data(), m_crowded.data(), m_phaseTimes};
     return stepSwarmRange(m_integrator, a, begin, end, fields, m_restitution, dt, planes, response);
 }
 
@@ -683,6 +700,7 @@ std::uint64_t Swarm::step(const SwarmFields& swarmFields, std::span<const PlaneT
         m_clearOf.assign(planes.begin(), planes.end());
     }
     m_finite.resize((n + kBlock - 1) / kBlock);
+    m_crowded.resize(m_finite.size()); // a hint only: a stale one changes no result
     const std::uint64_t bounces = stepAll(fields, planes, response, dt, threads);
     findNonFinite();
     return bounces;

@@ -61,7 +61,7 @@ TEST(RigidWorld, ImplicitGyroscopicIsANamedIntegrator)
 
 TEST(RigidWorld, BoxDroppedFlatReboundsToESquaredHWithoutTurning)
 {
-    for (const auto [e, integrator] : {std::pair{1.0, Integrator::SemiImplicitEuler}, std::pair{0.5, Integrator::SemiImplicitEuler},
+    for (const auto& [e, integrator] : {std::pair{1.0, Integrator::SemiImplicitEuler}, std::pair{0.5, Integrator::SemiImplicitEuler},
                                        std::pair{0.5, Integrator::RK4}, std::pair{0.5, Integrator::VelocityVerlet},
                                        std::pair{0.5, Integrator::ForwardEuler}, std::pair{0.5, Integrator::ImplicitGyroscopic}}) {
         World world = roomWorld();
