@@ -136,34 +136,35 @@ private:
     std::chrono::steady_clock::time_point m_last{};
 };
 
-/// 1 when the sum of the state's six components is an infinity or a NaN (its exponent bits all
-/// set), as an integer a loop can OR into a flag without a branch: it is whenever a component
-/// is; a finite state whose sum overflows only sends Swarm::findNonFinite to look for nothing.
-inline std::uint32_t nonFiniteSum(const Vec3<float>& x, const Vec3<float>& v)
+/// 1 when f is an infinity or a NaN (the only floats whose exponent bits are all set), as an
+/// integer a loop can OR into a flag without a branch (a float sum would not vectorise without
+/// reassociation).
+inline std::uint32_t special(float f)
 {
-    const float sum = x.x + x.y + x.z + v.x + v.y + v.z;
     std::uint32_t bits;
-    std::memcpy(&bits, &sum, sizeof bits);
+    std::memcpy(&bits, &f, sizeof bits);
     return static_cast<std::uint32_t>((bits & 0x7f800000u) == 0x7f800000u);
 }
 
-/// Whether n floats are all finite, by their exponent bits: an integer OR over the block, which
-/// vectorises (a float sum would not, without reassociation) and costs a fraction of a step.
+/// 1 when the sum of the state's six components is special: it is whenever a component is; a
+/// finite state whose sum overflows only sends Swarm::findNonFinite to look for nothing.
+inline std::uint32_t nonFiniteSum(const Vec3<float>& x, const Vec3<float>& v)
+{
+    return special(x.x + x.y + x.z + v.x + v.y + v.z);
+}
+
+/// Whether n states are all finite: one pass over the six arrays with one OR accumulator (six
+/// separate reductions measured slower), for the blocks whose states a loop without the test
+/// wrote (the exact response's).
 bool allFinite(const Arrays& a, std::size_t b, std::size_t n)
 {
-    // One pass over the six arrays with one OR accumulator: an infinity or a NaN is the only
-    // float whose exponent bits are all set. (Six separate reductions measured slower.)
     const float* __restrict arrays[6] = {a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b};
-    std::uint32_t special = 0;
+    std::uint32_t nonFinite = 0;
     // vectorised: checked
-    for (std::size_t k = 0; k < n; ++k) {
-        for (const float* values : arrays) {
-            std::uint32_t bits;
-            std::memcpy(&bits, values + k, sizeof bits);
-            special |= static_cast<std::uint32_t>((bits & 0x7f800000u) == 0x7f800000u);
-        }
-    }
-    return special == 0;
+    for (std::size_t k = 0; k < n; ++k)
+        for (const float* values : arrays)
+            nonFinite |= special(values[k]);
+    return nonFinite == 0;
 }
 
 /// Phase 1 of a block: the plain integrator step for every particle, a loop with no branches

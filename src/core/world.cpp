@@ -57,6 +57,24 @@ std::optional<std::size_t> World::findBody(std::string_view name) const
 
 namespace {
 
+/// The smallest index of a body, among `members`, whose new state `store(k)` (which stores
+/// member k's) reports not finite, on all cores in ranges of `grain`; `none` when every one is.
+/// (Each body's work is its own: the answer does not depend on the thread count.)
+template <class Store>
+std::size_t lowestNonFinite(const std::vector<std::size_t>& members, std::size_t grain, std::size_t none,
+                            Store&& store)
+{
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, members.size(), grain), none,
+        [&](const tbb::blocked_range<std::size_t>& r, std::size_t lowest) {
+            for (std::size_t k = r.begin(); k < r.end(); ++k)
+                if (!store(k))
+                    lowest = std::min(lowest, members[k]);
+            return lowest;
+        },
+        [](std::size_t a, std::size_t b) { return std::min(a, b); });
+}
+
 /// A force that cannot act on a swarm, in a world with one, would act on the bodies alone and
 /// silently leave the swarm out: refused, naming the force's type and the swarm.
 void requireActsOnSwarms(const Force& force, const std::string& swarm)
@@ -582,27 +600,19 @@ void World::collideAndStore(const std::vector<std::size_t>& members)
     // each body's object is visited once here: a cloth's bodies are many and far apart.
     const std::span<const Plane> planes(m_planes);
     const CoupledScratch& s = m_scratch;
-    const std::size_t n = members.size();
-    const std::size_t bad = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, n, 2048), m_bodies.size(),
-        [&](const tbb::blocked_range<std::size_t>& r, std::size_t lowest) {
-            for (std::size_t k = r.begin(); k < r.end(); ++k) {
-                const std::size_t i = members[k];
-                State end{s.x[k], s.v[k]};
-                if (!planes.empty())
-                    m_bounces[i] += static_cast<std::uint64_t>(
-                        coupledCollisionResponse() == CollisionResponse::Clamp
-                            ? clampAfterStep(planes, m_cors[i], m_previous[i].pos, end.pos, end.vel)
-                            : reflectAfterStep(planes, m_cors[i], m_previous[i].pos, end.pos, end.vel));
-                Body& b = *m_bodies[i];
-                b.setState(end);
-                b.setAcc(s.acc[k]);
-                if (!isFinite(end.pos) || !isFinite(end.vel))
-                    lowest = std::min(lowest, i);
-            }
-            return lowest;
-        },
-        [](std::size_t a, std::size_t b) { return std::min(a, b); });
+    const std::size_t bad = lowestNonFinite(members, 2048, m_bodies.size(), [&](std::size_t k) {
+        const std::size_t i = members[k];
+        State end{s.x[k], s.v[k]};
+        if (!planes.empty())
+            m_bounces[i] += static_cast<std::uint64_t>(
+                coupledCollisionResponse() == CollisionResponse::Clamp
+                    ? clampAfterStep(planes, m_cors[i], m_previous[i].pos, end.pos, end.vel)
+                    : reflectAfterStep(planes, m_cors[i], m_previous[i].pos, end.pos, end.vel));
+        Body& b = *m_bodies[i];
+        b.setState(end);
+        b.setAcc(s.acc[k]);
+        return isFinite(end.pos) && isFinite(end.vel);
+    });
     m_firstNonFinite = std::min(m_firstNonFinite, bad);
 }
 
@@ -667,34 +677,25 @@ void World::resolveRigidContacts(Integrator integrator, const std::vector<std::s
     // Below this speed a contact does not bounce: one step of gravity's, twice over.
     const double restingSpeed = 2.0 * glm::length(g) * dt;
     RigidScratch& r = m_rigidScratch;
-    const std::size_t n = members.size();
-    const std::size_t bad = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, n, 256), m_bodies.size(),
-        [&](const tbb::blocked_range<std::size_t>& range, std::size_t lowest) {
-            for (std::size_t k = range.begin(); k < range.end(); ++k) {
-                const std::size_t i = members[k];
-                auto& b = static_cast<RigidBody&>(*m_bodies[i]);
-                RigidState& s = r.states[k];
-                if (!m_planes.empty()) {
-                    const ContactBody body{b.getShape(), b.getContactPoints(), r.inertia[k], b.getCor(), b.getFriction(),
-                                           g, b.getBoundingRadius(), &b.contactMemory()};
-                    const ContactStep step{r.start[k], dt, driftWeight(integrator), restingSpeed};
-                    m_bounces[i] += resolvePlaneContacts(body, m_planes, step, s) ? 1 : 0;
-                }
-                if (!isFinite(s.x) || !isFinite(s.v) || !isFinite(s.rotation.momentum) ||
-                    !std::isfinite(s.rotation.orientation.w + s.rotation.orientation.x + s.rotation.orientation.y +
-                                   s.rotation.orientation.z)) {
-                    lowest = std::min(lowest, i);
-                    b.setState(State{s.x, s.v}); // the rollback restores it; the message reads it
-                    continue;
-                }
-                b.setState(State{s.x, s.v});
-                b.setRotation(s.rotation);
-                b.setAcc(r.startAcc[k]);
-            }
-            return lowest;
-        },
-        [](std::size_t a, std::size_t b) { return std::min(a, b); });
+    const std::size_t bad = lowestNonFinite(members, 256, m_bodies.size(), [&](std::size_t k) {
+        const std::size_t i = members[k];
+        auto& b = static_cast<RigidBody&>(*m_bodies[i]);
+        RigidState& s = r.states[k];
+        if (!m_planes.empty()) {
+            const ContactBody body{b.getShape(), b.getContactPoints(), r.inertia[k], b.getCor(), b.getFriction(),
+                                   g, b.getBoundingRadius(), &b.contactMemory()};
+            const ContactStep step{r.start[k], dt, driftWeight(integrator), restingSpeed};
+            m_bounces[i] += resolvePlaneContacts(body, m_planes, step, s) ? 1 : 0;
+        }
+        b.setState(State{s.x, s.v}); // a body that is not finite: the rollback restores it, the message reads it
+        if (!isFinite(s.x) || !isFinite(s.v) || !isFinite(s.rotation.momentum) ||
+            !std::isfinite(s.rotation.orientation.w + s.rotation.orientation.x + s.rotation.orientation.y +
+                           s.rotation.orientation.z))
+            return false;
+        b.setRotation(s.rotation);
+        b.setAcc(r.startAcc[k]);
+        return true;
+    });
     m_firstNonFinite = std::min(m_firstNonFinite, bad);
 }
 
