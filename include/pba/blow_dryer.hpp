@@ -154,6 +154,18 @@ inline bool inBlowDryerShaft(const BlowDryerKernelT<T>& f, const Vec3<T>& d)
     return (d.y < T(0)) & (d.x * d.x + d.z * d.z < f.shaftRadius2);
 }
 
+/// blowDryerForce's closing expression, shared with blowDryerForceAway so that the two round
+/// alike: along the axis, across it (times rho), and the air's velocity term.
+template <DryerAxis kAxis, class T>
+inline Vec3<T> dryerForceFrom(const BlowDryerKernelT<T>& f, T along, T radial, const Vec3<T>& d, const Vec3<T>& rho,
+                              const Vec3<T>& extra)
+{
+    if constexpr (kAxis == DryerAxis::Up)
+        return Vec3<T>(radial * d.x, along, radial * d.z) + extra;
+    else
+        return along * f.axis + radial * rho + extra;
+}
+
 /// The force of the field at x and, with `kAir`, velocity v (see the header's comment; without
 /// kAir the seed's force, which does not depend on v, and which equals the kAir force whenever
 /// the air terms are off).
@@ -213,10 +225,41 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x, co
         const T drag = (inside | inShaft) ? f.airDrag : T(0);
         extra = -drag * v;
     }
-    if constexpr (kUp)
-        return Vec3<T>(radial * d.x, along, radial * d.z) + extra;
-    else
-        return along * f.axis + radial * rho + extra;
+    return dryerForceFrom<kAxis>(f, along, radial, d, rho, extra);
+}
+
+/// A cheap superset (no root, no division) of where blowDryerForce's force can be other than
+/// blowDryerForceAway's: its cone (`inside`) or its shaft. The cone's test compares squares
+/// with a margin: r < q for r the rounded root of r^2 means r^2 < q^2 exactly, and the rounded
+/// q q 1.001 (plus a normal float, for a q whose square underflows) exceeds q^2.
+template <DryerAxis kAxis = DryerAxis::Any, class T>
+inline bool blowDryerMayPush(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
+{
+    constexpr bool kUp = kAxis == DryerAxis::Up;
+    const Vec3<T> d = x - f.nozzle;
+    const T h = kUp ? d.y : glm::dot(d, f.axis);
+    const Vec3<T> rho = kUp ? Vec3<T>(d.x, T(0), d.z) : d - h * f.axis;
+    const T r2 = kUp ? d.x * d.x + d.z * d.z : glm::dot(rho, rho);
+    const T s = h * f.inverseHeight;
+    const T q = f.nozzleRadius + f.spread * s;
+    const bool inShaft = kUp ? (h < T(0)) & (r2 < f.shaftRadius2) : inBlowDryerShaft(f, d);
+    return inShaft | ((h >= T(0)) & (s < T(1)) & (r2 < q * q * T(1.001) + T(1e-30)));
+}
+
+/// blowDryerForce<kAxis> (without air terms) at a finite x where blowDryerMayPush is false:
+/// the same closing expression with the selects' outside values (every product an exact zero),
+/// and none of the roots and divisions before them. A swarm's landed particles lie almost all
+/// there (tested equal bit for bit). The push along the axis is 0 h rather than blowDryerForce's
+/// 0 H: the same zero once the extra term is added, but a force that depends on x, so that a
+/// compiler cannot take its product with dt out of a loop and round the step differently (it
+/// did: a plain product and sum where blowDryerForce's loop fuses them).
+template <DryerAxis kAxis = DryerAxis::Any, class T>
+inline Vec3<T> blowDryerForceAway(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
+{
+    const Vec3<T> d = x - f.nozzle;
+    const T h = kAxis == DryerAxis::Up ? d.y : glm::dot(d, f.axis);
+    const Vec3<T> rho = kAxis == DryerAxis::Up ? Vec3<T>(d.x, T(0), d.z) : d - h * f.axis;
+    return dryerForceFrom<kAxis>(f, T(0) * h, T(0), d, rho, Vec3<T>(T(0)));
 }
 
 template <class T>

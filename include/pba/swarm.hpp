@@ -176,6 +176,7 @@ private:
     std::vector<std::uint8_t> m_clear; ///< exact response only, per particle: clear of every surface after its last step
     std::vector<std::uint8_t> m_finite; ///< per 512-particle block: all finite after the last step
     std::vector<std::uint8_t> m_crowded; ///< per block: most of it met a surface last step (see stepBlocks)
+    std::vector<std::uint8_t> m_blowing; ///< per block: steps left with the dryer busy in it (see integrateInDryer)
     std::optional<NonFiniteParticle> m_nonFinite;
     std::vector<PlaneT<float>> m_clearOf; ///< the surfaces m_clear was computed against
     SwarmPhaseTimes* m_phaseTimes = nullptr; ///< not owned; not copied meaningfully (a copy times into the same)

@@ -78,6 +78,46 @@ TEST(BlowDryerField, TheUpwardKernelIsTheGeneralOneWithTheAxisKnown)
     }
 }
 
+// Where blowDryerMayPush says the dryer cannot push, blowDryerForceAway is blowDryerForce bit for
+// bit (signed zeros included), upward or tilted, with a shaft or without; and wherever the force
+// is not zero, blowDryerMayPush says it may push (points near the cone's side and the shaft's
+// wall included, where the squared test's margin matters).
+TEST(BlowDryerField, AwayFromTheConeAndShaftTheShortForceIsTheWholeOne)
+{
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> across(-1.6f, 1.6f), along(-0.6f, 3.6f), unit(0.0f, 1.0f);
+    for (const bool tilted : {false, true}) {
+        for (const bool shaft : {false, true}) {
+            BlowDryerField field = dryer(FlowDirection::ConeFlow, Falloff::Linear, Falloff::Smooth);
+            field.shaft = shaft;
+            if (tilted)
+                field.axis = glm::normalize(dvec3(0.2, 1.0, -0.1));
+            const BlowDryerKernelT<float> f(field.as<float>());
+            std::size_t away = 0;
+            for (int k = 0; k < 200000; ++k) {
+                Vec3<float> x(across(rng), along(rng), across(rng));
+                if (k % 2 == 0 && !tilted) { // on the cone's side or the shaft's wall, to a few roundings
+                    const float h = along(rng), angle = 6.2831853f * unit(rng);
+                    const float radius = h >= 0.0f ? float(field.nozzleRadius) + float(field.topRadius - field.nozzleRadius) * h / float(field.height)
+                                                   : float(field.nozzleRadius);
+                    x = Vec3<float>(radius * std::cos(angle), h, radius * std::sin(angle));
+                }
+                const Vec3<float> whole = tilted ? blowDryerForce<DryerAxis::Any>(f, x) : blowDryerForce<DryerAxis::Up>(f, x);
+                const bool may = tilted ? blowDryerMayPush<DryerAxis::Any>(f, x) : blowDryerMayPush<DryerAxis::Up>(f, x);
+                if (may)
+                    continue;
+                ++away;
+                const Vec3<float> awayForce = tilted ? blowDryerForceAway<DryerAxis::Any>(f, x) : blowDryerForceAway<DryerAxis::Up>(f, x);
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_EQ(std::signbit(whole[c]), std::signbit(awayForce[c])) << "at " << x.x << " " << x.y << " " << x.z;
+                ASSERT_EQ(whole, awayForce) << "at " << x.x << " " << x.y << " " << x.z;
+                ASSERT_EQ(whole, Vec3<float>(0.0f)) << "at " << x.x << " " << x.y << " " << x.z;
+            }
+            EXPECT_GT(away, 50000u) << "tilted " << tilted << " shaft " << shaft;
+        }
+    }
+}
+
 TEST(BlowDryerField, MaximalAtTheNozzleOnTheAxisAndZeroAtTopEdgeAndOutside)
 {
     for (FlowDirection direction : kDirections) {
