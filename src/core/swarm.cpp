@@ -204,7 +204,7 @@ template <Integrator kIntegrator, bool kKeepStartVelocity, DryerAxis kAxis, clas
 bool integrateAwayBlock(float* __restrict px, float* __restrict py, float* __restrict pz, float* __restrict vx,
                         float* __restrict vy, float* __restrict vz, float* __restrict s0, float* __restrict s1,
                         float* __restrict s2, float* __restrict s3, float* __restrict s4, float* __restrict s5,
-                        std::uint8_t* __restrict blown, std::size_t& blownCount, std::size_t n, float dt,
+                        std::uint32_t* __restrict blown, std::size_t& blownCount, std::size_t n, float dt,
                         BlowDryerKernelT<float> dryer, Away away)
 {
     std::uint32_t nonFinite = 0, count = 0;
@@ -227,7 +227,7 @@ bool integrateAwayBlock(float* __restrict px, float* __restrict py, float* __res
         nonFinite |= nonFiniteSum(x, v);
         px[k] = x.x, py[k] = x.y, pz[k] = x.z;
         vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
-        blown[k] = static_cast<std::uint8_t>(pushed);
+        blown[k] = static_cast<std::uint32_t>(pushed);
         count += static_cast<std::uint32_t>(pushed);
     }
     blownCount = count;
@@ -629,53 +629,52 @@ auto awayFromDryer(const SwarmKernelFields& fields)
     };
 }
 
-/// Steps a block with one dryer. For the integrators that evaluate the acceleration more than
-/// once a step (velocity Verlet twice, RK4 four times), the dryer's two roots and two divisions
-/// at each evaluation are what the loop spends its time on, while once a swarm has landed well
-/// under 1% of it is where the dryer pushes (fountain-1m from t = 2 s: 0.5% in the cone, 0.1% in
-/// the shaft). So unless the block is busy (its cone crowded, as when rain falls through it),
-/// every particle is stepped with the acceleration away from the dryer and the few the dryer
-/// may have pushed again with the whole one (integrateAwayBlock, integrateGathered): the same
-/// states. Measured (blow-dryer-swarm, 1e6, 2 threads, the builds alternated, 2026-11-25):
-/// from t = 2 s, Verlet 8.3-9.0e8 particle-steps/s against 7.5-7.9e8 and RK4 5.5e8 against
-/// 4.4-4.5e8; in flight (busy blocks: the whole loop) the same as before within the noise. The
-/// Eulers' loop is bound by memory traffic, not by the dryer: there the split only added work
-/// (SIE from t = 2 s 1.18-1.21e9 against 1.36-1.37e9), so they keep the one loop. A block that
-/// had more than kGatherMax particles to step again is busy for the next kBusySteps.
+/// Steps a block with one dryer. The dryer's two roots and two divisions at each evaluation
+/// are most of the integration loop's arithmetic, while once a swarm has landed well under 1%
+/// of it is where the dryer pushes (fountain-1m from t = 2 s: 0.5% in the cone, 0.1% in the
+/// shaft). So unless the block is busy (its cone crowded, as when rain falls through it), every
+/// particle is stepped with the acceleration away from the dryer and the few the dryer may have
+/// pushed again with the whole one (integrateAwayBlock, integrateGathered): the same states.
+/// Measured (blow-dryer-swarm, 1e6, 2 threads, the builds alternated, 2026-11-25), from
+/// t = 2 s: semi-implicit Euler 1.45-1.59e9 particle-steps/s against 1.38-1.43e9, velocity
+/// Verlet 1.19-1.20e9 against 0.90e9, RK4 7.4-7.7e8 against 5.7e8; fountain-1m from t = 8 s
+/// 919-980 steps/s against 852-920. In flight (busy blocks: the one loop) RK4 the same and
+/// semi-implicit Euler 3% slower (1.43-1.44e9 against 1.48-1.49e9). The flags are words: as
+/// bytes they made GCC take 64 particles a vector, and the away loop spilled (semi-implicit
+/// Euler landed then 1.21-1.28e9, slower than the one loop). A block that had more than
+/// kGatherMax particles to step again is busy for the next kBusySteps.
 template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag>
 bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
                       CollisionResponse response, const SwarmKernelFields& fields)
 {
-    constexpr bool kOneEvaluation =
-        kIntegrator == Integrator::ForwardEuler || kIntegrator == Integrator::SemiImplicitEuler;
     constexpr std::uint8_t kBusySteps = 64;
     const auto whole = oneDryer<kAxis, kDrag>(fields);
     std::uint8_t& busy = a.blowing[b / kBlock];
-    if constexpr (kOneEvaluation) {
+    if (busy > 0) {
+        --busy;
         return integrateBlock<kIntegrator>(a, b, n, dt, start, response, whole);
-    } else {
-        if (busy > 0) {
-            --busy;
-            return integrateBlock<kIntegrator>(a, b, n, dt, start, response, whole);
-        }
-        alignas(64) std::uint8_t blown[kBlock + 64]; // room for listHits' last word
-        std::size_t count = 0;
-        const auto away = [&](auto keepStartVelocity) {
-            return integrateAwayBlock<kIntegrator, decltype(keepStartVelocity)::value, kAxis>(
-                a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b, start[0], start[1], start[2], start[3],
-                start[4], start[5], blown, count, n, dt, fields.dryer, awayFromDryer<kAxis, kDrag>(fields));
-        };
-        bool finite = response == CollisionResponse::Exact ? away(std::true_type{}) : away(std::false_type{});
-        if (count == 0)
-            return finite;
-        alignas(64) std::uint16_t index[kBlock];
-        std::size_t spare = 0;
-        const std::size_t m = listHits(blown, n, index, spare);
-        finite = integrateGathered<kIntegrator>(a, b, index, m, dt, whole) && finite;
-        if (count > kGatherMax)
-            busy = kBusySteps;
-        return finite;
     }
+    alignas(64) std::uint32_t blown[kBlock]; // words: bytes made the loop take 64 particles a vector
+    alignas(64) std::uint8_t blownBytes[kBlock + 64]; // room for listHits' last word
+    std::size_t count = 0;
+    const auto away = [&](auto keepStartVelocity) {
+        return integrateAwayBlock<kIntegrator, decltype(keepStartVelocity)::value, kAxis>(
+            a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b, start[0], start[1], start[2], start[3],
+            start[4], start[5], blown, count, n, dt, fields.dryer, awayFromDryer<kAxis, kDrag>(fields));
+    };
+    bool finite = response == CollisionResponse::Exact ? away(std::true_type{}) : away(std::false_type{});
+    if (count == 0)
+        return finite;
+    alignas(64) std::uint16_t index[kBlock];
+    std::size_t spare = 0;
+    // vectorised: checked
+    for (std::size_t k = 0; k < n; ++k)
+        blownBytes[k] = static_cast<std::uint8_t>(blown[k]);
+    const std::size_t m = listHits(blownBytes, n, index, spare);
+    finite = integrateGathered<kIntegrator>(a, b, index, m, dt, whole) && finite;
+    if (count > kGatherMax)
+        busy = kBusySteps;
+    return finite;
 }
 
 /// A range's step, block by block: integrate (checking the states are finite as they are

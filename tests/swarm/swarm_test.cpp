@@ -456,9 +456,9 @@ TEST(Swarm, CrowdedBlocksGetTheSameRuleAsParticlesAlone)
     }
 }
 
-// Velocity Verlet and RK4 step a block whose dryer is busy (over kGatherMax particles in its
-// cone or shaft) with the whole acceleration, and a quiet one with the acceleration away from
-// the dryer, stepping again with the whole one the few it may push. Two blocks that share all
+// A swarm steps a block whose dryer is busy (over kGatherMax particles in its cone or shaft)
+// with the whole acceleration, and a quiet one with the acceleration away from the dryer,
+// stepping again with the whole one the few it may push. Two blocks that share all
 // but 90 particles, 10 in the cone and 402 resting far from the hole (the quiet one has the
 // 90 on the floor, the busy one in the cone), take those 412 through both paths: the same states
 // bit for bit, with the scene's dryer and a tilted one with drag. (A compiler that took the
@@ -475,7 +475,7 @@ TEST(Swarm, ADryersFewParticlesAndTheRestStepAsInABusyBlock)
         }
     };
     for (const bool tiltedWithDrag : {false, true}) {
-        for (Integrator integrator : {Integrator::VelocityVerlet, Integrator::RK4}) {
+        for (Integrator integrator : kAllIntegrators) {
             World quiet = swarmWorld(512), busy = swarmWorld(512);
             for (World* world : {&quiet, &busy}) {
                 world->swarm(0).setIntegrator(integrator);
