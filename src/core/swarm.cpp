@@ -629,26 +629,12 @@ auto awayFromDryer(const SwarmKernelFields& fields)
     };
 }
 
-/// Steps a block with one dryer. The dryer's two roots and two divisions at each evaluation
-/// are most of the integration loop's arithmetic, while once a swarm has landed well under 1%
-/// of it is where the dryer pushes (fountain-1m from t = 2 s: 0.5% in the cone, 0.1% in the
-/// shaft). So unless the block is busy (its cone crowded, as when rain falls through it), every
-/// particle is stepped with the acceleration away from the dryer and the few the dryer may have
-/// pushed again with the whole one (integrateAwayBlock, integrateGathered): the same states.
-/// Measured (blow-dryer-swarm, 1e6, 2 threads, the builds alternated, 2026-11-25), from
-/// t = 2 s: semi-implicit Euler 1.45-1.59e9 particle-steps/s against 1.38-1.43e9, velocity
-/// Verlet 1.19-1.20e9 against 0.90e9, RK4 7.4-7.7e8 against 5.7e8; fountain-1m from t = 8 s
-/// 919-980 steps/s against 852-920. In flight (busy blocks: the one loop) RK4 the same and
-/// semi-implicit Euler 3% slower (1.43-1.44e9 against 1.48-1.49e9). The flags are words: as
-/// bytes they made GCC take 64 particles a vector, and the away loop spilled (semi-implicit
-/// Euler landed then 1.21-1.28e9, slower than the one loop). A block that had more than
-/// kGatherMax particles to step again is busy for the next kBusySteps.
-template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag>
-bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
-                      CollisionResponse response, const SwarmKernelFields& fields)
+/// integrateInDryer's split for a block (see there): the away loop unless the block is busy.
+template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag, class Whole>
+bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
+                            CollisionResponse response, const SwarmKernelFields& fields, Whole whole)
 {
     constexpr std::uint8_t kBusySteps = 64;
-    const auto whole = oneDryer<kAxis, kDrag>(fields);
     std::uint8_t& busy = a.blowing[b / kBlock];
     if (busy > 0) {
         --busy;
@@ -675,6 +661,32 @@ bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, f
     if (count > kGatherMax)
         busy = kBusySteps;
     return finite;
+}
+
+/// Steps a block with one dryer. The dryer's two roots and two divisions at each evaluation
+/// are most of the integration loop's arithmetic (twice a step for velocity Verlet, four times
+/// for RK4), while once a swarm has landed well under 1% of it is where the dryer pushes
+/// (fountain-1m from t = 2 s: 0.5% in the cone, 0.1% in the shaft). So unless the block is busy
+/// (its cone crowded, as when rain falls through it), every particle is stepped with the
+/// acceleration away from the dryer and the few the dryer may have pushed again with the whole
+/// one (integrateAwayBlock, integrateGathered): the same states. Measured (blow-dryer-swarm,
+/// 2 threads, the builds alternated, 2026-11-25) from t = 2 s: at 1e6 velocity Verlet 1.2e9
+/// particle-steps/s against 0.9e9 and RK4 7.4-7.7e8 against 5.7e8, at 1e7 8.4e8 against 7.1e8
+/// and 6.6-6.7e8 against 5.0-5.2e8; in flight (busy blocks: the one loop) the same. The Eulers
+/// evaluate once, and keep the one loop: at 1e6 the split was 5-13% faster for semi-implicit
+/// Euler landed, but at 1e7, where the loop waits on memory, 10-18% slower (0.96-1.02e9
+/// against 1.16-1.17e9). The flags are words: as bytes they made GCC take 64 particles a
+/// vector, and the away loop spilled. A block that had more than kGatherMax particles to step
+/// again is busy for the next 64 steps.
+template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag>
+bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
+                      CollisionResponse response, const SwarmKernelFields& fields)
+{
+    const auto whole = oneDryer<kAxis, kDrag>(fields);
+    if constexpr (kIntegrator == Integrator::ForwardEuler || kIntegrator == Integrator::SemiImplicitEuler)
+        return integrateBlock<kIntegrator>(a, b, n, dt, start, response, whole);
+    else
+        return integrateAwayFromDryer<kIntegrator, kAxis, kDrag>(a, b, n, dt, start, response, fields, whole);
 }
 
 /// A range's step, block by block: integrate (checking the states are finite as they are
