@@ -198,7 +198,7 @@ bool integrateBlock(float* __restrict px, float* __restrict py, float* __restric
 /// as it is where the dryer cannot push (blowDryerForceAway: no roots, no divisions), noting
 /// whether any point the integrator evaluated it at is one where it may (blowDryerMayPush).
 /// Those particles (`blown`, counted in `blownCount`) are left at their start states for
-/// integrateListed; every other one had the acceleration the whole one would have given it at
+/// integrateGathered; every other one had the acceleration the whole one would have given it at
 /// every point, so it took the same step.
 template <Integrator kIntegrator, bool kKeepStartVelocity, DryerAxis kAxis, class Away>
 bool integrateAwayBlock(float* __restrict px, float* __restrict py, float* __restrict pz, float* __restrict vx,
