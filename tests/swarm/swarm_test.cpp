@@ -426,22 +426,31 @@ TEST(PbaBench, PhasesSplitTheSwarmStep)
 // A block whose particles rest on the floor skips the surface test and takes the collision pass
 // whole (a crowded block), one with a few at a surface has them gathered, one alone is stepped
 // by itself: each particle's states are the same, bit for bit, every step. Here 2,048 particles
-// resting on the floor and over the hole (blocks that become crowded), then lifted off, against
-// each particle stepped as a swarm of one, with reflect and clamp.
+// resting on the floor, some sliding into a wall (reaching it on different steps, so some while
+// their block is crowded: the whole rule), some over the hole and in the dryer's cone at its
+// foot (blocks that become crowded), then lifted off, against each particle stepped as a swarm
+// of one, with reflect and clamp, and both Eulers.
 TEST(Swarm, CrowdedBlocksGetTheSameRuleAsParticlesAlone)
 {
-    for (CollisionResponse response : {CollisionResponse::Reflect, CollisionResponse::Clamp}) {
+    for (const auto& [response, integrator] :
+         {std::pair{CollisionResponse::Reflect, Integrator::SemiImplicitEuler},
+          std::pair{CollisionResponse::Clamp, Integrator::SemiImplicitEuler},
+          std::pair{CollisionResponse::Reflect, Integrator::ForwardEuler}}) {
         World world = swarmWorld(2048, response);
         Swarm& swarm = world.swarm(0);
+        swarm.setIntegrator(integrator);
         for (std::size_t i = 0; i < swarm.size(); ++i) {
             const float u = float(i % 64) / 64.0f, w = float(i / 64) / 32.0f;
             const bool resting = i < 1536; // three blocks on the floor, one in the air
-            const Vec3<float> x(-1.9f + 3.8f * u, resting ? 1e-4f : 1.0f + w, -1.9f + 3.8f * w);
-            swarm.set(i, x, Vec3<float>(0.3f * (u - 0.5f), resting ? -0.05f : 2.0f, 0.1f));
+            const bool atWall = resting && i % 64 == 0; // sliding into the low x wall: the whole rule
+            const float across = atWall ? -1.998f + 0.0005f * float(i / 64) : -1.9f + 3.8f * u;
+            const Vec3<float> x(across, resting ? 1e-4f : 1.0f + w, -1.9f + 3.8f * w);
+            swarm.set(i, x, Vec3<float>(atWall ? -0.5f : 0.3f * (u - 0.5f), resting ? -0.05f : 2.0f, 0.1f));
         }
         std::vector<World> alone;
         for (std::size_t i = 0; i < swarm.size(); ++i) {
             World one = swarmWorld(1, response);
+            one.swarm(0).setIntegrator(integrator);
             one.swarm(0).set(0, swarm.position(i), swarm.velocity(i));
             alone.push_back(std::move(one));
         }
