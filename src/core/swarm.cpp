@@ -701,7 +701,12 @@ bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, f
 /// test costs only those near a surface (this CPU runs 512-bit operations at half rate), and
 /// the fused loop's one long chain (two square roots, two divisions, then the rule) left the
 /// out-of-order core less to overlap than two short loops. So the surface test and the
-/// gathering stay; the rule itself is one loop (passInRoom).
+/// gathering stay; the rule itself is one loop (passInRoom). Fusing only where the pass runs
+/// over the whole block anyway (a crowded block: integrate, with the dryer's split, then
+/// passInRoom's selects on the states still in registers, 2026-11-26) measured no faster
+/// either: fountain-1m from t = 8 s 800-900 steps/s both, blow-dryer-swarm from t = 2 s
+/// within 2% at 1e6 and 1e7. Loading a block from L1 twice is not what those loops wait on;
+/// their instructions are.
 template <Integrator kIntegrator>
 std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const SwarmKernelFields& fields,
                          float restitution, float dt, std::span<const PlaneT<float>> planes,
