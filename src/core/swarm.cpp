@@ -677,7 +677,9 @@ bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float
 /// Euler landed, but at 1e7, where the loop waits on memory, 10-18% slower (0.96-1.02e9
 /// against 1.16-1.17e9). The flags are words: as bytes they made GCC take 64 particles a
 /// vector, and the away loop spilled. A block that had more than kGatherMax particles to step
-/// again is busy for the next 64 steps.
+/// again is busy for the next 64 steps. A higher bar, so that rain in flight (a quarter of each
+/// block in the cone) takes the split too, measured slower (RK4 with half a block, Verlet with
+/// a quarter: RK4 in flight 3.0-3.6e8 against 4.1-4.5e8, 2026-11-26).
 template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag>
 bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
                       CollisionResponse response, const SwarmKernelFields& fields)
