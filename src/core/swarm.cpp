@@ -673,9 +673,10 @@ bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float
 /// 2 threads, the builds alternated, 2026-11-25) from t = 2 s: at 1e6 velocity Verlet 1.2e9
 /// particle-steps/s against 0.9e9 and RK4 7.4-7.7e8 against 5.7e8, at 1e7 8.4e8 against 7.1e8
 /// and 6.6-6.7e8 against 5.0-5.2e8; in flight (busy blocks: the one loop) the same. The Eulers
-/// evaluate once, and keep the one loop: at 1e6 the split was 5-13% faster for semi-implicit
-/// Euler landed, but at 1e7, where the loop waits on memory, 10-18% slower (0.96-1.02e9
-/// against 1.16-1.17e9). The flags are words: as bytes they made GCC take 64 particles a
+/// evaluate once, and keep the one loop: for semi-implicit Euler landed the split was 10-18%
+/// slower at 1e7, where the loop waits on memory (0.96-1.02e9 against 1.16-1.17e9), and at 1e6
+/// no faster (5-13% faster in one sitting; 7% slower, the median of ten alternations, in
+/// another, 2026-11-26), so not even for a swarm that stays in the cache. The flags are words: as bytes they made GCC take 64 particles a
 /// vector, and the away loop spilled. A block that had more than kGatherMax particles to step
 /// again is busy for the next 64 steps. A higher bar, so that rain in flight (a quarter of each
 /// block in the cone) takes the split too, measured slower (RK4 with half a block, Verlet with
