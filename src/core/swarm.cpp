@@ -676,9 +676,9 @@ bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float
 /// evaluate once, and keep the one loop: for semi-implicit Euler landed the split was 10-18%
 /// slower at 1e7, where the loop waits on memory (0.96-1.02e9 against 1.16-1.17e9), and at 1e6
 /// no faster (5-13% faster in one sitting; 7% slower, the median of ten alternations, in
-/// another, 2026-11-26), so not even for a swarm that stays in the cache. The flags are words: as bytes they made GCC take 64 particles a
-/// vector, and the away loop spilled. A block that had more than kGatherMax particles to step
-/// again is busy for the next 64 steps. A higher bar, so that rain in flight (a quarter of each
+/// another, 2026-11-26), so not even for a swarm that stays in the cache. The flags are words:
+/// as bytes they made GCC take 64 particles a vector, and the away loop spilled. A block that
+/// had more than kGatherMax particles to step again is busy for the next 64 steps. A higher bar, so that rain in flight (a quarter of each
 /// block in the cone) takes the split too, measured slower (RK4 with half a block, Verlet with
 /// a quarter: RK4 in flight 3.0-3.6e8 against 4.1-4.5e8, 2026-11-26).
 template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag>
