@@ -55,6 +55,7 @@ struct SwarmKernelFields {
     std::vector<BlowDryerKernelT<float>> more; ///< dryers after the first
     std::size_t moreCount = 0;
     bool dryerUp = false; ///< the first dryer points exactly along +y (see DryerAxis)
+    bool noDryer = false; ///< no dryer at all: `dryer` is one of zero strength, which pushes nothing
     bool air = false;     ///< some dryer has air terms (drag toward the air, axis pull)
 
     SwarmKernelFields(const SwarmFields& f, float inverseMass) : gravity(f.gravity), dragPerMass(f.drag * inverseMass)
@@ -65,6 +66,7 @@ struct SwarmKernelFields {
         for (std::size_t k = 1; k < f.dryers.size(); ++k)
             more.emplace_back(f.dryers[k], inverseMass);
         moreCount = more.size();
+        noDryer = f.dryers.empty();
         dryerUp = dryer.axis == Vec3<float>(0.0f, 1.0f, 0.0f);
         air = dryer.hasAirTerms();
         for (const auto& k : more)

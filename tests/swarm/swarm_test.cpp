@@ -511,3 +511,47 @@ TEST(Swarm, ADryersFewParticlesAndTheRestStepAsInABusyBlock)
         }
     }
 }
+
+// Without a dryer the loop's acceleration is gravity and drag alone, as the Particles' forces
+// give it, where with one it adds the dryer's force: a dryer of zero strength (above the floor,
+// so no hole) adds zeros, and the two swarms stay equal, bit for bit, for every integrator and
+// response, with drag and without.
+TEST(Swarm, WithoutADryerStepsAsWithADryerOfZeroStrength)
+{
+    const auto rain = [](bool dryer) {
+        const std::string forces = dryer ? R"(, "forces": [{"type": "blow-dryer", "nozzle": [0, 1, 0], "axis": [0, 1, 0],
+            "height": 2, "nozzle_radius": 0.3, "top_radius": 1.5, "strength": 40}])"
+                                         : "";
+        return R"({"name": "rain", "dt": 0.002, "duration": 1, "gravity": [0, -9.81, 0],
+            "room": {"min": [-2, 0, -2], "max": [2, 4, 2]},
+            "swarms": [{"name": "rain", "count": 1000, "region": {"min": [-1.8, 0.5, -1.8], "max": [1.8, 3.5, 1.8]},
+                        "velocity": [0, -1, 0], "velocity_jitter": 3, "mass": 1, "restitution": 0.6,
+                        "integrator": "semi-implicit-euler", "seed": 7}])" +
+               forces + "}";
+    };
+    for (CollisionResponse response : kAllCollisionResponses) {
+        for (Integrator integrator : kAllIntegrators) {
+            for (const bool drag : {false, true}) {
+                std::array<World, 2> worlds{parseScene(rain(false), "rain.json").world,
+                                            parseScene(rain(true), "rain.json").world};
+                editDryers(worlds[1], [](BlowDryerField& field) { field.strength = 0.0; });
+                for (World& world : worlds) {
+                    world.setCollisionResponse(response);
+                    world.swarm(0).setIntegrator(integrator);
+                    if (drag)
+                        world.addForce(std::make_unique<Drag>(0.4));
+                    for (int n = 0; n < 500; ++n)
+                        world.step(0.002);
+                }
+                ASSERT_TRUE(worlds[0].swarmFields().dryers.empty());
+                ASSERT_EQ(worlds[1].swarmFields().dryers.size(), 1u);
+                const Swarm &alone = worlds[0].swarm(0), &zero = worlds[1].swarm(0);
+                std::size_t differ = 0;
+                for (std::size_t i = 0; i < alone.size(); ++i)
+                    differ += alone.position(i) != zero.position(i) || alone.velocity(i) != zero.velocity(i);
+                EXPECT_EQ(differ, 0u) << collisionResponseName(response) << " " << integratorName(integrator)
+                                      << " drag " << drag;
+            }
+        }
+    }
+}
