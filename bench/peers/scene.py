@@ -47,6 +47,8 @@ LO = [f32(c) for c in ROOM["min"]]
 HI = [f32(c) for c in ROOM["max"]]
 GRILLE = f32(float(ROOM["min"][1]) - 0.05)
 LANDED_STEPS = 1000  # t = 2 s: where pba bench's landed windows start
+RESTED_STEPS = 4000  # t = 8 s: where its rested windows start
+PHASE_STEPS = {"flight": 0, "landed": LANDED_STEPS, "rested": RESTED_STEPS}
 
 
 def mix(z):

@@ -1,9 +1,9 @@
 """One peer's windows, taken on request: the Python side of pba bench --peer-worker's protocol.
 
-    worker.py --impl numba|numpy --n N --phase flight|landed [--state FILE.npy]
+    worker.py --impl numba|numpy --n N --phase flight|landed|rested [--state FILE.npy]
 
-Sets up the peer's start state (pba's first state, generated here; landed: the state in FILE.npy,
-or that state stepped here to t = 2 s), prints {"ready": ...}, then answers each line of standard
+Sets up the peer's start state (pba's first state, generated here; landed and rested: the state
+at t = 2 s or 8 s in FILE.npy, or the first state stepped here to that time), prints {"ready": ...}, then answers each line of standard
 input with one JSON line:
     window STEPS   restart from the start state, time STEPS steps
     stats          the current state's statistics (scene.statistics)
@@ -25,8 +25,8 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--impl", choices=["numba", "numpy"], required=True)
     parser.add_argument("--n", type=float, required=True)
-    parser.add_argument("--phase", choices=["flight", "landed"], default="flight")
-    parser.add_argument("--state", help="a .npy state to start from (landed)")
+    parser.add_argument("--phase", choices=list(scene.PHASE_STEPS), default="flight")
+    parser.add_argument("--state", help="a .npy state at the phase's start to start from")
     args = parser.parse_args()
     n = int(args.n)
     began = time.perf_counter()
@@ -39,17 +39,14 @@ def main():
         import numpy_peer
         step = numpy_peer.step
     compiled = time.perf_counter() - began
-    t0 = 0.0
+    t0 = 0.002 * scene.PHASE_STEPS[args.phase]
     if args.state:
         start = list(np.load(args.state))
         assert len(start) == 6 and len(start[0]) == n and start[0].dtype == np.float32
-        t0 = 0.002 * scene.LANDED_STEPS
     else:
         start = scene.initial_state(n)
-        if args.phase == "landed":
-            for _ in range(scene.LANDED_STEPS):
-                step(start)
-            t0 = 0.002 * scene.LANDED_STEPS
+        for _ in range(scene.PHASE_STEPS[args.phase]):
+            step(start)
     state = [a.copy() for a in start]
     t = t0
     print(json.dumps({"ready": True, "impl": args.impl, "n": n, "phase": args.phase, "t": t,

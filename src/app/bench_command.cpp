@@ -1,6 +1,7 @@
 // `pba bench`: particle-steps per second of the swarm layout against the practical's
 // vector of heap Particles and against the memory-bandwidth bound, measured in one run.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -9,7 +10,10 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
+#include <span>
 #include <sstream>
+#include <string_view>
 #include <thread>
 
 #include <fmt/format.h>
@@ -52,11 +56,18 @@ struct Row {
     double medianRate = 0.0;     ///< the median window, for how far the machine's speed swung
 };
 
-/// Where the landed rows' windows start: blow-dryer-swarm at t = 2 s, when the rain has landed
-/// (it falls from at most 3.9 m in 0.9 s) and most particles bounce or rest on the floor, some in
-/// the dryer's jet and its hole. A scene spends most of its time so, and the collision code runs
-/// for far more particles a step than while the rain is in flight (the first windows' state).
-constexpr double kLandedTime = 2.0;
+/// The states of blow-dryer-swarm a swarm row's windows start from, and the times the scene
+/// reaches them. In flight: its first state, the rain falling (a quarter of it in the dryer's
+/// cone). Landed, at 2 s: the rain after its first bounce (mean height 0.4 m, under 1% within
+/// 10 cm of the floor in any step: few particles a block meet a surface), some in the jet and
+/// the hole. Rested, at 8 s: nearly all of it on the floor (mean height 2 mm, 99.8% within
+/// 1 cm; fountain-1m's state from about 4 s to its end), where the collision code runs for
+/// every particle every step. (Measured at 1e5 particles, 2026-11-26.)
+struct Phase {
+    const char* name;
+    double time;
+};
+constexpr std::array<Phase, 3> kPhases{{{"flight", 0.0}, {"landed", 2.0}, {"rested", 8.0}}};
 
 
 
@@ -143,15 +154,28 @@ World swarmWorld(std::size_t n, Integrator integrator, int threads)
     return world;
 }
 
-/// swarmWorld's semi-implicit Euler swarm stepped to kLandedTime: where every landed row starts
-/// (each sets its own integrator and threads on a copy).
-World landedWorld(std::size_t n)
+/// The start states of kPhases up to phase `last`: swarmWorld's semi-implicit Euler swarm stepped
+/// to each phase's time (each row sets its own integrator and threads on a copy).
+std::vector<World> phaseWorlds(std::size_t n, std::size_t last = kPhases.size() - 1)
 {
+    std::vector<World> worlds;
     World world = swarmWorld(n, Integrator::SemiImplicitEuler, 0);
-    const auto steps = static_cast<long>(std::lround(kLandedTime / 0.002));
-    for (long k = 0; k < steps; ++k)
-        world.step(0.002);
-    return world;
+    long done = 0;
+    for (const Phase& phase : std::span(kPhases).first(last + 1)) {
+        for (const long steps = std::lround(phase.time / 0.002); done < steps; ++done)
+            world.step(0.002);
+        worlds.push_back(world);
+    }
+    return worlds;
+}
+
+/// The phase named `name` (one of kPhases), its index.
+std::optional<std::size_t> phaseIndex(std::string_view name)
+{
+    for (std::size_t p = 0; p < kPhases.size(); ++p)
+        if (name == kPhases[p].name)
+            return p;
+    return std::nullopt;
 }
 
 /// The practical's way: one heap-allocated Particle (with its own mesh) per particle, stepped
@@ -376,15 +400,15 @@ std::vector<Row> measureSize(std::size_t n, double minTime, int repeats, int cor
     };
     if (n <= 1000000)
         add(Row{"baseline", "semi-implicit-euler", "flight", n, 1, 0.0, 0.0, 0.0, 1.0}, baselineWorld(n));
-    const World landed = landedWorld(n);
-    for (const char* phase : {"flight", "landed"})
+    const std::vector<World> starts = phaseWorlds(n);
+    for (std::size_t p = 0; p < kPhases.size(); ++p)
         for (Integrator integrator : kAllIntegrators)
             for (int threads : {1, cores}) {
-                const bool isLanded = std::string_view(phase) == "landed";
-                World world = isLanded ? landed : swarmWorld(n, integrator, threads);
+                World world = p == 0 ? swarmWorld(n, integrator, threads) : starts[p];
                 world.swarm(0).setIntegrator(integrator);
                 world.setThreads(threads);
-                add(Row{"swarm", std::string(integratorName(integrator)), phase, n, threads, 0.0, bytes, 0.0, 0.0},
+                add(Row{"swarm", std::string(integratorName(integrator)), kPhases[p].name, n, threads, 0.0, bytes, 0.0,
+                        0.0},
                     std::move(world));
                 if (threads == cores)
                     break;
@@ -453,8 +477,7 @@ nlohmann::json swarmStatistics(const World& world, double t)
 }
 
 /// `pba bench --peer-worker`: the semi-implicit Euler swarm of blow-dryer-swarm on all cores, at
-/// the one size given, from the phase's start state (the scene's first state, or its state at
-/// kLandedTime), driven line by line from standard input by bench/peers/run.py, which takes
+/// the one size given, from the phase's start state (kPhases), driven line by line from standard input by bench/peers/run.py, which takes
 /// its windows in turn with the Python peers' (its own process, so interleaved across them):
 ///   window STEPS   restart from the start state, time STEPS steps, print {"seconds", "steps", ...}
 ///   stats          print swarmStatistics of the current state
@@ -466,12 +489,12 @@ int runPeerWorker(const BenchOptions& options)
     const double size = options.sizes.front();
     if (!(size >= 1.0 && size <= 1e8 && size == std::floor(size)))
         throw UsageError(fmt::format("--sizes: the size must be a whole number from 1 to 1e8, got {}", size));
-    if (options.phase != "flight" && options.phase != "landed")
-        throw UsageError(fmt::format("--phase: flight or landed, got '{}'", options.phase));
+    const std::optional<std::size_t> phase = phaseIndex(options.phase);
+    if (!phase)
+        throw UsageError(fmt::format("--phase: flight, landed or rested, got '{}'", options.phase));
     const auto n = static_cast<std::size_t>(size);
-    const bool landed = options.phase == "landed";
-    const double startTime = landed ? kLandedTime : 0.0;
-    const World first = landed ? landedWorld(n) : swarmWorld(n, Integrator::SemiImplicitEuler, 0);
+    const double startTime = kPhases[*phase].time;
+    const World first = std::move(phaseWorlds(n, *phase).back());
     World world = first;
     double t = startTime;
     const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
@@ -508,7 +531,7 @@ int runPeerWorker(const BenchOptions& options)
     return kExitSuccess;
 }
 
-/// --phases: the semi-implicit Euler swarm on all cores, in flight and landed, each step's time
+/// --phases: the semi-implicit Euler swarm on all cores, in each of kPhases, each step's time
 /// split by phase (SwarmPhaseTimes: thread-time summed over the threads, so on 2 threads the
 /// phases add up to about twice the step's wall time).
 int runPhases(const BenchOptions& options)
@@ -525,8 +548,10 @@ int runPhases(const BenchOptions& options)
         if (!(size >= 1.0 && size <= 1e8 && size == std::floor(size)))
             throw UsageError(fmt::format("--sizes: each size must be a whole number from 1 to 1e8, got {}", size));
         const auto n = static_cast<std::size_t>(size);
-        for (const char* phase : {"flight", "landed"}) {
-            World world = std::string(phase) == "landed" ? landedWorld(n) : swarmWorld(n, Integrator::SemiImplicitEuler, 0);
+        std::vector<World> starts = phaseWorlds(n);
+        for (std::size_t which = 0; which < kPhases.size(); ++which) {
+            const char* phase = kPhases[which].name;
+            World& world = starts[which];
             world.setThreads(0);
             SwarmPhaseTimes times;
             world.swarm(0).setPhaseTimes(&times);
@@ -667,22 +692,25 @@ void addBenchCommand(CLI::App& root, Action& selected)
                     "of --sizes, its windows taken on request from standard input (see bench/peers/run.py)");
     bench->add_flag("--phases", options->phases,
                     "Instead of the rows: where a swarm step's time goes (integrate, surface test, collide, check), "
-                    "in flight and landed, at the sizes of --sizes (default 1e6)")
+                    "in flight, landed and rested, at the sizes of --sizes (default 1e6)")
         ->excludes(peerWorker);
-    bench->add_option("--phase", options->phase, "With --peer-worker: flight (from t = 0) or landed (from t = 2 s)")
-        ->check(CLI::IsMember({"flight", "landed"}))
+    bench->add_option("--phase", options->phase,
+                      "With --peer-worker: flight (from t = 0), landed (from t = 2 s) or rested (from t = 8 s)")
+        ->check(CLI::IsMember({"flight", "landed", "rested"}))
         ->needs(peerWorker)
         ->option_text("PHASE");
     bench->footer("\nThe workload is the blow-dryer-swarm scene (gravity, the blow dryer, the room's walls and the\n"
-                  "hole) at dt = 0.002, each swarm row in two phases: in flight, from the scene's first state,\n"
-                  "and landed, from its state at t = 2 s (most of the rain on the floor, where the collision\n"
-                  "code works hardest; the baseline is timed in flight only). Each row of a size is timed in 6\n"
-                  "windows (--windows; one with --quick), each the same work: from the row's start state, as\n"
-                  "many steps as filled a first quarter second (0.02 s with --quick). The rows take their\n"
-                  "windows in turn so that a machine's drifting speed slows them alike. Every rate, the bound's\n"
-                  "and each row's, is its best window (a slower one is other work on the machine getting in the\n"
-                  "way), so the ratios compare best with best; the median window is printed beside it. Compare\n"
-                  "rows of one run, not across runs.\n"
+                  "hole) at dt = 0.002, each swarm row in three phases: in flight, from the scene's first state\n"
+                  "(the rain falling, a quarter of it in the dryer's cone); landed, from its state at t = 2 s\n"
+                  "(the rain after its first bounce, a few particles of each block at the floor in any step);\n"
+                  "rested, from its state at t = 8 s (nearly all of it on the floor, where the collision code\n"
+                  "runs for every particle every step). The baseline is timed in flight only. Each row of a\n"
+                  "size is timed in 6 windows (--windows; one with --quick), each the same work: from the\n"
+                  "row's start state, as many steps as filled a first quarter second (0.02 s with --quick).\n"
+                  "The rows take their windows in turn so that a machine's drifting speed slows them alike.\n"
+                  "Every rate, the bound's and each row's, is its best window (a slower one is other work on\n"
+                  "the machine getting in the way), so the ratios compare best with best; the median window\n"
+                  "is printed beside it. Compare rows of one run, not across runs.\n"
                   "Then the cloth row: cloth-in-the-dryer with a 128 x 128 sheet (16,384 particles and 97,026\n"
                   "springs, their stiffness and damping and the dryer's strength scaled with the particles' mass\n"
                   "so that each moves as in the 10 x 10 built-in), semi-implicit Euler at dt = 0.002, on 1\n"
@@ -698,9 +726,9 @@ void addBenchCommand(CLI::App& root, Action& selected)
                   "are reported for its slowest second (the one a real-time program must keep up with) and for\n"
                   "the whole run.\n"
                   "\nWith --phases it prints instead where a swarm step's time goes: the semi-implicit Euler\n"
-                  "swarm on all cores, in flight and landed, at the sizes of --sizes (default 1e6), 200 steps\n"
-                  "each (10 with --quick), in milliseconds of thread time a step for each phase (integrate,\n"
-                  "surface test, collide, check; timing them slows a step a little).\n");
+                  "swarm on all cores, in flight, landed and rested, at the sizes of --sizes (default 1e6),\n"
+                  "200 steps each (10 with --quick), in milliseconds of thread time a step for each phase\n"
+                  "(integrate, surface test, collide, check; timing them slows a step a little).\n");
     bench->callback([options, &selected] { selected = [options] { return runBench(*options); }; });
 }
 

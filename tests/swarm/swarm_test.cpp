@@ -359,7 +359,7 @@ TEST(PbaBench, QuickJsonHasEveryLayout)
     EXPECT_EQ(dice["integrator"], "semi-implicit-euler");
     EXPECT_GT(dice["steps_per_s"].get<double>(), 0.0);
     EXPECT_LE(dice["steps_per_s"].get<double>(), dice["steps_per_s_overall"].get<double>());
-    EXPECT_EQ(swarmPhases, (std::set<std::string>{"flight", "landed"}));
+    EXPECT_EQ(swarmPhases, (std::set<std::string>{"flight", "landed", "rested"}));
     // The cloth: 128 x 128 on 1 thread and on all cores, one spring evaluation per spring a step.
     ASSERT_GE(cloth.size(), 1u);
     EXPECT_EQ(cloth.front()["threads"], 1);
@@ -409,7 +409,7 @@ TEST(PbaBench, PhasesSplitTheSwarmStep)
     const auto r = pba::test::runPba("bench --phases --quick --json --sizes 20000");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto json = nlohmann::json::parse(r.out);
-    ASSERT_EQ(json["results"].size(), 2u);
+    ASSERT_EQ(json["results"].size(), 3u);
     std::set<std::string> phases;
     for (const auto& row : json["results"]) {
         EXPECT_EQ(row["layout"], "phases");
@@ -420,7 +420,7 @@ TEST(PbaBench, PhasesSplitTheSwarmStep)
         EXPECT_GT(row["integrate_ms"].get<double>(), 0.0);
         EXPECT_GT(row["steps_per_s"].get<double>(), 0.0);
     }
-    EXPECT_EQ(phases, (std::set<std::string>{"flight", "landed"}));
+    EXPECT_EQ(phases, (std::set<std::string>{"flight", "landed", "rested"}));
 }
 
 // A block whose particles rest on the floor skips the surface test and takes the collision pass
