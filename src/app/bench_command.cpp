@@ -477,8 +477,9 @@ nlohmann::json swarmStatistics(const World& world, double t)
 }
 
 /// `pba bench --peer-worker`: the semi-implicit Euler swarm of blow-dryer-swarm on all cores, at
-/// the one size given, from the phase's start state (kPhases), driven line by line from standard input by bench/peers/run.py, which takes
-/// its windows in turn with the Python peers' (its own process, so interleaved across them):
+/// the one size given, from the phase's start state (kPhases), driven line by line from standard
+/// input by bench/peers/run.py, which takes its windows in turn with the Python peers' (its own
+/// process, so interleaved across them):
 ///   window STEPS   restart from the start state, time STEPS steps, print {"seconds", "steps", ...}
 ///   stats          print swarmStatistics of the current state
 /// Each answer is one JSON line; the first line, {"ready": ...}, follows the setup.
