@@ -332,11 +332,11 @@ struct PassResult {
 };
 
 /// The reflect or clamp rule over the n particles of a block, or of a batch gathered from
-/// several, that met a surface of a World's room, in one loop of selects: the floor, its hole
-/// and the grille (RoomSurfacesT::commonPass), and whether the result is finite. A particle that
-/// pass cannot finish (needsWholeRule: at the ceiling or a wall, at a corner, at the shaft's
-/// wall) is left as the integrator left it and marked in `unfinished` for a Particle's whole
-/// rule (wholeRule). A particle clear of every surface is left exactly as it was.
+/// several, that met a surface of a World's room, in one loop of selects: the floor and its
+/// hole (RoomSurfacesT::commonPass), and whether the result is finite. A particle that pass
+/// cannot finish (needsWholeRule: at the ceiling, a wall or the grille, at a corner, at the
+/// shaft's wall) is left as the integrator left it and marked in `unfinished` for a Particle's
+/// whole rule (wholeRule). A particle clear of every surface is left exactly as it was.
 ///
 /// It replaced, for the blocks and batches where particles meet a surface, four loops: which
 /// planes some particle crossed (the block's bounds), a pass for each such plane (the floor's
@@ -366,7 +366,7 @@ PassResult passInRoom(float* __restrict px, float* __restrict py, float* __restr
         const bool whole = room.needsWholeRule(passedX);
         unfinished[k] = static_cast<std::uint32_t>(whole);
         count += static_cast<std::uint32_t>(whole);
-        moved += static_cast<std::uint32_t>(whole | (passedX.x != x.x) | (passedX.y != x.y) | (passedX.z != x.z));
+        moved += static_cast<std::uint32_t>(whole | (passedX.y != x.y)); // the pass moves along y only
         bounces += whole ? 0 : bounced;
         x = Vec3<float>(whole ? x.x : passedX.x, whole ? x.y : passedX.y, whole ? x.z : passedX.z);
         v = Vec3<float>(whole ? v.x : passedV.x, whole ? v.y : passedV.y, whole ? v.z : passedV.z);
