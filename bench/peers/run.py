@@ -39,7 +39,6 @@ import tempfile
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree (the workers: PYTHONDONTWRITEBYTECODE)
 os.environ["PYTHONDONTWRITEBYTECODE"] = "1"
 HERE = os.path.dirname(os.path.abspath(__file__))
-LANDED_STEPS, RESTED_STEPS = 1000, 4000  # t = 2 s and 8 s (scene.py's, which imports NumPy)
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 SKIP = 77  # ctest's SKIP_RETURN_CODE
 
@@ -53,6 +52,8 @@ except ImportError:
         os.execv("/usr/bin/python3", ["/usr/bin/python3", *sys.argv])
     print("run.py: SKIP: needs NumPy and Numba (Debian: apt-get install python3-numba)", file=sys.stderr)
     sys.exit(SKIP)
+
+import scene  # noqa: E402 (after the check above: it imports NumPy)
 
 
 class Worker:
@@ -123,7 +124,7 @@ def validate(args, n, workers, tmp):
 
 def rested_state(n, numba, tmp):
     """The Numba peer's state at t = 8 s, stepped on from its landed start (t = 2 s). Returns its file."""
-    more = RESTED_STEPS - LANDED_STEPS
+    more = scene.RESTED_STEPS - scene.LANDED_STEPS
     log(f"n = {n:g}: numba steps {more} steps more, to t = 8 s")
     numba.ask(f"window {more}")
     path = os.path.join(tmp, f"numba-rested-{n}.npy")

@@ -3,8 +3,8 @@
     worker.py --impl numba|numpy --n N --phase flight|landed|rested [--state FILE.npy]
 
 Sets up the peer's start state (pba's first state, generated here; landed and rested: the state
-at t = 2 s or 8 s in FILE.npy, or the first state stepped here to that time), prints {"ready": ...}, then answers each line of standard
-input with one JSON line:
+at t = 2 s or 8 s in FILE.npy, or the first state stepped here to that time), prints
+{"ready": ...}, then answers each line of standard input with one JSON line:
     window STEPS   restart from the start state, time STEPS steps
     stats          the current state's statistics (scene.statistics)
     save PATH      write the current state to PATH (.npy, six rows of n float32)

@@ -404,7 +404,7 @@ std::vector<Row> measureSize(std::size_t n, double minTime, int repeats, int cor
     for (std::size_t p = 0; p < kPhases.size(); ++p)
         for (Integrator integrator : kAllIntegrators)
             for (int threads : {1, cores}) {
-                World world = p == 0 ? swarmWorld(n, integrator, threads) : starts[p];
+                World world = starts[p];
                 world.swarm(0).setIntegrator(integrator);
                 world.setThreads(threads);
                 add(Row{"swarm", std::string(integratorName(integrator)), kPhases[p].name, n, threads, 0.0, bytes, 0.0,
