@@ -94,6 +94,11 @@ def log(message):
     print(message, file=sys.stderr, flush=True)
 
 
+def differences(s, reference):
+    """The statistics' differences from the reference's: mean height, cone and shaft fractions."""
+    return tuple(s[k] - reference[k] for k in ("mean_height", "cone_fraction", "shaft_fraction"))
+
+
 def validate(args, n, workers, tmp):
     """Step 1: the same first state, then stats after the validation steps. Returns (rows, ok, saved)."""
     first = {w.name: w.ask("stats") for w in workers}
@@ -112,9 +117,7 @@ def validate(args, n, workers, tmp):
             saved[w.name] = os.path.join(tmp, f"{w.name}-{n}.npy")
             w.ask(f"save {saved[w.name]}")
         reference = reference or s
-        dh = s["mean_height"] - reference["mean_height"]
-        dc = s["cone_fraction"] - reference["cone_fraction"]
-        ds = s["shaft_fraction"] - reference["shaft_fraction"]
+        dh, dc, ds = differences(s, reference)
         good = max(abs(dh), abs(dc), abs(ds)) <= args.tolerance
         ok = ok and good
         same = s["state_bits_sum"] == reference["state_bits_sum"]
@@ -144,9 +147,7 @@ def validate_rested(args, n, pba, numba):
     reference, s = pba.ask("stats"), numba.ask("stats")
     rows, ok = [], True
     for name, stats in (("pba", reference), ("numba", s)):
-        dh = stats["mean_height"] - reference["mean_height"]
-        dc = stats["cone_fraction"] - reference["cone_fraction"]
-        ds = stats["shaft_fraction"] - reference["shaft_fraction"]
+        dh, dc, ds = differences(stats, reference)
         error = lambda p: 4.0 * (max(p * (1.0 - p), 1.0 / n) / n) ** 0.5
         good = (abs(dh) <= 1e-3 and abs(dc) <= error(reference["cone_fraction"]) and
                 abs(ds) <= error(reference["shaft_fraction"]))
