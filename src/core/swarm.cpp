@@ -434,12 +434,12 @@ std::size_t nextMarked(const std::uint32_t* which, std::size_t k, std::size_t n)
 }
 
 /// A Particle's whole rule, from where the integrator left them, for the `marked` particles
-/// flagged in `which` (all n of them with nullptr) among n of `a` from b. In a World's room its first pass
-/// is the room's (RoomSurfacesT::firstPass: the same functions over the same planes in the same
-/// order), the rest only for a particle still outside; among other planes it is the rule as a
-/// Particle runs it, which first tests whether the particle is inside every plane. Out of line
-/// and scalar, as collideExactly. Returns the bounces; clears `finite` if a state it wrote is
-/// not.
+/// flagged in `which` (all n of them with nullptr) among n of `a` from b. In a World's room its
+/// first pass is the room's (RoomSurfacesT::firstPass: the same functions over the same planes
+/// in the same order), the rest only for a particle still outside; among other planes it is the
+/// rule as a Particle runs it, which first tests whether the particle is inside every plane.
+/// Out of line and scalar, as collideExactly. Returns the bounces; clears `finite` if a state it
+/// wrote is not.
 [[gnu::noinline]] std::uint64_t wholeRule(const Arrays& a, std::size_t b, std::size_t n, float restitution,
                                           std::span<const PlaneT<float>> planes, CollisionResponse response,
                                           const std::optional<RoomSurfacesT<float>>& room,
@@ -449,7 +449,7 @@ std::size_t nextMarked(const std::uint32_t* which, std::size_t k, std::size_t n)
     const bool reflect = response == CollisionResponse::Reflect;
     std::uint64_t bounces = 0;
     const auto next = [&](std::size_t k) { return which ? nextMarked(which, k, n) : k; };
-    for (std::size_t k = next(0), left = which ? marked : n; k < n && left > 0; k = next(k + 1), --left) {
+    for (std::size_t k = next(0), left = marked; k < n && left > 0; k = next(k + 1), --left) {
         const std::size_t i = b + k;
         const Vec3<float> from(start[0][k], start[1][k], start[2][k]);
         const Vec3<float> x0(a.px[i], a.py[i], a.pz[i]), v0(a.vx[i], a.vy[i], a.vz[i]);
