@@ -7,7 +7,6 @@
 #include <atomic>
 #include <cstdint>
 #include <algorithm>
-#include <new>
 #include <optional>
 #include <span>
 #include <string>
@@ -17,6 +16,7 @@
 #include "pba/collision.hpp"
 #include "pba/forces.hpp"
 #include "pba/integrator.hpp"
+#include "pba/large_array.hpp"
 #include "pba/math.hpp"
 
 namespace pba {
@@ -146,19 +146,6 @@ private:
     const float* array(int c) const { return m_state.data() + std::size_t(c) * m_stride; }
     float* array(int c) { return m_state.data() + std::size_t(c) * m_stride; }
 
-    /// A cache-line-aligned allocation: every 16-float vector of the loop is one line.
-    template <class T>
-    struct LineAligned {
-        using value_type = T;
-        LineAligned() = default;
-        template <class U>
-        LineAligned(const LineAligned<U>&) noexcept {}
-        T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(64))); }
-        void deallocate(T* p, std::size_t) noexcept { ::operator delete(p, std::align_val_t(64)); }
-        template <class U>
-        bool operator==(const LineAligned<U>&) const noexcept { return true; }
-    };
-
     /// Floats from one array to the next for `count` particles (see m_stride).
     static constexpr std::size_t strideFor(std::size_t count)
     {
@@ -174,7 +161,9 @@ private:
     /// aliasing) and evicts its own lines from the L1 sets they share: measured 1.2e9 against
     /// 1.65e9 particle-steps/s for the integration loop alone at a million particles.
     std::size_t m_stride = 0;
-    std::vector<float, LineAligned<float>> m_state;
+    /// Cache-line aligned (every 16-float vector of the loop is one line), in huge pages where the
+    /// kernel has them (see LargeArrayAllocator).
+    std::vector<float, LargeArrayAllocator<float>> m_state;
     std::vector<std::uint8_t> m_clear; ///< exact response only, per particle: clear of every surface after its last step
     std::vector<std::uint8_t> m_finite; ///< per 512-particle block: all finite after the last step
     std::vector<std::uint8_t> m_crowded; ///< per block: most of it met a surface last step (see stepBlocks)

@@ -23,6 +23,7 @@
 
 #include "command.hpp"
 #include "pba/blow_dryer.hpp"
+#include "pba/large_array.hpp"
 #include "pba/scene/scene.hpp"
 #include "pba/spring_network.hpp"
 
@@ -198,8 +199,10 @@ World baselineWorld(std::size_t n)
 /// One pass of the bandwidth bound's in-place update a[i] = a[i] * s + t over the swarm state's
 /// size (24 n bytes, so a = 6 n floats) on all cores. Counting 8 bytes moved per element, a pass
 /// moves 48 n bytes: what n particle-steps must move (position and velocity, read and written, in
-/// float), so a pass counts as n particle-steps.
-void boundPass(std::vector<float>& a)
+/// float), so a pass counts as n particle-steps. Its memory is allocated as a swarm's state is
+/// (LargeArrayAllocator: in huge pages where the kernel has them), so that the two are compared on
+/// the same pages.
+void boundPass(std::vector<float, LargeArrayAllocator<float>>& a)
 {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, a.size(), 1 << 16), [&](const auto& range) {
         for (std::size_t i = range.begin(); i < range.end(); ++i)
@@ -389,7 +392,7 @@ double bytesPerParticle(std::size_t n)
 /// run, over 6 0.86 to 1.00, and 0.88 to 1.07 with every window the same work.
 std::vector<Row> measureSize(std::size_t n, double minTime, int repeats, int cores, double bytes)
 {
-    std::vector<float> state(6 * n, 1.0f);
+    std::vector<float, LargeArrayAllocator<float>> state(6 * n, 1.0f); // as a swarm's memory
     std::vector<Subject> subjects;
     // The bound's pass is the same work whatever the array holds: nothing to restart.
     subjects.push_back(
