@@ -196,6 +196,25 @@ TEST(Swarm, ResultsDoNotDependOnTheThreadCount)
     }
 }
 
+// A particle's first state depends on the seed and its index alone, and its step on nothing but
+// its own state: so the first particles of a swarm of a million and of one of 40,000 are the same
+// particles, and stay the same, though the two are split into different tasks and blocks of
+// other particles, and the larger one's state is in huge pages.
+TEST(Swarm, ResultsDoNotDependOnTheSwarmsSize)
+{
+    World small = swarmWorld(40000);
+    World large = swarmWorld(1'000'000);
+    for (int n = 0; n < 50; ++n) {
+        small.step(0.002);
+        large.step(0.002);
+    }
+    const Swarm &a = small.swarm(0), &b = large.swarm(0);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        ASSERT_EQ(a.position(i), b.position(i)) << "particle " << i;
+        ASSERT_EQ(a.velocity(i), b.velocity(i)) << "particle " << i;
+    }
+}
+
 // Bodies that cross the room several times a step (500 m/s, dt 0.1 s: up to 12 widths) are
 // folded back in by the swarm's vectorised pass exactly as a Particle's rule folds them: after
 // one step the float swarm and the double Particles agree to single precision.
