@@ -2,6 +2,7 @@
 // Memory for the large arrays that a swarm streams through every step (and that `pba bench`'s
 // bandwidth bound streams through for comparison).
 #include <cstddef>
+#include <vector>
 
 namespace pba {
 
@@ -35,5 +36,9 @@ struct LargeArrayAllocator {
         return true;
     }
 };
+
+/// A std::vector in such memory: a swarm's state, the bound's array.
+template <class T>
+using LargeArray = std::vector<T, LargeArrayAllocator<T>>;
 
 } // namespace pba

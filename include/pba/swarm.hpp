@@ -163,7 +163,7 @@ private:
     std::size_t m_stride = 0;
     /// Cache-line aligned (every 16-float vector of the loop is one line), in huge pages where the
     /// kernel has them (see LargeArrayAllocator).
-    std::vector<float, LargeArrayAllocator<float>> m_state;
+    LargeArray<float> m_state;
     std::vector<std::uint8_t> m_clear; ///< exact response only, per particle: clear of every surface after its last step
     std::vector<std::uint8_t> m_finite; ///< per 512-particle block: all finite after the last step
     std::vector<std::uint8_t> m_crowded; ///< per block: most of it met a surface last step (see stepBlocks)

@@ -202,7 +202,7 @@ World baselineWorld(std::size_t n)
 /// float), so a pass counts as n particle-steps. Its memory is allocated as a swarm's state is
 /// (LargeArrayAllocator: in huge pages where the kernel has them), so that the two are compared on
 /// the same pages.
-void boundPass(std::vector<float, LargeArrayAllocator<float>>& a)
+void boundPass(LargeArray<float>& a)
 {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, a.size(), 1 << 16), [&](const auto& range) {
         for (std::size_t i = range.begin(); i < range.end(); ++i)
@@ -392,7 +392,7 @@ double bytesPerParticle(std::size_t n)
 /// run, over 6 0.86 to 1.00, and 0.88 to 1.07 with every window the same work.
 std::vector<Row> measureSize(std::size_t n, double minTime, int repeats, int cores, double bytes)
 {
-    std::vector<float, LargeArrayAllocator<float>> state(6 * n, 1.0f); // as a swarm's memory
+    LargeArray<float> state(6 * n, 1.0f); // as a swarm's memory
     std::vector<Subject> subjects;
     // The bound's pass is the same work whatever the array holds: nothing to restart.
     subjects.push_back(

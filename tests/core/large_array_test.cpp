@@ -69,7 +69,7 @@ TEST(LargeArray, LargeArraysAreAdvisedAsHugePages)
 {
     if (!std::ifstream("/sys/kernel/mm/transparent_hugepage/enabled"))
         GTEST_SKIP() << "this kernel has no transparent huge pages";
-    std::vector<float, LargeArrayAllocator<float>> state(std::size_t(6) << 20, 1.0f); // 24 MiB
+    LargeArray<float> state(std::size_t(6) << 20, 1.0f); // 24 MiB
     const std::string flags = mappingFlags(state.data());
     ASSERT_FALSE(flags.empty()) << "no mapping in /proc/self/smaps holds the array";
     EXPECT_NE(flags.find(" hg"), std::string::npos) << flags; // MADV_HUGEPAGE
