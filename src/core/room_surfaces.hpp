@@ -44,6 +44,7 @@ struct RoomSurfacesT {
     /// measured 14% faster without (blow-dryer-swarm from t = 8 s at 1e6, the median of six
     /// alternations, 2026-11-26): the few particles on it (of the 0.1% in the shaft) take the
     /// whole rule, and the pass's loop has its registers for the floor's constants.
+    /// It moves x and v along y only and reads no other component of v: passInRoom relies on it.
     template <bool kHole>
     void commonPass(T restitution, T back, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v, int& bounces) const
     {

@@ -386,17 +386,20 @@ struct PassResult {
 /// 250 to 360 a step of a million take the whole rule; with the wall in this loop (its square
 /// root and two divisions for every particle) the same measured 640-675.
 template <bool kHole>
-PassResult passInRoom(float* __restrict px, float* __restrict py, float* __restrict pz, float* __restrict vx,
-                      float* __restrict vy, float* __restrict vz, const float* __restrict s0,
-                      const float* __restrict s1, const float* __restrict s2, std::uint32_t* __restrict unfinished,
-                      std::size_t n, const RoomSurfacesT<float> room, float restitution, float back)
+PassResult passInRoom(const float* __restrict px, float* __restrict py, const float* __restrict pz,
+                      float* __restrict vy, const float* __restrict s0, const float* __restrict s1,
+                      const float* __restrict s2, std::uint32_t* __restrict unfinished, std::size_t n,
+                      const RoomSurfacesT<float> room, float restitution, float back)
 {
     int bounces = 0;
     std::uint32_t count = 0, moved = 0, nonFinite = 0; // 32 bits, as wide as a float: 16 particles a vector
     // vectorised: checked
     for (std::size_t k = 0; k < n; ++k) {
-        Vec3<float> x(px[k], py[k], pz[k]);
-        Vec3<float> v(vx[k], vy[k], vz[k]);
+        // The floor moves a particle along y only, so only y and v.y are read and written: the
+        // other four components stay as the integration wrote (and checked) them. Loading and
+        // storing them again made six stores a particle where two do.
+        const Vec3<float> x(px[k], py[k], pz[k]);
+        const Vec3<float> v(0.0f, vy[k], 0.0f);
         const Vec3<float> start(s0[k], s1[k], s2[k]);
         Vec3<float> passedX = x, passedV = v;
         int bounced = 0;
@@ -404,13 +407,11 @@ PassResult passInRoom(float* __restrict px, float* __restrict py, float* __restr
         const bool whole = room.needsWholeRule(passedX);
         unfinished[k] = static_cast<std::uint32_t>(whole);
         count += static_cast<std::uint32_t>(whole);
-        moved += static_cast<std::uint32_t>(whole | (passedX.y != x.y)); // the pass moves along y only
+        moved += static_cast<std::uint32_t>(whole | (passedX.y != x.y));
         bounces += whole ? 0 : bounced;
-        x = Vec3<float>(whole ? x.x : passedX.x, whole ? x.y : passedX.y, whole ? x.z : passedX.z);
-        v = Vec3<float>(whole ? v.x : passedV.x, whole ? v.y : passedV.y, whole ? v.z : passedV.z);
-        nonFinite |= nonFiniteSum(x, v);
-        px[k] = x.x, py[k] = x.y, pz[k] = x.z;
-        vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
+        const float y = whole ? x.y : passedX.y, velocityY = whole ? v.y : passedV.y;
+        nonFinite |= special(y + velocityY);
+        py[k] = y, vy[k] = velocityY;
     }
     return PassResult{bounces, count, moved, nonFinite == 0};
 }
@@ -497,9 +498,8 @@ std::uint64_t collideHits(const Arrays& a, std::size_t b, std::size_t n, float r
     alignas(64) std::uint32_t unfinished[kBlock];
     const float back = response == CollisionResponse::Reflect ? 2.0f : 1.0f; // see pushBack
     const auto pass = [&](auto hole) {
-        return passInRoom<decltype(hole)::value>(a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b,
-                                                 start[0], start[1], start[2], unfinished, n, *room, restitution,
-                                                 back);
+        return passInRoom<decltype(hole)::value>(a.px + b, a.py + b, a.pz + b, a.vy + b, start[0], start[1],
+                                                 start[2], unfinished, n, *room, restitution, back);
     };
     const PassResult result = room->hasHole() ? pass(std::true_type{}) : pass(std::false_type{});
     finite = finite && result.finite;
