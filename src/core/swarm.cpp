@@ -175,35 +175,37 @@ private:
     std::uint64_t m_last = 0;
 };
 
-/// 1 when f is an infinity or a NaN (the only floats whose exponent bits are all set), as an
-/// integer a loop can OR into a flag without a branch (a float sum would not vectorise without
-/// reassociation).
-inline std::uint32_t special(float f)
+/// The exponent field of f: all ones (kSpecialExponent) exactly when f is an infinity or a NaN.
+/// A loop keeps the largest it sees, an unsigned maximum (one instruction a vector, where
+/// comparing each and ORing the result into a flag took three; a float sum would not vectorise
+/// without reassociation), and tests it once at the end.
+constexpr std::uint32_t kSpecialExponent = 0x7f800000u;
+inline std::uint32_t exponentField(float f)
 {
     std::uint32_t bits;
     std::memcpy(&bits, &f, sizeof bits);
-    return static_cast<std::uint32_t>((bits & 0x7f800000u) == 0x7f800000u);
+    return bits & kSpecialExponent;
 }
 
-/// 1 when the sum of the state's six components is special: it is whenever a component is; a
-/// finite state whose sum overflows only sends Swarm::findNonFinite to look for nothing.
-inline std::uint32_t nonFiniteSum(const Vec3<float>& x, const Vec3<float>& v)
+/// The exponent field of the sum of the state's six components: special whenever a component
+/// is; a finite state whose sum overflows only sends Swarm::findNonFinite to look for nothing.
+inline std::uint32_t exponentOfSum(const Vec3<float>& x, const Vec3<float>& v)
 {
-    return special(x.x + x.y + x.z + v.x + v.y + v.z);
+    return exponentField(x.x + x.y + x.z + v.x + v.y + v.z);
 }
 
-/// Whether n states are all finite: one pass over the six arrays with one OR accumulator (six
+/// Whether n states are all finite: one pass over the six arrays with one accumulator (six
 /// separate reductions measured slower), for the blocks whose states a loop without the test
 /// wrote (the exact response's).
 bool allFinite(const Arrays& a, std::size_t b, std::size_t n)
 {
     const float* __restrict arrays[6] = {a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b};
-    std::uint32_t nonFinite = 0;
+    std::uint32_t exponent = 0;
     // vectorised: checked
     for (std::size_t k = 0; k < n; ++k)
         for (const float* values : arrays)
-            nonFinite |= special(values[k]);
-    return nonFinite == 0;
+            exponent = std::max(exponent, exponentField(values[k]));
+    return exponent != kSpecialExponent;
 }
 
 /// Phase 1 of a block: the plain integrator step for every particle, a loop with no branches
@@ -216,7 +218,7 @@ bool integrateBlock(float* __restrict px, float* __restrict py, float* __restric
 {
     // Distinct arrays (restrict) and an acceleration holding its fields by value: what lets
     // the compiler vectorise this loop without alias checks.
-    std::uint32_t nonFinite = 0;
+    std::uint32_t exponent = 0;
     // vectorised: checked
     for (std::size_t k = 0; k < n; ++k) {
         Vec3<float> x(px[k], py[k], pz[k]);
@@ -225,11 +227,11 @@ bool integrateBlock(float* __restrict px, float* __restrict py, float* __restric
         if constexpr (kKeepStartVelocity) // only the exact response redoes the step
             s3[k] = v.x, s4[k] = v.y, s5[k] = v.z;
         integrateAs<kIntegrator>(x, v, dt, accel);
-        nonFinite |= nonFiniteSum(x, v);
+        exponent = std::max(exponent, exponentOfSum(x, v));
         px[k] = x.x, py[k] = x.y, pz[k] = x.z;
         vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
     }
-    return nonFinite == 0;
+    return exponent != kSpecialExponent;
 }
 
 /// Phase 1 of a block away from the dryer: integrateBlock's loop with `away`, the acceleration
@@ -245,7 +247,7 @@ bool integrateAwayBlock(float* __restrict px, float* __restrict py, float* __res
                         std::uint32_t* __restrict blown, std::size_t& blownCount, std::size_t n, float dt,
                         BlowDryerKernelT<float> dryer, Away away)
 {
-    std::uint32_t nonFinite = 0, count = 0;
+    std::uint32_t exponent = 0, count = 0;
     // vectorised: checked
     for (std::size_t k = 0; k < n; ++k) {
         const Vec3<float> x0(px[k], py[k], pz[k]);
@@ -262,14 +264,14 @@ bool integrateAwayBlock(float* __restrict px, float* __restrict py, float* __res
         // Selects a component at a time (a select of whole vectors is a branch to GCC).
         for (int c = 0; c < 3; ++c)
             x[c] = pushed ? x0[c] : x[c], v[c] = pushed ? v0[c] : v[c];
-        nonFinite |= nonFiniteSum(x, v);
+        exponent = std::max(exponent, exponentOfSum(x, v));
         px[k] = x.x, py[k] = x.y, pz[k] = x.z;
         vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
         blown[k] = static_cast<std::uint32_t>(pushed);
         count += static_cast<std::uint32_t>(pushed);
     }
     blownCount = count;
-    return nonFinite == 0;
+    return exponent != kSpecialExponent;
 }
 
 /// Returns whether every state it wrote is finite.
@@ -392,7 +394,7 @@ PassResult passInRoom(const float* __restrict px, float* __restrict py, const fl
                       const RoomSurfacesT<float> room, float restitution, float back)
 {
     int bounces = 0;
-    std::uint32_t count = 0, moved = 0, nonFinite = 0; // 32 bits, as wide as a float: 16 particles a vector
+    std::uint32_t count = 0, moved = 0, exponent = 0; // 32 bits, as wide as a float: 16 particles a vector
     // vectorised: checked
     for (std::size_t k = 0; k < n; ++k) {
         // The floor moves a particle along y only, so only y and v.y are read and written: the
@@ -410,10 +412,10 @@ PassResult passInRoom(const float* __restrict px, float* __restrict py, const fl
         moved += static_cast<std::uint32_t>(whole | (passedX.y != x.y));
         bounces += whole ? 0 : bounced;
         const float y = whole ? x.y : passedX.y, velocityY = whole ? v.y : passedV.y;
-        nonFinite |= special(y + velocityY);
+        exponent = std::max(exponent, exponentField(y + velocityY));
         py[k] = y, vy[k] = velocityY;
     }
-    return PassResult{bounces, count, moved, nonFinite == 0};
+    return PassResult{bounces, count, moved, exponent != kSpecialExponent};
 }
 
 /// The first index from k on, below n, whose flag in `which` is set; n if there is none. Sixteen
@@ -473,7 +475,7 @@ std::size_t nextMarked(const std::uint32_t* which, std::size_t k, std::size_t n)
         bounces += static_cast<std::uint64_t>(bounced);
         a.px[i] = x.x, a.py[i] = x.y, a.pz[i] = x.z;
         a.vx[i] = v.x, a.vy[i] = v.y, a.vz[i] = v.z;
-        finite = finite && nonFiniteSum(x, v) == 0;
+        finite = finite && exponentOfSum(x, v) != kSpecialExponent;
     }
     return bounces;
 }
