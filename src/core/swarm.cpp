@@ -396,9 +396,9 @@ PassResult passInRoom(const float* __restrict px, float* __restrict py, const fl
     std::uint32_t count = 0, exponent = 0; // 32 bits, as wide as a float: 16 particles a vector
     // vectorised: checked
     for (std::size_t k = 0; k < n; ++k) {
-        // The floor moves a particle along y only, so only y and v.y are read and written: the
-        // other four components stay as the integration wrote (and checked) them. Loading and
-        // storing them again made six stores a particle where two do.
+        // The floor moves a particle along y only, so only y and v.y are written (and v's other
+        // components not even read): the other four stay as the integration wrote and checked
+        // them. Storing all six again made six stores a particle where two do.
         const Vec3<float> x(px[k], py[k], pz[k]);
         const Vec3<float> v(0.0f, vy[k], 0.0f);
         const Vec3<float> start(s0[k], s1[k], s2[k]);
