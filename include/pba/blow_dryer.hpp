@@ -155,12 +155,17 @@ inline bool inBlowDryerShaft(const BlowDryerKernelT<T>& f, const Vec3<T>& d)
 }
 
 /// blowDryerForce's closing expression, shared with blowDryerForceAway so that the two round
-/// alike: along the axis, across it (times rho), and the air's velocity term.
-template <DryerAxis kAxis, class T>
+/// alike: along the axis, across it (times rho), and with `kExtra` the air's velocity term.
+/// Upward without it, nothing is added: adding a zero only turned a component's -0 into +0, an
+/// addition a particle in a swarm's loop, and kept the compiler from fusing the products into
+/// the sum with gravity (see oneDryer in swarm.cpp, which makes that sum round as before).
+template <DryerAxis kAxis, bool kExtra, class T>
 inline Vec3<T> dryerForceFrom(const BlowDryerKernelT<T>& f, T along, T radial, const Vec3<T>& d, const Vec3<T>& rho,
                               const Vec3<T>& extra)
 {
-    if constexpr (kAxis == DryerAxis::Up)
+    if constexpr (kAxis == DryerAxis::Up && !kExtra)
+        return Vec3<T>(radial * d.x, along, radial * d.z);
+    else if constexpr (kAxis == DryerAxis::Up)
         return Vec3<T>(radial * d.x, along, radial * d.z) + extra;
     else
         return along * f.axis + radial * rho + extra;
@@ -225,7 +230,7 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x, co
         const T drag = (inside | inShaft) ? f.airDrag : T(0);
         extra = -drag * v;
     }
-    return dryerForceFrom<kAxis>(f, along, radial, d, rho, extra);
+    return dryerForceFrom<kAxis, kAir>(f, along, radial, d, rho, extra);
 }
 
 /// A cheap superset (no root, no division) of where blowDryerForce's force can be other than
@@ -252,14 +257,16 @@ inline bool blowDryerMayPush(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
 /// there (tested equal bit for bit). The push along the axis is 0 h rather than blowDryerForce's
 /// 0 H: the same zero once the extra term is added, but a force that depends on x, so that a
 /// compiler cannot take its product with dt out of a loop and round the step differently (it
-/// did: a plain product and sum where blowDryerForce's loop fuses them).
+/// did: a plain product and sum where blowDryerForce's loop fuses them). Upward, where nothing is
+/// added after it, it is 0 h^2: +0, as blowDryerForce's.
 template <DryerAxis kAxis = DryerAxis::Any, class T>
 inline Vec3<T> blowDryerForceAway(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
 {
+    constexpr bool kUp = kAxis == DryerAxis::Up;
     const Vec3<T> d = x - f.nozzle;
-    const T h = kAxis == DryerAxis::Up ? d.y : glm::dot(d, f.axis);
-    const Vec3<T> rho = kAxis == DryerAxis::Up ? Vec3<T>(d.x, T(0), d.z) : d - h * f.axis;
-    return dryerForceFrom<kAxis>(f, T(0) * h, T(0), d, rho, Vec3<T>(T(0)));
+    const T h = kUp ? d.y : glm::dot(d, f.axis);
+    const Vec3<T> rho = kUp ? Vec3<T>(d.x, T(0), d.z) : d - h * f.axis;
+    return dryerForceFrom<kAxis, false>(f, T(0) * (kUp ? h * h : h), T(0), d, rho, Vec3<T>(T(0)));
 }
 
 template <class T>

@@ -670,10 +670,22 @@ auto accelerationWith(const SwarmKernelFields& fields, Push push)
     };
 }
 
+/// Gravity with each -0 component made +0 (g + 0), for a dryer's force that may have -0
+/// components: upward, blowDryerForce adds nothing after its products (dryerForceFrom), where
+/// it added a zero that made each -0 +0. For any g and f, (g + 0) + f is g + (f + 0), bit for
+/// bit, so the sum is as before; and with gravity vertical and no drag (every built-in scene)
+/// the compiler's fused g.x + radial d.x rounds as the product alone did. With a sideways
+/// gravity or drag that fused sum rounds once where it rounded twice.
+inline SwarmKernelFields withoutNegativeZeroGravity(SwarmKernelFields fields)
+{
+    fields.gravity += Vec3<float>(0.0f);
+    return fields;
+}
+
 template <DryerAxis kAxis, bool kDrag>
 auto oneDryer(const SwarmKernelFields& fields)
 {
-    return accelerationWith<kDrag>(fields, [dryer = fields.dryer](const Vec3<float>& x) {
+    return accelerationWith<kDrag>(withoutNegativeZeroGravity(fields), [dryer = fields.dryer](const Vec3<float>& x) {
         return blowDryerForce<kAxis>(dryer, x);
     });
 }
@@ -720,7 +732,7 @@ bool integrateGathered(const Arrays& a, std::size_t b, const std::uint16_t* inde
 template <DryerAxis kAxis, bool kDrag>
 auto awayFromDryer(const SwarmKernelFields& fields)
 {
-    return accelerationWith<kDrag>(fields, [dryer = fields.dryer](const Vec3<float>& x) {
+    return accelerationWith<kDrag>(withoutNegativeZeroGravity(fields), [dryer = fields.dryer](const Vec3<float>& x) {
         return blowDryerForceAway<kAxis>(dryer, x);
     });
 }
