@@ -215,8 +215,11 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x, co
     const T u = T(1) - r * inverseRadius;
     const T magnitude = f.axial.inRange(T(1) - s) * f.radial.inRange(u);
     // Vertical: the axis. Cone-flow: H axis + (R - r0) rho / R(h). In the shaft: the axis.
-    const T scale = inside ? magnitude * inverseLength : T(0);
-    const T along = inShaft ? f.shaftPush : scale * f.height;
+    // `inside` excludes the shaft, so the cone's push or the shaft's, whichever applies, is one
+    // select (written as the shaft's select of the cone's, GCC made it three and four mask
+    // operations).
+    const T scale = magnitude * inverseLength;
+    const T along = inside ? scale * f.height : inShaft ? f.shaftPush : T(0);
     T radial = inside ? scale * f.flowSpread * inverseRadius : T(0);
     Vec3<T> extra(T(0));
     if constexpr (kPull) {
