@@ -158,7 +158,7 @@ inline bool inBlowDryerShaft(const BlowDryerKernelT<T>& f, const Vec3<T>& d)
 /// alike: along the axis, across it (times rho), and with `kExtra` the air's velocity term.
 /// Upward without it, nothing is added: adding a zero only turned a component's -0 into +0, an
 /// addition a particle in a swarm's loop, and kept the compiler from fusing the products into
-/// the sum with gravity (see oneDryer in swarm.cpp, which makes that sum round as before).
+/// the sum with gravity (a swarm's accelerationWith, in swarm.cpp, makes that sum round as before).
 template <DryerAxis kAxis, bool kExtra, class T>
 inline Vec3<T> dryerForceFrom(const BlowDryerKernelT<T>& f, T along, T radial, const Vec3<T>& d, const Vec3<T>& rho,
                               const Vec3<T>& extra)
