@@ -204,8 +204,11 @@ TEST(Collisions, FoldingIntoASlabIsMirroringBetweenItsWallsUntilInside)
             dvec3 x(from, 1, 1), v(trial % 5 == 0 ? 0.0 : speed(rng), 0, 0);
             dvec3 mx = x, mv = v;
             int expected = 0;
-            for (bool mirrored = true; mirrored;)
-                mirrored = mirrorBack(low, e, start, mx, mv, expected) | mirrorBack(high, e, start, mx, mv, expected);
+            for (bool mirrored = true; mirrored;) {
+                const bool offLow = mirrorBack(low, e, start, mx, mv, expected); // both walls every round
+                const bool offHigh = mirrorBack(high, e, start, mx, mv, expected);
+                mirrored = offLow || offHigh;
+            }
             const int bounces = static_cast<int>(foldIntoSlab(slab, e, x.x, v.x));
             ASSERT_NEAR(x.x, mx.x, 1e-11) << "from " << from << " e " << e;
             ASSERT_NEAR(v.x, mv.x, 1e-12 * (1 + std::abs(mv.x))) << "from " << from << " e " << e;
