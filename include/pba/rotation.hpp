@@ -87,7 +87,6 @@ inline void implicitGyroscopicStep(Rotation& s, const dmat3& inertiaBody, const 
     s.momentum = r1 * (inertiaBody * (glm::transpose(r1) * omega));
 }
 
-
 namespace rigid_detail {
 
 /// dq/dt at a stage whose q is not exactly unit (RK4's and Verlet's intermediate stages): omega

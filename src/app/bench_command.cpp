@@ -70,8 +70,6 @@ struct Phase {
 };
 constexpr std::array<Phase, 3> kPhases{{{"flight", 0.0}, {"landed", 2.0}, {"rested", 8.0}}};
 
-
-
 double seconds(Clock::time_point from) { return std::chrono::duration<double>(Clock::now() - from).count(); }
 
 /// Runs `step` until minTime has passed; how many times it ran.
