@@ -66,11 +66,11 @@ inline CommandResult runPba(const std::string& args) { return runShell(std::stri
 namespace pba::test {
 
 struct RunOptions {
-    std::string path;              ///< PATH for the program (empty: this process's)
-    long long fileSizeLimit = -1;  ///< RLIMIT_FSIZE in bytes (-1: none): a stand-in for a full disk
-    int stopAfterMs = -1;          ///< send `stopSignal` this long after the start (-1: never)
+    std::string path{};              ///< PATH for the program (empty: this process's)
+    long long fileSizeLimit = -1;    ///< RLIMIT_FSIZE in bytes (-1: none): a stand-in for a full disk
+    int stopAfterMs = -1;            ///< send `stopSignal` this long after the start (-1: never)
     int stopSignal = SIGTERM;
-    std::filesystem::path workDir; ///< empty: this process's
+    std::filesystem::path workDir{}; ///< empty: this process's
 };
 
 /// Runs the pba binary with an argument vector, no shell: what the arguments hold reaches pba
