@@ -41,6 +41,7 @@ struct BenchOptions {
     bool peerWorker = false; ///< --peer-worker: one row, windows on request (bench/peers/run.py)
     std::string phase = "flight";
     bool phases = false; ///< --phases: where a swarm step's time goes, instead of the rows
+    std::string integrator = "semi-implicit-euler"; ///< --phases' integrator
 };
 
 struct Row {
@@ -533,12 +534,16 @@ int runPeerWorker(const BenchOptions& options)
     return kExitSuccess;
 }
 
-/// --phases: the semi-implicit Euler swarm on all cores, in each of kPhases, each step's time
-/// split by phase (SwarmPhaseTimes: thread-time summed over the threads, so on 2 threads the
+/// --phases: the swarm on all cores with --integrator (semi-implicit Euler unless told), in each
+/// of kPhases (the same start states whatever the integrator), each step's time split by phase (SwarmPhaseTimes: thread-time summed over the threads, so on 2 threads the
 /// phases add up to about twice the step's wall time).
 int runPhases(const BenchOptions& options)
 {
     const std::vector<double> sizes = options.sizes.empty() ? std::vector<double>{1e6} : options.sizes;
+    const std::optional<Integrator> integrator = integratorFromName(options.integrator);
+    if (!integrator)
+        throw UsageError(fmt::format("--integrator: unknown integrator '{}' (expected forward-euler, "
+                                     "semi-implicit-euler, velocity-verlet or rk4)", options.integrator));
     const int steps = options.quick ? 10 : 200;
     nlohmann::json out;
     out["results"] = nlohmann::json::array();
@@ -555,13 +560,15 @@ int runPhases(const BenchOptions& options)
             const char* phase = kPhases[which].name;
             World& world = starts[which];
             world.setThreads(0);
+            world.swarm(0).setIntegrator(*integrator);
             SwarmPhaseTimes times;
             world.swarm(0).setPhaseTimes(&times);
             const auto start = Clock::now();
             for (int k = 0; k < steps; ++k)
                 world.step(0.002);
             const double rate = steps / seconds(start);
-            nlohmann::json row{{"layout", "phases"}, {"phase", phase}, {"n", n}, {"steps_per_s", rate}};
+            nlohmann::json row{{"layout", "phases"}, {"integrator", std::string(integratorName(*integrator))},
+                               {"phase", phase}, {"n", n}, {"steps_per_s", rate}};
             table += fmt::format("{:>9} {:<7} {:>8.1f}", n, phase, rate);
             double total = 0.0;
             for (const auto& t : times.nanoseconds)
@@ -580,8 +587,8 @@ int runPhases(const BenchOptions& options)
     if (options.json)
         fmt::print("{}\n", out.dump(2));
     else
-        fmt::print("{}(semi-implicit Euler, blow-dryer-swarm, all cores, {} steps each; milliseconds of thread time per "
-                   "step, summed over the threads)\n", table, steps);
+        fmt::print("{}({}, blow-dryer-swarm, all cores, {} steps each; milliseconds of thread time per step, "
+                   "summed over the threads)\n", table, integratorName(*integrator), steps);
     return kExitSuccess;
 }
 
@@ -693,10 +700,14 @@ void addBenchCommand(CLI::App& root, Action& selected)
     CLI::Option* peerWorker = bench->add_flag("--peer-worker", options->peerWorker,
                     "For bench/peers/run.py: only the semi-implicit Euler swarm on all cores at the one size "
                     "of --sizes, its windows taken on request from standard input (see bench/peers/run.py)");
-    bench->add_flag("--phases", options->phases,
+    CLI::Option* phases = bench->add_flag("--phases", options->phases,
                     "Instead of the rows: where a swarm step's time goes (integrate, surface test, collide, check), "
                     "in flight, landed and rested, at the sizes of --sizes (default 1e6)")
         ->excludes(peerWorker);
+    bench->add_option("--integrator", options->integrator,
+                      "With --phases: forward-euler, semi-implicit-euler (the default), velocity-verlet or rk4")
+        ->needs(phases)
+        ->option_text("NAME");
     bench->add_option("--phase", options->phase,
                       "With --peer-worker: flight (from t = 0), landed (from t = 2 s) or rested (from t = 8 s)")
         ->check(CLI::IsMember({"flight", "landed", "rested"}))
@@ -729,7 +740,8 @@ void addBenchCommand(CLI::App& root, Action& selected)
                   "are reported for its slowest second (the one a real-time program must keep up with) and for\n"
                   "the whole run.\n"
                   "\nWith --phases it prints instead where a swarm step's time goes: the semi-implicit Euler\n"
-                  "swarm on all cores, in flight, landed and rested, at the sizes of --sizes (default 1e6),\n"
+                  "swarm (or --integrator's) on all cores, in flight, landed and rested, from the same\n"
+                  "start states whatever the integrator, at the sizes of --sizes (default 1e6),\n"
                   "200 steps each (10 with --quick), in milliseconds of thread time a step for each phase\n"
                   "(integrate, surface test, collide, check; timing them slows a step a little).\n");
     bench->callback([options, &selected] { selected = [options] { return runBench(*options); }; });

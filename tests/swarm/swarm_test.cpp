@@ -442,6 +442,21 @@ TEST(PbaBench, PhasesSplitTheSwarmStep)
     EXPECT_EQ(phases, (std::set<std::string>{"flight", "landed", "rested"}));
 }
 
+// `--integrator` picks the swarm's integrator for --phases; an unknown one is a usage error.
+TEST(PbaBench, PhasesTakeAnIntegrator)
+{
+    const auto r = pba::test::runPba("bench --phases --quick --json --sizes 5000 --integrator rk4");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    ASSERT_EQ(json["results"].size(), 3u);
+    for (const auto& row : json["results"])
+        EXPECT_EQ(row["integrator"], "rk4");
+    const auto bad = pba::test::runPba("bench --phases --quick --sizes 5000 --integrator leapfrog");
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.err.find("--integrator: unknown integrator 'leapfrog'"), std::string::npos) << bad.err;
+    EXPECT_TRUE(bad.out.empty()) << bad.out;
+}
+
 // A block whose particles rest on the floor skips the surface test and takes the collision pass
 // whole (a crowded block), one with a few at a surface has them gathered, one alone is stepped
 // by itself: each particle's states are the same, bit for bit, every step. Here 2,048 particles
