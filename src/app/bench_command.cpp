@@ -22,6 +22,7 @@
 #include <tbb/task_arena.h>
 
 #include "command.hpp"
+#include "scene_options.hpp"
 #include "pba/blow_dryer.hpp"
 #include "pba/large_array.hpp"
 #include "pba/scene/scene.hpp"
@@ -535,15 +536,13 @@ int runPeerWorker(const BenchOptions& options)
 }
 
 /// --phases: the swarm on all cores with --integrator (semi-implicit Euler unless told), in each
-/// of kPhases (the same start states whatever the integrator), each step's time split by phase (SwarmPhaseTimes: thread-time summed over the threads, so on 2 threads the
-/// phases add up to about twice the step's wall time).
+/// of kPhases (the same start states whatever the integrator), each step's time split by phase
+/// (SwarmPhaseTimes: thread-time summed over the threads, so on 2 threads the phases add up to
+/// about twice the step's wall time).
 int runPhases(const BenchOptions& options)
 {
     const std::vector<double> sizes = options.sizes.empty() ? std::vector<double>{1e6} : options.sizes;
-    const std::optional<Integrator> integrator = integratorFromName(options.integrator);
-    if (!integrator)
-        throw UsageError(fmt::format("--integrator: unknown integrator '{}' (expected forward-euler, "
-                                     "semi-implicit-euler, velocity-verlet or rk4)", options.integrator));
+    const Integrator integrator = integratorFlag(options.integrator);
     const int steps = options.quick ? 10 : 200;
     nlohmann::json out;
     out["results"] = nlohmann::json::array();
@@ -560,14 +559,14 @@ int runPhases(const BenchOptions& options)
             const char* phase = kPhases[which].name;
             World& world = starts[which];
             world.setThreads(0);
-            world.swarm(0).setIntegrator(*integrator);
+            world.swarm(0).setIntegrator(integrator);
             SwarmPhaseTimes times;
             world.swarm(0).setPhaseTimes(&times);
             const auto start = Clock::now();
             for (int k = 0; k < steps; ++k)
                 world.step(0.002);
             const double rate = steps / seconds(start);
-            nlohmann::json row{{"layout", "phases"}, {"integrator", std::string(integratorName(*integrator))},
+            nlohmann::json row{{"layout", "phases"}, {"integrator", std::string(integratorName(integrator))},
                                {"phase", phase}, {"n", n}, {"steps_per_s", rate}};
             table += fmt::format("{:>9} {:<7} {:>8.1f}", n, phase, rate);
             double total = 0.0;
@@ -588,7 +587,7 @@ int runPhases(const BenchOptions& options)
         fmt::print("{}\n", out.dump(2));
     else
         fmt::print("{}({}, blow-dryer-swarm, all cores, {} steps each; milliseconds of thread time per step, "
-                   "summed over the threads)\n", table, integratorName(*integrator), steps);
+                   "summed over the threads)\n", table, integratorName(integrator), steps);
     return kExitSuccess;
 }
 
@@ -705,7 +704,8 @@ void addBenchCommand(CLI::App& root, Action& selected)
                     "in flight, landed and rested, at the sizes of --sizes (default 1e6)")
         ->excludes(peerWorker);
     bench->add_option("--integrator", options->integrator,
-                      "With --phases: forward-euler, semi-implicit-euler (the default), velocity-verlet or rk4")
+                      "With --phases: the swarm's integrator, any name pba sim's --integrator takes "
+                      "(default semi-implicit-euler)")
         ->needs(phases)
         ->option_text("NAME");
     bench->add_option("--phase", options->phase,

@@ -54,6 +54,15 @@ void addSceneOptions(CLI::App& command, SceneOptions& options, const std::string
         ->type_name("MODE");
 }
 
+Integrator integratorFlag(const std::string& name)
+{
+    const auto integrator = integratorFromName(name);
+    if (!integrator)
+        throw UsageError(fmt::format("--integrator: unknown integrator '{}' (expected forward-euler, "
+                                     "semi-implicit-euler, velocity-verlet, rk4 or implicit-gyroscopic)", name));
+    return *integrator;
+}
+
 std::uint64_t stepCount(double seconds, double dt, const std::string& what)
 {
     const double steps = std::round(seconds / dt);
@@ -77,16 +86,12 @@ Scene loadSceneWithOverrides(const SceneOptions& options)
         scene.duration = *options.duration;
     }
     if (options.integrator) {
-        const auto integrator = integratorFromName(*options.integrator);
-        if (!integrator)
-            throw UsageError(fmt::format("--integrator: unknown integrator '{}' (expected forward-euler, "
-                                         "semi-implicit-euler, velocity-verlet, rk4 or implicit-gyroscopic)",
-                                         *options.integrator));
+        const Integrator integrator = integratorFlag(*options.integrator);
         for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
             if (!scene.world.body(i).isFixed())
-                scene.world.body(i).setIntegrator(*integrator);
+                scene.world.body(i).setIntegrator(integrator);
         for (std::size_t i = 0; i < scene.world.swarmCount(); ++i)
-            scene.world.swarm(i).setIntegrator(*integrator);
+            scene.world.swarm(i).setIntegrator(integrator);
     }
     if (options.collision) {
         const auto response = collisionResponseFromName(*options.collision);

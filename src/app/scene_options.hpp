@@ -31,6 +31,9 @@ std::string builtinSceneList();
 /// Puts builtinSceneList() at the end of the command's help, before its own footer.
 void listScenesInHelp(CLI::App& command);
 
+/// The integrator an --integrator flag names; throws UsageError naming the flag and the names.
+Integrator integratorFlag(const std::string& name);
+
 /// The most steps one run may take: beyond it a run is a typo (dt 1e-12), and would not end.
 inline constexpr double kMaxSteps = 1e10;
 
