@@ -48,9 +48,10 @@ inline void snapOnto(const PlaneT<T>& plane, Vec3<T>& x)
 }
 
 /// Puts a body in the shaft below a hole (`inShaft`) that is at or beyond the shaft's side wall
-/// back just inside it, and reflects its outward radial velocity with restitution. Selects
-/// rather than branches, as pushBack, so a swarm's vectorised pass runs it too: a body that is
-/// not at the wall is left as it was. Returns whether it moved the body; counts the bounce.
+/// back just inside it, and reflects its outward radial velocity with restitution. A body that
+/// is not at the wall is left as it was. Returns whether it moved the body; counts the bounce.
+/// Only scalar code runs it (a Particle's rule, and the whole rule a swarm hands the few bodies
+/// at the wall to); its selects date from when a swarm's vectorised pass ran it too.
 /// `plane` is a PlaneT or an AxisPlaneT, as for every function of the rule below.
 template <class Geometry, class T>
 inline bool pushIntoShaft(const Geometry& plane, T restitution, bool inShaft, Vec3<T>& x, Vec3<T>& v, int& bounces)
@@ -139,14 +140,13 @@ inline int keepInside(std::span<const PlaneT<T>> planes, T restitution, const Ve
 /// mirrored across the plane, 1: put on it), and its normal velocity reflected with
 /// restitution if it still moves outward. A body in the plane's shaft is kept within the
 /// shaft's side wall (pushIntoShaft): the wall is a surface of the pass like the plane itself,
-/// not left to the last line of defence, because particles that fall into the hole slide
-/// around the wall at the grille for good (16,000 a step of a million-particle swarm, each
-/// through the whole rule one by one: a third of its step). Written with selects instead of
-/// branches, so the same function serves one body and a vectorised loop over a swarm's arrays;
-/// a body that is inside is left exactly as it was. Returns whether it moved the body; counts
-/// the bounce. `kMayHaveHole` false, for a plane known to have none, skips the shaft's
-/// arithmetic (a swarm's pass picks it per plane; it changes no result). `plane` is a PlaneT or
-/// an AxisPlaneT.
+/// not left to the last line of defence, because bodies that fall into the hole can slide
+/// around the wall at the grille step after step. Written with selects instead of branches,
+/// so the same function serves one body and a vectorised loop over a swarm's arrays (the pass
+/// over the floor, without the wall: `kShaftWall`); a body that is inside is left exactly as
+/// it was. Returns whether it moved the body; counts the bounce. `kMayHaveHole` false, for a
+/// plane known to have none, skips the shaft's arithmetic (a swarm's pass picks it per plane;
+/// it changes no result). `plane` is a PlaneT or an AxisPlaneT.
 /// `kShaftWall` false leaves the shaft's wall out (its square root and divisions): for a caller
 /// that sees to the bodies in the shaft itself (a swarm's fused pass hands them to the whole rule).
 template <bool kMayHaveHole = true, bool kShaftWall = true, class Geometry, class T>
