@@ -51,11 +51,15 @@ inline void snapOnto(const PlaneT<T>& plane, Vec3<T>& x)
 /// back just inside it, and reflects its outward radial velocity with restitution. A body that
 /// is not at the wall is left as it was. Returns whether it moved the body; counts the bounce.
 /// Only scalar code runs it (a Particle's rule, and the whole rule a swarm hands the few bodies
-/// at the wall to); its selects date from when a swarm's vectorised pass ran it too.
+/// at the wall to), so it returns at once for a body that is not in the shaft: the rule asks it
+/// about every plane, holes or not, and its square root and division were a third of a fast
+/// body's whole rule. (Its selects date from when a swarm's vectorised pass ran it too.)
 /// `plane` is a PlaneT or an AxisPlaneT, as for every function of the rule below.
 template <class Geometry, class T>
 inline bool pushIntoShaft(const Geometry& plane, T restitution, bool inShaft, Vec3<T>& x, Vec3<T>& v, int& bounces)
 {
+    if (!inShaft)
+        return false;
     const auto rho = plane.fromHoleAxis(x);
     const T r = glm::length(rho);
     const bool atWall = inShaft & !(r < plane.holeRadius) & (r > T(0));
