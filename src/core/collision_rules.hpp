@@ -52,8 +52,8 @@ inline void snapOnto(const PlaneT<T>& plane, Vec3<T>& x)
 /// is not at the wall is left as it was. Returns whether it moved the body; counts the bounce.
 /// Only scalar code runs it (a Particle's rule, and the whole rule a swarm hands the few bodies
 /// at the wall to), so it returns at once for a body that is not in the shaft: the rule asks it
-/// about every plane, holes or not, and its square root and division were a third of a fast
-/// body's whole rule. (Its selects date from when a swarm's vectorised pass ran it too.)
+/// about every plane, holes or not, and its square root and division were a quarter of the
+/// time a fast body's whole rule took. (Its selects date from when a swarm's vectorised pass ran it too.)
 /// `plane` is a PlaneT or an AxisPlaneT, as for every function of the rule below.
 template <class Geometry, class T>
 inline bool pushIntoShaft(const Geometry& plane, T restitution, bool inShaft, Vec3<T>& x, Vec3<T>& v, int& bounces)
@@ -310,7 +310,7 @@ inline int boxSlabs(std::span<const PlaneT<T>> planes, std::array<SlabT<T>, 3>& 
 /// Only the scalar whole rule reaches it (a Particle's, and a swarm's for the few bodies its
 /// vectorised pass over the floor leaves), so it may branch: e^hits by squaring visits only the
 /// bits that hits has. It once ran in a swarm's vectorised loop, written out for all 23 bits;
-/// the whole rule spent 40% of its time there for bodies that cross the room a few times a step.
+/// the whole rule spent 38% of its time there for bodies that cross the room a few times a step.
 /// The products are the same, so the result is the same to the bit.
 template <class T>
 inline int foldIntoSlab(const SlabT<T>& slab, T restitution, T& c, T& cv)
