@@ -49,11 +49,11 @@ inline void snapOnto(const PlaneT<T>& plane, Vec3<T>& x)
 
 /// Puts a body in the shaft below a hole (`inShaft`) that is at or beyond the shaft's side wall
 /// back just inside it, and reflects its outward radial velocity with restitution. A body that
-/// is not at the wall is left as it was. Returns whether it moved the body; counts the bounce.
-/// Only scalar code runs it (a Particle's rule, and the whole rule a swarm hands the few bodies
-/// at the wall to), so it returns at once for a body that is not in the shaft: the rule asks it
-/// about every plane, holes or not, and its square root and division were a quarter of the
-/// time a fast body's whole rule took. (Its selects date from when a swarm's vectorised pass ran it too.)
+/// is not at the wall is left exactly as it was. Returns whether it moved the body; counts the
+/// bounce. Only scalar code runs it (a Particle's rule, and the whole rule a swarm hands the few
+/// bodies at the wall to), so it branches: the rule asks it about every plane, holes or not,
+/// and when it computed the shaft's square root and division for all of them and then selected,
+/// that was a quarter of the time a fast body's whole rule took.
 /// `plane` is a PlaneT or an AxisPlaneT, as for every function of the rule below.
 template <class Geometry, class T>
 inline bool pushIntoShaft(const Geometry& plane, T restitution, bool inShaft, Vec3<T>& x, Vec3<T>& v, int& bounces)
@@ -62,20 +62,16 @@ inline bool pushIntoShaft(const Geometry& plane, T restitution, bool inShaft, Ve
         return false;
     const auto rho = plane.fromHoleAxis(x);
     const T r = glm::length(rho);
-    const bool atWall = inShaft & !(r < plane.holeRadius) & (r > T(0));
-    const auto out = rho / (r > T(0) ? r : T(1)); // read only at the wall, where r > 0
-    Vec3<T> pushed = x;
-    plane.moveInPlane(pushed, -(r - plane.holeRadius * (T(1) - T(16) * std::numeric_limits<T>::epsilon())) * out);
+    if (r < plane.holeRadius || !(r > T(0)))
+        return false;
+    const auto out = rho / r;
+    plane.moveInPlane(x, -(r - plane.holeRadius * (T(1) - T(16) * std::numeric_limits<T>::epsilon())) * out);
     const T vr = plane.alongInPlane(v, out);
-    const bool bounce = atWall & (vr > T(0));
-    Vec3<T> reflected = v;
-    plane.moveInPlane(reflected, -((T(1) + restitution) * vr) * out);
-    // Whole selects, not x -= (atWall ? ... : 0) * out: away from the wall nothing changes, not
-    // even the sign of a zero.
-    x = Vec3<T>(atWall ? pushed.x : x.x, atWall ? pushed.y : x.y, atWall ? pushed.z : x.z);
-    v = Vec3<T>(bounce ? reflected.x : v.x, bounce ? reflected.y : v.y, bounce ? reflected.z : v.z);
-    bounces += int(bounce);
-    return atWall;
+    if (vr > T(0)) {
+        plane.moveInPlane(v, -((T(1) + restitution) * vr) * out);
+        ++bounces;
+    }
+    return true;
 }
 
 /// Keeps a body that is in the shaft below a hole within the shaft's radius (pushIntoShaft).
