@@ -21,6 +21,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "pba/integrator.hpp"
@@ -35,6 +36,8 @@ inline constexpr std::array<CollisionResponse, 3> kAllCollisionResponses{
 /// "exact", "reflect", "clamp".
 std::string_view collisionResponseName(CollisionResponse response);
 std::optional<CollisionResponse> collisionResponseFromName(std::string_view name);
+/// Every name collisionResponseFromName takes, as an error lists them: "exact, reflect or clamp".
+std::string collisionResponseNameList();
 /// One line for people: what the response does, and what it does to an elastic bounce.
 std::string_view collisionResponseSummary(CollisionResponse response);
 

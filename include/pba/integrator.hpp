@@ -10,6 +10,7 @@
 // would silently lower their order.
 #include <array>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "pba/math.hpp"
@@ -38,6 +39,9 @@ constexpr Integrator translationalMethod(Integrator integrator)
 /// "implicit-gyroscopic".
 std::string_view integratorName(Integrator integrator);
 std::optional<Integrator> integratorFromName(std::string_view name);
+/// Every name integratorFromName takes, as an error lists them: "forward-euler, ..., rk4 or
+/// implicit-gyroscopic".
+std::string integratorNameList();
 /// Global order of accuracy: 1, 1, 2, 4, 1.
 int integratorOrder(Integrator integrator);
 

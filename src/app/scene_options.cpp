@@ -58,8 +58,8 @@ Integrator integratorFlag(const std::string& name)
 {
     const auto integrator = integratorFromName(name);
     if (!integrator)
-        throw UsageError(fmt::format("--integrator: unknown integrator '{}' (expected forward-euler, "
-                                     "semi-implicit-euler, velocity-verlet, rk4 or implicit-gyroscopic)", name));
+        throw UsageError(
+            fmt::format("--integrator: unknown integrator '{}' (expected {})", name, integratorNameList()));
     return *integrator;
 }
 
@@ -96,8 +96,8 @@ Scene loadSceneWithOverrides(const SceneOptions& options)
     if (options.collision) {
         const auto response = collisionResponseFromName(*options.collision);
         if (!response)
-            throw UsageError(fmt::format("--collision: unknown collision response '{}' (expected exact, reflect "
-                                         "or clamp)", *options.collision));
+            throw UsageError(fmt::format("--collision: unknown collision response '{}' (expected {})",
+                                         *options.collision, collisionResponseNameList()));
         scene.world.setCollisionResponse(*response);
     }
     stepCount(scene.duration, scene.dt,

@@ -2,7 +2,26 @@
 #include "pba/collision.hpp"
 #include "pba/integrator.hpp"
 
+#include <string>
+
 namespace pba {
+
+namespace {
+
+/// The names of `values`, "a, b or c": what an error about an unknown name lists.
+template <class Values, class Name>
+std::string nameList(const Values& values, Name name)
+{
+    std::string list;
+    for (std::size_t k = 0; k < values.size(); ++k) {
+        if (k > 0)
+            list += k + 1 == values.size() ? " or " : ", ";
+        list += name(values[k]);
+    }
+    return list;
+}
+
+} // namespace
 
 std::string_view integratorName(Integrator integrator)
 {
@@ -22,6 +41,11 @@ std::optional<Integrator> integratorFromName(std::string_view name)
         if (integratorName(integrator) == name)
             return integrator;
     return std::nullopt;
+}
+
+std::string integratorNameList()
+{
+    return nameList(kEveryIntegrator, integratorName);
 }
 
 int integratorOrder(Integrator integrator)
@@ -62,6 +86,11 @@ std::optional<CollisionResponse> collisionResponseFromName(std::string_view name
         if (collisionResponseName(response) == name)
             return response;
     return std::nullopt;
+}
+
+std::string collisionResponseNameList()
+{
+    return nameList(kAllCollisionResponses, collisionResponseName);
 }
 
 } // namespace pba

@@ -35,8 +35,7 @@ Integrator readIntegrator(ObjectReader& reader, const std::string& key, Integrat
     const std::string name = reader.string(key);
     const auto integrator = integratorFromName(name);
     if (!integrator)
-        reader.fail(key, fmt::format("unknown integrator '{}' (expected forward-euler, semi-implicit-euler, "
-                                     "velocity-verlet, rk4 or implicit-gyroscopic)", name));
+        reader.fail(key, fmt::format("unknown integrator '{}' (expected {})", name, integratorNameList()));
     return *integrator;
 }
 
@@ -349,7 +348,8 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
         const auto response = collisionResponseFromName(name);
         if (!response)
             root.fail("collision_response",
-                      fmt::format("unknown collision response '{}' (expected exact, reflect or clamp)", name));
+                      fmt::format("unknown collision response '{}' (expected {})", name,
+                                  collisionResponseNameList()));
         scene.world.setCollisionResponse(*response);
     }
     readSurfaces(root, scene.world);
