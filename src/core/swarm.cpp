@@ -251,17 +251,17 @@ bool integrateBlock(float* __restrict px, float* __restrict py, float* __restric
 }
 
 /// Phase 1 of a block away from the dryer: integrateBlock's loop with `away`, the acceleration
-/// as it is where the dryer cannot push (blowDryerForceAway: no roots, no divisions), noting
-/// whether any point the integrator evaluated it at is one where it may (blowDryerMayPush).
-/// Those particles (`blown`, counted in `blownCount`) are left at their start states for
-/// integrateGathered; every other one had the acceleration the whole one would have given it at
-/// every point, so it took the same step.
+/// as it is where the dryer cannot push (blowDryerForceAway: no roots, no divisions), and one
+/// test of whether any point the integrator evaluates it at may be one where it can
+/// (blowDryerMayPushWithin). Those particles (`blown`, counted in `blownCount`) are left at
+/// their start states for integrateGathered; every other one had the acceleration the whole one
+/// would have given it at every point, so it took the same step.
 template <Integrator kIntegrator, bool kKeepStartVelocity, DryerAxis kAxis, class Away>
 bool integrateAwayBlock(float* __restrict px, float* __restrict py, float* __restrict pz, float* __restrict vx,
                         float* __restrict vy, float* __restrict vz, float* __restrict s0, float* __restrict s1,
                         float* __restrict s2, float* __restrict s3, float* __restrict s4, float* __restrict s5,
                         std::uint32_t* __restrict blown, std::size_t& blownCount, std::size_t n, float dt,
-                        BlowDryerKernelT<float> dryer, Away away)
+                        BlowDryerReach reach, Away away)
 {
     std::uint32_t exponent = 0, count = 0;
     // vectorised: checked
@@ -272,11 +272,8 @@ bool integrateAwayBlock(float* __restrict px, float* __restrict py, float* __res
         if constexpr (kKeepStartVelocity)
             s3[k] = v0.x, s4[k] = v0.y, s5[k] = v0.z;
         Vec3<float> x = x0, v = v0;
-        bool pushed = false;
-        integrateAs<kIntegrator>(x, v, dt, [&](const Vec3<float>& at, const Vec3<float>& velocity) {
-            pushed |= blowDryerMayPush<kAxis>(dryer, at);
-            return away(at, velocity);
-        });
+        const bool pushed = blowDryerMayPushWithin<kAxis>(reach, x0, v0);
+        integrateAs<kIntegrator>(x, v, dt, away);
         // Selects a component at a time (a select of whole vectors is a branch to GCC).
         for (int c = 0; c < 3; ++c)
             x[c] = pushed ? x0[c] : x[c], v[c] = pushed ? v0[c] : v[c];
@@ -737,7 +734,8 @@ auto awayFromDryer(const SwarmKernelFields& fields)
 /// integrateInDryer's split for a block (see there): the away loop unless the block is busy.
 template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag, class Whole>
 bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
-                            CollisionResponse response, const SwarmKernelFields& fields, Whole whole)
+                            CollisionResponse response, const SwarmKernelFields& fields, const BlowDryerReach& reach,
+                            Whole whole)
 {
     constexpr std::uint8_t kBusySteps = 64;
     std::uint8_t& busy = a.blowing[b / kBlock];
@@ -751,7 +749,7 @@ bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float
     const auto away = [&](auto keepStartVelocity) {
         return integrateAwayBlock<kIntegrator, decltype(keepStartVelocity)::value, kAxis>(
             a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b, start[0], start[1], start[2], start[3],
-            start[4], start[5], blown, count, n, dt, fields.dryer, awayFromDryer<kAxis, kDrag>(fields));
+            start[4], start[5], blown, count, n, dt, reach, awayFromDryer<kAxis, kDrag>(fields));
     };
     bool finite = response == CollisionResponse::Exact ? away(std::true_type{}) : away(std::false_type{});
     if (count == 0)
@@ -793,13 +791,13 @@ bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float
 /// block, Verlet with a quarter: RK4 in flight 3.0-3.6e8 against 4.1-4.5e8, 2026-11-26).
 template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag>
 bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
-                      CollisionResponse response, const SwarmKernelFields& fields)
+                      CollisionResponse response, const SwarmKernelFields& fields, const BlowDryerReach& reach)
 {
     const auto whole = oneDryer<kAxis, kDrag>(fields);
     if constexpr (kIntegrator == Integrator::ForwardEuler || kIntegrator == Integrator::SemiImplicitEuler)
         return integrateBlock<kIntegrator>(a, b, n, dt, start, response, whole);
     else
-        return integrateAwayFromDryer<kIntegrator, kAxis, kDrag>(a, b, n, dt, start, response, fields, whole);
+        return integrateAwayFromDryer<kIntegrator, kAxis, kDrag>(a, b, n, dt, start, response, fields, reach, whole);
 }
 
 /// A range's step, block by block: integrate (checking the states are finite as they are
@@ -837,6 +835,7 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
         return swarmAccelerationAll(fields, x, v);
     };
     const bool drag = fields.dragPerMass != 0.0f;
+    const BlowDryerReach reach(fields.dryer, dt, glm::length(dvec3(fields.gravity)), fields.dragPerMass);
     PhaseClock clock(a.phases);
     for (std::size_t b = begin; b < end; b += kBlock) {
         const std::size_t n = std::min(kBlock, end - b);
@@ -853,11 +852,11 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
         else if (fields.noDryer)
             finite = drag ? integrate(withoutDryer<true>(fields)) : integrate(withoutDryer<false>(fields));
         else if (fields.dryerUp)
-            finite = drag ? integrateInDryer<kIntegrator, DryerAxis::Up, true>(a, b, n, dt, start, response, fields)
-                          : integrateInDryer<kIntegrator, DryerAxis::Up, false>(a, b, n, dt, start, response, fields);
+            finite = drag ? integrateInDryer<kIntegrator, DryerAxis::Up, true>(a, b, n, dt, start, response, fields, reach)
+                          : integrateInDryer<kIntegrator, DryerAxis::Up, false>(a, b, n, dt, start, response, fields, reach);
         else
-            finite = drag ? integrateInDryer<kIntegrator, DryerAxis::Any, true>(a, b, n, dt, start, response, fields)
-                          : integrateInDryer<kIntegrator, DryerAxis::Any, false>(a, b, n, dt, start, response, fields);
+            finite = drag ? integrateInDryer<kIntegrator, DryerAxis::Any, true>(a, b, n, dt, start, response, fields, reach)
+                          : integrateInDryer<kIntegrator, DryerAxis::Any, false>(a, b, n, dt, start, response, fields, reach);
         clock.lap(SwarmPhaseTimes::Integrate);
         // A crowded block (most of it on the floor last step, as a landed swarm is) skips the
         // surface test and takes the collision pass whole, which leaves a clear particle

@@ -8,6 +8,7 @@
 
 #include "pba/blow_dryer.hpp"
 #include "pba/forces.hpp"
+#include "pba/integrator.hpp"
 #include "pba/scene/scene.hpp"
 #include "pba/world.hpp"
 
@@ -116,6 +117,92 @@ TEST(BlowDryerField, AwayFromTheConeAndShaftTheShortForceIsTheWholeOne)
             EXPECT_GT(away, 50000u) << "tilted " << tilted << " shaft " << shaft;
         }
     }
+}
+
+// blowDryerMayPushWithin against what it replaces: blowDryerMayPush at every point velocity
+// Verlet and RK4 evaluate the acceleration at, with the acceleration away from the dryer
+// (gravity, drag and blowDryerForceAway). Wherever some point may be pushed, the one test at the
+// start says so: starts on and near the cone's side, top and rim and the shaft's wall, at
+// speeds from rest to 60 m/s, for every dt from the practical's range and beyond, with and
+// without drag, upward or tilted, widening or narrowing, at the origin or far from it.
+TEST(BlowDryerField, OneTestAtTheStartCoversEveryPointAStepEvaluates)
+{
+    std::mt19937 rng(24);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f), signedUnit(-1.0f, 1.0f);
+    std::size_t reached = 0; // starts that are not pushed but a later point is
+    for (int variant = 0; variant < 8; ++variant) {
+        const bool tilted = variant & 1, shaft = variant & 2, elsewhere = variant & 4;
+        BlowDryerField field = dryer(FlowDirection::ConeFlow, Falloff::Linear, Falloff::Smooth);
+        field.shaft = shaft;
+        if (tilted)
+            field.axis = glm::normalize(dvec3(0.2, 1.0, -0.1));
+        if (elsewhere) { // a narrowing cone far from the origin
+            field.nozzle = dvec3(37.0, -4.0, 81.0);
+            field.topRadius = 0.05;
+        }
+        const BlowDryerKernelT<float> f(field.as<float>());
+        const Vec3<float> axis(field.axis), nozzle(field.nozzle);
+        const Vec3<float> side = glm::normalize(glm::cross(axis, Vec3<float>(1.0f, 0.0f, 0.0f)));
+        const Vec3<float> other = glm::cross(axis, side);
+        for (int k = 0; k < 100000; ++k) {
+            // A point on the cone's side, top or rim, or the shaft's wall, and a step from near it.
+            const float h = float(field.height) * (1.2f * unit(rng) - 0.1f), angle = 6.2831853f * unit(rng);
+            const bool wall = shaft && k % 3 == 0;
+            const float radius = wall ? float(field.nozzleRadius) : float(radiusAt(field, std::clamp(double(h), 0.0, field.height)));
+            const Vec3<float> around = std::cos(angle) * side + std::sin(angle) * other;
+            const Vec3<float> onSurface = wall ? nozzle + Vec3<float>(radius * std::cos(angle), -std::abs(h), radius * std::sin(angle))
+                                               : nozzle + h * axis + radius * around;
+            const float speed = k % 5 == 0 ? 0.0f : 60.0f * std::pow(unit(rng), 3.0f);
+            const Vec3<float> v = speed * glm::normalize(Vec3<float>(signedUnit(rng), signedUnit(rng), signedUnit(rng)) + 1e-3f);
+            const float dt = 0.0005f * std::pow(400.0f, unit(rng)); // 0.0005 to 0.2
+            const float drag = k % 2 == 0 ? 0.0f : 4.0f * unit(rng);
+            const Vec3<float> gravity = k % 4 == 0 ? Vec3<float>(0.0f, -9.81f, 0.0f)
+                                                   : 30.0f * unit(rng) * Vec3<float>(signedUnit(rng), signedUnit(rng), signedUnit(rng));
+            const float jitter = 1.5f * (speed * dt + 60.0f * dt * dt) + 1e-4f;
+            const Vec3<float> x = onSurface + jitter * Vec3<float>(signedUnit(rng), signedUnit(rng), signedUnit(rng));
+            const BlowDryerReach reach(f, dt, glm::length(dvec3(gravity)), drag);
+            const bool within = tilted ? blowDryerMayPushWithin<DryerAxis::Any>(reach, x, v)
+                                       : blowDryerMayPushWithin<DryerAxis::Up>(reach, x, v);
+            for (const Integrator integrator : {Integrator::VelocityVerlet, Integrator::RK4}) {
+                bool pushed = false;
+                Vec3<float> y = x, u = v;
+                integrate(integrator, y, u, dt, [&](const Vec3<float>& at, const Vec3<float>& velocity) {
+                    pushed = pushed || (tilted ? blowDryerMayPush<DryerAxis::Any>(f, at) : blowDryerMayPush<DryerAxis::Up>(f, at));
+                    return gravity + dragForce(drag, velocity) +
+                           (tilted ? blowDryerForceAway<DryerAxis::Any>(f, at) : blowDryerForceAway<DryerAxis::Up>(f, at));
+                });
+                const bool atStart = tilted ? blowDryerMayPush<DryerAxis::Any>(f, x) : blowDryerMayPush<DryerAxis::Up>(f, x);
+                reached += pushed && !atStart;
+                ASSERT_TRUE(!pushed || within) << "variant " << variant << " integrator " << integratorName(integrator)
+                                               << " x " << x.x << " " << x.y << " " << x.z << " v " << v.x << " "
+                                               << v.y << " " << v.z << " dt " << dt << " drag " << drag;
+            }
+        }
+    }
+    EXPECT_GT(reached, 10000u);
+}
+
+// At rest, the reach is the dryer's slack and a step's fall: a particle resting 2% of the radius
+// outside the cone or the shaft's wall is away from the dryer, one on them is not.
+TEST(BlowDryerField, AtRestTheReachIsAHairAroundTheConeAndShaft)
+{
+    BlowDryerField field = dryer(FlowDirection::ConeFlow);
+    field.shaft = true;
+    const BlowDryerKernelT<float> f(field.as<float>());
+    const BlowDryerReach reach(f, 0.002, 9.81, 0.0);
+    const Vec3<float> rest(0.0f);
+    for (const double h : {0.0, 0.5, 1.5, 2.9}) {
+        const float edge = float(radiusAt(field, h));
+        EXPECT_TRUE(blowDryerMayPushWithin<DryerAxis::Up>(reach, Vec3<float>(edge, float(h), 0.0f), rest)) << h;
+        EXPECT_FALSE(blowDryerMayPushWithin<DryerAxis::Up>(reach, Vec3<float>(1.02f * edge, float(h), 0.0f), rest)) << h;
+    }
+    const float wall = float(field.nozzleRadius);
+    EXPECT_TRUE(blowDryerMayPushWithin<DryerAxis::Up>(reach, Vec3<float>(0.0f, -0.5f, 0.99f * wall), rest));
+    EXPECT_FALSE(blowDryerMayPushWithin<DryerAxis::Up>(reach, Vec3<float>(0.0f, -0.5f, 1.02f * wall), rest));
+    EXPECT_FALSE(blowDryerMayPushWithin<DryerAxis::Up>(reach, Vec3<float>(0.0f, 1.02f * float(field.height) + 0.01f, 0.0f), rest));
+    // No bound on the step (drag times dt at least 1): every particle may be pushed.
+    const BlowDryerReach unbounded(f, 0.5, 9.81, 2.0);
+    EXPECT_TRUE(blowDryerMayPushWithin<DryerAxis::Up>(unbounded, Vec3<float>(50.0f, 20.0f, -30.0f), rest));
 }
 
 TEST(BlowDryerField, MaximalAtTheNozzleOnTheAxisAndZeroAtTopEdgeAndOutside)
