@@ -788,7 +788,9 @@ bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float
 /// take 64 particles a vector, and the away loop spilled. A block that had more than kGatherMax
 /// particles to step again is busy for the next 64 steps. A higher bar, so that rain in flight
 /// (a quarter of each block in the cone) takes the split too, measured slower (RK4 with half a
-/// block, Verlet with a quarter: RK4 in flight 3.0-3.6e8 against 4.1-4.5e8, 2026-11-26).
+/// block, Verlet with a quarter: RK4 in flight 3.0-3.6e8 against 4.1-4.5e8, 2026-11-26), and
+/// again with the away loop's one test (2026-11-27, docs/performance.md): the scatter after the
+/// gathered step stalls on the rows the vectorised loop has just stored.
 template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag>
 bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
                       CollisionResponse response, const SwarmKernelFields& fields, const BlowDryerReach& reach)
@@ -852,11 +854,13 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
         else if (fields.noDryer)
             finite = drag ? integrate(withoutDryer<true>(fields)) : integrate(withoutDryer<false>(fields));
         else if (fields.dryerUp)
-            finite = drag ? integrateInDryer<kIntegrator, DryerAxis::Up, true>(a, b, n, dt, start, response, fields, reach)
-                          : integrateInDryer<kIntegrator, DryerAxis::Up, false>(a, b, n, dt, start, response, fields, reach);
+            finite = drag
+                ? integrateInDryer<kIntegrator, DryerAxis::Up, true>(a, b, n, dt, start, response, fields, reach)
+                : integrateInDryer<kIntegrator, DryerAxis::Up, false>(a, b, n, dt, start, response, fields, reach);
         else
-            finite = drag ? integrateInDryer<kIntegrator, DryerAxis::Any, true>(a, b, n, dt, start, response, fields, reach)
-                          : integrateInDryer<kIntegrator, DryerAxis::Any, false>(a, b, n, dt, start, response, fields, reach);
+            finite = drag
+                ? integrateInDryer<kIntegrator, DryerAxis::Any, true>(a, b, n, dt, start, response, fields, reach)
+                : integrateInDryer<kIntegrator, DryerAxis::Any, false>(a, b, n, dt, start, response, fields, reach);
         clock.lap(SwarmPhaseTimes::Integrate);
         // A crowded block (most of it on the floor last step, as a landed swarm is) skips the
         // surface test and takes the collision pass whole, which leaves a clear particle

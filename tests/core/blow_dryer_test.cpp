@@ -144,22 +144,28 @@ TEST(BlowDryerField, OneTestAtTheStartCoversEveryPointAStepEvaluates)
         const Vec3<float> axis(field.axis), nozzle(field.nozzle);
         const Vec3<float> side = glm::normalize(glm::cross(axis, Vec3<float>(1.0f, 0.0f, 0.0f)));
         const Vec3<float> other = glm::cross(axis, side);
+        const auto may = [&](const Vec3<float>& x) {
+            return tilted ? blowDryerMayPush<DryerAxis::Any>(f, x) : blowDryerMayPush<DryerAxis::Up>(f, x);
+        };
+        const auto away = [&](const Vec3<float>& x) {
+            return tilted ? blowDryerForceAway<DryerAxis::Any>(f, x) : blowDryerForceAway<DryerAxis::Up>(f, x);
+        };
+        const auto random3 = [&] { return Vec3<float>(signedUnit(rng), signedUnit(rng), signedUnit(rng)); };
         for (int k = 0; k < 100000; ++k) {
             // A point on the cone's side, top or rim, or the shaft's wall, and a step from near it.
             const float h = float(field.height) * (1.2f * unit(rng) - 0.1f), angle = 6.2831853f * unit(rng);
             const bool wall = shaft && k % 3 == 0;
-            const float radius = wall ? float(field.nozzleRadius) : float(radiusAt(field, std::clamp(double(h), 0.0, field.height)));
+            const double clamped = std::clamp(double(h), 0.0, field.height);
+            const float radius = float(wall ? field.nozzleRadius : radiusAt(field, clamped));
             const Vec3<float> around = std::cos(angle) * side + std::sin(angle) * other;
-            const Vec3<float> onSurface = wall ? nozzle + Vec3<float>(radius * std::cos(angle), -std::abs(h), radius * std::sin(angle))
-                                               : nozzle + h * axis + radius * around;
+            const Vec3<float> across(radius * std::cos(angle), -std::abs(h), radius * std::sin(angle));
+            const Vec3<float> onSurface = wall ? nozzle + across : nozzle + h * axis + radius * around;
             const float speed = k % 5 == 0 ? 0.0f : 60.0f * std::pow(unit(rng), 3.0f);
-            const Vec3<float> v = speed * glm::normalize(Vec3<float>(signedUnit(rng), signedUnit(rng), signedUnit(rng)) + 1e-3f);
+            const Vec3<float> v = speed * glm::normalize(random3() + 1e-3f);
             const float dt = 0.0005f * std::pow(400.0f, unit(rng)); // 0.0005 to 0.2
             const float drag = k % 2 == 0 ? 0.0f : 4.0f * unit(rng);
-            const Vec3<float> gravity = k % 4 == 0 ? Vec3<float>(0.0f, -9.81f, 0.0f)
-                                                   : 30.0f * unit(rng) * Vec3<float>(signedUnit(rng), signedUnit(rng), signedUnit(rng));
-            const float jitter = 1.5f * (speed * dt + 60.0f * dt * dt) + 1e-4f;
-            const Vec3<float> x = onSurface + jitter * Vec3<float>(signedUnit(rng), signedUnit(rng), signedUnit(rng));
+            const Vec3<float> gravity = k % 4 == 0 ? Vec3<float>(0.0f, -9.81f, 0.0f) : 30.0f * unit(rng) * random3();
+            const Vec3<float> x = onSurface + (1.5f * (speed * dt + 60.0f * dt * dt) + 1e-4f) * random3();
             const BlowDryerReach reach(f, dt, glm::length(dvec3(gravity)), drag);
             const bool within = tilted ? blowDryerMayPushWithin<DryerAxis::Any>(reach, x, v)
                                        : blowDryerMayPushWithin<DryerAxis::Up>(reach, x, v);
@@ -167,12 +173,10 @@ TEST(BlowDryerField, OneTestAtTheStartCoversEveryPointAStepEvaluates)
                 bool pushed = false;
                 Vec3<float> y = x, u = v;
                 integrate(integrator, y, u, dt, [&](const Vec3<float>& at, const Vec3<float>& velocity) {
-                    pushed = pushed || (tilted ? blowDryerMayPush<DryerAxis::Any>(f, at) : blowDryerMayPush<DryerAxis::Up>(f, at));
-                    return gravity + dragForce(drag, velocity) +
-                           (tilted ? blowDryerForceAway<DryerAxis::Any>(f, at) : blowDryerForceAway<DryerAxis::Up>(f, at));
+                    pushed = pushed || may(at);
+                    return gravity + dragForce(drag, velocity) + away(at);
                 });
-                const bool atStart = tilted ? blowDryerMayPush<DryerAxis::Any>(f, x) : blowDryerMayPush<DryerAxis::Up>(f, x);
-                reached += pushed && !atStart;
+                reached += pushed && !may(x);
                 ASSERT_TRUE(!pushed || within) << "variant " << variant << " integrator " << integratorName(integrator)
                                                << " x " << x.x << " " << x.y << " " << x.z << " v " << v.x << " "
                                                << v.y << " " << v.z << " dt " << dt << " drag " << drag;
@@ -194,12 +198,14 @@ TEST(BlowDryerField, AtRestTheReachIsAHairAroundTheConeAndShaft)
     for (const double h : {0.0, 0.5, 1.5, 2.9}) {
         const float edge = float(radiusAt(field, h));
         EXPECT_TRUE(blowDryerMayPushWithin<DryerAxis::Up>(reach, Vec3<float>(edge, float(h), 0.0f), rest)) << h;
-        EXPECT_FALSE(blowDryerMayPushWithin<DryerAxis::Up>(reach, Vec3<float>(1.02f * edge, float(h), 0.0f), rest)) << h;
+        EXPECT_FALSE(blowDryerMayPushWithin<DryerAxis::Up>(reach, Vec3<float>(1.02f * edge, float(h), 0.0f), rest))
+            << h;
     }
     const float wall = float(field.nozzleRadius);
     EXPECT_TRUE(blowDryerMayPushWithin<DryerAxis::Up>(reach, Vec3<float>(0.0f, -0.5f, 0.99f * wall), rest));
     EXPECT_FALSE(blowDryerMayPushWithin<DryerAxis::Up>(reach, Vec3<float>(0.0f, -0.5f, 1.02f * wall), rest));
-    EXPECT_FALSE(blowDryerMayPushWithin<DryerAxis::Up>(reach, Vec3<float>(0.0f, 1.02f * float(field.height) + 0.01f, 0.0f), rest));
+    const float above = 1.02f * float(field.height) + 0.01f;
+    EXPECT_FALSE(blowDryerMayPushWithin<DryerAxis::Up>(reach, Vec3<float>(0.0f, above, 0.0f), rest));
     // No bound on the step (drag times dt at least 1): every particle may be pushed.
     const BlowDryerReach unbounded(f, 0.5, 9.81, 2.0);
     EXPECT_TRUE(blowDryerMayPushWithin<DryerAxis::Up>(unbounded, Vec3<float>(50.0f, 20.0f, -30.0f), rest));
