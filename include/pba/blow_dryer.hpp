@@ -145,6 +145,29 @@ struct BlowDryerKernelT {
 /// faster on all cores. Both are the same arithmetic otherwise.
 enum class DryerAxis { Any, Up };
 
+/// Where a point x lies in the dryer's frame: its offset d from the nozzle, its height h along
+/// the axis, its offset rho across the axis and rho's squared length r2. Upward (`Up`) h is d.y
+/// and rho is (d.x, 0, d.z), with none of the products by the axis's zero components. The force
+/// and the tests of where it may push all start from it, so they see the same h and r2,
+/// rounding for rounding; the parts a caller does not use cost nothing once it is inlined.
+/// Built in place (`const auto [d, h, rho, r2] = DryerFrameT<...>(...)`): a function returning
+/// it made GCC copy it as a whole, and a swarm loop that tests and integrates stopped
+/// vectorising.
+template <DryerAxis kAxis, class T>
+struct DryerFrameT {
+    static constexpr bool kUp = kAxis == DryerAxis::Up;
+    Vec3<T> d;
+    T h;
+    Vec3<T> rho;
+    T r2;
+
+    DryerFrameT(const Vec3<T>& nozzle, const Vec3<T>& axis, const Vec3<T>& x)
+        : d(x - nozzle), h(kUp ? d.y : glm::dot(d, axis)), rho(kUp ? Vec3<T>(d.x, T(0), d.z) : d - h * axis),
+          r2(kUp ? d.x * d.x + d.z * d.z : glm::dot(rho, rho))
+    {
+    }
+};
+
 /// Whether x lies under the floor's hole of a dryer in the floor (the shaft and the dryer below
 /// its grille): below the nozzle and within r0 of it across the floor (the floor is horizontal,
 /// whatever the axis). No lower bound: a particle resting on the grille is in it whatever the
@@ -191,10 +214,7 @@ template <DryerAxis kAxis = DryerAxis::Any, bool kAir = false, class T, bool kPu
 inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x, const Vec3<T>& v = Vec3<T>(T(0)))
 {
     constexpr bool kUp = kAxis == DryerAxis::Up;
-    const Vec3<T> d = x - f.nozzle;
-    const T h = kUp ? d.y : glm::dot(d, f.axis);
-    const Vec3<T> rho = kUp ? Vec3<T>(d.x, T(0), d.z) : d - h * f.axis;
-    const T r2 = kUp ? d.x * d.x + d.z * d.z : glm::dot(rho, rho);
+    const auto [d, h, rho, r2] = DryerFrameT<kAxis, T>(f.nozzle, f.axis, x);
     const T r = std::sqrt(r2);
     const T s = h * f.inverseHeight;
     const T radiusHere = f.nozzleRadius + f.spread * s;
@@ -245,10 +265,7 @@ template <DryerAxis kAxis = DryerAxis::Any, class T>
 inline bool blowDryerMayPush(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
 {
     constexpr bool kUp = kAxis == DryerAxis::Up;
-    const Vec3<T> d = x - f.nozzle;
-    const T h = kUp ? d.y : glm::dot(d, f.axis);
-    const Vec3<T> rho = kUp ? Vec3<T>(d.x, T(0), d.z) : d - h * f.axis;
-    const T r2 = kUp ? d.x * d.x + d.z * d.z : glm::dot(rho, rho);
+    const auto [d, h, rho, r2] = DryerFrameT<kAxis, T>(f.nozzle, f.axis, x);
     const T s = h * f.inverseHeight;
     const T q = f.nozzleRadius + f.spread * s;
     const bool inShaft = kUp ? (h < T(0)) & (r2 < f.shaftRadius2) : inBlowDryerShaft(f, d);
@@ -308,13 +325,9 @@ using BlowDryerReach = BlowDryerReachT<float>;
 template <DryerAxis kAxis = DryerAxis::Any, class T>
 inline bool blowDryerMayPushWithin(const BlowDryerReachT<T>& f, const Vec3<T>& x, const Vec3<T>& v)
 {
-    constexpr bool kUp = kAxis == DryerAxis::Up;
     const T e = f.atRest + f.perSpeed * (std::abs(v.x) + std::abs(v.y) + std::abs(v.z));
-    const Vec3<T> d = x - f.nozzle;
-    const T h = kUp ? d.y : glm::dot(d, f.axis);
+    const auto [d, h, rho, r2] = DryerFrameT<kAxis, T>(f.nozzle, f.axis, x);
     const T across2 = d.x * d.x + d.z * d.z; // across the floor: the shaft's radius
-    const Vec3<T> rho = d - h * f.axis;
-    const T r2 = kUp ? across2 : glm::dot(rho, rho);
     const T shaft = f.shaftRadius + f.shaftOn * e;
     const bool inShaft = (d.y < e) & (across2 < shaft * shaft);
     const T q = std::max(f.coneRadius + f.coneSlope * h, T(0)) + f.widening * e;
@@ -333,9 +346,7 @@ template <DryerAxis kAxis = DryerAxis::Any, class T>
 inline Vec3<T> blowDryerForceAway(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
 {
     constexpr bool kUp = kAxis == DryerAxis::Up;
-    const Vec3<T> d = x - f.nozzle;
-    const T h = kUp ? d.y : glm::dot(d, f.axis);
-    const Vec3<T> rho = kUp ? Vec3<T>(d.x, T(0), d.z) : d - h * f.axis;
+    const auto [d, h, rho, r2] = DryerFrameT<kAxis, T>(f.nozzle, f.axis, x);
     return dryerForceFrom<kAxis, false>(f, T(0) * (kUp ? h * h : h), T(0), d, rho, Vec3<T>(T(0)));
 }
 
