@@ -625,14 +625,15 @@ void World::integrateRigid(Integrator integrator, const std::vector<std::size_t>
     const dvec3 g = gravity();
     RigidScratch& r = m_rigidScratch;
     r.states.resize(n);
+    r.start.resize(n);
     r.inertia.resize(n);
     r.startAcc.resize(n);
     detail::forEachIndex(n, [&](std::size_t k) {
         const auto& b = static_cast<const RigidBody&>(*m_bodies[members[k]]);
-        r.states[k] = RigidState{b.getPos(), b.getVel(), b.getRotation()};
+        r.start[k] = RigidState{b.getPos(), b.getVel(), b.getRotation()};
+        r.states[k] = r.start[k];
         r.inertia[k] = RigidInertia{1.0 / b.getMass(), b.getInertiaBody(), b.getInverseInertiaBody()};
     });
-    r.start = r.states;
     stepRigid(integrator, members, wanted, dt);
     resolveRigidContacts(integrator, members, g, dt);
 }
