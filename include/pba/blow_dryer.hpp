@@ -180,9 +180,10 @@ inline bool inBlowDryerShaft(const BlowDryerKernelT<T>& f, const Vec3<T>& d)
 
 /// blowDryerForce's closing expression, shared with blowDryerForceAway so that the two round
 /// alike: along the axis, across it (times rho), and with `kExtra` the air's velocity term.
-/// Upward without it, nothing is added: adding a zero only turned a component's -0 into +0, an
-/// addition a particle in a swarm's loop, and kept the compiler from fusing the products into
-/// the sum with gravity (a swarm's accelerationWith, in swarm.cpp, makes that sum round as before).
+/// Without it, nothing is added: adding a zero only turned a component's -0 into +0, additions
+/// a particle in a swarm's loop, and (upward) kept the compiler from fusing the products into
+/// the sum with gravity (a swarm's accelerationWith, in swarm.cpp, makes that sum round as
+/// before; a -0 component adds to gravity as +0 does).
 template <DryerAxis kAxis, bool kExtra, class T>
 inline Vec3<T> dryerForceFrom(const BlowDryerKernelT<T>& f, T along, T radial, const Vec3<T>& d, const Vec3<T>& rho,
                               const Vec3<T>& extra)
@@ -191,6 +192,8 @@ inline Vec3<T> dryerForceFrom(const BlowDryerKernelT<T>& f, T along, T radial, c
         return Vec3<T>(radial * d.x, along, radial * d.z);
     else if constexpr (kAxis == DryerAxis::Up)
         return Vec3<T>(radial * d.x, along, radial * d.z) + extra;
+    else if constexpr (!kExtra)
+        return along * f.axis + radial * rho;
     else
         return along * f.axis + radial * rho + extra;
 }
@@ -337,17 +340,16 @@ inline bool blowDryerMayPushWithin(const BlowDryerReachT<T>& f, const Vec3<T>& x
 /// blowDryerForce<kAxis> (without air terms) at a finite x where blowDryerMayPush is false:
 /// the same closing expression with the selects' outside values (every product an exact zero),
 /// and none of the roots and divisions before them. A swarm's landed particles lie almost all
-/// there (tested equal bit for bit). The push along the axis is 0 h rather than blowDryerForce's
-/// 0 H: the same zero once the extra term is added, but a force that depends on x, so that a
-/// compiler cannot take its product with dt out of a loop and round the step differently (it
-/// did: a plain product and sum where blowDryerForce's loop fuses them). Upward, where nothing is
-/// added after it, it is 0 h^2: +0, as blowDryerForce's.
+/// there (tested equal bit for bit, signed zeros included). The push along the axis is 0 |h|
+/// rather than blowDryerForce's +0: the same +0 (0 h would be -0 below the nozzle, and 0 h^2
+/// NaN where h^2 overflows), but a force that depends on x, so that a compiler cannot take its
+/// product with dt out of a loop and round the step differently (it did: a plain product and
+/// sum where blowDryerForce's loop fuses them).
 template <DryerAxis kAxis = DryerAxis::Any, class T>
 inline Vec3<T> blowDryerForceAway(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
 {
-    constexpr bool kUp = kAxis == DryerAxis::Up;
     const auto [d, h, rho, r2] = DryerFrameT<kAxis, T>(f.nozzle, f.axis, x);
-    return dryerForceFrom<kAxis, false>(f, T(0) * (kUp ? h * h : h), T(0), d, rho, Vec3<T>(T(0)));
+    return dryerForceFrom<kAxis, false>(f, T(0) * std::abs(h), T(0), d, rho, Vec3<T>(T(0)));
 }
 
 template <class T>

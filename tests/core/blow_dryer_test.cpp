@@ -119,6 +119,28 @@ TEST(BlowDryerField, AwayFromTheConeAndShaftTheShortForceIsTheWholeOne)
     }
 }
 
+// Far above and below the nozzle, where h^2 overflows a float, blowDryerForceAway is still the
+// whole force, +0 and all (0 h^2 made it NaN there, and 0 h a -0 below the nozzle).
+TEST(BlowDryerField, FarFromTheNozzleTheShortForceIsStillTheWholeOne)
+{
+    for (const bool tilted : {false, true}) {
+        BlowDryerField field = dryer(FlowDirection::ConeFlow, Falloff::Linear, Falloff::Smooth);
+        if (tilted)
+            field.axis = glm::normalize(dvec3(0.2, 1.0, -0.1));
+        const BlowDryerKernelT<float> f(field.as<float>());
+        for (const float y : {3e19f, -3e19f, -2.0f, 1e30f}) {
+            const Vec3<float> x(0.5f, y, 0.3f);
+            const Vec3<float> whole = tilted ? blowDryerForce<DryerAxis::Any>(f, x) : blowDryerForce<DryerAxis::Up>(f, x);
+            const Vec3<float> away = tilted ? blowDryerForceAway<DryerAxis::Any>(f, x) : blowDryerForceAway<DryerAxis::Up>(f, x);
+            for (int c = 0; c < 3; ++c) {
+                ASSERT_EQ(whole[c], 0.0f) << "tilted " << tilted << " y " << y;
+                ASSERT_EQ(std::signbit(whole[c]), std::signbit(away[c])) << "tilted " << tilted << " y " << y;
+                ASSERT_EQ(away[c], 0.0f) << "tilted " << tilted << " y " << y;
+            }
+        }
+    }
+}
+
 // blowDryerMayPushWithin against what it replaces: blowDryerMayPush at every point velocity
 // Verlet and RK4 evaluate the acceleration at, with the acceleration away from the dryer
 // (gravity, drag and blowDryerForceAway). Wherever some point may be pushed, the one test at the
