@@ -178,8 +178,8 @@ inline bool inBlowDryerShaft(const BlowDryerKernelT<T>& f, const Vec3<T>& d)
     return (d.y < T(0)) & (d.x * d.x + d.z * d.z < f.shaftRadius2);
 }
 
-/// blowDryerForce's closing expression, shared with blowDryerForceAway so that the two round
-/// alike: along the axis, across it (times rho), and with `kExtra` the air's velocity term.
+/// blowDryerForce's closing expression: along the axis, across it (times rho), and with
+/// `kExtra` the air's velocity term.
 /// Without it, nothing is added: adding a zero only turned a component's -0 into +0, additions
 /// a particle in a swarm's loop, and (upward) kept the compiler from fusing the products into
 /// the sum with gravity (a swarm's accelerationWith, in swarm.cpp, makes that sum round as
@@ -260,8 +260,8 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x, co
     return dryerForceFrom<kAxis, kAir>(f, along, radial, d, rho, extra);
 }
 
-/// A cheap superset (no root, no division) of where blowDryerForce's force can be other than
-/// blowDryerForceAway's: its cone (`inside`) or its shaft. The cone's test compares squares
+/// A cheap superset (no root, no division) of where blowDryerForce's force can be other than a
+/// zero vector: its cone (`inside`) or its shaft. The cone's test compares squares
 /// with a margin: r < q for r the rounded root of r^2 means r^2 < q^2 exactly, and the rounded
 /// q q 1.001 (plus a normal float, for a q whose square underflows) exceeds q^2.
 template <DryerAxis kAxis = DryerAxis::Any, class T>
@@ -323,33 +323,20 @@ using BlowDryerReach = BlowDryerReachT<float>;
 
 /// Whether blowDryerMayPush may be true at any point an integrator's step from x at velocity v
 /// evaluates the force at, while the points before it were away from the dryer (see
-/// BlowDryerReachT): false means the step is the one blowDryerForceAway gives. About thirty
+/// BlowDryerReachT): false means the step is the one the acceleration without the dryer gives
+/// (its force is a zero vector at every point; a swarm's withoutDryer). About thirty
 /// operations, against seventeen for each point blowDryerMayPush tests.
 template <DryerAxis kAxis = DryerAxis::Any, class T>
 inline bool blowDryerMayPushWithin(const BlowDryerReachT<T>& f, const Vec3<T>& x, const Vec3<T>& v)
 {
+    constexpr bool kUp = kAxis == DryerAxis::Up;
     const T e = f.atRest + f.perSpeed * (std::abs(v.x) + std::abs(v.y) + std::abs(v.z));
     const auto [d, h, rho, r2] = DryerFrameT<kAxis, T>(f.nozzle, f.axis, x);
-    const T across2 = d.x * d.x + d.z * d.z; // across the floor: the shaft's radius
+    const T across2 = kUp ? r2 : d.x * d.x + d.z * d.z; // across the floor: the shaft's radius
     const T shaft = f.shaftRadius + f.shaftOn * e;
     const bool inShaft = (d.y < e) & (across2 < shaft * shaft);
     const T q = std::max(f.coneRadius + f.coneSlope * h, T(0)) + f.widening * e;
     return inShaft | ((h > -e) & (h < f.coneTop + e) & (r2 < q * q));
-}
-
-/// blowDryerForce<kAxis> (without air terms) at a finite x where blowDryerMayPush is false:
-/// the same closing expression with the selects' outside values (every product an exact zero),
-/// and none of the roots and divisions before them. A swarm's landed particles lie almost all
-/// there (tested equal bit for bit, signed zeros included). The push along the axis is 0 |h|
-/// rather than blowDryerForce's +0: the same +0 (0 h would be -0 below the nozzle, and 0 h^2
-/// NaN where h^2 overflows), but a force that depends on x, so that a compiler cannot take its
-/// product with dt out of a loop and round the step differently (it did: a plain product and
-/// sum where blowDryerForce's loop fuses them).
-template <DryerAxis kAxis = DryerAxis::Any, class T>
-inline Vec3<T> blowDryerForceAway(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
-{
-    const auto [d, h, rho, r2] = DryerFrameT<kAxis, T>(f.nozzle, f.axis, x);
-    return dryerForceFrom<kAxis, false>(f, T(0) * std::abs(h), T(0), d, rho, Vec3<T>(T(0)));
 }
 
 template <class T>

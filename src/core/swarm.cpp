@@ -251,8 +251,8 @@ bool integrateBlock(float* __restrict px, float* __restrict py, float* __restric
 }
 
 /// Phase 1 of a block away from the dryer: integrateBlock's loop with `away`, the acceleration
-/// as it is where the dryer cannot push (blowDryerForceAway: no roots, no divisions), and one
-/// test of whether any point the integrator evaluates it at may be one where it can
+/// as it is where the dryer cannot push (withoutDryer's: no roots, no divisions), and one test
+/// of whether any point the integrator evaluates it at may be one where it can
 /// (blowDryerMayPushWithin). Those particles (`blown`, counted in `blownCount`) are left at
 /// their start states for integrateGathered; every other one had the acceleration the whole one
 /// would have given it at every point, so it took the same step.
@@ -684,11 +684,19 @@ auto oneDryer(const SwarmKernelFields& fields)
     });
 }
 
-/// Without a dryer: oneDryer with a dryer of zero strength adds nothing either, but after its
-/// two roots and two divisions, the most of its loop's arithmetic. The term is 0 x rather than
-/// nothing, for the reason blowDryerForceAway gives: a constant acceleration lets the compiler
-/// take its product with dt out of the loop and round the step differently from the loop with
-/// a dryer (it did, for semi-implicit Euler: every particle's last bits).
+/// Without a dryer, or where one cannot push: oneDryer's acceleration wherever its force is
+/// zero (a dryer of zero strength; outside its cone and shaft, where blowDryerMayPush is false),
+/// without its two roots and two divisions, the most of its loop's arithmetic. There the dryer's
+/// force is a zero vector, +0 or -0 in each component, and so is 0 x at a finite x; gravity
+/// plus drag is never -0 (gravity's zeros are +0, see accelerationWith, and a sum that cancels
+/// is +0), and adding either zero to anything else leaves it as it was, so the two
+/// accelerations are the same bit for bit. The term is 0 x rather than nothing: a constant
+/// acceleration lets the compiler take its product with dt out of the loop and round the step
+/// differently from the loop with a dryer (it did, for semi-implicit Euler: every particle's
+/// last bits). The loop away from the dryer computed the dryer's own zero instead (its offset
+/// from the nozzle, its height, their products with zero: ten instructions an evaluation, two a
+/// step for velocity Verlet and four for RK4), and measured slower: RK4's 10% in an L1 harness
+/// (docs/performance.md, 2026-11-27).
 template <bool kDrag>
 auto withoutDryer(const SwarmKernelFields& fields)
 {
@@ -721,16 +729,6 @@ bool integrateGathered(const Arrays& a, std::size_t b, const std::uint16_t* inde
     return finite;
 }
 
-/// With one dryer where the dryer cannot push: its term as it is outside its cone and shaft
-/// (blowDryerForceAway).
-template <DryerAxis kAxis, bool kDrag>
-auto awayFromDryer(const SwarmKernelFields& fields)
-{
-    return accelerationWith<kDrag>(fields, [dryer = fields.dryer](const Vec3<float>& x) {
-        return blowDryerForceAway<kAxis>(dryer, x);
-    });
-}
-
 /// integrateInDryer's split for a block (see there): the away loop unless the block is busy.
 template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag, class Whole>
 bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
@@ -749,7 +747,7 @@ bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float
     const auto away = [&](auto keepStartVelocity) {
         return integrateAwayBlock<kIntegrator, decltype(keepStartVelocity)::value, kAxis>(
             a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b, start[0], start[1], start[2], start[3],
-            start[4], start[5], blown, count, n, dt, reach, awayFromDryer<kAxis, kDrag>(fields));
+            start[4], start[5], blown, count, n, dt, reach, withoutDryer<kDrag>(fields));
     };
     bool finite = response == CollisionResponse::Exact ? away(std::true_type{}) : away(std::false_type{});
     if (count == 0)
