@@ -126,7 +126,7 @@ TEST(BlowDryerField, AwayFromTheConeAndShaftTheAccelerationIsAsWithoutTheDryer)
             if (tilted)
                 field.axis = glm::normalize(dvec3(0.2, 1.0, -0.1));
             const BlowDryerKernelT<float> f(field.as<float>());
-            std::size_t away = 0;
+            std::size_t away = 0, negativeZeros = 0; // the force's -0 components: what makes bits differ
             for (int k = 0; k < 200000; ++k) {
                 Vec3<float> x(across(rng), along(rng), across(rng));
                 if (k % 2 == 0 && !tilted) { // on the cone's side or the shaft's wall, to a few roundings
@@ -141,10 +141,13 @@ TEST(BlowDryerField, AwayFromTheConeAndShaftTheAccelerationIsAsWithoutTheDryer)
                     continue;
                 ++away;
                 ASSERT_EQ(whole, Vec3<float>(0.0f)) << "at " << x.x << " " << x.y << " " << x.z;
+                for (int c = 0; c < 3; ++c)
+                    negativeZeros += std::signbit(whole[c]) ? 1u : 0u;
                 for (const Vec3<float>& a : beside)
                     ASSERT_TRUE(sameBits(a + whole, a + 0.0f * x)) << "at " << x.x << " " << x.y << " " << x.z;
             }
             EXPECT_GT(away, 50000u) << "tilted " << tilted << " shaft " << shaft;
+            EXPECT_GT(negativeZeros, 10000u) << "tilted " << tilted << " shaft " << shaft;
         }
     }
 }
