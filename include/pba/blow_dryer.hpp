@@ -146,11 +146,13 @@ struct BlowDryerKernelT {
 enum class DryerAxis { Any, Up };
 
 /// Where a point x lies in the dryer's frame: its offset d from the nozzle, its height h along
-/// the axis, its offset rho across the axis and rho's squared length r2. Upward (`Up`) h is d.y
-/// and rho is (d.x, 0, d.z), with none of the products by the axis's zero components. The force
-/// and the tests of where it may push all start from it, so they see the same h and r2,
-/// rounding for rounding; the parts a caller does not use cost nothing once it is inlined.
-/// Built in place (`const auto [d, h, rho, r2] = DryerFrameT<...>(...)`): a function returning
+/// the axis, its offset rho across the axis and rho's squared length r2, and across2, the
+/// squared distance from the nozzle across the floor (the shaft's wall is measured across the
+/// floor, which is horizontal whatever the axis). Upward (`Up`) h is d.y, rho is (d.x, 0, d.z)
+/// and r2 is across2, with none of the products by the axis's zero components. The force and
+/// the tests of where it may push all start from it, so they see the same h and r2, rounding
+/// for rounding; the parts a caller does not use cost nothing once it is inlined. Built in
+/// place (`const auto [d, h, rho, r2, across2] = DryerFrameT<...>(...)`): a function returning
 /// it made GCC copy it as a whole, and a swarm loop that tests and integrates stopped
 /// vectorising.
 template <DryerAxis kAxis, class T>
@@ -160,10 +162,11 @@ struct DryerFrameT {
     T h;
     Vec3<T> rho;
     T r2;
+    T across2;
 
     DryerFrameT(const Vec3<T>& nozzle, const Vec3<T>& axis, const Vec3<T>& x)
         : d(x - nozzle), h(kUp ? d.y : glm::dot(d, axis)), rho(kUp ? Vec3<T>(d.x, T(0), d.z) : d - h * axis),
-          r2(kUp ? d.x * d.x + d.z * d.z : glm::dot(rho, rho))
+          r2(kUp ? d.x * d.x + d.z * d.z : glm::dot(rho, rho)), across2(kUp ? r2 : d.x * d.x + d.z * d.z)
     {
     }
 };
@@ -171,11 +174,11 @@ struct DryerFrameT {
 /// Whether x lies under the floor's hole of a dryer in the floor (the shaft and the dryer below
 /// its grille): below the nozzle and within r0 of it across the floor (the floor is horizontal,
 /// whatever the axis). No lower bound: a particle resting on the grille is in it whatever the
-/// rounding of the grille's height.
+/// rounding of the grille's height. `below` is the frame's d.y, `across2` its across2.
 template <class T>
-inline bool inBlowDryerShaft(const BlowDryerKernelT<T>& f, const Vec3<T>& d)
+inline bool inBlowDryerShaft(const BlowDryerKernelT<T>& f, T below, T across2)
 {
-    return (d.y < T(0)) & (d.x * d.x + d.z * d.z < f.shaftRadius2);
+    return (below < T(0)) & (across2 < f.shaftRadius2);
 }
 
 /// blowDryerForce's closing expression: along the axis, across it (times rho), and with
@@ -217,13 +220,13 @@ template <DryerAxis kAxis = DryerAxis::Any, bool kAir = false, class T, bool kPu
 inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x, const Vec3<T>& v = Vec3<T>(T(0)))
 {
     constexpr bool kUp = kAxis == DryerAxis::Up;
-    const auto [d, h, rho, r2] = DryerFrameT<kAxis, T>(f.nozzle, f.axis, x);
+    const auto [d, h, rho, r2, across2] = DryerFrameT<kAxis, T>(f.nozzle, f.axis, x);
     const T r = std::sqrt(r2);
     const T s = h * f.inverseHeight;
     const T radiusHere = f.nozzleRadius + f.spread * s;
     // Selects rather than branches: the same arithmetic for every particle (a vectorised loop
     // turns them into masked moves, cheaper than multiplying by masks as numbers).
-    const bool inShaft = kUp ? (h < T(0)) & (r2 < f.shaftRadius2) : inBlowDryerShaft(f, d);
+    const bool inShaft = inBlowDryerShaft(f, d.y, across2);
     // A tilted cone may reach below the floor: there the shaft's air wins (an upward axis keeps
     // the two apart by h's sign alone).
     const bool inside = (h >= T(0)) & (s < T(1)) & (r < radiusHere) & (kUp | !inShaft);
@@ -267,11 +270,10 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x, co
 template <DryerAxis kAxis = DryerAxis::Any, class T>
 inline bool blowDryerMayPush(const BlowDryerKernelT<T>& f, const Vec3<T>& x)
 {
-    constexpr bool kUp = kAxis == DryerAxis::Up;
-    const auto [d, h, rho, r2] = DryerFrameT<kAxis, T>(f.nozzle, f.axis, x);
+    const auto [d, h, rho, r2, across2] = DryerFrameT<kAxis, T>(f.nozzle, f.axis, x);
     const T s = h * f.inverseHeight;
     const T q = f.nozzleRadius + f.spread * s;
-    const bool inShaft = kUp ? (h < T(0)) & (r2 < f.shaftRadius2) : inBlowDryerShaft(f, d);
+    const bool inShaft = inBlowDryerShaft(f, d.y, across2);
     return inShaft | ((h >= T(0)) & (s < T(1)) & (r2 < q * q * T(1.001) + T(1e-30)));
 }
 
@@ -329,10 +331,8 @@ using BlowDryerReach = BlowDryerReachT<float>;
 template <DryerAxis kAxis = DryerAxis::Any, class T>
 inline bool blowDryerMayPushWithin(const BlowDryerReachT<T>& f, const Vec3<T>& x, const Vec3<T>& v)
 {
-    constexpr bool kUp = kAxis == DryerAxis::Up;
     const T e = f.atRest + f.perSpeed * (std::abs(v.x) + std::abs(v.y) + std::abs(v.z));
-    const auto [d, h, rho, r2] = DryerFrameT<kAxis, T>(f.nozzle, f.axis, x);
-    const T across2 = kUp ? r2 : d.x * d.x + d.z * d.z; // across the floor: the shaft's radius
+    const auto [d, h, rho, r2, across2] = DryerFrameT<kAxis, T>(f.nozzle, f.axis, x);
     const T shaft = f.shaftRadius + f.shaftOn * e;
     const bool inShaft = (d.y < e) & (across2 < shaft * shaft);
     const T q = std::max(f.coneRadius + f.coneSlope * h, T(0)) + f.widening * e;
@@ -372,7 +372,8 @@ inline bool insideBlowDryerCone(const BlowDryerFieldT<T>& f, const Vec3<T>& x)
 template <class T>
 inline bool insideBlowDryerShaft(const BlowDryerFieldT<T>& f, const Vec3<T>& x)
 {
-    return inBlowDryerShaft(BlowDryerKernelT<T>(f), x - f.nozzle);
+    const auto [d, h, rho, r2, across2] = DryerFrameT<DryerAxis::Any, T>(f.nozzle, f.axis, x);
+    return inBlowDryerShaft(BlowDryerKernelT<T>(f), d.y, across2);
 }
 
 /// The field as a Force of the World.
