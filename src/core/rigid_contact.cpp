@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <vector>
 
 namespace pba {
@@ -215,7 +214,8 @@ bool resolvePlaneContacts(const ContactBody& body, std::span<const Plane> planes
     // A box's points on one surface share its normal, and so its tangents: worked out once (a
     // root and a division), not for every point. Compared bit for bit, so that a -0 component
     // never takes the tangents of a +0.
-    dvec3 tangent[2], tangentsFor(std::numeric_limits<double>::quiet_NaN());
+    dvec3 tangent[2]{dvec3(0.0), dvec3(0.0)}, tangentsFor(0.0);
+    bool tangentsKnown = false;
     std::erase_if(contacts, [&](Contact& c) {
         const double arriving = glm::dot(c.normal, s.v + glm::cross(omega, c.arm));
         if (c.gap + std::min(arriving, 0.0) * step.dt > 0.0 && c.gap > 0.0)
@@ -226,9 +226,10 @@ bool resolvePlaneContacts(const ContactBody& body, std::span<const Plane> planes
         const bool bounce = arriving < -step.restingSpeed;
         c.target = bounce ? -body.restitution * arriving : std::max(c.gap, 0.0) / -step.dt;
         bounced = bounced || bounce;
-        if (std::memcmp(&c.normal, &tangentsFor, sizeof(dvec3)) != 0) {
+        if (!tangentsKnown || std::memcmp(&c.normal, &tangentsFor, sizeof(dvec3)) != 0) {
             tangentsOf(c.normal, tangent);
             tangentsFor = c.normal;
+            tangentsKnown = true;
         }
         c.along.setUp(c.normal, c.arm, inverseMass, inverseInertia);
         for (int t = 0; t < 2; ++t)
