@@ -2,7 +2,7 @@
 """Fails when a hot loop of the swarm step stops vectorising.
 
 The loops are marked in the sources by a comment line `// vectorised: checked` right above the
-`for`. This compiles src/core/swarm.cpp exactly as the build does (its command from
+`for` (in src/core/swarm.cpp and the private headers it includes). This compiles src/core/swarm.cpp exactly as the build does (its command from
 compile_commands.json) with GCC's vectorisation report (-fopt-info-vec-optimized), and requires
 every marked loop to be reported "vectorized using 64 byte vectors" (the AVX-512 copy that
 target_clones makes) and "using 32 byte vectors" (the AVX2 copy). A change that turns a select
@@ -52,7 +52,9 @@ def main():
     if "Free Software Foundation" not in version or not ({"-O2", "-O3"} & set(argv)):
         print("check-vectorised: not an optimised GCC build, skipped")
         return 77
-    sources = [swarm, os.path.join(source, "src/core/surface_tests.hpp")]
+    core = os.path.join(source, "src/core")
+    sources = [swarm] + [os.path.join(core, name) for name in
+                         ("surface_tests.hpp", "swarm_block.hpp", "swarm_integrate.hpp", "swarm_collide.hpp")]
     loops = marked_loops(sources)
     if not loops:
         print("check-vectorised: no marked loops found")

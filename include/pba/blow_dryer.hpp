@@ -185,7 +185,7 @@ inline bool inBlowDryerShaft(const BlowDryerKernelT<T>& f, T below, T across2)
 /// `kExtra` the air's velocity term.
 /// Without it, nothing is added: adding a zero only turned a component's -0 into +0, additions
 /// a particle in a swarm's loop, and (upward) kept the compiler from fusing the products into
-/// the sum with gravity (a swarm's accelerationWith, in swarm.cpp, makes that sum round as
+/// the sum with gravity (a swarm's accelerationWith, in swarm_integrate.hpp, makes that sum round as
 /// before; a -0 component adds to gravity as +0 does).
 template <DryerAxis kAxis, bool kExtra, class T>
 inline Vec3<T> dryerForceFrom(const BlowDryerKernelT<T>& f, T along, T radial, const Vec3<T>& d, const Vec3<T>& rho,

@@ -1,0 +1,274 @@
+#pragma once
+// Phase 1 of a swarm's step, integration: the integrator's loop over a block, the acceleration
+// as closures the loop can vectorise, and the split of a block into the particles the blow
+// dryer may push and the rest. Private to src/core/swarm.cpp (see swarm_block.hpp).
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
+
+#include "pba/swarm.hpp"
+#include "swarm_block.hpp"
+
+namespace pba {
+
+// Internal linkage, as when this lived in swarm.cpp: the one file that includes it.
+namespace {
+
+template <Integrator kIntegrator, class Accel>
+inline void integrateAs(Vec3<float>& x, Vec3<float>& v, float dt, Accel&& accel)
+{
+    if constexpr (kIntegrator == Integrator::ForwardEuler)
+        forwardEuler(x, v, dt, accel);
+    else if constexpr (kIntegrator == Integrator::SemiImplicitEuler)
+        semiImplicitEuler(x, v, dt, accel);
+    else if constexpr (kIntegrator == Integrator::VelocityVerlet)
+        velocityVerlet(x, v, dt, accel);
+    else
+        rk4(x, v, dt, accel);
+}
+
+/// The exponent field a loop that integrates keeps for the state it wrote: exponentOfSum's, but
+/// for semi-implicit Euler the new position's three components alone. Its new position is
+/// x + v dt with v the new velocity: a component of v that is infinite or NaN makes the same
+/// component of the position infinite or NaN (an infinite product, or 0 times infinity, or a
+/// NaN, plus anything finite or not), so the position's sum is special whenever any of the six
+/// components is. Two additions a particle where the six's sum takes five, in the loop whose
+/// instructions are what a step waits on.
+template <Integrator kIntegrator>
+inline std::uint32_t exponentOfStep(const Vec3<float>& x, const Vec3<float>& v)
+{
+    if constexpr (kIntegrator == Integrator::SemiImplicitEuler)
+        return exponentField(x.x + x.y + x.z);
+    else
+        return exponentOfSum(x, v);
+}
+
+/// Phase 1 of a block: the plain integrator step for every particle, a loop with no branches
+/// the vectoriser cannot turn into selects. The start states are kept for phase 2.
+template <Integrator kIntegrator, bool kKeepStartVelocity, class Accel>
+bool integrateBlock(float* __restrict px, float* __restrict py, float* __restrict pz, float* __restrict vx,
+                    float* __restrict vy, float* __restrict vz, float* __restrict s0, float* __restrict s1,
+                    float* __restrict s2, float* __restrict s3, float* __restrict s4, float* __restrict s5,
+                    std::size_t n, float dt, Accel accel)
+{
+    // Distinct arrays (restrict) and an acceleration holding its fields by value: what lets
+    // the compiler vectorise this loop without alias checks.
+    std::uint32_t exponent = 0;
+    // vectorised: checked
+    for (std::size_t k = 0; k < n; ++k) {
+        Vec3<float> x(px[k], py[k], pz[k]);
+        Vec3<float> v(vx[k], vy[k], vz[k]);
+        s0[k] = x.x, s1[k] = x.y, s2[k] = x.z;
+        if constexpr (kKeepStartVelocity) // only the exact response redoes the step
+            s3[k] = v.x, s4[k] = v.y, s5[k] = v.z;
+        integrateAs<kIntegrator>(x, v, dt, accel);
+        exponent = std::max(exponent, exponentOfStep<kIntegrator>(x, v));
+        px[k] = x.x, py[k] = x.y, pz[k] = x.z;
+        vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
+    }
+    return exponent != kSpecialExponent;
+}
+
+/// Phase 1 of a block away from the dryer: integrateBlock's loop with `away`, the acceleration
+/// as it is where the dryer cannot push (withoutDryer's: no roots, no divisions), and one test
+/// of whether any point the integrator evaluates it at may be one where it can
+/// (blowDryerMayPushWithin). Those particles (`blown`, counted in `blownCount`) are left at
+/// their start states for integrateGathered; every other one had the acceleration the whole one
+/// would have given it at every point, so it took the same step.
+template <Integrator kIntegrator, bool kKeepStartVelocity, DryerAxis kAxis, class Away>
+bool integrateAwayBlock(float* __restrict px, float* __restrict py, float* __restrict pz, float* __restrict vx,
+                        float* __restrict vy, float* __restrict vz, float* __restrict s0, float* __restrict s1,
+                        float* __restrict s2, float* __restrict s3, float* __restrict s4, float* __restrict s5,
+                        std::uint32_t* __restrict blown, std::size_t& blownCount, std::size_t n, float dt,
+                        BlowDryerReach reach, Away away)
+{
+    std::uint32_t exponent = 0, count = 0;
+    // vectorised: checked
+    for (std::size_t k = 0; k < n; ++k) {
+        const Vec3<float> x0(px[k], py[k], pz[k]);
+        const Vec3<float> v0(vx[k], vy[k], vz[k]);
+        s0[k] = x0.x, s1[k] = x0.y, s2[k] = x0.z;
+        if constexpr (kKeepStartVelocity)
+            s3[k] = v0.x, s4[k] = v0.y, s5[k] = v0.z;
+        Vec3<float> x = x0, v = v0;
+        const bool pushed = blowDryerMayPushWithin<kAxis>(reach, x0, v0);
+        integrateAs<kIntegrator>(x, v, dt, away);
+        // Selects a component at a time (a select of whole vectors is a branch to GCC).
+        for (int c = 0; c < 3; ++c)
+            x[c] = pushed ? x0[c] : x[c], v[c] = pushed ? v0[c] : v[c];
+        exponent = std::max(exponent, exponentOfSum(x, v));
+        px[k] = x.x, py[k] = x.y, pz[k] = x.z;
+        vx[k] = v.x, vy[k] = v.y, vz[k] = v.z;
+        blown[k] = static_cast<std::uint32_t>(pushed);
+        count += static_cast<std::uint32_t>(pushed);
+    }
+    blownCount = count;
+    return exponent != kSpecialExponent;
+}
+
+/// Returns whether every state it wrote is finite.
+template <Integrator kIntegrator, class Accel>
+bool integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
+                    CollisionResponse response, Accel accel)
+{
+    if (response == CollisionResponse::Exact)
+        return integrateBlock<kIntegrator, true>(a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b, start[0],
+                                          start[1], start[2], start[3], start[4], start[5], n, dt, accel);
+    else
+        return integrateBlock<kIntegrator, false>(a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b, start[0],
+                                           start[1], start[2], start[3], start[4], start[5], n, dt, accel);
+}
+
+/// The acceleration with at most one dryer, swarmAcceleration as a closure holding its fields
+/// by value, so the loop that calls it needs no alias checks: gravity, drag with `kDrag`, and
+/// the dryer's term push(x). Without drag (`kDrag` false, every built-in swarm scene) the drag
+/// is left out rather than multiplied by zero: the same result for every finite velocity, and
+/// the loop measured 14% faster (three multiply-adds fewer, and registers to spare for the
+/// dryer's constants). One closure type for both: a closure without the unused `drag` measured
+/// 1-2% slower in every phase (GCC 12 scheduled the loop otherwise).
+/// Gravity's -0 components are made +0 first (g + 0, once), for an upward dryer's force, which
+/// may have -0 components: it adds nothing after its products (dryerForceFrom), where it added a
+/// zero that made each -0 +0. For any g and f, (g + 0) + f is g + (f + 0) bit for bit, so the
+/// sum is as before; with gravity vertical and no drag (every built-in scene) the compiler's
+/// fused g.x + radial d.x also rounds as the product alone did, and with a sideways gravity or
+/// drag it rounds once where it rounded twice. (Without a dryer the sum changes only for a
+/// gravity with a -0 component, whose -0 acceleration becomes +0.)
+template <bool kDrag, class Push>
+auto accelerationWith(const SwarmKernelFields& fields, Push push)
+{
+    const Vec3<float> gravity = fields.gravity + Vec3<float>(0.0f);
+    return [gravity, drag = fields.dragPerMass, push](const Vec3<float>& x, const Vec3<float>& v) {
+        if constexpr (kDrag)
+            return gravity + dragForce(drag, v) + push(x); // as swarmAcceleration
+        else
+            return static_cast<void>(drag), gravity + push(x); // one closure for both (see above)
+    };
+}
+
+template <DryerAxis kAxis, bool kDrag>
+auto oneDryer(const SwarmKernelFields& fields)
+{
+    return accelerationWith<kDrag>(fields, [dryer = fields.dryer](const Vec3<float>& x) {
+        return blowDryerForce<kAxis>(dryer, x);
+    });
+}
+
+/// Without a dryer, or where one cannot push: oneDryer's acceleration wherever its force is
+/// zero (a dryer of zero strength; outside its cone and shaft, where blowDryerMayPush is false),
+/// without its two roots and two divisions, the most of its loop's arithmetic. There the dryer's
+/// force is a zero vector, +0 or -0 in each component, and so is 0 x at a finite x; gravity
+/// plus drag is never -0 (gravity's zeros are +0, see accelerationWith, and a sum that cancels
+/// is +0), and adding either zero to anything else leaves it as it was, so the two
+/// accelerations are the same bit for bit. The term is 0 x rather than nothing: a constant
+/// acceleration lets the compiler take its product with dt out of the loop and round the step
+/// differently from the loop with a dryer (it did, for semi-implicit Euler: every particle's
+/// last bits). The loop away from the dryer computed the dryer's own zero instead (its offset
+/// from the nozzle, its height, their products with zero: ten instructions an evaluation, two a
+/// step for velocity Verlet and four for RK4), and measured slower: RK4's 10% in an L1 harness
+/// (docs/performance.md, 2026-11-27).
+template <bool kDrag>
+auto withoutDryer(const SwarmKernelFields& fields)
+{
+    return accelerationWith<kDrag>(fields, [](const Vec3<float>& x) { return 0.0f * x; });
+}
+
+/// The integrator's step for the m particles of block b listed in `index` (integrateAwayBlock's
+/// blown ones) with the whole acceleration: gathered into rows of their own, padded to whole
+/// vectors with copies of the first, stepped by integrateBlock's loop and scattered back (a
+/// scalar loop over them measured slower than the whole block's). Returns whether the states
+/// it wrote are finite.
+template <Integrator kIntegrator, class Accel>
+bool integrateGathered(const Arrays& a, std::size_t b, const std::uint16_t* index, std::size_t m, float dt,
+                       Accel accel)
+{
+    alignas(64) float rows[9][kStartRow]; // the six arrays' gathered states, then start positions
+    float* const arrays[6] = {a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b};
+    const std::size_t padded = (m + kGatherWidth - 1) / kGatherWidth * kGatherWidth;
+    for (std::size_t c = 0; c < 6; ++c) {
+        for (std::size_t j = 0; j < m; ++j)
+            rows[c][j] = arrays[c][index[j]];
+        std::fill(rows[c] + m, rows[c] + padded, rows[c][0]);
+    }
+    const bool finite = integrateBlock<kIntegrator, false>(rows[0], rows[1], rows[2], rows[3], rows[4], rows[5],
+                                                           rows[6], rows[7], rows[8], nullptr, nullptr, nullptr,
+                                                           padded, dt, accel);
+    for (std::size_t c = 0; c < 6; ++c)
+        for (std::size_t j = 0; j < m; ++j)
+            arrays[c][index[j]] = rows[c][j];
+    return finite;
+}
+
+/// integrateInDryer's split for a block (see there): the away loop unless the block is busy.
+template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag, class Whole>
+bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
+                            CollisionResponse response, const SwarmKernelFields& fields, const BlowDryerReach& reach,
+                            Whole whole)
+{
+    constexpr std::uint8_t kBusySteps = 64;
+    std::uint8_t& busy = a.blowing[b / kBlock];
+    if (busy > 0) {
+        --busy;
+        return integrateBlock<kIntegrator>(a, b, n, dt, start, response, whole);
+    }
+    alignas(64) std::uint32_t blown[kBlock]; // words: bytes made the loop take 64 particles a vector
+    alignas(64) std::uint8_t blownBytes[kBlock + 64]; // room for listHits' last word
+    std::size_t count = 0;
+    const auto away = [&](auto keepStartVelocity) {
+        return integrateAwayBlock<kIntegrator, decltype(keepStartVelocity)::value, kAxis>(
+            a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b, start[0], start[1], start[2], start[3],
+            start[4], start[5], blown, count, n, dt, reach, withoutDryer<kDrag>(fields));
+    };
+    bool finite = response == CollisionResponse::Exact ? away(std::true_type{}) : away(std::false_type{});
+    if (count == 0)
+        return finite;
+    alignas(64) std::uint16_t index[kBlock];
+    std::size_t spare = 0;
+    // vectorised: checked
+    for (std::size_t k = 0; k < n; ++k)
+        blownBytes[k] = static_cast<std::uint8_t>(blown[k]);
+    const std::size_t m = listHits(blownBytes, n, index, spare);
+    finite = integrateGathered<kIntegrator>(a, b, index, m, dt, whole) && finite;
+    if (count > kGatherMax)
+        busy = kBusySteps;
+    return finite;
+}
+
+/// Steps a block with one dryer. The dryer's two roots and two divisions at each evaluation are
+/// most of the integration loop's arithmetic (twice a step for velocity Verlet, four times for
+/// RK4), while once a swarm has landed well under 1% of it is where the dryer pushes
+/// (fountain-1m from t = 2 s: 0.5% in the cone, 0.1% in the shaft). So unless the block is busy
+/// (its cone crowded, as when rain falls through it), every particle is stepped with the
+/// acceleration away from the dryer and the few the dryer may have pushed again with the whole
+/// one (integrateAwayBlock, integrateGathered): the same states. Measured (blow-dryer-swarm, 2
+/// threads, the builds alternated, 2026-11-25) from t = 2 s: at 1e6 velocity Verlet 1.2e9
+/// particle-steps/s against 0.9e9 and RK4 7.4-7.7e8 against 5.7e8, at 1e7 8.4e8 against 7.1e8
+/// and 6.6-6.7e8 against 5.0-5.2e8; in flight (busy blocks: the one loop) the same. The Eulers
+/// evaluate once, and keep the one loop: for semi-implicit Euler landed the split was 10-18%
+/// slower at 1e7, where the loop waits on memory (0.96-1.02e9 against 1.16-1.17e9), and at 1e6
+/// no faster (5-13% faster in one sitting; 7% slower, the median of ten alternations, in
+/// another, 2026-11-26), so not even for a swarm that stays in the cache; nor at rest (from t =
+/// 8 s, 1e6: 7.1-9.0e8 against 8.4-8.6e8 over four alternations, 2026-11-26). Split a vector of
+/// 16 at a time instead (a branch a vector to the one loop or the away one, no gathering: the
+/// same states) it was slower still, the integration phase 1.58-1.98 ms of thread time a step
+/// against 1.31-1.48 (fountain-1m from t = 3 s, 2026-11-26): the branches and each vector's
+/// reductions cost more than the roots they skip. The flags are words: as bytes they made GCC
+/// take 64 particles a vector, and the away loop spilled. A block that had more than kGatherMax
+/// particles to step again is busy for the next 64 steps. A higher bar, so that rain in flight
+/// (a quarter of each block in the cone) takes the split too, measured slower (RK4 with half a
+/// block, Verlet with a quarter: RK4 in flight 3.0-3.6e8 against 4.1-4.5e8, 2026-11-26), and
+/// again with the away loop's one test (2026-11-27, docs/performance.md): the scatter after the
+/// gathered step stalls on the rows the vectorised loop has just stored.
+template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag>
+bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
+                      CollisionResponse response, const SwarmKernelFields& fields, const BlowDryerReach& reach)
+{
+    const auto whole = oneDryer<kAxis, kDrag>(fields);
+    if constexpr (kIntegrator == Integrator::ForwardEuler || kIntegrator == Integrator::SemiImplicitEuler)
+        return integrateBlock<kIntegrator>(a, b, n, dt, start, response, whole);
+    else
+        return integrateAwayFromDryer<kIntegrator, kAxis, kDrag>(a, b, n, dt, start, response, fields, reach, whole);
+}
+
+} // namespace
+
+} // namespace pba
