@@ -1,0 +1,108 @@
+#include "bench_scenes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <thread>
+#include <utility>
+
+#include "bench_timing.hpp"
+#include "pba/scene/scene.hpp"
+#include "pba/spring_network.hpp"
+
+namespace pba::app::bench {
+
+namespace {
+
+/// cloth-in-the-dryer at kClothSide x kClothSide (resizedClothInTheDryer): one system of springs
+/// (structural, shear and bending), semi-implicit Euler, gravity, the blow dryer and the room.
+World clothWorld(int threads)
+{
+    World world = resizedClothInTheDryer(kClothSide).world;
+    world.setThreads(threads);
+    return world;
+}
+
+/// The springs of a world's rope and cloth networks.
+std::size_t springCount(const World& world)
+{
+    struct Counter final : ForceVisitor {
+        std::size_t springs = 0;
+        void visit(const SpringNetwork& network) override { springs += network.size(); }
+        void visit(const TwoBodySpring&) override { ++springs; }
+    } counter;
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        world.force(i).accept(counter);
+    return counter.springs;
+}
+
+constexpr double kDiceDuration = 4.0;
+
+} // namespace
+
+std::vector<ClothRow> measureCloth(double minTime, int repeats, int cores)
+{
+    struct ClothSubject {
+        ClothRow row;
+        std::function<void()> step, restart;
+        long steps = 0;
+        std::vector<double> rates;
+    };
+    std::vector<ClothSubject> subjects;
+    for (int threads : {1, cores}) {
+        World world = clothWorld(threads);
+        const ClothRow row{threads, world.bodyCount(), springCount(world), 0.0, 0.0};
+        Restartable r = restartable(std::move(world));
+        subjects.push_back({row, std::move(r.step), std::move(r.restart), 0, {}});
+        if (threads == cores)
+            break;
+    }
+    timeInTurn(subjects, 1, minTime, repeats);
+    std::vector<ClothRow> rows;
+    for (ClothSubject& s : subjects) {
+        s.row.stepsPerSecond = best(s.rates);
+        s.row.medianStepsPerSecond = median(s.rates);
+        rows.push_back(s.row);
+    }
+    return rows;
+}
+
+SpanRun runDice(bool quick, int cores)
+{
+    Scene scene = manyDice(kDice);
+    World& world = scene.world;
+    world.setThreads(0);
+    SpanRun run;
+    run.threads = cores;
+    run.spanSteps = quick ? 10 : static_cast<int>(std::lround(0.5 / scene.dt));
+    run.spans = quick ? 2 : static_cast<int>(std::lround(kDiceDuration / 0.5));
+    const auto [slowest, total] = timeSpans(world, scene.dt, run.spans, run.spanSteps);
+    run.stepsPerSecond = slowest;
+    run.overallStepsPerSecond = double(run.spans) * run.spanSteps / total;
+    return run;
+}
+
+/// The rain in flight is the cheap part; from about 4 s nearly every particle lies on the floor,
+/// bouncing in place within the contact tolerance, and some slide around the hole's shaft: the
+/// collision code runs for all of them every step, and the last second is the slowest. A
+/// program must keep up with its slowest second, so that is the row's rate; the whole run's
+/// average is beside it.
+SceneRun runScene(bool quick)
+{
+    Scene scene = loadScene("fountain-1m");
+    World& world = scene.world;
+    world.setThreads(0);
+    SceneRun fountain;
+    SpanRun& run = fountain.run;
+    run.threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    run.spanSteps = quick ? 4 : static_cast<int>(std::lround(1.0 / scene.dt));
+    run.spans = quick ? 2 : static_cast<int>(std::lround(scene.duration));
+    const auto [slowest, total] = timeSpans(world, scene.dt, run.spans, run.spanSteps);
+    run.stepsPerSecond = slowest;
+    run.overallStepsPerSecond = double(run.spans) * run.spanSteps / total;
+    fountain.n = world.swarm(0).size();
+    fountain.integrator = std::string(integratorName(world.swarm(0).integrator()));
+    return fountain;
+}
+
+} // namespace pba::app::bench

@@ -1,0 +1,54 @@
+#pragma once
+// `pba bench`'s scene rows, each stepped as a program steps it: a 128 x 128 cloth (springs), 10,000
+// dice (rigid bodies with contacts), and fountain-1m through its whole duration.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace pba::app::bench {
+
+/// The cloth row's side: 128 x 128 particles, 97,026 springs.
+constexpr int kClothSide = 128;
+
+/// A cloth row: its physics steps per second (best window) and the spring evaluations they make
+/// (semi-implicit Euler evaluates each spring once a step).
+struct ClothRow {
+    int threads = 1;
+    std::size_t particles = 0, springs = 0;
+    double stepsPerSecond = 0.0, medianStepsPerSecond = 0.0;
+};
+
+/// The cloth on 1 thread and on all cores, their windows taken in turn (as measureSize's), each
+/// window the same work: from the scene's first state (the sheet falling flat toward the jet),
+/// as many steps as filled a first window.
+std::vector<ClothRow> measureCloth(double minTime, int repeats, int cores);
+
+/// The dice row's dice: 10 cm boxes.
+constexpr std::size_t kDice = 10000;
+
+/// A run timed span by span: physics steps per second in its slowest span (a program must keep
+/// up with it) and over the whole run.
+struct SpanRun {
+    int threads = 1;
+    double stepsPerSecond = 0.0, overallStepsPerSecond = 0.0;
+    int spans = 0, spanSteps = 0;
+};
+
+/// The dice row: kDice dice thrown into the dice scene's room, semi-implicit Euler with contacts
+/// on all cores, stepped as a program would from the throw through their landing (bounces,
+/// slides, new contacts every step: the solver's hardest time) to rest, timed half a simulated
+/// second at a time. (`quick`: two spans of 10 steps, in flight.)
+SpanRun runDice(bool quick, int cores);
+
+/// fountain-1m as a program runs it: the run, its swarm's size and integrator.
+struct SceneRun {
+    SpanRun run;
+    std::size_t n = 0;
+    std::string integrator;
+};
+
+/// fountain-1m as a program runs it: a million particles, all cores, steps of the scene's dt
+/// over its whole duration, timed a simulated second at a time (`quick`: two spans of 4 steps).
+SceneRun runScene(bool quick);
+
+} // namespace pba::app::bench
