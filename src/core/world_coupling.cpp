@@ -1,0 +1,111 @@
+// Which of a World's bodies forces couple into systems, integrated together, and which step
+// alone: made again whenever a body's integrator or fixedness changes.
+#include "pba/world.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+namespace pba {
+
+const World::Coupling& World::couple()
+{
+    if (m_coupling.madeFrom != m_keys) // the keys read by storePreviousStates
+        m_coupling = makeCoupling();
+    return m_coupling;
+}
+
+World::Coupling World::makeCoupling() const
+{
+    Coupling coupling;
+    std::vector<std::uint8_t> coupled(m_bodies.size(), 0); // a moving body some force couples
+    for (std::size_t k = 0; k < m_couplings.size(); ++k) {
+        const auto [a, b] = m_couplings[k];
+        const Body& first = *m_bodies[a];
+        const Body& second = *m_bodies[b];
+        for (const std::size_t end : {a, b})
+            if (isRigid(end))
+                throw std::invalid_argument(fmt::format(
+                    "rigid body '{}' is joined to another body by a {}: forces between bodies act on particles only "
+                    "(a rigid body's spring is anchored)",
+                    m_bodies[end]->getName(), m_forces[m_couplingForce[k]]->type()));
+        // Pairs with a fixed end couple nothing between moving bodies, so they put no
+        // condition on the integrators; a moving end is still integrated as coupled,
+        // since its force needs the other end's state.
+        if (!first.isFixed() && !second.isFixed() &&
+            translationalMethod(first.getIntegrator()) != translationalMethod(second.getIntegrator()))
+            throw std::invalid_argument(fmt::format(
+                "bodies '{}' and '{}' are coupled by a {} but use different integrators ({} and {}): "
+                "bodies coupled by forces must share one integrator",
+                first.getName(), second.getName(), m_forces[m_couplingForce[k]]->type(),
+                integratorName(first.getIntegrator()), integratorName(second.getIntegrator())));
+        coupled[a] = first.isFixed() ? 0 : 1;
+        coupled[b] = second.isFixed() ? 0 : 1;
+    }
+    coupling.madeFrom = m_keys;
+    for (std::size_t i = 0; i < m_bodies.size(); ++i) {
+        const Integrator integrator = m_bodies[i]->getIntegrator();
+        if (coupled[i] != 0) {
+            const auto k = std::find(kAllIntegrators.begin(), kAllIntegrators.end(), translationalMethod(integrator));
+            coupling.systems[std::size_t(k - kAllIntegrators.begin())].push_back(i);
+        } else if (isRigid(i) && !m_bodies[i]->isFixed()) {
+            const auto k = std::find(kEveryIntegrator.begin(), kEveryIntegrator.end(), integrator);
+            coupling.rigid[std::size_t(k - kEveryIntegrator.begin())].push_back(i);
+        } else {
+            coupling.independent.push_back(i);
+        }
+    }
+    for (std::size_t k = 0; k < kAllIntegrators.size(); ++k) {
+        if (coupling.systems[k].empty())
+            continue;
+        coupling.wanted[k].assign(m_bodies.size(), 0);
+        for (const std::size_t i : coupling.systems[k])
+            coupling.wanted[k][i] = 1;
+    }
+    for (std::size_t k = 0; k < kEveryIntegrator.size(); ++k) {
+        if (coupling.rigid[k].empty())
+            continue;
+        coupling.rigidWanted[k].assign(m_bodies.size(), 0);
+        for (const std::size_t i : coupling.rigid[k])
+            coupling.rigidWanted[k][i] = 1;
+    }
+    return coupling;
+}
+
+bool World::isCoupled(std::size_t i) const
+{
+    return !m_bodies[i]->isFixed() && std::any_of(m_couplings.begin(), m_couplings.end(),
+                                                  [i](const auto& p) { return p.first == i || p.second == i; });
+}
+
+bool World::hasCoupledBodies() const
+{
+    return std::any_of(m_couplings.begin(), m_couplings.end(), [this](const auto& p) {
+        return !m_bodies[p.first]->isFixed() || !m_bodies[p.second]->isFixed();
+    });
+}
+
+std::vector<std::size_t> World::coupledGroup(std::size_t i) const
+{
+    const auto& pairs = m_couplings;
+    std::vector<std::uint8_t> inGroup(m_bodies.size(), 0);
+    inGroup[i] = 1;
+    // Grow the group until no pair of moving bodies adds to it: a few passes for a chain
+    // listed in order, at worst one per body (a read-out, not part of the step).
+    for (bool grew = !m_bodies[i]->isFixed(); grew;) {
+        grew = false;
+        for (const auto& [a, b] : pairs) {
+            if (m_bodies[a]->isFixed() || m_bodies[b]->isFixed() || inGroup[a] == inGroup[b])
+                continue;
+            inGroup[a] = inGroup[b] = 1;
+            grew = true;
+        }
+    }
+    std::vector<std::size_t> group;
+    for (std::size_t k = 0; k < m_bodies.size(); ++k)
+        if (inGroup[k] != 0)
+            group.push_back(k);
+    return group;
+}
+
+} // namespace pba

@@ -1,0 +1,349 @@
+// A World's step: each body alone, each coupled system and each rigid system with its
+// integrator, then the swarms, the check that every state is finite, and the clock.
+#include "pba/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_reduce.h>
+
+#include "pba/vec3_array.hpp"
+
+#include "collision_rules.hpp"
+#include "parallel.hpp"
+#include "rigid_contact.hpp"
+
+namespace pba {
+
+namespace {
+
+/// The smallest index of a body, among `members`, whose new state `store(k)` (which stores
+/// member k's) reports not finite, on all cores in ranges of `grain`; `none` when every one is.
+/// (Each body's work is its own: the answer does not depend on the thread count.)
+template <class Store>
+std::size_t lowestNonFinite(const std::vector<std::size_t>& members, std::size_t grain, std::size_t none,
+                            Store&& store)
+{
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, members.size(), grain), none,
+        [&](const tbb::blocked_range<std::size_t>& r, std::size_t lowest) {
+            for (std::size_t k = r.begin(); k < r.end(); ++k)
+                if (!store(k))
+                    lowest = std::min(lowest, members[k]);
+            return lowest;
+        },
+        [](std::size_t a, std::size_t b) { return std::min(a, b); });
+}
+
+bool isFinite(const dvec3& u) { return std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z); }
+
+/// What a body's coupling depends on, in a byte: whether it is fixed, and its integrator.
+std::uint8_t couplingKey(const Body& body)
+{
+    return static_cast<std::uint8_t>((body.isFixed() ? 0x80 : 0) | static_cast<int>(body.getIntegrator()));
+}
+
+} // namespace
+
+void World::step(double dt)
+{
+    m_firstNonFinite = m_bodies.size();
+    detail::onCores(m_threads, [&] {
+        storePreviousStates();
+        const Coupling& coupling = couple(); // a mixed coupled group throws before anything moves
+        integrateIndependent(coupling, dt);
+        for (std::size_t k = 0; k < kAllIntegrators.size(); ++k)
+            if (!coupling.systems[k].empty())
+                integrateCoupled(kAllIntegrators[k], coupling.systems[k], coupling.wanted[k], dt);
+        for (std::size_t k = 0; k < kEveryIntegrator.size(); ++k)
+            if (!coupling.rigid[k].empty())
+                integrateRigid(kEveryIntegrator[k], coupling.rigid[k], coupling.rigidWanted[k], dt);
+    });
+    stepSwarms(dt);
+    checkFinite(dt);
+    advanceClock(dt);
+}
+
+void World::checkFinite(double dt)
+{
+    // Every body (the integration phases checked each as they wrote it), and every swarm
+    // (whose step checked its blocks).
+    if (m_firstNonFinite < m_bodies.size()) {
+        const Body& bad = *m_bodies[m_firstNonFinite];
+        std::string quantity = isFinite(bad.getPos()) ? "velocity" : "position";
+        if (isRigid(m_firstNonFinite) && isFinite(bad.getPos()) && isFinite(bad.getVel()))
+            quantity = "angular velocity";
+        rollBack();
+        throw NonFiniteStateError(bad.getName(), m_steps + 1, m_time + dt, quantity);
+    }
+    for (const Swarm& swarm : m_swarms)
+        if (const auto& bad = swarm.nonFinite()) {
+            const NonFiniteStateError error =
+                NonFiniteStateError::inSwarm(swarm.name(), bad->index, m_steps + 1, m_time + dt, bad->quantity);
+            rollBack();
+            throw error;
+        }
+}
+
+void World::advanceClock(double dt)
+{
+    // t = t0 + k dt from the last change of dt, rather than a running sum, so the time of
+    // step n is n dt to rounding instead of drifting by n rounding errors.
+    m_previousTime = m_time;
+    if (dt != m_lastDt) {
+        m_lastDt = dt;
+        m_baseTime = m_time;
+        m_baseSteps = m_steps;
+    }
+    ++m_steps;
+    m_time = m_baseTime + static_cast<double>(m_steps - m_baseSteps) * dt;
+}
+
+void World::storePreviousStates()
+{
+    // One visit to each body's object for all the step reads of it: a 128 x 128 cloth's 16,384
+    // heap objects are slow memory, and each further pass over them cost as much as its springs.
+    const std::size_t n = m_bodies.size();
+    m_masses.resize(n);
+    m_cors.resize(n);
+    m_keys.resize(n);
+    m_scratch.trial.resize(n);
+    detail::forEachIndex(n, [this](std::size_t i) {
+        const Body& b = *m_bodies[i];
+        m_previous[i] = b.getState();
+        m_scratch.trial[i] = m_previous[i]; // the coupled systems' stages start from here
+        m_masses[i] = b.getMass();
+        m_cors[i] = b.getCor();
+        m_keys[i] = couplingKey(b);
+        if (m_isRigid[i] != 0) {
+            const auto& rigid = static_cast<const RigidBody&>(b);
+            m_previousRotation[i] = rigid.getRotation();
+            if (b.isFixed()) // a moving one's pose is set at each stage of its system's step
+                m_poses[i] = Pose{rigid.getOrientation(), rigid.getAngularVelocity()};
+        }
+    });
+    if (m_swarmRollback) {
+        m_swarmsBefore.resize(m_swarms.size());
+        for (std::size_t s = 0; s < m_swarms.size(); ++s)
+            m_swarms[s].saveState(m_swarmsBefore[s]);
+    }
+}
+
+void World::rollBack()
+{
+    // So a viewer can pause on the last finite state instead of drawing garbage (previous and
+    // current then coincide: nothing moves between them).
+    for (std::size_t i = 0; i < m_bodies.size(); ++i) {
+        m_bodies[i]->setState(m_previous[i]);
+        if (isRigid(i))
+            static_cast<RigidBody&>(*m_bodies[i]).setRotation(m_previousRotation[i]);
+    }
+    if (m_swarmRollback)
+        for (std::size_t s = 0; s < m_swarms.size() && s < m_swarmsBefore.size(); ++s)
+            m_swarms[s].restoreState(m_swarmsBefore[s]);
+}
+
+dvec3 World::aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const
+{
+    const Body& b = *m_bodies[i];
+    dvec3 f(0.0);
+    for (const auto& force : m_forces)
+        f += force->force(i, b, x, v);
+    return f / b.getMass();
+}
+
+void World::integrateIndependent(const Coupling& coupling, double dt)
+{
+    for (const std::size_t i : coupling.independent) {
+        Body& b = *m_bodies[i];
+        if (b.isFixed()) {
+            noteIfNotFinite(i, b.getState()); // a program may have put it anywhere
+            continue;
+        }
+        // Every integrator's first evaluation is at the start state: that one is kept as the
+        // body's acceleration, rather than evaluating all the forces once more after the step.
+        bool first = true;
+        dvec3 startAcc(0.0);
+        auto accel = [this, i, &first, &startAcc](const dvec3& x, const dvec3& v) {
+            const dvec3 a = aloneAcceleration(i, x, v);
+            if (first) {
+                startAcc = a;
+                first = false;
+            }
+            return a;
+        };
+        State s = b.getState();
+        const int bounces = stepWithCollisions(m_response, b.getIntegrator(), std::span<const Plane>(m_planes),
+                                               b.getCor(), s.pos, s.vel, dt, accel);
+        m_bounces[i] += static_cast<std::uint64_t>(bounces);
+        b.setState(s);
+        b.setAcc(startAcc);
+        noteIfNotFinite(i, s);
+    }
+}
+
+void World::integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members,
+                             std::span<const std::uint8_t> wanted, double dt)
+{
+    const std::size_t n = members.size();
+    CoupledScratch& s = m_scratch;
+    s.x.resize(n);
+    s.v.resize(n);
+    s.acc.resize(n);
+    detail::forEachIndex(n, [&](std::size_t k) {
+        s.x[k] = m_previous[members[k]].pos;
+        s.v[k] = m_previous[members[k]].vel;
+    });
+    // Every body of the world sits at its start-of-step state (storePreviousStates put it in
+    // s.trial) except the system's, which take each stage's trial state. (A system integrated
+    // before this one leaves its bodies at its last stage: no force couples two systems.)
+    s.forces.resize(m_bodies.size());
+    const BodyStates in{m_bodies, s.trial, wanted, m_masses, {}};
+    Accumulators out{s.forces, {}};
+    bool first = true;
+    auto accel = [&](const Vec3Array& xs, const Vec3Array& vs) {
+        detail::forEachIndex(n, [&](std::size_t k) {
+            s.trial[members[k]] = State{xs[k], vs[k]};
+            s.forces[members[k]] = dvec3(0.0);
+        });
+        for (const auto& force : m_forces)
+            force->accumulate(in, out);
+        Vec3Array a(n);
+        // The first stage is at the start state: the bodies' acceleration, kept in s.acc.
+        detail::forEachIndex(n, [&](std::size_t k) {
+            a[k] = s.forces[members[k]] / m_masses[members[k]];
+            if (first)
+                s.acc[k] = a[k];
+        });
+        first = false;
+        return a;
+    };
+    integrate(integrator, s.x, s.v, dt, accel);
+    collideAndStore(members);
+}
+
+void World::collideAndStore(const std::vector<std::size_t>& members)
+{
+    // Collisions, the bodies' new states and the check that they are finite in one pass, so
+    // each body's object is visited once here: a cloth's bodies are many and far apart.
+    const std::span<const Plane> planes(m_planes);
+    const CoupledScratch& s = m_scratch;
+    const std::size_t bad = lowestNonFinite(members, 2048, m_bodies.size(), [&](std::size_t k) {
+        const std::size_t i = members[k];
+        State end{s.x[k], s.v[k]};
+        if (!planes.empty())
+            m_bounces[i] += static_cast<std::uint64_t>(
+                coupledCollisionResponse() == CollisionResponse::Clamp
+                    ? clampAfterStep(planes, m_cors[i], m_previous[i].pos, end.pos, end.vel)
+                    : reflectAfterStep(planes, m_cors[i], m_previous[i].pos, end.pos, end.vel));
+        Body& b = *m_bodies[i];
+        b.setState(end);
+        b.setAcc(s.acc[k]);
+        return isFinite(end.pos) && isFinite(end.vel);
+    });
+    m_firstNonFinite = std::min(m_firstNonFinite, bad);
+}
+
+void World::integrateRigid(Integrator integrator, const std::vector<std::size_t>& members,
+                           std::span<const std::uint8_t> wanted, double dt)
+{
+    // Three passes over the system's bodies, each on all cores (every body's arithmetic is its
+    // own, so the result does not depend on the thread count): gather, step, contact and store.
+    const std::size_t n = members.size();
+    const dvec3 g = gravity();
+    RigidScratch& r = m_rigidScratch;
+    r.states.resize(n);
+    r.start.resize(n);
+    r.inertia.resize(n);
+    r.startAcc.resize(n);
+    detail::forEachIndex(n, [&](std::size_t k) {
+        const auto& b = static_cast<const RigidBody&>(*m_bodies[members[k]]);
+        r.start[k] = RigidState{b.getPos(), b.getVel(), b.getRotation()};
+        r.states[k] = r.start[k];
+        r.inertia[k] = RigidInertia{1.0 / b.getMass(), b.getInertiaBody(), b.getInverseInertiaBody()};
+    });
+    stepRigid(integrator, members, wanted, dt);
+    resolveRigidContacts(integrator, members, g, dt);
+}
+
+void World::stepRigid(Integrator integrator, const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                      double dt)
+{
+    // As integrateCoupled: the other bodies stay at their start-of-step states and poses while
+    // the system's take each stage's.
+    RigidScratch& r = m_rigidScratch;
+    const std::size_t n = members.size();
+    m_scratch.forces.resize(m_bodies.size());
+    m_torques.resize(m_bodies.size());
+    const BodyStates in{m_bodies, m_scratch.trial, wanted, m_masses, m_poses};
+    Accumulators out{m_scratch.forces, m_torques};
+    bool first = true;
+    const auto wrenches = [&](std::span<const RigidState> at, std::span<Wrench> result) {
+        detail::forEachIndex(n, [&](std::size_t k) {
+            const std::size_t i = members[k];
+            m_scratch.trial[i] = State{at[k].x, at[k].v};
+            const Rotation& turn = at[k].rotation;
+            m_poses[i] = Pose{turn.orientation, angularVelocity(turn.orientation, r.inertia[k].inverseInertiaBody, turn.momentum)};
+            m_scratch.forces[i] = m_torques[i] = dvec3(0.0);
+        });
+        for (const auto& force : m_forces)
+            force->accumulate(in, out);
+        detail::forEachIndex(n, [&](std::size_t k) {
+            const std::size_t i = members[k];
+            result[k] = Wrench{m_scratch.forces[i], m_torques[i]};
+            if (first) // the first stage is at the start: the bodies' acceleration
+                r.startAcc[k] = m_scratch.forces[i] * r.inertia[k].inverseMass;
+        });
+        first = false;
+    };
+    const auto onCores = [](std::size_t count, const auto& fn) { detail::forEachIndex(count, fn); };
+    stepRigidSystem(integrator, std::span<RigidState>(r.states), std::span<const RigidInertia>(r.inertia), dt, wrenches,
+                    onCores, &r.buffers);
+}
+
+void World::resolveRigidContacts(Integrator integrator, const std::vector<std::size_t>& members, const dvec3& g, double dt)
+{
+    // Below this speed a contact does not bounce: one step of gravity's, twice over.
+    const double restingSpeed = 2.0 * glm::length(g) * dt;
+    RigidScratch& r = m_rigidScratch;
+    const std::size_t bad = lowestNonFinite(members, 256, m_bodies.size(), [&](std::size_t k) {
+        const std::size_t i = members[k];
+        auto& b = static_cast<RigidBody&>(*m_bodies[i]);
+        RigidState& s = r.states[k];
+        if (!m_planes.empty()) {
+            const ContactBody body{b.getShape(), b.getContactPoints(), r.inertia[k], b.getCor(), b.getFriction(),
+                                   g, b.getBoundingRadius(), &b.contactMemory()};
+            const ContactStep step{r.start[k], dt, driftWeight(integrator), restingSpeed};
+            m_bounces[i] += resolvePlaneContacts(body, m_planes, step, s) ? 1 : 0;
+        }
+        b.setState(State{s.x, s.v}); // a body that is not finite: the rollback restores it, the message reads it
+        if (!isFinite(s.x) || !isFinite(s.v) || !isFinite(s.rotation.momentum) ||
+            !std::isfinite(s.rotation.orientation.w + s.rotation.orientation.x + s.rotation.orientation.y +
+                           s.rotation.orientation.z))
+            return false;
+        b.setRotation(s.rotation);
+        b.setAcc(r.startAcc[k]);
+        return true;
+    });
+    m_firstNonFinite = std::min(m_firstNonFinite, bad);
+}
+
+void World::noteIfNotFinite(std::size_t i, const State& state)
+{
+    if (!isFinite(state.pos) || !isFinite(state.vel))
+        m_firstNonFinite = std::min(m_firstNonFinite, i);
+}
+
+void World::stepSwarms(double dt)
+{
+    if (m_swarms.empty())
+        return;
+    const SwarmFields fields = swarmFields();
+    std::vector<PlaneT<float>> planes;
+    for (const Plane& p : m_planes)
+        planes.push_back({Vec3<float>(p.normal), float(p.offset), float(p.holeRadius), Vec3<float>(p.holeCentre)});
+    for (Swarm& swarm : m_swarms)
+        swarm.step(fields, planes, m_response, float(dt), m_threads);
+}
+
+} // namespace pba
