@@ -102,34 +102,16 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
     const bool exact = response == CollisionResponse::Exact;
     const std::optional<RoomSurfacesT<float>> room = exact ? std::nullopt : roomSurfaces(planes);
     GatheredHits gathered(a, restitution, planes, response, room);
-    const auto all = [&](const Vec3<float>& x, const Vec3<float>& v) {
-        return swarmAccelerationAll(fields, x, v);
-    };
     const bool drag = fields.dragPerMass != 0.0f;
     const BlowDryerReach reach(fields.dryer, dt, glm::length(dvec3(fields.gravity)), fields.dragPerMass);
     PhaseClock clock(a.phases);
     for (std::size_t b = begin; b < end; b += kBlock) {
         const std::size_t n = std::min(kBlock, end - b);
-        const auto integrate = [&](auto accel) {
-            return integrateBlock<kIntegrator>(a, b, n, dt, start, response, accel);
-        };
         // Whether the states the block's loops wrote are finite: swarms are checked every step
         // like bodies, and the flags say where to look for the first bad particle. Each loop
         // that writes the states tests them while they are in registers (a pass of its own
         // over the block measured as long as the surface test).
-        bool finite = true;
-        if (fields.moreCount > 0 || fields.air)
-            finite = integrate(all);
-        else if (fields.noDryer)
-            finite = drag ? integrate(withoutDryer<true>(fields)) : integrate(withoutDryer<false>(fields));
-        else if (fields.dryerUp)
-            finite = drag
-                ? integrateInDryer<kIntegrator, DryerAxis::Up, true>(a, b, n, dt, start, response, fields, reach)
-                : integrateInDryer<kIntegrator, DryerAxis::Up, false>(a, b, n, dt, start, response, fields, reach);
-        else
-            finite = drag
-                ? integrateInDryer<kIntegrator, DryerAxis::Any, true>(a, b, n, dt, start, response, fields, reach)
-                : integrateInDryer<kIntegrator, DryerAxis::Any, false>(a, b, n, dt, start, response, fields, reach);
+        bool finite = integrateFor<kIntegrator>(a, b, n, dt, start, response, fields, drag, reach);
         clock.lap(SwarmPhaseTimes::Integrate);
         // A crowded block (most of it on the floor last step, as a landed swarm is) skips the
         // surface test and takes the collision pass whole, which leaves a clear particle

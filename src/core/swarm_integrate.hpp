@@ -269,6 +269,32 @@ bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, f
         return integrateAwayFromDryer<kIntegrator, kAxis, kDrag>(a, b, n, dt, start, response, fields, reach, whole);
 }
 
+
+/// Phase 1 of a block: the integration loop the swarm's fields call for. Any force beyond
+/// gravity, drag and one dryer, or the air's velocity terms: the whole acceleration
+/// (swarmAccelerationAll); otherwise a loop compiled for what there is (with drag or without,
+/// with no dryer, an upward one or one at any angle). Returns whether the states it wrote are
+/// finite.
+template <Integrator kIntegrator>
+bool integrateFor(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
+                  CollisionResponse response, const SwarmKernelFields& fields, bool drag, const BlowDryerReach& reach)
+{
+    const auto integrate = [&](auto accel) {
+        return integrateBlock<kIntegrator>(a, b, n, dt, start, response, accel);
+    };
+    if (fields.moreCount > 0 || fields.air)
+        return integrate([&](const Vec3<float>& x, const Vec3<float>& v) {
+            return swarmAccelerationAll(fields, x, v);
+        });
+    if (fields.noDryer)
+        return drag ? integrate(withoutDryer<true>(fields)) : integrate(withoutDryer<false>(fields));
+    if (fields.dryerUp)
+        return drag ? integrateInDryer<kIntegrator, DryerAxis::Up, true>(a, b, n, dt, start, response, fields, reach)
+                    : integrateInDryer<kIntegrator, DryerAxis::Up, false>(a, b, n, dt, start, response, fields, reach);
+    return drag ? integrateInDryer<kIntegrator, DryerAxis::Any, true>(a, b, n, dt, start, response, fields, reach)
+                : integrateInDryer<kIntegrator, DryerAxis::Any, false>(a, b, n, dt, start, response, fields, reach);
+}
+
 } // namespace
 
 } // namespace pba
