@@ -14,6 +14,7 @@
 #include "force_parsers.hpp"
 #include "json_reader.hpp"
 #include "rigid_body_reader.hpp"
+#include "swarm_reader.hpp"
 #include "pba/forces.hpp"
 #include "pba/swarm.hpp"
 #include "pba/scene/scene.hpp"
@@ -68,6 +69,11 @@ using scene_detail::ObjectReader;
 using scene_detail::insideSurfaces;
 using scene_detail::readIntegrator;
 using scene_detail::readName;
+using scene_detail::fitsFloat;
+using scene_detail::kFloatMax;
+using scene_detail::readSwarm;
+using scene_detail::requireMemoryForSwarms;
+using scene_detail::swarmFieldsFit;
 
 void readSurfaces(ObjectReader& root, World& world)
 {
@@ -118,130 +124,6 @@ void readParticle(const Json& value, const std::string& path, const std::string&
         reader.fail("position", "lies outside the ground or room");
     reader.finish();
     world.addParticle(p);
-}
-
-std::uint64_t readCount(ObjectReader& reader, const std::string& key, double limit)
-{
-    const double x = reader.number(key);
-    if (!(x >= 0 && x <= limit && std::floor(x) == x))
-        reader.fail(key, fmt::format("must be a whole number from 0 to {:g}, got {}", limit, x));
-    return static_cast<std::uint64_t>(x);
-}
-
-/// Swarms compute in single precision: a number of theirs must be a normal float (and 1/m too),
-/// or the first step would turn it into an infinity or zero.
-constexpr double kFloatMax = 3.4028234663852886e38;
-constexpr double kFloatMin = 1.1754943508222875e-38;
-
-bool fitsFloat(double x) { return std::abs(x) <= kFloatMax; }
-
-void requireFloat(const ObjectReader& reader, const std::string& key, const dvec3& v)
-{
-    for (int i = 0; i < 3; ++i)
-        if (!fitsFloat(v[i]))
-            reader.fail(key, fmt::format("{} cannot be represented in single precision, as a swarm's numbers are "
-                                         "(at most {:.3g} in size)", v[i], kFloatMax));
-}
-
-/// MemAvailable from /proc/meminfo, in bytes (nothing where it cannot be read).
-std::optional<double> availableMemory()
-{
-    std::ifstream meminfo("/proc/meminfo");
-    std::string key;
-    double kilobytes = 0.0;
-    std::string unit;
-    while (meminfo >> key >> kilobytes >> unit)
-        if (key == "MemAvailable:")
-            return kilobytes * 1024.0;
-    return std::nullopt;
-}
-
-/// A swarm's arrays: six floats a particle, and a byte of "clear of every surface" with exact.
-constexpr double kSwarmBytesPerParticle = 6 * sizeof(float) + 1;
-
-/// Before any swarm is made (a swarm allocates its arrays at once): all the swarms' particles
-/// must fit in the memory available, or the kernel would kill the run minutes later.
-void requireMemoryForSwarms(const Json& document, const std::string& file)
-{
-    if (!document.is_object() || !document.contains("swarms") || !document["swarms"].is_array())
-        return;
-    const auto available = availableMemory();
-    double bytes = 0.0;
-    for (std::size_t i = 0; i < document["swarms"].size(); ++i) {
-        const Json& swarm = document["swarms"][i];
-        if (!swarm.is_object() || !swarm.contains("count") || !swarm["count"].is_number())
-            continue; // readSwarm says what is wrong with it
-        const double count = swarm["count"].get<double>();
-        if (!(count >= 0.0 && count <= 1e8))
-            continue; // not a valid count: readSwarm says so
-        bytes += count * kSwarmBytesPerParticle;
-        if (available && bytes > *available)
-            throw SceneError(file, fmt::format("swarms[{}].count", i),
-                             fmt::format("{:g} particles need {:.2f} GB with the swarms before them, more than the "
-                                         "{:.2f} GB of memory available", count, bytes / 1e9, *available / 1e9));
-    }
-}
-
-void readSwarm(const Json& value, const std::string& path, const std::string& file, World& world,
-               std::set<std::string>& names)
-{
-    ObjectReader reader(value, path, file);
-    reader.expectKeys({"name", "count", "region", "velocity", "velocity_jitter", "mass", "restitution", "integrator",
-                       "seed"});
-    SwarmDesc desc;
-    desc.name = readName(reader, "name");
-    if (desc.name.empty() || !names.insert(desc.name).second)
-        reader.fail("name", desc.name.empty() ? "must not be empty" : fmt::format("'{}' is already taken", desc.name));
-    desc.count = readCount(reader, "count", 1e8);
-    ObjectReader region = reader.object("region");
-    region.expectKeys({"min", "max"});
-    desc.regionMin = region.vec3("min");
-    desc.regionMax = region.vec3("max");
-    for (int i = 0; i < 3; ++i)
-        if (desc.regionMin[i] > desc.regionMax[i])
-            region.fail("min", fmt::format("must not be above max (axis {})", "xyz"[i]));
-    region.finish();
-    if (!insideSurfaces(world, desc.regionMin) || !insideSurfaces(world, desc.regionMax))
-        reader.fail("region", "lies outside the ground or room");
-    desc.velocity = reader.vec3("velocity", dvec3(0.0));
-    desc.velocityJitter = reader.nonNegative("velocity_jitter", 0.0);
-    requireFloat(region, "min", desc.regionMin);
-    requireFloat(region, "max", desc.regionMax);
-    requireFloat(reader, "velocity", desc.velocity + dvec3(desc.velocityJitter) * glm::sign(desc.velocity));
-    requireFloat(reader, "velocity_jitter", dvec3(desc.velocityJitter));
-    desc.mass = reader.positive("mass", 1.0);
-    if (!(desc.mass >= kFloatMin && desc.mass <= kFloatMax))
-        reader.fail("mass", fmt::format("{} cannot be represented in single precision with its inverse, as a "
-                                        "swarm's numbers are (from {:.3g} to {:.3g} kg)",
-                                        desc.mass, kFloatMin, kFloatMax));
-    desc.restitution = reader.number("restitution", 1.0);
-    if (!(desc.restitution >= 0.0 && desc.restitution <= 1.0))
-        reader.fail("restitution", fmt::format("must be in [0, 1], got {}", desc.restitution));
-    desc.integrator = readIntegrator(reader, "integrator", Integrator::SemiImplicitEuler);
-    desc.seed = readCount(reader, "seed", 9007199254740992.0);
-    reader.finish();
-    world.addSwarm(desc);
-}
-
-/// A scene with swarms: the fields that act on them (gravity, drag, blow dryers), turned into
-/// each swarm's accelerations in float, must stay finite.
-bool swarmFieldsFit(const World& world)
-{
-    const SwarmFields fields = world.swarmFields();
-    for (std::size_t s = 0; s < world.swarmCount(); ++s) {
-        const SwarmKernelFields k(fields, 1.0f / world.swarm(s).mass());
-        auto finite = [](float x) { return std::isfinite(x); };
-        bool ok = finite(k.gravity.x) && finite(k.gravity.y) && finite(k.gravity.z) && finite(k.dragPerMass);
-        std::vector<BlowDryerKernelT<float>> dryers{k.dryer};
-        dryers.insert(dryers.end(), k.more.begin(), k.more.end());
-        for (const auto& d : dryers)
-            ok = ok && finite(d.axial.a) && finite(d.axial.b) && finite(d.axial.c) && finite(d.shaftPush) &&
-                 finite(d.airDrag) && finite(d.pull) && finite(d.inverseHeight) && finite(d.height * d.height) &&
-                 finite(d.nozzle.x) && finite(d.nozzle.y) && finite(d.nozzle.z) && finite(d.shaftRadius2);
-        if (!ok)
-            return false;
-    }
-    return true;
 }
 
 /// A force's keys depend on its type; while the type is missing or unknown, any key of any
