@@ -174,6 +174,101 @@ bool pushOut(const ContactBody& body, std::span<const Plane> planes, double radi
     return moved;
 }
 
+/// Of the candidates, the contacts: the points that at the end's velocity (v, omega) would
+/// reach their surface within the step, each with the normal speed it should leave with and
+/// its three rows set up. Returns whether one bounces.
+bool keepArriving(const ContactBody& body, const ContactStep& step, const dvec3& v, const dvec3& omega,
+                  const dmat3& inverseInertia, std::vector<Contact>& contacts)
+{
+    bool bounced = false;
+    // A box's points on one surface share its normal, and so its tangents: worked out once (a
+    // root and a division), not for every point. Compared bit for bit, so that a -0 component
+    // never takes the tangents of a +0.
+    dvec3 tangent[2]{dvec3(0.0), dvec3(0.0)}, tangentsFor(0.0);
+    bool tangentsKnown = false;
+    std::erase_if(contacts, [&](Contact& c) {
+        const double arriving = glm::dot(c.normal, v + glm::cross(omega, c.arm));
+        if (c.gap + std::min(arriving, 0.0) * step.dt > 0.0 && c.gap > 0.0)
+            return true;
+        // Faster than resting, it bounces: leaves at e times its arriving speed. Slower, it may
+        // close the gap but not cross it (a speculative contact: a body at rest stays at rest,
+        // with no velocity that would make it jitter, and no penetration to push it out of).
+        const bool bounce = arriving < -step.restingSpeed;
+        c.target = bounce ? -body.restitution * arriving : std::max(c.gap, 0.0) / -step.dt;
+        bounced = bounced || bounce;
+        if (!tangentsKnown || std::memcmp(&c.normal, &tangentsFor, sizeof(dvec3)) != 0) {
+            tangentsOf(c.normal, tangent);
+            tangentsFor = c.normal;
+            tangentsKnown = true;
+        }
+        c.along.setUp(c.normal, c.arm, body.inertia.inverseMass, inverseInertia);
+        for (int t = 0; t < 2; ++t)
+            c.across[t].setUp(tangent[t], c.arm, body.inertia.inverseMass, inverseInertia);
+        return false;
+    });
+    return bounced;
+}
+
+/// Warm start: a contact that persists (the same point against the same surface) takes the
+/// impulses it ended the last step with; a bouncing one starts from none, so that its
+/// restitution is not fed by the last step's push. The memory is then empty, for this step's.
+void warmStart(RigidBody::ContactMemory& memory, double dt, std::vector<Contact>& contacts)
+{
+    const auto& remembered = memory.impulses;
+    for (Contact& c : contacts) {
+        if (c.target != std::max(c.gap, 0.0) / -dt)
+            continue; // bouncing
+        for (std::size_t k = 0; k < memory.count; ++k)
+            if (remembered[k].point == c.point && remembered[k].surface == c.surface) {
+                c.along.impulse = remembered[k].normal;
+                c.across[0].impulse = remembered[k].tangent[0];
+                c.across[1].impulse = remembered[k].tangent[1];
+            }
+    }
+    memory.count = 0;
+}
+
+/// Solves the contacts (solveImpulses), remembers the pushing ones' impulses for the next
+/// step's warm start, and moves the end pose: the impulses act at the start of the step, so it
+/// moves by the part of the step's drift that the end velocity drives (driftWeight).
+void solveAtStart(const ContactBody& body, const ContactStep& step, const dmat3& inverseInertia,
+                  std::vector<Contact>& contacts, RigidState& s)
+{
+    const dvec3 v0 = s.v, l0 = s.rotation.momentum;
+    solveImpulses(contacts, body.friction, body.inertia.inverseMass, inverseInertia, s.v, s.rotation.momentum);
+    if (body.memory)
+        for (const Contact& c : contacts)
+            if (c.along.impulse > 0.0 && body.memory->count < RigidBody::kRememberedContacts)
+                body.memory->impulses[body.memory->count++] = {c.point, c.surface, c.along.impulse,
+                                                               {c.across[0].impulse, c.across[1].impulse}};
+    const double drift = step.driftWeight * step.dt;
+    s.x += (s.v - v0) * drift;
+    const dvec3 turn = inverseInertia * (s.rotation.momentum - l0);
+    s.rotation.orientation =
+        glm::normalize(s.rotation.orientation + orientationRate(step.start.rotation.orientation, turn) * drift);
+}
+
+/// No contact leaves the body with more energy than it started the step with, or would have
+/// ended it with untouched: what the linearised contacts and the push-out would add is taken
+/// from its motion (v and L scaled alike).
+void capEnergy(const ContactBody& body, const RigidState& start, const RigidState& untouched, RigidState& s)
+{
+    const double reference = std::max(energyInGravity(start, body.inertia, body.gravity),
+                                      energyInGravity(untouched, body.inertia, body.gravity));
+    const double excess = energyInGravity(s, body.inertia, body.gravity) - reference;
+    if (!(excess > 0.0)) // a NaN too: the finite check names the body
+        return;
+    const double kinetic = energyInGravity(RigidState{dvec3(0.0), s.v, s.rotation}, body.inertia, body.gravity);
+    const double keep = kinetic > excess ? std::sqrt(1.0 - excess / kinetic) : 0.0;
+    s.v *= keep;
+    s.rotation.momentum *= keep;
+    // Too little motion to take it from (a slow bounce, whose linearised contact leaves the
+    // body a little higher than its arc would): the body ends that much lower instead.
+    const double g2 = glm::dot(body.gravity, body.gravity);
+    if (kinetic < excess && g2 > 0.0)
+        s.x += body.gravity * ((excess - kinetic) * body.inertia.inverseMass / g2);
+}
+
 } // namespace
 
 double driftWeight(Integrator integrator)
@@ -200,7 +295,6 @@ bool resolvePlaneContacts(const ContactBody& body, std::span<const Plane> planes
 {
     const RigidState& start = step.start;
     const dmat3 r = glm::mat3_cast(start.rotation.orientation);
-    const double inverseMass = body.inertia.inverseMass;
     const dmat3 inverseInertia = r * body.inertia.inverseInertiaBody * glm::transpose(r);
     const dvec3 omega = inverseInertia * s.rotation.momentum; // the end's, at the start's pose
     // No point moves further in the step than the centre's and the spin's reach.
@@ -209,92 +303,21 @@ bool resolvePlaneContacts(const ContactBody& body, std::span<const Plane> planes
     thread_local std::vector<Contact> contacts;
     contacts.clear();
     candidates(body, planes, start.x, r, radius + reach, reach, contacts);
-    // A point takes part if, at the end's velocity, it would reach its surface within the step.
-    bool bounced = false;
-    // A box's points on one surface share its normal, and so its tangents: worked out once (a
-    // root and a division), not for every point. Compared bit for bit, so that a -0 component
-    // never takes the tangents of a +0.
-    dvec3 tangent[2]{dvec3(0.0), dvec3(0.0)}, tangentsFor(0.0);
-    bool tangentsKnown = false;
-    std::erase_if(contacts, [&](Contact& c) {
-        const double arriving = glm::dot(c.normal, s.v + glm::cross(omega, c.arm));
-        if (c.gap + std::min(arriving, 0.0) * step.dt > 0.0 && c.gap > 0.0)
-            return true;
-        // Faster than resting, it bounces: leaves at e times its arriving speed. Slower, it may
-        // close the gap but not cross it (a speculative contact: a body at rest stays at rest,
-        // with no velocity that would make it jitter, and no penetration to push it out of).
-        const bool bounce = arriving < -step.restingSpeed;
-        c.target = bounce ? -body.restitution * arriving : std::max(c.gap, 0.0) / -step.dt;
-        bounced = bounced || bounce;
-        if (!tangentsKnown || std::memcmp(&c.normal, &tangentsFor, sizeof(dvec3)) != 0) {
-            tangentsOf(c.normal, tangent);
-            tangentsFor = c.normal;
-            tangentsKnown = true;
-        }
-        c.along.setUp(c.normal, c.arm, inverseMass, inverseInertia);
-        for (int t = 0; t < 2; ++t)
-            c.across[t].setUp(tangent[t], c.arm, inverseMass, inverseInertia);
-        return false;
-    });
-    if (body.memory) {
-        // Warm start: a contact that persists (the same point against the same surface) takes
-        // the impulses it ended the last step with; a bouncing one starts from none, so that
-        // its restitution is not fed by the last step's push.
-        const auto& remembered = body.memory->impulses;
-        for (Contact& c : contacts) {
-            if (c.target != std::max(c.gap, 0.0) / -step.dt)
-                continue; // bouncing
-            for (std::size_t k = 0; k < body.memory->count; ++k)
-                if (remembered[k].point == c.point && remembered[k].surface == c.surface) {
-                    c.along.impulse = remembered[k].normal;
-                    c.across[0].impulse = remembered[k].tangent[0];
-                    c.across[1].impulse = remembered[k].tangent[1];
-                }
-        }
-        body.memory->count = 0;
-    }
+    const bool bounced = keepArriving(body, step, s.v, omega, inverseInertia, contacts);
+    if (body.memory)
+        warmStart(*body.memory, step.dt, contacts);
     const RigidState untouched = s;
-    if (!contacts.empty()) {
-        const dvec3 v0 = s.v, l0 = s.rotation.momentum;
-        solveImpulses(contacts, body.friction, inverseMass, inverseInertia, s.v, s.rotation.momentum);
-        if (body.memory)
-            for (const Contact& c : contacts)
-                if (c.along.impulse > 0.0 && body.memory->count < RigidBody::kRememberedContacts)
-                    body.memory->impulses[body.memory->count++] = {c.point, c.surface, c.along.impulse,
-                                                                   {c.across[0].impulse, c.across[1].impulse}};
-        // The impulses act at the start of the step: the end pose moves by the part of the step's
-        // drift that the end velocity drives (driftWeight).
-        const double drift = step.driftWeight * step.dt;
-        s.x += (s.v - v0) * drift;
-        const dvec3 turn = inverseInertia * (s.rotation.momentum - l0);
-        s.rotation.orientation =
-            glm::normalize(s.rotation.orientation + orientationRate(start.rotation.orientation, turn) * drift);
-    }
+    if (!contacts.empty())
+        solveAtStart(body, step, inverseInertia, contacts, s);
     // The contacts' prediction is exact for a body that moves its whole drift with the end's
     // velocity (semi-implicit Euler) and does not turn: then, and while the turn's arc departs
     // from the straight line by less than a picometre, the end pose needs no second look.
     const double spin = glm::length(inverseInertia * s.rotation.momentum);
     const bool straight = step.driftWeight == 1.0 && 0.5 * spin * spin * radius * step.dt * step.dt < 1e-12;
     const bool pushed = !straight && pushOut(body, planes, radius, s);
-    // No contact leaves the body with more energy than it started the step with, or would have
-    // ended it with untouched: what the linearised contacts and the push-out would add is taken
-    // from its motion (v and L scaled alike).
     if (!pushed && contacts.empty())
         return bounced; // untouched: nothing to check (most bodies in flight)
-    const double reference = std::max(energyInGravity(start, body.inertia, body.gravity),
-                                      energyInGravity(untouched, body.inertia, body.gravity));
-    const double excess = energyInGravity(s, body.inertia, body.gravity) - reference;
-    if (excess > 0.0) {
-        const double kinetic = energyInGravity(RigidState{dvec3(0.0), s.v, s.rotation}, body.inertia, body.gravity);
-        const double keep = kinetic > excess ? std::sqrt(1.0 - excess / kinetic) : 0.0;
-        s.v *= keep;
-        s.rotation.momentum *= keep;
-        // Too little motion to take it from (a slow bounce, whose linearised contact leaves the
-        // body a little higher than its arc would): the body ends that much lower instead.
-        const double g2 = glm::dot(body.gravity, body.gravity);
-        if (kinetic < excess && g2 > 0.0)
-            s.x += body.gravity * ((excess - kinetic) * inverseMass / g2);
-    }
+    capEnergy(body, start, untouched, s);
     return bounced;
 }
 
