@@ -147,6 +147,76 @@ struct RigidStepBuffers {
     std::vector<rigid_detail::Derivative> k1, k2, k3;
 };
 
+namespace rigid_detail {
+
+/// stepRigidSystem's velocity Verlet, from the start's wrenches in b.w (see there).
+template <class Evaluate, class ForEach>
+void velocityVerletStages(RigidStepBuffers& b, std::span<RigidState> states, std::span<const RigidInertia> inertia,
+                          double dt, Evaluate&& evaluate, ForEach&& forEach)
+{
+    const std::size_t n = states.size();
+    auto& w = b.w;
+    auto& w0 = b.w0;
+    auto& start = b.start;
+    auto& stage = b.stage;
+    w0 = w;
+    forEach(n, [&](std::size_t k) {
+        const RigidState& s0 = start[k];
+        const dvec3 a0 = w0[k].force * inertia[k].inverseMass;
+        const dvec3 half = s0.rotation.momentum + w0[k].torque * (0.5 * dt);
+        const dquat& q0 = s0.rotation.orientation;
+        const dquat mid = glm::normalize(q0 + rate(q0, inertia[k].inverseInertiaBody, half) * (0.5 * dt));
+        stage[k] = {s0.x + s0.v * dt + a0 * (0.5 * dt * dt), s0.v + a0 * dt,
+                    Rotation{q0 + rate(mid, inertia[k].inverseInertiaBody, half) * dt,
+                             s0.rotation.momentum + w0[k].torque * dt}};
+    });
+    evaluate(stage);
+    forEach(n, [&](std::size_t k) {
+        const RigidState& s0 = start[k];
+        states[k] = {stage[k].x, s0.v + (w0[k].force + w[k].force) * (0.5 * dt * inertia[k].inverseMass),
+                     Rotation{stage[k].rotation.orientation,
+                              s0.rotation.momentum + (w0[k].torque + w[k].torque) * (0.5 * dt)}};
+    });
+}
+
+/// stepRigidSystem's RK4, from the start's wrenches in b.w (see there).
+template <class Evaluate, class ForEach>
+void rk4Stages(RigidStepBuffers& b, std::span<RigidState> states, std::span<const RigidInertia> inertia, double dt,
+               Evaluate&& evaluate, ForEach&& forEach)
+{
+    const std::size_t n = states.size();
+    auto& w = b.w;
+    auto& start = b.start;
+    auto& stage = b.stage;
+    auto& k1 = b.k1;
+    auto& k2 = b.k2;
+    auto& k3 = b.k3;
+    k1.resize(n), k2.resize(n), k3.resize(n);
+    forEach(n, [&](std::size_t k) {
+        k1[k] = derivative(start[k], w[k], inertia[k]);
+        stage[k] = advance(start[k], k1[k], 0.5 * dt);
+    });
+    evaluate(stage);
+    forEach(n, [&](std::size_t k) {
+        k2[k] = derivative(stage[k], w[k], inertia[k]);
+        stage[k] = advance(start[k], k2[k], 0.5 * dt);
+    });
+    evaluate(stage);
+    forEach(n, [&](std::size_t k) {
+        k3[k] = derivative(stage[k], w[k], inertia[k]);
+        stage[k] = advance(start[k], k3[k], dt);
+    });
+    evaluate(stage);
+    forEach(n, [&](std::size_t k) {
+        const Derivative k4 = derivative(stage[k], w[k], inertia[k]);
+        const Derivative sum{k1[k].dx + (k2[k].dx + k3[k].dx) * 2.0 + k4.dx, k1[k].dv + (k2[k].dv + k3[k].dv) * 2.0 + k4.dv,
+                             k1[k].dq + (k2[k].dq + k3[k].dq) * 2.0 + k4.dq, k1[k].dl + (k2[k].dl + k3[k].dl) * 2.0 + k4.dl};
+        states[k] = advance(start[k], sum, dt / 6.0);
+    });
+}
+
+} // namespace rigid_detail
+
 template <class Wrenches, class ForEach = InOrder>
 inline void stepRigidSystem(Integrator integrator, std::span<RigidState> states, std::span<const RigidInertia> inertia,
                             double dt, Wrenches&& wrenches, ForEach&& forEach = {}, RigidStepBuffers* buffers = nullptr)
@@ -158,13 +228,9 @@ inline void stepRigidSystem(Integrator integrator, std::span<RigidState> states,
     // Named references rather than a structured binding: the lambdas below capture them (which
     // clang 14, the fuzz build's compiler, does not allow for bindings).
     auto& w = b.w;
-    auto& w0 = b.w0;
     auto& start = b.start;
     auto& stage = b.stage;
     auto& unit = b.unit;
-    auto& k1 = b.k1;
-    auto& k2 = b.k2;
-    auto& k3 = b.k3;
     w.resize(n);
     stage.resize(n);
     unit.resize(n);
@@ -198,52 +264,12 @@ inline void stepRigidSystem(Integrator integrator, std::span<RigidState> states,
             implicitGyroscopicStep(s.rotation, inertia[k].inertiaBody, inertia[k].inverseInertiaBody, w[k].torque, dt);
         });
         break;
-    case Integrator::VelocityVerlet: {
-        w0 = w;
-        forEach(n, [&](std::size_t k) {
-            const RigidState& s0 = start[k];
-            const dvec3 a0 = w0[k].force * inertia[k].inverseMass;
-            const dvec3 half = s0.rotation.momentum + w0[k].torque * (0.5 * dt);
-            const dquat& q0 = s0.rotation.orientation;
-            const dquat mid = glm::normalize(q0 + rate(q0, inertia[k].inverseInertiaBody, half) * (0.5 * dt));
-            stage[k] = {s0.x + s0.v * dt + a0 * (0.5 * dt * dt), s0.v + a0 * dt,
-                        Rotation{q0 + rate(mid, inertia[k].inverseInertiaBody, half) * dt,
-                                 s0.rotation.momentum + w0[k].torque * dt}};
-        });
-        evaluate(stage);
-        forEach(n, [&](std::size_t k) {
-            const RigidState& s0 = start[k];
-            states[k] = {stage[k].x, s0.v + (w0[k].force + w[k].force) * (0.5 * dt * inertia[k].inverseMass),
-                         Rotation{stage[k].rotation.orientation,
-                                  s0.rotation.momentum + (w0[k].torque + w[k].torque) * (0.5 * dt)}};
-        });
+    case Integrator::VelocityVerlet:
+        velocityVerletStages(b, states, inertia, dt, evaluate, forEach);
         break;
-    }
-    case Integrator::RK4: {
-        k1.resize(n), k2.resize(n), k3.resize(n);
-        forEach(n, [&](std::size_t k) {
-            k1[k] = derivative(start[k], w[k], inertia[k]);
-            stage[k] = advance(start[k], k1[k], 0.5 * dt);
-        });
-        evaluate(stage);
-        forEach(n, [&](std::size_t k) {
-            k2[k] = derivative(stage[k], w[k], inertia[k]);
-            stage[k] = advance(start[k], k2[k], 0.5 * dt);
-        });
-        evaluate(stage);
-        forEach(n, [&](std::size_t k) {
-            k3[k] = derivative(stage[k], w[k], inertia[k]);
-            stage[k] = advance(start[k], k3[k], dt);
-        });
-        evaluate(stage);
-        forEach(n, [&](std::size_t k) {
-            const Derivative k4 = derivative(stage[k], w[k], inertia[k]);
-            const Derivative sum{k1[k].dx + (k2[k].dx + k3[k].dx) * 2.0 + k4.dx, k1[k].dv + (k2[k].dv + k3[k].dv) * 2.0 + k4.dv,
-                                 k1[k].dq + (k2[k].dq + k3[k].dq) * 2.0 + k4.dq, k1[k].dl + (k2[k].dl + k3[k].dl) * 2.0 + k4.dl};
-            states[k] = advance(start[k], sum, dt / 6.0);
-        });
+    case Integrator::RK4:
+        rk4Stages(b, states, inertia, dt, evaluate, forEach);
         break;
-    }
     }
     forEach(n, [&](std::size_t k) { states[k].rotation.orientation = glm::normalize(states[k].rotation.orientation); });
 }
