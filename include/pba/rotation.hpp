@@ -116,20 +116,7 @@ inline RigidState advance(const RigidState& s, const Derivative& d, double h)
 
 } // namespace rigid_detail
 
-/// One step of the named integrator for a system of rigid bodies, translation and rotation
-/// together: `wrenches(stage, out)` fills out[k] with the force and torque on body k at the
-/// stage's states (every body's at once, so forces between them see one consistent stage, and
-/// a force at a point couples a body's translation and rotation). The methods are the
-/// translational ones (integrator.hpp) applied to (x, q; v, L):
-///  - forward Euler moves x and q with the start's v and omega;
-///  - semi-implicit Euler first changes v and L, then moves x and q with the new ones;
-///  - velocity Verlet drifts x with the start's acceleration and q by the midpoint rule with L
-///    kicked by half a step, evaluates there (at the predicted v and L), and kicks again;
-///  - RK4 is the classic method on the whole state;
-///  - implicit-gyroscopic is semi-implicit Euler with the rotation's implicit gyroscopic step.
-/// q is renormalised at the end of every step; the stages a force sees have unit q. `forEach(n,
-/// fn)` runs fn(k) for every body k < n: in order by default, or spread over cores by a caller
-/// whose bodies are many (each body's arithmetic is its own, so the result is the same).
+/// stepRigidSystem's default `forEach`: every body in order, on the calling thread.
 struct InOrder {
     template <class F>
     void operator()(std::size_t n, F&& fn) const
@@ -217,6 +204,20 @@ void rk4Stages(RigidStepBuffers& b, std::span<RigidState> states, std::span<cons
 
 } // namespace rigid_detail
 
+/// One step of the named integrator for a system of rigid bodies, translation and rotation
+/// together: `wrenches(stage, out)` fills out[k] with the force and torque on body k at the
+/// stage's states (every body's at once, so forces between them see one consistent stage, and
+/// a force at a point couples a body's translation and rotation). The methods are the
+/// translational ones (integrator.hpp) applied to (x, q; v, L):
+///  - forward Euler moves x and q with the start's v and omega;
+///  - semi-implicit Euler first changes v and L, then moves x and q with the new ones;
+///  - velocity Verlet drifts x with the start's acceleration and q by the midpoint rule with L
+///    kicked by half a step, evaluates there (at the predicted v and L), and kicks again;
+///  - RK4 is the classic method on the whole state;
+///  - implicit-gyroscopic is semi-implicit Euler with the rotation's implicit gyroscopic step.
+/// q is renormalised at the end of every step; the stages a force sees have unit q. `forEach(n,
+/// fn)` runs fn(k) for every body k < n: in order by default, or spread over cores by a caller
+/// whose bodies are many (each body's arithmetic is its own, so the result is the same).
 template <class Wrenches, class ForEach = InOrder>
 inline void stepRigidSystem(Integrator integrator, std::span<RigidState> states, std::span<const RigidInertia> inertia,
                             double dt, Wrenches&& wrenches, ForEach&& forEach = {}, RigidStepBuffers* buffers = nullptr)
