@@ -11,7 +11,6 @@
 #include <optional>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -93,7 +92,7 @@ int runPeerWorker(const BenchOptions& options)
     const World first = std::move(phaseWorlds(n, *phase).back());
     World world = first;
     double t = startTime;
-    const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    const int cores = machineCores();
     fmt::print("{}\n", nlohmann::json{{"ready", true}, {"n", n}, {"phase", options.phase}, {"t", t},
                                       {"threads", cores}}.dump());
     std::fflush(stdout);
@@ -267,7 +266,7 @@ int runBench(const BenchOptions& options)
         sizes = {1000, 100000};
     const double minTime = options.quick ? 0.02 : 0.25;
     const int repeats = options.windows > 0 ? options.windows : options.quick ? 1 : 6;
-    const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    const int cores = machineCores();
     std::vector<Row> rows;
     const std::size_t largest = *std::max_element(sizes.begin(), sizes.end());
     const double memory = largest >= 1000000 ? bytesPerParticle(largest) : 0.0;
@@ -285,7 +284,7 @@ int runBench(const BenchOptions& options)
     const SpanRun dice = runDice(options.quick, cores);
     if (!options.json)
         fmt::print(stderr, "stepping fountain-1m through its whole duration\n");
-    const SceneRun fountain = runScene(options.quick);
+    const SceneRun fountain = runScene(options.quick, cores);
     if (options.json)
         printJson(rows, cloth, dice, fountain, cores);
     else

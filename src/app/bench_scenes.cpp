@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <thread>
 #include <utility>
 
 #include "bench_timing.hpp"
@@ -87,14 +86,14 @@ SpanRun runDice(bool quick, int cores)
 /// collision code runs for all of them every step, and the last second is the slowest. A
 /// program must keep up with its slowest second, so that is the row's rate; the whole run's
 /// average is beside it.
-SceneRun runScene(bool quick)
+SceneRun runScene(bool quick, int cores)
 {
     Scene scene = loadScene("fountain-1m");
     World& world = scene.world;
     world.setThreads(0);
     SceneRun fountain;
     SpanRun& run = fountain.run;
-    run.threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    run.threads = cores;
     run.spanSteps = quick ? 4 : static_cast<int>(std::lround(1.0 / scene.dt));
     run.spans = quick ? 2 : static_cast<int>(std::lround(scene.duration));
     const auto [slowest, total] = timeSpans(world, scene.dt, run.spans, run.spanSteps);

@@ -48,7 +48,8 @@ struct SceneRun {
 };
 
 /// fountain-1m as a program runs it: a million particles, all cores, steps of the scene's dt
-/// over its whole duration, timed a simulated second at a time (`quick`: two spans of 4 steps).
-SceneRun runScene(bool quick);
+/// over its whole duration, timed a simulated second at a time (`quick`: two spans of 4 steps);
+/// `cores`, what the row reports as its threads.
+SceneRun runScene(bool quick, int cores);
 
 } // namespace pba::app::bench

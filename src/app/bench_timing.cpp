@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <limits>
 #include <memory>
+#include <thread>
 
 namespace pba::app::bench {
+
+int machineCores() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
 
 double seconds(Clock::time_point from) { return std::chrono::duration<double>(Clock::now() - from).count(); }
 

@@ -13,6 +13,9 @@ namespace pba::app::bench {
 
 using Clock = std::chrono::steady_clock;
 
+/// The cores the rows call "all cores": what the machine reports, at least one.
+int machineCores();
+
 /// Seconds since `from`.
 double seconds(Clock::time_point from);
 
