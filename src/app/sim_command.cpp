@@ -167,55 +167,71 @@ void printSummary(const Scene& scene, const World& world, const std::vector<Body
     printJetSummary(world, jet);
 }
 
-int runSim(const SimOptions& options)
+/// --frame-rate's checks: a rate the clock can take, and no more frames than a run may.
+void checkFrameRate(const SimOptions& options, const Scene& scene)
 {
-    Scene scene = loadSceneWithOverrides(options.scene);
-    if (options.frameRate && !(std::isfinite(*options.frameRate) && *options.frameRate > 0.0))
-        throw UsageError(fmt::format("--frame-rate: must be finite and positive, got {}", *options.frameRate));
-    if (options.frameRate && !(scene.duration * *options.frameRate <= kMaxSteps))
+    if (!options.frameRate)
+        return;
+    const double hz = *options.frameRate;
+    if (!(std::isfinite(hz) && hz > 0.0))
+        throw UsageError(fmt::format("--frame-rate: must be finite and positive, got {}", hz));
+    if (!(scene.duration * hz <= kMaxSteps))
         throw UsageError(fmt::format("--frame-rate: {:g} s at {:g} Hz is {:.3g} frames, more than the {:g} a run may "
-                                     "take", scene.duration, *options.frameRate, scene.duration * *options.frameRate,
-                                     kMaxSteps));
-    std::unique_ptr<AtomicFile> csv;
-    if (options.out) {
-        csv = std::make_unique<AtomicFile>(*options.out);
-        writeCsvHeader(csv->stream(), scene.world.hasRigidBodies());
+                                     "take", scene.duration, hz, scene.duration * hz, kMaxSteps));
+}
+
+/// What a run keeps of each step: the summary's highest points, and the CSV rows on request.
+class StepRecord {
+public:
+    StepRecord(const World& world, AtomicFile* csv, bool swarmParticles)
+        : world_(world), csv_(csv), swarmParticles_(swarmParticles), summary_(world.bodyCount())
+    {
+        const std::vector<double> startEnergies = world.energies();
+        for (std::size_t i = 0; i < world.bodyCount(); ++i) {
+            summary_[i].startEnergy = startEnergies[i];
+            summary_[i].highest = world.body(i).getPos().y;
+        }
     }
 
-    World& world = scene.world;
-    std::vector<BodySummary> summary(world.bodyCount());
-    const std::vector<double> startEnergies = world.energies();
-    for (std::size_t i = 0; i < world.bodyCount(); ++i) {
-        summary[i].startEnergy = startEnergies[i];
-        summary[i].highest = world.body(i).getPos().y;
-    }
-    study::JetWatch jet(world);
-    auto record = [&] {
+    void operator()()
+    {
         // The state can be finite while its energy has overflowed (0.5 k x^2 with x ~ 1e155):
         // a row with an infinite energy is no more valid than one with an infinite position.
         // The total is finite when every body's is, and cheaper (each interaction once): only
         // when it is not is the culprit looked for.
-        if (!std::isfinite(world.totalEnergy())) {
-            const std::vector<double> energies = world.energies();
-            for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (!std::isfinite(world_.totalEnergy())) {
+            const std::vector<double> energies = world_.energies();
+            for (std::size_t i = 0; i < world_.bodyCount(); ++i)
                 if (!std::isfinite(energies[i]))
-                    throw NonFiniteStateError(world.body(i).getName(), world.stepCount(), world.time(), "energy");
+                    throw NonFiniteStateError(world_.body(i).getName(), world_.stepCount(), world_.time(), "energy");
         }
-        for (std::size_t i = 0; i < world.bodyCount(); ++i)
-            summary[i].highest = std::max(summary[i].highest, world.body(i).getPos().y);
-        if (csv)
-            writeCsvRows(csv->stream(), world, world.hasRigidBodies());
-        if (csv && options.swarmParticles)
-            writeSwarmRows(csv->stream(), world, world.hasRigidBodies());
-    };
+        for (std::size_t i = 0; i < world_.bodyCount(); ++i)
+            summary_[i].highest = std::max(summary_[i].highest, world_.body(i).getPos().y);
+        if (csv_)
+            writeCsvRows(csv_->stream(), world_, world_.hasRigidBodies());
+        if (csv_ && swarmParticles_)
+            writeSwarmRows(csv_->stream(), world_, world_.hasRigidBodies());
+    }
 
-    // The number of steps depends on dt and duration alone. With --frame-rate the clock
-    // hands them out in frames of 1/HZ seconds, as the viewer would: same steps, same bytes.
+    const std::vector<BodySummary>& summary() const { return summary_; }
+
+private:
+    const World& world_;
+    AtomicFile* csv_;
+    bool swarmParticles_;
+    std::vector<BodySummary> summary_;
+};
+
+/// Steps the scene to its end, recording every step. The number of steps depends on dt and
+/// duration alone. With --frame-rate the clock hands them out in frames of 1/HZ seconds, as the
+/// viewer would: same steps, same bytes. Throws NonFiniteStateError at the first bad state.
+void stepToEnd(const SimOptions& options, Scene& scene, StepRecord& record, study::JetWatch& jet)
+{
+    World& world = scene.world;
     const std::uint64_t total = stepCount(scene.duration, scene.dt, "--duration");
     std::optional<FixedTimestepClock> clock;
     if (options.frameRate)
         clock.emplace(scene.dt);
-    record();
     Progress progress("simulating", static_cast<long>(total)); // a bar on a terminal, after a second
     try {
         while (world.stepCount() < total) {
@@ -228,9 +244,29 @@ int runSim(const SimOptions& options)
                     progress.update(static_cast<long>(world.stepCount()));
             }
         }
+    } catch (...) {
         progress.clear();
+        throw;
+    }
+    progress.clear();
+}
+
+int runSim(const SimOptions& options)
+{
+    Scene scene = loadSceneWithOverrides(options.scene);
+    checkFrameRate(options, scene);
+    std::unique_ptr<AtomicFile> csv;
+    if (options.out) {
+        csv = std::make_unique<AtomicFile>(*options.out);
+        writeCsvHeader(csv->stream(), scene.world.hasRigidBodies());
+    }
+    World& world = scene.world;
+    StepRecord record(world, csv.get(), options.swarmParticles);
+    study::JetWatch jet(world);
+    record();
+    try {
+        stepToEnd(options, scene, record, jet);
     } catch (const NonFiniteStateError& error) {
-        progress.clear();
         if (csv)
             csv->commit(); // the rows so far are valid, up to the last finite step
         fmt::print(stderr, "pba: error: {}: {}\n", scene.source, error.what());
@@ -238,7 +274,7 @@ int runSim(const SimOptions& options)
     }
     if (csv)
         csv->commit();
-    printSummary(scene, world, summary, jet);
+    printSummary(scene, world, record.summary(), jet);
     if (options.out)
         fmt::print("wrote {} to {}\n", options.swarmParticles ? "every body and swarm particle at every step"
                                                               : fmt::format("{} rows", (world.stepCount() + 1) * world.bodyCount()),

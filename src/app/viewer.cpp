@@ -63,6 +63,54 @@ CaptureFrame captureFrame(ViewerState& state, int frame, double until)
     return t < until ? CaptureFrame::Before : frame >= 2 ? CaptureFrame::Last : CaptureFrame::AtTime;
 }
 
+/// Seconds since the last frame, smoothed into the panel's frame rate. A capture's frames are
+/// 1 / kCaptureFps apart, whatever the real time.
+double frameSeconds(ViewerState& state, std::chrono::steady_clock::time_point& last, bool capturing)
+{
+    const auto now = std::chrono::steady_clock::now();
+    const double measured = std::chrono::duration<double>(now - last).count();
+    last = now;
+    if (capturing) {
+        state.frameRate = float(kCaptureFps);
+        return 1.0 / kCaptureFps;
+    }
+    if (measured > 0.0)
+        state.frameRate = 0.9f * state.frameRate + 0.1f * float(1.0 / measured);
+    return measured;
+}
+
+/// The frame's trails, legend and panel and, when `drawScene`, the scene beside the panel.
+/// Returns the framebuffer's size.
+glm::ivec2 drawFrame(ViewerState& state, render::WindowContext& window, render::Renderer& renderer,
+                     render::DrawList& list, bool drawScene)
+{
+    state.trails.record(state.scene.world, state.alpha(), state.settings);
+    render::drawLegend(state.scene.world, state.scene.name, state.clock.dt(),
+                       render::drawnTime(state.scene.world, state.alpha(), state.settings.interpolate), true,
+                       &state.settings.fabric);
+    const float panel = drawPanel(state);
+    int width = 0, height = 0;
+    window.framebufferSize(width, height);
+    window.bindForDrawing();
+    if (drawScene) {
+        render::buildDrawList(state.scene.world, state.initial, state.alpha(), state.settings, &state.trails, list);
+        renderer.draw(list, state.camera, std::max(width - int(panel), 1), std::max(height, 1));
+    }
+    return {width, height};
+}
+
+/// `--screenshot`'s picture of the frame just drawn, and the exit code: a failure when the
+/// simulation stopped on a bad state before T.
+int saveScreenshot(const ViewerState& state, render::WindowContext& window, glm::ivec2 size,
+                   const std::filesystem::path& shot, const ViewerRun& run)
+{
+    render::writePng(shot, size.x, size.y, window.readPixels());
+    fmt::print("wrote {} (t = {:g} s)\n", *run.screenshot, *run.time);
+    if (state.error)
+        fmt::print(stderr, "pba: error: {}: {}\n", state.scene.source, *state.error);
+    return state.error ? kExitSimulationFailure : kExitSuccess;
+}
+
 } // namespace
 
 int runViewer(Scene scene, const ViewerRun& run)
@@ -86,17 +134,9 @@ int runViewer(Scene scene, const ViewerRun& run)
     auto last = std::chrono::steady_clock::now();
     for (int frame = 0; !window.shouldClose() && !state.quit && (!run.frames || frame < *run.frames); ++frame) {
         glfwPollEvents();
-        const auto now = std::chrono::steady_clock::now();
-        double seconds = std::chrono::duration<double>(now - last).count();
-        last = now;
+        const double seconds = frameSeconds(state, last, capturing);
         const CaptureFrame at = capturing ? captureFrame(state, frame, captureUntil) : CaptureFrame::AtTime;
         const bool captured = capturing && at == CaptureFrame::Last;
-        if (capturing)
-            seconds = 1.0 / kCaptureFps;
-        state.frameRate = capturing ? float(kCaptureFps)
-                          : seconds > 0.0 ? 0.9f * state.frameRate + 0.1f * float(1.0 / seconds)
-                                          : state.frameRate;
-
         imgui.beginFrame(0, 0, float(seconds));
         if (!capturing) {
             handleMouse(state.camera);
@@ -105,27 +145,11 @@ int runViewer(Scene scene, const ViewerRun& run)
         } else {
             keys.take(); // keys pressed during a capture do not change it
         }
-        state.trails.record(state.scene.world, state.alpha(), state.settings);
-        render::drawLegend(state.scene.world, state.scene.name, state.clock.dt(),
-                           render::drawnTime(state.scene.world, state.alpha(), state.settings.interpolate), true,
-                           &state.settings.fabric);
-        const float panel = drawPanel(state);
-
-        int width = 0, height = 0;
-        window.framebufferSize(width, height);
-        window.bindForDrawing();
-        if (at != CaptureFrame::Before) { // a capture's frames before T are not shown: not drawn (a million particles are slow)
-            render::buildDrawList(state.scene.world, state.initial, state.alpha(), state.settings, &state.trails, list);
-            renderer.draw(list, state.camera, std::max(width - int(panel), 1), std::max(height, 1)); // beside the panel
-        }
+        // A capture's frames before T are not shown, so not drawn (a million particles are slow).
+        const glm::ivec2 size = drawFrame(state, window, renderer, list, at != CaptureFrame::Before);
         imgui.endFrame();
-        if (captured && shot) {
-            render::writePng(*shot, width, height, window.readPixels());
-            fmt::print("wrote {} (t = {:g} s)\n", *run.screenshot, captureUntil);
-            if (state.error)
-                fmt::print(stderr, "pba: error: {}: {}\n", state.scene.source, *state.error);
-            return state.error ? kExitSimulationFailure : kExitSuccess;
-        }
+        if (captured && shot)
+            return saveScreenshot(state, window, size, *shot, run);
         if (captured) { // the window stays open, paused at the time asked for
             capturing = false;
             state.paused = true;

@@ -201,6 +201,82 @@ bool belowStabilityLimit(const StudyResult& result, const ParticleResult& run)
     return true;
 }
 
+/// Whether a reflect run gained energy over its bounces where the mirror, not the step's
+/// stability, can be the cause.
+bool gainedByMirror(const StudyResult& result, const ParticleResult& run)
+{
+    return run.bounces > 0 && run.energyRatioEnd > 1.0 + 1e-6 && belowStabilityLimit(result, run);
+}
+
+/// The runs reflectGain quotes, of the first integrator that gained: the dt nearest 0.01 and
+/// the largest, a typical step and the worst.
+std::vector<const ParticleResult*> typicalAndWorst(const std::vector<const ParticleResult*>& rows)
+{
+    const auto typical = std::min_element(rows.begin(), rows.end(), [](const auto* a, const auto* b) {
+        return std::abs(std::log(a->dt / 0.01)) < std::abs(std::log(b->dt / 0.01));
+    });
+    std::vector<const ParticleResult*> shown{*typical};
+    if (rows.back() != *typical)
+        shown.push_back(rows.back());
+    return shown;
+}
+
+/// Whether the second gaining integrator ended each shown run with the first's energy.
+bool sameGain(const StudyResult& result, const std::vector<Integrator>& gaining,
+              const std::vector<const ParticleResult*>& shown)
+{
+    if (gaining.size() != 2)
+        return false;
+    for (const auto* r : shown) {
+        const auto* other = findRun(result, gaining[1], CollisionResponse::Reflect, r->dt);
+        if (!other || std::abs(other->energyRatioEnd - r->energyRatioEnd) > 1e-6)
+            return false;
+    }
+    return true;
+}
+
+/// "X ends at 1.0123 times the start at dt = 0.01 (9 bounces) ... after T s. " for each
+/// gaining integrator, or once for both when they ended alike.
+std::string gainFigures(const StudyConfig& config, const StudyResult& result, const std::vector<Integrator>& gaining,
+                        const std::vector<const ParticleResult*>& shown, bool same)
+{
+    std::string text;
+    for (std::size_t k = 0; k < gaining.size(); ++k) {
+        if (k == 1 && same)
+            break;
+        std::string numbers;
+        for (const auto* first : shown) {
+            const auto* r = findRun(result, gaining[k], CollisionResponse::Reflect, first->dt);
+            if (r && gainedByMirror(result, *r))
+                numbers += fmt::format("{}{:.4f} times the start at dt = {} ({} bounces)", numbers.empty() ? "" : " and ",
+                                       r->energyRatioEnd, r->dt, r->bounces);
+        }
+        const std::string subject = same ? "both end" : fmt::format("{} ends", integratorName(gaining[k]));
+        if (!numbers.empty())
+            text += fmt::format("{}{} at {} after {} s. ", k > 0 ? "With it " : "", subject, numbers, config.duration);
+    }
+    return text;
+}
+
+/// For the bounce, whose flight velocity Verlet and RK4 follow exactly: the measured gain per
+/// bounce against the mirror's mean, |v| dt / h.
+std::string mirrorAgainstPrediction(const ExactSolution& exact, const std::vector<const ParticleResult*>& shown)
+{
+    const double h = exact.height(), v = std::sqrt(2.0 * exact.gravity() * h);
+    std::string measured, predicted;
+    for (const auto* r : shown) {
+        const std::string sep = measured.empty() ? "" : " and ";
+        measured += fmt::format("{}{:.1f}% at dt = {}", sep, 100 * (std::pow(r->energyRatioEnd, 1.0 / double(r->bounces)) - 1),
+                                r->dt);
+        predicted += fmt::format("{}{:.1f}%", sep, 100 * v * r->dt / h);
+    }
+    return fmt::format(". Velocity Verlet and RK4 follow the flight under gravity exactly, so here the mirror is the "
+                       "whole story: the measured gain per bounce, (E(end)/E(0))^(1/bounces) - 1, is {}, against "
+                       "|v| dt / h = {} for the first impact speed |v| = √(2 g h) = {:.2f} m/s and drop height "
+                       "h = {} m.\n\n",
+                       measured, predicted, v, h);
+}
+
 /// The gain of an integrator exact in flight, with the reflect response: the response's own.
 std::string reflectGain(const StudyConfig& config, const StudyResult& result)
 {
@@ -213,50 +289,23 @@ std::string reflectGain(const StudyConfig& config, const StudyResult& result)
             continue;
         std::vector<const ParticleResult*> rows;
         for (const auto* r : rowsOf(config, result, integrator, CollisionResponse::Reflect))
-            if (r->bounces > 0 && r->energyRatioEnd > 1.0 + 1e-6 && belowStabilityLimit(result, *r))
+            if (gainedByMirror(result, *r))
                 rows.push_back(r);
         if (rows.empty())
             continue;
-        if (gaining.empty()) {
-            // The dt nearest 0.01 and the largest: a typical step and the worst.
-            const auto typical = std::min_element(rows.begin(), rows.end(), [](const auto* a, const auto* b) {
-                return std::abs(std::log(a->dt / 0.01)) < std::abs(std::log(b->dt / 0.01));
-            });
-            shown.push_back(*typical);
-            if (rows.back() != *typical)
-                shown.push_back(rows.back());
-        }
+        if (gaining.empty())
+            shown = typicalAndWorst(rows);
         gaining.push_back(integrator);
     }
     if (gaining.empty())
         return "";
-    const bool same = gaining.size() == 2 && [&] {
-        for (const auto* r : shown) {
-            const auto* other = findRun(result, gaining[1], CollisionResponse::Reflect, r->dt);
-            if (!other || std::abs(other->energyRatioEnd - r->energyRatioEnd) > 1e-6)
-                return false;
-        }
-        return true;
-    }();
+    const bool same = sameGain(result, gaining, shown);
     std::string who = std::string(integratorName(gaining[0]));
     if (gaining.size() == 2)
         who += fmt::format(" and {}", integratorName(gaining[1]));
     std::string text = fmt::format("**{} {} energy with `reflect`.** With the `reflect` response ", who,
                                    gaining.size() == 2 ? "gain" : "gains");
-    for (std::size_t k = 0; k < gaining.size(); ++k) {
-        if (k == 1 && same)
-            break;
-        std::string numbers;
-        for (const auto* first : shown) {
-            const auto* r = findRun(result, gaining[k], CollisionResponse::Reflect, first->dt);
-            if (r && r->bounces > 0 && r->energyRatioEnd > 1.0 + 1e-6 && belowStabilityLimit(result, *r))
-                numbers += fmt::format("{}{:.4f} times the start at dt = {} ({} bounces)", numbers.empty() ? "" : " and ",
-                                       r->energyRatioEnd, r->dt, r->bounces);
-        }
-        const std::string subject = same ? "both end" : fmt::format("{} ends", integratorName(gaining[k]));
-        if (!numbers.empty())
-            text += fmt::format("{}{} at {} after {} s. ", k > 0 ? "With it " : "", subject, numbers, config.duration);
-    }
+    text += gainFigures(config, result, gaining, shown, same);
     // A step that ends a depth d below the floor is mirrored to d above it with its velocity
     // reversed; the time spent below is not given back, so the bounce starts at height d with
     // the end-of-step speed, v^2 = v_c^2 + 2 g d: the energy grows by 2 m g d, the next apex by
@@ -267,24 +316,9 @@ std::string reflectGain(const StudyConfig& config, const StudyResult& result)
             "(v² = v_c² + 2 g d). Each bounce adds 2 m g d, with d anywhere from 0 to |v| dt: about m g |v| dt on "
             "average, for any integrator";
     const auto exact = firstExact(config);
-    if (!exact || exact->kind() != ExactSolution::Kind::Bounce) {
-        text += ".\n\n";
-        return text;
-    }
-    const double h = exact->height(), v = std::sqrt(2.0 * exact->gravity() * h);
-    std::string measured, predicted;
-    for (const auto* r : shown) {
-        const std::string sep = measured.empty() ? "" : " and ";
-        measured += fmt::format("{}{:.1f}% at dt = {}", sep, 100 * (std::pow(r->energyRatioEnd, 1.0 / double(r->bounces)) - 1),
-                                r->dt);
-        predicted += fmt::format("{}{:.1f}%", sep, 100 * v * r->dt / h);
-    }
-    text += fmt::format(". Velocity Verlet and RK4 follow the flight under gravity exactly, so here the mirror is the "
-                        "whole story: the measured gain per bounce, (E(end)/E(0))^(1/bounces) - 1, is {}, against "
-                        "|v| dt / h = {} for the first impact speed |v| = √(2 g h) = {:.2f} m/s and drop height "
-                        "h = {} m.\n\n",
-                        measured, predicted, v, h);
-    return text;
+    if (!exact || exact->kind() != ExactSolution::Kind::Bounce)
+        return text + ".\n\n";
+    return text + mirrorAgainstPrediction(*exact, shown);
 }
 
 /// "none of the dt given is" or "of the dt given only 0.01 is", for the fit's points.
