@@ -15,6 +15,7 @@
 #include "scene_options.hpp"
 #include "pba/clock.hpp"
 #include "study/jet_watch.hpp"
+#include "study/rigid_watch.hpp"
 
 namespace pba::app {
 
@@ -140,8 +141,39 @@ void printJetSummary(const World& world, const study::JetWatch& jet)
     }
 }
 
+/// What each rigid body did, as the watch measured it: the parts that apply to it.
+void printRigidSummary(const World& world, const study::RigidWatch& rigid)
+{
+    if (!rigid.active())
+        return;
+    fmt::print("rigid bodies (still: |v| < {:g} m/s and |w| < {:g} rad/s; rolling: the contact slips slower than {:g} "
+               "m/s):\n", study::kStill, study::kStill, study::kNoSlip);
+    for (const study::RigidFigures& f : rigid.bodies(world)) {
+        std::vector<std::string> parts;
+        if (!f.stillFrom)
+            parts.push_back("moving at the end");
+        else if (f.restingFace.empty())
+            parts.push_back(fmt::format("still from t = {:.3f} s", *f.stillFrom));
+        else
+            parts.push_back(fmt::format("still from t = {:.3f} s on its {} face (tilted {:.2f} degrees)", *f.stillFrom,
+                                        f.restingFace, f.tilt));
+        if (f.rollingFrom)
+            parts.push_back(fmt::format("rolls without slipping from t = {:.3f} s at {:.4f} m/s", *f.rollingFrom,
+                                        f.rollingSpeed));
+        if (f.free())
+            parts.push_back(fmt::format("free of torques (its rotational energy and |L| stay within {:.1e} and {:.1e} "
+                                        "of their start)", f.energyDrift, f.momentumDrift));
+        if (f.free() && f.flips.size() >= 2)
+            parts.push_back(fmt::format("turns over {} times, every {:.3f} s on average (its spin about its middle axis "
+                                        "changes sign)", f.flips.size(),
+                                        (f.flips.back() - f.flips.front()) / double(f.flips.size() - 1)));
+        parts.push_back(fmt::format("spins at {:.3g} rad/s on average", f.meanSpin));
+        fmt::print("  {}: {}\n", f.name, fmt::join(parts, "; "));
+    }
+}
+
 void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary,
-                  const study::JetWatch& jet)
+                  const study::JetWatch& jet, const study::RigidWatch& rigid)
 {
     fmt::print("scene {}: {} steps of dt = {} s, t = {} s, collision response {}{}\n", scene.name, world.stepCount(),
                scene.dt, world.time(), collisionResponseName(world.collisionResponse()),
@@ -163,6 +195,7 @@ void printSummary(const Scene& scene, const World& world, const std::vector<Body
                    fmt::format("({:.4f}, {:.4f}, {:.4f})", x.x, x.y, x.z), summary[i].highest,
                    world.bounceCount(i), ratio);
     }
+    printRigidSummary(world, rigid);
     printSwarmSummary(world);
     printJetSummary(world, jet);
 }
@@ -225,7 +258,8 @@ private:
 /// Steps the scene to its end, recording every step. The number of steps depends on dt and
 /// duration alone. With --frame-rate the clock hands them out in frames of 1/HZ seconds, as the
 /// viewer would: same steps, same bytes. Throws NonFiniteStateError at the first bad state.
-void stepToEnd(const SimOptions& options, Scene& scene, StepRecord& record, study::JetWatch& jet)
+void stepToEnd(const SimOptions& options, Scene& scene, StepRecord& record, study::JetWatch& jet,
+               study::RigidWatch& rigid)
 {
     World& world = scene.world;
     const std::uint64_t total = stepCount(scene.duration, scene.dt, "--duration");
@@ -239,6 +273,7 @@ void stepToEnd(const SimOptions& options, Scene& scene, StepRecord& record, stud
             for (std::uint64_t k = 0; k < now && world.stepCount() < total; ++k) {
                 world.step(scene.dt);
                 jet.record(world);
+                rigid.record(world);
                 record();
                 if (world.stepCount() % 1024 == 0)
                     progress.update(static_cast<long>(world.stepCount()));
@@ -263,9 +298,10 @@ int runSim(const SimOptions& options)
     World& world = scene.world;
     StepRecord record(world, csv.get(), options.swarmParticles);
     study::JetWatch jet(world);
+    study::RigidWatch rigid(world);
     record();
     try {
-        stepToEnd(options, scene, record, jet);
+        stepToEnd(options, scene, record, jet, rigid);
     } catch (const NonFiniteStateError& error) {
         if (csv)
             csv->commit(); // the rows so far are valid, up to the last finite step
@@ -274,7 +310,7 @@ int runSim(const SimOptions& options)
     }
     if (csv)
         csv->commit();
-    printSummary(scene, world, record.summary(), jet);
+    printSummary(scene, world, record.summary(), jet, rigid);
     if (options.out)
         fmt::print("wrote {} to {}\n", options.swarmParticles ? "every body and swarm particle at every step"
                                                               : fmt::format("{} rows", (world.stepCount() + 1) * world.bodyCount()),

@@ -1,0 +1,137 @@
+#include "study/rigid_watch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "pba/rigid_body.hpp"
+
+namespace pba::study {
+
+namespace {
+
+const RigidBody& rigid(const World& world, std::size_t i)
+{
+    return static_cast<const RigidBody&>(world.body(i));
+}
+
+/// The body-frame axis of intermediate inertia, when the body frame is the principal one (a
+/// box's, a cylinder's) and the three moments differ; otherwise -1 (a cube, a sphere: no
+/// axis about which a spin is unstable).
+int middleAxisOf(const dmat3& inertia)
+{
+    const double largest = std::max({inertia[0][0], inertia[1][1], inertia[2][2]});
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            if (r != c && std::abs(inertia[c][r]) > 1e-12 * largest)
+                return -1;
+    int order[3] = {0, 1, 2};
+    std::sort(order, order + 3, [&](int a, int b) { return inertia[a][a] < inertia[b][b]; });
+    const double low = inertia[order[0]][order[0]], mid = inertia[order[1]][order[1]];
+    const double high = inertia[order[2]][order[2]];
+    return mid - low > 1e-9 * high && high - mid > 1e-9 * high ? order[1] : -1;
+}
+
+/// The speed at which a sphere's point nearest a surface it touches slips along that surface,
+/// or nothing when it touches none (within 0.1 mm, not over a hole).
+std::optional<double> sphereSlip(const World& world, const RigidBody& ball)
+{
+    const double r = ball.getShape().radius;
+    const dvec3 x = ball.getPos(), w = ball.getAngularVelocity();
+    for (const Plane& plane : world.planes()) {
+        if (plane.distance(x) - r > 1e-4 || (plane.holeRadius > 0.0 && plane.overHole(x)))
+            continue;
+        const dvec3 contact = ball.getVel() + glm::cross(w, -r * plane.normal);
+        return glm::length(contact - glm::dot(contact, plane.normal) * plane.normal);
+    }
+    return std::nullopt;
+}
+
+/// The face a box lies on: the outward normal in its own frame that points most nearly along
+/// gravity, and the angle between them in degrees.
+std::pair<std::string, double> faceDown(const RigidBody& box, const dvec3& gravity)
+{
+    const dvec3 down = glm::transpose(glm::mat3_cast(box.getOrientation())) * glm::normalize(gravity);
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+        if (std::abs(down[k]) > std::abs(down[axis]))
+            axis = k;
+    const std::string face = std::string(down[axis] > 0.0 ? "+" : "-") + "xyz"[axis];
+    const double pi = std::acos(-1.0);
+    return {face, std::acos(std::min(std::abs(down[axis]), 1.0)) * 180.0 / pi};
+}
+
+} // namespace
+
+RigidWatch::RigidWatch(const World& world)
+{
+    for (std::size_t i = 0; i < world.bodyCount(); ++i) {
+        if (!world.isRigid(i))
+            continue;
+        const RigidBody& body = rigid(world, i);
+        Track t;
+        t.body = i;
+        t.figures.name = body.getName();
+        t.middleAxis = middleAxisOf(body.getInertiaBody());
+        t.energy0 = body.getRotationalKineticEnergy();
+        t.momentum0 = glm::length(body.getAngularMomentum());
+        if (!(t.energy0 > 0.0 && t.momentum0 > 0.0))
+            t.figures.energyDrift = t.figures.momentumDrift = std::numeric_limits<double>::quiet_NaN();
+        look(world, t);
+        m_tracks.push_back(t);
+    }
+}
+
+void RigidWatch::record(const World& world)
+{
+    for (Track& t : m_tracks) {
+        look(world, t);
+        t.spinSum += glm::length(rigid(world, t.body).getAngularVelocity());
+        ++t.steps;
+    }
+}
+
+void RigidWatch::look(const World& world, Track& t) const
+{
+    const RigidBody& body = rigid(world, t.body);
+    RigidFigures& f = t.figures;
+    const double now = world.time();
+    const dvec3 w = body.getAngularVelocity();
+    const bool still = glm::length(body.getVel()) < kStill && glm::length(w) < kStill;
+    if (!still)
+        f.stillFrom.reset();
+    else if (!f.stillFrom)
+        f.stillFrom = now;
+    if (body.getShape().type == ShapeType::Sphere && !f.rollingFrom && !still) {
+        if (const auto slip = sphereSlip(world, body); slip && *slip < kNoSlip) {
+            f.rollingFrom = now;
+            f.rollingSpeed = glm::length(body.getVel());
+        }
+    }
+    if (t.middleAxis >= 0) {
+        const double middle = (glm::transpose(glm::mat3_cast(body.getOrientation())) * w)[t.middleAxis];
+        if (middle * t.lastMiddle < 0.0)
+            f.flips.push_back(now);
+        if (middle != 0.0)
+            t.lastMiddle = middle;
+    }
+    // NaN (and so never "free") for a body that started without a spin: no ratio to keep.
+    f.energyDrift = std::max(f.energyDrift, std::abs(body.getRotationalKineticEnergy() / t.energy0 - 1.0));
+    f.momentumDrift = std::max(f.momentumDrift, std::abs(glm::length(body.getAngularMomentum()) / t.momentum0 - 1.0));
+}
+
+std::vector<RigidFigures> RigidWatch::bodies(const World& world) const
+{
+    std::vector<RigidFigures> out;
+    for (const Track& t : m_tracks) {
+        RigidFigures f = t.figures;
+        f.meanSpin = t.steps > 0 ? t.spinSum / double(t.steps) : 0.0;
+        const RigidBody& body = rigid(world, t.body);
+        if (f.stillFrom && body.getShape().type == ShapeType::Box && glm::length(world.gravity()) > 0.0)
+            std::tie(f.restingFace, f.tilt) = faceDown(body, world.gravity());
+        out.push_back(std::move(f));
+    }
+    return out;
+}
+
+} // namespace pba::study

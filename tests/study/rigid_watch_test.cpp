@@ -1,0 +1,154 @@
+// RigidWatch, what `pba sim` prints about rigid bodies, against the closed forms the rigid scenes'
+// descriptions quote and against cases whose answer is known by construction.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "pba/rigid_body.hpp"
+#include "pba/forces.hpp"
+#include "pba/scene/scene.hpp"
+#include "study/rigid_watch.hpp"
+
+namespace pba::study {
+namespace {
+
+std::vector<RigidFigures> watched(Scene& scene)
+{
+    RigidWatch watch(scene.world);
+    for (long n = 0; n < std::lround(scene.duration / scene.dt); ++n) {
+        scene.world.step(scene.dt);
+        watch.record(scene.world);
+    }
+    return watch.bodies(scene.world);
+}
+
+// A ball sliding at v0 without spin rolls from t = 2 v0 / (7 mu g) at 5/7 v0.
+TEST(RigidWatch, TheRollingBallRollsWhenTheClosedFormSays)
+{
+    Scene scene = loadScene("rolling");
+    const std::vector<RigidFigures> figures = watched(scene);
+    ASSERT_EQ(figures.size(), 1u);
+    const double v0 = 3.0, tRoll = 2.0 * v0 / (7.0 * 0.3 * 9.81);
+    ASSERT_TRUE(figures[0].rollingFrom.has_value());
+    EXPECT_NEAR(*figures[0].rollingFrom, tRoll, 0.01 * tRoll);
+    EXPECT_NEAR(figures[0].rollingSpeed, 5.0 / 7.0 * v0, 0.005);
+    EXPECT_FALSE(figures[0].stillFrom.has_value());
+    EXPECT_FALSE(figures[0].free()); // it started without a spin: nothing to keep
+}
+
+// The scene's "By t = 2.3 s every die lies still on one of its faces".
+TEST(RigidWatch, EveryDieIsStillOnAFaceBeforeTheDescriptionsTime)
+{
+    Scene scene = loadScene("dice");
+    for (const RigidFigures& die : watched(scene)) {
+        ASSERT_TRUE(die.stillFrom.has_value()) << die.name;
+        EXPECT_LT(*die.stillFrom, 2.3) << die.name;
+        EXPECT_EQ(die.restingFace.size(), 2u) << die.name;
+        EXPECT_LT(die.tilt, 0.01) << die.name;
+        EXPECT_TRUE(die.flips.empty()) << die.name; // a cube has no middle axis
+    }
+}
+
+// The Dzhanibekov box turns over every half period of the elliptic integral's T = 5.86 s,
+// free of torques.
+TEST(RigidWatch, TheTennisRacketTurnsOverEveryHalfPeriod)
+{
+    Scene scene = loadScene("tennis-racket");
+    const std::vector<RigidFigures> figures = watched(scene);
+    ASSERT_EQ(figures.size(), 1u);
+    const RigidFigures& racket = figures[0];
+    EXPECT_TRUE(racket.free());
+    EXPECT_LT(racket.energyDrift, 1e-9);
+    EXPECT_LT(racket.momentumDrift, 1e-9);
+    ASSERT_GE(racket.flips.size(), 6u);
+    const double every = (racket.flips.back() - racket.flips.front()) / double(racket.flips.size() - 1);
+    EXPECT_NEAR(every, 5.86 / 2.0, 0.01);
+    EXPECT_NEAR(racket.meanSpin, 6.0, 0.5);
+}
+
+// Boxes the dryer pushes are turned by it: spinning, and not free.
+TEST(RigidWatch, TheDryersBoxesTumbleUnderItsTorque)
+{
+    Scene scene = loadScene("blow-dryer-boxes");
+    scene.duration = 4.0;
+    for (const RigidFigures& box : watched(scene)) {
+        EXPECT_FALSE(box.free()) << box.name;
+        EXPECT_GT(box.meanSpin, 0.1) << box.name;
+        EXPECT_FALSE(box.stillFrom.has_value()) << box.name;
+    }
+}
+
+/// A room with a floor at y = 0 and gravity, holding one body.
+World roomWith(std::unique_ptr<RigidBody> body)
+{
+    World world;
+    world.addForce(std::make_unique<Gravity>(dvec3(0.0, -9.81, 0.0)));
+    world.setGround(0.0);
+    world.setCollisionResponse(CollisionResponse::Exact);
+    world.addBody(std::move(body));
+    return world;
+}
+
+// A box set down on its -y face is still from the start; turned a quarter about x (its +z
+// axis now pointing down), it lies on its +z face, still within a few steps.
+TEST(RigidWatch, ABoxSetDownIsStillFromTheStartOnTheFaceBelow)
+{
+    for (const bool turned : {false, true}) {
+        auto box = std::make_unique<RigidBody>(Shape::box(dvec3(0.4, 0.2, 0.6)), 500.0);
+        box->setName("box");
+        const double pi = std::acos(-1.0);
+        if (turned)
+            box->setOrientation(glm::angleAxis(pi / 2.0, dvec3(1.0, 0.0, 0.0)));
+        box->setPos(dvec3(0.0, turned ? 0.3 : 0.1, 0.0));
+        World world = roomWith(std::move(box));
+        RigidWatch watch(world);
+        for (int n = 0; n < 200; ++n) {
+            world.step(0.005);
+            watch.record(world);
+        }
+        const RigidFigures f = watch.bodies(world).at(0);
+        ASSERT_TRUE(f.stillFrom.has_value()) << turned;
+        // Turned, its corners start a rounding of cos(pi/4) off level, and settle within a few steps.
+        EXPECT_LE(*f.stillFrom, turned ? 0.05 : 0.0) << turned;
+        EXPECT_EQ(f.restingFace, turned ? "+z" : "-y");
+        EXPECT_LT(f.tilt, turned ? 1e-4 : 0.0 + 1e-12);
+        EXPECT_FALSE(f.rollingFrom.has_value());
+    }
+}
+
+// A ball set rolling (v = -w x r at the contact) rolls from the first step; a ball spun in
+// place on the floor never rolls; one in the air never touches.
+TEST(RigidWatch, ABallRollsOnlyWhereItsContactDoesNotSlip)
+{
+    struct Case {
+        dvec3 position, velocity, spin;
+        bool rolls;
+    };
+    const double r = 0.1;
+    for (const Case& c : {Case{dvec3(0.0, r, 0.0), dvec3(1.0, 0.0, 0.0), dvec3(0.0, 0.0, -1.0 / r), true},
+                          Case{dvec3(0.0, r, 0.0), dvec3(0.0), dvec3(0.0, 0.0, 5.0), false},
+                          Case{dvec3(0.0, 2.0, 0.0), dvec3(1.0, 0.0, 0.0), dvec3(0.0, 0.0, -1.0 / r), false}}) {
+        auto ball = std::make_unique<RigidBody>(Shape::sphere(r), 1000.0);
+        ball->setName("ball");
+        ball->setFriction(0.5);
+        ball->setCor(0.0);
+        ball->setPos(c.position);
+        ball->setVel(c.velocity);
+        ball->setAngularVelocity(c.spin);
+        World world = roomWith(std::move(ball));
+        RigidWatch watch(world);
+        for (int n = 0; n < 20; ++n) {
+            world.step(0.001);
+            watch.record(world);
+        }
+        const RigidFigures f = watch.bodies(world).at(0);
+        EXPECT_EQ(f.rollingFrom.has_value(), c.rolls) << c.position.y << " " << c.spin.z;
+        if (c.rolls) {
+            EXPECT_EQ(*f.rollingFrom, 0.0);
+            EXPECT_NEAR(f.rollingSpeed, 1.0, 1e-9);
+        }
+    }
+}
+
+} // namespace
+} // namespace pba::study
