@@ -152,6 +152,28 @@ std::string semiImplicitEulerBounces(const StudyConfig& config, const StudyResul
            reflectText + exactText + "\n\n";
 }
 
+/// Whether a run's gain can be the mirror's: it stayed finite and its dt is below the
+/// integrator's measured stability limit (past it, springs gain energy whatever the response).
+bool belowStabilityLimit(const StudyResult& result, const ParticleResult& run)
+{
+    if (!std::isnan(run.blewUpAt))
+        return false;
+    for (const auto& limit : result.stability)
+        if (limit.integrator == run.integrator && !std::isnan(limit.measuredDt) && run.dt >= limit.measuredDt)
+            return false;
+    return true;
+}
+
+/// The measured stability limit of an integrator, as "its stability limit (dt = 0.0666 s,
+/// measured below)", or "its stability limit" when the study did not measure one.
+std::string stabilityLimitText(const StudyResult& result, Integrator integrator)
+{
+    for (const auto& limit : result.stability)
+        if (limit.integrator == integrator && !std::isnan(limit.measuredDt))
+            return fmt::format("its stability limit (dt = {:.4g} s, measured below)", limit.measuredDt);
+    return "its stability limit";
+}
+
 std::string semiImplicitEuler(const StudyConfig& config, const StudyResult& result)
 {
     if (!has(config.integrators, Integrator::SemiImplicitEuler))
@@ -162,11 +184,23 @@ std::string semiImplicitEuler(const StudyConfig& config, const StudyResult& resu
     if (rows.empty())
         return "";
     const auto exact = firstExact(config);
-    const bool spring = exact && exact->kind() == ExactSolution::Kind::Oscillator;
-    return fmt::format("**Semi-implicit Euler.** Its energy after {} s is {}{}.\n\n", config.duration, endRatios(rows),
-                       spring ? ": on the undamped spring it is symplectic, it keeps a shadow energy close to the true "
-                                "one, so its error swings but does not grow as forward Euler's does"
-                              : "");
+    if (!exact || exact->kind() != ExactSolution::Kind::Oscillator)
+        return fmt::format("**Semi-implicit Euler.** Its energy after {} s is {}.\n\n", config.duration, endRatios(rows));
+    // Symplectic only below its stability limit: past it the energy grows geometrically.
+    std::vector<const ParticleResult*> stable, unstable;
+    for (const auto* r : rows)
+        (belowStabilityLimit(result, *r) ? stable : unstable).push_back(r);
+    std::string text = "**Semi-implicit Euler.** ";
+    if (!stable.empty())
+        text += fmt::format("Its energy after {} s is {}: on the undamped spring it is symplectic, it keeps a shadow "
+                            "energy close to the true one, so its error swings but does not grow as forward Euler's "
+                            "does.",
+                            config.duration, endRatios(stable));
+    if (!unstable.empty())
+        text += fmt::format("{}Above {} its energy grows without bound: {} after {} s.", stable.empty() ? "" : " ",
+                            stabilityLimitText(result, Integrator::SemiImplicitEuler), endRatios(unstable),
+                            config.duration);
+    return text + "\n\n";
 }
 
 std::string exactWithExactImpacts(const StudyConfig& config, const StudyResult& result, Integrator integrator)
@@ -187,18 +221,6 @@ std::string exactWithExactImpacts(const StudyConfig& config, const StudyResult& 
                        "apex by at most {:.1e} (relative) {}: it integrates constant gravity exactly and the time of "
                        "impact adds no error.\n\n",
                        integratorName(integrator), period, apex, overDts(dts));
-}
-
-/// Whether a run's gain can be the mirror's: it stayed finite and its dt is below the
-/// integrator's measured stability limit (past it, springs gain energy whatever the response).
-bool belowStabilityLimit(const StudyResult& result, const ParticleResult& run)
-{
-    if (!std::isnan(run.blewUpAt))
-        return false;
-    for (const auto& limit : result.stability)
-        if (limit.integrator == run.integrator && !std::isnan(limit.measuredDt) && run.dt >= limit.measuredDt)
-            return false;
-    return true;
 }
 
 /// Whether a reflect run gained energy over its bounces where the mirror, not the step's

@@ -294,6 +294,34 @@ TEST(IntegratorFindings, NothingCollidesOnTheSpringSoOneResponseStandsForAll)
     EXPECT_NE(script.find("set multiplot layout 1,1 title 'energy"), std::string::npos) << script;
 }
 
+// Semi-implicit Euler is symplectic only below its stability limit (2 / omega = 0.0667 s on the
+// stiff spring): a dt above it is reported apart, growing without bound, and never as a swing.
+TEST(IntegratorFindings, SemiImplicitEulerAboveItsStabilityLimitIsNotCalledSymplectic)
+{
+    study::StudyConfig config;
+    config.integrators = {Integrator::SemiImplicitEuler};
+    const auto result = shortStudy(config, "stiff-spring", {0.01, 0.05, 0.1}, 5.0);
+    const std::string text = study::findings(config, result);
+    expectEverySentenceMeaningful(text);
+    const std::size_t swing = text.find("its error swings but does not grow");
+    const std::size_t above = text.find("Above its stability limit (dt = 0.06");
+    ASSERT_NE(swing, std::string::npos) << text;
+    ASSERT_NE(above, std::string::npos) << text;
+    const std::string stable = text.substr(0, swing), unstable = text.substr(above);
+    EXPECT_NE(stable.find("at dt = 0.01 and"), std::string::npos) << text;
+    EXPECT_NE(stable.find("at dt = 0.05"), std::string::npos) << text;
+    EXPECT_EQ(stable.find("dt = 0.1"), std::string::npos) << text;
+    EXPECT_NE(unstable.find("its energy grows without bound"), std::string::npos) << text;
+    EXPECT_NE(unstable.find("at dt = 0.1 after 5 s"), std::string::npos) << text;
+
+    // Every dt below the limit: the one sentence, as before.
+    study::StudyConfig below;
+    below.integrators = {Integrator::SemiImplicitEuler};
+    const std::string belowText = study::findings(below, shortStudy(below, "stiff-spring", {0.01, 0.02}, 5.0));
+    EXPECT_NE(belowText.find("its error swings but does not grow"), std::string::npos) << belowText;
+    EXPECT_EQ(belowText.find("Above its stability limit"), std::string::npos) << belowText;
+}
+
 TEST(IntegratorPlots, EachIntegratorsLineIsInItsPaletteColour)
 {
     study::StudyConfig config;
