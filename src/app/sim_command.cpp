@@ -286,10 +286,27 @@ void stepToEnd(const SimOptions& options, Scene& scene, StepRecord& record, stud
     progress.clear();
 }
 
+/// --swarm-particles writes a row per particle per step, about 100 bytes each: a scene's
+/// whole run can be more than a disk holds. Past a gigabyte, the run says so before it starts.
+void warnOfLargeCsv(const SimOptions& options, const Scene& scene)
+{
+    if (!options.out || !options.swarmParticles)
+        return;
+    double particles = 0.0;
+    for (std::size_t s = 0; s < scene.world.swarmCount(); ++s)
+        particles += double(scene.world.swarm(s).size());
+    const double steps = double(stepCount(scene.duration, scene.dt, "--duration")) + 1.0;
+    const double bytes = 100.0 * particles * steps;
+    if (bytes > 1e9)
+        fmt::print(stderr, "pba sim: --swarm-particles will write about {:.0f} GB ({:g} rows of swarm particles) to {}; "
+                           "a shorter --duration writes less\n", bytes / 1e9, particles * steps, *options.out);
+}
+
 int runSim(const SimOptions& options)
 {
     Scene scene = loadSceneWithOverrides(options.scene);
     checkFrameRate(options, scene);
+    warnOfLargeCsv(options, scene);
     std::unique_ptr<AtomicFile> csv;
     if (options.out) {
         csv = std::make_unique<AtomicFile>(*options.out);
@@ -336,8 +353,9 @@ void addSimCommand(CLI::App& root, Action& selected)
                     "change: only dt and the number of steps matter)")
         ->type_name("HZ");
     sim->add_flag("--swarm-particles", options->swarmParticles,
-                  "With --out: also write a row per swarm particle (named SWARM[i]); without it swarms are "
-                  "summarised by statistics");
+                  "With --out: also write a row per swarm particle (named SWARM[i]) at every step, about 100 "
+                  "bytes each (10 MB a step for 100,000 particles: pair it with a short --duration); without it "
+                  "swarms are summarised by statistics");
     sim->callback([options, &selected] { selected = [options] { return runSim(*options); }; });
 }
 
