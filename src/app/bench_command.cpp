@@ -283,7 +283,8 @@ int runBench(const BenchOptions& options)
         fmt::print(stderr, "throwing {} dice\n", kDice);
     const SpanRun dice = runDice(options.quick, cores);
     if (!options.json)
-        fmt::print(stderr, "stepping fountain-1m through its whole duration\n");
+        fmt::print(stderr, "stepping fountain-1m {}\n",
+                   options.quick ? "for two spans of 4 steps" : "through its whole duration");
     const SceneRun fountain = runScene(options.quick, cores);
     if (options.json)
         printJson(rows, cloth, dice, fountain, cores);
@@ -325,7 +326,7 @@ void addBenchCommand(CLI::App& root, Action& selected)
         ->check(CLI::IsMember({"flight", "landed", "rested"}))
         ->needs(peerWorker)
         ->option_text("PHASE");
-    bench->footer("\nThe workload is the blow-dryer-swarm scene (gravity, the blow dryer, the room's walls and the\n"
+    bench->footer("The workload is the blow-dryer-swarm scene (gravity, the blow dryer, the room's walls and the\n"
                   "hole) at dt = 0.002, each swarm row in three phases: in flight, from the scene's first state\n"
                   "(the rain falling, a quarter of it in the dryer's cone); landed, from its state at t = 2 s\n"
                   "(the rain after its first bounce, a few particles of each block at the floor in any step);\n"

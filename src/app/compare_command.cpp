@@ -240,7 +240,7 @@ void addCompareCommand(CLI::App& root, Action& selected)
     compare->footer("\nOn a scene with rigid bodies (dice, tennis-racket, rolling, blow-dryer-boxes) it studies rotation\n"
                     "instead: every integrator (all five) and dt (default up to 0.05) on the first moving rigid body,\n"
                     "its drift of energy and of |L|, and its flip period against the elliptic integral's.\n"
-                    "\nExample: pba compare --out pba-out/study && open pba-out/study/report.md\n"
+                    "\nExample: pba compare --out pba-out/study    (then read pba-out/study/report.md)\n"
                     "         pba compare tennis-racket --out pba-out/racket\n");
     compare->callback([options, &selected] { selected = [options] { return runCompare(*options); }; });
 }

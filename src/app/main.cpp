@@ -11,7 +11,38 @@
 #include "command.hpp"
 #include "io/output_file.hpp"
 #include "pba/scene/scene.hpp"
+#include "scene/closest_name.hpp"
 #include "scene_options.hpp"
+
+namespace {
+
+/// CLI11's words for a few errors, in pba's: the option and the reason, and the command a
+/// mistyped one was meant to be. `args` are the arguments as typed.
+std::string parseErrorText(const CLI::ParseError& e, const CLI::App& app, const std::vector<std::string>& args)
+{
+    const std::string what = e.what();
+    if (dynamic_cast<const CLI::ConversionError*>(&e)) {
+        // "Could not convert: --dt = abc": every option CLI11 converts is a number.
+        const std::string prefix = "Could not convert: ";
+        const std::size_t equals = what.find(" = ");
+        if (what.rfind(prefix, 0) == 0 && equals != std::string::npos)
+            return fmt::format("{}: cannot read '{}' as a number", what.substr(prefix.size(), equals - prefix.size()),
+                               what.substr(equals + 3));
+    }
+    if (dynamic_cast<const CLI::ExtrasError*>(&e) && !args.empty() && args.front().rfind("-", 0) != 0) {
+        std::vector<std::string> commands;
+        for (const CLI::App* command : app.get_subcommands({}))
+            commands.push_back(command->get_name());
+        if (std::find(commands.begin(), commands.end(), args.front()) == commands.end()) {
+            const auto close = pba::scene_detail::closestName(args.front(), commands);
+            return fmt::format("unknown command '{}'{} (the commands: {})", args.front(),
+                               close ? fmt::format(": did you mean '{}'?", *close) : "", fmt::join(commands, ", "));
+        }
+    }
+    return what;
+}
+
+} // namespace
 
 int main(int argc, char** argv)
 {
@@ -44,14 +75,14 @@ int main(int argc, char** argv)
     addScenesCommand(app, selected);
     addHelpCommand(app, selected);
 
-    std::vector<std::string> args(argv + 1, argv + argc);
-    std::reverse(args.begin(), args.end()); // CLI11 takes the arguments in reverse order
+    const std::vector<std::string> typed(argv + 1, argv + argc);
+    std::vector<std::string> args(typed.rbegin(), typed.rend()); // CLI11 takes the arguments in reverse order
     try {
         app.parse(args);
     } catch (const CLI::Success& e) { // --help, --version
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        fmt::print(stderr, "pba: error: {}\n", e.what());
+        fmt::print(stderr, "pba: error: {}\n", parseErrorText(e, app, typed));
         return kExitBadInput;
     }
     if (!selected) // `pba` alone: the default scene, in a window or rendered

@@ -44,7 +44,8 @@ void Progress::finish(const std::string& summary)
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
     if (m_terminal)
         fmt::print(stderr, "\r\033[K");
-    fmt::print(stderr, "{} in {:.1f} s\n", summary, elapsed);
+    // A result, like every command's "wrote ..." line: on stdout, where the bar is not.
+    fmt::print("{} in {:.1f} s\n", summary, elapsed);
 }
 
 } // namespace pba::app

@@ -1,6 +1,6 @@
 #pragma once
-// A progress bar on stderr for long work: frames or runs done, total, elapsed, remaining.
-// When stderr is not a terminal it stays quiet until the one-line summary at the end.
+// A progress bar on stderr for long work: frames or runs done, total, elapsed, remaining,
+// drawn only when stderr is a terminal; the one-line summary at the end goes to stdout.
 #include <chrono>
 #include <string>
 
@@ -10,7 +10,8 @@ class Progress {
 public:
     Progress(std::string what, long total);
     void update(long done);
-    /// Prints the closing summary line ("rendered 600 frames in 12.3 s").
+    /// Erases the bar and prints the closing summary line on stdout ("wrote x.mp4 (600
+    /// frames, ...) in 12.3 s").
     void finish(const std::string& summary);
     /// Erases the bar (for a command whose summary goes elsewhere).
     void clear();

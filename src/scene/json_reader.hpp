@@ -13,6 +13,7 @@
 
 #include "pba/math.hpp"
 #include "pba/scene/scene.hpp"
+#include "closest_name.hpp"
 
 namespace pba::scene_detail {
 
@@ -64,13 +65,5 @@ private:
     std::set<std::string> m_read;
     std::vector<std::string> m_known; ///< empty until expectKeys()
 };
-
-/// Edit distance with transpositions (optimal string alignment): "stifness" is 1 from
-/// "stiffness", "mass" 2 from "max".
-std::size_t editDistance(std::string_view a, std::string_view b);
-
-/// The candidate closest to `word` if it is close enough to be a typo of it (at most 2 edits,
-/// and at most a third of its length, at least 1); none when two are equally close.
-std::optional<std::string> closestName(std::string_view word, const std::vector<std::string>& candidates);
 
 } // namespace pba::scene_detail

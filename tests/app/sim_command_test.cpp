@@ -102,7 +102,22 @@ INSTANTIATE_TEST_SUITE_P(
                     BadRun{"integrators --integrator leapfrog", "unknown integrator 'leapfrog'"},
                     BadRun{"integrators --collision bounce", "unknown collision response 'bounce'"},
                     BadRun{"integrators --frame-rate 0", "--frame-rate"},
-                    BadRun{"integrators --no-such-option", "no-such-option"}));
+                    BadRun{"integrators --no-such-option", "no-such-option"},
+                    BadRun{"integrators --dt abc", "--dt: cannot read 'abc' as a number"},
+                    BadRun{"integrators --duration 1,5", "--duration: cannot read '1,5' as a number"}));
+
+// A mistyped command is named, with the command it is close to, in the order it was typed.
+TEST(PbaCommands, AMistypedCommandIsNamedWithTheOneItIsCloseTo)
+{
+    CommandResult r = runPba("simm integrators");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err, "pba: error: unknown command 'simm': did you mean 'sim'? (the commands: sim, field, render, view, "
+                     "compare, bench, scenes, help)\n");
+    r = runPba("frobnicate");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err.find("did you mean"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("unknown command 'frobnicate' (the commands: sim,"), std::string::npos) << r.err;
+}
 
 // The two typos, as a student meets them: one line on stderr naming the file, the key
 // and the key it is close to, exit 2.

@@ -151,14 +151,14 @@ TEST(PbaRender, FramesCoverExactlyTheTimeAskedFor)
     const auto dir = freshDir("render_time");
     const CommandResult slow = runPba("render integrators --fps 1 --time 10 --size 64x48 --out " + (dir / "a.png").string());
     ASSERT_EQ(slow.exitCode, 0) << slow.err;
-    EXPECT_NE(slow.err.find("t = 10 s"), std::string::npos) << slow.err;
+    EXPECT_NE(slow.out.find("t = 10 s"), std::string::npos) << slow.out;
     const CommandResult at = runPba("render integrators --time 1.2 --size 64x48 --out " + (dir / "b.png").string());
-    EXPECT_NE(at.err.find("t = 1.2 s"), std::string::npos) << at.err;
+    EXPECT_NE(at.out.find("t = 1.2 s"), std::string::npos) << at.out;
     // Between two frames of 1/60 s: still exactly the time asked for.
     const CommandResult between = runPba("render integrators --time 0.64 --size 64x48 --out " + (dir / "d.png").string());
-    EXPECT_NE(between.err.find("t = 0.64 s"), std::string::npos) << between.err;
+    EXPECT_NE(between.out.find("t = 0.64 s"), std::string::npos) << between.out;
     const CommandResult video =
         runPba("render integrators --fps 2 --duration 20 --size 64x48 --out " + (dir / "c.mp4").string());
     ASSERT_EQ(video.exitCode, 0) << video.err;
-    EXPECT_NE(video.err.find("41 frames, 64x48, t = 20 s"), std::string::npos) << video.err;
+    EXPECT_NE(video.out.find("41 frames, 64x48, t = 20 s"), std::string::npos) << video.out;
 }
