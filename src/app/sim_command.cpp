@@ -175,7 +175,7 @@ void printRigidSummary(const World& world, const study::RigidWatch& rigid)
 void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary,
                   const study::JetWatch& jet, const study::RigidWatch& rigid)
 {
-    fmt::print("scene {}: {} steps of dt = {} s, t = {} s, collision response {}{}\n", scene.name, world.stepCount(),
+    fmt::print("scene {}: {} steps of dt = {:.6g} s, t = {:.6g} s, collision response {}{}\n", scene.name, world.stepCount(),
                scene.dt, world.time(), collisionResponseName(world.collisionResponse()),
                world.coupledBodiesReflect() ? " (reflect for bodies joined by springs)" : "");
     if (world.bodyCount() == 0) {
