@@ -78,15 +78,20 @@ TEST(RigidWatch, TheDryersBoxesTumbleUnderItsTorque)
     }
 }
 
-/// A room with a floor at y = 0 and gravity, holding one body.
-World roomWith(std::unique_ptr<RigidBody> body)
+/// What the watch makes of one body on a floor at y = 0 under gravity, over `steps` of dt.
+RigidFigures watchedAlone(std::unique_ptr<RigidBody> body, int steps, double dt)
 {
     World world;
     world.addForce(std::make_unique<Gravity>(dvec3(0.0, -9.81, 0.0)));
     world.setGround(0.0);
     world.setCollisionResponse(CollisionResponse::Exact);
     world.addBody(std::move(body));
-    return world;
+    RigidWatch watch(world);
+    for (int n = 0; n < steps; ++n) {
+        world.step(dt);
+        watch.record(world);
+    }
+    return watch.bodies(world).at(0);
 }
 
 // A box set down on its -y face is still from the start; turned a quarter about x (its +z
@@ -100,13 +105,7 @@ TEST(RigidWatch, ABoxSetDownIsStillFromTheStartOnTheFaceBelow)
         if (turned)
             box->setOrientation(glm::angleAxis(pi / 2.0, dvec3(1.0, 0.0, 0.0)));
         box->setPos(dvec3(0.0, turned ? 0.3 : 0.1, 0.0));
-        World world = roomWith(std::move(box));
-        RigidWatch watch(world);
-        for (int n = 0; n < 200; ++n) {
-            world.step(0.005);
-            watch.record(world);
-        }
-        const RigidFigures f = watch.bodies(world).at(0);
+        const RigidFigures f = watchedAlone(std::move(box), 200, 0.005);
         ASSERT_TRUE(f.stillFrom.has_value()) << turned;
         // Turned, its corners start a rounding of cos(pi/4) off level, and settle within a few steps.
         EXPECT_LE(*f.stillFrom, turned ? 0.05 : 0.0) << turned;
@@ -135,13 +134,7 @@ TEST(RigidWatch, ABallRollsOnlyWhereItsContactDoesNotSlip)
         ball->setPos(c.position);
         ball->setVel(c.velocity);
         ball->setAngularVelocity(c.spin);
-        World world = roomWith(std::move(ball));
-        RigidWatch watch(world);
-        for (int n = 0; n < 20; ++n) {
-            world.step(0.001);
-            watch.record(world);
-        }
-        const RigidFigures f = watch.bodies(world).at(0);
+        const RigidFigures f = watchedAlone(std::move(ball), 20, 0.001);
         EXPECT_EQ(f.rollingFrom.has_value(), c.rolls) << c.position.y << " " << c.spin.z;
         if (c.rolls) {
             EXPECT_EQ(*f.rollingFrom, 0.0);
