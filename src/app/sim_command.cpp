@@ -183,17 +183,17 @@ void printSummary(const Scene& scene, const World& world, const std::vector<Body
         printJetSummary(world, jet);
         return;
     }
-    fmt::print("{:<22} {:<20} {:>32} {:>10} {:>8} {:>14}\n", "body", "integrator", "final position (m)",
-               "highest y", "bounces", "E now/E start");
+    fmt::print("{:<22} {:<20} {:>32} {:>11} {:>10} {:>8} {:>14}\n", "body", "integrator", "final position (m)",
+               "speed (m/s)", "highest y", "bounces", "E now/E start");
     const std::vector<double> energies = world.energies();
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
         const Body& b = world.body(i);
         const dvec3& x = b.getPos();
         const double ratio = summary[i].startEnergy != 0.0 ? energies[i] / summary[i].startEnergy : 1.0;
-        fmt::print("{:<22} {:<20} {:>32} {:>10.4f} {:>8} {:>14.6f}\n", b.getName(),
+        fmt::print("{:<22} {:<20} {:>32} {:>11.4g} {:>10.4f} {:>8} {:>14.6f}\n", b.getName(),
                    b.isFixed() ? std::string("(fixed)") : std::string(integratorName(b.getIntegrator())),
-                   fmt::format("({:.4f}, {:.4f}, {:.4f})", x.x, x.y, x.z), summary[i].highest,
-                   world.bounceCount(i), ratio);
+                   fmt::format("({:.4f}, {:.4f}, {:.4f})", x.x, x.y, x.z), glm::length(b.getVel()),
+                   summary[i].highest, world.bounceCount(i), ratio);
     }
     printRigidSummary(world, rigid);
     printSwarmSummary(world);
