@@ -59,6 +59,8 @@ namespace {
 Shape readShape(ObjectReader& body, const std::filesystem::path& directory)
 {
     ObjectReader shape = body.object("shape");
+    if (!shape.has("type")) // a mistyped "type" is named as one, not as a missing type
+        shape.expectKeys({"type", "size", "radius", "height", "path"});
     const std::string type = shape.string("type");
     Shape result;
     if (type == "box") {

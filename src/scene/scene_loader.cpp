@@ -276,6 +276,55 @@ std::string parseErrorReason(const nlohmann::json::exception& error)
 
 namespace {
 
+/// Where the parser is in the document, as the JSON path an error names (cloths[0].stiffness):
+/// the objects' current keys and the arrays' current indices, from the parser's events.
+class ParsePosition {
+public:
+    /// Follows one parse event; returns the path of a key its object already has, if this
+    /// event is one.
+    std::optional<std::string> follow(Json::parse_event_t event, const Json& parsed)
+    {
+        using Event = Json::parse_event_t;
+        if ((event == Event::object_start || event == Event::array_start || event == Event::value) &&
+            !m_frames.empty() && m_frames.back().array)
+            ++m_frames.back().index; // an element of an array begins (a value: and ends)
+        if (event == Event::object_start || event == Event::array_start) {
+            m_frames.emplace_back();
+            m_frames.back().array = event == Event::array_start;
+        } else if (event == Event::object_end || event == Event::array_end) {
+            m_frames.pop_back();
+        } else if (event == Event::key) {
+            Frame& object = m_frames.back();
+            object.key = parsed.get<std::string>();
+            if (!object.keys.insert(object.key).second)
+                return path();
+        }
+        return std::nullopt;
+    }
+
+    /// The path to the value being read; "(document)" outside every object.
+    std::string path() const
+    {
+        std::string out;
+        for (const Frame& frame : m_frames) {
+            if (frame.array && frame.index >= 0)
+                out += fmt::format("[{}]", frame.index);
+            else if (!frame.array && !frame.key.empty())
+                out += (out.empty() ? "" : ".") + frame.key;
+        }
+        return out.empty() ? "(document)" : out;
+    }
+
+private:
+    struct Frame {
+        bool array = false;
+        long index = -1;           ///< an array's element being read
+        std::string key;           ///< an object's key being read
+        std::set<std::string> keys; ///< an object's keys so far
+    };
+    std::vector<Frame> m_frames;
+};
+
 Scene parseScene(std::string_view json, const std::string& source, const std::filesystem::path& directory)
 {
     // A NUL byte would end the document early, silently dropping what follows it.
@@ -283,35 +332,23 @@ Scene parseScene(std::string_view json, const std::string& source, const std::fi
         throw SceneError(source, "(document)", fmt::format("contains a NUL byte at offset {}: not a text file", nul));
     // Duplicate keys: JSON leaves them undefined and the parser keeps the last; a scene refuses
     // them, as it refuses unknown keys (both are usually mistakes).
-    std::vector<std::set<std::string>> keys;
-    std::vector<std::string> lastKey{""};
+    ParsePosition position;
     std::optional<std::string> duplicate;
     const auto watch = [&](int, Json::parse_event_t event, Json& parsed) {
-        if (event == Json::parse_event_t::object_start) {
-            keys.emplace_back();
-            lastKey.push_back("");
-        } else if (event == Json::parse_event_t::object_end) {
-            keys.pop_back();
-            lastKey.pop_back();
-        } else if (event == Json::parse_event_t::key && !duplicate) {
-            const std::string key = parsed.get<std::string>();
-            if (!keys.back().insert(key).second)
-                duplicate = lastKey.size() > 1 && !lastKey[lastKey.size() - 2].empty()
-                                ? fmt::format("{}: duplicate key '{}' (each key may appear once in an object)",
-                                              lastKey[lastKey.size() - 2], key)
-                                : fmt::format("duplicate key '{}' (each key may appear once in an object)", key);
-            lastKey.back() = key;
-        }
+        if (auto at = position.follow(event, parsed); at && !duplicate)
+            duplicate = std::move(at);
         return true;
     };
     Json document;
     try {
         document = Json::parse(json.begin(), json.end(), watch);
-    } catch (const nlohmann::json::exception& error) { // parse errors and number overflow
+    } catch (const nlohmann::json::out_of_range& error) { // a number too large: the value being read
+        throw SceneError(source, position.path(), parseErrorReason(error));
+    } catch (const nlohmann::json::exception& error) { // a syntax error: the parser's line and column say where
         throw SceneError(source, "(document)", parseErrorReason(error));
     }
     if (duplicate)
-        throw SceneError(source, "(document)", *duplicate);
+        throw SceneError(source, *duplicate, "duplicate key (each key may appear once in an object)");
     return readScene(document, source, directory);
 }
 
