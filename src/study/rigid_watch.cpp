@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "pba/rigid_body.hpp"
+#include "study/rotation_study.hpp"
 
 namespace pba::study {
 
@@ -15,9 +16,9 @@ const RigidBody& rigid(const World& world, std::size_t i)
     return static_cast<const RigidBody&>(world.body(i));
 }
 
-/// The body-frame axis of intermediate inertia, when the body frame is the principal one (a
-/// box's, a cylinder's) and the three moments differ; otherwise -1 (a cube, a sphere: no
-/// axis about which a spin is unstable).
+/// The body-frame axis of intermediate inertia (intermediateAxisOf), when the body frame is the
+/// principal one (a box's, a cylinder's; a mesh's need not be); otherwise -1, as for a cube or a
+/// sphere: no axis about which a spin is unstable.
 int middleAxisOf(const dmat3& inertia)
 {
     const double largest = std::max({inertia[0][0], inertia[1][1], inertia[2][2]});
@@ -25,11 +26,7 @@ int middleAxisOf(const dmat3& inertia)
         for (int c = 0; c < 3; ++c)
             if (r != c && std::abs(inertia[c][r]) > 1e-12 * largest)
                 return -1;
-    int order[3] = {0, 1, 2};
-    std::sort(order, order + 3, [&](int a, int b) { return inertia[a][a] < inertia[b][b]; });
-    const double low = inertia[order[0]][order[0]], mid = inertia[order[1]][order[1]];
-    const double high = inertia[order[2]][order[2]];
-    return mid - low > 1e-9 * high && high - mid > 1e-9 * high ? order[1] : -1;
+    return intermediateAxisOf(inertia);
 }
 
 /// The speed at which a sphere's point nearest a surface it touches slips along that surface,

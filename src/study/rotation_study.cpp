@@ -15,10 +15,6 @@ std::optional<std::size_t> studiedRigidBody(const World& world)
     return std::nullopt;
 }
 
-namespace {
-
-/// The principal moments of a body whose inertia is diagonal in its own frame (every built-in
-/// shape's), and which axis is the intermediate one (-1 if two are equal).
 int intermediateAxisOf(const dmat3& inertia)
 {
     const double m[3] = {inertia[0][0], inertia[1][1], inertia[2][2]};
@@ -29,6 +25,8 @@ int intermediateAxisOf(const dmat3& inertia)
     }
     return -1;
 }
+
+namespace {
 
 bool finite(const RigidBody& b)
 {

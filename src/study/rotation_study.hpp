@@ -47,6 +47,10 @@ struct RotationResult {
     std::vector<RotationRun> runs; ///< in (integrator, dt) order
 };
 
+/// Which body axis is the intermediate one, for an inertia tensor diagonal in the body's own
+/// frame (every built-in shape's); -1 if two moments are equal.
+int intermediateAxisOf(const dmat3& inertia);
+
 /// The first moving rigid body of the scene, or nothing.
 std::optional<std::size_t> studiedRigidBody(const World& world);
 
