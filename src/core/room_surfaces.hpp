@@ -3,6 +3,7 @@
 // and the grille at the bottom of its shaft) in the form a swarm's fused pass holds in
 // registers: every plane a wall known to face along an axis when the code is compiled, in the
 // order World::planes() lists them. Private to the core.
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <optional>
@@ -75,12 +76,21 @@ struct RoomSurfacesT {
     /// must see to.
     /// As comparisons with the bounds rather than each plane's distance (a product and a
     /// difference), it left the collision pass's loop seven constants fewer to keep.
+    /// The six bounds are one comparison, of the least of the six margins: a difference of two
+    /// floats rounds to a number of the exact difference's sign (zero only when they are
+    /// equal), so the least margin is >= 0 exactly when x is within every bound. Six
+    /// comparisons joined by `and` were a chain of masked compares, each waiting for the last,
+    /// the pass's hottest instructions; blow-dryer-swarm at rest ran 10% faster at 1e6 and 8%
+    /// at 1e7 without it (a Zen 5, alternated windows, the same states). The one difference is
+    /// a NaN coordinate, which std::min may drop: that particle may stay with the pass, but its
+    /// state is already flagged as not finite by the integration's check, which saw it.
     bool needsWholeRule(const Vec3<T>& x) const
     {
         const auto rho = floor.fromHoleAxis(x);
         const bool aboveFloor = (x.y >= floor.offset) | (glm::dot(rho, rho) < shaftInnerSquared);
-        return !(aboveFloor & (x.x >= low.x) & (x.y >= low.y) & (x.z >= low.z) & (x.x <= high.x) &
-                 (x.y <= high.y) & (x.z <= high.z));
+        const T margin = std::min(std::min(std::min(x.x - low.x, high.x - x.x), std::min(x.z - low.z, high.z - x.z)),
+                                  std::min(x.y - low.y, high.y - x.y));
+        return !(aboveFloor & (margin >= T(0)));
     }
 
     bool hasHole() const { return floor.holeRadius > T(0); }
