@@ -75,9 +75,10 @@ SpanRun runDice(bool quick, int cores)
     run.threads = cores;
     run.spanSteps = quick ? 10 : static_cast<int>(std::lround(0.5 / scene.dt));
     run.spans = quick ? 2 : static_cast<int>(std::lround(kDiceDuration / 0.5));
-    const auto [slowest, total] = timeSpans(world, scene.dt, run.spans, run.spanSteps);
-    run.stepsPerSecond = slowest;
-    run.overallStepsPerSecond = double(run.spans) * run.spanSteps / total;
+    const SpanTimes times = timeSpans(world, scene.dt, run.spans, run.spanSteps);
+    run.stepsPerSecond = times.slowest;
+    run.overallStepsPerSecond = double(run.spans) * run.spanSteps / times.total;
+    run.slowestFrom = times.slowestSpan * run.spanSteps * scene.dt;
     return run;
 }
 
@@ -96,9 +97,10 @@ SceneRun runScene(bool quick, int cores)
     run.threads = cores;
     run.spanSteps = quick ? 4 : static_cast<int>(std::lround(1.0 / scene.dt));
     run.spans = quick ? 2 : static_cast<int>(std::lround(scene.duration));
-    const auto [slowest, total] = timeSpans(world, scene.dt, run.spans, run.spanSteps);
-    run.stepsPerSecond = slowest;
-    run.overallStepsPerSecond = double(run.spans) * run.spanSteps / total;
+    const SpanTimes times = timeSpans(world, scene.dt, run.spans, run.spanSteps);
+    run.stepsPerSecond = times.slowest;
+    run.overallStepsPerSecond = double(run.spans) * run.spanSteps / times.total;
+    run.slowestFrom = times.slowestSpan * run.spanSteps * scene.dt;
     fountain.n = world.swarm(0).size();
     fountain.integrator = std::string(integratorName(world.swarm(0).integrator()));
     return fountain;

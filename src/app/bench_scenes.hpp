@@ -32,6 +32,7 @@ struct SpanRun {
     int threads = 1;
     double stepsPerSecond = 0.0, overallStepsPerSecond = 0.0;
     int spans = 0, spanSteps = 0;
+    double slowestFrom = 0.0; ///< the simulated time the slowest span starts at, s
 };
 
 /// The dice row: kDice dice thrown into the dice scene's room, semi-implicit Euler with contacts

@@ -47,13 +47,16 @@ Restartable restartable(World world)
 
 SpanTimes timeSpans(World& world, double dt, int spans, int spanSteps)
 {
-    SpanTimes t{std::numeric_limits<double>::infinity(), 0.0};
+    SpanTimes t{std::numeric_limits<double>::infinity(), 0.0, 0};
     for (int span = 0; span < spans; ++span) {
         const auto start = Clock::now();
         for (int k = 0; k < spanSteps; ++k)
             world.step(dt);
         const double elapsed = seconds(start);
-        t.slowest = std::min(t.slowest, spanSteps / elapsed);
+        if (spanSteps / elapsed < t.slowest) {
+            t.slowest = spanSteps / elapsed;
+            t.slowestSpan = span;
+        }
         t.total += elapsed;
     }
     return t;

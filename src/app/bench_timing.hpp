@@ -56,9 +56,10 @@ struct Restartable {
 Restartable restartable(World world);
 
 /// A world stepped as a program steps it, `spans` spans of `spanSteps` steps, each timed: the
-/// slowest span's steps per second, and the seconds of the whole run.
+/// slowest span's steps per second and its index (from 0), and the seconds of the whole run.
 struct SpanTimes {
     double slowest = 0.0, total = 0.0;
+    int slowestSpan = 0;
 };
 
 SpanTimes timeSpans(World& world, double dt, int spans, int spanSteps);

@@ -400,6 +400,10 @@ TEST(PbaBench, QuickJsonHasEveryLayout)
     EXPECT_LE(scene["steps_per_s"].get<double>(), scene["steps_per_s_overall"].get<double>());
     EXPECT_EQ(scene["spans"], 2);
     EXPECT_EQ(scene["steps_per_span"], 4);
+    // where the slowest span starts: the first span's start or the second's, 4 steps of dt later
+    const double from = scene["slowest_span_from_s"].get<double>();
+    EXPECT_TRUE(from == 0.0 || std::abs(from - 4.0 / 480.0) < 1e-12) << from;
+    EXPECT_GE(dice["slowest_span_from_s"].get<double>(), 0.0);
 }
 
 // Timing the phases changes nothing: the same states to the bit, and every phase takes time.
