@@ -3,7 +3,6 @@
 // and the grille at the bottom of its shaft) in the form a swarm's fused pass holds in
 // registers: every plane a wall known to face along an axis when the code is compiled, in the
 // order World::planes() lists them. Private to the core.
-#include <algorithm>
 #include <array>
 #include <limits>
 #include <optional>
@@ -82,14 +81,15 @@ struct RoomSurfacesT {
     /// comparisons joined by `and` were a chain of masked compares, each waiting for the last,
     /// the pass's hottest instructions; blow-dryer-swarm at rest ran 10% faster at 1e6 and 8%
     /// at 1e7 without it (a Zen 5, alternated windows, the same states). The one difference is
-    /// a NaN coordinate, which std::min may drop: that particle may stay with the pass, but its
+    /// a NaN coordinate, which the minimum may drop: that particle may stay with the pass, but its
     /// state is already flagged as not finite by the integration's check, which saw it.
     bool needsWholeRule(const Vec3<T>& x) const
     {
         const auto rho = floor.fromHoleAxis(x);
         const bool aboveFloor = (x.y >= floor.offset) | (glm::dot(rho, rho) < shaftInnerSquared);
-        const T margin = std::min(std::min(std::min(x.x - low.x, high.x - x.x), std::min(x.z - low.z, high.z - x.z)),
-                                  std::min(x.y - low.y, high.y - x.y));
+        using collision_detail::lesser;
+        const T margin = lesser(lesser(lesser(x.x - low.x, high.x - x.x), lesser(x.z - low.z, high.z - x.z)),
+                                lesser(x.y - low.y, high.y - x.y));
         return !(aboveFloor & (margin >= T(0)));
     }
 
