@@ -186,7 +186,8 @@ int runPhases(const BenchOptions& options)
         fmt::print("{}\n", out.dump(2));
     else
         fmt::print("{}({}, blow-dryer-swarm, all cores, {} steps each; milliseconds of thread time per step, "
-                   "summed over the threads)\n", table, integratorName(integrator), steps);
+                   "summed over the threads; the integration's last instructions may be charged to the phase "
+                   "after it)\n", table, integratorName(integrator), steps);
     return kExitSuccess;
 }
 
@@ -357,7 +358,9 @@ void addBenchCommand(CLI::App& root, Action& selected)
                   "swarm (or --integrator's) on all cores, in flight, landed and rested, from the same\n"
                   "start states whatever the integrator, at the sizes of --sizes (default 1e6),\n"
                   "200 steps each (10 with --quick), in milliseconds of thread time a step for each phase\n"
-                  "(integrate, surface test, collide, check; timing them slows a step a little).\n");
+                  "(integrate, surface test, collide, check; timing them slows a step a little). The clock\n"
+                  "is read without waiting for a phase to finish, so some of the integration's time shows\n"
+                  "up in the phase after it: the surface test's, or at rest the collision's (see the README).\n");
     bench->callback([options, &selected] { selected = [options] { return runBench(*options); }; });
 }
 
