@@ -66,6 +66,20 @@ std::vector<ClothRow> measureCloth(double minTime, int repeats, int cores)
     return rows;
 }
 
+namespace {
+
+/// Steps the world through run.spans spans of run.spanSteps steps, timing each, and records the
+/// slowest span's rate, where it starts and the whole run's rate in `run`.
+void timeRun(World& world, double dt, SpanRun& run)
+{
+    const SpanTimes times = timeSpans(world, dt, run.spans, run.spanSteps);
+    run.stepsPerSecond = times.slowest;
+    run.overallStepsPerSecond = double(run.spans) * run.spanSteps / times.total;
+    run.slowestFrom = times.slowestSpan * run.spanSteps * dt;
+}
+
+} // namespace
+
 SpanRun runDice(bool quick, int cores)
 {
     Scene scene = manyDice(kDice);
@@ -75,16 +89,13 @@ SpanRun runDice(bool quick, int cores)
     run.threads = cores;
     run.spanSteps = quick ? 10 : static_cast<int>(std::lround(0.5 / scene.dt));
     run.spans = quick ? 2 : static_cast<int>(std::lround(kDiceDuration / 0.5));
-    const SpanTimes times = timeSpans(world, scene.dt, run.spans, run.spanSteps);
-    run.stepsPerSecond = times.slowest;
-    run.overallStepsPerSecond = double(run.spans) * run.spanSteps / times.total;
-    run.slowestFrom = times.slowestSpan * run.spanSteps * scene.dt;
+    timeRun(world, scene.dt, run);
     return run;
 }
 
 /// The rain in flight is the cheap part; from about 4 s nearly every particle lies on the floor,
 /// bouncing in place within the contact tolerance, and some slide around the hole's shaft: the
-/// collision code runs for all of them every step, and the last second is the slowest. A
+/// collision code runs for all of them every step, and its slowest second is one of those. A
 /// program must keep up with its slowest second, so that is the row's rate; the whole run's
 /// average is beside it.
 SceneRun runScene(bool quick, int cores)
@@ -97,10 +108,7 @@ SceneRun runScene(bool quick, int cores)
     run.threads = cores;
     run.spanSteps = quick ? 4 : static_cast<int>(std::lround(1.0 / scene.dt));
     run.spans = quick ? 2 : static_cast<int>(std::lround(scene.duration));
-    const SpanTimes times = timeSpans(world, scene.dt, run.spans, run.spanSteps);
-    run.stepsPerSecond = times.slowest;
-    run.overallStepsPerSecond = double(run.spans) * run.spanSteps / times.total;
-    run.slowestFrom = times.slowestSpan * run.spanSteps * scene.dt;
+    timeRun(world, scene.dt, run);
     fountain.n = world.swarm(0).size();
     fountain.integrator = std::string(integratorName(world.swarm(0).integrator()));
     return fountain;
