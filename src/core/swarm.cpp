@@ -87,8 +87,9 @@ constexpr std::size_t kParallelThreshold = 32768;
 /// over the whole block anyway (a crowded block: integrate, with the dryer's split, then
 /// passInRoom's selects on the states still in registers, 2026-11-26) measured no faster
 /// either: fountain-1m from t = 8 s 800-900 steps/s both, blow-dryer-swarm from t = 2 s
-/// within 2% at 1e6 and 1e7. Loading a block from L1 twice is not what those loops wait on;
-/// their instructions are.
+/// within 2% at 1e6 and 1e7; on a Zen 5, 0.84 of the two loops' rate at rest at 1e6 and 0.98 at
+/// 1e7 (2026-11-27, docs/performance.md). Loading a block from L1 twice is not what those loops
+/// wait on; their instructions are, and one loop's longer chain a particle overlaps less.
 template <Integrator kIntegrator>
 std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const SwarmKernelFields& fields,
                          float restitution, float dt, std::span<const PlaneT<float>> planes,
