@@ -313,10 +313,11 @@ void addBenchCommand(CLI::App& root, Action& selected)
         ->option_text("N,...");
     CLI::Option* peerWorker = bench->add_flag("--peer-worker", options->peerWorker,
                     "For bench/peers/run.py: only the semi-implicit Euler swarm on all cores at the one size "
-                    "of --sizes, its windows taken on request from standard input (see bench/peers/run.py)");
+                    "of --sizes, its windows taken on request from standard input (see bench/peers/run.py); not with "
+                    "--phases");
     CLI::Option* phases = bench->add_flag("--phases", options->phases,
                     "Instead of the rows: where a swarm step's time goes (integrate, surface test, collide, check), "
-                    "in flight, landed and rested, at the sizes of --sizes (default 1e6)")
+                    "in flight, landed and rested, at the sizes of --sizes (default 1e6); not with --peer-worker")
         ->excludes(peerWorker);
     bench->add_option("--integrator", options->integrator,
                       "With --phases: the swarm's integrator, any name pba sim's --integrator takes "

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "help_formatter.hpp"
 #include "io/output_file.hpp"
 #include "pba/scene/scene.hpp"
 #include "scene/closest_name.hpp"
@@ -56,9 +57,10 @@ int main(int argc, char** argv)
     CLI::App app{"pba: a physics-based animation lab. Particles, integrators and fixed timesteps you can see and "
                  "measure.",
                  "pba"};
+    app.formatter(std::make_shared<HelpFormatter>()); // before the commands: each copies it
     app.footer(fmt::format("\nWithout a COMMAND, pba shows the {0} scene in a window; with no display it renders it\n"
                            "instead, which takes about 20 s, to pba-out/{0}.mp4 and pba-out/{0}.png.\n\n"
-                           "Exit status: 0 success, 1 other failure, 2 bad input or usage, 3 simulation failure "
+                           "Exit status: 0 success, 1 other failure, 2 bad input or usage, 3 simulation failure\n"
                            "(non-finite state).\nRun `pba help COMMAND` or `pba COMMAND --help` for the options of a "
                            "command.",
                            kDefaultScene));

@@ -51,6 +51,20 @@ TEST(PbaHelp, NoOptionShowsCli11Placeholders)
     }
 }
 
+TEST(PbaHelp, FitsAHundredColumnsWithEachOptionsNameBesideItsDescription)
+{
+    for (const auto& command : kCommands) {
+        const std::string help = helpOf(command);
+        std::size_t start = 0;
+        for (std::size_t end = help.find('\n'); end != std::string::npos; start = end + 1, end = help.find('\n', start))
+            EXPECT_LE(end - start, 100u) << "pba " << command << " --help: " << help.substr(start, end - start);
+        // CLI11 prints a flag's exclusions between its name and its description, and the
+        // description on a line of its own; pba's descriptions say it in words.
+        for (const char* list : {"Excludes:", "Needs:"})
+            EXPECT_EQ(help.find(list), std::string::npos) << "pba " << command << " --help\n" << help;
+    }
+}
+
 TEST(PbaHelp, HelpCommandPrintsWhatHelpFlagPrints)
 {
     for (const auto& command : kCommands) {
