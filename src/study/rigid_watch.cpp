@@ -107,10 +107,12 @@ void RigidWatch::look(const World& world, Track& t) const
     }
     if (t.middleAxis >= 0) {
         const double middle = (glm::transpose(glm::mat3_cast(body.getOrientation())) * w)[t.middleAxis];
+        // The crossing between the samples, not the step after it: a flip's time to a small
+        // fraction of dt rather than to dt (the sign changes once in a step, at the scenes' dt).
         if (middle * t.lastMiddle < 0.0)
-            f.flips.push_back(now);
+            f.flips.push_back(t.lastMiddleAt + (now - t.lastMiddleAt) * t.lastMiddle / (t.lastMiddle - middle));
         if (middle != 0.0)
-            t.lastMiddle = middle;
+            t.lastMiddle = middle, t.lastMiddleAt = now;
     }
     // NaN (and so never "free") for a body that started without a spin: no ratio to keep.
     f.energyDrift = std::max(f.energyDrift, std::abs(body.getRotationalKineticEnergy() / t.energy0 - 1.0));

@@ -26,7 +26,9 @@ struct RigidFigures {
     std::optional<double> rollingFrom; ///< a sphere: the first time it touched a surface without slipping, s
     double rollingSpeed = 0.0;         ///< its speed then, m/s
     /// A body whose principal moments differ, its body frame the principal one: the times its
-    /// angular velocity about the middle axis changed sign (it turned over, in a free body).
+    /// angular velocity about the middle axis changed sign (it turned over, in a free body),
+    /// each between the two steps that saw the sign change, where the straight line through
+    /// their values crosses zero.
     std::vector<double> flips;
     double meanSpin = 0.0;             ///< |w| over the run, rad/s
     double energyDrift = 0.0;          ///< the largest |E_rot / E_rot(0) - 1| over the run; NaN without a spin at 0
@@ -54,6 +56,7 @@ private:
         RigidFigures figures;
         int middleAxis = -1;     ///< the body-frame axis of intermediate inertia; -1 if none
         double lastMiddle = 0.0; ///< the last nonzero angular velocity about it
+        double lastMiddleAt = 0.0; ///< the time it was seen
         double energy0 = 0.0, momentum0 = 0.0, spinSum = 0.0;
         long steps = 0;
     };

@@ -66,6 +66,28 @@ TEST(RigidWatch, TheTennisRacketTurnsOverEveryHalfPeriod)
     EXPECT_NEAR(racket.meanSpin, 6.0, 0.5);
 }
 
+// A flip's time is where the angular velocity about the middle axis crosses zero between two
+// looks, not the look after it: a watch that looks at every 10th step of the same run times the
+// flips within a tenth of its 10 dt of the every-step watch's, where the look after the
+// crossing would be up to 10 dt late.
+TEST(RigidWatch, FlipsAreTimedBetweenSteps)
+{
+    Scene scene = loadScene("tennis-racket");
+    RigidWatch everyStep(scene.world), everyTenth(scene.world);
+    for (long n = 1; n <= std::lround(scene.duration / scene.dt); ++n) {
+        scene.world.step(scene.dt);
+        everyStep.record(scene.world);
+        if (n % 10 == 0)
+            everyTenth.record(scene.world);
+    }
+    const std::vector<double> expected = everyStep.bodies(scene.world)[0].flips;
+    const std::vector<double> flips = everyTenth.bodies(scene.world)[0].flips;
+    ASSERT_GE(flips.size(), 6u);
+    ASSERT_EQ(flips.size(), expected.size());
+    for (std::size_t k = 0; k < flips.size(); ++k)
+        EXPECT_NEAR(flips[k], expected[k], scene.dt) << "flip " << k;
+}
+
 // Boxes the dryer pushes are turned by it: spinning, and not free.
 TEST(RigidWatch, TheDryersBoxesTumbleUnderItsTorque)
 {
