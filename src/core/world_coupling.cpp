@@ -8,6 +8,25 @@
 
 namespace pba {
 
+namespace {
+
+/// For each non-empty list of body indices, a flag per body of the world: whether it is in the
+/// list (the forces' wanted list of a system). An empty list gets no flags.
+template <std::size_t N>
+void markMembers(const std::array<std::vector<std::size_t>, N>& lists, std::size_t bodies,
+                 std::array<std::vector<std::uint8_t>, N>& flags)
+{
+    for (std::size_t k = 0; k < N; ++k) {
+        if (lists[k].empty())
+            continue;
+        flags[k].assign(bodies, 0);
+        for (const std::size_t i : lists[k])
+            flags[k][i] = 1;
+    }
+}
+
+} // namespace
+
 const World::Coupling& World::couple()
 {
     if (m_coupling.madeFrom != m_keys) // the keys read by storePreviousStates
@@ -55,20 +74,8 @@ World::Coupling World::makeCoupling() const
             coupling.independent.push_back(i);
         }
     }
-    for (std::size_t k = 0; k < kAllIntegrators.size(); ++k) {
-        if (coupling.systems[k].empty())
-            continue;
-        coupling.wanted[k].assign(m_bodies.size(), 0);
-        for (const std::size_t i : coupling.systems[k])
-            coupling.wanted[k][i] = 1;
-    }
-    for (std::size_t k = 0; k < kEveryIntegrator.size(); ++k) {
-        if (coupling.rigid[k].empty())
-            continue;
-        coupling.rigidWanted[k].assign(m_bodies.size(), 0);
-        for (const std::size_t i : coupling.rigid[k])
-            coupling.rigidWanted[k][i] = 1;
-    }
+    markMembers(coupling.systems, m_bodies.size(), coupling.wanted);
+    markMembers(coupling.rigid, m_bodies.size(), coupling.rigidWanted);
     return coupling;
 }
 
