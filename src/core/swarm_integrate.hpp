@@ -251,7 +251,9 @@ bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float
 /// 16 at a time instead (a branch a vector to the one loop or the away one, no gathering: the
 /// same states) it was slower still, the integration phase 1.58-1.98 ms of thread time a step
 /// against 1.31-1.48 (fountain-1m from t = 3 s, 2026-11-26): the branches and each vector's
-/// reductions cost more than the roots they skip. The flags are words: as bytes they made GCC
+/// reductions cost more than the roots they skip; on a Zen 5, 0.85 of the one loop's rate at rest
+/// at 1e6, and 0.82 for 32 at a time with the flags tested as words (2026-11-27), where a loop
+/// without the dryer's roots would gain 31% (docs/performance.md). The flags are words: as bytes they made GCC
 /// take 64 particles a vector, and the away loop spilled. A block that had more than kGatherMax
 /// particles to step again is busy for the next 64 steps. A higher bar, so that rain in flight
 /// (a quarter of each block in the cone) takes the split too, measured slower (RK4 with half a
