@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdint>
 #include <algorithm>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -171,6 +172,28 @@ private:
     std::optional<NonFiniteParticle> m_nonFinite;
     std::vector<PlaneT<float>> m_clearOf; ///< the surfaces m_clear was computed against
     SwarmPhaseTimes* m_phaseTimes = nullptr; ///< not owned; not copied meaningfully (a copy times into the same)
+
+    /// Which thread stepped which blocks (a tbb::affinity_partitioner, in swarm.cpp), so that the
+    /// next step hands each thread the blocks it had, still in its core's caches: a hint that
+    /// changes no result. A copy of the swarm starts without one.
+    struct ThreadAffinity;
+    struct ThreadAffinityDeleter {
+        void operator()(ThreadAffinity* affinity) const;
+    };
+    struct ThreadAffinitySlot {
+        std::unique_ptr<ThreadAffinity, ThreadAffinityDeleter> held;
+        ThreadAffinitySlot() = default;
+        ThreadAffinitySlot(const ThreadAffinitySlot&) {}
+        ThreadAffinitySlot& operator=(const ThreadAffinitySlot&)
+        {
+            held.reset();
+            return *this;
+        }
+        ThreadAffinitySlot(ThreadAffinitySlot&&) = default;
+        ThreadAffinitySlot& operator=(ThreadAffinitySlot&&) = default;
+        ~ThreadAffinitySlot() = default;
+    };
+    ThreadAffinitySlot m_affinity;
 };
 
 /// The acceleration a swarm particle feels at (x, v): one inline expression of the same
