@@ -22,13 +22,19 @@ JetWatch::JetWatch(const World& world)
     }
     m_swarms.resize(world.swarmCount());
     m_longestSteps.assign(world.swarmCount(), 0);
-    for (std::size_t s = 0; s < world.swarmCount(); ++s)
-        m_stepsInShaft.emplace_back(world.swarm(s).size(), 0u);
+    m_inShaft.resize(world.swarmCount());
     lookAtSwarms(world);
 }
 
+/// Only particles below the nozzle can be under the hole, and few are (a tenth of a percent of
+/// fountain-1m's): each chunk of the swarm is first asked, in a vectorised pass over the heights
+/// alone, whether it holds one, and the list of the particles under the hole is made again from
+/// those chunks, each carrying its count of steps from the last list (both in index order). A
+/// counter per particle, read and written every step beside all three coordinates, made this
+/// watch 40% of `pba sim fountain-1m`'s time, more than the swarm's steps on both cores.
 void JetWatch::countStepsInShaft(const World& world)
 {
+    constexpr std::size_t kChunk = 64;
     const BlowDryerKernelT<float> kernel(m_field->as<float>());
     const float nx = kernel.nozzle.x, ny = kernel.nozzle.y, nz = kernel.nozzle.z, r2 = kernel.shaftRadius2;
     for (std::size_t s = 0; s < world.swarmCount(); ++s) {
@@ -36,15 +42,31 @@ void JetWatch::countStepsInShaft(const World& world)
         const float* px = swarm.px().data();
         const float* py = swarm.py().data();
         const float* pz = swarm.pz().data();
-        std::uint32_t* steps = m_stepsInShaft[s].data();
+        const std::vector<ShaftStay>& before = m_inShaft[s];
+        m_nextInShaft.clear();
+        std::size_t k = 0; // the first of `before` not yet passed
         std::uint32_t longest = m_longestSteps[s];
-        // inBlowDryerShaft written out over the arrays, so the loop vectorises.
-        for (std::size_t i = 0; i < swarm.size(); ++i) {
-            const float dx = px[i] - nx, dz = pz[i] - nz;
-            const bool in = (py[i] - ny < 0.0f) & (dx * dx + dz * dz < r2);
-            steps[i] = in ? steps[i] + 1 : 0u;
-            longest = std::max(longest, steps[i]);
+        for (std::size_t c = 0; c < swarm.size(); c += kChunk) {
+            const std::size_t end = std::min(swarm.size(), c + kChunk);
+            std::uint32_t below = 0;
+            for (std::size_t i = c; i < end; ++i)
+                below += static_cast<std::uint32_t>(py[i] - ny < 0.0f);
+            for (std::size_t i = c; below > 0 && i < end; ++i) {
+                // inBlowDryerShaft, with the same float arithmetic; x and z read only below the
+                // nozzle (their cache lines are not the pass's).
+                if (!(py[i] - ny < 0.0f))
+                    continue;
+                const float dx = px[i] - nx, dz = pz[i] - nz;
+                if (!(dx * dx + dz * dz < r2))
+                    continue;
+                while (k < before.size() && before[k].index < i)
+                    ++k;
+                const std::uint32_t steps = (k < before.size() && before[k].index == i ? before[k].steps : 0u) + 1u;
+                m_nextInShaft.push_back({i, steps});
+                longest = std::max(longest, steps);
+            }
         }
+        m_inShaft[s].swap(m_nextInShaft);
         m_longestSteps[s] = longest;
         m_swarms[s].longestInShaft = double(longest) * (world.time() - world.previousTime());
     }

@@ -46,7 +46,7 @@ public:
     std::vector<std::size_t> swarmsInShaft(const World& world) const;
 
     /// How many particles of a swarm are in the cone is counted every kSwarmSample seconds of
-    /// simulated time; whether each is under the hole, every step (one vectorised pass).
+    /// simulated time; whether each is under the hole, every step (see countStepsInShaft).
     static constexpr double kSwarmSample = 0.1;
     struct SwarmInJet {
         std::size_t peakInCone = 0;   ///< the most particles in the cone at one count
@@ -66,8 +66,14 @@ private:
     std::optional<BlowDryerField> m_field;
     std::vector<Track> m_tracks;
     std::vector<SwarmInJet> m_swarms;
-    std::vector<std::vector<std::uint32_t>> m_stepsInShaft; ///< per swarm particle: steps in a row under the hole
-    std::vector<std::uint32_t> m_longestSteps;              ///< per swarm: the most steps in a row
+    /// A particle under the hole, and how many steps in a row it has been there.
+    struct ShaftStay {
+        std::size_t index;
+        std::uint32_t steps;
+    };
+    std::vector<std::vector<ShaftStay>> m_inShaft; ///< per swarm: its particles under the hole, by index
+    std::vector<ShaftStay> m_nextInShaft;          ///< countStepsInShaft's list being made
+    std::vector<std::uint32_t> m_longestSteps;     ///< per swarm: the most steps in a row
     double m_nextLook = 0.0;
     double m_watched = 0.0;
 };
