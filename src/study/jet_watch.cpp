@@ -36,7 +36,7 @@ void JetWatch::countStepsInShaft(const World& world)
 {
     constexpr std::size_t kChunk = 64;
     const BlowDryerKernelT<float> kernel(m_field->as<float>());
-    const float nx = kernel.nozzle.x, ny = kernel.nozzle.y, nz = kernel.nozzle.z, r2 = kernel.shaftRadius2;
+    const float nx = kernel.nozzle.x, ny = kernel.nozzle.y, nz = kernel.nozzle.z;
     for (std::size_t s = 0; s < world.swarmCount(); ++s) {
         const Swarm& swarm = world.swarm(s);
         const float* px = swarm.px().data();
@@ -52,12 +52,12 @@ void JetWatch::countStepsInShaft(const World& world)
             for (std::size_t i = c; i < end; ++i)
                 below += static_cast<std::uint32_t>(py[i] - ny < 0.0f);
             for (std::size_t i = c; below > 0 && i < end; ++i) {
-                // inBlowDryerShaft, with the same float arithmetic; x and z read only below the
-                // nozzle (their cache lines are not the pass's).
-                if (!(py[i] - ny < 0.0f))
+                // x and z read only below the nozzle (their cache lines are not the pass's).
+                const float height = py[i] - ny;
+                if (!(height < 0.0f))
                     continue;
                 const float dx = px[i] - nx, dz = pz[i] - nz;
-                if (!(dx * dx + dz * dz < r2))
+                if (!inBlowDryerShaft(kernel, height, dx * dx + dz * dz))
                     continue;
                 while (k < before.size() && before[k].index < i)
                     ++k;
