@@ -38,7 +38,8 @@ struct BenchOptions {
     bool peerWorker = false; ///< --peer-worker: one row, windows on request (bench/peers/run.py)
     std::string phase = "flight";
     bool phases = false; ///< --phases: where a swarm step's time goes, instead of the rows
-    std::string integrator = "semi-implicit-euler"; ///< --phases' integrator
+    std::string integrator = "semi-implicit-euler"; ///< --phases' and --peer-worker's integrator
+    bool integratorGiven = false;                   ///< --integrator was on the command line
 };
 
 /// Statistics of the swarm the peers are validated against (bench/peers/): the mean height, the
@@ -70,7 +71,7 @@ nlohmann::json swarmStatistics(const World& world, double t)
             {"shaft_fraction", double(inShaft) / count}, {"state_bits_sum", bits}};
 }
 
-/// `pba bench --peer-worker`: the semi-implicit Euler swarm of blow-dryer-swarm on all cores, at
+/// `pba bench --peer-worker`: the swarm of blow-dryer-swarm (--integrator's) on all cores, at
 /// the one size given, from the phase's start state (kPhases), driven line by line from standard
 /// input by bench/peers/run.py, which takes its windows in turn with the Python peers' (its own
 /// process, so interleaved across them):
@@ -89,11 +90,13 @@ int runPeerWorker(const BenchOptions& options)
         throw UsageError(fmt::format("--phase: flight, landed or rested, got '{}'", options.phase));
     const auto n = static_cast<std::size_t>(size);
     const double startTime = kPhases[*phase].time;
-    const World first = std::move(phaseWorlds(n, *phase).back());
+    World first = std::move(phaseWorlds(n, *phase).back());
+    first.swarm(0).setIntegrator(integratorFlag(options.integrator)); // the start states are semi-implicit Euler's
     World world = first;
     double t = startTime;
     const int cores = machineCores();
     fmt::print("{}\n", nlohmann::json{{"ready", true}, {"n", n}, {"phase", options.phase}, {"t", t},
+                                      {"integrator", std::string(integratorName(first.swarm(0).integrator()))},
                                       {"threads", cores}}.dump());
     std::fflush(stdout);
     for (std::string line; std::getline(std::cin, line);) {
@@ -252,6 +255,8 @@ void printTables(const std::vector<Row>& rows, const std::vector<ClothRow>& clot
 
 int runBench(const BenchOptions& options)
 {
+    if (options.integratorGiven && !options.peerWorker && !options.phases)
+        throw UsageError("--integrator: only with --phases or --peer-worker (the rows time every integrator)");
     if (options.peerWorker)
         return runPeerWorker(options);
     if (options.phases)
@@ -312,17 +317,16 @@ void addBenchCommand(CLI::App& root, Action& selected)
         ->delimiter(',')
         ->option_text("N,...");
     CLI::Option* peerWorker = bench->add_flag("--peer-worker", options->peerWorker,
-                    "For bench/peers/run.py: only the semi-implicit Euler swarm on all cores at the one size "
-                    "of --sizes, its windows taken on request from standard input (see bench/peers/run.py); not with "
+                    "For bench/peers/run.py: only the swarm (semi-implicit Euler, or --integrator's) on all cores "
+                    "at the one size of --sizes, its windows taken on request from standard input (see bench/peers/run.py); not with "
                     "--phases");
-    CLI::Option* phases = bench->add_flag("--phases", options->phases,
+    bench->add_flag("--phases", options->phases,
                     "Instead of the rows: where a swarm step's time goes (integrate, surface test, collide, check), "
                     "in flight, landed and rested, at the sizes of --sizes (default 1e6); not with --peer-worker")
         ->excludes(peerWorker);
-    bench->add_option("--integrator", options->integrator,
-                      "With --phases: the swarm's integrator, any name pba sim's --integrator takes "
-                      "(default semi-implicit-euler)")
-        ->needs(phases)
+    CLI::Option* integrator = bench->add_option("--integrator", options->integrator,
+                      "With --phases or --peer-worker: the swarm's integrator, any name pba sim's --integrator "
+                      "takes (default semi-implicit-euler)")
         ->option_text("NAME");
     bench->add_option("--phase", options->phase,
                       "With --peer-worker: flight (from t = 0), landed (from t = 2 s) or rested (from t = 8 s)")
@@ -362,7 +366,10 @@ void addBenchCommand(CLI::App& root, Action& selected)
                   "(integrate, surface test, collide, check; timing them slows a step a little). The clock\n"
                   "is read without waiting for a phase to finish, so some of the integration's time shows\n"
                   "up in the phase after it: the surface test's, or at rest the collision's (see the README).\n");
-    bench->callback([options, &selected] { selected = [options] { return runBench(*options); }; });
+    bench->callback([options, integrator, &selected] {
+        options->integratorGiven = integrator->count() > 0;
+        selected = [options] { return runBench(*options); };
+    });
 }
 
 } // namespace pba::app

@@ -461,6 +461,25 @@ TEST(PbaBench, PhasesTakeAnIntegrator)
     EXPECT_TRUE(bad.out.empty()) << bad.out;
 }
 
+// The peer worker steps --integrator's swarm (for alternated windows of velocity Verlet or RK4);
+// --integrator with neither --phases nor --peer-worker is a usage error, not silently ignored.
+TEST(PbaBench, PeerWorkerTakesAnIntegrator)
+{
+    const auto r = pba::test::runShell("printf 'window 3\\n' | " PBA_BINARY
+                                       " bench --peer-worker --sizes 3000 --phase flight --integrator rk4");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::istringstream lines(r.out);
+    std::string ready, window;
+    ASSERT_TRUE(std::getline(lines, ready) && std::getline(lines, window)) << r.out;
+    EXPECT_EQ(nlohmann::json::parse(ready)["integrator"], "rk4");
+    EXPECT_EQ(nlohmann::json::parse(window)["steps"], 3);
+    EXPECT_GT(nlohmann::json::parse(window)["particle_steps_per_s"].get<double>(), 0.0);
+    const auto alone = pba::test::runPba("bench --quick --integrator rk4");
+    EXPECT_EQ(alone.exitCode, 2);
+    EXPECT_NE(alone.err.find("--integrator: only with --phases or --peer-worker"), std::string::npos) << alone.err;
+    EXPECT_TRUE(alone.out.empty()) << alone.out;
+}
+
 // A block whose particles rest on the floor skips the surface test and takes the collision pass
 // whole (a crowded block), one with a few at a surface has them gathered, one alone is stepped
 // by itself: each particle's states are the same, bit for bit, every step. Here 2,048 particles
