@@ -55,6 +55,12 @@ public:
     };
     const std::vector<SwarmInJet>& swarms() const { return m_swarms; }
 
+    /// A particle under the hole, and how many steps in a row it has been there.
+    struct ShaftStay {
+        std::size_t index;
+        std::uint32_t steps;
+    };
+
 private:
     void lookAtSwarms(const World& world);
     void countStepsInShaft(const World& world);
@@ -66,13 +72,9 @@ private:
     std::optional<BlowDryerField> m_field;
     std::vector<Track> m_tracks;
     std::vector<SwarmInJet> m_swarms;
-    /// A particle under the hole, and how many steps in a row it has been there.
-    struct ShaftStay {
-        std::size_t index;
-        std::uint32_t steps;
-    };
     std::vector<std::vector<ShaftStay>> m_inShaft; ///< per swarm: its particles under the hole, by index
     std::vector<ShaftStay> m_nextInShaft;          ///< countStepsInShaft's list being made
+    std::vector<std::vector<ShaftStay>> m_segmentLists; ///< its segments' lists, made on all cores
     std::vector<std::uint32_t> m_longestSteps;     ///< per swarm: the most steps in a row
     double m_nextLook = 0.0;
     double m_watched = 0.0;

@@ -12,7 +12,8 @@
 namespace pba::study {
 namespace {
 
-// The watch lists only the particles under the hole; the oracle counts, for every particle,
+// The watch lists only the particles under the hole, a segment of 8,192 at a time on all cores;
+// the oracle counts, for every particle,
 // its steps in a row there (inBlowDryerShaft in floats, as the swarm's kernel has it). Over
 // blow-dryer-swarm's first 8 s with 20,000 of its particles (about 9,000 stays under the hole,
 // the longest 53 steps) the longest stay is the same number of steps.
@@ -43,6 +44,41 @@ TEST(JetWatch, ASwarmsLongestStayUnderTheHoleIsThePlainCounts)
     EXPECT_GT(entered, 100u) << "the run should send particles through the hole";
     EXPECT_GT(longest, 1u);
     EXPECT_DOUBLE_EQ(watch.swarms().at(0).longestInShaft, double(longest) * (world.time() - world.previousTime()));
+}
+
+// The cone's count, every 0.1 s: a test in floats picks the particles that take the exact one in
+// double, on all cores. Its peak and when are the plain count's: insideBlowDryerCone for every
+// particle at the same times (blow-dryer-swarm's first 3 s, 20,000 particles: three segments,
+// the rain falling through the cone and landing around it).
+TEST(JetWatch, ASwarmsPeakInTheConeIsThePlainCount)
+{
+    Scene scene = loadScene("blow-dryer-swarm");
+    SwarmDesc desc = scene.world.swarm(0).desc();
+    desc.count = 20000;
+    scene.world.swarm(0) = Swarm(desc);
+    World& world = scene.world;
+    JetWatch watch(world);
+    std::size_t peak = 0;
+    double peakAt = 0.0, nextLook = 0.0;
+    const auto look = [&] {
+        if (world.time() < nextLook - 1e-9)
+            return;
+        nextLook = world.time() + JetWatch::kSwarmSample;
+        std::size_t count = 0;
+        for (std::size_t i = 0; i < world.swarm(0).size(); ++i)
+            count += insideBlowDryerCone(watch.field(), dvec3(world.swarm(0).position(i))) ? 1 : 0;
+        if (count > peak)
+            peak = count, peakAt = world.time();
+    };
+    look();
+    for (long n = 0; n < std::lround(3.0 / scene.dt); ++n) {
+        world.step(scene.dt);
+        watch.record(world);
+        look();
+    }
+    EXPECT_GT(peak, 1000u) << "the rain should fall through the cone";
+    EXPECT_EQ(watch.swarms().at(0).peakInCone, peak);
+    EXPECT_EQ(watch.swarms().at(0).peakAt, peakAt);
 }
 
 } // namespace
