@@ -12,21 +12,27 @@
 namespace pba::study {
 namespace {
 
+/// blow-dryer-swarm with `count` of its particles: three of the watch's segments for 20,000.
+Scene rainOf(std::size_t count)
+{
+    Scene scene = loadScene("blow-dryer-swarm");
+    SwarmDesc desc = scene.world.swarm(0).desc();
+    desc.count = count;
+    scene.world.swarm(0) = Swarm(desc);
+    return scene;
+}
+
 // The watch lists only the particles under the hole, a segment of 8,192 at a time on all cores;
-// the oracle counts, for every particle,
-// its steps in a row there (inBlowDryerShaft in floats, as the swarm's kernel has it). Over
+// the oracle counts, for every particle, its steps in a row there (inBlowDryerShaft in floats, as the swarm's kernel has it). Over
 // blow-dryer-swarm's first 8 s with 20,000 of its particles (about 9,000 stays under the hole,
 // the longest 53 steps) the longest stay is the same number of steps.
 TEST(JetWatch, ASwarmsLongestStayUnderTheHoleIsThePlainCounts)
 {
-    Scene scene = loadScene("blow-dryer-swarm");
-    SwarmDesc desc = scene.world.swarm(0).desc();
-    desc.count = 20000;
-    scene.world.swarm(0) = Swarm(desc);
+    Scene scene = rainOf(20000);
     World& world = scene.world;
     JetWatch watch(world);
     const BlowDryerKernelT<float> kernel(watch.field().as<float>());
-    std::vector<std::uint32_t> steps(desc.count, 0);
+    std::vector<std::uint32_t> steps(world.swarm(0).size(), 0);
     std::uint32_t longest = 0;
     std::size_t entered = 0;
     for (long n = 0; n < std::lround(8.0 / scene.dt); ++n) {
@@ -52,10 +58,7 @@ TEST(JetWatch, ASwarmsLongestStayUnderTheHoleIsThePlainCounts)
 // the rain falling through the cone and landing around it).
 TEST(JetWatch, ASwarmsPeakInTheConeIsThePlainCount)
 {
-    Scene scene = loadScene("blow-dryer-swarm");
-    SwarmDesc desc = scene.world.swarm(0).desc();
-    desc.count = 20000;
-    scene.world.swarm(0) = Swarm(desc);
+    Scene scene = rainOf(20000);
     World& world = scene.world;
     JetWatch watch(world);
     std::size_t peak = 0;
