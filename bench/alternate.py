@@ -30,7 +30,10 @@ def main():
     for build in args.builds:
         command = [build, "bench", "--peer-worker", "--sizes", args.n, "--phase", args.phase,
                    "--integrator", args.integrator]
-        worker = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+        try:
+            worker = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+        except OSError as error:
+            sys.exit(f"alternate.py: {build}: {error.strerror}")
         if not worker.stdout.readline():
             sys.exit(f"alternate.py: {build} stopped (exit {worker.wait()})")
         workers.append(worker)
