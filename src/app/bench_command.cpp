@@ -88,10 +88,11 @@ int runPeerWorker(const BenchOptions& options)
     const std::optional<std::size_t> phase = phaseIndex(options.phase);
     if (!phase)
         throw UsageError(fmt::format("--phase: flight, landed or rested, got '{}'", options.phase));
+    const Integrator integrator = integratorFlag(options.integrator); // before the start states take minutes
     const auto n = static_cast<std::size_t>(size);
     const double startTime = kPhases[*phase].time;
     World first = std::move(phaseWorlds(n, *phase).back());
-    first.swarm(0).setIntegrator(integratorFlag(options.integrator)); // the start states are semi-implicit Euler's
+    first.swarm(0).setIntegrator(integrator); // the start states are semi-implicit Euler's, whatever it is
     World world = first;
     double t = startTime;
     const int cores = machineCores();
@@ -317,9 +318,9 @@ void addBenchCommand(CLI::App& root, Action& selected)
         ->delimiter(',')
         ->option_text("N,...");
     CLI::Option* peerWorker = bench->add_flag("--peer-worker", options->peerWorker,
-                    "For bench/peers/run.py: only the swarm (semi-implicit Euler, or --integrator's) on all cores "
-                    "at the one size of --sizes, its windows taken on request from standard input (see bench/peers/run.py); not with "
-                    "--phases");
+                    "For bench/peers/run.py and bench/alternate.py: only the swarm (semi-implicit Euler, or "
+                    "--integrator's) on all cores at the one size of --sizes, its windows taken on request from "
+                    "standard input (see bench/peers/run.py); not with --phases");
     bench->add_flag("--phases", options->phases,
                     "Instead of the rows: where a swarm step's time goes (integrate, surface test, collide, check), "
                     "in flight, landed and rested, at the sizes of --sizes (default 1e6); not with --peer-worker")
