@@ -42,8 +42,8 @@ constexpr std::size_t kChunk = 64;
 std::size_t segmentCount(std::size_t particles) { return (particles + kSegment - 1) / kSegment; }
 
 /// Particles of a segment under the hole, each with its steps in a row there (one more than in
-/// `before`, the last step's list in index order); returns the most steps among them.
-std::uint32_t listInShaft(const Swarm& swarm, const BlowDryerKernelT<float>& kernel, std::size_t begin,
+/// `before`, the last step's list in index order).
+void listInShaft(const Swarm& swarm, const BlowDryerKernelT<float>& kernel, std::size_t begin,
                           std::size_t end, const std::vector<JetWatch::ShaftStay>& before,
                           std::vector<JetWatch::ShaftStay>& out)
 {
@@ -53,7 +53,6 @@ std::uint32_t listInShaft(const Swarm& swarm, const BlowDryerKernelT<float>& ker
     const float nx = kernel.nozzle.x, ny = kernel.nozzle.y, nz = kernel.nozzle.z;
     auto k = std::lower_bound(before.begin(), before.end(), begin,
                               [](const JetWatch::ShaftStay& stay, std::size_t i) { return stay.index < i; });
-    std::uint32_t longest = 0;
     out.clear();
     for (std::size_t c = begin; c < end; c += kChunk) {
         const std::size_t chunkEnd = std::min(end, c + kChunk);
@@ -72,10 +71,8 @@ std::uint32_t listInShaft(const Swarm& swarm, const BlowDryerKernelT<float>& ker
                 ++k;
             const std::uint32_t steps = (k != before.end() && k->index == i ? k->steps : 0u) + 1u;
             out.push_back({i, steps});
-            longest = std::max(longest, steps);
         }
     }
-    return longest;
 }
 
 /// Whether x may be in the cone, in floats: true wherever insideBlowDryerCone (in double) is,
@@ -104,21 +101,19 @@ void JetWatch::countStepsInShaft(const World& world)
     const BlowDryerKernelT<float> kernel(m_field->as<float>());
     for (std::size_t s = 0; s < world.swarmCount(); ++s) {
         const Swarm& swarm = world.swarm(s);
-        const std::vector<ShaftStay>& before = m_inShaft[s];
+        std::vector<ShaftStay>& inShaft = m_inShaft[s];
         const std::size_t segments = segmentCount(swarm.size());
         m_segmentLists.resize(std::max(m_segmentLists.size(), segments));
-        std::vector<std::uint32_t> longest(segments, 0);
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, segments), [&](const tbb::blocked_range<std::size_t>& r) {
             for (std::size_t g = r.begin(); g != r.end(); ++g)
-                longest[g] = listInShaft(swarm, kernel, g * kSegment, std::min(swarm.size(), (g + 1) * kSegment),
-                                         before, m_segmentLists[g]);
+                listInShaft(swarm, kernel, g * kSegment, std::min(swarm.size(), (g + 1) * kSegment), inShaft,
+                            m_segmentLists[g]);
         });
-        m_nextInShaft.clear();
+        inShaft.clear(); // the last step's list, read by every segment, is done with
         for (std::size_t g = 0; g < segments; ++g)
-            m_nextInShaft.insert(m_nextInShaft.end(), m_segmentLists[g].begin(), m_segmentLists[g].end());
-        m_inShaft[s].swap(m_nextInShaft);
-        for (const std::uint32_t steps : longest)
-            m_longestSteps[s] = std::max(m_longestSteps[s], steps);
+            inShaft.insert(inShaft.end(), m_segmentLists[g].begin(), m_segmentLists[g].end());
+        for (const ShaftStay& stay : inShaft)
+            m_longestSteps[s] = std::max(m_longestSteps[s], stay.steps);
         m_swarms[s].longestInShaft = double(m_longestSteps[s]) * (world.time() - world.previousTime());
     }
 }
@@ -150,7 +145,7 @@ void JetWatch::lookAtSwarms(const World& world)
                         may[j] = mayBeInCone(kernel, margin, Vec3<float>(px[c + j], py[c + j], pz[c + j]));
                     for (std::size_t j = 0; j < n; ++j)
                         if (may[j] != 0)
-                            count += insideBlowDryerCone(*m_field, dvec3(swarm.position(c + j))) ? 1 : 0;
+                            count += insideBlowDryerCone(*m_field, dvec3(px[c + j], py[c + j], pz[c + j])) ? 1 : 0;
                 }
                 return count;
             },

@@ -73,7 +73,6 @@ private:
     std::vector<Track> m_tracks;
     std::vector<SwarmInJet> m_swarms;
     std::vector<std::vector<ShaftStay>> m_inShaft; ///< per swarm: its particles under the hole, by index
-    std::vector<ShaftStay> m_nextInShaft;          ///< countStepsInShaft's list being made
     std::vector<std::vector<ShaftStay>> m_segmentLists; ///< its segments' lists, made on all cores
     std::vector<std::uint32_t> m_longestSteps;     ///< per swarm: the most steps in a row
     double m_nextLook = 0.0;
