@@ -10,10 +10,13 @@ window and the median of its per-round ratio to the first build's: the figure to
 (docs/performance.md's "alternated windows"). Compare builds of one tree, on an idle machine.
 """
 import argparse
-import json
+import os
 import statistics
-import subprocess
 import sys
+
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "peers"))
+from line_worker import Worker  # noqa: E402
 
 
 def main():
@@ -26,24 +29,13 @@ def main():
     parser.add_argument("--steps", type=int, default=0, help="steps a window (default 4e8 / n)")
     args = parser.parse_args()
     steps = args.steps or max(1, int(4e8 / float(args.n)))
-    workers = []
-    for build in args.builds:
-        command = [build, "bench", "--peer-worker", "--sizes", args.n, "--phase", args.phase,
-                   "--integrator", args.integrator]
-        try:
-            worker = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
-        except OSError as error:
-            sys.exit(f"alternate.py: {build}: {error.strerror}")
-        if not worker.stdout.readline():
-            sys.exit(f"alternate.py: {build} stopped (exit {worker.wait()})")
-        workers.append(worker)
+    workers = [Worker(build, [build, "bench", "--peer-worker", "--sizes", args.n, "--phase", args.phase,
+                              "--integrator", args.integrator], "alternate.py") for build in args.builds]
     rates = [[] for _ in workers]
     for r in range(args.rounds):
         order = range(len(workers)) if r % 2 == 0 else reversed(range(len(workers)))
         for i in order:
-            workers[i].stdin.write(f"window {steps}\n")
-            workers[i].stdin.flush()
-            rates[i].append(json.loads(workers[i].stdout.readline())["particle_steps_per_s"])
+            rates[i].append(workers[i].ask(f"window {steps}")["particle_steps_per_s"])
         print(f"round {r + 1}/{args.rounds}", file=sys.stderr)
     print(f"{args.integrator}, n = {args.n}, {args.phase}, {args.rounds} rounds of {steps} steps; "
           "particle-steps/s")
@@ -52,8 +44,7 @@ def main():
         print(f"  {build}: median {statistics.median(rates[i]):.3e}, best {max(rates[i]):.3e}, "
               f"ratio to the first {ratio:.3f}")
     for worker in workers:
-        worker.stdin.close()
-        worker.wait()
+        worker.close()
 
 
 if __name__ == "__main__":

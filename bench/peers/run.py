@@ -29,10 +29,8 @@ Rates are particle-steps per second, best and median window. Numba's compilation
 any window.
 """
 import argparse
-import json
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
 
@@ -54,40 +52,16 @@ except ImportError:
     sys.exit(SKIP)
 
 import scene  # noqa: E402 (after the check above: it imports NumPy)
-
-
-class Worker:
-    """One implementation's process, spoken to a line at a time."""
-
-    def __init__(self, name, command):
-        self.name = name
-        self.proc = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, cwd=HERE)
-        self.ready = self.read()
-
-    def read(self):
-        line = self.proc.stdout.readline()
-        if not line:
-            raise SystemExit(f"run.py: {self.name} stopped (exit {self.proc.wait()})")
-        return json.loads(line)
-
-    def ask(self, command):
-        self.proc.stdin.write(command + "\n")
-        self.proc.stdin.flush()
-        return self.read()
-
-    def close(self):
-        self.proc.stdin.close()
-        if self.proc.wait() != 0:
-            raise SystemExit(f"run.py: {self.name} exited with {self.proc.returncode}")
+from line_worker import Worker  # noqa: E402
 
 
 def pba_worker(args, n, phase):
-    return Worker("pba", [args.pba, "bench", "--peer-worker", "--sizes", str(n), "--phase", phase])
+    return Worker("pba", [args.pba, "bench", "--peer-worker", "--sizes", str(n), "--phase", phase], "run.py", HERE)
 
 
 def peer_worker(impl, n, phase, state=None):
     command = [sys.executable, os.path.join(HERE, "worker.py"), "--impl", impl, "--n", str(n), "--phase", phase]
-    return Worker(impl, command + (["--state", state] if state else []))
+    return Worker(impl, command + (["--state", state] if state else []), "run.py", HERE)
 
 
 def log(message):
