@@ -77,7 +77,7 @@ bool integrateBlock(float* __restrict px, float* __restrict py, float* __restric
 /// (blowDryerMayPushWithin). Those particles (`blown`, counted in `blownCount`) are left at
 /// their start states for integrateGathered; every other one had the acceleration the whole one
 /// would have given it at every point, so it took the same step.
-template <Integrator kIntegrator, bool kKeepStartVelocity, DryerAxis kAxis, class Away>
+template <Integrator kIntegrator, bool kKeepStartVelocity, DryerAxis kAxis, bool kOnce, class Away>
 bool integrateAwayBlock(float* __restrict px, float* __restrict py, float* __restrict pz, float* __restrict vx,
                         float* __restrict vy, float* __restrict vz, float* __restrict s0, float* __restrict s1,
                         float* __restrict s2, float* __restrict s3, float* __restrict s4, float* __restrict s5,
@@ -94,7 +94,24 @@ bool integrateAwayBlock(float* __restrict px, float* __restrict py, float* __res
             s3[k] = v0.x, s4[k] = v0.y, s5[k] = v0.z;
         Vec3<float> x = x0, v = v0;
         const bool pushed = blowDryerMayPushWithin<kAxis>(reach, x0, v0);
-        integrateAs<kIntegrator>(x, v, dt, away);
+        if constexpr (kOnce) {
+            // Without drag, away's acceleration is g + 0 x: g at every finite point, so it is
+            // taken once, at the start, for every stage. RK4 no longer forms its three stage
+            // points nor their zero terms, which nothing else reads (a step whose stage point
+            // overflows ends beyond the largest float either way, and is reported). Measured
+            // against each stage's own (alternated windows, 2026-11-28): RK4 at rest 1.08 at 1e6
+            // and 1.01 at 1e7, landed 1.12 and 1.07, in flight 1.02 at 1e6; velocity Verlet,
+            // whose second point is its new position, 0.98 to 1.04. Captured as floats: a closure
+            // holding a Vec3 left the loop scalar for both integrators ("more than one data
+            // ref"), 4 times slower.
+            const Vec3<float> a0 = away(x0, v0);
+            const float ax = a0.x, ay = a0.y, az = a0.z;
+            integrateAs<kIntegrator>(x, v, dt, [ax, ay, az](const Vec3<float>&, const Vec3<float>&) {
+                return Vec3<float>(ax, ay, az);
+            });
+        } else {
+            integrateAs<kIntegrator>(x, v, dt, away);
+        }
         // Selects a component at a time (a select of whole vectors is a branch to GCC).
         for (int c = 0; c < 3; ++c)
             x[c] = pushed ? x0[c] : x[c], v[c] = pushed ? v0[c] : v[c];
@@ -216,7 +233,7 @@ bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float
     alignas(64) std::uint8_t blownBytes[kBlock + 64]; // room for listHits' last word
     std::size_t count = 0;
     const auto away = [&](auto keepStartVelocity) {
-        return integrateAwayBlock<kIntegrator, decltype(keepStartVelocity)::value, kAxis>(
+        return integrateAwayBlock<kIntegrator, decltype(keepStartVelocity)::value, kAxis, !kDrag>(
             a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b, start[0], start[1], start[2], start[3],
             start[4], start[5], blown, count, n, dt, reach, withoutDryer<kDrag>(fields));
     };
