@@ -3,7 +3,7 @@
 
 The loops are marked in the sources by a comment line `// vectorised: checked` right above the
 `for` (in src/core/swarm.cpp and the private headers it includes). This compiles src/core/swarm.cpp exactly as the build does (its command from
-compile_commands.json) with GCC's vectorisation report (-fopt-info-vec-optimized), and requires
+compile_commands.json) with GCC's vectorisation report (-fopt-info-vec-optimized-missed), and requires
 every marked loop to be reported "vectorized using 64 byte vectors" (the AVX-512 copy that
 target_clones makes) and "using 32 byte vectors" (the AVX2 copy), and no copy of it to be
 reported "couldn't vectorize loop". A loop is compiled once for each instantiation (integrator,

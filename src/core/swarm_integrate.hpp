@@ -76,7 +76,8 @@ bool integrateBlock(float* __restrict px, float* __restrict py, float* __restric
 /// of whether any point the integrator evaluates it at may be one where it can
 /// (blowDryerMayPushWithin). Those particles (`blown`, counted in `blownCount`) are left at
 /// their start states for integrateGathered; every other one had the acceleration the whole one
-/// would have given it at every point, so it took the same step.
+/// would have given it at every point, so it took the same step. `kOnce` (no drag): `away` is
+/// evaluated once a particle, at its start, and serves every stage.
 template <Integrator kIntegrator, bool kKeepStartVelocity, DryerAxis kAxis, bool kOnce, class Away>
 bool integrateAwayBlock(float* __restrict px, float* __restrict py, float* __restrict pz, float* __restrict vx,
                         float* __restrict vy, float* __restrict vz, float* __restrict s0, float* __restrict s1,
