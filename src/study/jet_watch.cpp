@@ -43,9 +43,8 @@ std::size_t segmentCount(std::size_t particles) { return (particles + kSegment -
 
 /// Particles of a segment under the hole, each with its steps in a row there (one more than in
 /// `before`, the last step's list in index order).
-void listInShaft(const Swarm& swarm, const BlowDryerKernelT<float>& kernel, std::size_t begin,
-                          std::size_t end, const std::vector<JetWatch::ShaftStay>& before,
-                          std::vector<JetWatch::ShaftStay>& out)
+void listInShaft(const Swarm& swarm, const BlowDryerKernelT<float>& kernel, std::size_t begin, std::size_t end,
+                 const std::vector<JetWatch::ShaftStay>& before, std::vector<JetWatch::ShaftStay>& out)
 {
     const float* px = swarm.px().data();
     const float* py = swarm.py().data();
