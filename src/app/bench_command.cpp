@@ -233,7 +233,7 @@ void printJson(const std::vector<Row>& rows, const std::vector<ClothRow>& cloth,
 void printTables(const std::vector<Row>& rows, const std::vector<ClothRow>& cloth, const SpanRun& dice,
                  const SceneRun& fountain)
 {
-    fmt::print("{}", table(rows));
+    fmt::print("{}{}", table(rows), spreadNotes(rows));
     fmt::print("\n{:<7} {:>9} {:>9} {:>7} {:>12} {:>10} {:>20}\n", "layout", "particles", "springs", "threads",
                "steps/s", "median", "spring evaluations/s");
     for (const ClothRow& c : cloth)

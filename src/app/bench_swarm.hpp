@@ -63,4 +63,9 @@ std::vector<Row> measureSize(std::size_t n, double minTime, int repeats, int cor
 /// The rows as a table, one line each.
 std::string table(const std::vector<Row>& rows);
 
+/// A line for each size where some row's best window is more than kLevelSpread times its
+/// median (the machine's speed changed level during the run, which a ratio of best windows
+/// hides); empty when every row held steady.
+std::string spreadNotes(const std::vector<Row>& rows);
+
 } // namespace pba::app::bench
