@@ -25,8 +25,8 @@ For each n:
  4. Rested: windows from t = 8 s (nearly all the rain on the floor): pba from its own state there,
     each peer from the Numba peer's, stepped on from its state at t = 2 s; the Numba peer's
     statistics at t = 8 s are validated against pba's there as in step 1.
-Rates are particle-steps per second, best and median window. Numba's compilation is done before
-any window.
+Rates are particle-steps per second, best and median window; last, pba over Numba round by round
+(the median of the rounds' ratios). Numba's compilation is done before any window.
 """
 import argparse
 import os
@@ -223,6 +223,15 @@ def main():
                     cells.append(f"{max(rates):.3g} ({statistics.median(rates):.3g}{ratio})" if rates else "")
                 windows = args.numpy_windows if name == "numpy" else args.windows
                 print(f"| {n:.0e} | {name} | {' | '.join(cells)} | {min(windows, args.windows)} x {steps[name]} |")
+        print("\npba over Numba round by round: the median of each round's ratio of pba's window to Numba's, "
+              "taken one after the other, which a change of the machine's speed between rounds does not move "
+              "(docs/performance.md, 'Two levels of memory bandwidth'):")
+        for n in sizes:
+            cells = []
+            for phase in ("flight", "landed", "rested"):
+                ratios = [p / q for p, q in zip(results[(n, phase)]["pba"], results[(n, phase)]["numba"])]
+                cells.append(f"{phase} {statistics.median(ratios):.2f}x ({min(ratios):.2f}-{max(ratios):.2f})")
+            print(f"  n = {n:.0e}: " + ", ".join(cells))
     if not all_ok:
         print("run.py: FAILED: a peer does not match pba's statistics or first state", file=sys.stderr)
         return 1
