@@ -9,24 +9,11 @@
 #include <string_view>
 #include <vector>
 
+#include "bench_rows.hpp"
 #include "pba/world.hpp"
 
 namespace pba::app::bench {
 
-/// A line of the rows' table: a layout (the bound, the heap-Particle baseline, the swarm), its
-/// integrator and phase, and its rate over its windows.
-struct Row {
-    std::string layout;
-    std::string integrator;
-    std::string phase; ///< one of kPhases' names for the swarm and the baseline, empty for the bound
-    std::size_t n = 0;
-    int threads = 1;
-    double rate = 0.0; ///< particle-steps per second: the best window (see measureSize)
-    double bytesPerParticle = 0.0;
-    double ofBound = 0.0;
-    double ofBaseline = 0.0;
-    double medianRate = 0.0;     ///< the median window, for how far the machine's speed swung
-};
 
 /// The states of blow-dryer-swarm a swarm row's windows start from, and the times the scene
 /// reaches them. In flight: its first state, the rain falling (a quarter of it in the dryer's
@@ -59,13 +46,5 @@ double bytesPerParticle(std::size_t n);
 /// integrator on 1 thread and on `cores`, in each phase; `bytes` is the swarm rows' bytes a
 /// particle (bytesPerParticle, or 0 where not measured).
 std::vector<Row> measureSize(std::size_t n, double minTime, int repeats, int cores, double bytes);
-
-/// The rows as a table, one line each.
-std::string table(const std::vector<Row>& rows);
-
-/// A line for each size where some row's best window is more than kLevelSpread times its
-/// median (the machine's speed changed level during the run, which a ratio of best windows
-/// hides); empty when every row held steady.
-std::string spreadNotes(const std::vector<Row>& rows);
 
 } // namespace pba::app::bench
