@@ -83,10 +83,11 @@ def main():
         if missing:
             failures.append("%s:%d: not vectorised with %s byte vectors (report: %s)" % (
                 path, line, " and ".join(sorted(missing, reverse=True)), ", ".join(sorted(widths)) or "none"))
-        scalar = re.findall(place + r"missed: couldn't vectorize loop\n(?:.*\n)??.*?not vectorized: ([^\n]*)", text)
-        copies = len(re.findall(place + r"missed: couldn't vectorize loop", text))
+        # Each scalar copy, with GCC's reason when the report gives one within the next two lines.
+        scalar = re.findall(place + r"missed: couldn't vectorize loop\n(?:(?:.*\n)??.*?not vectorized: ([^\n]*))?", text)
+        copies = len(scalar)
         if copies > allowed:
-            reasons = sorted({re.sub(r"\bD\.\d+", "D", r) for r in scalar})[:3] or ["none given"]  # GCC's temporaries
+            reasons = sorted({re.sub(r"\bD\.\d+", "D", r) for r in scalar if r})[:3] or ["none given"]  # GCC's temporaries
             failures.append("%s:%d: %d copies not vectorised (%d allowed); GCC: %s" % (
                 path, line, copies, allowed, "; ".join(reasons)))
     for f in failures:
