@@ -76,21 +76,14 @@ constexpr std::size_t kParallelThreshold = 32768;
 /// written); test which particles are near a surface; the rule for those, gathered from several
 /// blocks when few, over the whole block when many (passInRoom in a World's room). Measured
 /// against the simplest design, one fused pass a block that integrates and runs the rule's first
-/// pass over every surface as selects for every particle, the rare cases after it through a
-/// Particle's whole rule (blow-dryer-swarm, 1e6 particles, 2 threads, both built from one tree
-/// and alternated, 2026-11-25): the phases 1.35e9 particle-steps/s in flight and 1.28e9 landed,
-/// the fused pass 0.94-1.07e9 and 0.82-0.91e9 with all seven surfaces in it, about 1.0e9 and
-/// 0.85e9 with only the floor and the grille. The selects cost every particle what the surface
-/// test costs only those near a surface (this CPU runs 512-bit operations at half rate), and
-/// the fused loop's one long chain (two square roots, two divisions, then the rule) left the
-/// out-of-order core less to overlap than two short loops. So the surface test and the
-/// gathering stay; the rule itself is one loop (passInRoom). Fusing only where the pass runs
-/// over the whole block anyway (a crowded block: integrate, with the dryer's split, then
-/// passInRoom's selects on the states still in registers, 2026-11-26) measured no faster
-/// either: fountain-1m from t = 8 s 800-900 steps/s both, blow-dryer-swarm from t = 2 s
-/// within 2% at 1e6 and 1e7; on a Zen 5, 0.84 of the two loops' rate at rest at 1e6 and 0.98 at
-/// 1e7 (2026-11-27, docs/performance.md). Loading a block from L1 twice is not what those loops
-/// wait on; their instructions are, and one loop's longer chain a particle overlaps less.
+/// pass over every surface as selects for every particle (1e6, 2 threads): these phases ran
+/// 1.35e9 particle-steps/s in flight and 1.28e9 landed, the fused pass 0.94-1.07e9 and
+/// 0.82-0.91e9. The selects cost every particle what the surface test costs only those near a
+/// surface, and one long chain a particle (roots, divisions, then the rule) leaves the
+/// out-of-order core less to overlap than two short loops. Fused only where the pass runs over
+/// the whole block anyway (a crowded block) it was no faster either. Loading a block from L1
+/// twice is not what these loops wait on; their instructions are. (docs/performance.md, "The
+/// step's phases against one fused pass".)
 template <Integrator kIntegrator>
 std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const SwarmKernelFields& fields,
                          float restitution, float dt, std::span<const PlaneT<float>> planes,

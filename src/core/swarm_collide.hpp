@@ -41,12 +41,10 @@ bool allFinite(const Arrays& a, std::size_t b, std::size_t n)
 /// ended. The exact response also redoes the steps that started there; whether a particle
 /// started clear is remembered from its last step (`remember`), so only the ends are tested
 /// here. `coversAll`: a particle clear of the box's walls is clear of every plane
-/// (boxCoversAll), so they are the whole test, and no margins are needed. Done instead in the
-/// integration loop, on the new positions while they are in registers (the same flags, words
-/// written beside the states), it measured slower: blow-dryer-swarm from t = 2 s at 1e6 on 2
-/// threads, integration 1.58-1.66 ms of thread time a step against 1.27 for this test's 0.28
-/// (2026-11-26). The integration loop is bound by its instructions; its fifteen more cost
-/// more than a pass of its own over the block in L1.
+/// (boxCoversAll), so they are the whole test, and no margins are needed. A pass of its own over
+/// the block in L1: done in the integration loop, on the positions still in registers, its
+/// fifteen instructions a vector more cost the loop, which is bound by its instructions, more
+/// than this pass does (docs/performance.md).
 std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std::span<const PlaneT<float>> planes,
                           const std::optional<BoxWallsT<float>>& box, bool coversAll, bool remember,
                           std::uint8_t* __restrict hit)
@@ -125,15 +123,11 @@ struct PassResult {
 /// shaft's wall) is left as the integrator left it and marked in `unfinished` for a Particle's
 /// whole rule (wholeRule). A particle clear of every surface is left exactly as it was.
 ///
-/// It replaced, for the blocks and batches where particles meet a surface, four loops: which
-/// planes some particle crossed (the block's bounds), a pass for each such plane (the floor's
-/// with the shaft's wall: a square root and two divisions for every particle), which particles
-/// were still outside, and the fold; with the finite check moved into the loops that write the
-/// states, fountain-1m from t = 8 s (every block on the floor, every step) went from 718 to
-/// 755-789 physics steps a second, the same states bit for bit. The shaft's wall is among the
-/// rare cases: the dryer's push blows particles out of the shaft within a tenth of a second, and
-/// 250 to 360 a step of a million take the whole rule; with the wall in this loop (its square
-/// root and two divisions for every particle) the same measured 640-675.
+/// One loop where there were four (which planes were crossed, a pass a plane, which particles
+/// were still outside, the fold): fountain-1m at rest 5-10% faster, the same states. The shaft's
+/// wall is left to the whole rule: the dryer blows particles out of the shaft within a tenth of
+/// a second, a few hundred a step of a million, and its square root and two divisions in this
+/// loop for every particle cost 11-19% (docs/performance.md).
 template <bool kHole>
 PassResult passInRoom(const float* __restrict px, float* __restrict py, const float* __restrict pz,
                       float* __restrict vy, const float* __restrict s0, const float* __restrict s1,
@@ -234,9 +228,8 @@ std::size_t nextMarked(const std::uint32_t* which, std::size_t k, std::size_t n)
 /// depend on the integrator, and inlined into each integrator's loop it was compiled four times
 /// over. Returns the bounces; clears `finite` if a state it wrote is not; sets `moved` to how
 /// many particles the pass bounced or left to the whole rule (all n among other planes): what
-/// keeps a block crowded, a hint that changes no result. (It counted the particles the pass
-/// moved, four more instructions a vector in its loop: blow-dryer-swarm at rest at 1e6 1.0-1.03e9
-/// particle-steps/s against 1.05e9 without them, medians of 12 alternations, 2026-11-26.)
+/// keeps a block crowded, a hint that changes no result (from the pass's counts: counting the
+/// particles it moved, four instructions a vector more, was 2-5% slower at rest).
 PBA_FOR_EACH_INSTRUCTION_SET
 std::uint64_t collideHits(const Arrays& a, std::size_t b, std::size_t n, float restitution,
                           std::span<const PlaneT<float>> planes, CollisionResponse response,

@@ -99,12 +99,9 @@ bool integrateAwayBlock(float* __restrict px, float* __restrict py, float* __res
             // Without drag, away's acceleration is g + 0 x: g at every finite point, so it is
             // taken once, at the start, for every stage. RK4 no longer forms its three stage
             // points nor their zero terms, which nothing else reads (a step whose stage point
-            // overflows ends beyond the largest float either way, and is reported). Measured
-            // against each stage's own (alternated windows, 2026-11-28): RK4 at rest 1.08 at 1e6
-            // and 1.01 at 1e7, landed 1.12 and 1.07, in flight 1.02 at 1e6; velocity Verlet,
-            // whose second point is its new position, 0.98 to 1.04. Captured as floats: a closure
-            // holding a Vec3 left the loop scalar for both integrators ("more than one data
-            // ref"), 4 times slower.
+            // overflows ends beyond the largest float either way, and is reported): RK4 up to
+            // 12% faster landed (docs/performance.md). Captured as floats: a closure holding a
+            // Vec3 left the loop scalar ("more than one data ref"), 4 times slower.
             const Vec3<float> a0 = away(x0, v0);
             const float ax = a0.x, ay = a0.y, az = a0.z;
             integrateAs<kIntegrator>(x, v, dt, [ax, ay, az](const Vec3<float>&, const Vec3<float>&) {
@@ -253,33 +250,16 @@ bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float
     return finite;
 }
 
-/// Steps a block with one dryer. The dryer's two roots and two divisions at each evaluation are
-/// most of the integration loop's arithmetic (twice a step for velocity Verlet, four times for
-/// RK4), while once a swarm has landed well under 1% of it is where the dryer pushes
-/// (fountain-1m from t = 2 s: 0.5% in the cone, 0.1% in the shaft). So unless the block is busy
-/// (its cone crowded, as when rain falls through it), every particle is stepped with the
-/// acceleration away from the dryer and the few the dryer may have pushed again with the whole
-/// one (integrateAwayBlock, integrateGathered): the same states. Measured (blow-dryer-swarm, 2
-/// threads, the builds alternated, 2026-11-25) from t = 2 s: at 1e6 velocity Verlet 1.2e9
-/// particle-steps/s against 0.9e9 and RK4 7.4-7.7e8 against 5.7e8, at 1e7 8.4e8 against 7.1e8
-/// and 6.6-6.7e8 against 5.0-5.2e8; in flight (busy blocks: the one loop) the same. The Eulers
-/// evaluate once, and keep the one loop: for semi-implicit Euler landed the split was 10-18%
-/// slower at 1e7, where the loop waits on memory (0.96-1.02e9 against 1.16-1.17e9), and at 1e6
-/// no faster (5-13% faster in one sitting; 7% slower, the median of ten alternations, in
-/// another, 2026-11-26), so not even for a swarm that stays in the cache; nor at rest (from t =
-/// 8 s, 1e6: 7.1-9.0e8 against 8.4-8.6e8 over four alternations, 2026-11-26). Split a vector of
-/// 16 at a time instead (a branch a vector to the one loop or the away one, no gathering: the
-/// same states) it was slower still, the integration phase 1.58-1.98 ms of thread time a step
-/// against 1.31-1.48 (fountain-1m from t = 3 s, 2026-11-26): the branches and each vector's
-/// reductions cost more than the roots they skip; on a Zen 5, 0.85 of the one loop's rate at rest
-/// at 1e6, and 0.82 for 32 at a time with the flags tested as words (2026-11-27), where a loop
-/// without the dryer's roots would gain 31% (docs/performance.md). The flags are words: as bytes they made GCC
-/// take 64 particles a vector, and the away loop spilled. A block that had more than kGatherMax
-/// particles to step again is busy for the next 64 steps. A higher bar, so that rain in flight
-/// (a quarter of each block in the cone) takes the split too, measured slower (RK4 with half a
-/// block, Verlet with a quarter: RK4 in flight 3.0-3.6e8 against 4.1-4.5e8, 2026-11-26), and
-/// again with the away loop's one test (2026-11-27, docs/performance.md): the scatter after the
-/// gathered step stalls on the rows the vectorised loop has just stored.
+/// Steps a block with one dryer. Each evaluation of the dryer's force is most of the loop's
+/// arithmetic (two a step for velocity Verlet, four for RK4), while once a swarm has landed well
+/// under 1% of it is where the dryer pushes. So, unless the block is busy (rain falling through
+/// the cone), those two integrators step every particle with the acceleration away from the
+/// dryer and step again, with the whole one, the few it may have pushed (integrateAwayBlock,
+/// integrateGathered): the same states, a fifth to a third faster landed. The Eulers evaluate
+/// once and keep the one loop: every split tried for them (by block, by vector of 16 or 32) cost
+/// more than the roots it skipped. A block that had more than kGatherMax particles to step again
+/// is busy for the next 64 steps: gathering more than that, as in flight, stalls on the
+/// scatter. (The measurements: docs/performance.md, "The split away from the dryer".)
 template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag>
 bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
                       CollisionResponse response, const SwarmKernelFields& fields, const BlowDryerReach& reach)
