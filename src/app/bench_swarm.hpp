@@ -14,7 +14,6 @@
 
 namespace pba::app::bench {
 
-
 /// The states of blow-dryer-swarm a swarm row's windows start from, and the times the scene
 /// reaches them. In flight: its first state, the rain falling (a quarter of it in the dryer's
 /// cone). Landed, at 2 s: the rain after its first bounce (mean height 0.4 m, under 1% within
