@@ -1,0 +1,48 @@
+#pragma once
+// A convex polyhedron in a body's frame, as the narrow phase reads it: vertices, faces (each a
+// plane and a loop of vertices) and edges (each with the two faces that meet there, which is the
+// edge's arc on the Gauss map that the separating-axis test prunes edge pairs with, as in
+// Gregorius, "The Separating Axis Test between Convex Polyhedra", GDC 2013). A box is one, a
+// cylinder collides as a prism of kCylinderRimPoints sides (the same polygon the room's contacts
+// use), and a mesh as its convex hull.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "pba/math.hpp"
+
+namespace pba::contact {
+
+struct ConvexPolyhedron {
+    struct Face {
+        dvec3 normal{0.0};  ///< outward, unit
+        double offset = 0.0; ///< the face's plane: dot(normal, x) == offset
+        std::uint32_t first = 0; ///< its loop: faceVertices[first, first + count)
+        std::uint32_t count = 0;
+    };
+    struct Edge {
+        std::uint32_t tail = 0, head = 0;      ///< vertex indices
+        std::uint32_t leftFace = 0, rightFace = 0; ///< the two faces that share it
+    };
+
+    std::vector<dvec3> vertices;
+    std::vector<Face> faces;
+    /// Each face's vertex loop, counter-clockwise seen from outside.
+    std::vector<std::uint32_t> faceVertices;
+    std::vector<Edge> edges; ///< each edge once
+    double boundingRadius = 0.0; ///< the furthest vertex from the origin
+
+    /// A box centred on the origin, axis-aligned.
+    static ConvexPolyhedron box(const dvec3& halfExtents);
+    /// A right prism about the y axis, `sides` vertices on each of its two rims (a cylinder's
+    /// stand-in), centred on the origin.
+    static ConvexPolyhedron prism(double radius, double height, int sides);
+    /// The convex hull of `points` (Qhull), with coplanar triangles merged into one face.
+    /// std::invalid_argument when the points span no volume.
+    static ConvexPolyhedron hull(std::span<const dvec3> points);
+
+    /// The index of the vertex furthest along `direction`.
+    std::uint32_t support(const dvec3& direction) const;
+};
+
+} // namespace pba::contact
