@@ -1,7 +1,6 @@
 #pragma once
 // A body with extent: the practical's "rigid bodies ... their density and inertia tensor". Its
 // translation is Body's; it adds an orientation, the angular momentum and the inertia tensor.
-#include <array>
 #include <memory>
 
 #include "pba/body.hpp"
@@ -11,15 +10,9 @@
 
 namespace pba {
 
-/// The impulse a contact point took against a surface in the last step: what the contact solver
-/// starts from in the next (warm starting, as Box2D does), so that a body resting on the floor
-/// needs a sweep or two instead of dozens.
-struct ContactImpulse {
-    int point = 0;   ///< the contact point's index (contactPointsOf)
-    int surface = 0; ///< the plane's index, or planes + p for plane p's shaft wall
-    double normal = 0.0;
-    double tangent[2] = {0.0, 0.0};
-};
+namespace contact {
+struct CollisionShape;
+}
 
 class RigidBody : public Body {
 public:
@@ -53,8 +46,11 @@ public:
     const std::vector<dvec3>& getContactPoints() const { return m_form->contactPoints; }
     /// How far the shape reaches from its centre of mass.
     double getBoundingRadius() const { return m_form->boundingRadius; }
-    /// Coulomb friction coefficient against the room's surfaces.
+    /// Coulomb friction coefficient (against the room its own; against another body combined
+    /// with the other's, see docs/scenes.md).
     double getFriction() const { return m_friction; }
+    /// The shape as the contact pipeline sees it (a mesh as its convex hull), shared by copies.
+    const std::shared_ptr<const contact::CollisionShape>& getCollisionShape() const { return m_form->collision; }
 
     // ---- set methods ----
     /// Sets the mass (Body::setMass) and the inertia tensor together. std::invalid_argument
@@ -73,15 +69,6 @@ public:
     void setShapeWithMass(const Shape& shape, double mass);
     /// std::invalid_argument unless finite and non-negative.
     void setFriction(double friction);
-    /// The contact solver's memory of the last step's impulses (see ContactImpulse): at most
-    /// kRememberedContacts, kept in the object itself (the solver visits it anyway).
-    static constexpr std::size_t kRememberedContacts = 8;
-    struct ContactMemory {
-        std::array<ContactImpulse, kRememberedContacts> impulses;
-        std::size_t count = 0;
-    };
-    ContactMemory& contactMemory() { return m_contactMemory; }
-
 private:
     void adoptShape(const Shape& shape);
 
@@ -93,9 +80,9 @@ private:
         std::vector<dvec3> contactPoints;
         std::vector<SurfaceSample> surfaceSamples;
         double boundingRadius = 0.0;
+        std::shared_ptr<const contact::CollisionShape> collision;
     };
     std::shared_ptr<const Form> m_form;
-    ContactMemory m_contactMemory;
     double m_friction = 0.5;
     dmat3 m_inertiaBody{1.0 / 6.0};
     dmat3 m_inverseInertiaBody{6.0};

@@ -15,10 +15,11 @@
 //   5. collide and store the coupled bodies: each one found behind a surface gets the
 //      reflect or clamp rule of its own (exact acts as reflect for them), in the pass that
 //      writes their new states
-//   5b. integrate the rigid bodies, one system per integrator, translation and rotation together
-//      (stepRigidSystem: every stage evaluates every force, with torques, at that stage's states
-//      and poses), then resolve each one's contacts with the room (resolvePlaneContacts:
-//      impulses with restitution and friction; the collision response names the particles' rule)
+//   5b. step the rigid bodies (stepRigidBodies): each awake one freely with its integrator, one
+//      system per integrator, translation and rotation together (every stage evaluates every
+//      force, with torques); then the rigid system (src/core/rigid/) finds their contacts with
+//      each other and with the room and solves them, island by island, and puts still islands
+//      to sleep
 //   6. step the swarms (float arrays, all cores) with the same integrator, force and
 //      collision templates
 //   7. check that every state (bodies and swarms) is finite: each was checked as it was
@@ -46,6 +47,10 @@
 #include "pba/vec3_array.hpp"
 
 namespace pba {
+
+namespace rigid {
+class RigidSystem;
+}
 
 /// An axis-aligned box: the room.
 struct Aabb {
@@ -82,12 +87,12 @@ private:
 
 class World {
 public:
-    World() = default;
-    World(const World&) = default;
-    World& operator=(const World&) = default;
-    World(World&&) noexcept = default;
-    World& operator=(World&&) noexcept = default;
-    ~World() = default;
+    World();
+    World(const World&);
+    World& operator=(const World&);
+    World(World&&) noexcept;
+    World& operator=(World&&) noexcept;
+    ~World();
 
     // ---- bodies ----
     Body& addBody(std::unique_ptr<Body> body);
@@ -174,6 +179,14 @@ public:
     bool hasRigidBodies() const;
     /// Bounces of body i since the start.
     std::uint64_t bounceCount(std::size_t i) const { return m_bounces[i]; }
+    /// Whether rigid body i sleeps: it and every body it touches have been still for a while,
+    /// and none of them moves until an awake body touches one (see RigidSettings).
+    bool isAsleep(std::size_t i) const;
+    /// Wakes every sleeping body (after a program changed a force or moved a body by hand).
+    void wakeAll();
+    /// The rigid bodies' contact pipeline: its settings, contacts and joints.
+    rigid::RigidSystem& rigidSystem() { return *m_rigidSystem; }
+    const rigid::RigidSystem& rigidSystem() const { return *m_rigidSystem; }
 
     // ---- physics read-outs ----
     /// Net force over mass on body i at the trial state (x, v), every other body at its
@@ -210,9 +223,6 @@ private:
     struct Coupling {
         std::array<std::vector<std::size_t>, kAllIntegrators.size()> systems;
         std::vector<std::size_t> independent; ///< every other body, fixed ones too, in order
-        /// The moving rigid bodies, by integrator (kEveryIntegrator's order), and their wanted lists.
-        std::array<std::vector<std::size_t>, kEveryIntegrator.size()> rigid;
-        std::array<std::vector<std::uint8_t>, kEveryIntegrator.size()> rigidWanted;
         /// Per system, one flag per body of the world: its members (the forces' wanted list).
         std::array<std::vector<std::uint8_t>, kAllIntegrators.size()> wanted;
         std::vector<std::uint8_t> madeFrom;
@@ -232,11 +242,11 @@ private:
     void integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members,
                           std::span<const std::uint8_t> wanted, double dt);
     void collideAndStore(const std::vector<std::size_t>& members);
-    void integrateRigid(Integrator integrator, const std::vector<std::size_t>& members,
-                        std::span<const std::uint8_t> wanted, double dt);
+    void stepRigidBodies(double dt);
+    void integrateRigidFreely(std::span<const std::uint32_t> bodies, double dt);
     void stepRigid(Integrator integrator, const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
                    double dt);
-    void resolveRigidContacts(Integrator integrator, const std::vector<std::size_t>& members, const dvec3& g, double dt);
+    void storeRigidBodies();
     void noteIfNotFinite(std::size_t i, const State& state);
     void checkFinite(double dt);
     void advanceClock(double dt);
@@ -264,12 +274,20 @@ private:
     std::vector<dvec3> m_torques;   ///< the torques' accumulators
     /// integrateRigid's buffers, reused from step to step.
     struct RigidScratch {
-        std::vector<RigidState> states, start;
+        std::vector<RigidState> states;
         std::vector<RigidInertia> inertia;
         std::vector<dvec3> startAcc;
+        std::array<std::vector<std::size_t>, kEveryIntegrator.size()> members; ///< awake, by integrator
+        std::vector<std::uint8_t> wanted;
         RigidStepBuffers buffers;
     };
     RigidScratch m_rigidScratch;
+    ClonePtr<rigid::RigidSystem> m_rigidSystem;
+    /// Each body's index in the rigid system (kNotRigid for a particle).
+    std::vector<std::uint32_t> m_rigidIndex;
+    static constexpr std::uint32_t kNotRigid = 0xffffffffu;
+    /// Each rigid body's acceleration at the start of its last free step.
+    std::vector<dvec3> m_rigidAcc;
     /// What storePreviousStates read of each body besides its state: mass, restitution, and
     /// the key of its coupling (fixed flag and integrator).
     std::vector<double> m_masses, m_cors;

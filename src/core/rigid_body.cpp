@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "contact/narrow_phase.hpp"
+
 namespace pba {
 
 RigidBody::RigidBody() : RigidBody(Shape::box(dvec3(1.0)), 1.0) {}
@@ -20,7 +22,8 @@ RigidBody::RigidBody(const MassProperties& properties)
 
 void RigidBody::adoptShape(const Shape& shape)
 {
-    Form form{shape, contactPointsOf(shape), surfaceSamplesOf(shape), 0.0};
+    Form form{shape, contactPointsOf(shape), surfaceSamplesOf(shape), 0.0,
+              std::make_shared<const contact::CollisionShape>(contact::CollisionShape::of(shape))};
     for (const dvec3& p : form.contactPoints)
         form.boundingRadius = std::max(form.boundingRadius, glm::length(p));
     if (shape.type == ShapeType::Sphere)

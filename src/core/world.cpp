@@ -11,6 +11,7 @@
 #include "pba/forces.hpp"
 
 #include "collision_rules.hpp"
+#include "rigid/rigid_system.hpp"
 
 namespace pba {
 
@@ -28,10 +29,22 @@ NonFiniteStateError NonFiniteStateError::inSwarm(const std::string& swarm, std::
     return NonFiniteStateError(fmt::format("{}[{}]", swarm, index), step, time, std::move(quantity));
 }
 
+// Out of line: the rigid system is a type of the core's own (src/core/rigid/).
+World::World() : m_rigidSystem(std::make_unique<rigid::RigidSystem>()) {}
+World::World(const World&) = default;
+World& World::operator=(const World&) = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+World::~World() = default;
+
 Body& World::addBody(std::unique_ptr<Body> body)
 {
     const auto* rigid = dynamic_cast<const RigidBody*>(body.get());
     m_isRigid.push_back(rigid ? 1 : 0);
+    m_rigidIndex.push_back(rigid ? std::uint32_t(m_rigidSystem->size()) : kNotRigid);
+    m_rigidAcc.push_back(dvec3(0.0));
+    if (rigid)
+        m_rigidSystem->add(m_bodies.size());
     m_previousRotation.push_back(rigid ? rigid->getRotation() : Rotation{});
     m_poses.push_back(rigid ? Pose{rigid->getOrientation(), rigid->getAngularVelocity()} : Pose{});
     m_previous.push_back(body->getState());
@@ -212,6 +225,13 @@ bool World::hasPoints() const
 {
     return !m_swarms.empty() || std::any_of(m_isRigid.begin(), m_isRigid.end(), [](std::uint8_t r) { return r == 0; });
 }
+
+bool World::isAsleep(std::size_t i) const
+{
+    return m_rigidIndex[i] != kNotRigid && m_rigidSystem->isAsleep(m_rigidIndex[i]);
+}
+
+void World::wakeAll() { m_rigidSystem->wakeAll(); }
 
 bool World::hasRigidBodies() const
 {

@@ -67,15 +67,11 @@ World::Coupling World::makeCoupling() const
         if (coupled[i] != 0) {
             const auto k = std::find(kAllIntegrators.begin(), kAllIntegrators.end(), translationalMethod(integrator));
             coupling.systems[std::size_t(k - kAllIntegrators.begin())].push_back(i);
-        } else if (isRigid(i) && !m_bodies[i]->isFixed()) {
-            const auto k = std::find(kEveryIntegrator.begin(), kEveryIntegrator.end(), integrator);
-            coupling.rigid[std::size_t(k - kEveryIntegrator.begin())].push_back(i);
-        } else {
+        } else if (!isRigid(i)) { // the rigid system steps the rigid ones, fixed or moving
             coupling.independent.push_back(i);
         }
     }
     markMembers(coupling.systems, m_bodies.size(), coupling.wanted);
-    markMembers(coupling.rigid, m_bodies.size(), coupling.rigidWanted);
     return coupling;
 }
 

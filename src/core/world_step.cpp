@@ -11,7 +11,7 @@
 
 #include "collision_rules.hpp"
 #include "parallel.hpp"
-#include "rigid_contact.hpp"
+#include "rigid/rigid_system.hpp"
 
 namespace pba {
 
@@ -55,9 +55,8 @@ void World::step(double dt)
         for (std::size_t k = 0; k < kAllIntegrators.size(); ++k)
             if (!coupling.systems[k].empty())
                 integrateCoupled(kAllIntegrators[k], coupling.systems[k], coupling.wanted[k], dt);
-        for (std::size_t k = 0; k < kEveryIntegrator.size(); ++k)
-            if (!coupling.rigid[k].empty())
-                integrateRigid(kEveryIntegrator[k], coupling.rigid[k], coupling.rigidWanted[k], dt);
+        if (m_rigidSystem->size() > 0)
+            stepRigidBodies(dt);
     });
     stepSwarms(dt);
     checkFinite(dt);
@@ -244,26 +243,57 @@ void World::collideAndStore(const std::vector<std::size_t>& members)
     m_firstNonFinite = std::min(m_firstNonFinite, bad);
 }
 
-void World::integrateRigid(Integrator integrator, const std::vector<std::size_t>& members,
-                           std::span<const std::uint8_t> wanted, double dt)
+void World::stepRigidBodies(double dt)
 {
-    // Three passes over the system's bodies, each on all cores (every body's arithmetic is its
-    // own, so the result does not depend on the thread count): gather, step, contact and store.
-    const std::size_t n = members.size();
-    const dvec3 g = gravity();
+    rigid::RigidSystem& system = *m_rigidSystem;
+    thread_local std::vector<const RigidBody*> bodies;
+    bodies.resize(system.size());
+    for (std::size_t k = 0; k < system.size(); ++k)
+        bodies[k] = static_cast<const RigidBody*>(m_bodies[system.worldIndex(k)].get());
+    system.begin(bodies);
+    integrateRigidFreely(system.awake(), dt);
+    system.findContacts(m_planes, dt);
+    integrateRigidFreely(system.woken(), dt); // touched by an awake body: they move this step too
+    system.solve(gravity(), dt);
+    storeRigidBodies();
+}
+
+void World::integrateRigidFreely(std::span<const std::uint32_t> bodies, double dt)
+{
+    // One system per integrator, of the awake bodies only: a sleeping pile costs nothing here.
+    if (bodies.empty())
+        return;
+    rigid::RigidSystem& system = *m_rigidSystem;
     RigidScratch& r = m_rigidScratch;
-    r.states.resize(n);
-    r.start.resize(n);
-    r.inertia.resize(n);
-    r.startAcc.resize(n);
-    detail::forEachIndex(n, [&](std::size_t k) {
-        const auto& b = static_cast<const RigidBody&>(*m_bodies[members[k]]);
-        r.start[k] = RigidState{b.getPos(), b.getVel(), b.getRotation()};
-        r.states[k] = r.start[k];
-        r.inertia[k] = RigidInertia{1.0 / b.getMass(), b.getInertiaBody(), b.getInverseInertiaBody()};
-    });
-    stepRigid(integrator, members, wanted, dt);
-    resolveRigidContacts(integrator, members, g, dt);
+    for (auto& members : r.members)
+        members.clear();
+    for (const std::uint32_t k : bodies) {
+        const std::size_t i = system.worldIndex(k);
+        const auto at = std::find(kEveryIntegrator.begin(), kEveryIntegrator.end(), m_bodies[i]->getIntegrator());
+        r.members[std::size_t(at - kEveryIntegrator.begin())].push_back(i);
+    }
+    for (std::size_t m = 0; m < kEveryIntegrator.size(); ++m) {
+        const std::vector<std::size_t>& members = r.members[m];
+        if (members.empty())
+            continue;
+        const std::size_t n = members.size();
+        r.states.resize(n);
+        r.inertia.resize(n);
+        r.startAcc.resize(n);
+        r.wanted.assign(m_bodies.size(), 0);
+        for (const std::size_t i : members)
+            r.wanted[i] = 1;
+        detail::forEachIndex(n, [&](std::size_t k) {
+            const auto& b = static_cast<const RigidBody&>(*m_bodies[members[k]]);
+            r.states[k] = system.start(m_rigidIndex[members[k]]);
+            r.inertia[k] = RigidInertia{1.0 / b.getMass(), b.getInertiaBody(), b.getInverseInertiaBody()};
+        });
+        stepRigid(kEveryIntegrator[m], members, r.wanted, dt);
+        detail::forEachIndex(n, [&](std::size_t k) {
+            system.setFreeEnd(m_rigidIndex[members[k]], r.states[k]);
+            m_rigidAcc[members[k]] = r.startAcc[k];
+        });
+    }
 }
 
 void World::stepRigid(Integrator integrator, const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
@@ -301,28 +331,33 @@ void World::stepRigid(Integrator integrator, const std::vector<std::size_t>& mem
                     onCores, &r.buffers);
 }
 
-void World::resolveRigidContacts(Integrator integrator, const std::vector<std::size_t>& members, const dvec3& g, double dt)
+void World::storeRigidBodies()
 {
-    // Below this speed a contact does not bounce: one step of gravity's, twice over.
-    const double restingSpeed = 2.0 * glm::length(g) * dt;
-    RigidScratch& r = m_rigidScratch;
-    const std::size_t bad = lowestNonFinite(members, 256, m_bodies.size(), [&](std::size_t k) {
-        const std::size_t i = members[k];
+    const rigid::RigidSystem& system = *m_rigidSystem;
+    // A body that took a restitution impulse bounced (and so did the body it hit).
+    for (const rigid::Contact& c : system.contacts()) {
+        if (std::none_of(c.points.begin(), c.points.begin() + c.count, [](const auto& p) { return p.bounced; }))
+            continue;
+        for (const rigid::BodyIndex k : {c.a, c.b})
+            if (k < system.size() && !system.isAsleep(k) && !m_bodies[system.worldIndex(k)]->isFixed())
+                ++m_bounces[system.worldIndex(k)];
+    }
+    thread_local std::vector<std::size_t> all;
+    all.resize(system.size());
+    for (std::size_t k = 0; k < system.size(); ++k)
+        all[k] = system.worldIndex(k);
+    const std::size_t bad = lowestNonFinite(all, 256, m_bodies.size(), [&](std::size_t k) {
+        const std::size_t i = system.worldIndex(k);
         auto& b = static_cast<RigidBody&>(*m_bodies[i]);
-        RigidState& s = r.states[k];
-        if (!m_planes.empty()) {
-            const ContactBody body{b.getShape(), b.getContactPoints(), r.inertia[k], b.getCor(), b.getFriction(),
-                                   g, b.getBoundingRadius(), &b.contactMemory()};
-            const ContactStep step{r.start[k], dt, driftWeight(integrator), restingSpeed};
-            m_bounces[i] += resolvePlaneContacts(body, m_planes, step, s) ? 1 : 0;
-        }
+        if (b.isFixed())
+            return isFinite(b.getPos()) && isFinite(b.getVel());
+        const RigidState& s = system.end(k);
         b.setState(State{s.x, s.v}); // a body that is not finite: the rollback restores it, the message reads it
-        if (!isFinite(s.x) || !isFinite(s.v) || !isFinite(s.rotation.momentum) ||
-            !std::isfinite(s.rotation.orientation.w + s.rotation.orientation.x + s.rotation.orientation.y +
-                           s.rotation.orientation.z))
+        const dquat& q = s.rotation.orientation;
+        if (!isFinite(s.x) || !isFinite(s.v) || !isFinite(s.rotation.momentum) || !std::isfinite(q.w + q.x + q.y + q.z))
             return false;
         b.setRotation(s.rotation);
-        b.setAcc(r.startAcc[k]);
+        b.setAcc(m_rigidAcc[i]);
         return true;
     });
     m_firstNonFinite = std::min(m_firstNonFinite, bad);

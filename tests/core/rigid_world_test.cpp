@@ -342,10 +342,10 @@ TEST(RigidWorld, AngularDragSlowsASpinExponentially)
 // states to the bit (each body's step and contacts are its own arithmetic).
 TEST(RigidWorld, ManyDiceStepTheSameOnAnyNumberOfThreads)
 {
-    Scene one = manyDice(3000), two = manyDice(3000);
+    Scene one = manyDice(1000), two = manyDice(1000);
     one.world.setThreads(1);
     two.world.setThreads(2);
-    for (int n = 0; n < 300; ++n) {
+    for (int n = 0; n < 200; ++n) {
         one.world.step(one.dt);
         two.world.step(two.dt);
     }

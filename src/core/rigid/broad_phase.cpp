@@ -1,0 +1,143 @@
+#include "rigid/broad_phase.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+namespace pba::rigid {
+
+namespace {
+
+using Cell = BroadPhase::Cell;
+
+Cell cellOf(const dvec3& p, double size)
+{
+    return {std::int64_t(std::floor(p.x / size)), std::int64_t(std::floor(p.y / size)),
+            std::int64_t(std::floor(p.z / size))};
+}
+
+std::uint32_t hashOf(const Cell& c, std::uint32_t mask)
+{
+    // Teschner et al.'s spatial hash (the primes Ten Minute Physics uses).
+    const std::uint64_t h = std::uint64_t(c.x * 92837111) ^ std::uint64_t(c.y * 689287499) ^ std::uint64_t(c.z * 283923481);
+    return std::uint32_t(h) & mask;
+}
+
+double largestSide(const Box& b) { return std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z}); }
+
+} // namespace
+
+double BroadPhase::cellSize(std::span<const Box> boxes, std::span<const Motion> motion)
+{
+    m_sizes.clear();
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+        if (motion[i] != Motion::Static)
+            m_sizes.push_back(largestSide(boxes[i]));
+    if (m_sizes.empty())
+        return 1.0;
+    // Twice the median: a body moving fast swells its box, and one past a cell's size is
+    // tested against every body.
+    auto middle = m_sizes.begin() + std::ptrdiff_t(m_sizes.size() / 2);
+    std::nth_element(m_sizes.begin(), middle, m_sizes.end());
+    return std::max(2.0 * *middle, 1e-9);
+}
+
+void BroadPhase::fillGrid(std::span<const Box> boxes, std::span<const Motion> motion)
+{
+    const std::size_t n = boxes.size();
+    m_large.assign(n, 0);
+    m_largeList.clear();
+    std::size_t small = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (motion[i] == Motion::Static || largestSide(boxes[i]) > m_cell) {
+            m_large[i] = 1;
+            m_largeList.push_back(std::uint32_t(i));
+        } else {
+            ++small;
+        }
+    }
+    m_cells.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+        m_cells[i] = cellOf(boxes[i].min, m_cell);
+    std::uint32_t buckets = 1;
+    while (buckets < 2 * small)
+        buckets <<= 1;
+    const std::uint32_t mask = buckets - 1;
+    // A counting sort into buckets: the bodies of a bucket stay in index order.
+    m_bucketStart.assign(buckets + 1, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        if (!m_large[i])
+            ++m_bucketStart[hashOf(m_cells[i], mask) + 1];
+    for (std::uint32_t k = 0; k < buckets; ++k)
+        m_bucketStart[k + 1] += m_bucketStart[k];
+    m_entries.resize(small);
+    std::vector<std::uint32_t> next(m_bucketStart.begin(), m_bucketStart.end() - 1);
+    for (std::size_t i = 0; i < n; ++i)
+        if (!m_large[i])
+            m_entries[next[hashOf(m_cells[i], mask)]++] = std::uint32_t(i);
+}
+
+void BroadPhase::pairsOfSmall(std::span<const Box> boxes, std::span<const Motion> motion, std::vector<BodyPair>& pairs)
+{
+    const std::size_t n = boxes.size();
+    const std::uint32_t mask = std::uint32_t(m_bucketStart.size() - 2);
+    // Fixed chunks, whatever the thread count: each chunk's pairs are its own.
+    constexpr std::size_t kChunk = 512;
+    m_chunks.resize((n + kChunk - 1) / kChunk);
+    tbb::parallel_for(std::size_t(0), m_chunks.size(), [&](std::size_t chunk) {
+        auto& out = m_chunks[chunk];
+        out.clear();
+        const std::size_t end = std::min(n, (chunk + 1) * kChunk);
+        for (std::size_t i = chunk * kChunk; i < end; ++i) {
+            if (m_large[i])
+                continue;
+            // A partner no larger than a cell has its lowest corner within a cell below this
+            // box's lowest corner and no further than its highest.
+            const Cell lo = cellOf(boxes[i].min - m_cell, m_cell), hi = cellOf(boxes[i].max, m_cell);
+            for (std::int64_t x = lo.x; x <= hi.x; ++x)
+                for (std::int64_t y = lo.y; y <= hi.y; ++y)
+                    for (std::int64_t z = lo.z; z <= hi.z; ++z) {
+                        const Cell cell{x, y, z};
+                        const std::uint32_t h = hashOf(cell, mask);
+                        for (std::uint32_t e = m_bucketStart[h]; e < m_bucketStart[h + 1]; ++e) {
+                            const std::uint32_t j = m_entries[e];
+                            if (j <= i || (motion[i] != Motion::Awake && motion[j] != Motion::Awake))
+                                continue;
+                            // Another cell of the same bucket would find j twice.
+                            if (m_cells[j] == cell && boxes[i].overlaps(boxes[j]))
+                                out.push_back({BodyIndex(i), j});
+                        }
+                    }
+        }
+    });
+    for (const auto& chunk : m_chunks)
+        pairs.insert(pairs.end(), chunk.begin(), chunk.end());
+}
+
+void BroadPhase::pairsOfLarge(std::span<const Box> boxes, std::span<const Motion> motion, std::vector<BodyPair>& pairs)
+{
+    for (const std::uint32_t l : m_largeList)
+        for (std::size_t k = 0; k < boxes.size(); ++k) {
+            if (k == l || (m_large[k] && k < l)) // two large bodies: once
+                continue;
+            if (motion[l] != Motion::Awake && motion[k] != Motion::Awake)
+                continue;
+            if (boxes[l].overlaps(boxes[k]))
+                pairs.push_back({BodyIndex(std::min<std::size_t>(l, k)), BodyIndex(std::max<std::size_t>(l, k))});
+        }
+}
+
+void BroadPhase::findPairs(std::span<const Box> boxes, std::span<const Motion> motion, std::vector<BodyPair>& pairs)
+{
+    pairs.clear();
+    if (boxes.empty())
+        return;
+    m_cell = cellSize(boxes, motion);
+    fillGrid(boxes, motion);
+    pairsOfSmall(boxes, motion, pairs);
+    pairsOfLarge(boxes, motion, pairs);
+    std::sort(pairs.begin(), pairs.end());
+}
+
+} // namespace pba::rigid

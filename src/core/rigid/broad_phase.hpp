@@ -1,0 +1,62 @@
+#pragma once
+// The broad phase: which bodies' boxes overlap, so that the narrow phase looks only at those
+// pairs. A hashed uniform grid (as in Müller's "Ten Minute Physics" hashing): each body of
+// ordinary size goes into the cell of its box's lowest corner, with cells twice as large as the
+// median body, and looks for partners in the cells around it; the few bodies larger than a cell, and
+// the static ones, are tested against every body. A grid suits a pile of like bodies on a floor,
+// where a sort-and-sweep along one axis would meet every body sharing a slice of the floor.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "pba/math.hpp"
+#include "rigid/contact.hpp"
+
+namespace pba::rigid {
+
+struct Box {
+    dvec3 min{0.0};
+    dvec3 max{0.0};
+    bool overlaps(const Box& o) const
+    {
+        return min.x <= o.max.x && o.min.x <= max.x && min.y <= o.max.y && o.min.y <= max.y && min.z <= o.max.z &&
+               o.min.z <= max.z;
+    }
+};
+
+enum class Motion : std::uint8_t { Static, Asleep, Awake };
+
+struct BodyPair {
+    BodyIndex a = 0, b = 0; ///< a < b
+    friend bool operator<(const BodyPair& p, const BodyPair& q) { return p.a != q.a ? p.a < q.a : p.b < q.b; }
+    friend bool operator==(const BodyPair& p, const BodyPair& q) = default;
+};
+
+class BroadPhase {
+public:
+    struct Cell {
+        std::int64_t x = 0, y = 0, z = 0;
+        friend bool operator==(const Cell&, const Cell&) = default;
+    };
+
+    /// The pairs whose boxes overlap and of which at least one body is awake, in increasing
+    /// order (the same whatever the thread count).
+    void findPairs(std::span<const Box> boxes, std::span<const Motion> motion, std::vector<BodyPair>& pairs);
+
+private:
+    double cellSize(std::span<const Box> boxes, std::span<const Motion> motion);
+    void fillGrid(std::span<const Box> boxes, std::span<const Motion> motion);
+    void pairsOfSmall(std::span<const Box> boxes, std::span<const Motion> motion, std::vector<BodyPair>& pairs);
+    void pairsOfLarge(std::span<const Box> boxes, std::span<const Motion> motion, std::vector<BodyPair>& pairs);
+
+    double m_cell = 1.0;
+    std::vector<std::uint8_t> m_large;        ///< per body: tested against every body
+    std::vector<std::uint32_t> m_largeList;
+    std::vector<std::uint32_t> m_bucketStart; ///< the hash table: bucket k holds m_entries[start[k], start[k+1])
+    std::vector<std::uint32_t> m_entries;
+    std::vector<double> m_sizes;
+    std::vector<Cell> m_cells; ///< each body's: the cell of its box's lowest corner
+    std::vector<std::vector<BodyPair>> m_chunks;
+};
+
+} // namespace pba::rigid

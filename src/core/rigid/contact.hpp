@@ -1,0 +1,44 @@
+#pragma once
+// A contact between two rigid bodies, or between a body and the room, as the contact cache keeps
+// it from step to step and the solver works on it: up to four points, each with the impulses it
+// ended the last step with (warm starting, as Box2D and Jolt do).
+#include <array>
+#include <cstdint>
+
+#include "contact/manifold.hpp"
+#include "contact/narrow_phase.hpp"
+#include "pba/math.hpp"
+
+namespace pba::rigid {
+
+/// Body indices are the rigid system's; the room's surfaces come after its bodies, so a contact
+/// with the floor is a contact with one more (static) body.
+using BodyIndex = std::uint32_t;
+
+struct ContactPoint {
+    dvec3 normal{0.0};   ///< world, unit, from A towards B (per point: the hole's shaft is round)
+    dvec3 anchorA{0.0};  ///< on A's surface, A's frame
+    dvec3 anchorB{0.0};  ///< on B's surface, B's frame (the world's for the room)
+    dvec3 point{0.0};    ///< world, at the start of the step
+    double separation = 0.0; ///< at the start of the step; negative when overlapping
+    std::uint32_t id = 0;    ///< the features that touch (contact::makeFeatureId)
+    double normalImpulse = 0.0;
+    double tangentImpulse[2] = {0.0, 0.0};
+    bool bounced = false; ///< took a restitution impulse this step (not warm-started next)
+};
+
+struct Contact {
+    BodyIndex a = 0, b = 0; ///< a < b; b may be a room surface
+    double friction = 0.0;
+    double restitution = 0.0;
+    /// A sphere's radius, 0 for any other shape: a sphere's contact point is always its centre
+    /// plus its radius along the normal, however it has spun since its anchor was taken.
+    double radiusA = 0.0, radiusB = 0.0;
+    int count = 0;
+    std::array<ContactPoint, contact::Manifold::kMaxPoints> points{};
+    contact::SatCache sat; ///< the narrow phase's memory of the pair's separating axis
+
+    std::uint64_t key() const { return (std::uint64_t(a) << 32) | b; }
+};
+
+} // namespace pba::rigid

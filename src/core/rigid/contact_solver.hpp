@@ -1,0 +1,113 @@
+#pragma once
+// The contact solver: sequential impulses (Catto's method, as in Box2D and Bullet) over the
+// contacts of one island, after every body of it has taken its free step with its own
+// integrator. Three passes:
+//  1. collisions: each contact whose points arrive faster than a resting speed takes the impulse
+//     that sends them off at e times the speed they arrive with, at the time within the step at
+//     which they arrive (the velocity before impact, not the start's or the end's), a contact's
+//     points together and the contacts one after another, so that a blow passes along a row of
+//     touching balls as in Newton's cradle, and a box landing flat leaves flat;
+//  2. velocities: every contact, warm-started with the last step's impulses, may close its gap
+//     but not cross it (speculative contacts), with Coulomb friction, for a fixed number of
+//     sweeps; joints take part here (joint_solver.hpp);
+//  3. positions: what overlap remains beyond a slop is pushed apart on the poses alone
+//     (non-linear Gauss-Seidel, as Box2D v2.4's position solver), adding no velocity and so no
+//     energy.
+// Every pass visits the island's contacts in their order (by body pair), on one thread: the
+// result depends on nothing else.
+#include <span>
+#include <vector>
+
+#include "rigid/contact.hpp"
+#include "rigid/solver_body.hpp"
+
+namespace pba::rigid {
+
+struct SolverSettings {
+    double dt = 0.0;
+    /// Below this arriving speed a point does not bounce: one step of gravity's, twice over.
+    double restingSpeed = 0.0;
+    int velocityIterations = 8;
+    int positionIterations = 3;
+    /// Overlap the position pass leaves alone, so that touching bodies are not pushed apart
+    /// and back every step.
+    double linearSlop = 0.001;
+    /// The share of the overlap beyond the slop removed in one position sweep, and the most.
+    double baumgarte = 0.2;
+    double maxCorrection = 0.2;
+};
+
+/// One contact point's rows, worked out once a step.
+struct PointRows {
+    dvec3 rA{0.0}, rB{0.0}; ///< arms from each body's centre to the point, world, at the start
+    dvec3 n{0.0};           ///< normal, A to B
+    dvec3 t[2]{dvec3(0.0), dvec3(0.0)};
+    double normalMass = 0.0;
+    double tangentMass[2] = {0.0, 0.0};
+    double separation = 0.0; ///< at the start of the step
+    double vnStart = 0.0;    ///< relative normal speed at the start's velocities
+    double vnFree = 0.0;     ///< and at the end of the free step
+    double vtStart[2] = {0.0, 0.0};
+    double vtFree[2] = {0.0, 0.0};
+    double normalImpulse = 0.0;
+    double tangentImpulse[2] = {0.0, 0.0};
+    bool bounced = false;
+};
+
+/// Solves one island's contacts. `contacts` holds every contact of the world; `island` lists
+/// the indices of this island's, in order. Works on `bodies` (the world's solver bodies: the
+/// island's and the static ones) and writes the impulses back into the contacts.
+class ContactSolver {
+public:
+    void prepare(std::span<Contact> contacts, std::span<const std::uint32_t> island, std::span<SolverBody> bodies,
+                 const SolverSettings& settings);
+    /// Pass 1: restitution at the time of arrival. Returns whether any point bounced.
+    bool collide();
+    /// Pass 2: the last step's impulses (of the points that did not bounce), then the sweeps are
+    /// the caller's, interleaved with the joints'.
+    void warmStart();
+    void solveVelocities();
+    /// Each point's impulses back into its contact, for the next step's warm start.
+    void storeImpulses();
+    /// Pass 3, on the bodies' end poses; one sweep.
+    void solvePositions();
+
+private:
+    struct Constraint {
+        std::uint32_t contact = 0;
+        BodyIndex a = 0, b = 0;
+        double friction = 0.0, restitution = 0.0;
+        double radiusA = 0.0, radiusB = 0.0;
+        std::uint32_t first = 0;
+        int count = 0;
+    };
+    /// A point's two surface points and normal with the bodies at the given poses.
+    struct SurfacePoints {
+        dvec3 a{0.0}, b{0.0}, n{0.0};
+    };
+    SurfacePoints surfacePoints(const Constraint& c, const ContactPoint& p, const dvec3& xa, const dquat& qa,
+                                const dvec3& xb, const dquat& qb) const;
+    /// A point's rows where it arrives, and what the collision pass wants of it.
+    struct ImpactRow {
+        int point = 0;
+        PointRows rows;
+        double targetN = 0.0, targetT[2] = {0.0, 0.0};
+        double pushN = 0.0, pushT[2] = {0.0, 0.0};
+    };
+    void solveFriction(const Constraint& c, SolverBody& a, SolverBody& b);
+    void solveNormal(const Constraint& c, SolverBody& a, SolverBody& b);
+    bool collideOne(const Constraint& c);
+    double refineArrival(const Constraint& c, int point, double tPrev, double tau) const;
+    double restitutionOf(const Constraint& c, const PointRows& r) const;
+
+    std::span<Contact> m_contacts;
+    std::span<SolverBody> m_bodies;
+    SolverSettings m_settings;
+    std::vector<Constraint> m_constraints;
+    std::vector<PointRows> m_rows;
+};
+
+/// Two unit vectors that complete n to an orthonormal frame (the same for the same n, bit for bit).
+void tangentsOf(const dvec3& n, dvec3 (&t)[2]);
+
+} // namespace pba::rigid

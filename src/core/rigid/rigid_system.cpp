@@ -1,0 +1,424 @@
+#include "rigid/rigid_system.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "rigid/room_contacts.hpp"
+
+namespace pba::rigid {
+
+namespace {
+
+using contact::CollisionShape;
+using contact::Transform;
+
+/// The box around a shape at a pose: a polyhedron's few vertices exactly, a sphere's or a
+/// many-vertexed hull's bounding sphere.
+Box boundsOf(const CollisionShape& shape, const dvec3& x, const dquat& q)
+{
+    if (shape.kind == CollisionShape::Kind::Polyhedron && shape.polyhedron->vertices.size() <= 16) {
+        const dmat3 r = glm::mat3_cast(q);
+        Box box{dvec3(INFINITY), dvec3(-INFINITY)};
+        for (const dvec3& v : shape.polyhedron->vertices) {
+            const dvec3 p = x + r * v;
+            box.min = glm::min(box.min, p);
+            box.max = glm::max(box.max, p);
+        }
+        return box;
+    }
+    const double r = shape.boundingRadius();
+    return {x - r, x + r};
+}
+
+Box merged(const Box& a, const Box& b) { return {glm::min(a.min, b.min), glm::max(a.max, b.max)}; }
+
+dvec3 worldAngularVelocity(const RigidState& s, const dmat3& inverseInertiaBody)
+{
+    return angularVelocity(s.rotation.orientation, inverseInertiaBody, s.rotation.momentum);
+}
+
+/// 1/2 m v.v + 1/2 omega.L - m g.x: what no contact may add to.
+double energyInGravity(const RigidState& s, double inverseMass, const dmat3& inverseInertiaBody, const dvec3& g)
+{
+    const double mass = 1.0 / inverseMass;
+    const dvec3 omega = worldAngularVelocity(s, inverseInertiaBody);
+    return 0.5 * mass * glm::dot(s.v, s.v) + 0.5 * glm::dot(omega, s.rotation.momentum) - mass * glm::dot(g, s.x);
+}
+
+double sphereRadius(const CollisionShape& shape)
+{
+    return shape.kind == CollisionShape::Kind::Sphere ? shape.radius : 0.0;
+}
+
+double combinedFriction(double a, double b) { return std::sqrt(a * b); }
+double combinedRestitution(double a, double b) { return std::max(a, b); }
+
+} // namespace
+
+void RigidSystem::add(std::size_t worldIndex)
+{
+    m_world.push_back(worldIndex);
+    m_material.emplace_back();
+    m_motion.push_back(Motion::Awake);
+    m_stillFor.push_back(0.0);
+    m_sleepingIsland.push_back(Islands::npos);
+    m_start.emplace_back();
+    m_end.emplace_back();
+}
+
+void RigidSystem::begin(std::span<const RigidBody* const> bodies)
+{
+    const std::size_t n = m_world.size();
+    m_awake.clear();
+    m_woken.clear();
+    for (std::size_t k = 0; k < n; ++k) {
+        const RigidBody& b = *bodies[k];
+        Material& m = m_material[k];
+        m.shape = b.getCollisionShape();
+        m.friction = b.getFriction();
+        m.restitution = b.getCor();
+        m.inverseMass = b.isFixed() ? 0.0 : 1.0 / b.getMass();
+        m.inverseInertiaBody = b.isFixed() ? dmat3(0.0) : b.getInverseInertiaBody();
+        m.driftWeight = driftWeight(b.getIntegrator());
+        m_start[k] = RigidState{b.getPos(), b.getVel(), b.getRotation()};
+        m_end[k] = m_start[k];
+        if (b.isFixed())
+            m_motion[k] = Motion::Static;
+        else if (m_motion[k] == Motion::Static) // a body a program has just let go of
+            m_motion[k] = Motion::Awake;
+        if (m_motion[k] == Motion::Awake)
+            m_awake.push_back(std::uint32_t(k));
+    }
+}
+
+void RigidSystem::boundingBoxes(double dt)
+{
+    const std::size_t n = m_world.size();
+    m_reach.assign(n, 0.0);
+    m_boxes.resize(n);
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
+        const CollisionShape& shape = *m_material[k].shape;
+        const RigidState& s = m_start[k];
+        const RigidState& e = m_end[k];
+        Box box = boundsOf(shape, s.x, s.rotation.orientation);
+        if (m_motion[k] == Motion::Awake) {
+            // No point of the body moves further in the step than its centre and its spin's arc.
+            const dmat3& iBody = m_material[k].inverseInertiaBody;
+            const double spin = std::max(glm::length(worldAngularVelocity(s, iBody)),
+                                         glm::length(worldAngularVelocity(e, iBody)));
+            m_reach[k] = glm::length(e.x - s.x) + spin * shape.boundingRadius() * dt;
+            box = merged(box, boundsOf(shape, e.x, e.rotation.orientation));
+        }
+        const double pad = 0.5 * m_settings.contactMargin;
+        m_boxes[k] = {box.min - pad, box.max + pad};
+    });
+}
+
+void RigidSystem::collidePairs()
+{
+    // Written in place, in the pairs' order: the cache's list starts with them.
+    auto& out = m_cache.contacts();
+    out.resize(m_pairs.size());
+    tbb::parallel_for(std::size_t(0), m_pairs.size(), [&](std::size_t p) {
+        const BodyPair pair = m_pairs[p];
+        Contact& c = out[p];
+        c = Contact{};
+        c.a = pair.a;
+        c.b = pair.b;
+        if (const Contact* old = m_cache.previous(c.key()))
+            c.sat = old->sat;
+        const RigidState& a = m_start[pair.a];
+        const RigidState& b = m_start[pair.b];
+        const Transform ta{a.x, glm::mat3_cast(a.rotation.orientation)};
+        const Transform tb{b.x, glm::mat3_cast(b.rotation.orientation)};
+        const double margin = m_reach[pair.a] + m_reach[pair.b] + m_settings.contactMargin;
+        const contact::Manifold m = contact::collide(*m_material[pair.a].shape, ta, *m_material[pair.b].shape, tb,
+                                                     margin, &c.sat);
+        c.count = m.count;
+        for (int i = 0; i < m.count; ++i) {
+            ContactPoint& q = c.points[i];
+            q.normal = m.normal;
+            q.anchorA = m.points[i].anchorA;
+            q.anchorB = m.points[i].anchorB;
+            q.point = m.points[i].point;
+            q.separation = m.points[i].separation;
+            q.id = m.points[i].id;
+        }
+        c.radiusA = sphereRadius(*m_material[pair.a].shape);
+        c.radiusB = sphereRadius(*m_material[pair.b].shape);
+        c.friction = combinedFriction(m_material[pair.a].friction, m_material[pair.b].friction);
+        c.restitution = combinedRestitution(m_material[pair.a].restitution, m_material[pair.b].restitution);
+        m_cache.warmStart(c);
+    });
+    // Pairs whose boxes overlap but whose shapes do not touch stay, with no points: they keep
+    // their separating axis for the next step.
+}
+
+void RigidSystem::collideRoom(std::span<const Plane> planes)
+{
+    const std::size_t n = m_world.size();
+    constexpr std::size_t kChunk = 256;
+    m_roomChunks.resize((n + kChunk - 1) / kChunk);
+    tbb::parallel_for(std::size_t(0), m_roomChunks.size(), [&](std::size_t chunk) {
+        auto& out = m_roomChunks[chunk];
+        out.clear();
+        for (std::size_t k = chunk * kChunk; k < std::min(n, (chunk + 1) * kChunk); ++k) {
+            if (m_motion[k] != Motion::Awake)
+                continue;
+            const RigidState& s = m_start[k];
+            const std::size_t first = out.size();
+            collideWithRoom(*m_material[k].shape, Transform{s.x, glm::mat3_cast(s.rotation.orientation)}, planes,
+                            m_reach[k] + m_settings.contactMargin, BodyIndex(k), BodyIndex(n), out);
+            for (std::size_t c = first; c < out.size(); ++c) {
+                // The room keeps each body's own friction and restitution.
+                out[c].friction = m_material[k].friction;
+                out[c].radiusA = sphereRadius(*m_material[k].shape);
+                out[c].restitution = m_material[k].restitution;
+                m_cache.warmStart(out[c]);
+            }
+        }
+    });
+    auto& out = m_cache.contacts();
+    for (const auto& chunk : m_roomChunks)
+        out.insert(out.end(), chunk.begin(), chunk.end());
+}
+
+void RigidSystem::carrySleepingContacts()
+{
+    // A sleeping body's contacts with other sleeping or static bodies are not looked for again:
+    // they stay as they were, impulses and all, for the step that wakes it.
+    const std::size_t n = m_world.size();
+    auto awake = [&](BodyIndex i) { return i < n && m_motion[i] == Motion::Awake; };
+    for (const Contact& c : m_cache.previousContacts())
+        if (!awake(c.a) && !awake(c.b) && c.count > 0)
+            m_cache.contacts().push_back(c);
+}
+
+void RigidSystem::wakeIsland(std::uint32_t body)
+{
+    const std::uint32_t island = m_sleepingIsland[body];
+    if (island == Islands::npos)
+        return;
+    for (const std::uint32_t k : m_sleepingIslands[island]) {
+        m_motion[k] = Motion::Awake;
+        m_stillFor[k] = 0.0;
+        m_sleepingIsland[k] = Islands::npos;
+        m_woken.push_back(k);
+    }
+    m_sleepingIslands[island].clear();
+}
+
+void RigidSystem::wakeTouched()
+{
+    const std::size_t n = m_world.size();
+    for (const Contact& c : m_cache.contacts()) {
+        if (c.count == 0 || c.b >= n)
+            continue;
+        const Motion a = m_motion[c.a], b = m_motion[c.b];
+        if (a == Motion::Awake && b == Motion::Asleep)
+            wakeIsland(c.b);
+        else if (b == Motion::Awake && a == Motion::Asleep)
+            wakeIsland(c.a);
+    }
+    std::sort(m_woken.begin(), m_woken.end());
+}
+
+void RigidSystem::findContacts(std::span<const Plane> planes, double dt)
+{
+    if (planes.size() * 2 != m_surfaces) {
+        m_surfaces = planes.size() * 2;
+        m_cache.clear(); // the room's surfaces are numbered anew
+    }
+    m_planes.assign(planes.begin(), planes.end());
+    m_cache.beginStep();
+    boundingBoxes(dt);
+    m_broadPhase.findPairs(m_boxes, m_motion, m_pairs);
+    collidePairs();
+    collideRoom(planes);
+    carrySleepingContacts();
+    wakeTouched();
+}
+
+void RigidSystem::prepareBodies(double dt, std::size_t surfaces)
+{
+    const std::size_t n = m_world.size();
+    m_solverBodies.assign(n + surfaces, SolverBody{});
+    m_energyStart.resize(n);
+    m_energyFree.resize(n);
+    (void)dt;
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
+        SolverBody& b = m_solverBodies[k];
+        const RigidState& s = m_start[k];
+        const RigidState& e = m_end[k];
+        b.position = s.x;
+        b.orientation = s.rotation.orientation;
+        b.endPosition = e.x;
+        b.endOrientation = e.rotation.orientation;
+        if (m_motion[k] != Motion::Awake)
+            return; // static, or asleep: it does not move this step
+        const Material& m = m_material[k];
+        const dmat3 r = glm::mat3_cast(s.rotation.orientation);
+        b.inverseInertia = r * m.inverseInertiaBody * glm::transpose(r);
+        b.inverseMass = m.inverseMass;
+        b.driftWeight = m.driftWeight;
+        b.v = e.v;
+        b.w = b.inverseInertia * e.rotation.momentum;
+        b.vStart = s.v;
+        b.wStart = b.inverseInertia * s.rotation.momentum;
+        b.vFree = b.v;
+        b.wFree = b.w;
+        m_energyStart[k] = energyInGravity(s, m.inverseMass, m.inverseInertiaBody, m_gravity);
+        m_energyFree[k] = energyInGravity(e, m.inverseMass, m.inverseInertiaBody, m_gravity);
+    });
+}
+
+void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings)
+{
+    thread_local ContactSolver solver;
+    solver.prepare(m_cache.contacts(), m_islands.contacts(island), m_solverBodies, settings);
+    solver.collide();
+    const auto bodies = m_islands.bodies(island);
+    thread_local std::vector<dvec3> marks;
+    marks.resize(2 * bodies.size());
+    for (std::size_t k = 0; k < bodies.size(); ++k) {
+        marks[2 * k] = m_solverBodies[bodies[k]].v;
+        marks[2 * k + 1] = m_solverBodies[bodies[k]].w;
+    }
+    solver.warmStart();
+    for (int it = 0; it < settings.velocityIterations; ++it)
+        solver.solveVelocities();
+    solver.storeImpulses();
+    // The velocity pass's impulses act from the start of the step: the end pose moves by the
+    // part of the drift the end velocity drives.
+    for (std::size_t k = 0; k < bodies.size(); ++k) {
+        SolverBody& b = m_solverBodies[bodies[k]];
+        const double drift = b.driftWeight * settings.dt;
+        b.shift += (b.v - marks[2 * k]) * drift;
+        b.turn += (b.w - marks[2 * k + 1]) * drift;
+        b.endPosition += b.shift;
+        b.endOrientation = glm::normalize(b.endOrientation + dquat(0.0, b.turn.x, b.turn.y, b.turn.z) * b.endOrientation * 0.5);
+    }
+    for (int it = 0; it < settings.positionIterations; ++it)
+        solver.solvePositions();
+    for (const std::uint32_t k : bodies) {
+        SolverBody& b = m_solverBodies[k];
+        pushOutOfRoom(*m_material[k].shape, b.endPosition, b.endOrientation, m_planes);
+    }
+    capEnergy(island);
+}
+
+void RigidSystem::capEnergy(std::size_t island)
+{
+    // No contact leaves an island with more energy than it started the step with, or would have
+    // ended it with untouched: what the linearised contacts and the push-outs would add is taken
+    // from its motion (every velocity scaled alike, which keeps the motion's direction).
+    const auto bodies = m_islands.bodies(island);
+    double start = 0.0, free = 0.0, end = 0.0, kinetic = 0.0, mass = 0.0;
+    for (const std::uint32_t k : bodies) {
+        const SolverBody& b = m_solverBodies[k];
+        const Material& m = m_material[k];
+        const RigidState s{b.endPosition, b.v, Rotation{b.endOrientation, m_end[k].rotation.momentum + b.momentumChange}};
+        start += m_energyStart[k];
+        free += m_energyFree[k];
+        const double e = energyInGravity(s, m.inverseMass, m.inverseInertiaBody, m_gravity);
+        end += e;
+        kinetic += e + glm::dot(m_gravity, s.x) / m.inverseMass;
+        mass += 1.0 / m.inverseMass;
+    }
+    const double excess = end - std::max(start, free);
+    if (!(excess > 0.0)) // a NaN too: the finite check names the body
+        return;
+    const double keep = kinetic > excess ? std::sqrt(1.0 - excess / kinetic) : 0.0;
+    // Too little motion to take it from (a slow bounce, whose linearised contact leaves the
+    // bodies a little higher than their arcs would): they end that much lower instead.
+    const double g2 = glm::dot(m_gravity, m_gravity);
+    const dvec3 lower = kinetic < excess && g2 > 0.0 ? m_gravity * ((excess - kinetic) / (mass * g2)) : dvec3(0.0);
+    for (const std::uint32_t k : bodies) {
+        SolverBody& b = m_solverBodies[k];
+        b.v *= keep;
+        // L = L_free + change: scale the whole of it.
+        b.momentumChange = keep * (m_end[k].rotation.momentum + b.momentumChange) - m_end[k].rotation.momentum;
+        b.endPosition += lower;
+    }
+}
+
+void RigidSystem::finishBodies()
+{
+    tbb::parallel_for(std::size_t(0), m_world.size(), [&](std::size_t k) {
+        if (m_motion[k] != Motion::Awake)
+            return;
+        const SolverBody& b = m_solverBodies[k];
+        RigidState& e = m_end[k];
+        e.x = b.endPosition;
+        e.v = b.v;
+        e.rotation.orientation = b.endOrientation;
+        e.rotation.momentum += b.momentumChange;
+    });
+}
+
+void RigidSystem::updateSleep(double dt)
+{
+    if (!m_settings.sleeping)
+        return;
+    const std::size_t n = m_world.size();
+    for (std::size_t k = 0; k < n; ++k) {
+        if (m_motion[k] != Motion::Awake)
+            continue;
+        const RigidState& e = m_end[k];
+        const double spin = glm::length(worldAngularVelocity(e, m_material[k].inverseInertiaBody));
+        const double speed = std::max(glm::length(e.v), spin * m_material[k].shape->boundingRadius());
+        m_stillFor[k] = speed < m_settings.sleepSpeed ? m_stillFor[k] + dt : 0.0;
+    }
+    for (std::size_t island = 0; island < m_islands.count(); ++island) {
+        const auto bodies = m_islands.bodies(island);
+        const bool still = std::all_of(bodies.begin(), bodies.end(),
+                                       [&](std::uint32_t k) { return m_stillFor[k] >= m_settings.timeToSleep; });
+        if (!still)
+            continue;
+        // Reuse an emptied slot, so that a pile that wakes and sleeps does not grow the list.
+        std::uint32_t slot = 0;
+        while (slot < m_sleepingIslands.size() && !m_sleepingIslands[slot].empty())
+            ++slot;
+        if (slot == m_sleepingIslands.size())
+            m_sleepingIslands.emplace_back();
+        m_sleepingIslands[slot].assign(bodies.begin(), bodies.end());
+        for (const std::uint32_t k : bodies) {
+            m_motion[k] = Motion::Asleep;
+            m_sleepingIsland[k] = slot;
+            m_end[k].v = dvec3(0.0);
+            m_end[k].rotation.momentum = dvec3(0.0);
+        }
+    }
+}
+
+void RigidSystem::solve(const dvec3& gravity, double dt)
+{
+    const std::size_t n = m_world.size();
+    m_gravity = gravity;
+    prepareBodies(dt, m_surfaces);
+    m_islands.build(m_motion, m_cache.contacts(), {});
+    SolverSettings settings;
+    settings.dt = dt;
+    settings.restingSpeed = 2.0 * glm::length(gravity) * dt;
+    settings.velocityIterations = m_settings.velocityIterations;
+    settings.positionIterations = m_settings.positionIterations;
+    tbb::parallel_for(std::size_t(0), m_islands.count(), [&](std::size_t island) { solveIsland(island, settings); });
+    finishBodies();
+    updateSleep(dt);
+    (void)n;
+}
+
+void RigidSystem::wakeAll()
+{
+    for (std::size_t k = 0; k < m_motion.size(); ++k)
+        if (m_motion[k] == Motion::Asleep) {
+            m_motion[k] = Motion::Awake;
+            m_stillFor[k] = 0.0;
+            m_sleepingIsland[k] = Islands::npos;
+        }
+    m_sleepingIslands.clear();
+}
+
+} // namespace pba::rigid

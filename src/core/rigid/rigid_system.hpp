@@ -1,0 +1,134 @@
+#pragma once
+// The rigid bodies' part of a World: which of the world's bodies are rigid, and what makes them
+// touch each other and the room: the broad phase, the narrow phase, the contact cache, the
+// islands with their sleep, the contact solver and the joints. The World integrates each awake
+// body with its own integrator (its free step, under every force); the system then finds the
+// contacts at the start of the step and solves them, island by island, into each body's end.
+//
+// A step, phase by phase (each a function over the system's own arrays):
+//   begin          the bodies' start states, what they are made of, who is awake
+//   (the World's free step of the awake bodies, written with setFreeEnd)
+//   findContacts   broad phase, narrow phase against bodies and the room, warm start from the
+//                  cache, and the sleeping islands an awake body touched, woken
+//   (the World's free step of the bodies just woken)
+//   solve          islands, then per island: collisions, velocities, positions; then sleep
+//   (the World writes each end state back into its body)
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "contact/narrow_phase.hpp"
+#include "pba/collision.hpp"
+#include "pba/integrator.hpp"
+#include "pba/rigid_body.hpp"
+#include "pba/rotation.hpp"
+#include "rigid/broad_phase.hpp"
+#include "rigid/contact_cache.hpp"
+#include "rigid/contact_solver.hpp"
+#include "rigid/islands.hpp"
+#include "rigid/solver_body.hpp"
+
+namespace pba::rigid {
+
+/// How the system solves, and when a body sleeps.
+struct RigidSettings {
+    int velocityIterations = 8;
+    int positionIterations = 3;
+    /// Contacts are kept while the shapes are this much further apart than their motion in the
+    /// step could close (so a resting contact keeps its points, and its impulses, from step to step).
+    double contactMargin = 0.005;
+    bool sleeping = true;
+    /// A body slower than this (its centre, or its furthest point turning) for kTimeToSleep
+    /// seconds, with all of its island, sleeps.
+    double sleepSpeed = 0.03;
+    double timeToSleep = 0.5;
+};
+
+class RigidSystem {
+public:
+    /// For the World's ClonePtr: a world copies its rigid system whole, contacts and sleep included.
+    std::unique_ptr<RigidSystem> clone() const { return std::make_unique<RigidSystem>(*this); }
+    /// The world's body `worldIndex` (a RigidBody) joins the system.
+    void add(std::size_t worldIndex);
+    std::size_t size() const { return m_world.size(); }
+    std::size_t worldIndex(std::size_t k) const { return m_world[k]; }
+    RigidSettings& settings() { return m_settings; }
+    const RigidSettings& settings() const { return m_settings; }
+
+    // ---- the step's phases ----
+    /// Reads every body's start state and what it is made of from the world's bodies.
+    void begin(std::span<const RigidBody* const> bodies);
+    /// The awake bodies (system indices) that the World integrates freely this step.
+    const std::vector<std::uint32_t>& awake() const { return m_awake; }
+    const RigidState& start(std::size_t k) const { return m_start[k]; }
+    /// What body k's free step ended at.
+    void setFreeEnd(std::size_t k, const RigidState& end) { m_end[k] = end; }
+    /// Finds this step's contacts (broad phase, narrow phase, room, warm start) and wakes the
+    /// sleeping islands an awake body touches: those bodies are listed by woken(), for the World
+    /// to integrate before solve().
+    void findContacts(std::span<const Plane> planes, double dt);
+    const std::vector<std::uint32_t>& woken() const { return m_woken; }
+    /// Islands, the contact solver and sleep; `gravity` sets the speed below which a point does
+    /// not bounce. Then end(k) is body k's state at the end of the step.
+    void solve(const dvec3& gravity, double dt);
+    const RigidState& end(std::size_t k) const { return m_end[k]; }
+
+    // ---- read-outs ----
+    bool isAsleep(std::size_t k) const { return m_motion[k] == Motion::Asleep; }
+    /// Every contact of the last step (body pairs by system index; a room surface is
+    /// size() + its surface id).
+    const std::vector<Contact>& contacts() const { return m_cache.contacts(); }
+    /// Wakes every body (a program changed something the contacts cannot see: a force, a pose).
+    void wakeAll();
+    /// Forgets every contact (the room changed, or a body was moved by hand).
+    void clearContacts() { m_cache.clear(); }
+
+private:
+    struct Material {
+        std::shared_ptr<const contact::CollisionShape> shape;
+        double friction = 0.0, restitution = 0.0;
+        double inverseMass = 0.0;
+        dmat3 inverseInertiaBody{0.0};
+        double driftWeight = 1.0;
+    };
+    void boundingBoxes(double dt);
+    void collidePairs();
+    void collideRoom(std::span<const Plane> planes);
+    void carrySleepingContacts();
+    void wakeTouched();
+    void wakeIsland(std::uint32_t body);
+    void prepareBodies(double dt, std::size_t surfaces);
+    void solveIsland(std::size_t island, const SolverSettings& settings);
+    void capEnergy(std::size_t island);
+    void finishBodies();
+    void updateSleep(double dt);
+
+    RigidSettings m_settings;
+    std::vector<std::size_t> m_world; ///< each body's index in the world
+    std::vector<Material> m_material;
+    std::vector<Motion> m_motion;
+    std::vector<double> m_stillFor; ///< seconds below the sleep speed
+    std::vector<RigidState> m_start, m_end;
+    std::vector<double> m_reach; ///< how far any point of the body moves in the step
+    std::vector<Box> m_boxes;
+    std::vector<Plane> m_planes;
+    dvec3 m_gravity{0.0};
+    /// Each awake body's energy in gravity at the start and at the end of its free step.
+    std::vector<double> m_energyStart, m_energyFree;
+    std::vector<std::uint32_t> m_awake, m_woken;
+    /// Each sleeping island's bodies, and each sleeping body's island there.
+    std::vector<std::vector<std::uint32_t>> m_sleepingIslands;
+    std::vector<std::uint32_t> m_sleepingIsland;
+
+    BroadPhase m_broadPhase;
+    std::vector<BodyPair> m_pairs;
+    ContactCache m_cache;
+    std::vector<std::vector<Contact>> m_roomChunks;
+    std::size_t m_surfaces = 0;
+    Islands m_islands;
+    std::vector<SolverBody> m_solverBodies;
+    std::vector<ContactSolver> m_solvers; ///< one per island being solved (scratch)
+};
+
+} // namespace pba::rigid

@@ -1,0 +1,173 @@
+#include "rigid/room_contacts.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pba::rigid {
+
+namespace {
+
+using contact::CollisionShape;
+using contact::Feature;
+using contact::makeFeatureId;
+using contact::Transform;
+
+/// The candidates of one surface before reduction: a box has 8 corners, a cylinder's prism 48.
+struct Candidates {
+    std::vector<ContactPoint> points;
+    void add(const dvec3& normal, const dvec3& anchorA, const dvec3& at, double gap, std::uint32_t vertex,
+             std::uint32_t surface)
+    {
+        ContactPoint p;
+        p.normal = normal;
+        p.anchorA = anchorA;
+        p.anchorB = at + normal * gap; // on the surface, the world's frame
+        p.point = at + normal * (0.5 * gap);
+        p.separation = gap;
+        p.id = makeFeatureId(Feature::Vertex, vertex, Feature::Face, surface);
+        points.push_back(p);
+    }
+};
+
+void emit(Candidates& c, BodyIndex body, BodyIndex surfaceBody, std::vector<Contact>& out)
+{
+    if (c.points.empty())
+        return;
+    Contact contact;
+    contact.a = body;
+    contact.b = surfaceBody;
+    const int count = reduceToFour(c.points.data(), int(c.points.size()));
+    contact.count = count;
+    for (int k = 0; k < count; ++k)
+        contact.points[k] = c.points[k];
+    out.push_back(contact);
+    c.points.clear();
+}
+
+double triangleArea2(const dvec3& a, const dvec3& b, const dvec3& c) { return glm::length(glm::cross(b - a, c - a)); }
+
+} // namespace
+
+int reduceToFour(ContactPoint* points, int count)
+{
+    if (count <= 4)
+        return count;
+    auto take = [&](int slot, int from) { std::swap(points[slot], points[from]); };
+    // 1. The deepest (the lowest index among equals: the result depends on the order given only
+    //    through ties, and the order is the shape's vertices').
+    int best = 0;
+    for (int k = 1; k < count; ++k)
+        if (points[k].separation < points[best].separation)
+            best = k;
+    take(0, best);
+    // 2. The furthest from it.
+    best = 1;
+    double far = -1.0;
+    for (int k = 1; k < count; ++k)
+        if (const double d = glm::length(points[k].point - points[0].point); d > far) {
+            far = d;
+            best = k;
+        }
+    take(1, best);
+    // 3. The largest triangle with those two.
+    best = 2;
+    double area = -1.0;
+    for (int k = 2; k < count; ++k)
+        if (const double a = triangleArea2(points[0].point, points[1].point, points[k].point); a > area) {
+            area = a;
+            best = k;
+        }
+    take(2, best);
+    // 4. The point that adds the most area to the triangle: the largest of the three triangles
+    //    it makes with the triangle's edges, on the far side of one of them.
+    best = 3;
+    area = -1.0;
+    const dvec3 n = glm::cross(points[1].point - points[0].point, points[2].point - points[0].point);
+    for (int k = 3; k < count; ++k) {
+        double added = 0.0;
+        for (int e = 0; e < 3; ++e) {
+            const dvec3& p = points[e].point;
+            const dvec3& q = points[(e + 1) % 3].point;
+            const double signedArea = glm::dot(glm::cross(q - p, points[k].point - p), n);
+            added = std::max(added, -signedArea); // outside the edge pq
+        }
+        if (added > area) {
+            area = added;
+            best = k;
+        }
+    }
+    take(3, best);
+    return 4;
+}
+
+void collideWithRoom(const CollisionShape& shape, const Transform& pose, std::span<const Plane> planes, double margin,
+                     BodyIndex body, BodyIndex firstSurface, std::vector<Contact>& out)
+{
+    thread_local Candidates candidates;
+    const dvec3& x = pose.position;
+    const bool sphere = shape.kind == CollisionShape::Kind::Sphere;
+    const double reach = shape.boundingRadius() + margin;
+    for (std::size_t p = 0; p < planes.size(); ++p) {
+        const Plane& plane = planes[p];
+        const double centre = plane.distance(x);
+        const bool inShaft = plane.holeRadius > 0.0 && centre < 0.0 && plane.overHole(x);
+        if (!inShaft && centre > reach)
+            continue;
+        const std::uint32_t surface = inShaft ? shaftSurface(planes.size(), p) : std::uint32_t(p);
+        if (sphere) {
+            const double r = shape.radius;
+            if (inShaft) {
+                // The point nearest the shaft's wall: on the sphere's equator, away from the axis.
+                const dvec3 rho = plane.fromHoleAxis(x);
+                const double len = glm::length(rho);
+                const double gap = plane.holeRadius - len - r;
+                if (len > 0.0 && gap < margin) {
+                    const dvec3 n = rho / len;
+                    candidates.add(n, glm::transpose(pose.rotation) * (n * r), x + n * r, gap, 0, surface);
+                }
+            } else {
+                const dvec3 at = x - r * plane.normal;
+                const double gap = centre - r;
+                if (gap < margin && !plane.overHole(at))
+                    candidates.add(-plane.normal, glm::transpose(pose.rotation) * (-r * plane.normal), at, gap, 0,
+                                   surface);
+            }
+        } else {
+            const auto& vertices = shape.polyhedron->vertices;
+            for (std::size_t k = 0; k < vertices.size(); ++k) {
+                const dvec3 at = pose.apply(vertices[k]);
+                if (inShaft) {
+                    const dvec3 rho = plane.fromHoleAxis(at);
+                    const double len = glm::length(rho);
+                    const double gap = plane.holeRadius - len;
+                    if (len > 0.0 && gap < margin)
+                        candidates.add(rho / len, vertices[k], at, gap, std::uint32_t(k), surface);
+                } else if (const double gap = plane.distance(at); gap < margin && !plane.overHole(at)) {
+                    candidates.add(-plane.normal, vertices[k], at, gap, std::uint32_t(k), surface);
+                }
+            }
+        }
+        emit(candidates, body, firstSurface + surface, out);
+    }
+}
+
+bool pushOutOfRoom(const CollisionShape& shape, dvec3& x, const dquat& q, std::span<const Plane> planes)
+{
+    thread_local std::vector<Contact> beyond;
+    beyond.clear();
+    collideWithRoom(shape, Transform{x, glm::mat3_cast(q)}, planes, 0.0, 0, 0, beyond);
+    bool moved = false;
+    for (const Contact& c : beyond) {
+        const ContactPoint* deepest = nullptr;
+        for (int i = 0; i < c.count; ++i)
+            if (c.points[i].separation < 0.0 && (!deepest || c.points[i].separation < deepest->separation))
+                deepest = &c.points[i];
+        if (deepest) {
+            x += deepest->separation * deepest->normal; // the normal points into the surface
+            moved = true;
+        }
+    }
+    return moved;
+}
+
+} // namespace pba::rigid

@@ -1,0 +1,85 @@
+#pragma once
+// A rigid body as the contact and joint solvers see it during one step: its velocities at the end
+// of its free step (its own integrator's, under every force), which the impulses change, and the
+// corrections those impulses make to its end pose. Static bodies (fixed ones, the room's
+// surfaces) have zero inverse mass and inertia and never move.
+#include <glm/gtc/quaternion.hpp>
+
+#include "pba/integrator.hpp"
+#include "pba/math.hpp"
+
+namespace pba::rigid {
+
+/// How much of a method's position update its end velocity drives, for constant forces:
+/// (semi-)implicit Euler's all of it (x1 = x0 + v1 dt), velocity Verlet's and RK4's half
+/// (x1 = x0 + (v0 + v1) dt / 2), forward Euler's none (x1 = x0 + v0 dt). An impulse that changes
+/// the end velocity moves the end position by that share of it times dt, so that a body resting
+/// on a surface stays exactly where it is whatever its integrator.
+inline double driftWeight(Integrator integrator)
+{
+    switch (integrator) {
+    case Integrator::ForwardEuler: return 0.0;
+    case Integrator::VelocityVerlet:
+    case Integrator::RK4: return 0.5;
+    case Integrator::SemiImplicitEuler:
+    case Integrator::ImplicitGyroscopic: return 1.0;
+    }
+    return 1.0;
+}
+
+struct SolverBody {
+    dvec3 position{0.0};   ///< the centre of mass at the start of the step (the arms' origin)
+    dquat orientation{1.0, 0.0, 0.0, 0.0}; ///< at the start of the step
+    dvec3 v{0.0};          ///< linear velocity at the end of the step, world
+    dvec3 w{0.0};          ///< angular velocity at the end of the step, world
+    dvec3 vStart{0.0};     ///< linear velocity at the start of the step
+    dvec3 wStart{0.0};     ///< angular velocity at the start of the step
+    dvec3 vFree{0.0};      ///< linear velocity at the end of the free step, before any impulse
+    dvec3 wFree{0.0};      ///< angular velocity likewise
+    dvec3 momentumChange{0.0}; ///< angular momentum the impulses added, world
+    dvec3 shift{0.0};      ///< how far the impulses moved the end position
+    dvec3 turn{0.0};       ///< how far they turned the end orientation (a rotation vector)
+    dmat3 inverseInertia{0.0}; ///< world frame, at the start's orientation
+    double inverseMass = 0.0;
+    /// The part of the step's drift that a change of the end velocity drives (driftWeight):
+    /// semi-implicit Euler's all of it, velocity Verlet's and RK4's half, forward Euler's none.
+    double driftWeight = 1.0;
+    /// The latest time within the step at which it took a restitution impulse (collision pass).
+    double lastImpact = 0.0;
+
+    /// The body's end pose: its free step's until the passes move it (the collision pass reads
+    /// the free one, to find where the body was when a point arrived).
+    dvec3 endPosition{0.0};
+    dquat endOrientation{1.0, 0.0, 0.0, 0.0};
+
+    bool isStatic() const { return inverseMass == 0.0; }
+    /// Where its free path had it at `fraction` of the step (0 the start), its acceleration
+    /// taken as constant: the path the collision pass finds times of arrival on.
+    dvec3 freePosition(double fraction, double dt) const
+    {
+        return position + (vStart * fraction + 0.5 * (vFree - vStart) * (fraction * fraction)) * dt;
+    }
+    dquat freeOrientation(double fraction) const
+    {
+        return isStatic() ? orientation : glm::slerp(orientation, endOrientation, fraction);
+    }
+    /// An impulse p at arm r (from the centre of mass), added to the end velocities.
+    void applyImpulse(const dvec3& p, const dvec3& r)
+    {
+        if (isStatic()) // shared by the islands that touch it: never written
+            return;
+        v += p * inverseMass;
+        const dvec3 dl = glm::cross(r, p);
+        momentumChange += dl;
+        w += inverseInertia * dl;
+    }
+    /// The velocity of the point at arm r.
+    dvec3 pointVelocity(const dvec3& r) const { return v + glm::cross(w, r); }
+    dvec3 pointStartVelocity(const dvec3& r) const { return vStart + glm::cross(wStart, r); }
+    /// The velocities it has at `fraction` of the step on its present path: the impulses so far
+    /// with the free step's (constant) acceleration up to then.
+    dvec3 velocityAt(double fraction) const { return v - (vFree - vStart) * (1.0 - fraction); }
+    dvec3 spinAt(double fraction) const { return w - (wFree - wStart) * (1.0 - fraction); }
+};
+
+} // namespace pba::rigid

@@ -1,0 +1,197 @@
+// Rigid bodies against each other, held to closed forms: two spheres head-on exchange their
+// velocities (e = 1) or leave as the textbook's e says, an off-centre hit keeps linear and angular
+// momentum and loses exactly what restitution and friction take, a row of touching balls passes a
+// blow along as Newton's cradle does, and a box dropped flat rebounds to e^2 h at every dt.
+#include "pba/world.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "pba/forces.hpp"
+
+using namespace pba;
+
+namespace {
+
+constexpr double kG = 9.81;
+
+RigidBody& addSphere(World& world, double radius, double mass, const dvec3& position, const dvec3& velocity)
+{
+    auto body = std::make_unique<RigidBody>();
+    body->setShapeWithMass(Shape::sphere(radius), mass);
+    body->setPos(position);
+    body->setVel(velocity);
+    return static_cast<RigidBody&>(world.addBody(std::move(body)));
+}
+
+dvec3 totalMomentum(const World& world)
+{
+    dvec3 p(0.0);
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        p += world.body(i).getMass() * world.body(i).getVel();
+    return p;
+}
+
+/// About the origin: each body's x cross m v plus its own spin's L.
+dvec3 totalAngularMomentum(const World& world)
+{
+    dvec3 l(0.0);
+    for (std::size_t i = 0; i < world.bodyCount(); ++i) {
+        const auto& b = static_cast<const RigidBody&>(world.body(i));
+        l += glm::cross(b.getPos(), b.getMass() * b.getVel()) + b.getAngularMomentum();
+    }
+    return l;
+}
+
+double totalKinetic(const World& world)
+{
+    double e = 0.0;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        e += world.kineticEnergy(i);
+    return e;
+}
+
+} // namespace
+
+TEST(RigidContact, EqualSpheresHeadOnExchangeTheirVelocities)
+{
+    World world; // no gravity, no room
+    RigidBody& a = addSphere(world, 0.1, 2.0, dvec3(-0.5, 0.0, 0.0), dvec3(1.5, 0.0, 0.0));
+    RigidBody& b = addSphere(world, 0.1, 2.0, dvec3(0.5, 0.0, 0.0), dvec3(-0.5, 0.0, 0.0));
+    a.setCor(1.0);
+    b.setCor(1.0);
+    for (int n = 0; n < 100; ++n)
+        world.step(0.01);
+    EXPECT_NEAR(a.getVel().x, -0.5, 1e-9);
+    EXPECT_NEAR(b.getVel().x, 1.5, 1e-9);
+    EXPECT_NEAR(glm::length(a.getAngularVelocity()) + glm::length(b.getAngularVelocity()), 0.0, 1e-12);
+    // They met where their paths crossed: x = -0.5 + 1.5 t and 0.5 - 0.5 t, 0.2 apart at t = 0.4.
+    EXPECT_NEAR(b.getPos().x - a.getPos().x, 0.2 + 2.0 * (1.0 - 0.4), 1e-9);
+}
+
+TEST(RigidContact, HeadOnWithRestitutionIsTheTextbooks)
+{
+    // v1' = (m1 v1 + m2 v2 - m2 e (v1 - v2)) / (m1 + m2), and symmetrically for v2'.
+    const double m1 = 1.0, m2 = 3.0, v1 = 2.0, v2 = -1.0, e = 0.5;
+    World world;
+    RigidBody& a = addSphere(world, 0.2, m1, dvec3(-1.0, 0.0, 0.0), dvec3(v1, 0.0, 0.0));
+    RigidBody& b = addSphere(world, 0.3, m2, dvec3(1.0, 0.0, 0.0), dvec3(v2, 0.0, 0.0));
+    a.setCor(e);
+    b.setCor(e);
+    for (int n = 0; n < 200; ++n)
+        world.step(0.005);
+    EXPECT_NEAR(a.getVel().x, (m1 * v1 + m2 * v2 - m2 * e * (v1 - v2)) / (m1 + m2), 1e-9);
+    EXPECT_NEAR(b.getVel().x, (m1 * v1 + m2 * v2 + m1 * e * (v1 - v2)) / (m1 + m2), 1e-9);
+}
+
+TEST(RigidContact, AnOffCentreHitKeepsMomentumAndLosesWhatRestitutionAndFrictionTake)
+{
+    for (const double mu : {0.0, 0.05, 1.0}) {
+        const double ra = 0.1, rb = 0.15, ma = 1.0, mb = 2.5, e = 0.6;
+        World world;
+        RigidBody& a = addSphere(world, ra, ma, dvec3(-1.0, 0.05, 0.02), dvec3(3.0, 0.0, 0.0));
+        RigidBody& b = addSphere(world, rb, mb, dvec3(0.0, -0.1, 0.0), dvec3(-0.5, 0.2, 0.0));
+        for (RigidBody* s : {&a, &b}) {
+            s->setCor(e);
+            s->setFriction(mu);
+        }
+        // The closed form: where |d0 + u t| = ra + rb first, the normal n there, the relative
+        // velocity u of the surfaces (no spin before), the normal impulse (1 + e) m_n u_n, and
+        // friction stopping the sliding u_t if mu allows it (sticking), else mu times the normal
+        // impulse against it. Spheres' arms lie along n, so the two directions do not couple:
+        // m_n = 1 / (1/ma + 1/mb), m_t = 1 / (1/ma + 1/mb + ra^2/Ia + rb^2/Ib) with I = 2/5 m r^2.
+        const dvec3 d0 = b.getPos() - a.getPos(), u = b.getVel() - a.getVel();
+        const double qa = glm::dot(u, u), qb = 2.0 * glm::dot(d0, u), qc = glm::dot(d0, d0) - (ra + rb) * (ra + rb);
+        const double t = (-qb - std::sqrt(qb * qb - 4.0 * qa * qc)) / (2.0 * qa);
+        const dvec3 n = glm::normalize(d0 + u * t);
+        const double un = glm::dot(u, n);
+        const dvec3 ut = u - un * n;
+        const double mn = 1.0 / (1.0 / ma + 1.0 / mb);
+        const double mt = 1.0 / (1.0 / ma + 1.0 / mb + ra * ra / (0.4 * ma * ra * ra) + rb * rb / (0.4 * mb * rb * rb));
+        const double jn = -(1.0 + e) * mn * un;
+        const double stick = mt * glm::length(ut);
+        const dvec3 jt = glm::length(ut) == 0.0 ? dvec3(0.0) : -std::min(stick, mu * jn) * glm::normalize(ut);
+        const dvec3 impulse = jn * n + jt; // on b
+        const dvec3 vaExpected = a.getVel() - impulse / ma, vbExpected = b.getVel() + impulse / mb;
+
+        const dvec3 p0 = totalMomentum(world), l0 = totalAngularMomentum(world);
+        const double e0 = totalKinetic(world);
+        for (int k = 0; k < 100; ++k)
+            world.step(0.01);
+        EXPECT_LT(glm::length(totalMomentum(world) - p0), 1e-9 * glm::length(p0)) << "mu " << mu;
+        EXPECT_LT(glm::length(totalAngularMomentum(world) - l0), 1e-9 * (glm::length(l0) + glm::length(p0))) << "mu " << mu;
+        EXPECT_LT(glm::length(a.getVel() - vaExpected), 1e-9) << "mu " << mu;
+        EXPECT_LT(glm::length(b.getVel() - vbExpected), 1e-9) << "mu " << mu;
+        // Each sphere's spin from the tangential impulse at its arm (a's arm is ra n, b's -rb n).
+        const double ia = 0.4 * ma * ra * ra, ib = 0.4 * mb * rb * rb;
+        const dvec3 la = -ra * glm::cross(n, jt), lb = -rb * glm::cross(n, jt);
+        EXPECT_LT(glm::length(a.getAngularMomentum() - la), 1e-9) << "mu " << mu;
+        EXPECT_LT(glm::length(b.getAngularMomentum() - lb), 1e-9) << "mu " << mu;
+        // What is lost: restitution's 1/2 (1 - e^2) m_n u_n^2, and friction's: all the sliding's
+        // 1/2 m_t |u_t|^2 when it sticks, else the work mu jn |u_t| - (mu jn)^2 / (2 m_t).
+        const double slide = glm::length(ut);
+        const double friction = stick <= mu * jn ? 0.5 * mt * slide * slide
+                                                 : mu * jn * slide - 0.5 * (mu * jn) * (mu * jn) / mt;
+        EXPECT_NEAR(e0 - totalKinetic(world), 0.5 * (1.0 - e * e) * mn * un * un + friction, 1e-9 * e0) << "mu " << mu;
+        (void)ia;
+        (void)ib;
+    }
+}
+
+TEST(RigidContact, NewtonsCradleOnAFloorPassesTheBlowAlong)
+{
+    World world;
+    world.setRoom(Aabb{dvec3(-3.0, 0.0, -1.0), dvec3(3.0, 2.0, 1.0)});
+    world.addForce(std::make_unique<Gravity>(dvec3(0.0, -kG, 0.0)));
+    const double r = 0.05, m = 0.2, v = 1.0;
+    std::vector<RigidBody*> balls;
+    for (int k = 0; k < 5; ++k) {
+        RigidBody& ball = addSphere(world, r, m, dvec3(2.0 * r * k, r, 0.0), dvec3(0.0));
+        ball.setCor(1.0);
+        ball.setFriction(0.0);
+        balls.push_back(&ball);
+    }
+    RigidBody& striker = addSphere(world, r, m, dvec3(-0.5, r, 0.0), dvec3(v, 0.0, 0.0));
+    striker.setCor(1.0);
+    striker.setFriction(0.0);
+    const double e0 = totalKinetic(world);
+    const dvec3 p0 = totalMomentum(world);
+    for (int n = 0; n < 300; ++n)
+        world.step(0.002);
+    EXPECT_GE(balls.back()->getVel().x, 0.9 * v);
+    EXPECT_NEAR(totalMomentum(world).x, p0.x, 0.01 * p0.x);
+    EXPECT_NEAR(totalKinetic(world), e0, 0.01 * e0);
+}
+
+TEST(RigidContact, ABoxDroppedFlatReboundsToESquaredHAtEveryDtForEveryIntegrator)
+{
+    for (const double dt : {0.0005, 0.005, 1.0 / 60.0})
+        for (const Integrator integrator : kEveryIntegrator) {
+            World world;
+            world.setRoom(Aabb{dvec3(-2.0, 0.0, -2.0), dvec3(2.0, 4.0, 2.0)});
+            world.addForce(std::make_unique<Gravity>(dvec3(0.0, -kG, 0.0)));
+            const double h = 1.0, e = 0.5;
+            const dvec3 size(0.4, 0.2, 0.3);
+            auto body = std::make_unique<RigidBody>(Shape::box(size), 500.0);
+            body->setPos(dvec3(0.3, h + 0.5 * size.y, -0.2));
+            body->setCor(e);
+            body->setIntegrator(integrator);
+            auto& box = static_cast<RigidBody&>(world.addBody(std::move(body)));
+            bool bounced = false;
+            double apex = 0.0;
+            for (int n = 0; n < int(3.0 / dt); ++n) {
+                const double before = box.getVel().y;
+                world.step(dt);
+                bounced = bounced || (before < 0.0 && box.getVel().y > 0.0);
+                if (bounced && box.getVel().y < 0.0 && apex > 0.0)
+                    break;
+                if (bounced)
+                    apex = std::max(apex, box.getPos().y - 0.5 * size.y);
+            }
+            ASSERT_TRUE(bounced);
+            EXPECT_NEAR(apex, e * e * h, 0.03 * e * e * h) << "dt " << dt << ", " << integratorName(integrator);
+        }
+}
