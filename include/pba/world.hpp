@@ -40,6 +40,7 @@
 #include "pba/clone_ptr.hpp"
 #include "pba/collision.hpp"
 #include "pba/force.hpp"
+#include "pba/joint.hpp"
 #include "pba/particle.hpp"
 #include "pba/rigid_body.hpp"
 #include "pba/state.hpp"
@@ -101,6 +102,15 @@ public:
     Body& body(std::size_t i) { return *m_bodies[i]; }
     const Body& body(std::size_t i) const { return *m_bodies[i]; }
     std::optional<std::size_t> findBody(std::string_view name) const;
+
+    // ---- joints between rigid bodies (or a rigid body and the world) ----
+    /// Joins the bodies as `joint` says, its anchors and axis read in the world now. Throws
+    /// std::invalid_argument naming what is wrong (a body that is not rigid, the same body
+    /// twice, a zero axis, limits that do not hold the start's angle, a bad spring).
+    std::size_t addJoint(const JointDesc& joint);
+    std::size_t jointCount() const;
+    /// Where joint i is now.
+    JointFrame jointFrame(std::size_t i) const;
 
     // ---- swarms: many identical particles as float arrays, stepped with the same rules ----
     /// Throws std::invalid_argument if a force of the world cannot act on a swarm.

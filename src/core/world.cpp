@@ -5,12 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 
 #include "pba/forces.hpp"
 
 #include "collision_rules.hpp"
+#include "rigid/joint_solver.hpp"
 #include "rigid/rigid_system.hpp"
 
 namespace pba {
@@ -56,6 +58,110 @@ Body& World::addBody(std::unique_ptr<Body> body)
 Particle& World::addParticle(const Particle& particle)
 {
     return static_cast<Particle&>(addBody(std::make_unique<Particle>(particle)));
+}
+
+namespace {
+
+const RigidBody& rigidBodyOf(const std::vector<ClonePtr<Body>>& bodies, std::size_t i, const char* role)
+{
+    if (i >= bodies.size())
+        throw std::invalid_argument(fmt::format("a joint's {} body {} does not exist", role, i));
+    const auto* rigid = dynamic_cast<const RigidBody*>(bodies[i].get());
+    if (!rigid)
+        throw std::invalid_argument(fmt::format("a joint joins rigid bodies, and '{}' is a particle", bodies[i]->getName()));
+    return *rigid;
+}
+
+bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+/// A unit vector across the unit vector `axis`.
+dvec3 across(const dvec3& axis)
+{
+    const dvec3 other = std::abs(axis.x) < 0.57735 ? dvec3(1.0, 0.0, 0.0) : dvec3(0.0, 1.0, 0.0);
+    return glm::normalize(glm::cross(axis, other));
+}
+
+} // namespace
+
+std::size_t World::addJoint(const JointDesc& desc)
+{
+    const RigidBody& a = rigidBodyOf(m_bodies, desc.bodyA, "first");
+    const RigidBody* b = desc.bodyB ? &rigidBodyOf(m_bodies, *desc.bodyB, "second") : nullptr;
+    if (b == &a)
+        throw std::invalid_argument(fmt::format("a joint joins two bodies, and both are '{}'", a.getName()));
+    const dquat qa = a.getOrientation(), qb = b ? b->getOrientation() : dquat(1.0, 0.0, 0.0, 0.0);
+    const dvec3 xa = a.getPos(), xb = b ? b->getPos() : dvec3(0.0);
+    // World to each body's frame (the world's own frame for the world).
+    auto inA = [&](const dvec3& p) { return glm::conjugate(qa) * (p - xa); };
+    auto inB = [&](const dvec3& p) { return glm::conjugate(qb) * (p - xb); };
+    rigid::Joint j;
+    j.type = desc.type;
+    j.a = m_rigidIndex[desc.bodyA];
+    j.b = b ? m_rigidIndex[*desc.bodyB] : rigid::kWorldBody;
+    const dvec3 onA = desc.type == JointType::Distance ? desc.anchors[0] : desc.anchor;
+    const dvec3 onB = desc.type == JointType::Distance ? desc.anchors[1] : desc.anchor;
+    if (!finite(onA) || !finite(onB))
+        throw std::invalid_argument("a joint's anchor must be finite");
+    j.localA = inA(onA);
+    j.localB = inB(onB);
+    if (desc.type == JointType::Hinge) {
+        const double len = glm::length(desc.axis);
+        if (!(len > 0.0) || !finite(desc.axis))
+            throw std::invalid_argument("a hinge's axis must be a non-zero finite vector");
+        const dvec3 axis = desc.axis / len, ref = across(axis);
+        j.axisA = inA(xa + axis);
+        j.axisB = inB(xb + axis);
+        j.refA = inA(xa + ref);
+        j.refB = inB(xb + ref);
+        if (desc.limits) {
+            const auto [lower, upper] = *desc.limits;
+            if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= 0.0 && 0.0 <= upper &&
+                  lower >= -std::numbers::pi && upper <= std::numbers::pi))
+                throw std::invalid_argument(fmt::format("a hinge's limits must hold its start angle, 0, within "
+                                                        "[-pi, pi]: got [{}, {}]", lower, upper));
+            j.limited = true;
+            j.lower = lower;
+            j.upper = upper;
+        }
+    }
+    if (desc.type == JointType::Fixed)
+        j.rest = glm::conjugate(qa) * qb;
+    if (desc.type == JointType::Distance) {
+        j.length = desc.length.value_or(glm::length(onB - onA));
+        if (!(j.length >= 0.0 && std::isfinite(j.length)))
+            throw std::invalid_argument(fmt::format("a distance joint's length must be finite and >= 0, got {}", j.length));
+        if (desc.stiffness && !(*desc.stiffness > 0.0 && std::isfinite(*desc.stiffness)))
+            throw std::invalid_argument(fmt::format("a spring's stiffness must be finite and positive, got {}",
+                                                    *desc.stiffness));
+        if (!(desc.damping >= 0.0 && std::isfinite(desc.damping)))
+            throw std::invalid_argument(fmt::format("a spring's damping must be finite and >= 0, got {}", desc.damping));
+        j.stiffness = desc.stiffness.value_or(0.0);
+        j.damping = desc.damping;
+    }
+    m_rigidSystem->addJoint(j);
+    return m_rigidSystem->joints().size() - 1;
+}
+
+std::size_t World::jointCount() const { return m_rigidSystem->joints().size(); }
+
+JointFrame World::jointFrame(std::size_t i) const
+{
+    const rigid::Joint& j = m_rigidSystem->joints()[i];
+    auto pose = [&](rigid::BodyIndex k) {
+        if (k == rigid::kWorldBody)
+            return std::pair{dvec3(0.0), dquat(1.0, 0.0, 0.0, 0.0)};
+        const auto& b = static_cast<const RigidBody&>(*m_bodies[m_rigidSystem->worldIndex(k)]);
+        return std::pair{b.getPos(), b.getOrientation()};
+    };
+    const auto [xa, qa] = pose(j.a);
+    const auto [xb, qb] = pose(j.b);
+    JointFrame frame;
+    frame.type = j.type;
+    frame.onA = xa + qa * j.localA;
+    frame.onB = xb + qb * j.localB;
+    if (j.type == JointType::Hinge)
+        frame.axis = glm::normalize(qa * j.axisA);
+    return frame;
 }
 
 std::optional<std::size_t> World::findBody(std::string_view name) const

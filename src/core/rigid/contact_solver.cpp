@@ -52,12 +52,6 @@ double arrival(double gap, double u, double a, double span)
     return s <= span ? s : nan;
 }
 
-/// q turned by the small rotation vector theta.
-dquat turned(const dquat& q, const dvec3& theta)
-{
-    return glm::normalize(q + dquat(0.0, theta.x, theta.y, theta.z) * q * 0.5);
-}
-
 constexpr int kMaxPoints = contact::Manifold::kMaxPoints;
 constexpr int kMaxCollisionSweeps = 16;
 constexpr int kMaxImpactSweeps = 32;

@@ -59,6 +59,9 @@ double combinedRestitution(double a, double b) { return std::max(a, b); }
 
 void RigidSystem::add(std::size_t worldIndex)
 {
+    // The world's static body and the room's surfaces are numbered after the bodies: the
+    // contacts that name them are numbered anew.
+    m_cache.clear();
     m_world.push_back(worldIndex);
     m_material.emplace_back();
     m_motion.push_back(Motion::Awake);
@@ -170,7 +173,7 @@ void RigidSystem::collideRoom(std::span<const Plane> planes)
             const RigidState& s = m_start[k];
             const std::size_t first = out.size();
             collideWithRoom(*m_material[k].shape, Transform{s.x, glm::mat3_cast(s.rotation.orientation)}, planes,
-                            m_reach[k] + m_settings.contactMargin, BodyIndex(k), BodyIndex(n), out);
+                            m_reach[k] + m_settings.contactMargin, BodyIndex(k), BodyIndex(n + 1), out);
             for (std::size_t c = first; c < out.size(); ++c) {
                 // The room keeps each body's own friction and restitution.
                 out[c].friction = m_material[k].friction;
@@ -244,7 +247,7 @@ void RigidSystem::findContacts(std::span<const Plane> planes, double dt)
 void RigidSystem::prepareBodies(double dt, std::size_t surfaces)
 {
     const std::size_t n = m_world.size();
-    m_solverBodies.assign(n + surfaces, SolverBody{});
+    m_solverBodies.assign(n + 1 + surfaces, SolverBody{}); // the bodies, the world, the room
     m_energyStart.resize(n);
     m_energyFree.resize(n);
     (void)dt;
@@ -277,7 +280,9 @@ void RigidSystem::prepareBodies(double dt, std::size_t surfaces)
 void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings)
 {
     thread_local ContactSolver solver;
+    thread_local JointSolver joints;
     solver.prepare(m_cache.contacts(), m_islands.contacts(island), m_solverBodies, settings);
+    joints.prepare(m_joints, m_islands.links(island), m_solverBodies, settings, worldBody());
     solver.collide();
     const auto bodies = m_islands.bodies(island);
     thread_local std::vector<dvec3> marks;
@@ -286,9 +291,13 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
         marks[2 * k] = m_solverBodies[bodies[k]].v;
         marks[2 * k + 1] = m_solverBodies[bodies[k]].w;
     }
+    joints.warmStart();
     solver.warmStart();
-    for (int it = 0; it < settings.velocityIterations; ++it)
+    for (int it = 0; it < settings.velocityIterations; ++it) {
+        joints.solveVelocities();
         solver.solveVelocities();
+    }
+    joints.storeImpulses();
     solver.storeImpulses();
     // The velocity pass's impulses act from the start of the step: the end pose moves by the
     // part of the drift the end velocity drives.
@@ -300,8 +309,10 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
         b.endPosition += b.shift;
         b.endOrientation = glm::normalize(b.endOrientation + dquat(0.0, b.turn.x, b.turn.y, b.turn.z) * b.endOrientation * 0.5);
     }
-    for (int it = 0; it < settings.positionIterations; ++it)
+    for (int it = 0; it < settings.positionIterations; ++it) {
+        joints.solvePositions();
         solver.solvePositions();
+    }
     for (const std::uint32_t k : bodies) {
         SolverBody& b = m_solverBodies[k];
         pushOutOfRoom(*m_material[k].shape, b.endPosition, b.endOrientation, m_planes);
@@ -398,7 +409,10 @@ void RigidSystem::solve(const dvec3& gravity, double dt)
     const std::size_t n = m_world.size();
     m_gravity = gravity;
     prepareBodies(dt, m_surfaces);
-    m_islands.build(m_motion, m_cache.contacts(), {});
+    m_links.resize(m_joints.size());
+    for (std::size_t k = 0; k < m_joints.size(); ++k)
+        m_links[k] = {m_joints[k].a, m_joints[k].b};
+    m_islands.build(m_motion, m_cache.contacts(), m_links);
     SolverSettings settings;
     settings.dt = dt;
     settings.restingSpeed = 2.0 * glm::length(gravity) * dt;

@@ -27,6 +27,7 @@
 #include "rigid/contact_cache.hpp"
 #include "rigid/contact_solver.hpp"
 #include "rigid/islands.hpp"
+#include "rigid/joint_solver.hpp"
 #include "rigid/solver_body.hpp"
 
 namespace pba::rigid {
@@ -74,10 +75,17 @@ public:
     void solve(const dvec3& gravity, double dt);
     const RigidState& end(std::size_t k) const { return m_end[k]; }
 
+    // ---- joints ----
+    /// A joint between two of the system's bodies, or (b == kWorldBody) between a and the world.
+    void addJoint(const Joint& joint) { m_joints.push_back(joint); }
+    const std::vector<Joint>& joints() const { return m_joints; }
+    /// The index the solver gives the world (a static body): after the bodies, before the room.
+    BodyIndex worldBody() const { return BodyIndex(m_world.size()); }
+
     // ---- read-outs ----
     bool isAsleep(std::size_t k) const { return m_motion[k] == Motion::Asleep; }
     /// Every contact of the last step (body pairs by system index; a room surface is
-    /// size() + its surface id).
+    /// size() + 1 + its surface id).
     const std::vector<Contact>& contacts() const { return m_cache.contacts(); }
     /// Wakes every body (a program changed something the contacts cannot see: a force, a pose).
     void wakeAll();
@@ -127,6 +135,8 @@ private:
     std::vector<std::vector<Contact>> m_roomChunks;
     std::size_t m_surfaces = 0;
     Islands m_islands;
+    std::vector<Joint> m_joints;
+    std::vector<Link> m_links;
     std::vector<SolverBody> m_solverBodies;
     std::vector<ContactSolver> m_solvers; ///< one per island being solved (scratch)
 };

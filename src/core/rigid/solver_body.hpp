@@ -73,6 +73,18 @@ struct SolverBody {
         momentumChange += dl;
         w += inverseInertia * dl;
     }
+    /// An angular impulse l (world frame).
+    void applyAngularImpulse(const dvec3& l)
+    {
+        if (isStatic())
+            return;
+        momentumChange += l;
+        w += inverseInertia * l;
+    }
+    /// The position pass's moves: a positional impulse p at arm r, or an angular one l, on the
+    /// end pose alone.
+    void movePose(const dvec3& p, const dvec3& r);
+    void turnPose(const dvec3& l);
     /// The velocity of the point at arm r.
     dvec3 pointVelocity(const dvec3& r) const { return v + glm::cross(w, r); }
     dvec3 pointStartVelocity(const dvec3& r) const { return vStart + glm::cross(wStart, r); }
@@ -81,5 +93,37 @@ struct SolverBody {
     dvec3 velocityAt(double fraction) const { return v - (vFree - vStart) * (1.0 - fraction); }
     dvec3 spinAt(double fraction) const { return w - (wFree - wStart) * (1.0 - fraction); }
 };
+
+/// q turned by the small rotation vector theta (world frame), renormalised.
+inline dquat turned(const dquat& q, const dvec3& theta)
+{
+    return glm::normalize(q + dquat(0.0, theta.x, theta.y, theta.z) * q * 0.5);
+}
+
+inline void SolverBody::movePose(const dvec3& p, const dvec3& r)
+{
+    if (isStatic())
+        return;
+    endPosition += p * inverseMass;
+    endOrientation = turned(endOrientation, inverseInertia * glm::cross(r, p));
+}
+
+inline void SolverBody::turnPose(const dvec3& l)
+{
+    if (isStatic())
+        return;
+    endOrientation = turned(endOrientation, inverseInertia * l);
+}
+
+/// [r]x, the matrix of r x (.).
+inline dmat3 skew(const dvec3& r) { return dmat3(0.0, r.z, -r.y, -r.z, 0.0, r.x, r.y, -r.x, 0.0); }
+
+/// What an impulse P at arms rA (on A, negated) and rB (on B) does to the two points' relative
+/// velocity: K P, with K = (1/mA + 1/mB) I - [rA]x IA^-1 [rA]x - [rB]x IB^-1 [rB]x.
+inline dmat3 pointMass(const SolverBody& a, const SolverBody& b, const dvec3& ra, const dvec3& rb)
+{
+    const dmat3 sa = skew(ra), sb = skew(rb);
+    return dmat3(a.inverseMass + b.inverseMass) - sa * a.inverseInertia * sa - sb * b.inverseInertia * sb;
+}
 
 } // namespace pba::rigid

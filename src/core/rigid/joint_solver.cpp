@@ -1,0 +1,336 @@
+#include "rigid/joint_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pba::rigid {
+
+namespace {
+
+dmat3 inverseOr0(const dmat3& k)
+{
+    const double det = glm::determinant(k);
+    return det != 0.0 && std::isfinite(det) ? glm::inverse(k) : dmat3(0.0);
+}
+
+/// The 2x2 block of K on two directions, inverted and put back into a 3x3 on those directions:
+/// an angular impulse sum_k lambda_k t_k with lambda = M c.
+struct Block2 {
+    double m[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+};
+
+Block2 inverse2(const dmat3& k, const dvec3 (&t)[2])
+{
+    const double a = glm::dot(t[0], k * t[0]), b = glm::dot(t[0], k * t[1]), d = glm::dot(t[1], k * t[1]);
+    const double det = a * d - b * b;
+    Block2 out;
+    if (det > 0.0) {
+        out.m[0][0] = d / det;
+        out.m[0][1] = out.m[1][0] = -b / det;
+        out.m[1][1] = a / det;
+    }
+    return out;
+}
+
+/// The angular impulse that cancels `c` (a relative angular quantity) across the axis.
+dvec3 acrossImpulse(const Block2& mass, const dvec3 (&t)[2], const dvec3& c)
+{
+    const double c0 = glm::dot(t[0], c), c1 = glm::dot(t[1], c);
+    return -(mass.m[0][0] * c0 + mass.m[0][1] * c1) * t[0] - (mass.m[1][0] * c0 + mass.m[1][1] * c1) * t[1];
+}
+
+void applyLinear(SolverBody& a, SolverBody& b, const dvec3& ra, const dvec3& rb, const dvec3& p)
+{
+    a.applyImpulse(-p, ra);
+    b.applyImpulse(p, rb);
+}
+
+void applyAngular(SolverBody& a, SolverBody& b, const dvec3& l)
+{
+    a.applyAngularImpulse(-l);
+    b.applyAngularImpulse(l);
+}
+
+dvec3 anchorVelocity(const SolverBody& a, const SolverBody& b, const dvec3& ra, const dvec3& rb)
+{
+    return b.pointVelocity(rb) - a.pointVelocity(ra);
+}
+
+/// Two unit vectors across `axis` (unit).
+void acrossOf(const dvec3& axis, dvec3 (&t)[2]) { tangentsOf(axis, t); }
+
+} // namespace
+
+double hingeAngle(const Joint& j, const dquat& qa, const dquat& qb)
+{
+    const dvec3 axis = glm::mat3_cast(qa) * j.axisA;
+    const dvec3 ra = glm::mat3_cast(qa) * j.refA, rb = glm::mat3_cast(qb) * j.refB;
+    return std::atan2(glm::dot(glm::cross(ra, rb), axis), glm::dot(ra, rb));
+}
+
+void JointSolver::prepare(std::span<Joint> joints, std::span<const std::uint32_t> island, std::span<SolverBody> bodies,
+                          const SolverSettings& settings, BodyIndex world)
+{
+    m_joints = joints;
+    m_bodies = bodies;
+    m_settings = settings;
+    m_rows.clear();
+    const double dt = settings.dt;
+    for (const std::uint32_t index : island) {
+        const Joint& j = joints[index];
+        Rows r;
+        r.joint = index;
+        r.a = j.a == kWorldBody ? world : j.a;
+        r.b = j.b == kWorldBody ? world : j.b;
+        const SolverBody& a = bodies[r.a];
+        const SolverBody& b = bodies[r.b];
+        const dmat3 ra = glm::mat3_cast(a.orientation), rb = glm::mat3_cast(b.orientation);
+        r.rA = ra * j.localA;
+        r.rB = rb * j.localB;
+        r.linearMass = inverseOr0(pointMass(a, b, r.rA, r.rB));
+        const dmat3 angular = a.inverseInertia + b.inverseInertia;
+        if (j.type == JointType::Hinge) {
+            r.axis = glm::normalize(ra * j.axisA);
+            acrossOf(r.axis, r.across);
+            const Block2 m = inverse2(angular, r.across);
+            for (int p = 0; p < 2; ++p)
+                for (int q = 0; q < 2; ++q)
+                    r.acrossMass[p][q] = m.m[p][q];
+            const double k = glm::dot(r.axis, angular * r.axis);
+            r.axialMass = k > 0.0 ? 1.0 / k : 0.0;
+            r.angle = hingeAngle(j, a.orientation, b.orientation);
+        } else if (j.type == JointType::Fixed) {
+            r.angularMass = inverseOr0(angular);
+        } else if (j.type == JointType::Distance) {
+            const dvec3 d = (b.position + r.rB) - (a.position + r.rA);
+            const double len = glm::length(d);
+            r.n = len > 0.0 ? d / len : dvec3(0.0, 1.0, 0.0);
+            const double k = glm::dot(r.n, pointMass(a, b, r.rA, r.rB) * r.n);
+            const double mass = k > 0.0 ? 1.0 / k : 0.0;
+            if (j.stiffness > 0.0) {
+                // gamma and beta of the implicit spring: the row becomes
+                // lambda = -(Cdot + beta/dt C + gamma lambda_acc) / (K + gamma).
+                const double soft = dt * (j.damping + dt * j.stiffness);
+                r.gamma = soft > 0.0 ? 1.0 / soft : 0.0;
+                r.bias = soft > 0.0 ? (len - j.length) * (j.stiffness / (j.damping + dt * j.stiffness)) : 0.0;
+                r.axialMass = mass > 0.0 ? 1.0 / (1.0 / mass + r.gamma) : 0.0;
+            } else {
+                r.axialMass = mass;
+            }
+        }
+        r.linearImpulse = j.linearImpulse;
+        r.angularImpulse = j.angularImpulse;
+        r.axialImpulse = j.axialImpulse;
+        r.lowerImpulse = j.lowerImpulse;
+        r.upperImpulse = j.upperImpulse;
+        m_rows.push_back(r);
+    }
+}
+
+void JointSolver::warmStart()
+{
+    for (const Rows& r : m_rows) {
+        const Joint& j = m_joints[r.joint];
+        SolverBody& a = m_bodies[r.a];
+        SolverBody& b = m_bodies[r.b];
+        if (j.type == JointType::Distance) {
+            applyLinear(a, b, r.rA, r.rB, r.axialImpulse * r.n);
+            continue;
+        }
+        applyLinear(a, b, r.rA, r.rB, r.linearImpulse);
+        applyAngular(a, b, r.angularImpulse + (r.lowerImpulse - r.upperImpulse) * r.axis);
+    }
+}
+
+void JointSolver::solveBall(Rows& r, SolverBody& a, SolverBody& b)
+{
+    const dvec3 lambda = -(r.linearMass * anchorVelocity(a, b, r.rA, r.rB));
+    r.linearImpulse += lambda;
+    applyLinear(a, b, r.rA, r.rB, lambda);
+}
+
+void JointSolver::solveHingeAngular(const Joint& j, Rows& r, SolverBody& a, SolverBody& b)
+{
+    // Across the axis the two bodies turn together.
+    const Block2 mass{{{r.acrossMass[0][0], r.acrossMass[0][1]}, {r.acrossMass[1][0], r.acrossMass[1][1]}}};
+    const dvec3 l = acrossImpulse(mass, r.across, b.w - a.w);
+    r.angularImpulse += l;
+    applyAngular(a, b, l);
+    if (!j.limited)
+        return;
+    // About it, the angle may close its gap to a limit within the step, not cross it (as a
+    // speculative contact): at the lower limit the relative spin about the axis is at least
+    // -(angle - lower) / dt, with a pushing impulse only; at the upper, at most (upper - angle) / dt.
+    const double dt = m_settings.dt;
+    {
+        const double spin = glm::dot(r.axis, b.w - a.w);
+        const double target = -std::max(r.angle - j.lower, 0.0) / dt;
+        const double next = std::max(r.lowerImpulse - r.axialMass * (spin - target), 0.0);
+        applyAngular(a, b, (next - r.lowerImpulse) * r.axis);
+        r.lowerImpulse = next;
+    }
+    {
+        const double spin = glm::dot(r.axis, b.w - a.w);
+        const double target = std::max(j.upper - r.angle, 0.0) / dt;
+        const double next = std::max(r.upperImpulse + r.axialMass * (spin - target), 0.0);
+        applyAngular(a, b, -(next - r.upperImpulse) * r.axis);
+        r.upperImpulse = next;
+    }
+}
+
+void JointSolver::solveFixedAngular(Rows& r, SolverBody& a, SolverBody& b)
+{
+    const dvec3 l = -(r.angularMass * (b.w - a.w));
+    r.angularImpulse += l;
+    applyAngular(a, b, l);
+}
+
+void JointSolver::solveDistance(const Joint& j, Rows& r, SolverBody& a, SolverBody& b)
+{
+    const double speed = glm::dot(r.n, anchorVelocity(a, b, r.rA, r.rB));
+    const double lambda =
+        j.stiffness > 0.0 ? -r.axialMass * (speed + r.bias + r.gamma * r.axialImpulse) : -r.axialMass * speed;
+    r.axialImpulse += lambda;
+    applyLinear(a, b, r.rA, r.rB, lambda * r.n);
+}
+
+void JointSolver::solveVelocities()
+{
+    for (Rows& r : m_rows) {
+        const Joint& j = m_joints[r.joint];
+        SolverBody& a = m_bodies[r.a];
+        SolverBody& b = m_bodies[r.b];
+        switch (j.type) {
+        case JointType::Ball: solveBall(r, a, b); break;
+        case JointType::Hinge:
+            solveHingeAngular(j, r, a, b);
+            solveBall(r, a, b);
+            break;
+        case JointType::Fixed:
+            solveFixedAngular(r, a, b);
+            solveBall(r, a, b);
+            break;
+        case JointType::Distance: solveDistance(j, r, a, b); break;
+        }
+    }
+}
+
+void JointSolver::storeImpulses()
+{
+    for (const Rows& r : m_rows) {
+        Joint& j = m_joints[r.joint];
+        j.linearImpulse = r.linearImpulse;
+        j.angularImpulse = r.angularImpulse;
+        j.axialImpulse = r.axialImpulse;
+        j.lowerImpulse = r.lowerImpulse;
+        j.upperImpulse = r.upperImpulse;
+    }
+}
+
+void JointSolver::holdPoints(const Joint& j, SolverBody& a, SolverBody& b)
+{
+    const dvec3 ra = glm::mat3_cast(a.endOrientation) * j.localA, rb = glm::mat3_cast(b.endOrientation) * j.localB;
+    const dvec3 error = (b.endPosition + rb) - (a.endPosition + ra);
+    const dvec3 p = -(inverseOr0(pointMass(a, b, ra, rb)) * error);
+    a.movePose(-p, ra);
+    b.movePose(p, rb);
+}
+
+void JointSolver::holdAxis(const Joint& j, SolverBody& a, SolverBody& b)
+{
+    const dvec3 axisA = glm::normalize(glm::mat3_cast(a.endOrientation) * j.axisA);
+    const dvec3 axisB = glm::normalize(glm::mat3_cast(b.endOrientation) * j.axisB);
+    // B's axis is A's turned by about axisA x axisB: turn B back by that much, across the axis.
+    dvec3 across[2];
+    acrossOf(axisA, across);
+    const dmat3 angular = a.inverseInertia + b.inverseInertia;
+    const dvec3 l = acrossImpulse(inverse2(angular, across), across, glm::cross(axisA, axisB));
+    a.turnPose(-l);
+    b.turnPose(l);
+    if (!j.limited)
+        return;
+    const double angle = hingeAngle(j, a.endOrientation, b.endOrientation);
+    const double beyond = angle < j.lower ? angle - j.lower : angle > j.upper ? angle - j.upper : 0.0;
+    const double k = glm::dot(axisA, angular * axisA);
+    if (beyond != 0.0 && k > 0.0) {
+        const dvec3 turn = (-beyond / k) * axisA;
+        a.turnPose(-turn);
+        b.turnPose(turn);
+    }
+}
+
+void JointSolver::holdOrientation(const Joint& j, SolverBody& a, SolverBody& b)
+{
+    // The rotation that takes B to where A's orientation and the rest say it should be.
+    dquat error = (a.endOrientation * j.rest) * glm::conjugate(b.endOrientation);
+    if (error.w < 0.0)
+        error = -error;
+    const dvec3 theta = 2.0 * dvec3(error.x, error.y, error.z);
+    const dvec3 l = inverseOr0(a.inverseInertia + b.inverseInertia) * theta;
+    a.turnPose(-l);
+    b.turnPose(l);
+}
+
+void JointSolver::holdLength(const Joint& j, SolverBody& a, SolverBody& b)
+{
+    if (j.stiffness > 0.0)
+        return; // a spring may stretch
+    const dvec3 ra = glm::mat3_cast(a.endOrientation) * j.localA, rb = glm::mat3_cast(b.endOrientation) * j.localB;
+    const dvec3 d = (b.endPosition + rb) - (a.endPosition + ra);
+    const double len = glm::length(d);
+    if (len == 0.0)
+        return;
+    const dvec3 n = d / len;
+    const double k = glm::dot(n, pointMass(a, b, ra, rb) * n);
+    if (!(k > 0.0))
+        return;
+    const dvec3 p = (-(len - j.length) / k) * n;
+    a.movePose(-p, ra);
+    b.movePose(p, rb);
+}
+
+void JointSolver::solvePositions()
+{
+    for (const Rows& r : m_rows) {
+        const Joint& j = m_joints[r.joint];
+        SolverBody& a = m_bodies[r.a];
+        SolverBody& b = m_bodies[r.b];
+        switch (j.type) {
+        case JointType::Ball: holdPoints(j, a, b); break;
+        case JointType::Hinge:
+            holdAxis(j, a, b);
+            holdPoints(j, a, b);
+            break;
+        case JointType::Fixed:
+            holdOrientation(j, a, b);
+            holdPoints(j, a, b);
+            break;
+        case JointType::Distance: holdLength(j, a, b); break;
+        }
+    }
+}
+
+} // namespace pba::rigid
+
+namespace pba {
+
+std::string_view jointTypeName(JointType type)
+{
+    switch (type) {
+    case JointType::Ball: return "ball";
+    case JointType::Hinge: return "hinge";
+    case JointType::Distance: return "distance";
+    case JointType::Fixed: return "fixed";
+    }
+    return "ball";
+}
+
+std::optional<JointType> jointTypeFromName(std::string_view name)
+{
+    for (const JointType t : {JointType::Ball, JointType::Hinge, JointType::Distance, JointType::Fixed})
+        if (jointTypeName(t) == name)
+            return t;
+    return std::nullopt;
+}
+
+} // namespace pba

@@ -1,0 +1,87 @@
+#pragma once
+// The joints' part of the solver: each joint's rows, solved in the same sweeps as the contacts
+// (velocities, warm-started from the last step's impulses) and then held on the poses
+// (positions, non-linear Gauss-Seidel), so that a pendulum's rod neither stretches nor adds
+// energy. Ball: the two anchors' relative velocity, three rows at once (a 3x3 block). Hinge: the
+// ball's rows, two angular rows that keep the axes parallel and, with limits, one that keeps the
+// angle in range. Distance: one row along the two anchors, rigid or (with a stiffness) a soft
+// constraint, which is an implicit spring (Catto, "Soft Constraints", GDC 2011). Fixed: the
+// ball's rows and three angular rows.
+#include <span>
+#include <vector>
+
+#include "pba/joint.hpp"
+#include "rigid/contact.hpp"
+#include "rigid/contact_solver.hpp"
+#include "rigid/solver_body.hpp"
+
+namespace pba::rigid {
+
+/// A joint's end that is the world rather than a body.
+inline constexpr BodyIndex kWorldBody = 0xfffffffeu;
+
+struct Joint {
+    JointType type = JointType::Ball;
+    BodyIndex a = 0, b = 0;       ///< the rigid system's bodies; b may be kWorldBody
+    dvec3 localA{0.0}, localB{0.0}; ///< the anchors in each body's frame
+    dvec3 axisA{0.0}, axisB{0.0};   ///< hinge: the axis in each body's frame
+    dvec3 refA{0.0}, refB{0.0};     ///< hinge: a unit vector across the axis, the same at the start
+    dquat rest{1.0, 0.0, 0.0, 0.0}; ///< fixed: A's orientation to B's at the start, qA^-1 qB
+    double length = 0.0;            ///< distance
+    double stiffness = 0.0;         ///< distance: 0 for a rigid rod
+    double damping = 0.0;
+    bool limited = false;
+    double lower = 0.0, upper = 0.0;
+    // What the last step's solve ended with (warm start).
+    dvec3 linearImpulse{0.0};
+    dvec3 angularImpulse{0.0};
+    double axialImpulse = 0.0;  ///< distance
+    double lowerImpulse = 0.0, upperImpulse = 0.0;
+};
+
+/// The hinge's angle: how far B has turned about the axis relative to A since the start.
+double hingeAngle(const Joint& j, const dquat& qa, const dquat& qb);
+
+class JointSolver {
+public:
+    /// `world` is the solver's index of the world's static body.
+    void prepare(std::span<Joint> joints, std::span<const std::uint32_t> island, std::span<SolverBody> bodies,
+                 const SolverSettings& settings, BodyIndex world);
+    void warmStart();
+    void solveVelocities();
+    void storeImpulses();
+    /// One sweep on the bodies' end poses.
+    void solvePositions();
+
+private:
+    struct Rows {
+        std::uint32_t joint = 0;
+        BodyIndex a = 0, b = 0;
+        dvec3 rA{0.0}, rB{0.0};
+        dmat3 linearMass{0.0};   ///< K^-1 of the anchors' relative velocity
+        dmat3 angularMass{0.0};  ///< fixed: the relative spin's K^-1
+        double acrossMass[2][2] = {{0.0, 0.0}, {0.0, 0.0}}; ///< hinge: on the two directions across the axis
+        dvec3 axis{0.0}, across[2]{dvec3(0.0), dvec3(0.0)};
+        double axialMass = 0.0;  ///< hinge limits: about the axis; distance: along n
+        dvec3 n{0.0};            ///< distance: from A's anchor to B's
+        double angle = 0.0;      ///< hinge: at the start of the step
+        double bias = 0.0, gamma = 0.0; ///< distance spring: the soft constraint's terms
+        dvec3 linearImpulse{0.0}, angularImpulse{0.0};
+        double axialImpulse = 0.0, lowerImpulse = 0.0, upperImpulse = 0.0;
+    };
+    void solveBall(Rows& r, SolverBody& a, SolverBody& b);
+    void solveHingeAngular(const Joint& j, Rows& r, SolverBody& a, SolverBody& b);
+    void solveFixedAngular(Rows& r, SolverBody& a, SolverBody& b);
+    void solveDistance(const Joint& j, Rows& r, SolverBody& a, SolverBody& b);
+    void holdPoints(const Joint& j, SolverBody& a, SolverBody& b);
+    void holdAxis(const Joint& j, SolverBody& a, SolverBody& b);
+    void holdOrientation(const Joint& j, SolverBody& a, SolverBody& b);
+    void holdLength(const Joint& j, SolverBody& a, SolverBody& b);
+
+    std::span<Joint> m_joints;
+    std::span<SolverBody> m_bodies;
+    SolverSettings m_settings;
+    std::vector<Rows> m_rows;
+};
+
+} // namespace pba::rigid
