@@ -4,8 +4,8 @@
 // (boxes, cylinders as prisms, meshes as their convex hulls).
 #include <memory>
 
-#include "contact/convex_polyhedron.hpp"
-#include "contact/manifold.hpp"
+#include "convex_polyhedron.hpp"
+#include "manifold.hpp"
 #include "pba/shape.hpp"
 
 namespace pba::contact {
