@@ -97,7 +97,10 @@ ConvexPolyhedron ConvexPolyhedron::box(const dvec3& halfExtents)
         normals.push_back(-normals.back());
         loops.push_back({0, w, u | w, u});
     }
-    return fromFaces(std::move(vertices), loops, normals);
+    ConvexPolyhedron p = fromFaces(std::move(vertices), loops, normals);
+    if (halfExtents.x > 0.0 && halfExtents.y > 0.0 && halfExtents.z > 0.0)
+        p.boxHalfExtents = halfExtents;
+    return p;
 }
 
 ConvexPolyhedron ConvexPolyhedron::prism(double radius, double height, int sides)
@@ -131,6 +134,10 @@ ConvexPolyhedron ConvexPolyhedron::prism(double radius, double height, int sides
 
 std::uint32_t ConvexPolyhedron::support(const dvec3& direction) const
 {
+    // A box's corner is the signs of the direction; a zero component ties two corners, and the
+    // first of them (the bit clear) is the one the search below would find.
+    if (isBox())
+        return (direction.x > 0.0 ? 1u : 0u) | (direction.y > 0.0 ? 2u : 0u) | (direction.z > 0.0 ? 4u : 0u);
     std::uint32_t best = 0;
     double bestDot = -INFINITY;
     for (std::uint32_t i = 0; i < vertices.size(); ++i) {
@@ -141,6 +148,14 @@ std::uint32_t ConvexPolyhedron::support(const dvec3& direction) const
         }
     }
     return best;
+}
+
+std::uint32_t ConvexPolyhedron::edgeBetween(std::uint32_t tail, std::uint32_t head) const
+{
+    for (std::uint32_t i = 0; i < edges.size(); ++i)
+        if ((edges[i].tail == tail && edges[i].head == head) || (edges[i].tail == head && edges[i].head == tail))
+            return i;
+    return static_cast<std::uint32_t>(edges.size());
 }
 
 } // namespace pba::contact

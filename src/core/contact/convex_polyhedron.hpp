@@ -37,6 +37,10 @@ struct ConvexPolyhedron {
     std::vector<std::uint32_t> faceEdges;
     std::vector<Edge> edges; ///< each edge once
     double boundingRadius = 0.0; ///< the furthest vertex from the origin
+    /// Non-zero only for ConvexPolyhedron::box (whose vertex i has the sign of bit 0 in x, bit 1 in
+    /// y, bit 2 in z, and face 2k + s the normal of sign s along axis k): its half extents, which
+    /// let support and the separating-axis test between two boxes work in closed form.
+    dvec3 boxHalfExtents{0.0};
 
     /// A box centred on the origin, axis-aligned.
     static ConvexPolyhedron box(const dvec3& halfExtents);
@@ -55,8 +59,11 @@ struct ConvexPolyhedron {
     static ConvexPolyhedron fromFaces(std::vector<dvec3> vertices, std::span<const std::vector<std::uint32_t>> loops,
                                       std::span<const dvec3> normals);
 
+    bool isBox() const { return boxHalfExtents.x > 0.0; }
     /// The index of the vertex furthest along `direction` (the first such on a tie).
     std::uint32_t support(const dvec3& direction) const;
+    /// The edge between vertices `tail` and `head` (either way round); edges.size() if none.
+    std::uint32_t edgeBetween(std::uint32_t tail, std::uint32_t head) const;
     /// A face's vertex loop (indices into vertices).
     std::span<const std::uint32_t> loop(const Face& face) const { return {faceVertices.data() + face.first, face.count}; }
 };

@@ -1,6 +1,9 @@
 #include "contact/polyhedron_contact.hpp"
 
 #include <algorithm>
+#include <array>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace pba::contact {
@@ -12,11 +15,34 @@ namespace {
 /// or (after a clip) a side plane of the reference face, so that the point a later plane cuts
 /// from that edge can be named.
 struct ClipVertex {
-    dvec3 position{0.0};
-    std::uint32_t refFeature = 0, incFeature = 0; ///< makeFeatureId's halves: kind << 14 | index
-    int side = -1;              ///< the outgoing edge lies on this side plane (loop position) ...
-    std::uint32_t incEdge = 0;  ///< ... or, when side < 0, on this incident edge
+    dvec3 position;
+    std::uint32_t refFeature, incFeature; ///< makeFeatureId's halves: kind << 14 | index
+    int side;              ///< the outgoing edge lies on this side plane (loop position) ...
+    std::uint32_t incEdge; ///< ... or, when side < 0, on this incident edge
 };
+
+/// Room for `n` values: on the stack up to kOnStack (a box's or a prism's faces fit), else in
+/// `heap`, a block the thread keeps, so that no call allocates once the thread has warmed up.
+/// T is left uninitialised (trivially constructible), so the stack room costs nothing to make.
+template <class T, std::size_t kOnStack>
+class Scratch {
+public:
+    Scratch(std::size_t n, std::vector<T>& heap)
+    {
+        if (n > kOnStack) {
+            heap.resize(n);
+            m_data = heap.data();
+        }
+    }
+    T* data() { return m_data ? m_data : m_stack.data(); }
+
+private:
+    static_assert(std::is_trivially_default_constructible_v<T>);
+    std::array<T, kOnStack> m_stack;
+    T* m_data = nullptr;
+};
+
+constexpr std::size_t kOnStack = 56;
 
 constexpr std::uint32_t half(Feature kind, std::uint32_t index)
 {
@@ -28,17 +54,21 @@ std::uint32_t pairId(std::uint32_t refFeature, std::uint32_t incFeature, Referen
     return which == Reference::A ? (refFeature << 16) | incFeature : (incFeature << 16) | refFeature;
 }
 
-/// The point where the polygon's edge from `from` to `to` crosses side plane `k` (distances
-/// `dFrom` and `dTo` inside it, of opposite signs), named after the features that cross there.
-ClipVertex crossing(const ConvexPolyhedron& ref, const ConvexPolyhedron::Face& face, std::uint32_t incFace, int k,
-                    const ClipVertex& from, const ClipVertex& to, double dFrom, double dTo)
+/// Writes to `x` the point where the polygon's edge from `from` to `to` crosses side plane `k`
+/// (distances `dFrom` and `dTo` inside it, of opposite signs), named after the features that
+/// cross there, and what the polygon's edge leaving it lies on: leaving the inside, it runs
+/// along the plane to where it comes back in; coming back in, it goes on along the edge it
+/// crossed on.
+void crossing(const ConvexPolyhedron& ref, const ConvexPolyhedron::Face& face, std::uint32_t incFace, int k,
+              const ClipVertex& from, const ClipVertex& to, double dFrom, double dTo, ClipVertex& x)
 {
-    ClipVertex x;
     x.position = from.position + (dFrom / (dFrom - dTo)) * (to.position - from.position);
+    x.side = dFrom > 0.0 ? k : from.side;
+    x.incEdge = from.incEdge;
     if (from.side < 0) {
         x.refFeature = half(Feature::Edge, ref.faceEdges[face.first + static_cast<std::uint32_t>(k)]);
         x.incFeature = half(Feature::Edge, from.incEdge);
-        return x;
+        return;
     }
     // An edge along an earlier side plane meets this one at the reference face's vertex between
     // them (two side planes that are not neighbours meet only outside the face).
@@ -46,38 +76,33 @@ ClipVertex crossing(const ConvexPolyhedron& ref, const ConvexPolyhedron::Face& f
     const int corner = (earlier + 1) % m == k ? k : (k + 1) % m == earlier ? earlier : k;
     x.refFeature = half(Feature::Vertex, ref.faceVertices[face.first + static_cast<std::uint32_t>(corner)]);
     x.incFeature = half(Feature::Face, incFace);
-    return x;
 }
 
-/// Sutherland-Hodgman: keeps the part of `polygon` inside side plane k of the reference face.
-void clipBySide(const ConvexPolyhedron& ref, const ConvexPolyhedron::Face& face, std::uint32_t incFace, int k,
-                const std::vector<ClipVertex>& polygon, std::vector<ClipVertex>& out)
+/// Sutherland-Hodgman: writes the part of polygon `in` (n vertices) inside side plane k of the
+/// reference face to `out` (room for n + 1), and returns its count.
+std::size_t clipBySide(const ConvexPolyhedron& ref, const ConvexPolyhedron::Face& face, std::uint32_t incFace, int k,
+                       const ClipVertex* in, std::size_t n, ClipVertex* out)
 {
-    out.clear();
     const auto m = face.count;
     const dvec3& tail = ref.vertices[ref.faceVertices[face.first + static_cast<std::uint32_t>(k)]];
     const dvec3& head = ref.vertices[ref.faceVertices[face.first + (static_cast<std::uint32_t>(k) + 1) % m]];
     // The face is on the left of each of its edges seen from outside: inward is normal x edge.
     const dvec3 inward = glm::cross(face.normal, head - tail);
-    const std::size_t n = polygon.size();
+    std::size_t count = 0;
     for (std::size_t i = 0; i < n; ++i) {
-        const ClipVertex &from = polygon[i], &to = polygon[(i + 1) % n];
+        const ClipVertex &from = in[i], &to = in[i + 1 == n ? 0 : i + 1];
         const double dFrom = glm::dot(inward, from.position - tail), dTo = glm::dot(inward, to.position - tail);
         if (dFrom >= 0.0) {
-            out.push_back(from);
+            out[count] = from;
             if (dFrom == 0.0 && dTo < 0.0)
-                out.back().side = k; // on the plane already: from here the polygon runs along it
+                out[count].side = k; // on the plane already: from here the polygon runs along it
+            ++count;
         }
         // A vertex exactly on the plane is kept as it is, so only a strict crossing makes a point.
-        if ((dFrom > 0.0 && dTo < 0.0) || (dFrom < 0.0 && dTo > 0.0)) {
-            ClipVertex x = crossing(ref, face, incFace, k, from, to, dFrom, dTo);
-            // Leaving the inside, the polygon runs along the plane to where it comes back in;
-            // coming back in, it goes on along the edge it crossed on.
-            x.side = dFrom > 0.0 ? k : from.side;
-            x.incEdge = from.incEdge;
-            out.push_back(x);
-        }
+        if ((dFrom > 0.0 && dTo < 0.0) || (dFrom < 0.0 && dTo > 0.0))
+            crossing(ref, face, incFace, k, from, to, dFrom, dTo, out[count++]);
     }
+    return count;
 }
 
 /// The face of `inc` whose normal is most anti-parallel to `normalInInc` (the first on a tie).
@@ -175,26 +200,40 @@ Manifold faceContact(const ConvexPolyhedron& ref, const Transform& refPose, cons
     const std::uint32_t incFace = incidentFace(inc, glm::transpose(incInRef.rotation) * f.normal);
     const ConvexPolyhedron::Face& g = inc.faces[incFace];
 
-    thread_local std::vector<ClipVertex> polygon, clipped;
-    polygon.clear();
+    // Clipping by each of the reference face's sides adds at most one vertex.
+    const std::size_t room = std::size_t{f.count} + g.count;
+    thread_local std::vector<ClipVertex> heapPolygon, heapClipped;
+    Scratch<ClipVertex, kOnStack> polygonRoom(room, heapPolygon), clippedRoom(room, heapClipped);
+    ClipVertex *polygon = polygonRoom.data(), *clipped = clippedRoom.data();
+    std::size_t n = g.count;
     for (std::uint32_t j = 0; j < g.count; ++j) {
         const std::uint32_t v = inc.faceVertices[g.first + j];
-        polygon.push_back({incInRef.apply(inc.vertices[v]), half(Feature::Face, face), half(Feature::Vertex, v), -1,
-                           inc.faceEdges[g.first + j]});
+        ClipVertex& c = polygon[j];
+        c.position = incInRef.apply(inc.vertices[v]);
+        c.refFeature = half(Feature::Face, face);
+        c.incFeature = half(Feature::Vertex, v);
+        c.side = -1;
+        c.incEdge = inc.faceEdges[g.first + j];
     }
-    for (int k = 0; k < static_cast<int>(f.count) && !polygon.empty(); ++k) {
-        clipBySide(ref, f, incFace, k, polygon, clipped);
+    for (int k = 0; k < static_cast<int>(f.count) && n > 0; ++k) {
+        n = clipBySide(ref, f, incFace, k, polygon, n, clipped);
         std::swap(polygon, clipped);
     }
 
-    thread_local std::vector<ClipPoint> points;
-    points.clear();
-    for (const ClipVertex& v : polygon) {
-        const double separation = glm::dot(f.normal, v.position) - f.offset;
-        if (separation <= margin)
-            points.push_back({v.position, separation, pairId(v.refFeature, v.incFeature, which)});
+    thread_local std::vector<ClipPoint> heapPoints;
+    Scratch<ClipPoint, kOnStack> pointsRoom(n, heapPoints);
+    ClipPoint* points = pointsRoom.data();
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double separation = glm::dot(f.normal, polygon[i].position) - f.offset;
+        if (separation <= margin) {
+            ClipPoint& p = points[kept++];
+            p.position = polygon[i].position;
+            p.separation = separation;
+            p.id = pairId(polygon[i].refFeature, polygon[i].incFeature, which);
+        }
     }
-    const int count = reduceManifold(points, f.normal);
+    const int count = reduceManifold({points, kept}, f.normal);
 
     Manifold m;
     const dvec3 normal = refPose.rotation * f.normal;

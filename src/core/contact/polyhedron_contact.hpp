@@ -25,11 +25,12 @@ Manifold faceContact(const ConvexPolyhedron& ref, const Transform& refPose, cons
 Manifold edgeContact(const ConvexPolyhedron& a, const Transform& ta, const ConvexPolyhedron& b, const Transform& tb,
                      const EdgeQuery& query, double margin);
 
-/// A candidate point of a face contact: on the incident face, in the reference frame.
+/// A candidate point of a face contact: on the incident face, in the reference frame. Left
+/// uninitialised when made, so that room for many costs nothing.
 struct ClipPoint {
-    dvec3 position{0.0};
-    double separation = 0.0;
-    std::uint32_t id = 0;
+    dvec3 position;
+    double separation;
+    std::uint32_t id;
 };
 
 /// Keeps at most Manifold::kMaxPoints of `points` (all in the plane of `normal` but for their

@@ -50,6 +50,78 @@ bool mayBeat(double d, double length2, double best)
     return d * d < best * best * length2 * (1.0 + 1e-9);
 }
 
+/// Unit axis i crossed with v, without the products by zero.
+dvec3 axisCross(int i, const dvec3& v)
+{
+    return i == 0 ? dvec3(0.0, -v.z, v.y) : i == 1 ? dvec3(v.z, 0.0, -v.x) : dvec3(-v.y, v.x, 0.0);
+}
+
+/// Two boxes' edge pairs in closed form: for A's axis i and B's axis j, the common normal n,
+/// turned towards B's centre, separates them by |n.t| less both boxes' extents along n
+/// (sum |n_k| h_k in each box's frame). That is the separation of the pair of edges the two
+/// boxes reach furthest along n and -n: the only pair in those directions whose arcs cross on
+/// the Gauss map (a box's Minkowski sum with a box has a face for every such pair), which the
+/// general search would find the same. The edges are named only for the pair kept
+/// (boxEdgeNames).
+EdgeQuery boxAxisPair(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const Transform& bInA, int i, int j)
+{
+    const dmat3& r = bInA.rotation;
+    const dvec3 n = axisCross(i, r[j]);
+    // In B's frame, A's axis i (row i of r) crossed with B's axis j.
+    const dvec3 nInB = -axisCross(j, dvec3(r[0][i], r[1][i], r[2][i]));
+    const double length2 = glm::dot(n, n);
+    EdgeQuery q;
+    if (!(length2 > kParallelSine * kParallelSine))
+        return q;
+    const double inverse = 1.0 / std::sqrt(length2);
+    const double centre = glm::dot(n, bInA.position) * inverse;
+    q.separation = std::abs(centre) -
+                   (glm::dot(glm::abs(n), a.boxHalfExtents) + glm::dot(glm::abs(nInB), b.boxHalfExtents)) * inverse;
+    q.normal = (centre < 0.0 ? -inverse : inverse) * n;
+    return q;
+}
+
+/// The edges of an edge query between boxes, from the axes it was made of: A's edge along axis
+/// i on the side its normal points to, B's along its axis j on the opposite side.
+void boxEdgeNames(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const Transform& bInA, int i, int j, EdgeQuery& q)
+{
+    const auto corner = [](const dvec3& towards, int along) {
+        std::uint32_t v = 0;
+        for (int k = 0; k < 3; ++k)
+            if (k != along && towards[k] > 0.0)
+                v |= 1u << k;
+        return v;
+    };
+    const std::uint32_t tailA = corner(q.normal, i), tailB = corner(-(glm::transpose(bInA.rotation) * q.normal), j);
+    q.edgeA = a.edgeBetween(tailA, tailA | 1u << i);
+    q.edgeB = b.edgeBetween(tailB, tailB | 1u << j);
+}
+
+/// The axis a box's edge runs along: the one bit its two corners differ in.
+int boxEdgeDirection(const ConvexPolyhedron& box, std::uint32_t edge)
+{
+    const std::uint32_t differ = box.edges[edge].tail ^ box.edges[edge].head;
+    return differ == 1u ? 0 : differ == 2u ? 1 : 2;
+}
+
+EdgeQuery queryBoxEdges(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const Transform& bInA, double stopAbove)
+{
+    EdgeQuery best;
+    int bestI = 0, bestJ = 0;
+    for (int k = 0; k < 9; ++k) {
+        const EdgeQuery q = boxAxisPair(a, b, bInA, k / 3, k % 3);
+        if (q.separation > best.separation) {
+            best = q;
+            bestI = k / 3, bestJ = k % 3;
+            if (q.separation > stopAbove)
+                break;
+        }
+    }
+    if (best.separation > -INFINITY)
+        boxEdgeNames(a, b, bInA, bestI, bestJ, best);
+    return best;
+}
+
 } // namespace
 
 double faceSeparation(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const Transform& bInA, std::uint32_t face)
@@ -78,6 +150,13 @@ FaceQuery queryFaces(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const
 EdgeQuery edgePair(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const Transform& bInA, std::uint32_t edgeA,
                    std::uint32_t edgeB)
 {
+    if (a.isBox() && b.isBox()) {
+        const int i = boxEdgeDirection(a, edgeA), j = boxEdgeDirection(b, edgeB);
+        EdgeQuery q = boxAxisPair(a, b, bInA, i, j);
+        if (q.separation > -INFINITY)
+            boxEdgeNames(a, b, bInA, i, j, q);
+        return q;
+    }
     // The same products as queryEdges, in the same order, so that both agree to the last bit.
     const ConvexPolyhedron::Edge &ea = a.edges[edgeA], &eb = b.edges[edgeB];
     const dvec3 bxa = glm::cross(a.faces[ea.rightFace].normal, a.faces[ea.leftFace].normal);
@@ -96,6 +175,8 @@ EdgeQuery edgePair(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const T
 
 EdgeQuery queryEdges(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const Transform& bInA, double stopAbove)
 {
+    if (a.isBox() && b.isBox())
+        return queryBoxEdges(a, b, bInA, stopAbove);
     // B's vertices, face normals and edges' arc planes in A's frame, and each A edge's arc plane
     // against every B normal, once: a pair then costs two look-ups in the common case that it
     // is pruned, and a square root only when it may be the best.

@@ -44,7 +44,8 @@ FaceQuery queryFaces(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const
 EdgeQuery queryEdges(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const Transform& bInA, double stopAbove);
 
 /// One pair's query, as queryEdges would find it: separation -infinity when the two edges do not
-/// meet on the Gauss map or are parallel.
+/// meet on the Gauss map or are parallel. Between two boxes, the pair of their directions: the
+/// edges along them that queryEdges would find now, which may be others than these.
 EdgeQuery edgePair(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const Transform& bInA, std::uint32_t edgeA,
                    std::uint32_t edgeB);
 
