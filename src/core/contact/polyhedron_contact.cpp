@@ -34,6 +34,8 @@ public:
             m_data = heap.data();
         }
     }
+    Scratch(const Scratch&) = delete;
+    Scratch& operator=(const Scratch&) = delete;
     T* data() { return m_data ? m_data : m_stack.data(); }
 
 private:
@@ -44,9 +46,10 @@ private:
 
 constexpr std::size_t kOnStack = 56;
 
+/// One shape's half of a feature id (makeFeatureId's low half: B's place).
 constexpr std::uint32_t half(Feature kind, std::uint32_t index)
 {
-    return (static_cast<std::uint32_t>(kind) << 14) | (index & 0x3fffu);
+    return makeFeatureId(Feature::Vertex, 0, kind, index);
 }
 
 std::uint32_t pairId(std::uint32_t refFeature, std::uint32_t incFeature, Reference which)
