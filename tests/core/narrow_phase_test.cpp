@@ -403,6 +403,33 @@ TEST(NarrowPhase, CoincidentShapesGiveAFiniteNormal)
     EXPECT_TRUE(finite(stacked));
 }
 
+// A box of zero height and a prism of zero height have faces of zero area and edges of zero
+// length (their sides): no side plane, edge axis or closest point divides by them. Lying on a
+// box's top, the flat box touches at its four corners at the depth asked, normal up; against a
+// sphere and each other the manifolds are finite.
+TEST(NarrowPhase, ZeroAreaFacesGiveNoNaN)
+{
+    const auto flat = [](const ConvexPolyhedron& p) {
+        return CollisionShape{CollisionShape::Kind::Polyhedron, 0.0, std::make_shared<const ConvexPolyhedron>(p)};
+    };
+    const CollisionShape sheet = flat(ConvexPolyhedron::box({0.5, 0.0, 0.5})), disc = flat(ConvexPolyhedron::prism(0.5, 0.0, 24));
+    const CollisionShape slab = box({4, 1, 4}), ball = CollisionShape::of(Shape::sphere(0.25));
+    const Manifold lying = collide(slab, pose({0, 0, 0}), sheet, pose({0.1, 0.499, 0}), 0.0);
+    ASSERT_EQ(lying.count, 4);
+    expectNear(lying.normal, {0, 1, 0}, 1e-15);
+    for (int k = 0; k < 4; ++k)
+        EXPECT_NEAR(lying.points[static_cast<std::size_t>(k)].separation, -0.001, 1e-12);
+    const dmat3 tilted = rotation(30, {1, 0, 1});
+    for (const auto& [a, b] : {std::pair{&sheet, &slab}, std::pair{&sheet, &ball}, std::pair{&ball, &disc},
+                               std::pair{&disc, &slab}, std::pair{&disc, &sheet}, std::pair{&sheet, &sheet}}) {
+        for (const dvec3& at : {dvec3(0.0), dvec3(0.1, 0.2, 0.0), dvec3(0.3, 0.0, 0.1)}) {
+            const Manifold m = collide(*a, pose({0, 0, 0}, tilted), *b, pose(at), 0.01);
+            EXPECT_TRUE(finite(m));
+            EXPECT_NEAR(glm::length(m.normal), 1.0, 1e-12);
+        }
+    }
+}
+
 // The SAT cache only lets a pair skip the full test when its last axis still separates it by
 // more than the margin, where the full test finds no contact either: a box passing over and
 // through another, turning, gets bit-identical manifolds with and without a cache.
