@@ -7,6 +7,14 @@ install(TARGETS pba_core EXPORT pbaTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(EXPORT pbaTargets NAMESPACE pba:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/pba)
+# A static pba_core carries its private dependencies into the consumer's link line: the config
+# file must find Qhull for it then (a shared one has linked it already).
+get_target_property(_pba_core_type pba_core TYPE)
+if(_pba_core_type STREQUAL "STATIC_LIBRARY")
+  set(PBA_CORE_STATIC TRUE)
+else()
+  set(PBA_CORE_STATIC FALSE)
+endif()
 configure_package_config_file(cmake/pbaConfig.cmake.in
   ${CMAKE_CURRENT_BINARY_DIR}/pbaConfig.cmake
   INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/pba)

@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libglm-dev libglfw3-dev libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   libimgui-dev libstb-dev nlohmann-json3-dev libcli11-dev libfmt-dev libspdlog-dev libtbb-dev
+  libqhull-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth ffmpeg gnuplot-nox
   clang-14 libfuzzer-14-dev libclang-rt-14-dev

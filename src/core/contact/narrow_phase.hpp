@@ -4,8 +4,8 @@
 // (boxes, cylinders as prisms, meshes as their convex hulls).
 #include <memory>
 
-#include "contact/convex_polyhedron.hpp"
-#include "contact/manifold.hpp"
+#include "convex_polyhedron.hpp"
+#include "manifold.hpp"
 #include "pba/shape.hpp"
 
 namespace pba::contact {
@@ -34,6 +34,16 @@ struct SatCache {
 /// apart than `margin` (a speculative distance, >= 0) are left out, and a pair further apart
 /// than that has count 0. At most Manifold::kMaxPoints points, chosen to keep the deepest and
 /// the largest area (a box lying on a face keeps its four corners). `cache` may be null.
+///
+/// Between polyhedra the normal is a face's unless an edge pair separates the shapes clearly
+/// further (by 0.2% of the smaller shape's bounding radius), so that resting contact keeps one
+/// steady manifold; between two faces within that of each other, the larger is the reference.
+/// Swapping a and b therefore reverses the normal and keeps the points (anchors and ids' halves
+/// exchanged), except between two faces of equal area that tie, where each order takes its own
+/// A's face and the points may differ. With a cache, a pair the cached axis still separates by
+/// more than the margin skips the full test (which would find count 0 as well); otherwise the
+/// cache is only written, so the manifold is the same with or without it (to the last bit, but
+/// for a compiler that fuses the same product differently in the two places it computes it).
 Manifold collide(const CollisionShape& a, const Transform& ta, const CollisionShape& b, const Transform& tb,
                  double margin, SatCache* cache = nullptr);
 
