@@ -25,8 +25,8 @@ struct JointDesc {
     dvec3 anchor{0.0};                 ///< ball, hinge, fixed: the joint's point, world frame
     std::array<dvec3, 2> anchors{};    ///< distance: the point on each body (on A, on B or the world)
     dvec3 axis{0.0, 1.0, 0.0};         ///< hinge: the axis, world frame (any length but zero)
-    /// hinge: the range of the angle B turns about the axis relative to A, radians, from the
-    /// start's 0 (lower <= 0 <= upper).
+    /// hinge: the range of the angle A turns about the axis relative to B (or the world),
+    /// right-handed, radians, from the start's 0 (lower <= 0 <= upper).
     std::optional<std::array<double, 2>> limits;
     std::optional<double> length;      ///< distance: default, the anchors' distance at the start
     /// distance: a spring of this stiffness (N/m) and damping (N s/m) instead of a rigid rod.

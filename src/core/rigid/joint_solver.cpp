@@ -65,7 +65,7 @@ double hingeAngle(const Joint& j, const dquat& qa, const dquat& qb)
 {
     const dvec3 axis = glm::mat3_cast(qa) * j.axisA;
     const dvec3 ra = glm::mat3_cast(qa) * j.refA, rb = glm::mat3_cast(qb) * j.refB;
-    return std::atan2(glm::dot(glm::cross(ra, rb), axis), glm::dot(ra, rb));
+    return std::atan2(glm::dot(glm::cross(rb, ra), axis), glm::dot(ra, rb));
 }
 
 void JointSolver::prepare(std::span<Joint> joints, std::span<const std::uint32_t> island, std::span<SolverBody> bodies,
@@ -138,7 +138,7 @@ void JointSolver::warmStart()
             continue;
         }
         applyLinear(a, b, r.rA, r.rB, r.linearImpulse);
-        applyAngular(a, b, r.angularImpulse + (r.lowerImpulse - r.upperImpulse) * r.axis);
+        applyAngular(a, b, r.angularImpulse - (r.lowerImpulse - r.upperImpulse) * r.axis);
     }
 }
 
@@ -159,21 +159,22 @@ void JointSolver::solveHingeAngular(const Joint& j, Rows& r, SolverBody& a, Solv
     if (!j.limited)
         return;
     // About it, the angle may close its gap to a limit within the step, not cross it (as a
-    // speculative contact): at the lower limit the relative spin about the axis is at least
-    // -(angle - lower) / dt, with a pushing impulse only; at the upper, at most (upper - angle) / dt.
+    // speculative contact): at the lower limit A's spin relative to B about the axis is at least
+    // -(angle - lower) / dt, with an impulse that only turns A forwards; at the upper, at most
+    // (upper - angle) / dt. (An angular impulse l applied as below turns A by -l, B by +l.)
     const double dt = m_settings.dt;
     {
-        const double spin = glm::dot(r.axis, b.w - a.w);
+        const double spin = glm::dot(r.axis, a.w - b.w);
         const double target = -std::max(r.angle - j.lower, 0.0) / dt;
         const double next = std::max(r.lowerImpulse - r.axialMass * (spin - target), 0.0);
-        applyAngular(a, b, (next - r.lowerImpulse) * r.axis);
+        applyAngular(a, b, -(next - r.lowerImpulse) * r.axis);
         r.lowerImpulse = next;
     }
     {
-        const double spin = glm::dot(r.axis, b.w - a.w);
+        const double spin = glm::dot(r.axis, a.w - b.w);
         const double target = std::max(j.upper - r.angle, 0.0) / dt;
         const double next = std::max(r.upperImpulse + r.axialMass * (spin - target), 0.0);
-        applyAngular(a, b, -(next - r.upperImpulse) * r.axis);
+        applyAngular(a, b, (next - r.upperImpulse) * r.axis);
         r.upperImpulse = next;
     }
 }
@@ -252,10 +253,10 @@ void JointSolver::holdAxis(const Joint& j, SolverBody& a, SolverBody& b)
     const double angle = hingeAngle(j, a.endOrientation, b.endOrientation);
     const double beyond = angle < j.lower ? angle - j.lower : angle > j.upper ? angle - j.upper : 0.0;
     const double k = glm::dot(axisA, angular * axisA);
-    if (beyond != 0.0 && k > 0.0) {
+    if (beyond != 0.0 && k > 0.0) { // A turns back within the range, B the other way
         const dvec3 turn = (-beyond / k) * axisA;
-        a.turnPose(-turn);
-        b.turnPose(turn);
+        a.turnPose(turn);
+        b.turnPose(-turn);
     }
 }
 

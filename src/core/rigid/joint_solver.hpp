@@ -39,7 +39,8 @@ struct Joint {
     double lowerImpulse = 0.0, upperImpulse = 0.0;
 };
 
-/// The hinge's angle: how far B has turned about the axis relative to A since the start.
+/// The hinge's angle: how far A has turned about the axis relative to B (or the world) since
+/// the start, right-handed about the axis.
 double hingeAngle(const Joint& j, const dquat& qa, const dquat& qb);
 
 class JointSolver {

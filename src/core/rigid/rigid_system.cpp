@@ -338,6 +338,30 @@ void RigidSystem::capEnergy(std::size_t island)
         kinetic += e + glm::dot(m_gravity, s.x) / m.inverseMass;
         mass += 1.0 / m.inverseMass;
     }
+    // A spring joint's energy is the island's too: what it stores is not a gain.
+    enum class When { Start, Free, End };
+    auto pose = [&](BodyIndex k, When when) -> std::pair<dvec3, dquat> {
+        if (k == kWorldBody)
+            return {dvec3(0.0), dquat(1.0, 0.0, 0.0, 0.0)};
+        if (when == When::End)
+            return {m_solverBodies[k].endPosition, m_solverBodies[k].endOrientation};
+        const RigidState& s = when == When::Start ? m_start[k] : m_end[k];
+        return {s.x, s.rotation.orientation};
+    };
+    for (const std::uint32_t index : m_islands.links(island)) {
+        const Joint& j = m_joints[index];
+        if (j.type != JointType::Distance || !(j.stiffness > 0.0))
+            continue;
+        auto energy = [&](When when) {
+            const auto [xa, qa] = pose(j.a, when);
+            const auto [xb, qb] = pose(j.b, when);
+            const double stretch = glm::length((xb + qb * j.localB) - (xa + qa * j.localA)) - j.length;
+            return 0.5 * j.stiffness * stretch * stretch;
+        };
+        start += energy(When::Start);
+        free += energy(When::Free);
+        end += energy(When::End);
+    }
     const double excess = end - std::max(start, free);
     if (!(excess > 0.0)) // a NaN too: the finite check names the body
         return;

@@ -1,0 +1,231 @@
+// Joints against closed forms: a pendulum on a ball joint swings with the physical pendulum's
+// period (small amplitude) and the elliptic integral's (90 degrees) and its rod does not stretch,
+// a chain's energy never grows, a hinge keeps its axis and its limits, a distance joint keeps its
+// length or springs with sqrt(k/m), and a fixed joint makes two bodies one.
+#include "pba/world.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "pba/forces.hpp"
+
+using namespace pba;
+
+namespace {
+
+constexpr double kG = 9.81;
+constexpr double kPi = std::numbers::pi;
+
+RigidBody& addBody(World& world, const Shape& shape, double mass, const dvec3& position)
+{
+    auto body = std::make_unique<RigidBody>();
+    body->setShapeWithMass(shape, mass);
+    body->setPos(position);
+    return static_cast<RigidBody&>(world.addBody(std::move(body)));
+}
+
+World gravityWorld()
+{
+    World world;
+    world.addForce(std::make_unique<Gravity>(dvec3(0.0, -kG, 0.0)));
+    return world;
+}
+
+/// K(k) = pi / (2 AGM(1, sqrt(1 - k^2))), the complete elliptic integral of the first kind.
+double ellipticK(double k)
+{
+    double a = 1.0, b = std::sqrt(1.0 - k * k);
+    for (int i = 0; i < 30; ++i) {
+        const double next = 0.5 * (a + b);
+        b = std::sqrt(a * b);
+        a = next;
+    }
+    return kPi / (2.0 * a);
+}
+
+/// The period of a swing in x: the mean time between upward zero crossings of x - x0 (each
+/// found by linear interpolation between steps), over `swings` swings.
+double measuredPeriod(World& world, const RigidBody& bob, double x0, double dt, int swings)
+{
+    std::vector<double> crossings;
+    double before = bob.getPos().x - x0;
+    while (int(crossings.size()) < swings + 1) {
+        world.step(dt);
+        const double now = bob.getPos().x - x0;
+        if (before < 0.0 && now >= 0.0)
+            crossings.push_back(world.time() - dt * now / (now - before));
+        before = now;
+        if (world.time() > 100.0)
+            break;
+    }
+    return (crossings.back() - crossings.front()) / double(crossings.size() - 1);
+}
+
+/// A sphere of radius r and mass m hanging at l below a ball joint at `pivot`, let go at angle
+/// theta0 from the vertical. Its period is the physical pendulum's, I = 2/5 m r^2 + m l^2 about
+/// the pivot: T0 = 2 pi sqrt(I / (m g l)) for small swings, 4 sqrt(I / (m g l)) K(sin(theta0/2)).
+struct Pendulum {
+    World world = gravityWorld();
+    RigidBody* bob = nullptr;
+    dvec3 pivot{0.0, 3.0, 0.0};
+    double l = 1.0, r = 0.05, m = 2.0;
+
+    explicit Pendulum(double theta0)
+    {
+        bob = &addBody(world, Shape::sphere(r), m, pivot + l * dvec3(std::sin(theta0), -std::cos(theta0), 0.0));
+        JointDesc joint;
+        joint.type = JointType::Ball;
+        joint.bodyA = 0;
+        joint.anchor = pivot;
+        world.addJoint(joint);
+    }
+    double inertia() const { return 0.4 * m * r * r + m * l * l; }
+    double smallPeriod() const { return 2.0 * kPi * std::sqrt(inertia() / (m * kG * l)); }
+};
+
+} // namespace
+
+TEST(Joints, APendulumOnABallJointSwingsWithThePhysicalPendulumsPeriod)
+{
+    Pendulum p(0.02);
+    const double dt = 0.001;
+    const double period = measuredPeriod(p.world, *p.bob, p.pivot.x, dt, 5);
+    EXPECT_NEAR(period, p.smallPeriod(), 0.005 * p.smallPeriod());
+}
+
+TEST(Joints, NinetyDegreesTakesTheEllipticIntegralsPeriod)
+{
+    Pendulum p(kPi / 2.0);
+    const double exact = 4.0 * std::sqrt(p.inertia() / (p.m * kG * p.l)) * ellipticK(std::sin(kPi / 4.0));
+    const double period = measuredPeriod(p.world, *p.bob, p.pivot.x, 0.001, 4);
+    EXPECT_NEAR(period, exact, 0.01 * exact);
+}
+
+TEST(Joints, ThePendulumsRodDoesNotStretchInAMinute)
+{
+    Pendulum p(kPi / 2.0);
+    const dvec3 anchorOnBob = dvec3(0.0, p.l, 0.0); // the pivot, in the bob's frame at the start
+    (void)anchorOnBob;
+    double worst = 0.0;
+    for (int n = 0; n < int(60.0 / 0.005); ++n) {
+        p.world.step(0.005);
+        const JointFrame f = p.world.jointFrame(0);
+        worst = std::max(worst, glm::length(f.onA - f.onB));
+    }
+    EXPECT_LT(worst, 1e-3);
+}
+
+TEST(Joints, AChainsEnergyNeverGrows)
+{
+    World world = gravityWorld();
+    // Five 20 cm links hinged end to end about z, held out level from a hinge on the world.
+    const int links = 5;
+    const double len = 0.2;
+    for (int k = 0; k < links; ++k)
+        addBody(world, Shape::box(dvec3(len, 0.04, 0.04)), 0.5, dvec3(len * (k + 0.5), 2.0, 0.0));
+    for (int k = 0; k < links; ++k) {
+        JointDesc hinge;
+        hinge.type = JointType::Hinge;
+        hinge.bodyA = std::size_t(k);
+        if (k > 0)
+            hinge.bodyB = std::size_t(k - 1);
+        hinge.anchor = dvec3(len * k, 2.0, 0.0);
+        hinge.axis = dvec3(0.0, 0.0, 1.0);
+        world.addJoint(hinge);
+    }
+    const double e0 = world.totalEnergy();
+    double highest = e0;
+    for (int n = 0; n < 4000; ++n) {
+        world.step(0.002);
+        highest = std::max(highest, world.totalEnergy());
+    }
+    EXPECT_LE(highest - e0, 1e-9 * std::abs(e0));
+    // It swung: the last link is below the pivot now and then.
+    EXPECT_LT(world.body(links - 1).getPos().y, 2.0);
+}
+
+TEST(Joints, AHingeKeepsItsAxisAndItsLimits)
+{
+    World world; // no gravity: a door pushed about its hinge
+    RigidBody& door = addBody(world, Shape::box(dvec3(0.8, 2.0, 0.05)), 20.0, dvec3(0.4, 1.0, 0.0));
+    JointDesc hinge;
+    hinge.type = JointType::Hinge;
+    hinge.bodyA = 0;
+    hinge.anchor = dvec3(0.0, 1.0, 0.0);
+    hinge.axis = dvec3(0.0, 1.0, 0.0);
+    hinge.limits = std::array<double, 2>{-1.2, 0.0};
+    world.addJoint(hinge);
+    door.setAngularVelocity(dvec3(0.5, -2.0, 0.3)); // it opens backwards about y, until -1.2 stops it
+    door.setVel(dvec3(0.0, 0.0, 0.8)); // its centre moves with the turn
+    double lowest = 0.0;
+    for (int n = 0; n < 3000; ++n) {
+        world.step(0.002);
+        const dmat3 r = glm::mat3_cast(door.getOrientation());
+        EXPECT_NEAR(std::abs(r[1].y), 1.0, 1e-4) << "the door's own y axis stays the hinge's";
+        const dvec3 along = r * dvec3(1.0, 0.0, 0.0);
+        lowest = std::min(lowest, std::atan2(-along.z, along.x)); // the door's turn about +y
+        const JointFrame f = world.jointFrame(0);
+        ASSERT_LT(glm::length(f.onA - f.onB), 1e-4);
+    }
+    EXPECT_GE(lowest, -1.2 - 0.01);
+    EXPECT_LT(lowest, -1.1); // it reached the stop
+}
+
+TEST(Joints, ADistanceJointKeepsItsLengthOrSpringsWithSqrtKOverM)
+{
+    {
+        World world = gravityWorld();
+        RigidBody& bob = addBody(world, Shape::sphere(0.05), 1.0, dvec3(1.0, 2.0, 0.0));
+        JointDesc rod;
+        rod.type = JointType::Distance;
+        rod.bodyA = 0;
+        rod.anchors = {bob.getPos(), dvec3(0.0, 2.0, 0.0)};
+        world.addJoint(rod);
+        for (int n = 0; n < 2000; ++n) {
+            world.step(0.002);
+            ASSERT_NEAR(glm::length(bob.getPos() - dvec3(0.0, 2.0, 0.0)), 1.0, 1e-3);
+        }
+    }
+    {
+        // No gravity: a 2 kg ball on a spring of 200 N/m from a point 1 m away, pulled 0.1 m
+        // further: it oscillates with omega = sqrt(k/m) = 10 rad/s.
+        World world;
+        const double k = 200.0, m = 2.0;
+        RigidBody& bob = addBody(world, Shape::sphere(0.05), m, dvec3(1.1, 0.0, 0.0));
+        JointDesc spring;
+        spring.type = JointType::Distance;
+        spring.bodyA = 0;
+        spring.anchors = {bob.getPos(), dvec3(0.0)};
+        spring.length = 1.0;
+        spring.stiffness = k;
+        world.addJoint(spring);
+        const double period = measuredPeriod(world, bob, 1.0, 0.0005, 3);
+        EXPECT_NEAR(period, 2.0 * kPi / std::sqrt(k / m), 0.01 * 2.0 * kPi / std::sqrt(k / m));
+    }
+}
+
+TEST(Joints, AFixedJointMakesTwoBodiesOne)
+{
+    World world; // free, tumbling
+    RigidBody& a = addBody(world, Shape::box(dvec3(0.3, 0.2, 0.1)), 2.0, dvec3(0.0, 0.0, 0.0));
+    RigidBody& b = addBody(world, Shape::sphere(0.1), 1.0, dvec3(0.3, 0.1, 0.0));
+    JointDesc weld;
+    weld.type = JointType::Fixed;
+    weld.bodyA = 0;
+    weld.bodyB = 1;
+    weld.anchor = dvec3(0.15, 0.05, 0.0);
+    world.addJoint(weld);
+    a.setAngularVelocity(dvec3(1.0, 3.0, -2.0));
+    a.setVel(dvec3(0.5, 0.0, 0.0));
+    const dquat rest = glm::conjugate(a.getOrientation()) * b.getOrientation();
+    const dvec3 offset = glm::conjugate(a.getOrientation()) * (b.getPos() - a.getPos());
+    for (int n = 0; n < 2000; ++n) {
+        world.step(0.002);
+        const dquat now = glm::conjugate(a.getOrientation()) * b.getOrientation();
+        ASSERT_NEAR(std::abs(glm::dot(now, rest)), 1.0, 1e-6) << n;
+        ASSERT_LT(glm::length(glm::conjugate(a.getOrientation()) * (b.getPos() - a.getPos()) - offset), 1e-4) << n;
+    }
+}
