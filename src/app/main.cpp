@@ -48,8 +48,8 @@ std::string parseErrorText(const CLI::ParseError& e, const CLI::App& app, const 
 int main(int argc, char** argv)
 {
     using namespace pba::app;
-    // Before any thread starts: SIGINT and SIGTERM remove temporaries and stop child programs;
-    // a child that stops reading gives EPIPE, not a silent death.
+    // Before any thread starts: SIGINT, SIGTERM and SIGHUP remove temporaries and stop child
+    // programs; a child that stops reading gives EPIPE, not a silent death.
     pba::io::cleanUpOnSignals();
     std::signal(SIGPIPE, SIG_IGN);
     std::signal(SIGXFSZ, SIG_IGN); // past a file size limit a write fails (EFBIG) and is reported

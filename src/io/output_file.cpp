@@ -80,6 +80,9 @@ fs::path resolveOutputFile(const fs::path& requested)
 {
     if (requested.empty())
         throw BadOutput("--out: the path is empty");
+    // `x.csv/` names a folder: refused here, before any work, not after it when the rename fails.
+    if (!requested.has_filename() || requested.filename() == "." || requested.filename() == "..")
+        throw BadOutput(fmt::format("{}: names a folder (it ends in '/'), expected a file path", describe(requested)));
     std::error_code ec;
     fs::path target = requested;
     // Follow links one by one (a link may name a file that does not exist yet).
@@ -228,8 +231,8 @@ void cleanUpOnSignals()
 {
     sigset_t set;
     sigemptyset(&set);
-    sigaddset(&set, SIGINT);
-    sigaddset(&set, SIGTERM);
+    for (int signal : {SIGINT, SIGTERM, SIGHUP})
+        sigaddset(&set, signal);
     ::pthread_sigmask(SIG_BLOCK, &set, nullptr);
     std::thread([set] {
         int signal = 0;

@@ -22,9 +22,10 @@ public:
 };
 
 /// The file an output path names. A symbolic link is followed to its target, which is the file
-/// replaced (the link stays a link). Throws BadOutput for an empty path, a directory, anything
-/// that is not a regular file (a device such as /dev/null, a FIFO, a socket) or a folder that
-/// does not exist, unless it is the last one of the path (its parent exists): Temporary makes it.
+/// replaced (the link stays a link). Throws BadOutput for an empty path, a path ending in '/'
+/// (a folder's), a directory, anything that is not a regular file (a device such as /dev/null, a
+/// FIFO, a socket) or a folder that does not exist, unless it is the last one of the path (its
+/// parent exists): Temporary makes it.
 std::filesystem::path resolveOutputFile(const std::filesystem::path& requested);
 
 /// The same for a folder output: an existing folder (replaced as a whole) or a new one in an
@@ -32,8 +33,8 @@ std::filesystem::path resolveOutputFile(const std::filesystem::path& requested);
 std::filesystem::path resolveOutputFolder(const std::filesystem::path& requested);
 
 /// A temporary file or folder beside its target (`TARGET.tmp-PID`), removed when this object
-/// dies uncommitted and when the program is stopped by SIGINT or SIGTERM. Makes the target's
-/// folder if it is missing (the one folder the resolve functions let through).
+/// dies uncommitted and when the program is stopped by SIGINT, SIGTERM or SIGHUP. Makes the
+/// target's folder if it is missing (the one folder the resolve functions let through).
 class Temporary {
 public:
     enum class Kind { File, Folder };
@@ -66,8 +67,8 @@ void writeFile(const std::filesystem::path& path, std::string_view bytes);
 /// on any error (errno says which).
 bool writeAll(int fd, const void* bytes, std::size_t size);
 
-/// From now on SIGINT and SIGTERM remove every live Temporary and stop every started child
-/// program, then end the program as the signal would. Call once, first thing in main(), before
+/// From now on SIGINT, SIGTERM and SIGHUP (a closed terminal) remove every live Temporary and
+/// stop every started child program, then end the program as the signal would. Call once, first thing in main(), before
 /// any thread starts (threads inherit the blocked signals the watcher thread waits for).
 void cleanUpOnSignals();
 

@@ -205,10 +205,11 @@ TEST(Outputs, AFolderOfFramesIsReplacedWhole)
     EXPECT_FALSE(fs::exists(dir / "frames/frame_00003.png")) << "a frame of the longer run was left";
 }
 
+// SIGHUP is what a closed terminal sends.
 TEST(Outputs, AnInterruptedRunLeavesNoTemporary)
 {
     const fs::path dir = freshDir("interrupted");
-    for (const int signal : {SIGTERM, SIGINT}) {
+    for (const int signal : {SIGTERM, SIGINT, SIGHUP}) {
         const CommandResult r =
             runPbaArgv({"sim", "integrators", "--dt", "1e-5", "--duration", "1000", "--out", "run.csv"},
                        {.stopAfterMs = 700, .stopSignal = signal, .workDir = dir});
@@ -216,6 +217,22 @@ TEST(Outputs, AnInterruptedRunLeavesNoTemporary)
         EXPECT_FALSE(fs::exists(dir / "run.csv"));
         EXPECT_TRUE(temporaries(dir).empty());
     }
+}
+
+// A run of 10^8 steps that is refused at once shows the path is checked before simulating.
+TEST(Outputs, AFilePathEndingInASlashIsRefusedBeforeAnyWork)
+{
+    const fs::path dir = freshDir("slash");
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"sim", "integrators", "--dt", "1e-5", "--duration", "1000", "--out", "x.csv/"},
+          std::vector<std::string>{"field", "blow-dryer-flow", "--slice", "--out", "f.png/"}}) {
+        const CommandResult r = runPbaArgv(args, {.workDir = dir});
+        EXPECT_EQ(r.exitCode, 2) << args.back();
+        EXPECT_NE(r.err.find(args.back() + ": names a folder (it ends in '/'), expected a file path"), std::string::npos)
+            << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    }
+    EXPECT_TRUE(fs::is_empty(dir)) << "a folder was made for a refused output";
 }
 
 TEST(Outputs, CsvQuotesNamesHoldingCommasAndQuotes)
