@@ -10,10 +10,12 @@
 
 #include "command.hpp"
 #include "compare_report.hpp"
-#include "io/output_file.hpp"
+#include "io/folder_output.hpp"
 #include "progress.hpp"
 #include "rotation_report.hpp"
 #include "study/findings.hpp"
+#include "study/plots.hpp"
+#include "study/rotation_plots.hpp"
 #include "scene_options.hpp"
 
 namespace pba::app {
@@ -141,10 +143,24 @@ study::RotationConfig makeRotationConfig(const CompareOptions& options, Scene sc
     return config;
 }
 
+/// The names either study writes: a study replaces pba's files of these names in its folder
+/// (the other study's too, once stale) and leaves every other file there alone.
+bool isStudyFile(const std::string& name)
+{
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> all{"report.md", "results.csv", "orders.csv", "stability.csv",
+                                     study::kStabilityPlotFile, study::kDriftPlotFile, study::kFlipPlotFile,
+                                     study::kPeriodPlotFile};
+        all.insert(all.end(), study::kPlotFiles.begin(), study::kPlotFiles.end());
+        return all;
+    }();
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
 int runRotationCompare(const CompareOptions& options, Scene scene)
 {
     const study::RotationConfig config = makeRotationConfig(options, std::move(scene));
-    io::Temporary folder(io::resolveOutputFolder(options.out), io::Temporary::Kind::Folder);
+    io::FolderOutput folder(options.out, isStudyFile);
     Progress progress("comparing", long(config.integrators.size() * config.dts.size()));
     const study::RotationResult result =
         study::runRotationStudy(config, [&](long done, long) { progress.update(done); });
@@ -174,9 +190,9 @@ int runCompare(const CompareOptions& options)
             return runRotationCompare(options, std::move(scene));
     }
     const study::StudyConfig config = makeConfig(options);
-    // The folder is written beside its target and swapped in whole: a failed study leaves the
-    // previous one untouched, not a mix of new tables and an old report.
-    io::Temporary folder(io::resolveOutputFolder(options.out), io::Temporary::Kind::Folder);
+    // The study's files are published together: a failed study leaves the previous one
+    // untouched, not a mix of new tables and an old report.
+    io::FolderOutput folder(options.out, isStudyFile);
     Progress progress("comparing", study::studyTaskCount(config));
     const study::StudyResult result = study::runStudy(config, [&](long done, long) { progress.update(done); });
     const std::filesystem::path dir = folder.path();
