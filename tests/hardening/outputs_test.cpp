@@ -177,6 +177,75 @@ TEST(Outputs, AFailingHelperProgramIsReportedInOneLineAndChangesNothing)
     EXPECT_TRUE(temporaries(dir).empty());
 }
 
+namespace {
+
+// MP4 boxes as printf(1) octal escapes: a 32-bit big-endian size, then the type.
+const std::string kFtyp = "\\000\\000\\000\\010ftyp", kMoov = "\\000\\000\\000\\010moov",
+                  kMdat = "\\000\\000\\000\\010mdat", kMdatOf4096 = "\\000\\000\\020\\000mdat";
+
+/// A fake ffmpeg that reads every frame, writes `boxes` to its output (its last argument,
+/// file:PATH), prints `message` and exits 0, as the real one does when the disk fills.
+fs::path ffmpegExitingZero(const fs::path& dir, const std::string& boxes, const std::string& message)
+{
+    return fakeProgram(dir, "ffmpeg",
+                       "for last; do :; done\n/bin/cat >/dev/null\nprintf '" + boxes + "' >\"${last#file:}\"\n" +
+                           (message.empty() ? "" : "echo '" + message + "' >&2\n") + "exit 0\n");
+}
+
+} // namespace
+
+// ffmpeg's exit status alone passes a video cut short: its log and the file's boxes are checked.
+TEST(Outputs, AVideoIsCheckedBeforeItReplacesThePreviousOne)
+{
+    const fs::path dir = freshDir("video_checked");
+    struct Case {
+        std::string boxes, message, error;
+    };
+    for (const Case& c : {Case{kFtyp + kMdat, "", "incomplete video: it has no index (moov box)"},
+                          Case{kFtyp + kMoov + kMdatOf4096, "", "'mdat' box at byte 16 claims 4096 bytes, 8 are left"},
+                          Case{kFtyp + kMoov + kMdat, "Error writing trailer of out.mp4: No space left on device",
+                               "ffmpeg reported an error (exit status 0): Error writing trailer of out.mp4: No space"}}) {
+        writeText(dir / "out.mp4", "previous");
+        const fs::path bin = ffmpegExitingZero(dir, c.boxes, c.message);
+        const CommandResult r = runPbaArgv({"render", "integrators", "--size", "64x48", "--duration", "0.1", "--out",
+                                            (dir / "out.mp4").string()},
+                                           {.path = bin.string()});
+        EXPECT_EQ(r.exitCode, 1) << c.error;
+        EXPECT_NE(r.err.find(c.error), std::string::npos) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_EQ(readFile(dir / "out.mp4"), "previous");
+    }
+    // The same fake with a whole file and nothing to say passes: the check reads boxes, not ffmpeg.
+    const fs::path bin = ffmpegExitingZero(dir, kFtyp + kMoov + kMdat, "");
+    const CommandResult r = runPbaArgv(
+        {"render", "integrators", "--size", "64x48", "--duration", "0.1", "--out", (dir / "out.mp4").string()},
+        {.path = bin.string()});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(fs::file_size(dir / "out.mp4"), 24u);
+    EXPECT_TRUE(temporaries(dir).empty());
+}
+
+// The real thing: on a full disk ffmpeg 5 prints "Error writing trailer ... No space left on
+// device" and exits 0, its file cut at a block's end. The disk holds a file of the user's that
+// leaves 12 KiB free, less than the 20 KB video.
+TEST(Outputs, AVideoOnAFullDiskKeepsThePreviousOne)
+{
+    const fs::path dir = freshDir("video_full_disk");
+    SmallDisk disk(dir / "disk");
+    if (!disk.mounted())
+        GTEST_SKIP() << disk.why();
+    writeText(dir / "disk/filler", std::string(52000, 'x'));
+    writeText(dir / "disk/out.mp4", "previous");
+    const CommandResult r = runPbaArgv(
+        {"render", "integrators", "--size", "320x240", "--duration", "2", "--out", (dir / "disk/out.mp4").string()});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(readFile(dir / "disk/out.mp4"), "previous");
+    EXPECT_EQ(fs::file_size(dir / "disk/filler"), 52000u);
+    EXPECT_TRUE(temporaries(dir).empty());
+}
+
 // SIGHUP is what a closed terminal sends.
 TEST(Outputs, AnInterruptedRunLeavesNoTemporary)
 {
