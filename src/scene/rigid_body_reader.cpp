@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "fabric_readers.hpp"
+#include "one_line.hpp"
 
 namespace pba::scene_detail {
 
@@ -34,7 +35,7 @@ ObjMesh readObj(const std::filesystem::path& path)
                 try {
                     index = std::stol(corner.substr(0, corner.find('/')));
                 } catch (const std::exception&) {
-                    throw std::runtime_error(fmt::format("line {}: '{}' is not a vertex index", number, corner));
+                    throw std::runtime_error(fmt::format("line {}: '{}' is not a vertex index", number, oneLine(corner)));
                 }
                 const long count = static_cast<long>(mesh.vertices.size());
                 const long resolved = index < 0 ? count + index : index - 1;
@@ -88,7 +89,7 @@ Shape readShape(ObjectReader& body, const std::filesystem::path& directory)
             shape.fail("path", fmt::format("{}: {}", file.string(), error.what()));
         }
     } else {
-        shape.fail("type", fmt::format("unknown shape '{}' (expected box, sphere, cylinder or mesh)", type));
+        shape.fail("type", fmt::format("unknown shape '{}' (expected box, sphere, cylinder or mesh)", oneLine(type)));
     }
     shape.finish();
     return result;
@@ -122,7 +123,7 @@ void readRigidBody(const Json& value, const std::string& path, const std::string
     if (name.empty())
         reader.fail("name", "must not be empty");
     if (!names.insert(name).second)
-        reader.fail("name", fmt::format("another body is already named '{}'", name));
+        reader.fail("name", fmt::format("another body is already named '{}'", oneLine(name)));
     body->setName(name);
     const Shape shape = readShape(reader, directory);
     if (reader.has("density") && reader.has("mass"))
