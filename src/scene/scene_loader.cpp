@@ -330,13 +330,17 @@ public:
         return std::nullopt;
     }
 
-    /// The path to the value being read; "(document)" outside every object.
-    std::string path() const
+    /// The path to the value being read; "(document)" outside every object. `unfinished`: the
+    /// innermost value's parse failed (a number too large), so no event counted it as an
+    /// element of its array yet: it is the one after the last counted.
+    std::string path(bool unfinished = false) const
     {
         std::string out;
-        for (const Frame& frame : m_frames) {
-            if (frame.array && frame.index >= 0)
-                out += fmt::format("[{}]", frame.index);
+        for (std::size_t k = 0; k < m_frames.size(); ++k) {
+            const Frame& frame = m_frames[k];
+            const long index = frame.index + (unfinished && k + 1 == m_frames.size() ? 1 : 0);
+            if (frame.array && index >= 0)
+                out += fmt::format("[{}]", index);
             else if (!frame.array && !frame.key.empty())
                 out.append(out.empty() ? "" : ".").append(oneLine(frame.key));
         }
@@ -371,7 +375,7 @@ Scene parseScene(std::string_view json, const std::string& source, const std::fi
     try {
         document = Json::parse(json.begin(), json.end(), watch);
     } catch (const nlohmann::json::out_of_range& error) { // a number too large: the value being read
-        throw SceneError(source, position.path(), parseErrorReason(error));
+        throw SceneError(source, position.path(true), parseErrorReason(error));
     } catch (const nlohmann::json::exception& error) { // a syntax error: the parser's line and column say where
         throw SceneError(source, "(document)", parseErrorReason(error));
     }

@@ -100,3 +100,18 @@ TEST(Messages, TheProgramPrintsEveryErrorAsOneLine)
     }
 }
 
+// The number being parsed had not been counted in its array yet: 1e999 in position[2] was
+// blamed on position[1], and in position[0] on position.
+TEST(Messages, ANumberThatOverflowsIsBlamedOnItsElement)
+{
+    for (const auto& [json, field] :
+         {std::pair{R"({"particles": [{"name": "a", "position": [0, 1, 1e999]}]})", "particles[0].position[2]"},
+          std::pair{R"({"particles": [{"name": "a", "position": [1e999, 1, 0]}]})", "particles[0].position[0]"},
+          std::pair{R"({"ropes": [], "particles": [{"name": "a", "position": [0, 1, 0]}, 1e999]})", "particles[1]"},
+          std::pair{R"({"gravity": [0, 1e999, 0]})", "gravity[1]"}, std::pair{R"({"dt": 1e999})", "dt"}}) {
+        const auto error = errorParsing(json);
+        ASSERT_TRUE(error) << json;
+        EXPECT_EQ(error->field(), field) << error->what();
+        EXPECT_TRUE(contains(error->reason(), "number overflow")) << error->what();
+    }
+}
