@@ -250,6 +250,7 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
                                          "most {:.3g} in size)", kFloatMax));
     requireMemoryForSwarms(document, file);
     std::set<std::string> names;
+    scene_detail::MeshLibrary meshes;
     root.array("particles", [&](const Json& value, const std::string& path, std::size_t) {
         readParticle(value, path, file, scene.world, names);
     });
@@ -261,7 +262,7 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
         scene_detail::readCloth(value, path, file, fabric);
     });
     root.array("rigid_bodies", [&](const Json& value, const std::string& path, std::size_t) {
-        scene_detail::readRigidBody(value, path, file, directory, scene.world, names);
+        scene_detail::readRigidBody(value, path, file, directory, scene.world, names, meshes);
     });
     root.array("swarms", [&](const Json& value, const std::string& path, std::size_t) {
         readSwarm(value, path, file, scene.world, names);
