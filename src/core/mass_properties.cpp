@@ -145,7 +145,12 @@ MassProperties meshMassProperties(std::span<const dvec3> vertices, std::span<con
     for (std::size_t k = 0; k < integral.size(); ++k)
         integral[k] *= kFactor[k] * density;
     const double m = integral[0];
-    if (!(m > 0.0 && std::isfinite(m)))
+    if (!std::isfinite(m))
+        throw std::invalid_argument(fmt::format("the mesh is too large: its mass at {} kg/m^3 is not finite", density));
+    if (m == 0.0)
+        throw std::invalid_argument(fmt::format(
+            "the mesh's mass at {} kg/m^3 is 0: it is flat, or too small for its volume to be represented", density));
+    if (!(m > 0.0))
         throw std::invalid_argument(fmt::format(
             "the mesh's volume is {} (its triangles must turn counter-clockwise seen from outside)", m / density));
     const dvec3 c = dvec3(integral[1], integral[2], integral[3]) / m;

@@ -1,6 +1,9 @@
 #include "mesh_library.hpp"
 
+#include <stdexcept>
+
 #include "obj_reader.hpp"
+#include "rigid_body_reader.hpp"
 
 namespace pba::scene_detail {
 
@@ -11,7 +14,11 @@ const RigidBody& MeshLibrary::body(const std::filesystem::path& path)
         return known->second;
     ObjMesh obj = parseObj(file.read());
     const Shape shape = Shape::mesh(std::move(obj.vertices), std::move(obj.triangles));
-    return m_bodies.emplace(file.identity(), RigidBody(shape, 1.0)).first->second;
+    try {
+        return m_bodies.emplace(file.identity(), RigidBody(shape, 1.0)).first->second;
+    } catch (const std::invalid_argument& error) {
+        throw std::runtime_error(sizeProblem(shape).value_or(error.what()));
+    }
 }
 
 } // namespace pba::scene_detail

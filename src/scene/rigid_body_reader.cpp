@@ -8,18 +8,36 @@
 
 #include "fabric_readers.hpp"
 #include "one_line.hpp"
+#include "pba/scene/scene.hpp"
 
 namespace pba::scene_detail {
+
+std::optional<std::string> sizeProblem(const Shape& shape)
+{
+    std::optional<MassProperties> unit;
+    try {
+        unit = massPropertiesOf(shape, 1.0);
+        const RigidBody probe(*unit); // its checks of a mass and an inertia tensor
+        return std::nullopt;
+    } catch (const std::invalid_argument& error) {
+        if (!unit) // not computed at all: the shape's own reason
+            return error.what();
+        const bool large = !(unit->mass < 1.0);
+        return fmt::format("too {}: at 1 kg/m^3 its mass and inertia {} ({})", large ? "large" : "small",
+                           large ? "overflow" : "underflow to zero", error.what());
+    }
+}
 
 namespace {
 
 constexpr double kDefaultDensity = 1000.0; // kg/m^3, water's
 
 /// What a body's `shape` gave: a box's, sphere's or cylinder's Shape, or the scene's body of an
-/// OBJ file (MeshLibrary).
+/// OBJ file (MeshLibrary); and the key that sets its size, to blame for a size no mass fits.
 struct ShapeRead {
     Shape shape;
     const RigidBody* mesh = nullptr;
+    std::string sizeKey; ///< e.g. rigid_bodies[0].shape.radius
 };
 
 const RigidBody& readMesh(ObjectReader& shape, const std::filesystem::path& directory, MeshLibrary& meshes)
@@ -50,16 +68,20 @@ ShapeRead readShape(ObjectReader& body, const std::filesystem::path& directory, 
         const dvec3 size = shape.vec3("size");
         if (!(size.x > 0.0 && size.y > 0.0 && size.z > 0.0))
             shape.fail("size", fmt::format("every side must be positive, got [{}, {}, {}]", size.x, size.y, size.z));
-        result = {Shape::box(size), nullptr};
+        result = {Shape::box(size), nullptr, shape.pathOf("size")};
     } else if (type == "sphere") {
         shape.expectKeys({"type", "radius"});
-        result = {Shape::sphere(shape.positive("radius")), nullptr};
+        result = {Shape::sphere(shape.positive("radius")), nullptr, shape.pathOf("radius")};
     } else if (type == "cylinder") {
         shape.expectKeys({"type", "radius", "height"});
-        result = {Shape::cylinder(shape.positive("radius"), shape.positive("height")), nullptr};
+        const double radius = shape.positive("radius"), height = shape.positive("height");
+        // The one further from 1 m, in orders of magnitude, is the one that makes it extreme.
+        const bool byRadius = std::abs(std::log(radius)) >= std::abs(std::log(height));
+        result = {Shape::cylinder(radius, height), nullptr, shape.pathOf(byRadius ? "radius" : "height")};
     } else if (type == "mesh") {
         shape.expectKeys({"type", "path"});
         result.mesh = &readMesh(shape, directory, meshes);
+        result.sizeKey = shape.pathOf("path");
     } else {
         shape.fail("type", fmt::format("unknown shape '{}' (expected box, sphere, cylinder or mesh)", oneLine(type)));
     }
@@ -67,7 +89,9 @@ ShapeRead readShape(ObjectReader& body, const std::filesystem::path& directory, 
     return result;
 }
 
-/// The body's mass properties, from its `density` or `mass`.
+/// The body's mass properties, from its `density` or `mass`. What no mass fits is blamed on
+/// the shape's size when the shape is too large or too small at any density, else on the key
+/// that was given.
 void giveMass(ObjectReader& reader, const ShapeRead& shape, RigidBody& body)
 {
     if (reader.has("density") && reader.has("mass"))
@@ -84,7 +108,15 @@ void giveMass(ObjectReader& reader, const ShapeRead& shape, RigidBody& body)
             body.setShape(shape.shape, amount);
         }
     } catch (const std::invalid_argument& error) { // sizes whose mass or inertia overflow, or underflow to zero
-        reader.fail(byMass ? "mass" : "density", fmt::format("gives no usable mass properties: {}", error.what()));
+        if (const auto problem = shape.mesh ? std::nullopt : sizeProblem(shape.shape))
+            throw SceneError(reader.file(), shape.sizeKey, *problem);
+        const std::string key = byMass ? "mass" : "density";
+        if (!reader.has(key))
+            throw SceneError(reader.file(), shape.sizeKey,
+                             fmt::format("at the default density, {} kg/m^3, its mass and inertia cannot be "
+                                         "represented ({}): give a density",
+                                         kDefaultDensity, error.what()));
+        reader.fail(key, fmt::format("gives no usable mass properties with this shape: {}", error.what()));
     }
 }
 

@@ -2,6 +2,7 @@
 // The `rigid_bodies` of a scene (docs/scenes.md): a shape (box, sphere, cylinder, or a closed
 // triangle mesh from an OBJ file next to the scene), its density or mass, its pose and motion.
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -17,5 +18,9 @@ namespace pba::scene_detail {
 void readRigidBody(const Json& value, const std::string& path, const std::string& file,
                    const std::filesystem::path& directory, World& world, std::set<std::string>& names,
                    MeshLibrary& meshes);
+
+/// Why `shape` has no usable mass properties even at 1 kg/m^3 ("too large": its inertia
+/// overflows, "too small": it underflows to zero), or nothing if it has them.
+std::optional<std::string> sizeProblem(const Shape& shape);
 
 } // namespace pba::scene_detail

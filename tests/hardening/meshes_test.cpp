@@ -327,3 +327,58 @@ TEST(Messages, ANumberThatOverflowsIsBlamedOnItsElement)
         EXPECT_TRUE(contains(error->reason(), "number overflow")) << error->what();
     }
 }
+
+struct ExtremeSize {
+    std::string json; ///< a rigid body's "shape" and mass keys
+    const char* field;
+    const char* says;
+};
+
+void PrintTo(const ExtremeSize& bad, std::ostream* os) { *os << bad.field << ": " << bad.says; }
+
+class ExtremeSizes : public testing::TestWithParam<ExtremeSize> {};
+
+// Sizes whose mass or inertia overflow or underflow were blamed on `density` ("gives no usable
+// mass properties") even with no density given: the key that makes the body extreme is named.
+TEST_P(ExtremeSizes, AreBlamedOnTheKeyThatMakesThem)
+{
+    const auto dir = freshDir("mesh_extremes");
+    std::ofstream(dir / "huge.obj") << tetrahedron("1e120");   // a volume of 1e360: overflows
+    std::ofstream(dir / "big.obj") << tetrahedron("1e60");     // its inertia overflows
+    std::ofstream(dir / "tiny.obj") << tetrahedron("1e-120");  // a volume of 1e-360: underflows
+    std::ofstream(dir / "scene.json") << R"({"rigid_bodies": [{"name": "r", "position": [0, 1, 0], )" << GetParam().json
+                                      << "}]}";
+    const auto error = errorLoading(dir / "scene.json");
+    ASSERT_TRUE(error) << GetParam().json;
+    EXPECT_EQ(error->field(), GetParam().field) << error->what();
+    EXPECT_TRUE(contains(error->reason(), GetParam().says)) << error->what();
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    MassProperties, ExtremeSizes,
+    testing::Values(
+        ExtremeSize{R"("shape": {"type": "box", "size": [1e200, 1, 1]})", "rigid_bodies[0].shape.size", "too large"},
+        ExtremeSize{R"("shape": {"type": "box", "size": [1e-120, 1e-120, 1e-120]})", "rigid_bodies[0].shape.size",
+                    "too small"},
+        ExtremeSize{R"("shape": {"type": "sphere", "radius": 1e-120})", "rigid_bodies[0].shape.radius", "too small"},
+        ExtremeSize{R"("shape": {"type": "sphere", "radius": 1e120}, "density": 1)", "rigid_bodies[0].shape.radius",
+                    "too large"},
+        ExtremeSize{R"("shape": {"type": "cylinder", "radius": 1e-200, "height": 1})",
+                    "rigid_bodies[0].shape.radius", "too small"},
+        ExtremeSize{R"("shape": {"type": "cylinder", "radius": 1, "height": 1e300})",
+                    "rigid_bodies[0].shape.height", "too large"},
+        ExtremeSize{R"("shape": {"type": "mesh", "path": "huge.obj"})", "rigid_bodies[0].shape.path", "too large"},
+        ExtremeSize{R"("shape": {"type": "mesh", "path": "big.obj"})", "rigid_bodies[0].shape.path", "too large"},
+        ExtremeSize{R"("shape": {"type": "mesh", "path": "tiny.obj"})", "rigid_bodies[0].shape.path", "too small"},
+        // A size fine at 1 kg/m^3 but not at the default 1000: the size, since no density was given.
+        ExtremeSize{R"("shape": {"type": "sphere", "radius": 1e20})", "rigid_bodies[0].shape.radius",
+                    "at the default density"},
+        // An ordinary size: the density or mass given is what cannot be.
+        ExtremeSize{R"("shape": {"type": "sphere", "radius": 1e20}, "density": 1e6)", "rigid_bodies[0].density",
+                    "gives no usable mass properties"},
+        ExtremeSize{R"("shape": {"type": "sphere", "radius": 1e-20}, "density": 1e-300)", "rigid_bodies[0].density",
+                    "gives no usable mass properties"},
+        ExtremeSize{R"("shape": {"type": "mesh", "path": "tiny.obj"}, "density": 1e-300)", "rigid_bodies[0].shape.path",
+                    "too small"},
+        ExtremeSize{R"("shape": {"type": "box", "size": [1, 1, 1]}, "mass": 1e-320)", "rigid_bodies[0].mass",
+                    "gives no usable mass properties"}));
