@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "one_line.hpp"
 #include "pba/spring_network.hpp"
 
 namespace pba::scene_detail {
@@ -40,10 +41,10 @@ std::size_t addFabricParticle(ObjectReader& reader, const std::string& key, Fabr
                               const FabricParticles& shared, const std::string& name, const dvec3& at)
 {
     if (!target.names.insert(name).second)
-        reader.fail("name", fmt::format("its particle '{}' is named like another particle", name));
+        reader.fail("name", fmt::format("its particle '{}' is named like another particle", oneLine(name)));
     if (!insideSurfaces(target.world, at))
-        reader.fail(key, fmt::format("particle '{}' at ({}, {}, {}) lies outside the ground or room", name, at.x, at.y,
-                                     at.z));
+        reader.fail(key, fmt::format("particle '{}' at ({}, {}, {}) lies outside the ground or room", oneLine(name),
+                                     at.x, at.y, at.z));
     Particle p;
     p.setName(name);
     p.setPos(at);
@@ -154,7 +155,7 @@ GridIndex readClothPin(ObjectReader& reader, const Json& item, std::size_t colum
         if (name == "bottom-right")
             return {columns - 1, rows - 1};
         reader.fail("pinned", fmt::format("unknown corner '{}' (expected top-left, top-right, bottom-left, "
-                                          "bottom-right, or [column, row])", name));
+                                          "bottom-right, or [column, row])", oneLine(name)));
     }
     const bool pair = item.is_array() && item.size() == 2 && item[0].is_number() && item[1].is_number();
     if (!pair)

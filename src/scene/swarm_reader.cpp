@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "fabric_readers.hpp"
+#include "one_line.hpp"
 #include "pba/swarm.hpp"
 #include "pba/scene/scene.hpp"
 
@@ -80,7 +81,8 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
     SwarmDesc desc;
     desc.name = readName(reader, "name");
     if (desc.name.empty() || !names.insert(desc.name).second)
-        reader.fail("name", desc.name.empty() ? "must not be empty" : fmt::format("'{}' is already taken", desc.name));
+        reader.fail("name", desc.name.empty() ? "must not be empty"
+                                              : fmt::format("'{}' is already taken", oneLine(desc.name)));
     desc.count = readCount(reader, "count", 1e8);
     ObjectReader region = reader.object("region");
     region.expectKeys({"min", "max"});
