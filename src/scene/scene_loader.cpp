@@ -13,6 +13,7 @@
 #include "fabric_readers.hpp"
 #include "force_parsers.hpp"
 #include "json_reader.hpp"
+#include "memory_estimate.hpp"
 #include "rigid_body_reader.hpp"
 #include "swarm_reader.hpp"
 #include "pba/forces.hpp"
@@ -72,7 +73,7 @@ using scene_detail::readName;
 using scene_detail::fitsFloat;
 using scene_detail::kFloatMax;
 using scene_detail::readSwarm;
-using scene_detail::requireMemoryForSwarms;
+using scene_detail::requireMemoryForBodies;
 using scene_detail::swarmFieldsFit;
 
 void readSurfaces(ObjectReader& root, World& world)
@@ -239,7 +240,7 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
     if (document.is_object() && document.contains("swarms") && !(fitsFloat(g.x) && fitsFloat(g.y) && fitsFloat(g.z)))
         root.fail("gravity", fmt::format("cannot be represented in single precision, as a swarm's numbers are (at "
                                          "most {:.3g} in size)", kFloatMax));
-    requireMemoryForSwarms(document, file);
+    requireMemoryForBodies(document, file, directory);
     std::set<std::string> names;
     root.array("particles", [&](const Json& value, const std::string& path, std::size_t) {
         readParticle(value, path, file, scene.world, names);
