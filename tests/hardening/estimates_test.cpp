@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -29,14 +30,15 @@ std::string refusedField(const std::string& json)
     return "";
 }
 
-/// One line on stderr, exit 2, the field named, and nothing written.
-void expectBadInput(const CommandResult& r, const std::filesystem::path& dir, const std::string& says)
+/// One line on stderr, exit 2, the field named, and nothing written: `dir` holds its `inputs`
+/// files alone.
+void expectBadInput(const CommandResult& r, const std::filesystem::path& dir, const std::string& says,
+                    long inputs = 1)
 {
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
-    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 1)
-        << "only the scene file";
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), inputs);
 }
 
 } // namespace
@@ -156,3 +158,43 @@ TEST(MemoryEstimates, RigidBodiesAndMeshesBeyondTheMemoryAreRefused)
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_NE(r.err.find(".shape.path: a mesh from a file of 1 MB needs about 30 MB"), std::string::npos) << r.err;
 }
+
+struct BoundedFlags {
+    std::vector<std::string> args;
+    const char* says;
+};
+
+void PrintTo(const BoundedFlags& flags, std::ostream* os)
+{
+    for (const auto& a : flags.args)
+        *os << a << ' ';
+}
+
+class FlagBounds : public ::testing::TestWithParam<BoundedFlags> {};
+
+// Refused where the flags are checked, before any work: an 8192x8192 PNG took 3 GB to render, and
+// a dt of 1e308 s passed the checks and failed in gnuplot with exit 1.
+TEST_P(FlagBounds, AreBadInputInOneLineAndWriteNothing)
+{
+    const auto dir = freshDir("flag_bounds");
+    std::vector<std::string> args = GetParam().args;
+    for (auto& a : args)
+        if (a == "OUT.png" || a == "OUT")
+            a = (dir / a).string();
+    expectBadInput(runPbaArgv(args), dir, GetParam().says, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Hardening, FlagBounds,
+    ::testing::Values(
+        BoundedFlags{{"render", "integrators", "--size", "8192x8192", "--out", "OUT.png"},
+                     "--size: 8192x8192 is 67.1 million pixels, more than the 16.8 million (4096x4096)"},
+        BoundedFlags{{"render", "integrators", "--size", "4097x4096", "--out", "OUT.png"}, "--size: 4097x4096"},
+        // A long, thin picture still passes the size check: it is --fps, checked next, that fails.
+        BoundedFlags{{"render", "integrators", "--size", "8192x16", "--fps", "0", "--out", "OUT.png"}, "--fps"},
+        BoundedFlags{{"compare", "--dt", "1e308", "--out", "OUT"}, "--dt: 1e+308 s is longer than the run (10 s)"},
+        BoundedFlags{{"compare", "--duration", "1", "--dt", "0.01,2", "--out", "OUT"}, "--dt: 2 s is longer"},
+        BoundedFlags{{"compare", "--duration", "1e308", "--dt", "1e308", "--out", "OUT"},
+                     "--duration: 1e+308 s is more than the 1e+300 s a study may plot"},
+        BoundedFlags{{"compare", "tennis-racket", "--duration", "0.01", "--dt", "0.1", "--out", "OUT"},
+                     "--dt: 0.1 s is longer than the run (0.01 s)"}));
