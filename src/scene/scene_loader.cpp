@@ -15,6 +15,7 @@
 #include "json_reader.hpp"
 #include "memory_estimate.hpp"
 #include "rigid_body_reader.hpp"
+#include "room_fit.hpp"
 #include "swarm_reader.hpp"
 #include "pba/forces.hpp"
 #include "pba/swarm.hpp"
@@ -262,6 +263,7 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
         readForce(value, path, file, scene.world);
     });
     root.finish();
+    scene_detail::requireRigidBodiesInside(scene.world, file);
     requireFiniteEnergies(scene.world, scene.fabric, file);
     return scene;
 }

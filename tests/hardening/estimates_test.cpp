@@ -198,3 +198,144 @@ INSTANTIATE_TEST_SUITE_P(
                      "--duration: 1e+308 s is more than the 1e+300 s a study may plot"},
         BoundedFlags{{"compare", "tennis-racket", "--duration", "0.01", "--dt", "0.1", "--out", "OUT"},
                      "--dt: 0.1 s is longer than the run (0.01 s)"}));
+
+namespace {
+
+/// The field and reason a scene is refused for (both empty if it loads).
+std::pair<std::string, std::string> refusal(const std::string& json)
+{
+    try {
+        parseScene(json, "bad.json");
+    } catch (const SceneError& error) {
+        return {error.field(), error.reason()};
+    }
+    return {};
+}
+
+/// A scene in the 4 m cube room [-2, 2] x [0, 4] x [-2, 2] with one rigid body of `shape` at
+/// `position`, and `more` keys (an orientation) on the body.
+std::string bodyInRoom(const std::string& shape, const std::string& position, const std::string& more = "",
+                       const std::string& forces = "[]")
+{
+    return R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "forces": )" + forces +
+           R"(, "rigid_bodies": [{"name": "b", "shape": )" + shape + R"(, "position": )" + position + more + "}]}";
+}
+
+const std::string kCube = R"({"type": "box", "size": [0.3, 0.3, 0.3]})";
+const std::string kBall = R"({"type": "sphere", "radius": 0.1})";
+/// A quarter turn and an eighth of a turn about x, as [w, x, y, z].
+const std::string kQuarterTurn = R"(, "orientation": [0.7071067811865476, 0.7071067811865476, 0, 0])";
+const std::string kEighthTurn = R"(, "orientation": [0.9238795325112867, 0.3826834323650898, 0, 0])";
+
+} // namespace
+
+// A box whose centre is on the floor was accepted and stayed 0.14 m in it: the whole shape, at its
+// orientation, is checked against the floor, the walls and the ceiling. Oracles: a 0.3 m cube's
+// half side is 0.15 m; turned 45 degrees about x its lowest edge is 0.15 (cos 45 + sin 45) =
+// 0.2121 m below its centre; a sphere reaches its radius every way.
+TEST(StatesThatCannotBe, ARigidBodyThroughASurfaceIsRefusedNamingItsPositionAndTheDepth)
+{
+    const auto dir = freshDir("body_in_floor");
+    std::ofstream(dir / "box.json") << bodyInRoom(kCube, "[0, 0, 0]");
+    expectBadInput(runPbaArgv({"sim", (dir / "box.json").string(), "--out", (dir / "out.csv").string()}), dir,
+                   "rigid_bodies[0].position: the box at its orientation reaches 0.15 m through the floor (y = 0)");
+    const auto [field, reason] = refusal(bodyInRoom(kCube, "[0, 0.15, 0]", kEighthTurn));
+    EXPECT_EQ(field, "rigid_bodies[0].position");
+    EXPECT_NE(reason.find("reaches 0.0621 m through the floor"), std::string::npos) << reason;
+    EXPECT_NE(refusal(bodyInRoom(kCube, "[1.9, 2, 0]")).second.find("0.05 m through the wall at x = 2"),
+              std::string::npos);
+    EXPECT_NE(refusal(bodyInRoom(kCube, "[0, 2, -1.9]")).second.find("0.05 m through the wall at z = -2"),
+              std::string::npos);
+    EXPECT_NE(refusal(bodyInRoom(kBall, "[0, 3.95, 0]")).second.find("the sphere reaches 0.05 m through the ceiling"),
+              std::string::npos);
+    // A cylinder lying on its side (a quarter turn about x) reaches its radius down, not half its height.
+    const std::string cylinder = R"({"type": "cylinder", "radius": 0.2, "height": 1})";
+    EXPECT_EQ(refusal(bodyInRoom(cylinder, "[0, 0.19, 0]", kQuarterTurn)).first, "rigid_bodies[0].position");
+    EXPECT_EQ(refusal(bodyInRoom(cylinder, "[0, 0.49, 0]")).first, "rigid_bodies[0].position");
+    EXPECT_EQ(refusal(R"({"ground": {"height": 1}, "rigid_bodies": [{"name": "b", "shape": )" + kBall +
+                      R"(, "position": [0, 1.05, 0]}]})").first,
+              "rigid_bodies[0].position");
+    // A mesh by its vertices: this tetrahedron's centre of mass is (1/4, 1/4, 1/4) from its corner
+    // at the origin, so that corner is 0.25 m below its centre.
+    std::ofstream(dir / "tetra.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    const std::string mesh = R"({"type": "mesh", "path": "tetra.obj"})";
+    std::ofstream(dir / "in.json") << bodyInRoom(mesh, "[0, 0.2, 0]");
+    std::ofstream(dir / "on.json") << bodyInRoom(mesh, "[0, 0.25, 0]");
+    try {
+        loadSceneFile(dir / "in.json");
+        ADD_FAILURE() << "a mesh 0.05 m through the floor loaded";
+    } catch (const SceneError& error) {
+        EXPECT_EQ(error.field(), "rigid_bodies[0].position");
+        EXPECT_NE(error.reason().find("the mesh at its orientation reaches 0.05 m through the floor"),
+                  std::string::npos) << error.reason();
+    }
+    EXPECT_NO_THROW(loadSceneFile(dir / "on.json"));
+}
+
+// A 5 m box in the 4 m room was accepted and thrown out of it: at its orientation it spans more
+// than the room along x, whatever its position, so the shape is named. Turned a quarter about x,
+// a 1 x 5 x 1 box stands 1 m tall and 5 m deep.
+TEST(StatesThatCannotBe, ARigidBodyLargerThanTheRoomIsRefusedNamingItsShape)
+{
+    const auto [field, reason] = refusal(bodyInRoom(R"({"type": "box", "size": [5, 1, 1]})", "[0, 2, 0]"));
+    EXPECT_EQ(field, "rigid_bodies[0].shape");
+    EXPECT_NE(reason.find("spans 5 m along x, more than the room's 4 m"), std::string::npos) << reason;
+    EXPECT_NE(refusal(bodyInRoom(R"({"type": "box", "size": [1, 5, 1]})", "[0, 2, 0]", kQuarterTurn)).second.find(
+                  "spans 5 m along z"),
+              std::string::npos);
+    EXPECT_EQ(refusal(bodyInRoom(R"({"type": "sphere", "radius": 2.5})", "[0, 2, 0]")).first, "rigid_bodies[0].shape");
+}
+
+// Touching is not overlapping: a body resting exactly on the floor, or against a wall, turned or
+// not, loads; so does every built-in scene.
+TEST(StatesThatCannotBe, RigidBodiesThatTouchASurfaceStayAccepted)
+{
+    EXPECT_EQ(refusal(bodyInRoom(kCube, "[0, 0.15, 0]")).first, "");
+    EXPECT_EQ(refusal(bodyInRoom(kCube, "[1.85, 0.15, -1.85]", kQuarterTurn)).first, "");
+    EXPECT_EQ(refusal(bodyInRoom(kCube, "[0, 0.21213203435596428, 0]", kEighthTurn)).first, "");
+    EXPECT_EQ(refusal(bodyInRoom(kBall, "[0, 3.9, 1.9]")).first, "");
+    EXPECT_EQ(refusal(bodyInRoom(R"({"type": "cylinder", "radius": 0.2, "height": 1})", "[0, 0.2, 0]", kQuarterTurn))
+                  .first,
+              "");
+    EXPECT_EQ(refusal(bodyInRoom(R"({"type": "box", "size": [4, 4, 4]})", "[0, 2, 0]")).first, "");
+    for (const std::string& name : builtinSceneNames())
+        EXPECT_NO_THROW(loadScene(name)) << name;
+}
+
+// The blow dryer's hole: below the floor a body may reach only into the hole's shaft, and not
+// through its grille (0.05 m below the floor). A 0.1 m ball centred 0.05 m above the floor cuts
+// it in a circle of radius sqrt(0.1^2 - 0.05^2) = 0.0866 m.
+TEST(StatesThatCannotBe, BelowTheFloorABodyMayReachOnlyIntoTheDryersHole)
+{
+    const std::string dryer = R"([{"type": "blow-dryer", "nozzle": [0, 0, 0], "height": 2, "nozzle_radius": 0.2,
+                                   "top_radius": 1, "strength": 1}])";
+    EXPECT_EQ(refusal(bodyInRoom(kBall, "[0, 0.05, 0]", "", dryer)).first, "");
+    EXPECT_EQ(refusal(bodyInRoom(kBall, "[0.11, 0.05, 0]", "", dryer)).first, ""); // 0.1966 m from the axis
+    EXPECT_EQ(refusal(bodyInRoom(kBall, "[0, 0.05, 0]")).first, "rigid_bodies[0].position"); // no hole
+    const auto [field, reason] = refusal(bodyInRoom(kBall, "[0.12, 0.05, 0]", "", dryer)); // 0.2066 m
+    EXPECT_EQ(field, "rigid_bodies[0].position");
+    EXPECT_NE(reason.find("through the floor (y = 0) outside its hole"), std::string::npos) << reason;
+    EXPECT_NE(refusal(bodyInRoom(kBall, "[0, -0.0, 0]", "", dryer)).second.find(
+                  "0.05 m through the grille under the floor's hole (y = -0.05)"),
+              std::string::npos);
+    // A 0.1 m cube in the shaft, resting on the grille, loads; a corner past the hole's edge does not.
+    const std::string small = R"({"type": "box", "size": [0.1, 0.1, 0.1]})";
+    EXPECT_EQ(refusal(bodyInRoom(small, "[0, 0, 0]", "", dryer)).first, "");
+    EXPECT_EQ(refusal(bodyInRoom(small, "[0.1, 0.01, 0.1]", "", dryer)).first, "rigid_bodies[0].position");
+}
+
+// Particles, ropes and cloths are points: each is refused outside the room (and accepted on a
+// surface), naming the key that placed it.
+TEST(StatesThatCannotBe, ParticlesRopesAndClothsOutsideTheRoomAreRefusedNamingTheKey)
+{
+    const std::string room = R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, )";
+    EXPECT_EQ(refusal(room + R"("particles": [{"name": "p", "position": [0, -0.01, 0]}]})").first,
+              "particles[0].position");
+    EXPECT_EQ(refusal(room + R"("particles": [{"name": "p", "position": [0, 0, 2]}]})").first, "");
+    EXPECT_EQ(refusal(room + R"("ropes": [{"name": "r", "from": [0, 1, 0], "to": [0, 1, 2.5], "count": 5,
+                                 "stiffness": 1}]})").first,
+              "ropes[0].to");
+    EXPECT_EQ(refusal(room + R"("cloths": [{"name": "c", "origin": [1, 3, 0], "across": [1.5, 0, 0],
+                                 "down": [0, 0, 1], "columns": 4, "rows": 4, "stiffness": {"structural": 1}}]})").first,
+              "cloths[0].origin");
+}
