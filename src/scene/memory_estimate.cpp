@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -145,33 +146,19 @@ std::optional<double> procKilobytes(const char* file, const std::string& wanted)
     return std::nullopt;
 }
 
-/// A process limit's headroom: the limit less what `used` says is taken; nothing when unlimited.
-std::optional<double> headroom(int resource, const char* usedFile, const std::string& usedKey)
+/// What a limit on this process leaves: the limit less the use /proc/self/status gives under
+/// `usedKey`; nothing when unlimited.
+std::optional<double> headroom(int resource, const std::string& usedKey)
 {
     rlimit limit{};
     if (::getrlimit(resource, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY)
         return std::nullopt;
-    return double(limit.rlim_cur) - procKilobytes(usedFile, usedKey).value_or(0.0);
+    return double(limit.rlim_cur) - procKilobytes("/proc/self/status", usedKey).value_or(0.0);
 }
 
-/// The memory left under this process's control group's limit (cgroup v2), if it has one.
-std::optional<double> cgroupHeadroom()
-{
-    std::ifstream cgroup("/proc/self/cgroup");
-    std::string line;
-    while (std::getline(cgroup, line)) {
-        if (line.rfind("0::", 0) != 0)
-            continue;
-        const std::filesystem::path dir = std::filesystem::path("/sys/fs/cgroup") / line.substr(3).erase(0, 1);
-        double max = 0.0, current = 0.0;
-        if (std::ifstream(dir / "memory.max") >> max && std::ifstream(dir / "memory.current") >> current)
-            return max - current; // "max" (no limit) is not read as a number
-    }
-    return std::nullopt;
-}
-
-} // namespace
-
+/// The bytes this process may still take: the kernel's MemAvailable (the physical memory where
+/// that cannot be read), or less where a limit on the process's address space or data leaves
+/// less. Nothing where none of them can be read.
 std::optional<double> availableMemory()
 {
     std::optional<double> available = procKilobytes("/proc/meminfo", "MemAvailable:");
@@ -180,12 +167,13 @@ std::optional<double> availableMemory()
         if (pages > 0 && size > 0)
             available = double(pages) * double(size);
     }
-    for (const auto& limit : {headroom(RLIMIT_AS, "/proc/self/status", "VmSize:"),
-                              headroom(RLIMIT_DATA, "/proc/self/status", "VmData:"), cgroupHeadroom()})
+    for (const auto& limit : {headroom(RLIMIT_AS, "VmSize:"), headroom(RLIMIT_DATA, "VmData:")})
         if (limit && (!available || *limit < *available))
             available = std::max(0.0, *limit);
     return available;
 }
+
+} // namespace
 
 void requireMemoryForBodies(const Json& document, const std::string& file, const std::filesystem::path& directory)
 {

@@ -3,20 +3,15 @@
 // file of a kilobyte can ask for millions of particles (five 1000 x 1000 cloths), and building
 // them would end in std::bad_alloc, or the kernel's killer, long after the scene was read.
 #include <filesystem>
-#include <optional>
 #include <string>
 
 #include "json_reader.hpp"
 
 namespace pba::scene_detail {
 
-/// The bytes this process may still take: the kernel's MemAvailable (the physical memory where
-/// that cannot be read), less where a limit on the process's address space or data, or on its
-/// control group, leaves less. Nothing where none of them can be read.
-std::optional<double> availableMemory();
-
 /// Refuses the first body, in the order they are read (particles, ropes, cloths, rigid bodies,
-/// swarms), at which the bodies so far need more than availableMemory(), naming its key, its
+/// swarms), at which the bodies so far need more than this process may still take (the kernel's
+/// MemAvailable, or less under a limit on its address space or data), naming its key, its
 /// estimate and the total. An entry too malformed to estimate is skipped: its reader says what
 /// is wrong with it.
 void requireMemoryForBodies(const Json& document, const std::string& file, const std::filesystem::path& directory);
