@@ -43,12 +43,19 @@ void dropRepeats(std::vector<T>& list)
     list = std::move(kept);
 }
 
+/// The longest run, and so the largest dt, a study takes: gnuplot's axes reach a few times past
+/// the largest value plotted, and near the largest double that overflowed (1.7e308 s).
+constexpr double kMaxStudySeconds = 1e300;
+
 /// The run's length: --duration, or the scene's.
 double readDuration(const CompareOptions& options, const Scene& scene)
 {
     const double duration = options.duration.value_or(scene.duration);
     if (!(std::isfinite(duration) && duration > 0))
         throw UsageError(fmt::format("--duration: must be finite and positive, got {}", duration));
+    if (duration > kMaxStudySeconds)
+        throw UsageError(fmt::format("--duration: {:g} s is more than the {:g} s a study may plot", duration,
+                                     kMaxStudySeconds));
     return duration;
 }
 
@@ -76,6 +83,12 @@ void readDts(const CompareOptions& options, double duration, std::vector<double>
     for (double dt : dts)
         if (!(std::isfinite(dt) && dt > 0))
             throw UsageError(fmt::format("--dt: every dt must be finite and positive, got {}", dt));
+    // A dt longer than the run would run past its end in one step (and 1e308 s overflowed the
+    // plots' axes). The study's own list is left as it is: the user did not choose it.
+    for (double dt : options.dts)
+        if (dt > duration)
+            throw UsageError(fmt::format("--dt: {:g} s is longer than the run ({:g} s): a dt must be at most the "
+                                         "duration", dt, duration));
     std::sort(dts.begin(), dts.end());
     dts.erase(std::unique(dts.begin(), dts.end()), dts.end());
     for (double dt : dts)

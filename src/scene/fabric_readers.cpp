@@ -1,6 +1,7 @@
 #include "fabric_readers.hpp"
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -29,7 +30,14 @@ FabricParticles readShared(ObjectReader& reader, std::size_t count)
     if (shared.name.empty())
         reader.fail("name", "must not be empty");
     // The whole rope or cloth weighs `mass`, so that its resolution does not change its weight.
-    shared.mass = reader.positive("mass", 1.0) / double(count);
+    const double total = reader.positive("mass", 1.0);
+    shared.mass = total / double(count);
+    // A share below the smallest normal double has no finite inverse (or is zero): every force
+    // on the particle would turn into an infinite acceleration.
+    if (!(shared.mass >= std::numeric_limits<double>::min()))
+        reader.fail("mass", fmt::format("{} kg shared among {} particles is {} kg each, below the smallest normal "
+                                        "number ({:g}): give a larger mass", total, count, shared.mass,
+                                        std::numeric_limits<double>::min()));
     shared.restitution = reader.number("restitution", 1.0);
     if (!(shared.restitution >= 0.0 && shared.restitution <= 1.0))
         reader.fail("restitution", fmt::format("must be in [0, 1], got {}", shared.restitution));

@@ -165,8 +165,6 @@ void readRigidBody(const Json& value, const std::string& path, const std::string
     body->setFriction(reader.nonNegative("friction", 0.5));
     body->setIntegrator(readIntegrator(reader, "integrator", Integrator::SemiImplicitEuler));
     body->setFixed(reader.boolean("fixed", false));
-    if (!insideSurfaces(world, body->getPos()))
-        reader.fail("position", "lies outside the ground or room");
     if (!std::isfinite(body->getRotationalKineticEnergy()))
         reader.fail("angular_velocity", "too large: the rotational kinetic energy is not finite");
     reader.finish();

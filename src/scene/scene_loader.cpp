@@ -13,8 +13,10 @@
 #include "fabric_readers.hpp"
 #include "force_parsers.hpp"
 #include "json_reader.hpp"
+#include "memory_estimate.hpp"
 #include "one_line.hpp"
 #include "rigid_body_reader.hpp"
+#include "room_fit.hpp"
 #include "swarm_reader.hpp"
 #include "pba/forces.hpp"
 #include "pba/swarm.hpp"
@@ -79,7 +81,7 @@ using scene_detail::readName;
 using scene_detail::fitsFloat;
 using scene_detail::kFloatMax;
 using scene_detail::readSwarm;
-using scene_detail::requireMemoryForSwarms;
+using scene_detail::requireMemoryForBodies;
 using scene_detail::swarmFieldsFit;
 
 void readSurfaces(ObjectReader& root, World& world)
@@ -248,7 +250,7 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
     if (document.is_object() && document.contains("swarms") && !(fitsFloat(g.x) && fitsFloat(g.y) && fitsFloat(g.z)))
         root.fail("gravity", fmt::format("cannot be represented in single precision, as a swarm's numbers are (at "
                                          "most {:.3g} in size)", kFloatMax));
-    requireMemoryForSwarms(document, file);
+    requireMemoryForBodies(document, file, directory);
     std::set<std::string> names;
     scene_detail::MeshLibrary meshes;
     root.array("particles", [&](const Json& value, const std::string& path, std::size_t) {
@@ -271,6 +273,7 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
         readForce(value, path, file, scene.world);
     });
     root.finish();
+    scene_detail::requireRigidBodiesInside(scene.world, file);
     requireFiniteEnergies(scene.world, scene.fabric, file);
     return scene;
 }
