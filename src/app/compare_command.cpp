@@ -10,10 +10,12 @@
 
 #include "command.hpp"
 #include "compare_report.hpp"
-#include "io/output_file.hpp"
+#include "io/folder_output.hpp"
 #include "progress.hpp"
 #include "rotation_report.hpp"
 #include "study/findings.hpp"
+#include "study/plots.hpp"
+#include "study/rotation_plots.hpp"
 #include "scene_options.hpp"
 
 namespace pba::app {
@@ -41,12 +43,19 @@ void dropRepeats(std::vector<T>& list)
     list = std::move(kept);
 }
 
+/// The longest run, and so the largest dt, a study takes: gnuplot's axes reach a few times past
+/// the largest value plotted, and near the largest double that overflowed (1.7e308 s).
+constexpr double kMaxStudySeconds = 1e300;
+
 /// The run's length: --duration, or the scene's.
 double readDuration(const CompareOptions& options, const Scene& scene)
 {
     const double duration = options.duration.value_or(scene.duration);
     if (!(std::isfinite(duration) && duration > 0))
         throw UsageError(fmt::format("--duration: must be finite and positive, got {}", duration));
+    if (duration > kMaxStudySeconds)
+        throw UsageError(fmt::format("--duration: {:g} s is more than the {:g} s a study may plot", duration,
+                                     kMaxStudySeconds));
     return duration;
 }
 
@@ -74,6 +83,12 @@ void readDts(const CompareOptions& options, double duration, std::vector<double>
     for (double dt : dts)
         if (!(std::isfinite(dt) && dt > 0))
             throw UsageError(fmt::format("--dt: every dt must be finite and positive, got {}", dt));
+    // A dt longer than the run would run past its end in one step (and 1e308 s overflowed the
+    // plots' axes). The study's own list is left as it is: the user did not choose it.
+    for (double dt : options.dts)
+        if (dt > duration)
+            throw UsageError(fmt::format("--dt: {:g} s is longer than the run ({:g} s): a dt must be at most the "
+                                         "duration", dt, duration));
     std::sort(dts.begin(), dts.end());
     dts.erase(std::unique(dts.begin(), dts.end()), dts.end());
     for (double dt : dts)
@@ -141,10 +156,24 @@ study::RotationConfig makeRotationConfig(const CompareOptions& options, Scene sc
     return config;
 }
 
+/// The names either study writes: a study replaces pba's files of these names in its folder
+/// (the other study's too, once stale) and leaves every other file there alone.
+bool isStudyFile(const std::string& name)
+{
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> all{"report.md", "results.csv", "orders.csv", "stability.csv",
+                                     study::kStabilityPlotFile, study::kDriftPlotFile, study::kFlipPlotFile,
+                                     study::kPeriodPlotFile};
+        all.insert(all.end(), study::kPlotFiles.begin(), study::kPlotFiles.end());
+        return all;
+    }();
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
 int runRotationCompare(const CompareOptions& options, Scene scene)
 {
     const study::RotationConfig config = makeRotationConfig(options, std::move(scene));
-    io::Temporary folder(io::resolveOutputFolder(options.out), io::Temporary::Kind::Folder);
+    io::FolderOutput folder(options.out, isStudyFile);
     Progress progress("comparing", long(config.integrators.size() * config.dts.size()));
     const study::RotationResult result =
         study::runRotationStudy(config, [&](long done, long) { progress.update(done); });
@@ -174,9 +203,9 @@ int runCompare(const CompareOptions& options)
             return runRotationCompare(options, std::move(scene));
     }
     const study::StudyConfig config = makeConfig(options);
-    // The folder is written beside its target and swapped in whole: a failed study leaves the
-    // previous one untouched, not a mix of new tables and an old report.
-    io::Temporary folder(io::resolveOutputFolder(options.out), io::Temporary::Kind::Folder);
+    // The study's files are published together: a failed study leaves the previous one
+    // untouched, not a mix of new tables and an old report.
+    io::FolderOutput folder(options.out, isStudyFile);
     Progress progress("comparing", study::studyTaskCount(config));
     const study::StudyResult result = study::runStudy(config, [&](long done, long) { progress.update(done); });
     const std::filesystem::path dir = folder.path();

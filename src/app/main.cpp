@@ -13,6 +13,7 @@
 #include "io/output_file.hpp"
 #include "pba/scene/scene.hpp"
 #include "scene/closest_name.hpp"
+#include "scene/one_line.hpp"
 #include "scene_options.hpp"
 
 namespace {
@@ -43,13 +44,19 @@ std::string parseErrorText(const CLI::ParseError& e, const CLI::App& app, const 
     return what;
 }
 
+/// Every error is one line on stderr, whatever a path, a flag or a name it quotes holds.
+void printError(std::string_view what)
+{
+    fmt::print(stderr, "pba: error: {}\n", pba::scene_detail::oneLine(what, pba::scene_detail::kWhole));
+}
+
 } // namespace
 
 int main(int argc, char** argv)
 {
     using namespace pba::app;
-    // Before any thread starts: SIGINT and SIGTERM remove temporaries and stop child programs;
-    // a child that stops reading gives EPIPE, not a silent death.
+    // Before any thread starts: SIGINT, SIGTERM and SIGHUP remove temporaries and stop child
+    // programs; a child that stops reading gives EPIPE, not a silent death.
     pba::io::cleanUpOnSignals();
     std::signal(SIGPIPE, SIG_IGN);
     std::signal(SIGXFSZ, SIG_IGN); // past a file size limit a write fails (EFBIG) and is reported
@@ -84,7 +91,7 @@ int main(int argc, char** argv)
     } catch (const CLI::Success& e) { // --help, --version
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        fmt::print(stderr, "pba: error: {}\n", parseErrorText(e, app, typed));
+        printError(parseErrorText(e, app, typed));
         return kExitBadInput;
     }
     if (!selected) // `pba` alone: the default scene, in a window or rendered
@@ -92,16 +99,16 @@ int main(int argc, char** argv)
     try {
         return selected();
     } catch (const pba::SceneError& e) {
-        fmt::print(stderr, "pba: error: {}\n", e.what());
+        printError(e.what());
         return kExitBadInput;
     } catch (const UsageError& e) {
-        fmt::print(stderr, "pba: error: {}\n", e.what());
+        printError(e.what());
         return kExitBadInput;
     } catch (const pba::io::BadOutput& e) {
-        fmt::print(stderr, "pba: error: {}\n", e.what());
+        printError(e.what());
         return kExitBadInput;
     } catch (const std::exception& e) {
-        fmt::print(stderr, "pba: error: {}\n", e.what());
+        printError(e.what());
         return kExitFailure;
     }
 }

@@ -35,6 +35,11 @@ struct RenderOptions {
     bool lanes = false;
 };
 
+/// A picture's pixels: rendering one takes about 45 bytes a pixel at its peak (multisampled colour
+/// and depth, the resolved and read-back copies, the PNG's rows), so 8192x8192 took 3 GB.
+constexpr double kMaxPixels = 4096.0 * 4096.0;
+constexpr double kRenderBytesPerPixel = 45.0;
+
 void parseSize(const std::string& text, int& width, int& height)
 {
     static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
@@ -42,6 +47,10 @@ void parseSize(const std::string& text, int& width, int& height)
     if (!std::regex_match(text, m, pattern) || (width = std::stoi(m[1])) < 16 || (height = std::stoi(m[2])) < 16 ||
         width > 8192 || height > 8192)
         throw UsageError(fmt::format("--size: expected WxH between 16 and 8192, e.g. 1280x720, got '{}'", text));
+    if (const double pixels = double(width) * height; pixels > kMaxPixels)
+        throw UsageError(fmt::format("--size: {} is {:.1f} million pixels, more than the {:.1f} million (4096x4096) "
+                                     "a picture may have: it would take about {:.1f} GB to render",
+                                     text, pixels / 1e6, kMaxPixels / 1e6, pixels * kRenderBytesPerPixel / 1e9));
 }
 
 int runRender(const RenderOptions& options)
@@ -134,7 +143,8 @@ void addRenderCommand(CLI::App& root, Action& selected)
     render->add_option("--time", options->time, "With a PNG: the simulated time to show (default: the end)")
         ->type_name("SECONDS");
     render->add_option("--fps", options->fps, "Frames per second of video time (default 60)")->type_name("HZ");
-    render->add_option("--size", options->size, "Image size (default 1280x720)")->type_name("WxH");
+    render->add_option("--size", options->size, "Image size, 16 to 8192 a side and at most 4096x4096 pixels in all "
+                                               "(default 1280x720)")->type_name("WxH");
     render->add_flag("--arrows", options->arrows, "Draw the blow dryer's field as arrows inside its cone");
     render->add_flag("--no-trails", options->noTrails, "Do not draw the particles' fading trails");
     render->add_flag("--lanes", options->lanes, "Integrator lanes: a ghost of the exact solution beside each particle "

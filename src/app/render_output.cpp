@@ -1,5 +1,8 @@
 #include "render_output.hpp"
 
+#include <algorithm>
+#include <string_view>
+
 #include <fmt/format.h>
 
 #include "command.hpp"
@@ -18,13 +21,24 @@ OutputKind outputKind(const std::string& out)
     throw UsageError(fmt::format("--out: expected FILE.png, FILE.mp4 or DIR/, got '{}'", out));
 }
 
+bool isFrameName(const std::string& name)
+{
+    constexpr std::string_view prefix = "frame_", suffix = ".png";
+    if (name.size() < prefix.size() + 5 + suffix.size() || name.rfind(prefix, 0) != 0 ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+        return false;
+    return std::all_of(name.begin() + prefix.size(), name.end() - suffix.size(),
+                       [](char c) { return c >= '0' && c <= '9'; });
+}
+
 FrameSink::FrameSink(OutputKind kind, const std::string& out, int width, int height, int fps)
     : m_kind(kind), m_width(width), m_height(height)
 {
-    // The path is checked here, before any rendering; a folder of frames is written beside its
-    // target and swapped in whole, so no frame of a longer earlier run is left among the new.
+    // The path and the folder's frames are checked here, before any rendering. The new frames
+    // replace pba's earlier ones together, and pba's frames of a longer earlier run go, so none
+    // is left among the new; whatever else the folder holds stays.
     if (kind == OutputKind::Frames)
-        m_folder = std::make_unique<io::Temporary>(io::resolveOutputFolder(out), io::Temporary::Kind::Folder);
+        m_folder = std::make_unique<io::FolderOutput>(out, isFrameName);
     else
         m_out = io::resolveOutputFile(out);
     if (kind == OutputKind::Mp4)
@@ -37,8 +51,8 @@ void FrameSink::add(const std::vector<std::uint8_t>& rgba)
     case OutputKind::Png: m_last = rgba; break;
     case OutputKind::Mp4: m_video->addFrame(rgba); break;
     case OutputKind::Frames:
-        // Inside the temporary folder a frame needs no temporary of its own: the folder is
-        // synced and renamed as a whole.
+        // In the staging folder a frame needs no temporary of its own: the frames are synced
+        // and published together.
         io::writeFile(m_folder->path() / fmt::format("frame_{:05}.png", m_count),
                       render::encodePng(m_width, m_height, rgba));
         break;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "io/folder_output.hpp"
 #include "render/image_io.hpp"
 
 namespace pba::app {
@@ -15,6 +16,9 @@ enum class OutputKind { Png, Mp4, Frames };
 /// FILE.png, FILE.mp4, or a directory (a path ending in '/' or an existing directory).
 /// Throws UsageError for anything else.
 OutputKind outputKind(const std::string& out);
+
+/// frame_NNNNN.png (five digits or more): the names a folder of frames is made of.
+bool isFrameName(const std::string& name);
 
 class FrameSink {
 public:
@@ -26,7 +30,7 @@ public:
 private:
     OutputKind m_kind;
     std::filesystem::path m_out;              ///< a file output, resolved
-    std::unique_ptr<io::Temporary> m_folder;  ///< a folder output, written whole
+    std::unique_ptr<io::FolderOutput> m_folder; ///< a folder of frames
     int m_width;
     int m_height;
     long m_count = 0;

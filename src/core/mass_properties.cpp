@@ -1,12 +1,12 @@
 #include "pba/mass_properties.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 #include <numbers>
 #include <stdexcept>
 #include <string>
-#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -43,20 +43,28 @@ Sums sums(double w0, double w1, double w2)
     return s;
 }
 
-/// Every edge of a closed, consistently oriented mesh is walked once each way.
+/// Every edge of a closed, consistently oriented mesh is walked once each way. The directed edges
+/// are sorted as 64-bit keys (from, to) rather than counted in a map: a mesh of millions of
+/// triangles is checked in a sort, not in millions of allocations.
 void requireClosed(std::span<const std::uint32_t> triangles)
 {
-    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+    const auto key = [](std::uint32_t from, std::uint32_t to) { return std::uint64_t(from) << 32 | to; };
+    std::vector<std::uint64_t> edges;
+    edges.reserve(triangles.size());
     for (std::size_t t = 0; t < triangles.size(); t += 3)
-        for (int k = 0; k < 3; ++k)
-            ++edges[{triangles[t + std::size_t(k)], triangles[t + std::size_t((k + 1) % 3)]}];
-    for (const auto& [edge, count] : edges) {
-        const auto back = edges.find({edge.second, edge.first});
-        if (count != 1 || back == edges.end() || back->second != 1)
+        for (std::size_t k = 0; k < 3; ++k)
+            edges.push_back(key(triangles[t + k], triangles[t + (k + 1) % 3]));
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+        const std::uint64_t edge = edges[i];
+        const auto from = std::uint32_t(edge >> 32), to = std::uint32_t(edge);
+        const bool once = (i == 0 || edges[i - 1] != edge) && (i + 1 == edges.size() || edges[i + 1] != edge);
+        const auto back = std::equal_range(edges.begin(), edges.end(), key(to, from));
+        if (!once || back.second - back.first != 1)
             throw std::invalid_argument(fmt::format(
                 "the mesh is not closed: its edge from vertex {} to vertex {} is not shared by exactly two "
                 "triangles in opposite directions",
-                edge.first, edge.second));
+                from, to));
     }
 }
 
@@ -137,7 +145,12 @@ MassProperties meshMassProperties(std::span<const dvec3> vertices, std::span<con
     for (std::size_t k = 0; k < integral.size(); ++k)
         integral[k] *= kFactor[k] * density;
     const double m = integral[0];
-    if (!(m > 0.0 && std::isfinite(m)))
+    if (!std::isfinite(m))
+        throw std::invalid_argument(fmt::format("the mesh is too large: its mass at {} kg/m^3 is not finite", density));
+    if (m == 0.0)
+        throw std::invalid_argument(fmt::format(
+            "the mesh's mass at {} kg/m^3 is 0: it is flat, or too small for its volume to be represented", density));
+    if (!(m > 0.0))
         throw std::invalid_argument(fmt::format(
             "the mesh's volume is {} (its triangles must turn counter-clockwise seen from outside)", m / density));
     const dvec3 c = dvec3(integral[1], integral[2], integral[3]) / m;

@@ -65,13 +65,13 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const Options& 
         posix_spawn_file_actions_addchdir_np(&actions, options.workDir.c_str());
 
     // The child starts with the default signal handling pba changed: nothing blocked (pba's
-    // threads block SIGINT and SIGTERM for its watcher), SIGPIPE and SIGXFSZ deadly again.
+    // threads block SIGINT, SIGTERM and SIGHUP for its watcher), SIGPIPE and SIGXFSZ deadly again.
     posix_spawnattr_t attributes;
     posix_spawnattr_init(&attributes);
     sigset_t none, defaults;
     sigemptyset(&none);
     sigemptyset(&defaults);
-    for (int signal : {SIGINT, SIGTERM, SIGPIPE, SIGXFSZ})
+    for (int signal : {SIGINT, SIGTERM, SIGHUP, SIGPIPE, SIGXFSZ})
         sigaddset(&defaults, signal);
     posix_spawnattr_setsigmask(&attributes, &none);
     posix_spawnattr_setsigdefault(&attributes, &defaults);

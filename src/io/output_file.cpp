@@ -26,6 +26,7 @@ struct Registry {
     std::mutex mutex;
     std::vector<fs::path> temporaries;
     std::vector<int> children;
+    std::vector<fs::path> madeFolders;
 };
 
 Registry& registry()
@@ -34,26 +35,29 @@ Registry& registry()
     return r;
 }
 
-std::string describe(const fs::path& p) { return p.string(); }
-
-/// fsync a file or folder by path; false on error.
-bool syncPath(const fs::path& p, bool directory)
+/// Held by a multi-rename commit, and by the signal watcher before it cleans up (deferSignals).
+std::mutex& commitMutex()
 {
-    const int fd = ::open(p.c_str(), (directory ? O_RDONLY | O_DIRECTORY : O_RDONLY) | O_CLOEXEC);
-    if (fd < 0)
-        return false;
-    const bool ok = ::fsync(fd) == 0 || errno == EINVAL; // some file systems cannot sync folders
-    ::close(fd);
-    return ok;
+    static std::mutex m;
+    return m;
 }
 
-bool syncTree(const fs::path& folder)
+std::string describe(const fs::path& p) { return p.string(); }
+
+/// A temporary folder is moved aside before it is emptied: a thread still writing files into it
+/// by name can no longer add one behind remove_all's back.
+void removeTemporary(const fs::path& p)
 {
-    std::error_code ec;
-    for (const auto& entry : fs::recursive_directory_iterator(folder, ec))
-        if (entry.is_regular_file() && !syncPath(entry.path(), false))
-            return false;
-    return !ec && syncPath(folder, true);
+    fs::path gone = p;
+    gone += ".gone";
+    std::error_code moved, ignored;
+    fs::rename(p, gone, moved);
+    fs::remove_all(moved ? p : gone, ignored);
+}
+
+void forget(std::vector<fs::path>& list, const fs::path& p)
+{
+    list.erase(std::remove(list.begin(), list.end(), p), list.end());
 }
 
 fs::path parentOf(const fs::path& p) { return p.parent_path().empty() ? fs::path(".") : p.parent_path(); }
@@ -76,10 +80,32 @@ void requireParentFolder(const fs::path& requested, const fs::path& target)
 
 } // namespace
 
+bool syncToDisk(const fs::path& p, bool directory)
+{
+    const int fd = ::open(p.c_str(), (directory ? O_RDONLY | O_DIRECTORY : O_RDONLY) | O_CLOEXEC);
+    if (fd < 0)
+        return false;
+    const bool ok = ::fsync(fd) == 0 || errno == EINVAL; // some file systems cannot sync folders
+    ::close(fd);
+    return ok;
+}
+
+bool syncTree(const fs::path& folder)
+{
+    std::error_code ec;
+    for (const auto& entry : fs::recursive_directory_iterator(folder, ec))
+        if (entry.is_regular_file() && !syncToDisk(entry.path(), false))
+            return false;
+    return !ec && syncToDisk(folder, true);
+}
+
 fs::path resolveOutputFile(const fs::path& requested)
 {
     if (requested.empty())
         throw BadOutput("--out: the path is empty");
+    // `x.csv/` names a folder: refused here, before any work, not after it when the rename fails.
+    if (!requested.has_filename() || requested.filename() == "." || requested.filename() == "..")
+        throw BadOutput(fmt::format("{}: names a folder (it ends in '/'), expected a file path", describe(requested)));
     std::error_code ec;
     fs::path target = requested;
     // Follow links one by one (a link may name a file that does not exist yet).
@@ -105,7 +131,7 @@ fs::path resolveOutputFolder(const fs::path& requested)
         throw BadOutput("--out: the path is empty");
     std::error_code ec;
     const fs::path named = requested.has_filename() ? requested : requested.parent_path(); // "out/" is "out"
-    fs::path target = fs::weakly_canonical(named, ec);
+    fs::path target = fs::weakly_canonical(fs::absolute(named, ec), ec); // absolute: a new folder has a parent
     if (ec)
         throw BadOutput(fmt::format("{}: cannot be resolved: {}", describe(requested), ec.message()));
     const fs::file_status status = fs::status(target, ec);
@@ -144,37 +170,22 @@ Temporary::~Temporary()
     if (!m_committed)
         fs::remove_all(m_temporary, ignored);
     std::lock_guard lock(registry().mutex);
-    auto& list = registry().temporaries;
-    list.erase(std::remove(list.begin(), list.end(), m_temporary), list.end());
+    forget(registry().temporaries, m_temporary);
 }
 
 void Temporary::commit()
 {
-    const bool synced = m_kind == Kind::File ? syncPath(m_temporary, false) : syncTree(m_temporary);
+    const bool synced = m_kind == Kind::File ? syncToDisk(m_temporary, false) : syncTree(m_temporary);
     if (!synced)
         throw WriteError(fmt::format("{}: write failed: {}", describe(m_target), std::strerror(errno)));
+    // A folder is never swapped for an existing one, which would delete whatever the user kept
+    // in it: rename() refuses a target folder that holds anything.
     std::error_code ec;
-    if (m_kind == Kind::Folder && fs::exists(m_target)) {
-        // Two renames: the old folder moves aside, the new one takes its name, the old one goes.
-        fs::path old = m_target;
-        old += fmt::format(".old-{}", ::getpid());
-        fs::rename(m_target, old, ec);
-        if (!ec)
-            fs::rename(m_temporary, m_target, ec);
-        if (ec) {
-            std::error_code ignored;
-            if (!fs::exists(m_target))
-                fs::rename(old, m_target, ignored);
-            throw WriteError(fmt::format("{}: cannot be replaced: {}", describe(m_target), ec.message()));
-        }
-        fs::remove_all(old, ec);
-    } else {
-        fs::rename(m_temporary, m_target, ec);
-        if (ec)
-            throw WriteError(fmt::format("{}: cannot be replaced: {}", describe(m_target), ec.message()));
-    }
+    fs::rename(m_temporary, m_target, ec);
+    if (ec)
+        throw WriteError(fmt::format("{}: cannot be replaced: {}", describe(m_target), ec.message()));
     m_committed = true;
-    syncPath(parentOf(m_target), true); // the rename itself, on the disk
+    syncToDisk(parentOf(m_target), true); // the rename itself, on the disk
 }
 
 bool writeAll(int fd, const void* bytes, std::size_t size)
@@ -224,26 +235,43 @@ void unregisterChild(int pid)
     list.erase(std::remove(list.begin(), list.end(), pid), list.end());
 }
 
+void registerMadeFolder(const fs::path& folder)
+{
+    std::lock_guard lock(registry().mutex);
+    registry().madeFolders.push_back(folder);
+}
+
+void unregisterMadeFolder(const fs::path& folder)
+{
+    std::lock_guard lock(registry().mutex);
+    forget(registry().madeFolders, folder);
+}
+
+std::unique_lock<std::mutex> deferSignals() { return std::unique_lock(commitMutex()); }
+
 void cleanUpOnSignals()
 {
     sigset_t set;
     sigemptyset(&set);
-    sigaddset(&set, SIGINT);
-    sigaddset(&set, SIGTERM);
+    for (int signal : {SIGINT, SIGTERM, SIGHUP})
+        sigaddset(&set, signal);
     ::pthread_sigmask(SIG_BLOCK, &set, nullptr);
     std::thread([set] {
         int signal = 0;
         while (::sigwait(&set, &signal) != 0) {
         }
-        {
-            std::lock_guard lock(registry().mutex);
-            for (int pid : registry().children)
-                ::kill(pid, SIGTERM);
-            for (const fs::path& p : registry().temporaries) {
-                std::error_code ignored;
-                fs::remove_all(p, ignored);
-            }
-        }
+        const std::lock_guard commit(commitMutex()); // a commit under way ends first
+        // Held until the program dies: a thread whose write fails as its temporary goes then
+        // waits in that Temporary's destructor, and cannot report the failure instead of the signal.
+        const std::lock_guard lock(registry().mutex);
+        for (int pid : registry().children)
+            ::kill(pid, SIGTERM);
+        for (const fs::path& p : registry().temporaries)
+            removeTemporary(p);
+        // Innermost first; remove() leaves a folder that holds anything.
+        std::error_code ignored;
+        for (auto p = registry().madeFolders.rbegin(); p != registry().madeFolders.rend(); ++p)
+            fs::remove(*p, ignored);
         // Die of the signal, so the shell sees what stopped the program.
         ::signal(signal, SIG_DFL);
         ::pthread_sigmask(SIG_UNBLOCK, &set, nullptr);

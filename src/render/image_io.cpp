@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <stb_image_write.h>
 
+#include "mp4_check.hpp"
+
 namespace pba::render {
 
 std::string encodePng(int width, int height, const std::vector<std::uint8_t>& rgba)
@@ -67,11 +69,18 @@ void VideoWriter::addFrame(const std::vector<std::uint8_t>& rgba)
 void VideoWriter::finish()
 {
     const int status = m_ffmpeg->wait();
-    if (status != 0) {
-        const std::string message = io::firstLine(m_log.path());
+    const std::string message = io::firstLine(m_log.path());
+    if (status != 0)
         throw io::WriteError(fmt::format("{}: ffmpeg failed ({}){}{}", m_video.target().string(),
                                          io::describeExit(status), message.empty() ? "" : ": ", message));
-    }
+    // ffmpeg exits 0 even when it could not write the video's end (a full disk), so neither its
+    // status nor the file's existence says the video is whole: at -loglevel error it says
+    // nothing unless something failed, and the file must read back as a complete MP4.
+    if (!message.empty())
+        throw io::WriteError(fmt::format("{}: ffmpeg reported an error (exit status 0): {}", m_video.target().string(),
+                                         message));
+    if (const std::string problem = mp4Problem(m_video.path()); !problem.empty())
+        throw io::WriteError(fmt::format("{}: ffmpeg wrote an incomplete video: {}", m_video.target().string(), problem));
     m_video.commit();
 }
 

@@ -31,7 +31,8 @@ public:
     VideoWriter& operator=(const VideoWriter&) = delete;
 
     void addFrame(const std::vector<std::uint8_t>& rgba);
-    /// Waits for ffmpeg, checks it succeeded, and renames the video into place.
+    /// Waits for ffmpeg, checks it succeeded (its exit status, its log and the file: see
+    /// mp4_check.hpp), and renames the video into place; throws io::WriteError otherwise.
     void finish();
 
 private:

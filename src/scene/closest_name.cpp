@@ -30,6 +30,12 @@ std::optional<std::string> closestName(std::string_view word, const std::vector<
     std::size_t bestDistance = allowed + 1;
     bool tie = false;
     for (const auto& candidate : candidates) {
+        // The distance is at least the difference in length: a key of a megabyte is no one's
+        // typo, and is not compared letter by letter.
+        const std::size_t gap = word.size() > candidate.size() ? word.size() - candidate.size()
+                                                               : candidate.size() - word.size();
+        if (gap > allowed)
+            continue;
         const std::size_t distance = editDistance(word, candidate);
         if (distance < bestDistance) {
             best = candidate;

@@ -1,12 +1,14 @@
 #include "fabric_readers.hpp"
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "one_line.hpp"
 #include "pba/spring_network.hpp"
 
 namespace pba::scene_detail {
@@ -28,7 +30,14 @@ FabricParticles readShared(ObjectReader& reader, std::size_t count)
     if (shared.name.empty())
         reader.fail("name", "must not be empty");
     // The whole rope or cloth weighs `mass`, so that its resolution does not change its weight.
-    shared.mass = reader.positive("mass", 1.0) / double(count);
+    const double total = reader.positive("mass", 1.0);
+    shared.mass = total / double(count);
+    // A share below the smallest normal double has no finite inverse (or is zero): every force
+    // on the particle would turn into an infinite acceleration.
+    if (!(shared.mass >= std::numeric_limits<double>::min()))
+        reader.fail("mass", fmt::format("{} kg shared among {} particles is {} kg each, below the smallest normal "
+                                        "number ({:g}): give a larger mass", total, count, shared.mass,
+                                        std::numeric_limits<double>::min()));
     shared.restitution = reader.number("restitution", 1.0);
     if (!(shared.restitution >= 0.0 && shared.restitution <= 1.0))
         reader.fail("restitution", fmt::format("must be in [0, 1], got {}", shared.restitution));
@@ -40,10 +49,10 @@ std::size_t addFabricParticle(ObjectReader& reader, const std::string& key, Fabr
                               const FabricParticles& shared, const std::string& name, const dvec3& at)
 {
     if (!target.names.insert(name).second)
-        reader.fail("name", fmt::format("its particle '{}' is named like another particle", name));
+        reader.fail("name", fmt::format("its particle '{}' is named like another particle", oneLine(name)));
     if (!insideSurfaces(target.world, at))
-        reader.fail(key, fmt::format("particle '{}' at ({}, {}, {}) lies outside the ground or room", name, at.x, at.y,
-                                     at.z));
+        reader.fail(key, fmt::format("particle '{}' at ({}, {}, {}) lies outside the ground or room", oneLine(name),
+                                     at.x, at.y, at.z));
     Particle p;
     p.setName(name);
     p.setPos(at);
@@ -154,7 +163,7 @@ GridIndex readClothPin(ObjectReader& reader, const Json& item, std::size_t colum
         if (name == "bottom-right")
             return {columns - 1, rows - 1};
         reader.fail("pinned", fmt::format("unknown corner '{}' (expected top-left, top-right, bottom-left, "
-                                          "bottom-right, or [column, row])", name));
+                                          "bottom-right, or [column, row])", oneLine(name)));
     }
     const bool pair = item.is_array() && item.size() == 2 && item[0].is_number() && item[1].is_number();
     if (!pair)

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "one_line.hpp"
 #include "pba/blow_dryer.hpp"
 #include "pba/forces.hpp"
 
@@ -19,7 +20,7 @@ std::size_t readParticle(ObjectReader& reader, const std::string& key, const std
 {
     const auto index = world.findBody(name);
     if (!index)
-        reader.fail(key, fmt::format("no particle or rigid body named '{}'", name));
+        reader.fail(key, fmt::format("no particle or rigid body named '{}'", oneLine(name)));
     return *index;
 }
 
@@ -44,19 +45,19 @@ std::unique_ptr<Force> parseTwoBodySpring(ObjectReader& reader, World& world)
     const std::size_t a = readParticle(reader, "particles", names[0], world);
     const std::size_t b = readParticle(reader, "particles", names[1], world);
     if (a == b)
-        reader.fail("particles", fmt::format("joins '{}' to itself: name two different particles", names[0]));
+        reader.fail("particles", fmt::format("joins '{}' to itself: name two different particles", oneLine(names[0])));
     for (const auto& [index, name] : {std::pair{a, names[0]}, std::pair{b, names[1]}})
         if (world.isRigid(index))
             reader.fail("particles", fmt::format("'{}' is a rigid body: a spring between two bodies joins particles "
                                                  "(tie a rigid body to an anchor with \"particle\" and \"attachment\")",
-                                                 name));
+                                                 oneLine(name)));
     const Body& first = world.body(a);
     const Body& second = world.body(b);
     if (!first.isFixed() && !second.isFixed() && first.getIntegrator() != second.getIntegrator())
         reader.fail("particles", fmt::format("the spring joins '{}' ({}) and '{}' ({}): particles joined by springs "
                                              "move as one system and must share one integrator",
-                                             names[0], integratorName(first.getIntegrator()), names[1],
-                                             integratorName(second.getIntegrator())));
+                                             oneLine(names[0]), integratorName(first.getIntegrator()),
+                                             oneLine(names[1]), integratorName(second.getIntegrator())));
     const double stiffness = reader.positive("stiffness");
     const double restLength = reader.nonNegative("rest_length", 0.0);
     const double damping = reader.nonNegative("damping", 0.0);
@@ -75,7 +76,7 @@ std::unique_ptr<Force> parseSpring(ObjectReader& reader, World& world)
     const dvec3 attachment = reader.vec3("attachment", dvec3(0.0));
     if (attachment != dvec3(0.0) && !world.isRigid(index))
         reader.fail("attachment", fmt::format("'{}' is a particle, a point: only a rigid body has points to tie a "
-                                              "spring to", reader.string("particle")));
+                                              "spring to", oneLine(reader.string("particle"))));
     return std::make_unique<Spring>(index, anchor, stiffness, restLength, damping, attachment);
 }
 
@@ -93,7 +94,7 @@ Enum readChoice(ObjectReader& reader, const std::string& key, Enum fallback, std
     const std::string name = reader.string(key);
     const auto value = fromName(name);
     if (!value)
-        reader.fail(key, fmt::format("unknown value '{}' (expected {})", name, expected));
+        reader.fail(key, fmt::format("unknown value '{}' (expected {})", oneLine(name), expected));
     return *value;
 }
 

@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "one_line.hpp"
+
 namespace pba::scene_detail {
 
 namespace {
@@ -46,7 +48,11 @@ void ObjectReader::expectKeys(std::vector<std::string> known)
             fail(item.key(), unknownKeyReason(item.key(), m_known));
 }
 
-std::string ObjectReader::pathOf(const std::string& key) const { return m_path.empty() ? key : m_path + "." + key; }
+std::string ObjectReader::pathOf(const std::string& key) const
+{
+    // An unknown key is the user's text: escaped and cut like any other.
+    return m_path.empty() ? oneLine(key) : m_path + "." + oneLine(key);
+}
 
 void ObjectReader::fail(const std::string& key, const std::string& reason) const
 {

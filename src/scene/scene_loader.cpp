@@ -13,7 +13,10 @@
 #include "fabric_readers.hpp"
 #include "force_parsers.hpp"
 #include "json_reader.hpp"
+#include "memory_estimate.hpp"
+#include "one_line.hpp"
 #include "rigid_body_reader.hpp"
+#include "room_fit.hpp"
 #include "swarm_reader.hpp"
 #include "pba/forces.hpp"
 #include "pba/swarm.hpp"
@@ -22,7 +25,12 @@
 namespace pba {
 
 SceneError::SceneError(std::string file, std::string field, std::string reason)
-    : std::runtime_error(fmt::format("{}: {}: {}", file, field, reason)), m_file(std::move(file)),
+    // One line whatever the parts hold: a field's keys and a reason's quoted names are cut where
+    // they are put in, and a file's path here.
+    : std::runtime_error(fmt::format("{}: {}: {}", scene_detail::oneLine(file, scene_detail::kShownPathLength),
+                                     scene_detail::oneLine(field, scene_detail::kWhole),
+                                     scene_detail::oneLine(reason, scene_detail::kWhole))),
+      m_file(std::move(file)),
       m_field(std::move(field)), m_reason(std::move(reason))
 {
 }
@@ -36,7 +44,7 @@ Integrator readIntegrator(ObjectReader& reader, const std::string& key, Integrat
     const std::string name = reader.string(key);
     const auto integrator = integratorFromName(name);
     if (!integrator)
-        reader.fail(key, fmt::format("unknown integrator '{}' (expected {})", name, integratorNameList()));
+        reader.fail(key, fmt::format("unknown integrator '{}' (expected {})", oneLine(name), integratorNameList()));
     return *integrator;
 }
 
@@ -68,11 +76,12 @@ using scene_detail::Json;
 using scene_detail::ObjectReader;
 using scene_detail::insideSurfaces;
 using scene_detail::readIntegrator;
+using scene_detail::oneLine;
 using scene_detail::readName;
 using scene_detail::fitsFloat;
 using scene_detail::kFloatMax;
 using scene_detail::readSwarm;
-using scene_detail::requireMemoryForSwarms;
+using scene_detail::requireMemoryForBodies;
 using scene_detail::swarmFieldsFit;
 
 void readSurfaces(ObjectReader& root, World& world)
@@ -108,7 +117,7 @@ void readParticle(const Json& value, const std::string& path, const std::string&
     if (name.empty())
         reader.fail("name", "must not be empty");
     if (!names.insert(name).second)
-        reader.fail("name", fmt::format("another particle is already named '{}'", name));
+        reader.fail("name", fmt::format("another particle is already named '{}'", oneLine(name)));
     p.setName(name);
     p.setPos(reader.vec3("position"));
     p.setVel(reader.vec3("velocity", dvec3(0.0)));
@@ -168,8 +177,10 @@ void readForce(const Json& value, const std::string& path, const std::string& fi
     for (const auto& known : scene_detail::forceTypes())
         names.emplace_back(known.name);
     if (const auto close = scene_detail::closestName(type, names))
-        reader.fail("type", fmt::format("unknown force type '{}' (did you mean \"{}\"?)", type, *close));
-    reader.fail("type", fmt::format("unknown force type '{}' (expected one of: {})", type, fmt::join(names, ", ")));
+        reader.fail("type", fmt::format("unknown force type '{}' (did you mean \"{}\"?)", oneLine(type),
+                                        *close));
+    reader.fail("type", fmt::format("unknown force type '{}' (expected one of: {})", oneLine(type),
+                                    fmt::join(names, ", ")));
 }
 
 /// Every particle's energy must be finite at the start: a velocity of 1e300 m/s is a valid
@@ -204,7 +215,7 @@ void requireFiniteEnergies(const World& world, const FabricLayout& fabric, const
         const std::string key = bodyKey(i, world, fabric);
         // A particle's or rigid body's own entry has the fields.
         const bool own = key.rfind("particles[", 0) == 0 || key.rfind("rigid_bodies[", 0) == 0;
-        const std::string who = own ? "" : fmt::format("its particle '{}': ", world.body(i).getName());
+        const std::string who = own ? "" : fmt::format("its particle '{}': ", oneLine(world.body(i).getName()));
         if (!std::isfinite(world.kineticEnergy(i)))
             throw SceneError(file, own ? key + ".velocity" : key,
                              who + "too large: the kinetic energy m v^2 / 2 is not finite");
@@ -230,7 +241,7 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
         const auto response = collisionResponseFromName(name);
         if (!response)
             root.fail("collision_response",
-                      fmt::format("unknown collision response '{}' (expected {})", name,
+                      fmt::format("unknown collision response '{}' (expected {})", oneLine(name),
                                   collisionResponseNameList()));
         scene.world.setCollisionResponse(*response);
     }
@@ -239,8 +250,9 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
     if (document.is_object() && document.contains("swarms") && !(fitsFloat(g.x) && fitsFloat(g.y) && fitsFloat(g.z)))
         root.fail("gravity", fmt::format("cannot be represented in single precision, as a swarm's numbers are (at "
                                          "most {:.3g} in size)", kFloatMax));
-    requireMemoryForSwarms(document, file);
+    requireMemoryForBodies(document, file, directory);
     std::set<std::string> names;
+    scene_detail::MeshLibrary meshes;
     root.array("particles", [&](const Json& value, const std::string& path, std::size_t) {
         readParticle(value, path, file, scene.world, names);
     });
@@ -252,7 +264,7 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
         scene_detail::readCloth(value, path, file, fabric);
     });
     root.array("rigid_bodies", [&](const Json& value, const std::string& path, std::size_t) {
-        scene_detail::readRigidBody(value, path, file, directory, scene.world, names);
+        scene_detail::readRigidBody(value, path, file, directory, scene.world, names, meshes);
     });
     root.array("swarms", [&](const Json& value, const std::string& path, std::size_t) {
         readSwarm(value, path, file, scene.world, names);
@@ -261,15 +273,35 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
         readForce(value, path, file, scene.world);
     });
     root.finish();
+    scene_detail::requireRigidBodiesInside(scene.world, file);
     requireFiniteEnergies(scene.world, scene.fabric, file);
     return scene;
 }
 
+/// The parser's message quotes the whole token it stopped in, after `opener` and up to `closer`
+/// (a string of a megabyte, all of it): only its end is kept, which is where the trouble is.
+std::string cutQuotedToken(const std::string& reason, std::string_view opener, std::string_view closer)
+{
+    const auto at = reason.find(opener);
+    if (at == std::string::npos)
+        return reason;
+    const std::size_t begin = at + opener.size();
+    const auto end = closer.empty() ? reason.size() - 1 : reason.rfind(closer);
+    if (end == std::string::npos || end < begin || reason[end] != '\'')
+        return reason;
+    return reason.substr(0, begin) + scene_detail::oneLineTail(std::string_view(reason).substr(begin, end - begin)) +
+           reason.substr(end);
+}
+
 std::string parseErrorReason(const nlohmann::json::exception& error)
 {
-    std::string what = error.what();
+    const std::string what = error.what();
     const auto pos = what.find("] ");
-    return "malformed JSON: " + (pos == std::string::npos ? what : what.substr(pos + 2));
+    std::string reason = pos == std::string::npos ? what : what.substr(pos + 2);
+    const bool expected = reason.find("'; expected ") != std::string::npos;
+    reason = cutQuotedToken(reason, "; last read: '", expected ? "'; expected " : "");
+    reason = cutQuotedToken(reason, "number overflow parsing '", "");
+    return "malformed JSON: " + reason;
 }
 
 } // namespace
@@ -302,15 +334,19 @@ public:
         return std::nullopt;
     }
 
-    /// The path to the value being read; "(document)" outside every object.
-    std::string path() const
+    /// The path to the value being read; "(document)" outside every object. `unfinished`: the
+    /// innermost value's parse failed (a number too large), so no event counted it as an
+    /// element of its array yet: it is the one after the last counted.
+    std::string path(bool unfinished = false) const
     {
         std::string out;
-        for (const Frame& frame : m_frames) {
-            if (frame.array && frame.index >= 0)
-                out += fmt::format("[{}]", frame.index);
+        for (std::size_t k = 0; k < m_frames.size(); ++k) {
+            const Frame& frame = m_frames[k];
+            const long index = frame.index + (unfinished && k + 1 == m_frames.size() ? 1 : 0);
+            if (frame.array && index >= 0)
+                out += fmt::format("[{}]", index);
             else if (!frame.array && !frame.key.empty())
-                out += (out.empty() ? "" : ".") + frame.key;
+                out.append(out.empty() ? "" : ".").append(oneLine(frame.key));
         }
         return out.empty() ? "(document)" : out;
     }
@@ -343,7 +379,7 @@ Scene parseScene(std::string_view json, const std::string& source, const std::fi
     try {
         document = Json::parse(json.begin(), json.end(), watch);
     } catch (const nlohmann::json::out_of_range& error) { // a number too large: the value being read
-        throw SceneError(source, position.path(), parseErrorReason(error));
+        throw SceneError(source, position.path(true), parseErrorReason(error));
     } catch (const nlohmann::json::exception& error) { // a syntax error: the parser's line and column say where
         throw SceneError(source, "(document)", parseErrorReason(error));
     }

@@ -1,12 +1,11 @@
 #include "swarm_reader.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <optional>
 
 #include <fmt/format.h>
 
 #include "fabric_readers.hpp"
+#include "one_line.hpp"
 #include "pba/swarm.hpp"
 #include "pba/scene/scene.hpp"
 
@@ -30,46 +29,9 @@ void requireFloat(const ObjectReader& reader, const std::string& key, const dvec
                                          "(at most {:.3g} in size)", v[i], kFloatMax));
 }
 
-/// MemAvailable from /proc/meminfo, in bytes (nothing where it cannot be read).
-std::optional<double> availableMemory()
-{
-    std::ifstream meminfo("/proc/meminfo");
-    std::string key;
-    double kilobytes = 0.0;
-    std::string unit;
-    while (meminfo >> key >> kilobytes >> unit)
-        if (key == "MemAvailable:")
-            return kilobytes * 1024.0;
-    return std::nullopt;
-}
-
-/// A swarm's arrays: six floats a particle, and a byte of "clear of every surface" with exact.
-constexpr double kSwarmBytesPerParticle = 6 * sizeof(float) + 1;
-
 } // namespace
 
 bool fitsFloat(double x) { return std::abs(x) <= kFloatMax; }
-
-void requireMemoryForSwarms(const Json& document, const std::string& file)
-{
-    if (!document.is_object() || !document.contains("swarms") || !document["swarms"].is_array())
-        return;
-    const auto available = availableMemory();
-    double bytes = 0.0;
-    for (std::size_t i = 0; i < document["swarms"].size(); ++i) {
-        const Json& swarm = document["swarms"][i];
-        if (!swarm.is_object() || !swarm.contains("count") || !swarm["count"].is_number())
-            continue; // readSwarm says what is wrong with it
-        const double count = swarm["count"].get<double>();
-        if (!(count >= 0.0 && count <= 1e8))
-            continue; // not a valid count: readSwarm says so
-        bytes += count * kSwarmBytesPerParticle;
-        if (available && bytes > *available)
-            throw SceneError(file, fmt::format("swarms[{}].count", i),
-                             fmt::format("{:g} particles need {:.2f} GB with the swarms before them, more than the "
-                                         "{:.2f} GB of memory available", count, bytes / 1e9, *available / 1e9));
-    }
-}
 
 void readSwarm(const Json& value, const std::string& path, const std::string& file, World& world,
                std::set<std::string>& names)
@@ -80,7 +42,8 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
     SwarmDesc desc;
     desc.name = readName(reader, "name");
     if (desc.name.empty() || !names.insert(desc.name).second)
-        reader.fail("name", desc.name.empty() ? "must not be empty" : fmt::format("'{}' is already taken", desc.name));
+        reader.fail("name", desc.name.empty() ? "must not be empty"
+                                              : fmt::format("'{}' is already taken", oneLine(desc.name)));
     desc.count = readCount(reader, "count", 1e8);
     ObjectReader region = reader.object("region");
     region.expectKeys({"min", "max"});

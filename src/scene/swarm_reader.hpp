@@ -1,6 +1,6 @@
 #pragma once
 // The `swarms` of a scene (docs/scenes.md): particles by the thousand or million, stored as
-// float arrays, so every number of theirs must fit a float, and all of them the memory.
+// float arrays, so every number of theirs must fit a float (their memory: memory_estimate.hpp).
 #include <set>
 #include <string>
 
@@ -15,10 +15,6 @@ constexpr double kFloatMax = 3.4028234663852886e38;
 constexpr double kFloatMin = 1.1754943508222875e-38;
 
 bool fitsFloat(double x);
-
-/// Before any swarm is made (a swarm allocates its arrays at once): all the swarms' particles
-/// must fit in the memory available, or the kernel would kill the run minutes later.
-void requireMemoryForSwarms(const Json& document, const std::string& file);
 
 /// One entry of `swarms`, added to the world; its name must be new to `names`.
 void readSwarm(const Json& value, const std::string& path, const std::string& file, World& world,

@@ -44,6 +44,7 @@ struct ParticleResult {
     /// The time at which the run's state stopped being finite (NaN when it did not): the run
     /// stops there, its energy ratios read infinite and its series end there.
     double blewUpAt = std::numeric_limits<double>::quiet_NaN();
+    /// The first moving particle's (the one the plots follow); empty for the others.
     Series series;
 };
 

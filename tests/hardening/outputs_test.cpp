@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "output_checks.hpp"
 #include "support/run_command.hpp"
 
 using namespace pba::test;
@@ -35,28 +36,6 @@ fs::path sceneNamed(const fs::path& dir, const std::string& name, const std::str
     const fs::path path = dir / file;
     std::ofstream(path) << scene.dump();
     return path;
-}
-
-/// Files in `dir` whose names hold ".tmp-" (a temporary left behind).
-std::vector<std::string> temporaries(const fs::path& dir)
-{
-    std::vector<std::string> found;
-    for (const auto& entry : fs::recursive_directory_iterator(dir))
-        if (entry.path().filename().string().find(".tmp-") != std::string::npos)
-            found.push_back(entry.path().string());
-    return found;
-}
-
-void writeText(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
-
-/// A folder holding a fake `name` program that prints a message and fails.
-fs::path failingProgram(const fs::path& dir, const std::string& name)
-{
-    const fs::path bin = dir / "bin";
-    fs::create_directories(bin);
-    writeText(bin / name, "#!/bin/sh\necho \"fake " + name + " failure\" >&2\nexit 3\n");
-    fs::permissions(bin / name, fs::perms::owner_all);
-    return bin;
 }
 
 } // namespace
@@ -153,15 +132,21 @@ TEST(Outputs, AFailedWriteLeavesThePreviousFileAndNoTemporary)
           std::vector<std::string>{"render", "integrators", "--size", "320x240", "--duration", "1", "--out", "frames/"}}) {
         const fs::path target = dir / args.back();
         if (args.back() == "frames/") {
-            fs::create_directories(target);
+            // The previous frames are pba's, beside a file of the user's.
+            ASSERT_EQ(runPbaArgv({"render", "integrators", "--size", "64x48", "--duration", "0.05", "--out", "frames/"},
+                                 {.workDir = dir}).exitCode, 0);
             writeText(target / "keep.txt", "previous");
         } else {
             writeText(target, "previous");
         }
+        const auto before = args.back() == "frames/" ? contents(target) : std::map<std::string, std::string>{};
         const CommandResult r = runPbaArgv(args, {.fileSizeLimit = 2000, .workDir = dir});
         EXPECT_EQ(r.exitCode, 1) << args.back() << "\n" << r.err;
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-        EXPECT_EQ(readFile(args.back() == "frames/" ? target / "keep.txt" : target), "previous") << args.back();
+        if (args.back() == "frames/")
+            EXPECT_EQ(differences(contents(target), before), "");
+        else
+            EXPECT_EQ(readFile(target), "previous") << args.back();
     }
     EXPECT_TRUE(temporaries(dir).empty());
 }
@@ -192,23 +177,80 @@ TEST(Outputs, AFailingHelperProgramIsReportedInOneLineAndChangesNothing)
     EXPECT_TRUE(temporaries(dir).empty());
 }
 
-TEST(Outputs, AFolderOfFramesIsReplacedWhole)
+namespace {
+
+// MP4 boxes as printf(1) octal escapes: a 32-bit big-endian size, then the type.
+const std::string kFtyp = "\\000\\000\\000\\010ftyp", kMoov = "\\000\\000\\000\\010moov",
+                  kMdat = "\\000\\000\\000\\010mdat", kMdatOf4096 = "\\000\\000\\020\\000mdat";
+
+/// A fake ffmpeg that reads every frame, writes `boxes` to its output (its last argument,
+/// file:PATH), prints `message` and exits 0, as the real one does when the disk fills.
+fs::path ffmpegExitingZero(const fs::path& dir, const std::string& boxes, const std::string& message)
 {
-    const fs::path dir = freshDir("frames_whole");
-    const std::string out = (dir / "frames/").string();
-    ASSERT_EQ(runPbaArgv({"render", "spring", "--size", "64x48", "--duration", "0.5", "--fps", "10", "--out", out}).exitCode,
-              0);
-    EXPECT_TRUE(fs::exists(dir / "frames/frame_00005.png")); // t = 0, 0.1, ..., 0.5
-    ASSERT_EQ(runPbaArgv({"render", "spring", "--size", "64x48", "--duration", "0.2", "--fps", "10", "--out", out}).exitCode,
-              0);
-    EXPECT_TRUE(fs::exists(dir / "frames/frame_00002.png"));
-    EXPECT_FALSE(fs::exists(dir / "frames/frame_00003.png")) << "a frame of the longer run was left";
+    return fakeProgram(dir, "ffmpeg",
+                       "for last; do :; done\n/bin/cat >/dev/null\nprintf '" + boxes + "' >\"${last#file:}\"\n" +
+                           (message.empty() ? "" : "echo '" + message + "' >&2\n") + "exit 0\n");
 }
 
+} // namespace
+
+// ffmpeg's exit status alone passes a video cut short: its log and the file's boxes are checked.
+TEST(Outputs, AVideoIsCheckedBeforeItReplacesThePreviousOne)
+{
+    const fs::path dir = freshDir("video_checked");
+    struct Case {
+        std::string boxes, message, error;
+    };
+    for (const Case& c : {Case{kFtyp + kMdat, "", "incomplete video: it has no index (moov box)"},
+                          Case{kFtyp + kMoov + kMdatOf4096, "", "'mdat' box at byte 16 claims 4096 bytes, 8 are left"},
+                          Case{kFtyp + kMoov + kMdat, "Error writing trailer of out.mp4: No space left on device",
+                               "ffmpeg reported an error (exit status 0): Error writing trailer of out.mp4: No space"}}) {
+        writeText(dir / "out.mp4", "previous");
+        const fs::path bin = ffmpegExitingZero(dir, c.boxes, c.message);
+        const CommandResult r = runPbaArgv({"render", "integrators", "--size", "64x48", "--duration", "0.1", "--out",
+                                            (dir / "out.mp4").string()},
+                                           {.path = bin.string()});
+        EXPECT_EQ(r.exitCode, 1) << c.error;
+        EXPECT_NE(r.err.find(c.error), std::string::npos) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_EQ(readFile(dir / "out.mp4"), "previous");
+    }
+    // The same fake with a whole file and nothing to say passes: the check reads boxes, not ffmpeg.
+    const fs::path bin = ffmpegExitingZero(dir, kFtyp + kMoov + kMdat, "");
+    const CommandResult r = runPbaArgv(
+        {"render", "integrators", "--size", "64x48", "--duration", "0.1", "--out", (dir / "out.mp4").string()},
+        {.path = bin.string()});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(fs::file_size(dir / "out.mp4"), 24u);
+    EXPECT_TRUE(temporaries(dir).empty());
+}
+
+// The real thing: on a full disk ffmpeg 5 prints "Error writing trailer ... No space left on
+// device" and exits 0, its file cut at a block's end. The disk holds a file of the user's that
+// leaves 12 KiB free, less than the 20 KB video.
+TEST(Outputs, AVideoOnAFullDiskKeepsThePreviousOne)
+{
+    const fs::path dir = freshDir("video_full_disk");
+    SmallDisk disk(dir / "disk");
+    if (!disk.mounted())
+        GTEST_SKIP() << disk.why();
+    writeText(dir / "disk/filler", std::string(52000, 'x'));
+    writeText(dir / "disk/out.mp4", "previous");
+    const CommandResult r = runPbaArgv(
+        {"render", "integrators", "--size", "320x240", "--duration", "2", "--out", (dir / "disk/out.mp4").string()});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(readFile(dir / "disk/out.mp4"), "previous");
+    EXPECT_EQ(fs::file_size(dir / "disk/filler"), 52000u);
+    EXPECT_TRUE(temporaries(dir).empty());
+}
+
+// SIGHUP is what a closed terminal sends.
 TEST(Outputs, AnInterruptedRunLeavesNoTemporary)
 {
     const fs::path dir = freshDir("interrupted");
-    for (const int signal : {SIGTERM, SIGINT}) {
+    for (const int signal : {SIGTERM, SIGINT, SIGHUP}) {
         const CommandResult r =
             runPbaArgv({"sim", "integrators", "--dt", "1e-5", "--duration", "1000", "--out", "run.csv"},
                        {.stopAfterMs = 700, .stopSignal = signal, .workDir = dir});
@@ -216,6 +258,22 @@ TEST(Outputs, AnInterruptedRunLeavesNoTemporary)
         EXPECT_FALSE(fs::exists(dir / "run.csv"));
         EXPECT_TRUE(temporaries(dir).empty());
     }
+}
+
+// A run of 10^8 steps that is refused at once shows the path is checked before simulating.
+TEST(Outputs, AFilePathEndingInASlashIsRefusedBeforeAnyWork)
+{
+    const fs::path dir = freshDir("slash");
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"sim", "integrators", "--dt", "1e-5", "--duration", "1000", "--out", "x.csv/"},
+          std::vector<std::string>{"field", "blow-dryer-flow", "--slice", "--out", "f.png/"}}) {
+        const CommandResult r = runPbaArgv(args, {.workDir = dir});
+        EXPECT_EQ(r.exitCode, 2) << args.back();
+        EXPECT_NE(r.err.find(args.back() + ": names a folder (it ends in '/'), expected a file path"), std::string::npos)
+            << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    }
+    EXPECT_TRUE(fs::is_empty(dir)) << "a folder was made for a refused output";
 }
 
 TEST(Outputs, CsvQuotesNamesHoldingCommasAndQuotes)

@@ -59,6 +59,7 @@ inline CommandResult runPba(const std::string& args) { return runShell(std::stri
 } // namespace pba::test
 
 #include <csignal>
+#include <functional>
 #include <vector>
 
 #include <sys/resource.h>
@@ -71,6 +72,7 @@ struct RunOptions {
     int stopAfterMs = -1;            ///< send `stopSignal` this long after the start (-1: never)
     int stopSignal = SIGTERM;
     std::filesystem::path workDir{}; ///< empty: this process's
+    std::function<void(pid_t)> whileRunning{}; ///< called once it started, before waiting for it
 };
 
 /// Runs the pba binary with an argument vector, no shell: what the arguments hold reaches pba
@@ -102,6 +104,8 @@ inline CommandResult runPbaArgv(const std::vector<std::string>& args, const RunO
         ::execv(pointers[0], pointers.data());
         ::_exit(127);
     }
+    if (options.whileRunning)
+        options.whileRunning(pid);
     if (options.stopAfterMs >= 0) {
         ::usleep(static_cast<useconds_t>(options.stopAfterMs) * 1000);
         ::kill(pid, options.stopSignal);

@@ -1,0 +1,20 @@
+#pragma once
+// Whether the scene's rigid bodies start where they can be: each shape, at its orientation,
+// clear of the floor (or reaching down only into the blow dryer's hole, and there not through
+// the grille or the shaft's wall), the walls and the ceiling. The contacts push a body back out
+// of a surface by its speed, not its depth, so one that starts 0.14 m into the floor stays there,
+// and one larger than the room is thrown about by every wall at once. Touching is allowed: a box
+// resting on the floor starts exactly on it.
+#include <string>
+
+#include "pba/world.hpp"
+
+namespace pba::scene_detail {
+
+/// Throws SceneError for the first rigid body that starts through a surface of the world (its
+/// planes, the floor's hole and grille): rigid_bodies[i].shape when the shape at its orientation
+/// is larger than the room along an axis, else rigid_bodies[i].position, naming the surface and
+/// the depth. Call when the world is complete: the blow dryer cuts its hole after the bodies.
+void requireRigidBodiesInside(const World& world, const std::string& file);
+
+} // namespace pba::scene_detail
