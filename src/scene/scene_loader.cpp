@@ -12,6 +12,7 @@
 
 #include "fabric_readers.hpp"
 #include "force_parsers.hpp"
+#include "joint_reader.hpp"
 #include "json_reader.hpp"
 #include "memory_estimate.hpp"
 #include "one_line.hpp"
@@ -227,7 +228,7 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
 {
     ObjectReader root(document, "", file);
     root.expectKeys({"name", "summary", "description", "dt", "duration", "gravity", "collision_response", "ground",
-                     "room", "particles", "ropes", "cloths", "rigid_bodies", "swarms", "forces"});
+                     "room", "particles", "ropes", "cloths", "rigid_bodies", "joints", "swarms", "forces"});
     Scene scene;
     scene.source = file;
     scene.name = readName(root, "name", "unnamed");
@@ -265,6 +266,9 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
     });
     root.array("rigid_bodies", [&](const Json& value, const std::string& path, std::size_t) {
         scene_detail::readRigidBody(value, path, file, directory, scene.world, names, meshes);
+    });
+    root.array("joints", [&](const Json& value, const std::string& path, std::size_t) {
+        scene_detail::readJoint(value, path, file, scene.world);
     });
     root.array("swarms", [&](const Json& value, const std::string& path, std::size_t) {
         readSwarm(value, path, file, scene.world, names);

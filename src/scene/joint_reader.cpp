@@ -1,0 +1,137 @@
+#include "joint_reader.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "one_line.hpp"
+
+namespace pba::scene_detail {
+
+namespace {
+
+JointType readType(ObjectReader& reader)
+{
+    const std::string name = reader.string("type");
+    if (const auto type = jointTypeFromName(name))
+        return *type;
+    const std::vector<std::string> names{"ball", "hinge", "distance", "fixed"};
+    const auto close = closestName(name, names);
+    reader.fail("type", fmt::format("unknown joint type '{}'{} (expected ball, hinge, distance or fixed)",
+                                    oneLine(name), close ? fmt::format(": did you mean '{}'?", *close) : ""));
+}
+
+/// The rigid body a joint names, by its name.
+std::size_t rigidBodyNamed(const ObjectReader& reader, const World& world, const Json& entry, std::size_t k)
+{
+    const std::string key = fmt::format("bodies[{}]", k);
+    if (!entry.is_string())
+        reader.fail(key, "must be a body's name (a string)");
+    const std::string name = entry.get<std::string>();
+    const auto index = world.findBody(name);
+    if (!index) {
+        std::vector<std::string> names;
+        for (std::size_t i = 0; i < world.bodyCount(); ++i)
+            if (world.isRigid(i))
+                names.push_back(world.body(i).getName());
+        const auto close = closestName(name, names);
+        reader.fail(key, fmt::format("no rigid body is named '{}'{}", oneLine(name),
+                                     close ? fmt::format(": did you mean '{}'?", *close) : ""));
+    }
+    if (!world.isRigid(*index))
+        reader.fail(key, fmt::format("'{}' is a particle: a joint joins rigid bodies", oneLine(name)));
+    return *index;
+}
+
+std::array<dvec3, 2> readAnchors(ObjectReader& reader)
+{
+    const Json& value = reader.raw("anchors");
+    if (!value.is_array() || value.size() != 2)
+        reader.fail("anchors", "must be two points [[x, y, z], [x, y, z]]: on the first body and on the second "
+                               "(or the world)");
+    std::array<dvec3, 2> anchors;
+    for (std::size_t k = 0; k < 2; ++k) {
+        const Json& p = value[k];
+        if (!p.is_array() || p.size() != 3 || !std::all_of(p.begin(), p.end(), [](const Json& x) {
+                return x.is_number() && std::isfinite(x.get<double>());
+            }))
+            reader.fail(fmt::format("anchors[{}]", k), "must be a point [x, y, z] of three finite numbers");
+        anchors[k] = dvec3(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+    }
+    return anchors;
+}
+
+std::array<double, 2> readLimits(ObjectReader& reader)
+{
+    const Json& value = reader.raw("limits");
+    if (!value.is_array() || value.size() != 2 || !value[0].is_number() || !value[1].is_number())
+        reader.fail("limits", "must be [lower, upper], two angles in radians");
+    const double lower = value[0].get<double>(), upper = value[1].get<double>();
+    if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= 0.0 && 0.0 <= upper &&
+          lower >= -std::numbers::pi && upper <= std::numbers::pi))
+        reader.fail("limits", fmt::format("must hold the start's angle, 0, within [-pi, pi] (lower <= 0 <= upper), "
+                                          "got [{}, {}]", lower, upper));
+    return {lower, upper};
+}
+
+} // namespace
+
+void readJoint(const Json& value, const std::string& path, const std::string& file, World& world)
+{
+    ObjectReader reader(value, path, file);
+    reader.expectKeys({"type", "bodies", "anchor", "anchors", "axis", "limits", "length", "stiffness", "damping"});
+    JointDesc joint;
+    joint.type = readType(reader);
+    const Json& bodies = reader.raw("bodies");
+    if (!bodies.is_array() || bodies.empty() || bodies.size() > 2)
+        reader.fail("bodies", "must name one rigid body (joined to the world) or two: [\"a\"] or [\"a\", \"b\"]");
+    joint.bodyA = rigidBodyNamed(reader, world, bodies[0], 0);
+    if (bodies.size() == 2) {
+        joint.bodyB = rigidBodyNamed(reader, world, bodies[1], 1);
+        if (*joint.bodyB == joint.bodyA)
+            reader.fail("bodies", "names the same body twice");
+    }
+    auto onlyFor = [&](const char* key, bool allowed, const char* types) {
+        if (reader.has(key) && !allowed)
+            reader.fail(key, fmt::format("belongs to {} joints only", types));
+    };
+    const bool distance = joint.type == JointType::Distance, hinge = joint.type == JointType::Hinge;
+    onlyFor("anchors", distance, "distance");
+    onlyFor("length", distance, "distance");
+    onlyFor("stiffness", distance, "distance");
+    onlyFor("damping", distance, "distance");
+    onlyFor("anchor", !distance, "ball, hinge and fixed");
+    onlyFor("axis", hinge, "hinge");
+    onlyFor("limits", hinge, "hinge");
+    if (distance) {
+        joint.anchors = readAnchors(reader);
+        if (reader.has("length"))
+            joint.length = reader.nonNegative("length");
+        if (reader.has("stiffness"))
+            joint.stiffness = reader.positive("stiffness");
+        if (reader.has("damping") && !joint.stiffness)
+            reader.fail("damping", "belongs to a spring: give a stiffness too (without one the rod is rigid)");
+        joint.damping = reader.nonNegative("damping", 0.0);
+    } else if (joint.type == JointType::Fixed) {
+        joint.anchor = reader.vec3("anchor", world.body(joint.bodyA).getPos());
+    } else {
+        joint.anchor = reader.vec3("anchor");
+    }
+    if (hinge) {
+        joint.axis = reader.vec3("axis");
+        if (!(glm::length(joint.axis) > 0.0))
+            reader.fail("axis", "must not be zero");
+        if (reader.has("limits"))
+            joint.limits = readLimits(reader);
+    }
+    reader.finish();
+    try {
+        world.addJoint(joint);
+    } catch (const std::invalid_argument& e) {
+        reader.failHere(e.what());
+    }
+}
+
+} // namespace pba::scene_detail
