@@ -40,6 +40,7 @@ import argparse
 import json
 import math
 import os
+import shutil
 import statistics
 import sys
 import tempfile
@@ -253,6 +254,7 @@ def main():
     parser.add_argument("--validate-only", action="store_true", help="the start and the first steps only (the ctest)")
     parser.add_argument("--self-test", action="store_true", help="only pile_check.py's geometry on known boxes")
     parser.add_argument("--steps", type=int, default=40, help="with --validate-only: steps in all (default 40)")
+    parser.add_argument("--keep", metavar="DIR", help="also keep the start and final states' CSVs in DIR")
     parser.add_argument("--pba", default=os.path.join(ROOT, "build", "pba"), help="the pba binary (build/pba)")
     parser.add_argument("--bullet", default=os.path.join(ROOT, "build", "bench", "peers", "bullet_pile"),
                         help="the Bullet peer (build/bench/peers/bullet_pile)")
@@ -273,6 +275,11 @@ def main():
     args.pba, args.bullet = os.path.abspath(args.pba), os.path.abspath(args.bullet)
     with tempfile.TemporaryDirectory(prefix="pba-pile-") as tmp:
         ok = all([run(args, n, tmp) for n in args.n])
+        if args.keep:
+            os.makedirs(args.keep, exist_ok=True)
+            for name in sorted(os.listdir(tmp)):
+                shutil.copy(os.path.join(tmp, name), args.keep)
+            print(f"pile.py: the states are in {args.keep}")
     if not ok:
         print("pile.py: FAILED: a check did not pass (see above)", file=sys.stderr)
         return 1
