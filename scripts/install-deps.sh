@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs every Debian package pba needs to build, test, render and plot (and the NumPy and Numba
-# of bench/peers, whose validation is a test). Idempotent.
+# of bench/peers, whose validation is a test, and Bullet, the pile's peer). Idempotent.
 # Run as root (or through sudo) on Debian 12.
 set -euo pipefail
 packages=(
@@ -12,6 +12,7 @@ packages=(
   xvfb xauth ffmpeg gnuplot-nox
   clang-14 libfuzzer-14-dev libclang-rt-14-dev
   python3-numba python3-numpy
+  libbullet-dev
 )
 missing=()
 for p in "${packages[@]}"; do

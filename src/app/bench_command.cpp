@@ -1,7 +1,8 @@
 // `pba bench`: particle-steps per second of the swarm layout against the practical's
 // vector of heap Particles and against the memory-bandwidth bound, measured in one run, then
 // the scene rows (bench_swarm.hpp, bench_scenes.hpp); or, with --phases, where a swarm step's
-// time goes; or, with --peer-worker, the swarm driven by bench/peers/run.py.
+// time goes; or, with --peer-worker, the swarm driven by bench/peers/run.py; or, with
+// --pile-worker, a pile of dice driven by bench/peers/pile.py (bench_pile.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "bench_pile.hpp"
 #include "bench_scenes.hpp"
 #include "bench_swarm.hpp"
 #include "bench_timing.hpp"
@@ -40,6 +42,8 @@ struct BenchOptions {
     bool phases = false; ///< --phases: where a swarm step's time goes, instead of the rows
     std::string integrator = "semi-implicit-euler"; ///< --phases' and --peer-worker's integrator
     bool integratorGiven = false;                   ///< --integrator was on the command line
+    bool pileWorker = false; ///< --pile-worker: a pile of --dice dice, windows on request (bench/peers/pile.py)
+    std::size_t dice = 1000;
 };
 
 /// Statistics of the swarm the peers are validated against (bench/peers/): the mean height, the
@@ -195,8 +199,8 @@ int runPhases(const BenchOptions& options)
     return kExitSuccess;
 }
 
-/// The rows, the cloth's, the dice's and fountain-1m's as {"results": [...]}.
-void printJson(const std::vector<Row>& rows, const std::vector<ClothRow>& cloth, const SpanRun& dice,
+/// The rows, the cloth's, the piles' and fountain-1m's as {"results": [...]}.
+void printJson(const std::vector<Row>& rows, const std::vector<ClothRow>& cloth, const std::vector<PileRun>& piles,
                const SceneRun& fountain, int cores)
 {
     nlohmann::json out;
@@ -221,16 +225,19 @@ void printJson(const std::vector<Row>& rows, const std::vector<ClothRow>& cloth,
                                   {"threads", c.threads}, {"steps_per_s", c.stepsPerSecond},
                                   {"steps_per_s_median", c.medianStepsPerSecond},
                                   {"spring_evaluations_per_s", c.stepsPerSecond * double(c.springs)}});
-    out["results"].push_back({{"layout", "dice"}, {"scene", "dice"}, {"integrator", "semi-implicit-euler"},
-                              {"n", kDice}, {"threads", dice.threads}, {"steps_per_s", dice.stepsPerSecond},
-                              {"steps_per_s_overall", dice.overallStepsPerSecond}, {"spans", dice.spans},
-                              {"steps_per_span", dice.spanSteps}, {"slowest_span_from_s", dice.slowestFrom}});
+    for (const PileRun& pile : piles) {
+        const SpanRun& run = pile.run;
+        out["results"].push_back({{"layout", "pile"}, {"scene", "dice"}, {"integrator", "semi-implicit-euler"},
+                                  {"n", pile.dice}, {"threads", run.threads}, {"steps_per_s", run.stepsPerSecond},
+                                  {"steps_per_s_overall", run.overallStepsPerSecond}, {"spans", run.spans},
+                                  {"steps_per_span", run.spanSteps}, {"slowest_span_from_s", run.slowestFrom}});
+    }
     out["machine"] = {{"cores", cores}};
     fmt::print("{}\n", out.dump(2));
 }
 
 /// The same as tables, each scene row with its target.
-void printTables(const std::vector<Row>& rows, const std::vector<ClothRow>& cloth, const SpanRun& dice,
+void printTables(const std::vector<Row>& rows, const std::vector<ClothRow>& cloth, const std::vector<PileRun>& piles,
                  const SceneRun& fountain)
 {
     fmt::print("{}{}", table(rows), spreadNotes(rows));
@@ -242,10 +249,19 @@ void printTables(const std::vector<Row>& rows, const std::vector<ClothRow>& clot
     fmt::print("(cloth-in-the-dryer at {} x {}, springs and dryer scaled with the particles' mass: "
                "semi-implicit Euler, gravity, the dryer and the room; target 1,000 steps/s on all cores)\n",
                kClothSide, kClothSide);
-    fmt::print("\ndice ({} rigid boxes, {} threads, {} spans of {} steps from the throw): {:.0f} physics steps/s in "
-               "the slowest span (from t = {:.3g} s), {:.0f} over the whole run (target 200)\n",
-               kDice, dice.threads, dice.spans, dice.spanSteps, dice.stepsPerSecond, dice.slowestFrom,
-               dice.overallStepsPerSecond);
+    fmt::print("\n{:<7} {:>6} {:>7} {:>16} {:>10} {:>12}  {}\n", "layout", "dice", "threads", "slowest steps/s",
+               "from t (s)", "over run", "target (bench/peers/pile.py measures Bullet's rate beside it)");
+    for (const PileRun& pile : piles) {
+        const SpanRun& run = pile.run;
+        const char* target = pile.dice == 1000    ? "200 steps/s, and 5 times Bullet's"
+                             : pile.dice == 10000 ? "10 times Bullet's"
+                                                  : "";
+        fmt::print("{:<7} {:>6} {:>7} {:>16.0f} {:>10.3g} {:>12.0f}  {}\n", "pile", pile.dice, run.threads,
+                   run.stepsPerSecond, run.slowestFrom, run.overallStepsPerSecond, target);
+    }
+    fmt::print("(manyDice's 10 cm dice thrown into the dice scene's room, semi-implicit Euler with contacts, {} spans "
+               "of {} steps from the throw: the slowest span's physics steps per second, and the whole run's)\n",
+               piles.front().run.spans, piles.front().run.spanSteps);
     const SpanRun& scene = fountain.run;
     fmt::print("\nfountain-1m ({} particles, {} threads, {} spans of {} steps): {:.0f} physics steps/s in its "
                "slowest span (from t = {:.3g} s), {:.0f} over the whole run (real time needs 480: 8 steps a 60 Hz "
@@ -260,6 +276,8 @@ int runBench(const BenchOptions& options)
         throw UsageError("--integrator: only with --phases or --peer-worker (the rows time every integrator)");
     if (options.peerWorker)
         return runPeerWorker(options);
+    if (options.pileWorker)
+        return runPileWorker(options.dice);
     if (options.phases)
         return runPhases(options);
     std::vector<std::size_t> sizes;
@@ -287,17 +305,20 @@ int runBench(const BenchOptions& options)
     if (!options.json)
         fmt::print(stderr, "stepping a {} x {} cloth\n", kClothSide, kClothSide);
     const std::vector<ClothRow> cloth = measureCloth(minTime, repeats, cores);
-    if (!options.json)
-        fmt::print(stderr, "throwing {} dice\n", kDice);
-    const SpanRun dice = runDice(options.quick, cores);
+    std::vector<PileRun> piles;
+    for (const std::size_t dice : kPileDice) {
+        if (!options.json)
+            fmt::print(stderr, "throwing {} dice\n", dice);
+        piles.push_back(runPile(dice, options.quick, cores));
+    }
     if (!options.json)
         fmt::print(stderr, "stepping fountain-1m {}\n",
                    options.quick ? "for two spans of 4 steps" : "through its whole duration");
     const SceneRun fountain = runScene(options.quick, cores);
     if (options.json)
-        printJson(rows, cloth, dice, fountain, cores);
+        printJson(rows, cloth, piles, fountain, cores);
     else
-        printTables(rows, cloth, dice, fountain);
+        printTables(rows, cloth, piles, fountain);
     return kExitSuccess;
 }
 
@@ -308,7 +329,8 @@ void addBenchCommand(CLI::App& root, Action& selected)
     auto options = std::make_shared<BenchOptions>();
     CLI::App* bench = root.add_subcommand("bench", "Measure particle-steps per second: swarms with each integrator "
                                                    "on 1 and all cores, the heap-Particle baseline, the bandwidth "
-                                                   "bound, a 128 x 128 cloth, 10,000 dice");
+                                                   "bound, a 128 x 128 cloth, piles of 1,000 and 10,000 "
+                                                   "dice");
     bench->add_flag("--json", options->json, "Print {\"results\": [...]} instead of a table");
     bench->add_flag("--quick", options->quick, "Measure briefly, at N = 1e3 and 1e5 (for scripted checks)");
     bench->add_option("--windows", options->windows, "Windows timed per row, 1 to 100 (default 6, 1 with --quick)")
@@ -334,6 +356,15 @@ void addBenchCommand(CLI::App& root, Action& selected)
         ->check(CLI::IsMember({"flight", "landed", "rested"}))
         ->needs(peerWorker)
         ->option_text("PHASE");
+    CLI::Option* pileWorker = bench->add_flag("--pile-worker", options->pileWorker,
+                    "For bench/peers/pile.py: only a pile of --dice dice (manyDice's throw) on all cores, its "
+                    "windows taken on request from standard input and its state saved as CSV (see "
+                    "bench/peers/README.md); not with --peer-worker or --phases")
+                    ->excludes(peerWorker);
+    bench->get_option("--phases")->excludes(pileWorker);
+    bench->add_option("--dice", options->dice, "With --pile-worker: the dice thrown (default 1000)")
+        ->needs(pileWorker)
+        ->option_text("N");
     bench->footer("The workload is the blow-dryer-swarm scene (gravity, the blow dryer, the room's walls and the\n"
                   "hole) at dt = 0.002, each swarm row in three phases: in flight, from the scene's first state\n"
                   "(the rain falling, a quarter of it in the dryer's cone); landed, from its state at t = 2 s\n"
@@ -351,11 +382,12 @@ void addBenchCommand(CLI::App& root, Action& selected)
                   "so that each moves as in the 10 x 10 built-in), semi-implicit Euler at dt = 0.002, on 1\n"
                   "thread and on all cores, windows as above: physics steps per second and spring evaluations\n"
                   "per second (one per spring a step). Its states are the same on any number of threads.\n"
-                  "Then the dice row: 10,000 rigid 10 cm boxes thrown into the dice scene's room (they pass through\n"
-                  "each other: rigid against rigid is not simulated), semi-implicit Euler with contacts on all\n"
-                  "cores, stepped from the throw through the landing to rest (4 s), timed half a second at a\n"
-                  "time: physics steps per second in the slowest half second and over the run. Its states are\n"
-                  "the same on any number of threads.\n"
+                  "Then the pile rows: 1,000 and 10,000 rigid 10 cm boxes thrown into the dice scene's room\n"
+                  "(manyDice: from cells of a lattice over the room, none overlapping another), semi-implicit\n"
+                  "Euler with contacts on all cores, stepped from the throw through the landing to rest (4 s;\n"
+                  "two spans of 10 steps with --quick), timed half a second at a time: physics steps per second\n"
+                  "in the slowest half second and over the run. Their states are the same on any number of\n"
+                  "threads. bench/peers/pile.py times the same throws beside Bullet's.\n"
                   "Last, the fountain-1m scene is stepped as a program would through its whole 10 s, timed a\n"
                   "simulated second at a time (two spans of 4 steps with --quick); its physics steps per second\n"
                   "are reported for its slowest second (the one a real-time program must keep up with) and for\n"

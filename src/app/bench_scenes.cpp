@@ -35,7 +35,8 @@ std::size_t springCount(const World& world)
     return counter.springs;
 }
 
-constexpr double kDiceDuration = 4.0;
+/// The pile rows' span from the throw: the landing and the settling (bench/peers/pile.py's default).
+constexpr double kPileDuration = 4.0;
 
 } // namespace
 
@@ -80,17 +81,18 @@ void timeRun(World& world, double dt, SpanRun& run)
 
 } // namespace
 
-SpanRun runDice(bool quick, int cores)
+PileRun runPile(std::size_t dice, bool quick, int cores)
 {
-    Scene scene = manyDice(kDice);
+    Scene scene = manyDice(dice);
     World& world = scene.world;
     world.setThreads(0);
-    SpanRun run;
+    PileRun pile{dice, {}};
+    SpanRun& run = pile.run;
     run.threads = cores;
     run.spanSteps = quick ? 10 : static_cast<int>(std::lround(0.5 / scene.dt));
-    run.spans = quick ? 2 : static_cast<int>(std::lround(kDiceDuration / 0.5));
+    run.spans = quick ? 2 : static_cast<int>(std::lround(kPileDuration / 0.5));
     timeRun(world, scene.dt, run);
-    return run;
+    return pile;
 }
 
 /// The rain in flight is the cheap part; from about 4 s nearly every particle lies on the floor,

@@ -1,6 +1,7 @@
 #pragma once
-// `pba bench`'s scene rows, each stepped as a program steps it: a 128 x 128 cloth (springs), 10,000
-// dice (rigid bodies with contacts), and fountain-1m through its whole duration.
+// `pba bench`'s scene rows, each stepped as a program steps it: a 128 x 128 cloth (springs), piles
+// of 1,000 and 10,000 dice (rigid bodies with contacts), and fountain-1m through its whole duration.
+#include <array>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -23,8 +24,8 @@ struct ClothRow {
 /// as many steps as filled a first window.
 std::vector<ClothRow> measureCloth(double minTime, int repeats, int cores);
 
-/// The dice row's dice: 10 cm boxes.
-constexpr std::size_t kDice = 10000;
+/// The pile rows' dice counts: manyDice's 10 cm boxes.
+constexpr std::array<std::size_t, 2> kPileDice{1000, 10000};
 
 /// A run timed span by span: physics steps per second in its slowest span (a program must keep
 /// up with it) and over the whole run.
@@ -35,11 +36,17 @@ struct SpanRun {
     double slowestFrom = 0.0; ///< the simulated time the slowest span starts at, s
 };
 
-/// The dice row: kDice dice thrown into the dice scene's room, semi-implicit Euler with contacts
-/// on all cores, stepped as a program would from the throw through their landing (bounces,
-/// slides, new contacts every step: the solver's hardest time) to rest, timed half a simulated
-/// second at a time. (`quick`: two spans of 10 steps, in flight.)
-SpanRun runDice(bool quick, int cores);
+/// A pile row: its dice and its run.
+struct PileRun {
+    std::size_t dice = 0;
+    SpanRun run;
+};
+
+/// A pile row: `dice` dice thrown into the dice scene's room (manyDice), semi-implicit Euler with
+/// contacts on all cores, stepped as a program would from the throw through their landing
+/// (bounces, slides, new contacts every step: the solver's hardest time) to rest, 4 s timed half
+/// a simulated second at a time. (`quick`: two spans of 10 steps, in flight.)
+PileRun runPile(std::size_t dice, bool quick, int cores);
 
 /// fountain-1m as a program runs it: the run, its swarm's size and integrator.
 struct SceneRun {

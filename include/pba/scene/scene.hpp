@@ -54,10 +54,12 @@ Scene loadScene(std::string_view nameOrPath);
 Scene resizedClothInTheDryer(int side);
 
 /// The built-in dice scene's room, gravity and dice (restitution, friction) with `count` 10 cm
-/// dice instead of four, each thrown from its own place in the room's lower half with its own
-/// velocity, spin and orientation (numbers that depend on the die's index alone). The workload
-/// of `pba bench`'s dice row (10,000 dice; rigid against rigid is not simulated, so they pass
-/// through each other) and of the tests that step it on any number of threads.
+/// dice instead of four, each thrown from its own place in the room with its own velocity, spin
+/// and orientation (numbers that depend on the die's index alone): the places are cells of a
+/// lattice over the whole room, each die jittered within its cell, so no two dice overlap at the
+/// start. The workload of `pba bench`'s pile rows and bench/peers/pile.py (1,000 and 10,000 dice)
+/// and of the tests that step it on any number of threads. std::invalid_argument for no dice or
+/// for more than the room's cells (10,648).
 Scene manyDice(std::size_t count);
 
 /// The built-in scenes, shipped as files in scenes/ and compiled into the library.
