@@ -194,6 +194,17 @@ public:
     bool isAsleep(std::size_t i) const;
     /// Wakes every sleeping body (after a program changed a force or moved a body by hand).
     void wakeAll();
+    /// A contact point of the last step, for drawing: where it was, its normal (from the first
+    /// body towards the second, or into the room's surface) and the normal impulse it took.
+    struct ContactPointView {
+        dvec3 point{0.0};
+        dvec3 normal{0.0};
+        double impulse = 0.0;
+        std::size_t bodyA = 0;           ///< world index
+        std::optional<std::size_t> bodyB; ///< world index; none for the room
+    };
+    /// Every touching contact point of the last step (separation below a millimetre or pushing).
+    std::vector<ContactPointView> contactPoints() const;
     /// The rigid bodies' contact pipeline: its settings, contacts and joints.
     rigid::RigidSystem& rigidSystem() { return *m_rigidSystem; }
     const rigid::RigidSystem& rigidSystem() const { return *m_rigidSystem; }

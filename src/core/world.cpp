@@ -142,6 +142,27 @@ std::size_t World::addJoint(const JointDesc& desc)
     return m_rigidSystem->joints().size() - 1;
 }
 
+std::vector<World::ContactPointView> World::contactPoints() const
+{
+    const rigid::RigidSystem& system = *m_rigidSystem;
+    std::vector<ContactPointView> out;
+    for (const rigid::Contact& c : system.contacts())
+        for (int k = 0; k < c.count; ++k) {
+            const rigid::ContactPoint& p = c.points[k];
+            if (p.separation > 1e-3 && p.normalImpulse == 0.0)
+                continue; // speculative: not touching
+            ContactPointView view;
+            view.point = p.point;
+            view.normal = p.normal;
+            view.impulse = p.normalImpulse;
+            view.bodyA = system.worldIndex(c.a);
+            if (c.b < system.size())
+                view.bodyB = system.worldIndex(c.b);
+            out.push_back(view);
+        }
+    return out;
+}
+
 std::size_t World::jointCount() const { return m_rigidSystem->joints().size(); }
 
 JointFrame World::jointFrame(std::size_t i) const
