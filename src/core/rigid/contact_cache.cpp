@@ -25,15 +25,45 @@ void ContactCache::warmStart(Contact& c) const
     const Contact* old = previous(c.key());
     if (!old)
         return;
-    for (int i = 0; i < c.count; ++i) {
-        ContactPoint& p = c.points[i];
+    // By feature id first; a point whose features changed (a clipped corner of a box resting
+    // exactly on another, whose side planes it sits on, is a vertex one step and an edge's
+    // crossing the next) takes the impulses of the nearest unclaimed old point within
+    // kMatchDistance on both bodies, as Jolt matches its cached points by position.
+    constexpr double kMatchDistance = 0.01;
+    bool claimed[contact::Manifold::kMaxPoints] = {};
+    bool matched[contact::Manifold::kMaxPoints] = {};
+    auto take = [&](ContactPoint& p, int j) {
+        p.normalImpulse = old->points[j].normalImpulse;
+        p.tangentImpulse[0] = old->points[j].tangentImpulse[0];
+        p.tangentImpulse[1] = old->points[j].tangentImpulse[1];
+        claimed[j] = true;
+    };
+    for (int i = 0; i < c.count; ++i)
         for (int j = 0; j < old->count; ++j)
-            if (old->points[j].id == p.id) {
-                p.normalImpulse = old->points[j].normalImpulse;
-                p.tangentImpulse[0] = old->points[j].tangentImpulse[0];
-                p.tangentImpulse[1] = old->points[j].tangentImpulse[1];
+            if (!claimed[j] && old->points[j].id == c.points[i].id) {
+                take(c.points[i], j);
+                matched[i] = true;
                 break;
             }
+    for (int i = 0; i < c.count; ++i) {
+        if (matched[i])
+            continue;
+        int best = -1;
+        double nearest = kMatchDistance * kMatchDistance;
+        for (int j = 0; j < old->count; ++j) {
+            if (claimed[j])
+                continue;
+            const double d = std::max(glm::dot(old->points[j].anchorA - c.points[i].anchorA,
+                                               old->points[j].anchorA - c.points[i].anchorA),
+                                      glm::dot(old->points[j].anchorB - c.points[i].anchorB,
+                                               old->points[j].anchorB - c.points[i].anchorB));
+            if (d < nearest) {
+                nearest = d;
+                best = j;
+            }
+        }
+        if (best >= 0)
+            take(c.points[i], best);
     }
 }
 

@@ -55,6 +55,8 @@ double arrival(double gap, double u, double a, double span)
 constexpr int kMaxPoints = contact::Manifold::kMaxPoints;
 constexpr int kMaxCollisionSweeps = 16;
 constexpr int kMaxImpactSweeps = 32;
+/// A sweep that changes no impulse by more than this share of the largest has converged.
+constexpr double kConverged = 1e-6;
 
 } // namespace
 
@@ -334,6 +336,7 @@ void ContactSolver::solveFriction(const Constraint& c, SolverBody& a, SolverBody
         for (int k = 0; k < 2; ++k) {
             const double next = want[k] * scale;
             p += (next - r.tangentImpulse[k]) * r.t[k];
+            m_change = std::max(m_change, std::abs(next - r.tangentImpulse[k]));
             r.tangentImpulse[k] = next;
         }
         applyPair(a, b, r, p);
@@ -351,18 +354,22 @@ void ContactSolver::solveNormal(const Constraint& c, SolverBody& a, SolverBody& 
         const double vn = glm::dot(r.n, relativeVelocity(a, b, r));
         const double next = std::max(r.normalImpulse - r.normalMass * (vn - target), 0.0);
         applyPair(a, b, r, (next - r.normalImpulse) * r.n);
+        m_change = std::max(m_change, std::abs(next - r.normalImpulse));
+        m_largest = std::max(m_largest, next);
         r.normalImpulse = next;
     }
 }
 
-void ContactSolver::solveVelocities()
+bool ContactSolver::solveVelocities()
 {
+    m_change = m_largest = 0.0;
     for (const Constraint& c : m_constraints) {
         SolverBody& a = m_bodies[c.a];
         SolverBody& b = m_bodies[c.b];
         solveFriction(c, a, b);
         solveNormal(c, a, b);
     }
+    return m_change <= kConverged * m_largest;
 }
 
 void ContactSolver::storeImpulses()

@@ -28,6 +28,9 @@ struct SolverSettings {
     /// Below this arriving speed a point does not bounce: one step of gravity's, twice over.
     double restingSpeed = 0.0;
     int velocityIterations = 8;
+    /// Sweeps past velocityIterations while the impulses still change (a stack's new contacts
+    /// need more than a warm-started pile's), at most this many in all.
+    int maxVelocityIterations = 8;
     int positionIterations = 3;
     /// Overlap the position pass leaves alone, so that touching bodies are not pushed apart
     /// and back every step.
@@ -66,7 +69,8 @@ public:
     /// Pass 2: the last step's impulses (of the points that did not bounce), then the sweeps are
     /// the caller's, interleaved with the joints'.
     void warmStart();
-    void solveVelocities();
+    /// One sweep; true when it changed no impulse by more than a millionth of the largest.
+    bool solveVelocities();
     /// Each point's impulses back into its contact, for the next step's warm start.
     void storeImpulses();
     /// Pass 3, on the bodies' end poses; one sweep.
@@ -105,6 +109,7 @@ private:
     SolverSettings m_settings;
     std::vector<Constraint> m_constraints;
     std::vector<PointRows> m_rows;
+    double m_change = 0.0, m_largest = 0.0; ///< the last sweep's largest change and impulse
 };
 
 /// Two unit vectors that complete n to an orthonormal frame (the same for the same n, bit for bit).

@@ -293,9 +293,11 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     }
     joints.warmStart();
     solver.warmStart();
-    for (int it = 0; it < settings.velocityIterations; ++it) {
+    for (int it = 0; it < settings.maxVelocityIterations; ++it) {
         joints.solveVelocities();
-        solver.solveVelocities();
+        const bool converged = solver.solveVelocities();
+        if (converged && it + 1 >= settings.velocityIterations)
+            break;
     }
     joints.storeImpulses();
     solver.storeImpulses();
@@ -309,24 +311,31 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
         b.endPosition += b.shift;
         b.endOrientation = glm::normalize(b.endOrientation + dquat(0.0, b.turn.x, b.turn.y, b.turn.z) * b.endOrientation * 0.5);
     }
-    for (int it = 0; it < settings.positionIterations; ++it) {
-        joints.solvePositions();
-        solver.solvePositions();
-    }
-    for (const std::uint32_t k : bodies) {
-        SolverBody& b = m_solverBodies[k];
-        pushOutOfRoom(*m_material[k].shape, b.endPosition, b.endOrientation, m_planes);
-    }
+    // The velocities are final: no contact may have added to the island's energy (capEnergy).
+    // The position pass then moves the poses alone, and adds no motion, whatever it moves; the
+    // room has the last word in each of its sweeps, as the boundary nothing may leave.
     capEnergy(island);
+    for (int it = 0; it < std::max(settings.positionIterations, 1); ++it) {
+        if (it < settings.positionIterations) {
+            joints.solvePositions();
+            solver.solvePositions();
+        }
+        for (const std::uint32_t k : bodies) {
+            SolverBody& b = m_solverBodies[k];
+            pushOutOfRoom(*m_material[k].shape, b.endPosition, b.endOrientation, m_planes);
+        }
+    }
 }
 
 void RigidSystem::capEnergy(std::size_t island)
 {
     // No contact leaves an island with more energy than it started the step with, or would have
     // ended it with untouched: what the linearised contacts and the push-outs would add is taken
-    // from its motion (every velocity scaled alike, which keeps the motion's direction).
+    // from its motion (every velocity scaled alike, which keeps the motion's direction). Never
+    // from its height: lowering a resting stack by what the position pass raised it would sink
+    // it a little every step.
     const auto bodies = m_islands.bodies(island);
-    double start = 0.0, free = 0.0, end = 0.0, kinetic = 0.0, mass = 0.0;
+    double start = 0.0, free = 0.0, end = 0.0, kinetic = 0.0;
     for (const std::uint32_t k : bodies) {
         const SolverBody& b = m_solverBodies[k];
         const Material& m = m_material[k];
@@ -336,7 +345,6 @@ void RigidSystem::capEnergy(std::size_t island)
         const double e = energyInGravity(s, m.inverseMass, m.inverseInertiaBody, m_gravity);
         end += e;
         kinetic += e + glm::dot(m_gravity, s.x) / m.inverseMass;
-        mass += 1.0 / m.inverseMass;
     }
     // A spring joint's energy is the island's too: what it stores is not a gain.
     enum class When { Start, Free, End };
@@ -366,16 +374,11 @@ void RigidSystem::capEnergy(std::size_t island)
     if (!(excess > 0.0)) // a NaN too: the finite check names the body
         return;
     const double keep = kinetic > excess ? std::sqrt(1.0 - excess / kinetic) : 0.0;
-    // Too little motion to take it from (a slow bounce, whose linearised contact leaves the
-    // bodies a little higher than their arcs would): they end that much lower instead.
-    const double g2 = glm::dot(m_gravity, m_gravity);
-    const dvec3 lower = kinetic < excess && g2 > 0.0 ? m_gravity * ((excess - kinetic) / (mass * g2)) : dvec3(0.0);
     for (const std::uint32_t k : bodies) {
         SolverBody& b = m_solverBodies[k];
         b.v *= keep;
         // L = L_free + change: scale the whole of it.
         b.momentumChange = keep * (m_end[k].rotation.momentum + b.momentumChange) - m_end[k].rotation.momentum;
-        b.endPosition += lower;
     }
 }
 
@@ -441,7 +444,10 @@ void RigidSystem::solve(const dvec3& gravity, double dt)
     settings.dt = dt;
     settings.restingSpeed = 2.0 * glm::length(gravity) * dt;
     settings.velocityIterations = m_settings.velocityIterations;
+    settings.maxVelocityIterations = std::max(m_settings.velocityIterations, m_settings.maxVelocityIterations);
     settings.positionIterations = m_settings.positionIterations;
+    settings.linearSlop = m_settings.linearSlop;
+    settings.baumgarte = m_settings.baumgarte;
     tbb::parallel_for(std::size_t(0), m_islands.count(), [&](std::size_t island) { solveIsland(island, settings); });
     finishBodies();
     updateSleep(dt);
