@@ -98,6 +98,11 @@ struct BodyStates {
 struct Accumulators {
     std::span<dvec3> forces;
     std::span<dvec3> torques; ///< empty when no body of the world can turn
+    /// Working memory a force may use within one accumulate call (a spring network's force per
+    /// spring), or null. It is the caller's, not the force's, so that two threads may evaluate
+    /// one const force at once, each with its own; a caller that evaluates forces every step
+    /// keeps one so that a step allocates nothing, and without one a force allocates its own.
+    std::vector<dvec3>* scratch = nullptr;
 
     void add(std::size_t i, const dvec3& force) { forces[i] += force; }
     /// A force and a torque about body i's centre of mass (the sum of forces at several points).

@@ -222,6 +222,7 @@ private:
         Vec3Array x, v, acc; ///< the system's state, and its acceleration at the start
         std::vector<State> trial;
         std::vector<dvec3> forces;
+        std::vector<dvec3> forceScratch; ///< the forces' working memory (Accumulators::scratch)
     };
 
     void rebuildPlanes();

@@ -199,7 +199,7 @@ void World::integrateCoupled(Integrator integrator, const std::vector<std::size_
     // before this one leaves its bodies at its last stage: no force couples two systems.)
     s.forces.resize(m_bodies.size());
     const BodyStates in{m_bodies, s.trial, wanted, m_masses, {}};
-    Accumulators out{s.forces, {}};
+    Accumulators out{s.forces, {}, &s.forceScratch};
     bool first = true;
     auto accel = [&](const Vec3Array& xs, const Vec3Array& vs) {
         detail::forEachIndex(n, [&](std::size_t k) {
@@ -276,7 +276,7 @@ void World::stepRigid(Integrator integrator, const std::vector<std::size_t>& mem
     m_scratch.forces.resize(m_bodies.size());
     m_torques.resize(m_bodies.size());
     const BodyStates in{m_bodies, m_scratch.trial, wanted, m_masses, m_poses};
-    Accumulators out{m_scratch.forces, m_torques};
+    Accumulators out{m_scratch.forces, m_torques, &m_scratch.forceScratch};
     bool first = true;
     const auto wrenches = [&](std::span<const RigidState> at, std::span<Wrench> result) {
         detail::forEachIndex(n, [&](std::size_t k) {
