@@ -98,11 +98,12 @@ public:
     std::optional<std::size_t> findBody(std::string_view name) const;
 
     // ---- swarms: many identical particles as float arrays, stepped with the same rules ----
-    /// Throws std::invalid_argument if a force of the world cannot act on a swarm.
+    /// Throws std::invalid_argument if a force of the world cannot act on a swarm. The reference
+    /// stays valid as more swarms are added (each swarm is an object of its own, as a body is).
     Swarm& addSwarm(const SwarmDesc& desc);
     std::size_t swarmCount() const { return m_swarms.size(); }
-    Swarm& swarm(std::size_t i) { return m_swarms[i]; }
-    const Swarm& swarm(std::size_t i) const { return m_swarms[i]; }
+    Swarm& swarm(std::size_t i) { return *m_swarms[i]; }
+    const Swarm& swarm(std::size_t i) const { return *m_swarms[i]; }
     /// Threads for stepping swarms and coupled bodies (a cloth): 0 (the default) uses all cores;
     /// results do not depend on it.
     void setThreads(int threads) { m_threads = threads; }
@@ -254,7 +255,7 @@ private:
     std::vector<std::size_t> m_couplingForce; ///< the force of each pair, for the messages
     Coupling m_coupling;
     CoupledScratch m_scratch;
-    std::vector<Swarm> m_swarms;
+    std::vector<ClonePtr<Swarm>> m_swarms; ///< each its own object: addSwarm's references stay valid
     int m_threads = 0;
     bool m_swarmRollback = false;
     std::vector<std::vector<float>> m_swarmsBefore; ///< with m_swarmRollback: each swarm before the step

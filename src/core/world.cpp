@@ -72,8 +72,8 @@ Swarm& World::addSwarm(const SwarmDesc& desc)
 {
     for (const auto& force : m_forces)
         requireActsOnSwarms(*force, desc.name);
-    m_swarms.emplace_back(desc);
-    return m_swarms.back();
+    m_swarms.emplace_back(std::make_unique<Swarm>(desc));
+    return *m_swarms.back();
 }
 
 SwarmFields World::swarmFields() const
@@ -87,7 +87,7 @@ SwarmFields World::swarmFields() const
 Force& World::addForce(std::unique_ptr<Force> force)
 {
     if (!m_swarms.empty())
-        requireActsOnSwarms(*force, m_swarms.front().name());
+        requireActsOnSwarms(*force, m_swarms.front()->name());
     const std::size_t before = m_couplings.size();
     force->appendCouplings(m_couplings);
     m_couplingForce.resize(m_couplings.size(), m_forces.size());

@@ -76,10 +76,10 @@ void World::checkFinite(double dt)
         rollBack();
         throw NonFiniteStateError(bad.getName(), m_steps + 1, m_time + dt, quantity);
     }
-    for (const Swarm& swarm : m_swarms)
-        if (const auto& bad = swarm.nonFinite()) {
+    for (const auto& swarm : m_swarms)
+        if (const auto& bad = swarm->nonFinite()) {
             const NonFiniteStateError error =
-                NonFiniteStateError::inSwarm(swarm.name(), bad->index, m_steps + 1, m_time + dt, bad->quantity);
+                NonFiniteStateError::inSwarm(swarm->name(), bad->index, m_steps + 1, m_time + dt, bad->quantity);
             rollBack();
             throw error;
         }
@@ -125,7 +125,7 @@ void World::storePreviousStates()
     if (m_swarmRollback) {
         m_swarmsBefore.resize(m_swarms.size());
         for (std::size_t s = 0; s < m_swarms.size(); ++s)
-            m_swarms[s].saveState(m_swarmsBefore[s]);
+            m_swarms[s]->saveState(m_swarmsBefore[s]);
     }
 }
 
@@ -140,7 +140,7 @@ void World::rollBack()
     }
     if (m_swarmRollback)
         for (std::size_t s = 0; s < m_swarms.size() && s < m_swarmsBefore.size(); ++s)
-            m_swarms[s].restoreState(m_swarmsBefore[s]);
+            m_swarms[s]->restoreState(m_swarmsBefore[s]);
 }
 
 dvec3 World::aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const
@@ -342,8 +342,8 @@ void World::stepSwarms(double dt)
     std::vector<PlaneT<float>> planes;
     for (const Plane& p : m_planes)
         planes.push_back({Vec3<float>(p.normal), float(p.offset), float(p.holeRadius), Vec3<float>(p.holeCentre)});
-    for (Swarm& swarm : m_swarms)
-        swarm.step(fields, planes, m_response, float(dt), m_threads);
+    for (const auto& swarm : m_swarms)
+        swarm->step(fields, planes, m_response, float(dt), m_threads);
 }
 
 } // namespace pba
