@@ -156,8 +156,8 @@ public:
     // ---- stepping ----
     /// Advances every moving body and swarm by exactly dt. Throws NonFiniteStateError (bodies,
     /// and with setSwarmRollback swarms, back at their state before the step) if a state stops
-    /// being finite, and std::invalid_argument (before moving anything) if two moving bodies
-    /// coupled by a force use different integrators.
+    /// being finite, and std::invalid_argument (before moving anything) unless dt is finite and
+    /// positive, or if two moving bodies coupled by a force use different integrators.
     void step(double dt);
     double time() const { return m_time; }
     /// The time of the previous states (before the last step).

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
 #include <tbb/parallel_reduce.h>
 
 #include "pba/vec3_array.hpp"
@@ -47,6 +48,8 @@ std::uint8_t couplingKey(const Body& body)
 
 void World::step(double dt)
 {
+    if (!(dt > 0.0 && std::isfinite(dt)))
+        throw std::invalid_argument(fmt::format("a step's dt must be finite and positive, got {} s", dt));
     m_firstNonFinite = m_bodies.size();
     detail::onCores(m_threads, [&] {
         storePreviousStates();
