@@ -14,11 +14,16 @@
 
 namespace pba {
 
+BlowUpError::BlowUpError(std::string body, std::uint64_t step, double time, std::string reason)
+    : std::runtime_error(
+          fmt::format("{} at step {} (t = {:.15g} s): try a smaller dt or another integrator", reason, step, time)),
+      m_body(std::move(body)), m_step(step), m_time(time), m_reason(std::move(reason))
+{
+}
+
 NonFiniteStateError::NonFiniteStateError(std::string body, std::uint64_t step, double time, std::string quantity)
-    : std::runtime_error(fmt::format("the {} of body '{}' is not finite at step {} (t = {} s): "
-                                     "try a smaller dt or another integrator",
-                                     quantity, body, step, time)),
-      m_body(std::move(body)), m_step(step), m_time(time), m_quantity(std::move(quantity))
+    : BlowUpError(body, step, time, fmt::format("the {} of body '{}' is not finite", quantity, body)),
+      m_quantity(std::move(quantity))
 {
 }
 
