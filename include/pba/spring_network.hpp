@@ -47,6 +47,8 @@ public:
     void appendCouplings(std::vector<std::pair<std::size_t, std::size_t>>& pairs) const override;
     /// Nothing to add, and nothing missing: it acts on its own bodies only.
     bool addToSwarmFields(SwarmFields& /*fields*/) const override { return true; }
+    /// Conservative, and its damping only takes energy away.
+    bool addsEnergy() const override { return false; }
 
 private:
     double energy(std::size_t s, const BodyStates& in) const;
