@@ -148,6 +148,11 @@ void readRigidBody(const Json& value, const std::string& path, const std::string
     body->setFixed(reader.boolean("fixed", false));
     if (!insideSurfaces(world, body->getPos()))
         reader.fail("position", "lies outside the ground or room");
+    // A moving body whose centre of mass lies on a surface is half inside it, which its first
+    // step reports as a blow-up (World::step): it is bad input, refused here.
+    for (const Plane& plane : world.planes())
+        if (!body->isFixed() && plane.distance(body->getPos()) == 0.0)
+            reader.fail("position", "lies on the ground or a wall of the room: a rigid body's centre must be inside it");
     if (!std::isfinite(body->getRotationalKineticEnergy()))
         reader.fail("angular_velocity", "too large: the rotational kinetic energy is not finite");
     reader.finish();
