@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -258,7 +259,13 @@ TEST_P(PbaSimBlowUp, ExitsThreeNamingTheBodyAndKeepsTheRowsUpToTheLastGoodStep)
     EXPECT_EQ(lastStep, failed - 1);
 }
 
-INSTANTIATE_TEST_SUITE_P(Issue60, PbaSimBlowUp, testing::ValuesIn(blowUps()));
+INSTANTIATE_TEST_SUITE_P(Issue60, PbaSimBlowUp, testing::ValuesIn(blowUps()),
+                         [](const testing::TestParamInfo<BlowUp>& each) {
+                             std::string name = each.param.label;
+                             for (char& c : name)
+                                 c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                             return name;
+                         });
 
 // Forward Euler gains energy on the integrators scene (half as much again by its end): that is
 // the lesson of the practical, not a blow-up.
@@ -274,8 +281,10 @@ TEST(PbaSim, HelpSaysWhatExitThreeMeans)
     for (const char* args : {"--help", "sim --help"}) {
         const CommandResult r = runPba(args);
         ASSERT_EQ(r.exitCode, 0);
-        for (const char* part : {"3 simulation failure", "a state not finite", "inside a wall", "100 times its scale"})
-            if (std::string(args) == "--help" || std::string(part) != "3 simulation failure")
-                EXPECT_NE(r.out.find(part), std::string::npos) << args << ": " << part << "\n" << r.out;
+        for (const char* part : {"3 simulation failure", "a state not finite", "inside a wall", "100 times its scale"}) {
+            if (std::string(args) == "sim --help" && std::string(part) == "3 simulation failure")
+                continue; // sim's help says "Exit status 3"
+            EXPECT_NE(r.out.find(part), std::string::npos) << args << ": " << part << "\n" << r.out;
+        }
     }
 }
