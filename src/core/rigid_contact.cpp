@@ -36,6 +36,7 @@ struct Contact {
     int surface;     ///< the plane's index; planes.size() + p for plane p's shaft wall
     int point = 0;   ///< the contact point's index
     double target = 0.0; ///< the normal speed the point should leave with
+    bool bounces = false; ///< arriving faster than resting: it leaves at e times its speed
     Row along{}, across[2]{};
 
     /// For emplace_back, which builds a candidate in the vector: pushing a built one copied its
@@ -195,6 +196,7 @@ bool keepArriving(const ContactBody& body, const ContactStep& step, const dvec3&
         // with no velocity that would make it jitter, and no penetration to push it out of).
         const bool bounce = arriving < -step.restingSpeed;
         c.target = bounce ? -body.restitution * arriving : std::max(c.gap, 0.0) / -step.dt;
+        c.bounces = bounce;
         bounced = bounced || bounce;
         if (!tangentsKnown || std::memcmp(&c.normal, &tangentsFor, sizeof(dvec3)) != 0) {
             tangentsOf(c.normal, tangent);
@@ -212,12 +214,12 @@ bool keepArriving(const ContactBody& body, const ContactStep& step, const dvec3&
 /// Warm start: a contact that persists (the same point against the same surface) takes the
 /// impulses it ended the last step with; a bouncing one starts from none, so that its
 /// restitution is not fed by the last step's push. The memory is then empty, for this step's.
-void warmStart(RigidBody::ContactMemory& memory, double dt, std::vector<Contact>& contacts)
+void warmStart(RigidBody::ContactMemory& memory, std::vector<Contact>& contacts)
 {
     const auto& remembered = memory.impulses;
     for (Contact& c : contacts) {
-        if (c.target != std::max(c.gap, 0.0) / -dt)
-            continue; // bouncing
+        if (c.bounces) // told by its flag: with e = 0 its target, +0, equals a resting one's -0
+            continue;
         for (std::size_t k = 0; k < memory.count; ++k)
             if (remembered[k].point == c.point && remembered[k].surface == c.surface) {
                 c.along.impulse = remembered[k].normal;
@@ -305,7 +307,7 @@ bool resolvePlaneContacts(const ContactBody& body, std::span<const Plane> planes
     candidates(body, planes, start.x, r, radius + reach, reach, contacts);
     const bool bounced = keepArriving(body, step, s.v, omega, inverseInertia, contacts);
     if (body.memory)
-        warmStart(*body.memory, step.dt, contacts);
+        warmStart(*body.memory, contacts);
     const RigidState untouched = s;
     if (!contacts.empty())
         solveAtStart(body, step, inverseInertia, contacts, s);

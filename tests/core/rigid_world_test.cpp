@@ -1,7 +1,8 @@
 // Rigid bodies in the World against exact results: a box dropped flat rebounds to e^2 h without
 // turning, a sliding ball starts to roll when and as fast as the closed form says, a tilted box
-// settles on a face and stays there, nothing leaves the room however fast it is thrown, and a
-// free body's tumble in the World is the rotation integrator's.
+// settles on a face and stays there, nothing leaves the room however fast it is thrown, a free
+// body's tumble in the World is the rotation integrator's, and a bouncing contact is told from a
+// resting one by a flag, not by its target speed.
 #include "pba/world.hpp"
 
 #include <gtest/gtest.h>
@@ -15,6 +16,8 @@
 #include "pba/blow_dryer.hpp"
 #include "pba/forces.hpp"
 #include "pba/scene/scene.hpp"
+
+#include "core/rigid_contact.hpp"
 
 using namespace pba;
 
@@ -358,4 +361,36 @@ TEST(RigidWorld, ManyDiceStepTheSameOnAnyNumberOfThreads)
         ASSERT_EQ(a.getAngularMomentum(), b.getAngularMomentum()) << i;
         ASSERT_EQ(one.world.bounceCount(i), two.world.bounceCount(i)) << i;
     }
+}
+
+// A contact that bounces starts from no impulse, whatever the body's memory of the last step
+// holds (warm starting a bounce would feed its restitution with the last step's push). With
+// restitution 0 a bouncing contact's target speed, -e times its arriving speed, is +0, and a
+// resting one's at a gap of zero or less is -0: equal as numbers, so only a flag tells them
+// apart. A ball arriving at 2 m/s a tenth of a millimetre into the floor, with a remembered
+// impulse at that very point, ends its step bit for bit as one with no memory does.
+TEST(RigidContact, ABouncingContactIsNotWarmStartedEvenWithRestitutionZero)
+{
+    const Shape ball = Shape::sphere(0.2);
+    const MassProperties mass = sphereMassProperties(0.2, 1000.0);
+    const RigidInertia inertia{1.0 / mass.mass, mass.inertia, glm::inverse(mass.inertia)};
+    const std::vector<dvec3> points = contactPointsOf(ball);
+    const auto floor = groundPlanes(0.0);
+    const double dt = 0.001;
+    const dvec3 g(0.0, -kG, 0.0);
+    const RigidState start{dvec3(0.0, 0.2 - 1e-4, 0.0), dvec3(0.3, -2.0, 0.1), Rotation{}};
+    const RigidState free{start.x + (start.v + g * dt) * dt, start.v + g * dt, start.rotation};
+    const ContactStep step{start, dt, 1.0, 2.0 * kG * dt};
+    RigidBody::ContactMemory remembered, empty;
+    remembered.impulses[0] = ContactImpulse{0, 0, 5.0, {1.0, -0.5}};
+    remembered.count = 1;
+    RigidState withMemory = free, without = free;
+    const bool bounced =
+        resolvePlaneContacts(ContactBody{ball, points, inertia, 0.0, 0.5, g, 0.2, &remembered}, floor, step, withMemory);
+    resolvePlaneContacts(ContactBody{ball, points, inertia, 0.0, 0.5, g, 0.2, &empty}, floor, step, without);
+    EXPECT_TRUE(bounced);
+    EXPECT_EQ(withMemory.v, without.v);
+    EXPECT_EQ(withMemory.x, without.x);
+    EXPECT_EQ(withMemory.rotation.momentum, without.rotation.momentum);
+    EXPECT_NEAR(withMemory.v.y, 0.0, 1e-12); // e = 0: it stops against the floor
 }
