@@ -1,8 +1,16 @@
-# `cmake --install` puts the core's headers, library and a CMake package in place,
-# so another project can `find_package(pba)` and link `pba::core`.
+# `cmake --install` puts the core's headers, library and a CMake package in place, so another
+# project can `find_package(pba)` and link `pba::core`, and, where the build has it, the scene
+# loader `pba::scene` with its header pba/scene/scene.hpp (installed only with its library).
 include(CMakePackageConfigHelpers)
-install(DIRECTORY include/pba DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(TARGETS pba_core EXPORT pbaTargets
+install(DIRECTORY include/pba DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} PATTERN scene EXCLUDE)
+set(PBA_INSTALLED_TARGETS pba_core)
+set(PBA_WITH_SCENE OFF)
+if(TARGET pba_scene)
+  install(DIRECTORY include/pba/scene DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/pba)
+  list(APPEND PBA_INSTALLED_TARGETS pba_scene)
+  set(PBA_WITH_SCENE ON)
+endif()
+install(TARGETS ${PBA_INSTALLED_TARGETS} EXPORT pbaTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

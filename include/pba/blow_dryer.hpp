@@ -388,6 +388,8 @@ public:
     /// On all cores, the kernel inlined in the loop (no call per body).
     void accumulate(const BodyStates& in, Accumulators& out) const override;
     bool addToSwarmFields(SwarmFields& fields) const override;
+    /// The fan's push does work that no potential energy accounts for: an energy source.
+    bool addsEnergy() const override { return true; }
     const BlowDryerField& field() const { return m_field; }
     void setField(const BlowDryerField& field)
     {

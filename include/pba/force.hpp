@@ -98,6 +98,11 @@ struct BodyStates {
 struct Accumulators {
     std::span<dvec3> forces;
     std::span<dvec3> torques; ///< empty when no body of the world can turn
+    /// Working memory a force may use within one accumulate call (a spring network's force per
+    /// spring), or null. It is the caller's, not the force's, so that two threads may evaluate
+    /// one const force at once, each with its own; a caller that evaluates forces every step
+    /// keeps one so that a step allocates nothing, and without one a force allocates its own.
+    std::vector<dvec3>* scratch = nullptr;
 
     void add(std::size_t i, const dvec3& force) { forces[i] += force; }
     /// A force and a torque about body i's centre of mass (the sum of forces at several points).
@@ -147,6 +152,12 @@ public:
     /// as by default, when it cannot act on a swarm. A World with swarms refuses such a force
     /// (std::invalid_argument naming its type) rather than let it act on the bodies alone.
     virtual bool addToSwarmFields(SwarmFields& /*fields*/) const { return false; }
+    /// Whether the force can add energy to the bodies: do positive work that no potential energy
+    /// of its own accounts for (the blow dryer's push). A conservative force (gravity, a spring)
+    /// or a dissipative one (drag, a damper) cannot, and says so; without an answer a force is
+    /// taken to be a source, so that BlowUpWatch never calls a program's own force's work a
+    /// blow-up.
+    virtual bool addsEnergy() const { return true; }
     /// Calls the visit for the force's own type: ForceBase does it for every force derived
     /// from it; the default visits it as another force.
     virtual void accept(ForceVisitor& visitor) const { visitor.visit(*this); }

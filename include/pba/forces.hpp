@@ -15,6 +15,8 @@ public:
     void accumulate(const BodyStates& in, Accumulators& out) const override;
     double potentialEnergy(std::size_t index, const Body& body, const dvec3& x) const override;
     bool addToSwarmFields(SwarmFields& fields) const override;
+    /// Conservative: its work is its potential energy's loss.
+    bool addsEnergy() const override { return false; }
     const dvec3& acceleration() const { return m_g; }
     void setAcceleration(const dvec3& g) { m_g = g; }
 
@@ -39,6 +41,8 @@ public:
     /// On all cores.
     void accumulate(const BodyStates& in, Accumulators& out) const override;
     bool addToSwarmFields(SwarmFields& fields) const override;
+    /// It only takes energy away: still air.
+    bool addsEnergy() const override { return false; }
     double coefficient() const { return m_coefficient; }
     double angularCoefficient() const { return m_angular; }
 
@@ -78,6 +82,8 @@ public:
     double potentialEnergyShare(std::size_t index, const BodyStates& in) const override;
     /// Nothing to add, and nothing missing: a spring acts on its named particle only.
     bool addToSwarmFields(SwarmFields& /*fields*/) const override { return true; }
+    /// A fixed anchor: conservative, and its damping only takes energy away.
+    bool addsEnergy() const override { return false; }
 
     std::size_t particle() const { return m_particle; }
     const dvec3& anchor() const { return m_anchor; }
@@ -113,6 +119,8 @@ public:
     void appendCouplings(std::vector<std::pair<std::size_t, std::size_t>>& pairs) const override;
     /// Nothing to add, and nothing missing: it acts on its two named bodies only.
     bool addToSwarmFields(SwarmFields& /*fields*/) const override { return true; }
+    /// Conservative, and its damping only takes energy away.
+    bool addsEnergy() const override { return false; }
 
     std::size_t first() const { return m_a; }
     std::size_t second() const { return m_b; }

@@ -1,6 +1,7 @@
 #pragma once
 // Everything of the physics core in one include.
 #include "pba/blow_dryer.hpp"
+#include "pba/blow_up_watch.hpp"
 #include "pba/body.hpp"
 #include "pba/clock.hpp"
 #include "pba/clone_ptr.hpp"

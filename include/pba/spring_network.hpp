@@ -47,11 +47,13 @@ public:
     void appendCouplings(std::vector<std::pair<std::size_t, std::size_t>>& pairs) const override;
     /// Nothing to add, and nothing missing: it acts on its own bodies only.
     bool addToSwarmFields(SwarmFields& /*fields*/) const override { return true; }
+    /// Conservative, and its damping only takes energy away.
+    bool addsEnergy() const override { return false; }
 
 private:
     double energy(std::size_t s, const BodyStates& in) const;
-    /// Pass 1 over springs [begin, end): the force on each one's second end, into m_onSecond.
-    void onSecondEnds(const State* states, std::size_t begin, std::size_t end) const;
+    /// Pass 1 over springs [begin, end): the force on each one's second end, into onSecond.
+    void onSecondEnds(const State* states, dvec3* onSecond, std::size_t begin, std::size_t end) const;
 
     // 32-bit indices: the springs' arrays are read every force evaluation, and half their size
     // is half the memory a 97,000-spring cloth moves for them.
@@ -63,9 +65,6 @@ private:
     /// feels +F) and 2 s where it is the first (-F).
     std::vector<std::size_t> m_first;
     std::vector<std::uint32_t> m_incident;
-    /// Pass 1's output, the force on each spring's second end: scratch kept between calls so a
-    /// step allocates nothing. A World steps one force from one thread at a time.
-    mutable std::vector<dvec3> m_onSecond;
 };
 
 } // namespace pba

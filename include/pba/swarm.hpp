@@ -90,6 +90,8 @@ public:
     /// Positions and velocities from a counter-based generator: particle i's values depend on
     /// (seed, i) only, so they do not depend on how the work is split.
     explicit Swarm(const SwarmDesc& desc);
+    /// A deep copy (what a World's copy makes of its swarms).
+    std::unique_ptr<Swarm> clone() const { return std::make_unique<Swarm>(*this); }
 
     const SwarmDesc& desc() const { return m_desc; }
     const std::string& name() const { return m_desc.name; }

@@ -22,8 +22,9 @@
 //      to sleep
 //   6. step the swarms (float arrays, all cores) with the same integrator, force and
 //      collision templates
-//   7. check that every state (bodies and swarms) is finite: each was checked as it was
-//      written; here the first one that is not rolls the step back and throws
+//   7. check that every state (bodies and swarms) is finite, and that no rigid body's centre
+//      ended inside a surface: each was checked as it was written; here the first one that is
+//      not rolls the step back and throws
 // It knows no window, no file format and no clock: frame time never reaches it.
 #include <array>
 #include <cstdint>
@@ -66,23 +67,38 @@ struct FloorHole {
     double depth = 0.05;
 };
 
-/// Thrown by World::step when a body's or a swarm particle's position or velocity stops being
-/// finite. `body` names it: a body's name, or "SWARM[i]" for particle i of a swarm.
-class NonFiniteStateError : public std::runtime_error {
+/// A run that blew up: a state that cannot be, found by World::step (a position, a velocity
+/// or an orientation that stopped being finite, a rigid body's centre of mass inside a surface)
+/// or by a BlowUpWatch (an energy that is not finite, or that grew with nothing to feed it).
+/// `body` names the body ("SWARM[i]" for particle i of a swarm), `reason` says what happened to
+/// it; what() is "REASON at step N (t = T s): try a smaller dt or another integrator".
+class BlowUpError : public std::runtime_error {
 public:
-    NonFiniteStateError(std::string body, std::uint64_t step, double time, std::string quantity);
-    /// For particle `index` of swarm `swarm`.
-    static NonFiniteStateError inSwarm(const std::string& swarm, std::size_t index, std::uint64_t step, double time,
-                                       std::string quantity);
+    BlowUpError(std::string body, std::uint64_t step, double time, std::string reason);
     const std::string& body() const { return m_body; }
     std::uint64_t step() const { return m_step; }
     double time() const { return m_time; }
-    const std::string& quantity() const { return m_quantity; }
+    const std::string& reason() const { return m_reason; }
 
 private:
     std::string m_body;
     std::uint64_t m_step;
     double m_time;
+    std::string m_reason;
+};
+
+/// The blow-up of a state that stopped being finite: the reason is "the QUANTITY of body 'NAME'
+/// is not finite".
+class NonFiniteStateError : public BlowUpError {
+public:
+    NonFiniteStateError(std::string body, std::uint64_t step, double time, std::string quantity);
+    /// For particle `index` of swarm `swarm`.
+    static NonFiniteStateError inSwarm(const std::string& swarm, std::size_t index, std::uint64_t step, double time,
+                                       std::string quantity);
+    /// "position", "velocity", "angular velocity", "orientation" or "energy".
+    const std::string& quantity() const { return m_quantity; }
+
+private:
     std::string m_quantity;
 };
 
@@ -113,11 +129,12 @@ public:
     JointFrame jointFrame(std::size_t i) const;
 
     // ---- swarms: many identical particles as float arrays, stepped with the same rules ----
-    /// Throws std::invalid_argument if a force of the world cannot act on a swarm.
+    /// Throws std::invalid_argument if a force of the world cannot act on a swarm. The reference
+    /// stays valid as more swarms are added (each swarm is an object of its own, as a body is).
     Swarm& addSwarm(const SwarmDesc& desc);
     std::size_t swarmCount() const { return m_swarms.size(); }
-    Swarm& swarm(std::size_t i) { return m_swarms[i]; }
-    const Swarm& swarm(std::size_t i) const { return m_swarms[i]; }
+    Swarm& swarm(std::size_t i) { return *m_swarms[i]; }
+    const Swarm& swarm(std::size_t i) const { return *m_swarms[i]; }
     /// Threads for stepping swarms and coupled bodies (a cloth): 0 (the default) uses all cores;
     /// results do not depend on it.
     void setThreads(int threads) { m_threads = threads; }
@@ -168,10 +185,15 @@ public:
     bool hasPoints() const;
 
     // ---- stepping ----
-    /// Advances every moving body and swarm by exactly dt. Throws NonFiniteStateError (bodies,
-    /// and with setSwarmRollback swarms, back at their state before the step) if a state stops
-    /// being finite, and std::invalid_argument (before moving anything) if two moving bodies
-    /// coupled by a force use different integrators.
+    /// Advances every moving body and swarm by exactly dt. Throws std::invalid_argument (before
+    /// moving anything) unless dt is finite and positive, or if two moving bodies coupled by a
+    /// force use different integrators. Throws BlowUpError, with the bodies (and with
+    /// setSwarmRollback the swarms) back at their state before the step, if it made a state that
+    /// cannot be: NonFiniteStateError for a position, velocity, orientation or angular momentum
+    /// that is not finite (or an orientation that no longer has a length to normalise), and
+    /// BlowUpError for a rigid body whose centre of mass ends on or beyond a surface (outside a
+    /// floor hole's reach): at least half of it inside the floor or a wall, which its contacts
+    /// never allow (they leave a point at most a step of gravity's sinking, g dt^2, beyond).
     void step(double dt);
     double time() const { return m_time; }
     /// The time of the previous states (before the last step).
@@ -253,6 +275,7 @@ private:
         Vec3Array x, v, acc; ///< the system's state, and its acceleration at the start
         std::vector<State> trial;
         std::vector<dvec3> forces;
+        std::vector<dvec3> forceScratch; ///< the forces' working memory (Accumulators::scratch)
     };
 
     void rebuildPlanes();
@@ -270,6 +293,7 @@ private:
     void storeRigidBodies();
     void noteIfNotFinite(std::size_t i, const State& state);
     void checkFinite(double dt);
+    void checkInsideSurfaces(double dt);
     void advanceClock(double dt);
     dvec3 aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const;
     /// Every body's state (and, in a world with rigid bodies, its pose) as the read-outs see it.
@@ -284,7 +308,7 @@ private:
     std::vector<std::size_t> m_couplingForce; ///< the force of each pair, for the messages
     Coupling m_coupling;
     CoupledScratch m_scratch;
-    std::vector<Swarm> m_swarms;
+    std::vector<ClonePtr<Swarm>> m_swarms; ///< each its own object: addSwarm's references stay valid
     int m_threads = 0;
     bool m_swarmRollback = false;
     std::vector<std::vector<float>> m_swarmsBefore; ///< with m_swarmRollback: each swarm before the step
@@ -315,6 +339,8 @@ private:
     std::vector<std::uint8_t> m_keys;
     /// The lowest index of a body whose state the step made not finite; bodyCount() if none.
     std::size_t m_firstNonFinite = 0;
+    /// The lowest index of a rigid body the step left with its centre inside a surface; bodyCount() if none.
+    std::size_t m_firstInside = 0;
     std::vector<std::uint64_t> m_bounces;
     std::optional<double> m_ground;
     std::optional<Aabb> m_room;

@@ -18,10 +18,12 @@ double alphaAt(const World& world, double t)
     return span > 0.0 ? std::clamp((t - world.previousTime()) / span, 0.0, 1.0) : 1.0;
 }
 
-double stepToFrame(Scene& scene, double t)
+double stepToFrame(Scene& scene, double t, const BlowUpWatch& watch)
 {
-    for (std::uint64_t n = stepsToReach(scene.world, t, scene.dt); n > 0; --n)
+    for (std::uint64_t n = stepsToReach(scene.world, t, scene.dt); n > 0; --n) {
         scene.world.step(scene.dt);
+        watch.check(scene.world);
+    }
     return alphaAt(scene.world, t);
 }
 

@@ -4,6 +4,7 @@
 // reaches T so, which is why the two show the same state at the same time on any machine.
 #include <cstdint>
 
+#include "pba/blow_up_watch.hpp"
 #include "pba/scene/scene.hpp"
 
 namespace pba::app {
@@ -19,7 +20,8 @@ double alphaAt(const World& world, double t);
 /// loop), and each frame is drawn at exactly its time t rather than at the sum of the frame
 /// times before it (whose rounding drops a step now and then): the world takes the steps that
 /// bring its current state to t or just past it, and the drawn state is interpolated back to t,
-/// as the window's clock interpolates between the last two states. Returns that alpha.
-double stepToFrame(Scene& scene, double t);
+/// as the window's clock interpolates between the last two states. Returns that alpha. Throws
+/// BlowUpError at a step that blows up (the world's checks, then `watch`'s).
+double stepToFrame(Scene& scene, double t, const BlowUpWatch& watch);
 
 } // namespace pba::app

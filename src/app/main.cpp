@@ -11,6 +11,7 @@
 #include "command.hpp"
 #include "help_formatter.hpp"
 #include "io/output_file.hpp"
+#include "pba/blow_up_watch.hpp"
 #include "pba/scene/scene.hpp"
 #include "scene/closest_name.hpp"
 #include "scene/one_line.hpp"
@@ -67,10 +68,11 @@ int main(int argc, char** argv)
     app.formatter(std::make_shared<HelpFormatter>()); // before the commands: each copies it
     app.footer(fmt::format("\nWithout a COMMAND, pba shows the {0} scene in a window; with no display it renders it\n"
                            "instead, which takes about 20 s, to pba-out/{0}.mp4 and pba-out/{0}.png.\n\n"
-                           "Exit status: 0 success, 1 other failure, 2 bad input or usage, 3 simulation failure\n"
-                           "(non-finite state).\nRun `pba help COMMAND` or `pba COMMAND --help` for the options of a "
+                           "Exit status: 0 success, 1 other failure, 2 bad input or usage, 3 simulation failure:\n"
+                           "the run blew up (a state not finite, a rigid body's centre inside a wall, or, with\n"
+                           "no energy source, the energy {1:g} times its scale above its start).\nRun `pba help COMMAND` or `pba COMMAND --help` for the options of a "
                            "command.",
-                           kDefaultScene));
+                           kDefaultScene, pba::BlowUpWatch::kEnergyGrowthLimit));
     listScenesInHelp(app);
     app.set_version_flag("--version", fmt::format("pba {}", PBA_VERSION), "Print the version and exit");
     app.require_subcommand(0, 1);

@@ -84,18 +84,19 @@ int runRender(const RenderOptions& options)
     const auto frames = static_cast<long>(std::floor(until * options.fps + 1e-9)) + 1;
     Progress progress("rendering", frames);
     double alpha = 0.0;
+    const BlowUpWatch watch(scene.world);
     try {
         for (long frame = 0; frame < frames; ++frame) {
             // A PNG's last frame is at exactly --time, not at the last frame of 1/fps before it
             // (the frames before it only feed the trails).
             const bool last = frame == frames - 1;
-            alpha = stepToFrame(scene, kind == OutputKind::Png && last ? until : double(frame) / options.fps);
+            alpha = stepToFrame(scene, kind == OutputKind::Png && last ? until : double(frame) / options.fps, watch);
             trails.record(scene.world, alpha, settings);
             if (kind != OutputKind::Png || last)
                 sink.add(renderer.render(scene.world, initial, alpha, settings, &trails, scene.name, scene.dt));
             progress.update(frame + 1);
         }
-    } catch (const NonFiniteStateError& error) {
+    } catch (const BlowUpError& error) {
         fmt::print(stderr, "pba: error: {}: {}\n", scene.source, error.what());
         return kExitSimulationFailure;
     }

@@ -37,6 +37,7 @@ void ViewerState::load(Scene newScene)
 void ViewerState::reset()
 {
     scene.world = initial;
+    watch = BlowUpWatch(scene.world);
     clock.reset();
     trails.clear();
     heights.resize(scene.world.bodyCount());
@@ -160,9 +161,10 @@ void ViewerState::stepWorld(std::uint64_t steps)
         for (std::uint64_t n = 0; n < steps; ++n) {
             scene.world.step(clock.dt()); // the fixed dt: the frame time only decided how many steps
             ++stepsThisFrame;
+            watch.check(scene.world);
             record();
         }
-    } catch (const NonFiniteStateError& e) {
+    } catch (const BlowUpError& e) {
         error = e.what();
         paused = true;
     }

@@ -9,6 +9,7 @@
 
 #include "key_input.hpp"
 #include "pba/blow_dryer.hpp"
+#include "pba/blow_up_watch.hpp"
 #include "pba/clock.hpp"
 #include "pba/scene/scene.hpp"
 #include "render/camera.hpp"
@@ -51,7 +52,8 @@ struct ViewerState {
     /// The drawn state's alpha when the clock's does not apply: after a synthetic frame, or at
     /// the pause at pauseAt, the state shown is exactly at that time.
     std::optional<double> shownAlpha;
-    std::optional<std::string> error; ///< a non-finite state: shown in the panel, the viewer pauses
+    std::optional<std::string> error; ///< a blow-up (BlowUpError): shown in the panel, the viewer pauses
+    BlowUpWatch watch;                ///< the run's, from its start (made anew by reset)
     std::string scenePath;            ///< the panel's text box
 
     void load(Scene newScene);

@@ -56,12 +56,11 @@ SpringNetwork::SpringNetwork(const std::vector<Link>& links)
         m_incident[next[m_a[s] - lowest]++] = static_cast<std::uint32_t>(2 * s);
         m_incident[next[m_b[s] - lowest]++] = static_cast<std::uint32_t>(2 * s + 1);
     }
-    m_onSecond.resize(size());
 }
 
-void SpringNetwork::onSecondEnds(const State* states, std::size_t begin, std::size_t end) const
+void SpringNetwork::onSecondEnds(const State* states, dvec3* onSecond, std::size_t begin, std::size_t end) const
 {
-    // Raw pointers: a store through m_onSecond might otherwise change the vectors' own
+    // Raw pointers: a store through onSecond might otherwise change the vectors' own
     // pointers, which the compiler would then load again for every spring. (A loop vectorised
     // for AVX2, four springs at a time, measured no faster here: the pass is bound by memory,
     // the springs' arrays and the states, not by its arithmetic.)
@@ -70,7 +69,6 @@ void SpringNetwork::onSecondEnds(const State* states, std::size_t begin, std::si
     const double* stiffness = m_stiffness.data();
     const double* restLength = m_restLength.data();
     const double* damping = m_damping.data();
-    dvec3* onSecond = m_onSecond.data();
     for (std::size_t s = begin; s < end; ++s) {
         const State& first = states[a[s]];
         const State& second = states[b[s]];
@@ -83,8 +81,14 @@ dvec3 SpringNetwork::force(std::size_t, const Body&, const dvec3&, const dvec3&)
 
 void SpringNetwork::accumulate(const BodyStates& in, Accumulators& out) const
 {
+    // Pass 1's output, the force on each spring's second end, goes to the caller's scratch (a
+    // World keeps one, so a step allocates nothing), or to one of this call's own.
+    std::vector<dvec3> own;
+    std::vector<dvec3>& forces = out.scratch ? *out.scratch : own;
+    forces.resize(size());
+    dvec3* onSecond = forces.data();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, size(), kGrain), [&](const auto& range) {
-        onSecondEnds(in.states.data(), range.begin(), range.end());
+        onSecondEnds(in.states.data(), onSecond, range.begin(), range.end());
     });
     const std::size_t bodies = m_first.empty() ? 0 : m_first.size() - 1;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bodies, kGrain), [&](const auto& range) {
@@ -98,7 +102,7 @@ void SpringNetwork::accumulate(const BodyStates& in, Accumulators& out) const
             for (std::size_t k = m_first[p]; k < m_first[p + 1]; ++k) {
                 const std::size_t end = m_incident[k];
                 const double sign = double(end & 1) * 2.0 - 1.0; // the second end +1, the first -1: exact
-                f += sign * m_onSecond[end >> 1];
+                f += sign * onSecond[end >> 1];
             }
             out.add(i, f);
         }

@@ -17,11 +17,16 @@
 
 namespace pba {
 
+BlowUpError::BlowUpError(std::string body, std::uint64_t step, double time, std::string reason)
+    : std::runtime_error(
+          fmt::format("{} at step {} (t = {:.15g} s): try a smaller dt or another integrator", reason, step, time)),
+      m_body(std::move(body)), m_step(step), m_time(time), m_reason(std::move(reason))
+{
+}
+
 NonFiniteStateError::NonFiniteStateError(std::string body, std::uint64_t step, double time, std::string quantity)
-    : std::runtime_error(fmt::format("the {} of body '{}' is not finite at step {} (t = {} s): "
-                                     "try a smaller dt or another integrator",
-                                     quantity, body, step, time)),
-      m_body(std::move(body)), m_step(step), m_time(time), m_quantity(std::move(quantity))
+    : BlowUpError(body, step, time, fmt::format("the {} of body '{}' is not finite", quantity, body)),
+      m_quantity(std::move(quantity))
 {
 }
 
@@ -212,8 +217,8 @@ Swarm& World::addSwarm(const SwarmDesc& desc)
 {
     for (const auto& force : m_forces)
         requireActsOnSwarms(*force, desc.name);
-    m_swarms.emplace_back(desc);
-    return m_swarms.back();
+    m_swarms.emplace_back(std::make_unique<Swarm>(desc));
+    return *m_swarms.back();
 }
 
 SwarmFields World::swarmFields() const
@@ -227,7 +232,7 @@ SwarmFields World::swarmFields() const
 Force& World::addForce(std::unique_ptr<Force> force)
 {
     if (!m_swarms.empty())
-        requireActsOnSwarms(*force, m_swarms.front().name());
+        requireActsOnSwarms(*force, m_swarms.front()->name());
     const std::size_t before = m_couplings.size();
     force->appendCouplings(m_couplings);
     m_couplingForce.resize(m_couplings.size(), m_forces.size());

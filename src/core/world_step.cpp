@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
 #include <tbb/parallel_reduce.h>
 
 #include "pba/vec3_array.hpp"
@@ -17,18 +18,18 @@ namespace pba {
 
 namespace {
 
-/// The smallest index of a body, among `members`, whose new state `store(k)` (which stores
-/// member k's) reports not finite, on all cores in ranges of `grain`; `none` when every one is.
-/// (Each body's work is its own: the answer does not depend on the thread count.)
-template <class Store>
-std::size_t lowestNonFinite(const std::vector<std::size_t>& members, std::size_t grain, std::size_t none,
-                            Store&& store)
+/// The smallest index of a body, among `members`, for which `check(k)` (which may also store
+/// member k's new state) reports false, on all cores in ranges of `grain`; `none` when it
+/// reports true for every one. (Each body's work is its own: the answer does not depend on the
+/// thread count.)
+template <class Check>
+std::size_t lowestFailing(const std::vector<std::size_t>& members, std::size_t grain, std::size_t none, Check&& check)
 {
     return tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, members.size(), grain), none,
         [&](const tbb::blocked_range<std::size_t>& r, std::size_t lowest) {
             for (std::size_t k = r.begin(); k < r.end(); ++k)
-                if (!store(k))
+                if (!check(k))
                     lowest = std::min(lowest, members[k]);
             return lowest;
         },
@@ -36,6 +37,31 @@ std::size_t lowestNonFinite(const std::vector<std::size_t>& members, std::size_t
 }
 
 bool isFinite(const dvec3& u) { return std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z); }
+
+/// Whether q is the unit quaternion every rigid step ends with. One whose components overflow
+/// when squared normalises to zero (a spin of 1e200 rad/s turns it by that much a step) and one
+/// that is not finite to NaN: either is a blow-up, not an orientation.
+bool isUnit(const dquat& q)
+{
+    return std::abs(glm::length(q) - 1.0) < 1e-3; // false for NaN
+}
+
+/// The first of `planes` that a rigid body's centre x lies on or beyond: at least half the body
+/// inside the floor or a wall, since its centre of mass lies within the hull of its points. Not
+/// the floor within `reach` (the body's bounding radius) of a hole's edge, where part of a body
+/// hangs into the shaft. -1 if none.
+int surfaceHolding(std::span<const Plane> planes, const dvec3& x, double reach)
+{
+    for (std::size_t p = 0; p < planes.size(); ++p) {
+        const Plane& plane = planes[p];
+        if (!(plane.distance(x) <= 0.0))
+            continue;
+        if (plane.holeRadius > 0.0 && glm::length(plane.fromHoleAxis(x)) < plane.holeRadius + reach)
+            continue;
+        return int(p);
+    }
+    return -1;
+}
 
 /// What a body's coupling depends on, in a byte: whether it is fixed, and its integrator.
 std::uint8_t couplingKey(const Body& body)
@@ -47,7 +73,9 @@ std::uint8_t couplingKey(const Body& body)
 
 void World::step(double dt)
 {
-    m_firstNonFinite = m_bodies.size();
+    if (!(dt > 0.0 && std::isfinite(dt)))
+        throw std::invalid_argument(fmt::format("a step's dt must be finite and positive, got {} s", dt));
+    m_firstNonFinite = m_firstInside = m_bodies.size();
     detail::onCores(m_threads, [&] {
         storePreviousStates();
         const Coupling& coupling = couple(); // a mixed coupled group throws before anything moves
@@ -60,6 +88,7 @@ void World::step(double dt)
     });
     stepSwarms(dt);
     checkFinite(dt);
+    checkInsideSurfaces(dt);
     advanceClock(dt);
 }
 
@@ -71,17 +100,35 @@ void World::checkFinite(double dt)
         const Body& bad = *m_bodies[m_firstNonFinite];
         std::string quantity = isFinite(bad.getPos()) ? "velocity" : "position";
         if (isRigid(m_firstNonFinite) && isFinite(bad.getPos()) && isFinite(bad.getVel()))
-            quantity = "angular velocity";
+            quantity = isFinite(static_cast<const RigidBody&>(bad).getAngularMomentum()) ? "orientation"
+                                                                                       : "angular velocity";
         rollBack();
         throw NonFiniteStateError(bad.getName(), m_steps + 1, m_time + dt, quantity);
     }
-    for (const Swarm& swarm : m_swarms)
-        if (const auto& bad = swarm.nonFinite()) {
+    for (const auto& swarm : m_swarms)
+        if (const auto& bad = swarm->nonFinite()) {
             const NonFiniteStateError error =
-                NonFiniteStateError::inSwarm(swarm.name(), bad->index, m_steps + 1, m_time + dt, bad->quantity);
+                NonFiniteStateError::inSwarm(swarm->name(), bad->index, m_steps + 1, m_time + dt, bad->quantity);
             rollBack();
             throw error;
         }
+}
+
+void World::checkInsideSurfaces(double dt)
+{
+    if (m_firstInside >= m_bodies.size())
+        return;
+    const auto& bad = static_cast<const RigidBody&>(*m_bodies[m_firstInside]);
+    const int p = surfaceHolding(m_planes, bad.getPos(), bad.getBoundingRadius());
+    const dvec3 normal = p >= 0 ? m_planes[std::size_t(p)].normal : dvec3(0.0, 1.0, 0.0);
+    const bool grille = m_hole && p == int(m_planes.size()) - 1;
+    const char* surface = grille ? "the blow dryer's grille" : normal.y > 0.5 ? (m_ground ? "the ground" : "the floor")
+                          : normal.y < -0.5                               ? "the ceiling"
+                                                                          : "a wall";
+    BlowUpError error(bad.getName(), m_steps + 1, m_time + dt,
+                      fmt::format("the centre of mass of body '{}' is inside {}", bad.getName(), surface));
+    rollBack();
+    throw error;
 }
 
 void World::advanceClock(double dt)
@@ -124,7 +171,7 @@ void World::storePreviousStates()
     if (m_swarmRollback) {
         m_swarmsBefore.resize(m_swarms.size());
         for (std::size_t s = 0; s < m_swarms.size(); ++s)
-            m_swarms[s].saveState(m_swarmsBefore[s]);
+            m_swarms[s]->saveState(m_swarmsBefore[s]);
     }
 }
 
@@ -139,7 +186,7 @@ void World::rollBack()
     }
     if (m_swarmRollback)
         for (std::size_t s = 0; s < m_swarms.size() && s < m_swarmsBefore.size(); ++s)
-            m_swarms[s].restoreState(m_swarmsBefore[s]);
+            m_swarms[s]->restoreState(m_swarmsBefore[s]);
 }
 
 dvec3 World::aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const
@@ -198,7 +245,7 @@ void World::integrateCoupled(Integrator integrator, const std::vector<std::size_
     // before this one leaves its bodies at its last stage: no force couples two systems.)
     s.forces.resize(m_bodies.size());
     const BodyStates in{m_bodies, s.trial, wanted, m_masses, {}};
-    Accumulators out{s.forces, {}};
+    Accumulators out{s.forces, {}, &s.forceScratch};
     bool first = true;
     auto accel = [&](const Vec3Array& xs, const Vec3Array& vs) {
         detail::forEachIndex(n, [&](std::size_t k) {
@@ -227,7 +274,7 @@ void World::collideAndStore(const std::vector<std::size_t>& members)
     // each body's object is visited once here: a cloth's bodies are many and far apart.
     const std::span<const Plane> planes(m_planes);
     const CoupledScratch& s = m_scratch;
-    const std::size_t bad = lowestNonFinite(members, 2048, m_bodies.size(), [&](std::size_t k) {
+    const std::size_t bad = lowestFailing(members, 2048, m_bodies.size(), [&](std::size_t k) {
         const std::size_t i = members[k];
         State end{s.x[k], s.v[k]};
         if (!planes.empty())
@@ -306,7 +353,7 @@ void World::stepRigid(Integrator integrator, const std::vector<std::size_t>& mem
     m_scratch.forces.resize(m_bodies.size());
     m_torques.resize(m_bodies.size());
     const BodyStates in{m_bodies, m_scratch.trial, wanted, m_masses, m_poses};
-    Accumulators out{m_scratch.forces, m_torques};
+    Accumulators out{m_scratch.forces, m_torques, &m_scratch.forceScratch};
     bool first = true;
     const auto wrenches = [&](std::span<const RigidState> at, std::span<Wrench> result) {
         detail::forEachIndex(n, [&](std::size_t k) {
@@ -346,21 +393,36 @@ void World::storeRigidBodies()
     all.resize(system.size());
     for (std::size_t k = 0; k < system.size(); ++k)
         all[k] = system.worldIndex(k);
-    const std::size_t bad = lowestNonFinite(all, 256, m_bodies.size(), [&](std::size_t k) {
+    const std::size_t bad = lowestFailing(all, 256, m_bodies.size(), [&](std::size_t k) {
         const std::size_t i = system.worldIndex(k);
         auto& b = static_cast<RigidBody&>(*m_bodies[i]);
         if (b.isFixed())
             return isFinite(b.getPos()) && isFinite(b.getVel());
         const RigidState& s = system.end(k);
         b.setState(State{s.x, s.v}); // a body that is not finite: the rollback restores it, the message reads it
-        const dquat& q = s.rotation.orientation;
-        if (!isFinite(s.x) || !isFinite(s.v) || !isFinite(s.rotation.momentum) || !std::isfinite(q.w + q.x + q.y + q.z))
+        if (!isFinite(s.x) || !isFinite(s.v) || !isFinite(s.rotation.momentum) || !isUnit(s.rotation.orientation)) {
+            b.setAngularMomentum(s.rotation.momentum); // for the message: its spin, or its orientation
             return false;
+        }
         b.setRotation(s.rotation);
         b.setAcc(m_rigidAcc[i]);
         return true;
     });
     m_firstNonFinite = std::min(m_firstNonFinite, bad);
+    if (m_planes.empty())
+        return;
+    const std::size_t inside = lowestFailing(all, 1024, m_bodies.size(), [&](std::size_t k) {
+        if (m_bodies[all[k]]->isFixed())
+            return true;
+        // The bounding radius (a visit to the body's object) only for a centre on or behind a plane.
+        const dvec3& x = system.end(k).x;
+        const auto reach = [&] { return static_cast<const RigidBody&>(*m_bodies[all[k]]).getBoundingRadius(); };
+        for (const Plane& plane : m_planes)
+            if (plane.distance(x) <= 0.0)
+                return surfaceHolding(m_planes, x, reach()) < 0;
+        return true;
+    });
+    m_firstInside = std::min(m_firstInside, inside);
 }
 
 void World::noteIfNotFinite(std::size_t i, const State& state)
@@ -377,8 +439,8 @@ void World::stepSwarms(double dt)
     std::vector<PlaneT<float>> planes;
     for (const Plane& p : m_planes)
         planes.push_back({Vec3<float>(p.normal), float(p.offset), float(p.holeRadius), Vec3<float>(p.holeCentre)});
-    for (Swarm& swarm : m_swarms)
-        swarm.step(fields, planes, m_response, float(dt), m_threads);
+    for (const auto& swarm : m_swarms)
+        swarm->step(fields, planes, m_response, float(dt), m_threads);
 }
 
 } // namespace pba

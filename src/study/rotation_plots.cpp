@@ -99,10 +99,12 @@ std::string flipPlot(const std::filesystem::path& dir, const RotationConfig& con
         columns == 1 ? 900 : 1400, 380 * rows + 40, rows, columns);
     for (Integrator integrator : config.integrators) {
         std::string line = fmt::format("set title '{}'\nplot ", integratorName(integrator));
+        bool drawn = false;
         for (std::size_t k = 0; k < shown.size(); ++k) {
             const RotationRun* r = findRun(result, integrator, shown[k]);
-            if (!r)
+            if (!r || r->t.empty()) // one that blew up before its first sample has no line
                 continue;
+            drawn = true;
             const std::string file = fmt::format("w_{}_{}.dat", integratorName(integrator), shown[k]);
             std::ofstream out(dir / file);
             for (std::size_t i = 0; i < r->t.size(); ++i)
@@ -111,7 +113,12 @@ std::string flipPlot(const std::filesystem::path& dir, const RotationConfig& con
             line += fmt::format("'{}' with lines lw 1.5 lc rgb '{}' title 'dt = {}', ", file, colour(integrator, shade),
                                 shown[k]);
         }
-        script += line.substr(0, line.size() - 2) + "\n";
+        // gnuplot fails on a plot of empty files: a panel whose every run blew up at once
+        // draws its frame, with a line off its range.
+        script += drawn ? line.substr(0, line.size() - 2) + "\n"
+                        : fmt::format("set title '{} (every run blew up before its first sample)'\nset xrange [0:{}]\n"
+                                      "set yrange [-1:1]\nplot 1e99 notitle\nset autoscale\n",
+                                      integratorName(integrator), config.duration);
     }
     return script + "unset multiplot\n";
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "parallel_runs.hpp"
+#include "pba/blow_up_watch.hpp"
 
 namespace pba::study {
 
@@ -54,11 +55,13 @@ RotationRun runOne(const Scene& scene, std::size_t body, int axis, Integrator in
     };
     double previous = omegaAbout();
     std::vector<double> flips;
+    const BlowUpWatch watch(world);
     for (std::uint64_t n = 1; n <= steps; ++n) {
         try {
             world.step(dt);
-        } catch (const NonFiniteStateError&) {
-            run.blewUpAt = world.time() + dt;
+            watch.check(world);
+        } catch (const BlowUpError& error) {
+            run.blewUpAt = error.time();
             break;
         }
         if (!finite(b)) {

@@ -235,7 +235,7 @@ StabilityRun runStability(const Scene& scene, Integrator integrator, double dt, 
     for (std::uint64_t n = 1; n <= steps; ++n) {
         try {
             world.step(dt);
-        } catch (const NonFiniteStateError&) {
+        } catch (const BlowUpError&) { // a state not finite, or a rigid body inside a wall
             run.stable = false;
             return run;
         }

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "exact_solution.hpp"
+#include "pba/blow_up_watch.hpp"
 
 namespace pba::study {
 
@@ -99,8 +100,10 @@ std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator
     }
     std::vector<State> before(trackers.size());
     // An unstable run (forward Euler on a cloth at a large dt) is a result, not a failure of
-    // the study: it stops where the state stopped being finite and says when.
+    // the study: it stops where it blew up (a state not finite, or energy gained with no source
+    // to feed it: BlowUpWatch) and says when.
     double blewUpAt = kNaN;
+    const BlowUpWatch watch(world);
     try {
         for (std::uint64_t n = 0; n < steps; ++n) {
             for (std::size_t k = 0; k < trackers.size(); ++k) {
@@ -108,13 +111,14 @@ std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator
                 before[k] = world.body(trackers[k].index).getState();
             }
             world.step(dt);
+            watch.check(world);
             const std::vector<double> energies = world.energies();
             for (std::size_t k = 0; k < trackers.size(); ++k) {
                 trackers[k].afterStep(world, before[k]);
                 trackers[k].sample(world, energies);
             }
         }
-    } catch (const NonFiniteStateError& error) {
+    } catch (const BlowUpError& error) {
         blewUpAt = error.time();
     }
     std::vector<ParticleResult> results;

@@ -1,7 +1,8 @@
 // Rigid bodies in the World against exact results: a box dropped flat rebounds to e^2 h without
 // turning, a sliding ball starts to roll when and as fast as the closed form says, a tilted box
-// settles on a face and stays there, nothing leaves the room however fast it is thrown, and a
-// free body's tumble in the World is the rotation integrator's.
+// settles on a face and stays there, nothing leaves the room however fast it is thrown, a free
+// body's tumble in the World is the rotation integrator's, and a bouncing contact is told from a
+// resting one by a flag, not by its target speed.
 #include "pba/world.hpp"
 
 #include <gtest/gtest.h>
@@ -15,6 +16,8 @@
 #include "pba/blow_dryer.hpp"
 #include "pba/forces.hpp"
 #include "pba/scene/scene.hpp"
+
+#include "rigid/contact_solver.hpp"
 
 using namespace pba;
 
@@ -184,7 +187,7 @@ TEST(RigidWorld, NothingLeavesTheRoomAtFiftyMetresAndTwentyRadiansPerSecond)
         b.setCor(0.9);
     }
     // A point may end a step below the floor by what one step of gravity sinks a body at rest
-    // (g dt^2, 4 mm here: see resolvePlaneContacts), never further, and never out through a wall.
+    // (g dt^2, 4 mm here: the room's push-out takes back what is left beyond a wall), never further, and never out through a wall.
     const double dt = 0.02, allowed = kG * dt * dt;
     for (int n = 0; n < 500; ++n) {
         world.step(dt);
@@ -358,4 +361,58 @@ TEST(RigidWorld, ManyDiceStepTheSameOnAnyNumberOfThreads)
         ASSERT_EQ(a.getAngularMomentum(), b.getAngularMomentum()) << i;
         ASSERT_EQ(one.world.bounceCount(i), two.world.bounceCount(i)) << i;
     }
+}
+
+// A contact that bounces starts from no impulse, whatever the body's memory of the last step
+// holds (warm starting a bounce would feed its restitution with the last step's push). With
+// restitution 0 a bouncing contact's target speed, -e times its arriving speed, is +0, and a
+// resting one's at a gap of zero or less is -0: equal as numbers, so only a flag tells them
+// apart. A ball arriving at 2 m/s a tenth of a millimetre into the floor, with a remembered
+// impulse at that very point, ends its step bit for bit as one with no memory does.
+TEST(RigidContact, ABouncingContactIsNotWarmStartedEvenWithRestitutionZero)
+{
+    // A ball arriving at 2 m/s a tenth of a millimetre into the floor (B, static): one contact
+    // point, with and without a remembered impulse.
+    const double dt = 0.001, mass = 33.5;
+    rigid::SolverBody ball;
+    ball.position = dvec3(0.0, 0.2 - 1e-4, 0.0);
+    ball.inverseMass = 1.0 / mass;
+    ball.inverseInertia = dmat3(1.0 / (0.4 * mass * 0.04));
+    ball.vStart = dvec3(0.3, -2.0, 0.1);
+    ball.v = ball.vFree = ball.vStart + dvec3(0.0, -kG * dt, 0.0);
+    ball.endPosition = ball.position + ball.v * dt;
+    const rigid::SolverBody floor;
+    auto solve = [&](double remembered) {
+        std::vector<rigid::SolverBody> bodies{ball, floor};
+        std::vector<rigid::Contact> contacts(1);
+        rigid::Contact& c = contacts[0];
+        c.a = 0;
+        c.b = 1;
+        c.friction = 0.5;
+        c.restitution = 0.0;
+        c.radiusA = 0.2;
+        c.count = 1;
+        c.points[0].normal = dvec3(0.0, -1.0, 0.0);
+        c.points[0].point = dvec3(0.0, -1e-4, 0.0);
+        c.points[0].anchorB = dvec3(0.0);
+        c.points[0].separation = -1e-4;
+        c.points[0].normalImpulse = remembered;
+        c.points[0].tangentImpulse[0] = remembered / 5.0;
+        rigid::SolverSettings settings;
+        settings.dt = dt;
+        settings.restingSpeed = 2.0 * kG * dt;
+        const std::uint32_t island[] = {0};
+        rigid::ContactSolver solver;
+        solver.prepare(contacts, island, bodies, settings);
+        EXPECT_TRUE(solver.collide());
+        solver.warmStart();
+        for (int k = 0; k < 10; ++k)
+            solver.solveVelocities();
+        return bodies[0];
+    };
+    const rigid::SolverBody withMemory = solve(5.0), without = solve(0.0);
+    EXPECT_EQ(withMemory.v, without.v);
+    EXPECT_EQ(withMemory.shift, without.shift);
+    EXPECT_EQ(withMemory.momentumChange, without.momentumChange);
+    EXPECT_NEAR(withMemory.v.y, 0.0, 1e-12); // e = 0: it stops against the floor
 }

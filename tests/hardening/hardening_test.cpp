@@ -1,12 +1,14 @@
 // Hardening: replayed fuzz regressions, tunnelling at 500 m/s, a 10^7-step soak, and the
-// program's behaviour on non-finite states and failed writes.
+// program's behaviour on blow-ups and failed writes.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 
+#include "pba/blow_up_watch.hpp"
 #include "pba/forces.hpp"
 #include "pba/scene/scene.hpp"
 #include "support/fast_swarm.hpp"
@@ -38,7 +40,7 @@ TEST(FuzzRegressions, EveryKeptInputLoadsOrIsRefusedCleanly)
             for (int n = 0; n < 3; ++n)
                 scene.world.step(scene.dt);
         } catch (const SceneError&) {
-        } catch (const NonFiniteStateError&) {
+        } catch (const BlowUpError&) { // a state not finite, or a rigid body left inside a wall
         }
     }
     EXPECT_GT(replayed, 0);
@@ -115,13 +117,17 @@ TEST(Soak, TenMillionStepsInTheCubeStayInsideWithBoundedEnergy)
     }
 }
 
+// Forward Euler on a stiff spring multiplies its energy by 250,001 a step. A blow dryer far from
+// it is an energy source, so BlowUpWatch's rule on energy growth is off (without it the run stops
+// at step 1 for that) and the run goes on until its energy is not finite.
 TEST(NonFinite, PbaSimExitsThreeAndKeepsTheCsvValid)
 {
     const auto dir = freshDir("nonfinite");
     const auto scene = dir / "stiff.json";
     std::ofstream(scene) << R"({"gravity": [0, 0, 0], "dt": 0.5, "duration": 100,
         "particles": [{"name": "bob", "position": [0, 1, 0], "integrator": "forward-euler"}],
-        "forces": [{"type": "spring", "particle": "bob", "anchor": [0, 0, 0], "stiffness": 1e6}]})";
+        "forces": [{"type": "spring", "particle": "bob", "anchor": [0, 0, 0], "stiffness": 1e6},
+                   {"type": "blow-dryer", "nozzle": [100, 0, 0], "height": 1, "top_radius": 1, "strength": 1}]})";
     const auto csv = dir / "run.csv";
     const CommandResult r = runPba("sim " + scene.string() + " --out " + csv.string());
     EXPECT_EQ(r.exitCode, 3) << r.err;
@@ -151,4 +157,23 @@ TEST(AtomicWrites, AFailedRunLeavesAnExistingFileUntouched)
     const CommandResult png = runPba("render integrators --size 10x10 --out " + (dir / "x.png").string());
     EXPECT_EQ(png.exitCode, 2);
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1) << "only run.csv";
+}
+
+// The README's Hardening section says what exit 3 means, with the factor the code uses, and the
+// exit codes' section points there.
+TEST(NonFinite, TheReadmeStatesWhatExitThreeMeans)
+{
+    const std::string readme = readFile(std::filesystem::path(PBA_SOURCE_DIR) / "README.md");
+    const std::size_t hardening = readme.find("\n## Hardening\n");
+    const std::size_t codes = readme.find("\n## Exit codes\n");
+    ASSERT_NE(hardening, std::string::npos);
+    ASSERT_NE(codes, std::string::npos);
+    const std::string section = readme.substr(hardening, codes - hardening);
+    std::ostringstream factor;
+    factor << "**" << BlowUpWatch::kEnergyGrowthLimit << " energy scales**";
+    for (const std::string& part : {std::string("Every blow-up is exit 3, naming the body"), factor.str(),
+                                    std::string("stops being finite"), std::string("on or beyond the floor"),
+                                    std::string("no energy source"), std::string("blew_up_at")})
+        EXPECT_NE(section.find(part), std::string::npos) << part;
+    EXPECT_NE(readme.find("3 simulation failure (the run blew up", codes), std::string::npos);
 }

@@ -1,5 +1,5 @@
-// `pba render` and `pba view` end to end: an MP4 probed with ffprobe, numbered frames, and the
-// window under a virtual X server.
+// `pba render` and `pba view` end to end: an MP4 probed with ffprobe, numbered frames, the
+// window under a virtual X server, and a blow-up's exit 3.
 #include <gtest/gtest.h>
 
 #include <stb_image.h>
@@ -161,4 +161,19 @@ TEST(PbaRender, FramesCoverExactlyTheTimeAskedFor)
         runPba("render integrators --fps 2 --duration 20 --size 64x48 --out " + (dir / "c.mp4").string());
     ASSERT_EQ(video.exitCode, 0) << video.err;
     EXPECT_NE(video.out.find("41 frames, 64x48, t = 20 s"), std::string::npos) << video.out;
+}
+
+// `pba render` stops at a blow-up with exit 3 naming the body, and writes no picture: here the
+// built-in rope at dt = 0.05, whose energy the room's walls keep finite as it explodes.
+TEST(PbaRender, ABlowUpIsExitThreeNamingTheBodyAndWritesNothing)
+{
+    const auto dir = freshDir("render_blow_up");
+    const auto png = dir / "rope.png";
+    const CommandResult r = runPba("render rope --dt 0.05 --time 1 --size 64x48 --out " + png.string());
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_EQ(r.err.rfind("pba: error: builtin:rope: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("body 'rope["), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("no energy source"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(png));
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0) << "no temporary files left";
 }

@@ -410,3 +410,51 @@ TEST(PbaCompare, RigidSceneGetsTheRotationStudy)
     EXPECT_EQ(runPba("compare dice --collisions exact --out " + (dir / "dice").string()).exitCode, 2);
     EXPECT_FALSE(std::filesystem::exists(dir / "dice"));
 }
+
+// A run that blows up is a result of the study, not its end. The rope with springs of stiffness
+// 1e300 stays finite in the closed room, but its energy leaps in the first step: every particle's
+// row says it blew up then (BlowUpWatch), and no energy ratio is read from a blown-up run.
+TEST(IntegratorStudy, ARunWhoseEnergyExplodesInsideTheRoomIsRecordedAsBlownUp)
+{
+    std::string json(builtinSceneText("rope"));
+    json.replace(json.find("\"stiffness\": 500"), 16, "\"stiffness\": 1e300");
+    const Scene scene = parseScene(json, "rope.json");
+    const auto runs = study::measureRun(scene, Integrator::SemiImplicitEuler, CollisionResponse::Exact, 0.002, 0.1);
+    ASSERT_EQ(runs.size(), 24u); // the moving particles
+    for (const auto& r : runs) {
+        EXPECT_DOUBLE_EQ(r.blewUpAt, 0.002) << r.particle;
+        EXPECT_TRUE(std::isinf(r.energyRatioEnd)) << r.particle;
+    }
+}
+
+// `pba compare` on the dryer's boxes with the lightest of a picogram used to stop at its first
+// run with exit 1 ("an orientation must be a non-zero finite quaternion"), writing nothing. Now
+// every run that blows up has its time in blew_up_at, and the study goes on to its report.
+TEST(PbaCompare, ARigidRunThatBlowsUpIsRecordedAndTheStudyGoesOn)
+{
+    const auto dir = freshDir("compare-blow-up");
+    std::string json(builtinSceneText("blow-dryer-boxes"));
+    json.replace(json.find("\"mass\": 0.5"), 11, "\"mass\": 1e-12");
+    std::ofstream(dir / "boxes.json") << json;
+    const CommandResult r = runPba("compare " + (dir / "boxes.json").string() + " --dt 0.002,0.01 --duration 0.2 --out " +
+                                   (dir / "study").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::istringstream csv(readFile(dir / "study/results.csv"));
+    std::string line;
+    std::getline(csv, line);
+    ASSERT_EQ(line.substr(line.rfind(',') + 1), "blew_up_at");
+    int rows = 0, blown = 0;
+    while (std::getline(csv, line)) {
+        ++rows;
+        const std::string last = line.substr(line.rfind(',') + 1);
+        EXPECT_EQ(line.rfind(',', line.size()), line.rfind(',')) << line;
+        if (!last.empty() && last != "nan" && std::isfinite(std::stod(last))) {
+            ++blown;
+            EXPECT_GT(std::stod(last), 0.0) << line;
+            EXPECT_LE(std::stod(last), 0.2) << line;
+        }
+    }
+    EXPECT_EQ(rows, 10); // five integrators, two dt
+    EXPECT_GT(blown, 0);
+    EXPECT_TRUE(std::filesystem::exists(dir / "study/report.md"));
+}

@@ -1,7 +1,10 @@
 // The viewer's logic without a window: reset keeps the panel's settings and reload restores
 // the scene's, key commands each count, and synthetic frames reach exactly a simulated time,
-// the same state `pba render` draws there.
+// the same state `pba render` draws there, and a blow-up pauses the run with its message.
 #include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
 
 #include "frame_steps.hpp"
 #include "viewer_state.hpp"
@@ -127,7 +130,7 @@ TEST(ViewerState, SyntheticFramesReachExactlyTheTimeAsRenderDoes)
             state.advanceTo(double(frame) / 60);
         state.advanceTo(t);
         Scene rendered = loadScene("blow-dryer");
-        const double alpha = stepToFrame(rendered, t);
+        const double alpha = stepToFrame(rendered, t, BlowUpWatch(rendered.world));
         EXPECT_EQ(state.scene.world.stepCount(), rendered.world.stepCount()) << t;
         EXPECT_EQ(state.scene.world.body(0).getPos(), rendered.world.body(0).getPos()) << t;
         EXPECT_EQ(state.alpha(), alpha) << t;
@@ -195,4 +198,41 @@ TEST(ViewerState, ChoosingAnIntegratorChangesTheWholeCoupledGroup)
     }
     EXPECT_EQ(state.scene.world.body(3).getIntegrator(), Integrator::SemiImplicitEuler);
     EXPECT_NO_THROW(state.stepWorld(10));
+}
+
+// Every blow-up pauses the viewer with its message instead of quitting it: a picogram box in the
+// dryer (which used to escape as std::invalid_argument, "an orientation must be a non-zero finite
+// quaternion", and quit the viewer) and a rope whose energy explodes inside the room (stiffness
+// 1e300). A reset starts the run again.
+TEST(ViewerState, EveryBlowUpPausesTheViewerWithItsMessage)
+{
+    const auto edited = [](const char* scene, const std::string& from, const std::string& to) {
+        std::string json(builtinSceneText(scene));
+        const std::size_t at = json.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        json.replace(at, from.size(), to);
+        return parseScene(json, std::string(scene) + ".json");
+    };
+    struct Case {
+        Scene scene;
+        const char* says;
+    };
+    std::vector<Case> cases;
+    cases.push_back({edited("blow-dryer-boxes", "\"mass\": 0.5", "\"mass\": 1e-12"), "body 'light'"});
+    cases.push_back({edited("rope", "\"stiffness\": 500", "\"stiffness\": 1e300"), "no energy source"});
+    for (Case& c : cases) {
+        ViewerState state;
+        state.load(std::move(c.scene));
+        state.advanceTo(1.0);
+        ASSERT_TRUE(state.error.has_value()) << c.says;
+        EXPECT_NE(state.error->find(c.says), std::string::npos) << *state.error;
+        EXPECT_TRUE(state.paused);
+        EXPECT_LT(state.scene.world.time(), 1.0);
+        const double stoppedAt = state.scene.world.time();
+        state.advance(0.1); // paused: nothing moves
+        EXPECT_EQ(state.scene.world.time(), stoppedAt);
+        state.reset();
+        EXPECT_FALSE(state.error.has_value());
+        EXPECT_EQ(state.scene.world.time(), 0.0);
+    }
 }

@@ -309,7 +309,7 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
         b.shift += (b.v - marks[2 * k]) * drift;
         b.turn += (b.w - marks[2 * k + 1]) * drift;
         b.endPosition += b.shift;
-        b.endOrientation = glm::normalize(b.endOrientation + dquat(0.0, b.turn.x, b.turn.y, b.turn.z) * b.endOrientation * 0.5);
+        b.endOrientation = turned(b.endOrientation, b.turn);
     }
     // The velocities are final: no contact may have added to the island's energy (capEnergy).
     // The position pass then moves the poses alone, and adds no motion, whatever it moves; the

@@ -94,10 +94,13 @@ struct SolverBody {
     dvec3 spinAt(double fraction) const { return w - (wFree - wStart) * (1.0 - fraction); }
 };
 
-/// q turned by the small rotation vector theta (world frame), renormalised.
+/// q turned by the small rotation vector theta (world frame), renormalised. Divided by its
+/// length rather than glm::normalize'd: that makes a zero quaternion (an orientation whose
+/// spin overflowed) the identity, and the blow-up would go unseen; here it stays not finite.
 inline dquat turned(const dquat& q, const dvec3& theta)
 {
-    return glm::normalize(q + dquat(0.0, theta.x, theta.y, theta.z) * q * 0.5);
+    const dquat t = q + dquat(0.0, theta.x, theta.y, theta.z) * q * 0.5;
+    return t / glm::length(t);
 }
 
 inline void SolverBody::movePose(const dvec3& p, const dvec3& r)

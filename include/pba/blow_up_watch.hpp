@@ -1,0 +1,71 @@
+#pragma once
+// A run can blow up without any state that World::step would refuse. Inside a closed room the
+// walls keep a spring system's exploding positions finite, so a rope whose stiffness is 1e300, or
+// the built-in rope at ten times its dt, runs to the end with its energy up a thousandfold or
+// more. The step sees one step at a time; this watch compares the run with its start, and every
+// command that runs a scene asks it after each step (sim, render, view, compare).
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "pba/state.hpp"
+#include "pba/world.hpp"
+
+namespace pba {
+
+/// Watches a run for the blow-ups a single step cannot see.
+///  - An energy that is not finite while the states are (1/2 k x^2 with x ~ 1e155): a
+///    NonFiniteStateError naming the first such body, quantity "energy".
+///  - Energy gained with nothing to feed it. Without an energy source (no force that addsEnergy,
+///    such as the blow dryer, and no fixed body that the program has moved), the bodies' total
+///    energy can only fall, but for its integrator's error: forward Euler gains half as much
+///    again on the integrators scene, and a stable method near its stability limit swings
+///    further. One that rises more than kEnergyGrowthLimit times the energy scale above its start
+///    has left the physics behind: a BlowUpError naming the body that gained the most.
+/// The energy scale is the moving bodies' kinetic energy at the start plus the size of each one's
+/// potential energy, plus what lifting each by kLiftHeight in the world's gravity takes (so that
+/// a world starting at rest where its potential energy is zero, or with a start energy near zero
+/// or negative, still has a scale). Swarms are not counted (their states are checked by the step).
+class BlowUpWatch {
+public:
+    /// How many energy scales above its start the energy of a system with no energy source may
+    /// rise. Ordinary scenes at their own dt rise less than two (the largest: forward Euler on
+    /// the spring, 1.7); a rope whose spring dampers are 1e300 peaks at 380 before its particles
+    /// fold into a heap, and a spring above its stability limit passes 100 within a few steps.
+    static constexpr double kEnergyGrowthLimit = 100.0;
+    /// The height, in metres, each moving body's share of the energy scale is lifted by.
+    static constexpr double kLiftHeight = 1.0;
+
+    /// A watch of nothing: check() never throws.
+    BlowUpWatch() = default;
+    /// Watches the run of `world` from its current state (its start): its total energy, the
+    /// energy scale, and whether the world has an energy source among its forces (forces added
+    /// later are not seen: watch the world as it will run).
+    explicit BlowUpWatch(const World& world);
+
+    /// After a step of the world: throws NonFiniteStateError or BlowUpError (see the class), at
+    /// the world's step count and time, if the run has blown up.
+    void check(const World& world) const;
+
+    /// Whether the energy-growth rule applies: no force of the world adds energy.
+    bool watchesGrowth() const { return m_growth; }
+    double startEnergy() const { return m_start; }
+    double energyScale() const { return m_scale; }
+    /// The total energy above which the run has blown up: start + kEnergyGrowthLimit * scale.
+    double energyBound() const { return m_start + kEnergyGrowthLimit * m_scale; }
+
+private:
+    bool driven(const World& world) const;
+    [[noreturn]] void throwNonFinite(const World& world) const;
+    [[noreturn]] void throwGrowth(const World& world, double energy) const;
+
+    bool m_active = false;
+    bool m_growth = false;
+    double m_start = 0.0;
+    double m_scale = 0.0;
+    std::vector<double> m_startEnergies; ///< each body's, to name the one that gained the most
+    /// The fixed bodies and their start states: one the program has moved drives the system.
+    std::vector<std::pair<std::size_t, State>> m_fixed;
+};
+
+} // namespace pba

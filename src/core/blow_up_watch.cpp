@@ -1,0 +1,81 @@
+#include "pba/blow_up_watch.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace pba {
+
+BlowUpWatch::BlowUpWatch(const World& world) : m_active(true), m_start(world.totalEnergy())
+{
+    bool source = false;
+    for (std::size_t f = 0; f < world.forceCount(); ++f)
+        source = source || world.force(f).addsEnergy();
+    m_growth = !source && std::isfinite(m_start);
+    m_startEnergies = world.energies();
+    const double g = glm::length(world.gravity());
+    for (std::size_t i = 0; i < world.bodyCount(); ++i) {
+        const Body& b = world.body(i);
+        if (b.isFixed()) {
+            m_fixed.emplace_back(i, b.getState());
+            continue;
+        }
+        const double kinetic = world.kineticEnergy(i);
+        m_scale += kinetic + std::abs(m_startEnergies[i] - kinetic) + b.getMass() * g * kLiftHeight;
+    }
+}
+
+void BlowUpWatch::check(const World& world) const
+{
+    if (!m_active)
+        return;
+    // The total is finite when every body's energy is, and cheaper (each interaction once): only
+    // when it is not is the culprit looked for.
+    const double energy = world.totalEnergy();
+    if (!std::isfinite(energy))
+        throwNonFinite(world);
+    if (m_growth && energy > energyBound() && !driven(world))
+        throwGrowth(world, energy);
+}
+
+bool BlowUpWatch::driven(const World& world) const
+{
+    return std::any_of(m_fixed.begin(), m_fixed.end(), [&](const auto& fixed) {
+        const State now = world.body(fixed.first).getState();
+        return now.pos != fixed.second.pos || now.vel != fixed.second.vel;
+    });
+}
+
+void BlowUpWatch::throwNonFinite(const World& world) const
+{
+    const std::vector<double> energies = world.energies();
+    std::size_t bad = 0; // the first body whose energy is not finite; with none (a sum that
+    for (std::size_t i = 0; i < energies.size(); ++i) { // overflows), the largest term
+        if (!std::isfinite(energies[i])) {
+            bad = i;
+            break;
+        }
+        if (std::abs(energies[i]) > std::abs(energies[bad]))
+            bad = i;
+    }
+    throw NonFiniteStateError(world.bodyCount() > 0 ? world.body(bad).getName() : "", world.stepCount(), world.time(),
+                              "energy");
+}
+
+void BlowUpWatch::throwGrowth(const World& world, double energy) const
+{
+    const std::vector<double> energies = world.energies();
+    std::size_t most = 0;
+    for (std::size_t i = 0; i < energies.size() && i < m_startEnergies.size(); ++i)
+        if (energies[i] - m_startEnergies[i] > energies[most] - m_startEnergies[most])
+            most = i;
+    const std::string name = world.bodyCount() > 0 ? world.body(most).getName() : "";
+    throw BlowUpError(name, world.stepCount(), world.time(),
+                      fmt::format("the energy of a system with no energy source rose from {:.4g} J to {:.4g} J, more "
+                                  "than {:g} times its energy scale ({:.4g} J) above its start, body '{}' gaining the "
+                                  "most",
+                                  m_start, energy, kEnergyGrowthLimit, m_scale, name));
+}
+
+} // namespace pba
