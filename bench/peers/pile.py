@@ -10,7 +10,8 @@ The workload is manyDice's throw: n 10 cm dice (600 kg/m^3, friction 0.5, restit
 cells of a lattice over the dice scene's 4 m room, each with its own orientation, velocity and
 spin, falling under gravity at dt 0.005, dice against dice and against the room. pba steps it in
 `pba bench --pile-worker` (all cores), Bullet in bullet_pile (bench/peers/bullet_pile.cpp:
-btDiscreteDynamicsWorld, its default sequential-impulse solver with --iterations iterations,
+btDiscreteDynamicsWorld, its default sequential-impulse solver with --iterations iterations (pba's
+solver the same fixed count),
 sleeping on with Bullet's default thresholds; single precision; one thread, as Debian's
 libbullet is built). Bullet builds its pile from the state pba saves at the start and from the
 numbers pba's ready line gives (dt, gravity, room, a die's size, mass, inertia, friction and
@@ -79,7 +80,8 @@ def file_bits(path):
 
 def start_workers(args, n, tmp):
     """pba's worker, its start state saved, and Bullet's built from it. Returns (pba, bullet, start, ok)."""
-    pba = Worker("pba", [args.pba, "bench", "--pile-worker", "--dice", str(n)], "pile.py", HERE)
+    pba = Worker("pba", [args.pba, "bench", "--pile-worker", "--dice", str(n), "--iterations", str(args.iterations)],
+                 "pile.py", HERE)
     r = pba.ready
     start = os.path.join(tmp, f"start-{n}.csv")
     pba.ask(f"save {start}")
@@ -247,7 +249,8 @@ def main():
     parser.add_argument("--n", type=int, nargs="+", default=[1000, 10000], help="dice counts (default 1000 10000)")
     parser.add_argument("--span", type=float, default=4.0, help="simulated seconds from the throw (default 4)")
     parser.add_argument("--window-steps", type=int, default=100, help="steps a window (default 100: 0.5 s)")
-    parser.add_argument("--iterations", type=int, default=10, help="Bullet's solver iterations (default 10)")
+    parser.add_argument("--iterations", type=int, default=10,
+                        help="velocity iterations of both solvers, a fixed count each step (default 10, Bullet's)")
     parser.add_argument("--rest-speed", type=float, default=0.05, help="at rest below this speed, m/s (0.05)")
     parser.add_argument("--rest-spin", type=float, default=0.5, help="at rest below this spin, rad/s (0.5)")
     parser.add_argument("--deep", type=float, default=0.005, help="a deep overlap, m (0.005)")

@@ -40,6 +40,7 @@
 #include "pba/body.hpp"
 #include "pba/clone_ptr.hpp"
 #include "pba/collision.hpp"
+#include "pba/contact_settings.hpp"
 #include "pba/force.hpp"
 #include "pba/joint.hpp"
 #include "pba/particle.hpp"
@@ -212,7 +213,7 @@ public:
     /// Bounces of body i since the start.
     std::uint64_t bounceCount(std::size_t i) const { return m_bounces[i]; }
     /// Whether rigid body i sleeps: it and every body it touches have been still for a while,
-    /// and none of them moves until an awake body touches one (see RigidSettings).
+    /// and none of them moves until an awake body touches one (see ContactSettings).
     bool isAsleep(std::size_t i) const;
     /// Wakes every sleeping body (after a program changed a force or moved a body by hand).
     void wakeAll();
@@ -227,6 +228,9 @@ public:
     };
     /// Every touching contact point of the last step (separation below a millimetre or pushing).
     std::vector<ContactPointView> contactPoints() const;
+    /// How contacts and joints are solved, and when bodies sleep.
+    ContactSettings& contactSettings();
+    const ContactSettings& contactSettings() const;
     /// The rigid bodies' contact pipeline: its settings, contacts and joints.
     rigid::RigidSystem& rigidSystem() { return *m_rigidSystem; }
     const rigid::RigidSystem& rigidSystem() const { return *m_rigidSystem; }

@@ -44,6 +44,7 @@ struct BenchOptions {
     bool integratorGiven = false;                   ///< --integrator was on the command line
     bool pileWorker = false; ///< --pile-worker: a pile of --dice dice, windows on request (bench/peers/pile.py)
     std::size_t dice = 1000;
+    int iterations = kPileIterations; ///< --iterations: the pile worker's velocity sweeps a step
 };
 
 /// Statistics of the swarm the peers are validated against (bench/peers/): the mean height, the
@@ -277,7 +278,7 @@ int runBench(const BenchOptions& options)
     if (options.peerWorker)
         return runPeerWorker(options);
     if (options.pileWorker)
-        return runPileWorker(options.dice);
+        return runPileWorker(options.dice, options.iterations);
     if (options.phases)
         return runPhases(options);
     std::vector<std::size_t> sizes;
@@ -364,6 +365,11 @@ void addBenchCommand(CLI::App& root, Action& selected)
     bench->get_option("--phases")->excludes(pileWorker);
     bench->add_option("--dice", options->dice, "With --pile-worker: the dice thrown (default 1000)")
         ->needs(pileWorker)
+        ->option_text("N");
+    bench->add_option("--iterations", options->iterations,
+                      "With --pile-worker: the solver's velocity sweeps a step, a fixed count (default 10, Bullet's)")
+        ->needs(pileWorker)
+        ->check(CLI::Range(1, 1000))
         ->option_text("N");
     bench->footer("The workload is the blow-dryer-swarm scene (gravity, the blow dryer, the room's walls and the\n"
                   "hole) at dt = 0.002, each swarm row in three phases: in flight, from the scene's first state\n"

@@ -45,6 +45,7 @@ nlohmann::json readyLine(const Scene& scene, int threads)
             {"t", world.time()},
             {"dt", scene.dt},
             {"threads", threads},
+            {"velocity_iterations", world.contactSettings().velocityIterations},
             {"integrator", std::string(integratorName(die.getIntegrator()))},
             {"gravity", vec(world.gravity())},
             {"room", {{"min", vec(world.room()->min)}, {"max", vec(world.room()->max)}}},
@@ -88,7 +89,13 @@ void writePileState(const World& world, const std::filesystem::path& path)
     file.commit();
 }
 
-int runPileWorker(std::size_t dice)
+void usePileSolver(World& world, int iterations)
+{
+    ContactSettings& s = world.contactSettings();
+    s.velocityIterations = s.maxVelocityIterations = iterations;
+}
+
+int runPileWorker(std::size_t dice, int iterations)
 {
     Scene scene = [dice] {
         try {
@@ -99,6 +106,7 @@ int runPileWorker(std::size_t dice)
     }();
     World& world = scene.world;
     world.setThreads(0);
+    usePileSolver(world, iterations);
     fmt::print("{}\n", readyLine(scene, machineCores()).dump());
     std::fflush(stdout);
     for (std::string line; std::getline(std::cin, line);) {

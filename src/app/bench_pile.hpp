@@ -29,6 +29,11 @@ void writePileState(const World& world, const std::filesystem::path& path);
 /// Each answer is one JSON line; the first, {"ready": ...}, gives what a peer needs to build the
 /// same pile: the dice count, dt, gravity, the room, a die's size, mass, inertia (its diagonal,
 /// body frame), friction and restitution, and pileStateBits of the start.
-int runPileWorker(std::size_t dice);
+int runPileWorker(std::size_t dice, int iterations);
+
+/// The pile's solver, compared sweep for sweep with a peer's: `iterations` velocity sweeps every
+/// step, a fixed count (Bullet's default is 10), rather than pba's sweeps to convergence.
+inline constexpr int kPileIterations = 10;
+void usePileSolver(World& world, int iterations);
 
 } // namespace pba::app::bench

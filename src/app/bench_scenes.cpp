@@ -5,6 +5,7 @@
 #include <functional>
 #include <utility>
 
+#include "bench_pile.hpp"
 #include "bench_timing.hpp"
 #include "pba/scene/scene.hpp"
 #include "pba/spring_network.hpp"
@@ -86,6 +87,7 @@ PileRun runPile(std::size_t dice, bool quick, int cores)
     Scene scene = manyDice(dice);
     World& world = scene.world;
     world.setThreads(0);
+    usePileSolver(world, kPileIterations);
     PileRun pile{dice, {}};
     SpanRun& run = pile.run;
     run.threads = cores;

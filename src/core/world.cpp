@@ -365,6 +365,9 @@ bool World::isAsleep(std::size_t i) const
 
 void World::wakeAll() { m_rigidSystem->wakeAll(); }
 
+ContactSettings& World::contactSettings() { return m_rigidSystem->settings(); }
+const ContactSettings& World::contactSettings() const { return m_rigidSystem->settings(); }
+
 bool World::hasRigidBodies() const
 {
     return std::any_of(m_isRigid.begin(), m_isRigid.end(), [](std::uint8_t r) { return r != 0; });

@@ -30,6 +30,39 @@ void applyPair(SolverBody& a, SolverBody& b, const PointRows& r, const dvec3& p)
     b.applyImpulse(p, r.rB);
 }
 
+Jacobian jacobianOf(const SolverBody& a, const SolverBody& b, const dvec3& ra, const dvec3& rb, const dvec3& u)
+{
+    Jacobian j;
+    j.u = u;
+    j.momentA = glm::cross(ra, u);
+    j.momentB = glm::cross(rb, u);
+    j.turnA = a.inverseInertia * j.momentA;
+    j.turnB = b.inverseInertia * j.momentB;
+    const double k = a.inverseMass + b.inverseMass + glm::dot(j.momentA, j.turnA) + glm::dot(j.momentB, j.turnB);
+    j.mass = k > 0.0 ? 1.0 / k : 0.0;
+    return j;
+}
+
+/// The two points' relative speed along a row.
+double speedAlong(const Jacobian& j, const SolverBody& a, const SolverBody& b)
+{
+    return glm::dot(j.u, b.v - a.v) + glm::dot(j.momentB, b.w) - glm::dot(j.momentA, a.w);
+}
+
+/// An impulse `lambda` along a row: on B, and its opposite on A (a static body untouched: the
+/// islands that touch one share it).
+void applyAlong(const Jacobian& j, double lambda, SolverBody& a, SolverBody& b)
+{
+    if (!a.isStatic()) {
+        a.v -= (lambda * a.inverseMass) * j.u;
+        a.w -= lambda * j.turnA;
+    }
+    if (!b.isStatic()) {
+        b.v += (lambda * b.inverseMass) * j.u;
+        b.w += lambda * j.turnB;
+    }
+}
+
 /// The smallest s in [0, span] at which gap + u s + a s^2 / 2 reaches 0, or NaN if it does not
 /// within the span. A gap already closed is reached at once.
 double arrival(double gap, double u, double a, double span)
@@ -88,9 +121,12 @@ void ContactSolver::prepare(std::span<Contact> contacts, std::span<const std::ui
             r.rB = p.point - b.position;
             r.n = p.normal;
             tangentsOf(r.n, r.t);
-            r.normalMass = effectiveMass(a, b, r.rA, r.rB, r.n);
-            for (int k = 0; k < 2; ++k)
-                r.tangentMass[k] = effectiveMass(a, b, r.rA, r.rB, r.t[k]);
+            r.along = jacobianOf(a, b, r.rA, r.rB, r.n);
+            r.normalMass = r.along.mass;
+            for (int k = 0; k < 2; ++k) {
+                r.across[k] = jacobianOf(a, b, r.rA, r.rB, r.t[k]);
+                r.tangentMass[k] = r.across[k].mass;
+            }
             r.separation = p.separation;
             const dvec3 start = b.pointStartVelocity(r.rB) - a.pointStartVelocity(r.rA);
             const dvec3 free = relativeVelocity(a, b, r);
@@ -160,9 +196,10 @@ double ContactSolver::restitutionOf(const Constraint& c, const PointRows& r) con
     const double q = 0.5 * r.vnStart * r.vnStart - accel * std::max(r.separation, 0.0) + k * r.vnStart;
     const double e2q = c.restitution * c.restitution * q;
     const double exact2 = r.vnStart * r.vnStart - 2.0 * accel * std::max(r.separation, 0.0);
-    if (k == 0.0 || !(k * k + 2.0 * e2q >= 0.0) || !(exact2 > 0.0))
+    if (k == 0.0 || !(k * k + 2.0 * e2q >= 0.0) || !(exact2 > m_settings.restingSpeed * m_settings.restingSpeed))
         return c.restitution;
-    return (-k + std::sqrt(k * k + 2.0 * e2q)) / std::sqrt(exact2);
+    // An O(dt) correction of e: never past the bounds a restitution has.
+    return std::clamp((-k + std::sqrt(k * k + 2.0 * e2q)) / std::sqrt(exact2), 0.0, 1.0);
 }
 
 double ContactSolver::refineArrival(const Constraint& c, int point, double tPrev, double tau) const
@@ -250,7 +287,10 @@ bool ContactSolver::collideOne(const Constraint& c)
         if (!(arriving < -m_settings.restingSpeed))
             continue; // it meets the surface turning away from it
         const dvec3 now = relativeVelocity(a, b, row.rows);
-        const double leaving = -arriving * (tPrev == 0.0 ? restitutionOf(c, m_rows[c.first + i]) : c.restitution);
+        // The method's own energy describes a fall from the start of the step, not an arrival that
+        // an earlier blow in this step set off: then the restitution is e itself.
+        const bool ownFall = !a.struck && !b.struck;
+        const double leaving = -arriving * (ownFall ? restitutionOf(c, m_rows[c.first + i]) : c.restitution);
         row.targetN = glm::dot(sp.n, now) + (leaving - arriving);
         for (int k = 0; k < 2; ++k) {
             row.rows.tangentMass[k] = effectiveMass(a, b, row.rows.rA, row.rows.rB, row.rows.t[k]);
@@ -297,6 +337,7 @@ bool ContactSolver::collideOne(const Constraint& c)
         body.shift += (body.v - v0) * (dt - tau);
         body.turn += (body.w - w0) * (dt - tau);
         body.lastImpact = tau;
+        body.struck = true;
     };
     shift(a, va0, wa0);
     shift(b, vb0, wb0);
@@ -316,7 +357,9 @@ void ContactSolver::warmStart()
         SolverBody& b = m_bodies[c.b];
         for (int i = 0; i < c.count; ++i) {
             const PointRows& r = m_rows[c.first + i];
-            applyPair(a, b, r, r.normalImpulse * r.n + r.tangentImpulse[0] * r.t[0] + r.tangentImpulse[1] * r.t[1]);
+            applyAlong(r.along, r.normalImpulse, a, b);
+            applyAlong(r.across[0], r.tangentImpulse[0], a, b);
+            applyAlong(r.across[1], r.tangentImpulse[1], a, b);
         }
     }
 }
@@ -325,21 +368,18 @@ void ContactSolver::solveFriction(const Constraint& c, SolverBody& a, SolverBody
 {
     for (int i = 0; i < c.count; ++i) {
         PointRows& r = m_rows[c.first + i];
-        const dvec3 vrel = relativeVelocity(a, b, r);
         double want[2];
         for (int k = 0; k < 2; ++k)
-            want[k] = r.tangentImpulse[k] - r.tangentMass[k] * glm::dot(r.t[k], vrel);
+            want[k] = r.tangentImpulse[k] - r.across[k].mass * speedAlong(r.across[k], a, b);
         const double length = std::sqrt(want[0] * want[0] + want[1] * want[1]);
         const double limit = c.friction * r.normalImpulse;
         const double scale = length > limit ? limit / length : 1.0;
-        dvec3 p(0.0);
         for (int k = 0; k < 2; ++k) {
             const double next = want[k] * scale;
-            p += (next - r.tangentImpulse[k]) * r.t[k];
+            applyAlong(r.across[k], next - r.tangentImpulse[k], a, b);
             m_change = std::max(m_change, std::abs(next - r.tangentImpulse[k]));
             r.tangentImpulse[k] = next;
         }
-        applyPair(a, b, r, p);
     }
 }
 
@@ -351,9 +391,8 @@ void ContactSolver::solveNormal(const Constraint& c, SolverBody& a, SolverBody& 
         // A gap may close within the step, no more (a speculative contact): resting stays at
         // rest, and an arrival slower than the resting speed lands without a bounce.
         const double target = -std::max(r.separation, 0.0) / dt;
-        const double vn = glm::dot(r.n, relativeVelocity(a, b, r));
-        const double next = std::max(r.normalImpulse - r.normalMass * (vn - target), 0.0);
-        applyPair(a, b, r, (next - r.normalImpulse) * r.n);
+        const double next = std::max(r.normalImpulse - r.along.mass * (speedAlong(r.along, a, b) - target), 0.0);
+        applyAlong(r.along, next - r.normalImpulse, a, b);
         m_change = std::max(m_change, std::abs(next - r.normalImpulse));
         m_largest = std::max(m_largest, next);
         r.normalImpulse = next;

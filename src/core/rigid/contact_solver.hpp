@@ -40,6 +40,16 @@ struct SolverSettings {
     double maxCorrection = 0.2;
 };
 
+/// What an impulse of 1 along a direction u at a point does, worked out once a step so that a
+/// sweep is dot products and additions: the arms' moments rA x u and rB x u, and what they
+/// turn each body by, IA^-1 (rA x u) and IB^-1 (rB x u).
+struct Jacobian {
+    dvec3 u{0.0};
+    dvec3 momentA{0.0}, momentB{0.0};
+    dvec3 turnA{0.0}, turnB{0.0};
+    double mass = 0.0; ///< 1 / (1/mA + 1/mB + (rA x u).IA^-1(rA x u) + (rB x u).IB^-1(rB x u))
+};
+
 /// One contact point's rows, worked out once a step.
 struct PointRows {
     dvec3 rA{0.0}, rB{0.0}; ///< arms from each body's centre to the point, world, at the start
@@ -55,6 +65,7 @@ struct PointRows {
     double normalImpulse = 0.0;
     double tangentImpulse[2] = {0.0, 0.0};
     bool bounced = false;
+    Jacobian along, across[2]; ///< the velocity pass's rows: the normal and the two tangents
 };
 
 /// Solves one island's contacts. `contacts` holds every contact of the world; `island` lists

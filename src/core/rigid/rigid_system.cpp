@@ -264,6 +264,7 @@ void RigidSystem::prepareBodies(double dt, std::size_t surfaces)
         const Material& m = m_material[k];
         const dmat3 r = glm::mat3_cast(s.rotation.orientation);
         b.inverseInertia = r * m.inverseInertiaBody * glm::transpose(r);
+        b.inertia = glm::inverse(b.inverseInertia);
         b.inverseMass = m.inverseMass;
         b.driftWeight = m.driftWeight;
         b.v = e.v;
@@ -339,7 +340,7 @@ void RigidSystem::capEnergy(std::size_t island)
     for (const std::uint32_t k : bodies) {
         const SolverBody& b = m_solverBodies[k];
         const Material& m = m_material[k];
-        const RigidState s{b.endPosition, b.v, Rotation{b.endOrientation, m_end[k].rotation.momentum + b.momentumChange}};
+        const RigidState s{b.endPosition, b.v, Rotation{b.endOrientation, m_end[k].rotation.momentum + b.momentumChange()}};
         start += m_energyStart[k];
         free += m_energyFree[k];
         const double e = energyInGravity(s, m.inverseMass, m.inverseInertiaBody, m_gravity);
@@ -377,8 +378,7 @@ void RigidSystem::capEnergy(std::size_t island)
     for (const std::uint32_t k : bodies) {
         SolverBody& b = m_solverBodies[k];
         b.v *= keep;
-        // L = L_free + change: scale the whole of it.
-        b.momentumChange = keep * (m_end[k].rotation.momentum + b.momentumChange) - m_end[k].rotation.momentum;
+        b.w *= keep; // L = I w: scaled alike
     }
 }
 
@@ -392,7 +392,7 @@ void RigidSystem::finishBodies()
         e.x = b.endPosition;
         e.v = b.v;
         e.rotation.orientation = b.endOrientation;
-        e.rotation.momentum += b.momentumChange;
+        e.rotation.momentum += b.momentumChange();
     });
 }
 

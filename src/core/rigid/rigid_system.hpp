@@ -20,6 +20,7 @@
 
 #include "contact/narrow_phase.hpp"
 #include "pba/collision.hpp"
+#include "pba/contact_settings.hpp"
 #include "pba/integrator.hpp"
 #include "pba/rigid_body.hpp"
 #include "pba/rotation.hpp"
@@ -32,25 +33,7 @@
 
 namespace pba::rigid {
 
-/// How the system solves, and when a body sleeps.
-struct RigidSettings {
-    int velocityIterations = 10;
-    /// Sweeps past velocityIterations while the contacts' impulses still change, at most this
-    /// many in all: a warm-started pile needs the first few, a tower's new contacts dozens.
-    int maxVelocityIterations = 64;
-    int positionIterations = 3;
-    /// The position pass's tolerance and share (SolverSettings).
-    double linearSlop = 0.0005;
-    double baumgarte = 0.2;
-    /// Contacts are kept while the shapes are this much further apart than their motion in the
-    /// step could close (so a resting contact keeps its points, and its impulses, from step to step).
-    double contactMargin = 0.005;
-    bool sleeping = true;
-    /// A body slower than this (its centre, or its furthest point turning) for kTimeToSleep
-    /// seconds, with all of its island, sleeps.
-    double sleepSpeed = 0.03;
-    double timeToSleep = 0.5;
-};
+using RigidSettings = ContactSettings;
 
 class RigidSystem {
 public:

@@ -36,16 +36,18 @@ struct SolverBody {
     dvec3 wStart{0.0};     ///< angular velocity at the start of the step
     dvec3 vFree{0.0};      ///< linear velocity at the end of the free step, before any impulse
     dvec3 wFree{0.0};      ///< angular velocity likewise
-    dvec3 momentumChange{0.0}; ///< angular momentum the impulses added, world
     dvec3 shift{0.0};      ///< how far the impulses moved the end position
     dvec3 turn{0.0};       ///< how far they turned the end orientation (a rotation vector)
     dmat3 inverseInertia{0.0}; ///< world frame, at the start's orientation
+    dmat3 inertia{0.0};        ///< its inverse: what turns a change of w back into one of L
     double inverseMass = 0.0;
     /// The part of the step's drift that a change of the end velocity drives (driftWeight):
     /// semi-implicit Euler's all of it, velocity Verlet's and RK4's half, forward Euler's none.
     double driftWeight = 1.0;
     /// The latest time within the step at which it took a restitution impulse (collision pass).
     double lastImpact = 0.0;
+    /// Whether it took a restitution impulse this step.
+    bool struck = false;
 
     /// The body's end pose: its free step's until the passes move it (the collision pass reads
     /// the free one, to find where the body was when a point arrived).
@@ -69,22 +71,21 @@ struct SolverBody {
         if (isStatic()) // shared by the islands that touch it: never written
             return;
         v += p * inverseMass;
-        const dvec3 dl = glm::cross(r, p);
-        momentumChange += dl;
-        w += inverseInertia * dl;
+        w += inverseInertia * glm::cross(r, p);
     }
     /// An angular impulse l (world frame).
     void applyAngularImpulse(const dvec3& l)
     {
         if (isStatic())
             return;
-        momentumChange += l;
         w += inverseInertia * l;
     }
     /// The position pass's moves: a positional impulse p at arm r, or an angular one l, on the
     /// end pose alone.
     void movePose(const dvec3& p, const dvec3& r);
     void turnPose(const dvec3& l);
+    /// The angular momentum the impulses have added: every change of w came from one.
+    dvec3 momentumChange() const { return inertia * (w - wFree); }
     /// The velocity of the point at arm r.
     dvec3 pointVelocity(const dvec3& r) const { return v + glm::cross(w, r); }
     dvec3 pointStartVelocity(const dvec3& r) const { return vStart + glm::cross(wStart, r); }
