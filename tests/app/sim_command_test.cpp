@@ -173,3 +173,26 @@ TEST(PbaSim, HelpExplainsEveryOption)
     for (const char* option : {"--dt", "--duration", "--integrator", "--collision", "--frame-rate", "--out"})
         EXPECT_NE(sim.out.find(option), std::string::npos) << option;
 }
+
+// A position outside the room is told the room's bounds (or the ground's height), so the fix
+// can be read off the message.
+TEST(PbaSim, APositionOutsideTheRoomIsToldItsBounds)
+{
+    const auto dir = freshDir("sim_outside");
+    std::ofstream(dir / "room.json") << R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]},
+        "particles": [{"name": "a", "position": [0, 5, 0]}]})";
+    std::ofstream(dir / "ground.json") << R"({"ground": {"height": 0.5}, "ropes": [{"name": "r", "from": [0, 1, 0],
+        "to": [2, 0, 0], "count": 3, "stiffness": 10}]})";
+    CommandResult r = runPba("sim " + (dir / "room.json").string());
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("particles[0].position: (0, 5, 0) lies outside the ground or room: the room spans x -2 to 2, "
+                         "y 0 to 4, z -2 to 2 m\n"),
+              std::string::npos)
+        << r.err;
+    r = runPba("sim " + (dir / "ground.json").string());
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("ropes[0].to: particle 'r[2]' at (2, 0, 0) lies outside the ground or room: the ground is at "
+                         "y = 0.5 m\n"),
+              std::string::npos)
+        << r.err;
+}
