@@ -17,7 +17,16 @@ still spring 2
 still blow-dryer 6
 still cloth-in-the-dryer 4
 still blow-dryer-flow 12 640x480 # taller: the legend leaves all five balls in view
-"$pba" render dice --size 960x540 --out "$out/dice.png" # at the end: every die at rest
+# Rigid bodies, each from a camera placed on its action (the room's framing shows them small).
+rigid() { # SCENE TIME CAMERA [MARKS]
+  "$pba" render "$1" --size 640x360 --time "$2" --camera="$3" ${4:+--show "$4"} --out "$out/$1.png"
+}
+rigid pyramid 2 0,1.1,6.8,0,0.9,0
+rigid dominoes 1.6 -0.6,1.3,2.8,-1.0,0.1,0 contacts
+rigid newtons-cradle 0.62 0.1,1.3,2.4,0.1,1.05,0
+rigid wrecking-ball 1.8 1.2,1.6,6.0,0.2,0.8,0
+rigid chain 0.45 0,2.4,4.6,-0.6,2.0,0 joints
+"$pba" render dice --size 640x360 --camera=0,2.4,3.8,0,0.1,-0.5 --out "$out/dice.png" # at the end: every die at rest
 "$pba" render blow-dryer-swarm --size 640x360 --time 1.5 --out "$out/blow-dryer-swarm.png"
 "$pba" field blow-dryer-flow --slice --out "$out/field-blow-dryer-flow.png"
 
@@ -30,6 +39,8 @@ cp "$work/stiff/stability.png" "$out/stability.png"
 "$pba" compare tennis-racket --integrators rk4,implicit-gyroscopic --out "$work/racket" > /dev/null
 cp "$work/racket/flip.png" "$out/tennis-racket-flip.png"
 xvfb-run -a -s "-screen 0 1280x720x24" "$pba" view integrators --time 1.3 --screenshot "$out/viewer.png"
+xvfb-run -a -s "-screen 0 1280x720x24" "$pba" view tennis-racket --time 4.5 --show axes --camera 1.4,2.6,2.2,0,2,0 \
+  --screenshot "$out/viewer-tennis-racket.png"
 
 gif() { # SCENE SECONDS SIZE: the first SECONDS at 12 frames a second, a palette of its own
   "$pba" render "$1" --duration "$2" --fps 12 --size "$3" --out "$work/$1.mp4"

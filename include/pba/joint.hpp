@@ -38,6 +38,8 @@ struct JointDesc {
 /// holds) and, for a hinge, its axis.
 struct JointFrame {
     JointType type = JointType::Ball;
+    std::size_t bodyA = 0;            ///< world index
+    std::optional<std::size_t> bodyB; ///< world index; none when joined to the world
     dvec3 onA{0.0}, onB{0.0};
     dvec3 axis{0.0};
 };

@@ -17,6 +17,9 @@ std::optional<ViewerCommand> commandFor(int key, int mods)
     case GLFW_KEY_R: return (mods & GLFW_MOD_SHIFT) ? ViewerCommand::ReloadScene : ViewerCommand::Reset;
     case GLFW_KEY_I: return ViewerCommand::ToggleInterpolation;
     case GLFW_KEY_C: return ViewerCommand::FrameCamera;
+    case GLFW_KEY_N: return ViewerCommand::ToggleContacts;
+    case GLFW_KEY_J: return ViewerCommand::ToggleJoints;
+    case GLFW_KEY_A: return ViewerCommand::ToggleAxes;
     case GLFW_KEY_ESCAPE: return ViewerCommand::Quit;
     default: return std::nullopt;
     }

@@ -13,7 +13,10 @@ enum class ViewerCommand {
     Reset,               ///< r: restart with the panel's settings
     ReloadScene,         ///< shift+r: the scene as loaded, the panel's changes undone
     ToggleInterpolation, ///< i
-    FrameCamera,         ///< c
+    FrameCamera,         ///< c: back to the start's camera
+    ToggleContacts,      ///< n: contact points and normals
+    ToggleJoints,        ///< j: joint frames
+    ToggleAxes,          ///< a: rigid bodies' axes with omega and L
     Quit,                ///< Esc
 };
 

@@ -13,6 +13,7 @@
 #include "command.hpp"
 #include "frame_steps.hpp"
 #include "lanes.hpp"
+#include "picture_options.hpp"
 #include "progress.hpp"
 #include "render_output.hpp"
 #include "scene_options.hpp"
@@ -33,6 +34,8 @@ struct RenderOptions {
     bool arrows = false;
     bool noTrails = false;
     bool lanes = false;
+    std::optional<std::string> camera;
+    std::optional<std::string> show;
 };
 
 /// A picture's pixels: rendering one takes about 45 bytes a pixel at its peak (multisampled colour
@@ -70,15 +73,20 @@ int runRender(const RenderOptions& options)
     if (!(until * options.fps <= kMaxSteps))
         throw UsageError(fmt::format("--duration: {:g} s at {} frames a second is more than {:g} frames", until,
                                      options.fps, kMaxSteps));
+    render::ViewSettings settings;
+    const std::optional<CameraChoice> camera =
+        options.camera ? std::optional(parseCamera(*options.camera)) : std::nullopt;
+    if (options.show)
+        applyShow(*options.show, settings);
     FrameSink sink(kind, options.out, width, height, options.fps); // checks the path before any work
 
-    render::ViewSettings settings;
     settings.fieldArrows = options.arrows;
     settings.trails = !options.noTrails;
     settings.fabric = scene.fabric;
     if (options.lanes)
         settings.ghost = exactGhosts(scene.world);
     render::OffscreenRenderer renderer(width, height);
+    renderer.setCamera(cameraFor(camera, scene.world));
     render::Trails trails;
     const World initial = scene.world;
     const auto frames = static_cast<long>(std::floor(until * options.fps + 1e-9)) + 1;
@@ -150,9 +158,12 @@ void addRenderCommand(CLI::App& root, Action& selected)
     render->add_flag("--no-trails", options->noTrails, "Do not draw the particles' fading trails");
     render->add_flag("--lanes", options->lanes, "Integrator lanes: a ghost of the exact solution beside each particle "
                                                 "that has one (the integrators and spring scenes)");
+    addPictureFlags(*render, options->camera, options->show);
     render->footer("\nExamples:\n  pba render integrators --out pba-out/integrators.png --time 1.2\n"
                    "  pba render blow-dryer --out pba-out/blow-dryer.mp4 --duration 10\n"
-                   "  pba render spring --out pba-out/frames/ --fps 30\n");
+                   "  pba render spring --out pba-out/frames/ --fps 30\n"
+                   "  pba render dominoes --camera side --show contacts --out pba-out/dominoes.png --time 1.5\n"
+                   "  pba render pendulum --camera 0,2.5,5,0,2,0 --show joints,axes --out pba-out/pendulum.png\n");
     render->callback([options, &selected] { selected = [options] { return runRender(*options); }; });
 }
 

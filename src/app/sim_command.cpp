@@ -28,6 +28,7 @@ struct SimOptions {
     std::optional<std::string> out;
     std::optional<double> frameRate;
     bool swarmParticles = false;
+    bool everyParticle = false;
 };
 
 /// A scene with rigid bodies adds each body's orientation and angular velocity (world frame)
@@ -100,6 +101,8 @@ public:
         const std::vector<double> startEnergies = world.energies();
         for (std::size_t i = 0; i < world.bodyCount(); ++i) {
             summary_[i].startEnergy = startEnergies[i];
+            if (!world.body(i).isFixed())
+                summary_[i].startMomentum = world.body(i).getMass() * world.body(i).getVel();
             summary_[i].highest = world.body(i).getPos().y;
         }
     }
@@ -199,7 +202,7 @@ int runSim(const SimOptions& options)
     }
     if (csv)
         csv->commit();
-    printSummary(scene, world, record.summary(), jet, rigid);
+    printSummary(scene, world, record.summary(), jet, rigid, options.everyParticle);
     if (options.out)
         fmt::print("wrote {} to {}\n", options.swarmParticles ? "every body and swarm particle at every step"
                                                               : fmt::format("{} rows", (world.stepCount() + 1) * world.bodyCount()),
@@ -234,6 +237,9 @@ void addSimCommand(CLI::App& root, Action& selected)
                   "With --out: also write a row per swarm particle (named SWARM[i]) at every step, about 100 "
                   "bytes each (10 MB a step for 100,000 particles: pair it with a short --duration); without it "
                   "swarms are summarised by statistics");
+    sim->add_flag("--every-particle", options->everyParticle,
+                  "List every particle of each rope and cloth in the summary too (by default a rope or cloth is "
+                  "one row of totals)");
     sim->callback([options, &selected] { selected = [options] { return runSim(*options); }; });
 }
 

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include "pba/rigid_body.hpp"
+#include "render/body_groups.hpp"
 
 namespace pba::app {
 
@@ -40,8 +43,40 @@ void printSwarmSummary(const World& world)
     }
 }
 
+/// Each rope and cloth in the jet, in one line instead of a row per particle.
+void printFabricInJet(const World& world, const study::JetWatch& jet, const render::BodyGroups& groups)
+{
+    const auto bodies = jet.bodies();
+    for (const render::BodyGroup& g : groups.groups()) {
+        if (!g.fabric())
+            continue;
+        double mean = 0.0, least = 1.0, height = 0.0;
+        std::optional<double> allCaught = 0.0; // when the last particle was caught, if every one was
+        std::size_t moving = 0;
+        for (const std::size_t i : g.members) {
+            if (i >= bodies.size() || world.body(i).isFixed())
+                continue;
+            ++moving;
+            mean += jet.fractionInCone(i);
+            least = std::min(least, jet.fractionInCone(i));
+            height += std::isfinite(bodies[i].meanHeightInCone) ? bodies[i].meanHeightInCone : 0.0;
+            allCaught = allCaught && bodies[i].caughtAt ? std::optional(std::max(*allCaught, *bodies[i].caughtAt))
+                                                        : std::nullopt;
+        }
+        if (moving == 0)
+            continue;
+        fmt::print("{} {}: its {} particles spent {:.1f}% of the run in the cone on average (the least {:.1f}%), "
+                   "{}, mean height in the cone {:.3f} m\n",
+                   g.kind == render::BodyGroup::Kind::Rope ? "rope" : "cloth", g.name, g.members.size(),
+                   100.0 * mean / double(moving), 100.0 * least,
+                   allCaught ? fmt::format("every one caught by {:.2f} s", *allCaught) : std::string("not every one caught"),
+                   height / double(moving));
+    }
+}
+
 /// What the bodies did in the blow dryer's jet, and how many swarm particles are in its shaft.
-void printJetSummary(const World& world, const study::JetWatch& jet)
+void printJetSummary(const World& world, const study::JetWatch& jet, const render::BodyGroups& groups,
+                     bool everyParticle)
 {
     if (!jet.active())
         return;
@@ -50,17 +85,21 @@ void printJetSummary(const World& world, const study::JetWatch& jet)
                jet.field().strength, flowDirectionName(jet.field().direction),
                g > 0.0 ? jet.field().strength / g : INFINITY, study::kCatchStay);
     const auto bodies = jet.bodies();
-    if (!bodies.empty())
+    bool rows = false;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+        rows = rows || !(world.body(i).isFixed() || (groups.inFabric(i) && !everyParticle));
+    if (rows)
         fmt::print("{:<22} {:>8} {:>10} {:>10} {:>12} {:>14} {:>15}\n", "body", "mass", "in cone", "caught at",
                    "longest stay", "height in cone", "longest in hole");
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const study::BodyInJet& b = bodies[i];
-        if (world.body(i).isFixed())
+        if (world.body(i).isFixed() || (groups.inFabric(i) && !everyParticle))
             continue;
         fmt::print("{:<22} {:>6.3g}kg {:>9.1f}% {:>10} {:>11.2f}s {:>13.3f}m {:>14.2f}s\n", b.name, b.mass,
                    100.0 * jet.fractionInCone(i), b.caughtAt ? fmt::format("{:.2f}s", *b.caughtAt) : std::string("never"),
                    b.longestStay, b.meanHeightInCone, b.longestInShaft);
     }
+    printFabricInJet(world, jet, groups);
     const auto inShaft = jet.swarmsInShaft(world);
     for (std::size_t s = 0; s < inShaft.size(); ++s) {
         const auto& figures = jet.swarms()[s];
@@ -112,34 +151,118 @@ std::string energyRatioText(double ratio)
     return fmt::format("{:.6f}", ratio);
 }
 
+/// Whether the blow dryer pushed any of these bodies: it does work on a body in its cone, so
+/// their energy is not kept (a ratio of 1.76 is the push, not an error).
+bool dryerWorked(const study::JetWatch& jet, const std::vector<std::size_t>& bodies)
+{
+    return jet.active() && std::any_of(bodies.begin(), bodies.end(), [&](std::size_t i) { return jet.fractionInCone(i) > 0.0; });
+}
+
+constexpr const char* kDryerNote = "  (+ the dryer's work)";
+
+/// A row per body that is no rope's or cloth's (every particle too, with everyParticle).
+void printBodyRows(const World& world, const render::BodyGroups& groups, const std::vector<BodySummary>& summary,
+                   const std::vector<double>& energies, const study::JetWatch& jet, bool everyParticle)
+{
+    std::vector<std::size_t> rows;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (everyParticle || !groups.inFabric(i))
+            rows.push_back(i);
+    if (rows.empty())
+        return;
+    fmt::print("{:<22} {:<20} {:>32} {:>11} {:>10} {:>8} {:>14}\n", "body", "integrator", "final position (m)",
+               "speed (m/s)", "highest y", "bounces", "E now/E start");
+    for (const std::size_t i : rows) {
+        const Body& b = world.body(i);
+        const dvec3& x = b.getPos();
+        const double ratio = summary[i].startEnergy != 0.0 ? energies[i] / summary[i].startEnergy : 1.0;
+        fmt::print("{:<22} {:<20} {:>32} {:>11.4g} {:>10.4f} {:>8} {:>14}{}\n", b.getName(),
+                   b.isFixed() ? std::string("(fixed)") : std::string(integratorName(b.getIntegrator())),
+                   fmt::format("({:.4f}, {:.4f}, {:.4f})", x.x, x.y, x.z), glm::length(b.getVel()),
+                   summary[i].highest, world.bounceCount(i), energyRatioText(ratio),
+                   dryerWorked(jet, {i}) ? kDryerNote : "");
+    }
+}
+
+std::string vectorText(const dvec3& v) { return fmt::format("({:.4f}, {:.4f}, {:.4f})", v.x, v.y, v.z); }
+
+/// A row per rope and cloth: its particles, integrator, centre of mass, momentum and the ratio
+/// of its total energy, in place of a row per particle.
+void printSystemRows(const World& world, const render::BodyGroups& groups, const std::vector<BodySummary>& summary,
+                     const std::vector<double>& energies, const study::JetWatch& jet)
+{
+    bool header = false;
+    for (const render::BodyGroup& g : groups.groups()) {
+        if (!g.fabric())
+            continue;
+        if (!std::exchange(header, true))
+            fmt::print("{:<22} {:>9} {:<20} {:>32} {:>32} {:>14}\n", "rope or cloth", "particles", "integrator",
+                       "centre of mass (m)", "momentum (kg m/s)", "E now/E start");
+        double mass = 0.0, start = 0.0;
+        dvec3 centre(0.0);
+        std::string integrator = "(fixed)";
+        for (const std::size_t i : g.members) {
+            const Body& b = world.body(i);
+            mass += b.getMass();
+            centre += b.getMass() * b.getPos();
+            start += summary[i].startEnergy;
+            if (!b.isFixed())
+                integrator = std::string(integratorName(b.getIntegrator()));
+        }
+        const double energy = render::groupEnergy(g, energies);
+        fmt::print("{:<22} {:>9} {:<20} {:>32} {:>32} {:>14}{}\n",
+                   fmt::format("{} {}", g.kind == render::BodyGroup::Kind::Rope ? "rope" : "cloth", g.name),
+                   g.members.size(), integrator, vectorText(centre / std::max(mass, 1e-300)),
+                   vectorText(render::groupMomentum(world, g)), energyRatioText(start != 0.0 ? energy / start : 1.0),
+                   dryerWorked(jet, g.members) ? kDryerNote : "");
+    }
+}
+
+/// The whole scene's energy and momentum, now and at the start (swarms not included).
+void printSceneTotals(const World& world, const std::vector<BodySummary>& summary, const std::vector<double>& energies,
+                      const study::JetWatch& jet)
+{
+    double energy = 0.0, start = 0.0;
+    dvec3 momentum(0.0), startMomentum(0.0);
+    std::vector<std::size_t> all;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i) {
+        energy += energies[i];
+        start += summary[i].startEnergy;
+        if (!world.body(i).isFixed())
+            momentum += world.body(i).getMass() * world.body(i).getVel();
+        startMomentum += summary[i].startMomentum;
+        all.push_back(i);
+    }
+    fmt::print("all bodies: energy {:.6g} J, {:.6g} J at the start: E now/E start {}{}; momentum {} kg m/s, {} at "
+               "the start\n", energy, start, energyRatioText(start != 0.0 ? energy / start : 1.0),
+               dryerWorked(jet, all) ? kDryerNote : "", vectorText(momentum), vectorText(startMomentum));
+    if (dryerWorked(jet, all))
+        fmt::print("(+ the dryer's work): the blow dryer does work on what is in its cone, so that energy is not kept: "
+                   "the ratio includes its work (a ball hovering in the jet has gained it), not an error of the "
+                   "integration\n");
+}
+
 } // namespace
 
 void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary,
-                  const study::JetWatch& jet, const study::RigidWatch& rigid)
+                  const study::JetWatch& jet, const study::RigidWatch& rigid, bool everyParticle)
 {
     fmt::print("scene {}: {} steps of dt = {:.6g} s, t = {:.6g} s, collision response {}{}\n", scene.name, world.stepCount(),
                scene.dt, world.time(), collisionResponseName(world.collisionResponse()),
                world.coupledBodiesReflect() ? " (reflect for bodies joined by springs)" : "");
     if (world.bodyCount() == 0) {
         printSwarmSummary(world);
-        printJetSummary(world, jet);
+        printJetSummary(world, jet, render::BodyGroups(world, scene.fabric), everyParticle);
         return;
     }
-    fmt::print("{:<22} {:<20} {:>32} {:>11} {:>10} {:>8} {:>14}\n", "body", "integrator", "final position (m)",
-               "speed (m/s)", "highest y", "bounces", "E now/E start");
+    const render::BodyGroups groups(world, scene.fabric);
     const std::vector<double> energies = world.energies();
-    for (std::size_t i = 0; i < world.bodyCount(); ++i) {
-        const Body& b = world.body(i);
-        const dvec3& x = b.getPos();
-        const double ratio = summary[i].startEnergy != 0.0 ? energies[i] / summary[i].startEnergy : 1.0;
-        fmt::print("{:<22} {:<20} {:>32} {:>11.4g} {:>10.4f} {:>8} {:>14}\n", b.getName(),
-                   b.isFixed() ? std::string("(fixed)") : std::string(integratorName(b.getIntegrator())),
-                   fmt::format("({:.4f}, {:.4f}, {:.4f})", x.x, x.y, x.z), glm::length(b.getVel()),
-                   summary[i].highest, world.bounceCount(i), energyRatioText(ratio));
-    }
+    printBodyRows(world, groups, summary, energies, jet, everyParticle);
+    printSystemRows(world, groups, summary, energies, jet);
+    printSceneTotals(world, summary, energies, jet);
     printRigidSummary(world, rigid);
     printSwarmSummary(world);
-    printJetSummary(world, jet);
+    printJetSummary(world, jet, groups, everyParticle);
 }
 
 

@@ -12,13 +12,17 @@ namespace pba::app {
 /// What the summary reports about each body, gathered as the run goes.
 struct BodySummary {
     double startEnergy = 0.0;
+    dvec3 startMomentum{0.0};
     double highest = -INFINITY;
 };
 
-/// The run's summary on stdout: the scene's steps, a row per body (its final position and
-/// speed, highest point, bounces and energy ratio), then the rigid bodies', the swarms' and
-/// the jet's figures where the scene has them.
+/// The run's summary on stdout: the scene's steps, a row per body that is no rope's or cloth's
+/// (its final position and speed, highest point, bounces and energy ratio), a row per rope and
+/// cloth (its totals), the whole scene's energy and momentum, then the rigid bodies', the swarms'
+/// and the jet's figures where the scene has them. Where the blow dryer pushed a body, its energy
+/// ratio says so: the dryer's work, not an error. `everyParticle` adds a row per particle of each
+/// rope and cloth.
 void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary,
-                  const study::JetWatch& jet, const study::RigidWatch& rigid);
+                  const study::JetWatch& jet, const study::RigidWatch& rigid, bool everyParticle = false);
 
 } // namespace pba::app

@@ -8,6 +8,7 @@
 
 #include "command.hpp"
 #include "scene_options.hpp"
+#include "picture_options.hpp"
 #include "viewer.hpp"
 #include "render/gl_context.hpp"
 
@@ -21,6 +22,8 @@ struct ViewOptions {
     std::optional<double> time;
     std::optional<std::string> screenshot;
     bool lanes = false;
+    std::optional<std::string> camera;
+    std::optional<std::string> show;
 };
 
 int runView(const ViewOptions& options)
@@ -47,6 +50,13 @@ int runView(const ViewOptions& options)
     run.screenshot = options.screenshot;
     run.pauseAt = options.scene.duration; // only when asked for: a scene's duration sizes batch runs
     run.lanes = options.lanes;
+    if (options.camera)
+        run.camera = parseCamera(*options.camera);
+    if (options.show) {
+        render::ViewSettings checked;
+        applyShow(*options.show, checked); // refused here, before the window opens
+        run.show = options.show;
+    }
     try {
         return runViewer(std::move(scene), run);
     } catch (const render::RenderError& e) {
@@ -87,10 +97,12 @@ void addViewCommand(CLI::App& root, Action& selected)
     view->add_option("--screenshot", options->screenshot, "With --time: save the window at that time to this PNG")
         ->type_name("FILE.png");
     view->add_flag("--lanes", options->lanes, "Integrator lanes: the exact solution's ghost beside each particle");
+    addPictureFlags(*view, options->camera, options->show);
     view->footer("\n--duration D pauses the run when the simulated time reaches D (play goes on past it).\n"
                  "Keys: space pause/play, '.' or right arrow single step, r reset (restart with the panel's\n"
                  "      settings), R (shift+r) reload the scene's own settings, i toggle interpolation,\n"
-                 "      c reset the camera, Esc quit.\n"
+                 "      c the start's camera again, n contact points and normals, j joint frames,\n"
+                 "      a rigid bodies' axes with omega and L, Esc quit.\n"
                  "Mouse: drag to orbit, right-drag or shift-drag to pan, wheel to zoom.\n"
                  "Without a display: `pba render SCENE --out pba-out/frame.png --time T` draws the scene, or\n"
                  "xvfb-run -a -s \"-screen 0 1280x720x24\" pba view SCENE --time T --screenshot pba-out/shot.png\n"

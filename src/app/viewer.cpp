@@ -125,6 +125,9 @@ int runViewer(Scene scene, const ViewerRun& run)
     render::ImGuiLayer imgui(window.window());
     ViewerState state;
     state.pauseAt = run.pauseAt;
+    state.cameraChoice = run.camera;
+    if (run.show)
+        applyShow(*run.show, state.settings);
     if (run.lanes)
         state.settings.ghost = [](std::size_t, double) { return std::optional<glm::vec3>(); }; // set by load()
     state.load(std::move(scene));

@@ -18,6 +18,8 @@ struct ViewerRun {
     std::optional<std::string> screenshot; ///< with `time`: save the frame at it here, then close
     std::optional<double> pauseAt;   ///< pause when the simulated time reaches it
     bool lanes = false;
+    std::optional<CameraChoice> camera; ///< `--camera`
+    std::optional<std::string> show;    ///< `--show`, already checked
 };
 
 /// Frames per second of the capture's synthetic frames (as `pba render`'s default): trails

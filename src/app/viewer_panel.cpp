@@ -9,13 +9,12 @@
 #include "pba/blow_dryer.hpp"
 #include "lanes.hpp"
 #include "viewer.hpp"
+#include "viewer_rows.hpp"
 
 namespace pba::app {
 
 namespace {
 
-constexpr const char* kIntegratorNames[] = {"forward-euler", "semi-implicit-euler", "velocity-verlet", "rk4",
-                                            "implicit-gyroscopic"};
 constexpr const char* kFalloffNames[] = {"linear", "quadratic", "smooth"};
 constexpr const char* kDirectionNames[] = {"vertical", "cone-flow"};
 constexpr const char* kResponseNames[] = {"exact", "reflect", "clamp"}; // in CollisionResponse's order
@@ -95,80 +94,22 @@ void viewSection(ViewerState& state)
     ImGui::Checkbox("cone", &state.settings.cone);
     ImGui::SameLine();
     ImGui::Checkbox("arrows", &state.settings.fieldArrows);
+    ImGui::Checkbox("contacts (n)", &state.settings.contacts);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Each contact point of the last step, and a line along its normal the way it pushes the "
+                          "body, longer the harder it pushes");
+    ImGui::SameLine();
+    ImGui::Checkbox("joints (j)", &state.settings.joints);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Each joint's point on each body (a dot in the body's colour) and a hinge's axis (cyan)");
+    ImGui::SameLine();
+    ImGui::Checkbox("axes (a)", &state.settings.axes);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Each rigid body's axes (x red, y green, z blue), its angular velocity omega (amber "
+                          "arrow) and its angular momentum L (magenta arrow)");
     bool lanes = static_cast<bool>(state.settings.ghost);
     if (ImGui::Checkbox("lanes (exact ghost)", &lanes))
         state.settings.ghost = lanes ? exactGhosts(state.initial) : nullptr;
-}
-
-void particlesSection(ViewerState& state)
-{
-    World& world = state.scene.world;
-    const std::size_t shown = std::min<std::size_t>(world.bodyCount(), 12);
-    for (std::size_t i = 0; i < shown; ++i) {
-        const Body& body = world.body(i);
-        ImGui::PushID(static_cast<int>(i));
-        const glm::vec4 c = render::bodyColour(body);
-        ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1), "%s", body.getName().c_str());
-        const double e0 = state.initial.energy(i);
-        ImGui::SameLine();
-        ImGui::Text("  y = %.3f m   E/E0 = %.4f", body.getPos().y, e0 != 0.0 ? world.energy(i) / e0 : 1.0);
-        if (!body.isFixed()) {
-            // A rigid body may take the fifth method (its rotation's implicit gyroscopic step); a
-            // particle the four of the study.
-            const bool rigid = world.isRigid(i);
-            int integrator = static_cast<int>(body.getIntegrator());
-            ImGui::SetNextItemWidth(170);
-            if (ImGui::Combo("integrator", &integrator, kIntegratorNames, rigid ? 5 : 4))
-                state.setIntegrator(i, static_cast<Integrator>(integrator));
-            ImGui::SameLine();
-            float e = float(body.getCor());
-            ImGui::SetNextItemWidth(100);
-            if (ImGui::SliderFloat("e", &e, 0.0f, 1.0f, "%.2f"))
-                state.setRestitution(i, e);
-            if (rigid) { // on a line of its own: the panel is too narrow for a third control
-                float mu = float(static_cast<const RigidBody&>(body).getFriction());
-                ImGui::SetNextItemWidth(170);
-                if (ImGui::SliderFloat("friction (mu)", &mu, 0.0f, 1.5f, "%.2f"))
-                    state.setFriction(i, mu);
-            }
-        }
-        ImGui::PopID();
-    }
-}
-
-/// A plot with its y scale: the label above it, where it is never cut off; the ends of the range
-/// written at its top and bottom left; and a margin, so that a flat line (E/E0 = 1 from the start)
-/// is drawn inside the frame rather than on its bottom edge. `minSpan` keeps rounding noise from
-/// filling the plot.
-void plotWithScale(const char* id, const std::string& label, const std::vector<float>& values, const char* format,
-                   float minSpan)
-{
-    ImGui::TextUnformatted(label.c_str());
-    float lo = values.empty() ? 0.0f : *std::min_element(values.begin(), values.end());
-    float hi = values.empty() ? 0.0f : *std::max_element(values.begin(), values.end());
-    const float middle = 0.5f * (lo + hi), half = 0.55f * std::max(hi - lo, minSpan);
-    lo = middle - half;
-    hi = middle + half;
-    ImGui::PlotLines(id, values.data(), static_cast<int>(values.size()), 0, nullptr, lo, hi,
-                     ImVec2(ImGui::GetContentRegionAvail().x, 52));
-    const ImVec2 top = ImGui::GetItemRectMin(), bottom = ImGui::GetItemRectMax();
-    ImDrawList* draw = ImGui::GetWindowDrawList();
-    const ImU32 colour = ImGui::GetColorU32(ImGuiCol_TextDisabled);
-    draw->AddText(ImVec2(top.x + 4, top.y + 1), colour, fmt::format(fmt::runtime(format), hi).c_str());
-    draw->AddText(ImVec2(top.x + 4, bottom.y - ImGui::GetFontSize() - 1), colour,
-                  fmt::format(fmt::runtime(format), lo).c_str());
-}
-
-void plotsSection(const ViewerState& state)
-{
-    const std::size_t shown = std::min<std::size_t>(state.heights.bodies(), 6);
-    for (std::size_t i = 0; i < shown; ++i) {
-        const std::string& name = state.scene.world.body(i).getName();
-        ImGui::PushID(static_cast<int>(i));
-        plotWithScale("##height", fmt::format("height of {} (m)", name), state.heights.values(i), "{:.2f}", 0.1f);
-        plotWithScale("##energy", fmt::format("E/E0 of {}", name), state.energies.values(i), "{:.3f}", 0.01f);
-        ImGui::PopID();
-    }
 }
 
 /// The dryer's push and air; true if any changed.
@@ -239,15 +180,15 @@ void panelSections(ViewerState& state)
         timeSection(state);
     if (ImGui::CollapsingHeader("view", ImGuiTreeNodeFlags_DefaultOpen))
         viewSection(state);
-    if (ImGui::CollapsingHeader("particles", ImGuiTreeNodeFlags_DefaultOpen))
-        particlesSection(state);
+    if (ImGui::CollapsingHeader("bodies", ImGuiTreeNodeFlags_DefaultOpen))
+        bodiesSection(state);
     if (!blowDryers(state.scene.world).empty() && ImGui::CollapsingHeader("blow dryer", ImGuiTreeNodeFlags_DefaultOpen))
         dryerSection(state);
     if (ImGui::CollapsingHeader("plots", ImGuiTreeNodeFlags_DefaultOpen))
         plotsSection(state);
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("drag: orbit   right-drag or shift-drag: pan   wheel: zoom   c: camera   R: reload scene   "
-                       "Esc: quit");
+    ImGui::TextWrapped("drag: orbit   right-drag or shift-drag: pan   wheel: zoom   c: camera   n: contacts   "
+                       "j: joints   a: axes   R: reload scene   Esc: quit");
     ImGui::PopStyleColor();
 }
 

@@ -5,18 +5,24 @@
 
 namespace pba::app {
 
-void History::push(std::size_t body, float value)
+void Series::push(float value)
 {
-    auto& v = m_values[body];
-    if (v.size() == kLength)
-        v.erase(v.begin());
-    v.push_back(value);
+    if (m_values.size() == kLength)
+        m_values.erase(m_values.begin());
+    m_values.push_back(value);
 }
 
-void History::clear()
+std::vector<PlotKind> plotKinds(const World& world, const render::BodyGroup& group)
 {
-    for (auto& v : m_values)
-        v.clear();
+    if (group.fabric())
+        return {PlotKind::EnergyRatio};
+    std::vector<PlotKind> kinds;
+    if (glm::length(world.gravity()) > 0.0)
+        kinds.push_back(PlotKind::Height);
+    if (world.isRigid(group.members.front()))
+        kinds.push_back(PlotKind::BodySpin);
+    kinds.push_back(PlotKind::EnergyRatio);
+    return kinds;
 }
 
 void ViewerState::load(Scene newScene)
@@ -25,8 +31,9 @@ void ViewerState::load(Scene newScene)
     scene = std::move(newScene);
     scene.world.setSwarmRollback(true); // a failed step pauses on the last finite state, swarms too
     scenePath = scene.source;
-    camera = render::frameWorld(scene.world);
+    camera = cameraFor(cameraChoice, scene.world);
     settings.fabric = scene.fabric;
+    groups = render::BodyGroups(scene.world, scene.fabric);
     initial = scene.world;
     if (settings.ghost)
         settings.ghost = exactGhosts(initial);
@@ -40,8 +47,11 @@ void ViewerState::reset()
     watch = BlowUpWatch(scene.world);
     clock.reset();
     trails.clear();
-    heights.resize(scene.world.bodyCount());
-    energies.resize(scene.world.bodyCount());
+    const std::vector<double> start = initial.energies();
+    plots.assign(std::min(groups.size(), kPlottedGroups), GroupPlots{});
+    for (std::size_t g = 0; g < plots.size(); ++g)
+        plots[g].startEnergy = render::groupEnergy(groups[g], start);
+    nextPlotSample = 0.0;
     error.reset();
     shownAlpha.reset();
     pendingSteps = 0;
@@ -68,6 +78,28 @@ void ViewerState::setRestitution(std::size_t body, double cor)
 {
     scene.world.body(body).setCor(cor);
     initial.body(body).setCor(cor);
+}
+
+void ViewerState::setGroupIntegrator(std::size_t g, Integrator integrator)
+{
+    // Each member directly: asking each of a cloth's particles for its coupled group would walk
+    // the springs once per particle. The first moving member's coupled group follows, in case a
+    // spring joins the system to a body outside it.
+    std::optional<std::size_t> moving;
+    for (const std::size_t i : groups[g].members)
+        if (!scene.world.body(i).isFixed()) {
+            scene.world.body(i).setIntegrator(integrator);
+            initial.body(i).setIntegrator(integrator);
+            moving = moving.value_or(i);
+        }
+    if (moving)
+        setIntegrator(*moving, integrator);
+}
+
+void ViewerState::setGroupRestitution(std::size_t g, double cor)
+{
+    for (const std::size_t i : groups[g].members)
+        setRestitution(i, cor);
 }
 
 void ViewerState::setFriction(std::size_t body, double friction)
@@ -173,10 +205,27 @@ void ViewerState::stepWorld(std::uint64_t steps)
 void ViewerState::record()
 {
     const World& world = scene.world;
-    const std::vector<double> now = world.energies(), start = initial.energies();
-    for (std::size_t i = 0; i < world.bodyCount(); ++i) {
-        heights.push(i, float(world.body(i).getPos().y));
-        energies.push(i, float(start[i] != 0.0 ? now[i] / start[i] : 1.0));
+    // Samples on a grid of kPlotInterval: the first step at or past each point of it (a step's
+    // time is a sum of dt, so half a step's slack keeps a sample from slipping a step late).
+    if (plots.empty() || world.time() < nextPlotSample - 0.5 * clock.dt())
+        return;
+    while (nextPlotSample <= world.time() + 0.5 * clock.dt())
+        nextPlotSample += kPlotInterval;
+    const std::vector<double> now = world.energies();
+    for (std::size_t g = 0; g < plots.size(); ++g) {
+        GroupPlots& p = plots[g];
+        const double energy = render::groupEnergy(groups[g], now);
+        p.energyRatio.push(float(p.startEnergy != 0.0 ? energy / p.startEnergy : 1.0));
+        if (groups[g].fabric())
+            continue;
+        const std::size_t i = groups[g].members.front();
+        p.height.push(float(world.body(i).getPos().y));
+        if (world.isRigid(i)) {
+            const auto& body = static_cast<const RigidBody&>(world.body(i));
+            const dvec3 w = glm::conjugate(body.getOrientation()) * body.getAngularVelocity(); // in its own frame
+            for (int k = 0; k < 3; ++k)
+                p.spin[k].push(float(w[k]));
+        }
     }
 }
 
@@ -191,7 +240,10 @@ void ViewerState::apply(ViewerCommand command)
     case ViewerCommand::Reset: reset(); break;
     case ViewerCommand::ReloadScene: reload(); break;
     case ViewerCommand::ToggleInterpolation: settings.interpolate = !settings.interpolate; break;
-    case ViewerCommand::FrameCamera: camera = render::frameWorld(initial); break;
+    case ViewerCommand::FrameCamera: camera = cameraFor(cameraChoice, initial); break;
+    case ViewerCommand::ToggleContacts: settings.contacts = !settings.contacts; break;
+    case ViewerCommand::ToggleJoints: settings.joints = !settings.joints; break;
+    case ViewerCommand::ToggleAxes: settings.axes = !settings.axes; break;
     case ViewerCommand::Quit: quit = true; break;
     }
 }

@@ -3,33 +3,56 @@
 // fixed-timestep clock, the panel's settings and the plots' history. Everything here works
 // without a display, so the viewer's logic (reset, reload, keys, capture at a time) is tested
 // without one.
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "key_input.hpp"
+#include "picture_options.hpp"
 #include "pba/blow_dryer.hpp"
 #include "pba/blow_up_watch.hpp"
 #include "pba/clock.hpp"
 #include "pba/scene/scene.hpp"
+#include "render/body_groups.hpp"
 #include "render/camera.hpp"
 #include "render/world_view.hpp"
 
 namespace pba::app {
 
-/// Recent samples of one quantity per body, for ImGui's plots.
-class History {
+/// Recent samples of one quantity, for ImGui's plots.
+class Series {
 public:
     static constexpr std::size_t kLength = 600;
-    void resize(std::size_t bodies) { m_values.assign(bodies, {}); }
-    void push(std::size_t body, float value);
-    void clear();
-    const std::vector<float>& values(std::size_t body) const { return m_values[body]; }
-    std::size_t bodies() const { return m_values.size(); }
+    void push(float value);
+    void clear() { m_values.clear(); }
+    const std::vector<float>& values() const { return m_values; }
 
 private:
-    std::vector<std::vector<float>> m_values;
+    std::vector<float> m_values;
 };
+
+/// What the panel plots of a group: a body's height (where there is gravity), its energy over
+/// its start (a rope's or cloth's total over its start), and a rigid body's angular velocity in
+/// its own frame, whose components show a tumble or the tennis racket's flip where height and
+/// energy stay flat.
+enum class PlotKind { Height, EnergyRatio, BodySpin };
+std::vector<PlotKind> plotKinds(const World& world, const render::BodyGroup& group);
+
+/// The plotted history of one group.
+struct GroupPlots {
+    Series height;
+    Series energyRatio;
+    std::array<Series, 3> spin; ///< omega's x, y and z in the body's frame, rad/s
+    double startEnergy = 0.0;
+};
+
+/// The first groups of a scene are plotted (the panel has room for a few plots, and recording
+/// every box of a pyramid would cost more than its step).
+inline constexpr std::size_t kPlottedGroups = 4;
+/// The plots sample the run every 1/60 s of simulated time, whatever dt: their 600 samples
+/// span 10 s, long enough to show the tennis racket's flips (2.9 s apart) at dt = 0.002 s.
+inline constexpr double kPlotInterval = 1.0 / 60.0;
 
 struct ViewerState {
     Scene scene;
@@ -39,8 +62,12 @@ struct ViewerState {
     render::ViewSettings settings;
     render::Trails trails;
     render::OrbitCamera camera;
-    History heights;
-    History energies;
+    /// `--camera`: where the camera starts, and where `c` puts it back (for every scene loaded).
+    std::optional<CameraChoice> cameraChoice;
+    /// Each rope, cloth and other body of the scene: the panel's rows, the colours, the plots.
+    render::BodyGroups groups;
+    std::vector<GroupPlots> plots; ///< of the first kPlottedGroups groups
+    double nextPlotSample = 0.0;   ///< the simulated time of the plots' next sample
     bool paused = false;
     int pendingSteps = 0; ///< single steps asked for and not yet taken: each press is one
     bool quit = false;
@@ -66,6 +93,9 @@ struct ViewerState {
     // Panel edits: applied to the live world and to `initial`, so a reset keeps them.
     void setIntegrator(std::size_t body, Integrator integrator);
     void setRestitution(std::size_t body, double cor);
+    /// Every moving body of group g (a rope's or cloth's particles, one menu for the system).
+    void setGroupIntegrator(std::size_t g, Integrator integrator);
+    void setGroupRestitution(std::size_t g, double cor);
     /// A rigid body's Coulomb friction (nothing for a particle).
     void setFriction(std::size_t body, double friction);
     void setCollisionResponse(CollisionResponse response);

@@ -183,6 +183,9 @@ JointFrame World::jointFrame(std::size_t i) const
     const auto [xb, qb] = pose(j.b);
     JointFrame frame;
     frame.type = j.type;
+    frame.bodyA = m_rigidSystem->worldIndex(j.a);
+    if (j.b != rigid::kWorldBody)
+        frame.bodyB = m_rigidSystem->worldIndex(j.b);
     frame.onA = xa + qa * j.localA;
     frame.onB = xb + qb * j.localB;
     if (j.type == JointType::Hinge)

@@ -30,10 +30,10 @@ glm::vec3 OrbitCamera::project(const glm::vec3& world, int width, int height) co
 void OrbitCamera::orbit(float dYaw, float dPitch)
 {
     yaw += dYaw;
-    pitch = std::clamp(pitch + dPitch, -1.5f, 1.5f);
+    pitch = std::clamp(pitch + dPitch, -kMaxPitch, kMaxPitch);
 }
 
-void OrbitCamera::zoom(float factor) { distance = std::clamp(distance * factor, 0.1f, 1000.0f); }
+void OrbitCamera::zoom(float factor) { distance = std::clamp(distance * factor, kMinDistance, kMaxDistance); }
 
 void OrbitCamera::pan(float dx, float dy)
 {
@@ -49,6 +49,37 @@ OrbitCamera OrbitCamera::framing(const glm::vec3& lo, const glm::vec3& hi)
     camera.target = 0.5f * (lo + hi);
     const float radius = 0.5f * glm::length(hi - lo);
     camera.distance = std::max(radius / std::sin(0.5f * camera.fovY), 1.0f) * 1.05f;
+    return camera;
+}
+
+float OrbitCamera::pitchOf(const glm::vec3& eye, const glm::vec3& target)
+{
+    const glm::vec3 offset = eye - target;
+    const float length = glm::length(offset);
+    return length > 0.0f ? std::asin(std::clamp(offset.y / length, -1.0f, 1.0f)) : 0.0f;
+}
+
+OrbitCamera OrbitCamera::lookingFrom(const glm::vec3& eye, const glm::vec3& target)
+{
+    // eye() is target + distance (cos p sin y, sin p, cos p cos y): read p and y back.
+    const glm::vec3 offset = eye - target;
+    OrbitCamera camera;
+    camera.target = target;
+    camera.distance = std::clamp(glm::length(offset), kMinDistance, kMaxDistance);
+    camera.pitch = std::clamp(pitchOf(eye, target), -kMaxPitch, kMaxPitch);
+    camera.yaw = std::atan2(offset.x, offset.z);
+    return camera;
+}
+
+OrbitCamera namedView(NamedView view, const OrbitCamera& framing)
+{
+    OrbitCamera camera = framing;
+    switch (view) {
+    case NamedView::Front: camera.yaw = 0.0f, camera.pitch = 0.12f; break;
+    case NamedView::Side: camera.yaw = 1.5707963f, camera.pitch = 0.12f; break;
+    case NamedView::Top: camera.yaw = 0.0f, camera.pitch = OrbitCamera::kMaxPitch; break;
+    case NamedView::Corner: camera.yaw = 0.7853982f, camera.pitch = 0.6f; break;
+    }
     return camera;
 }
 

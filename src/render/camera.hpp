@@ -23,6 +23,19 @@ struct OrbitCamera {
     void pan(float dx, float dy);
     /// Frames an axis-aligned box.
     static OrbitCamera framing(const glm::vec3& lo, const glm::vec3& hi);
+    /// The camera at `eye` looking at `target`. Its pitch is kept within kMaxPitch, as orbiting
+    /// keeps it (straight down, the view's up is undefined): check with pitchOf first.
+    static OrbitCamera lookingFrom(const glm::vec3& eye, const glm::vec3& target);
+    /// The pitch a camera at `eye` looking at `target` has, radians above the horizon.
+    static float pitchOf(const glm::vec3& eye, const glm::vec3& target);
+    static constexpr float kMaxPitch = 1.5f;
+    static constexpr float kMinDistance = 0.1f;
+    static constexpr float kMaxDistance = 1000.0f;
 };
+
+/// The named views of `--camera`: the framing camera's target and distance seen from the front
+/// (+z), the side (+x), the top, or a corner (+x, +z, from above).
+enum class NamedView { Front, Side, Top, Corner };
+OrbitCamera namedView(NamedView view, const OrbitCamera& framing);
 
 } // namespace pba::render

@@ -9,6 +9,8 @@ void DrawList::clear()
     triangles.clear();
     surfaces.clear();
     floor.reset();
+    overlayLines.clear();
+    overlaySprites.clear();
 }
 
 void DrawList::addLine(const glm::vec3& a, const glm::vec3& b, const glm::vec4& colour)
@@ -33,21 +35,43 @@ void DrawList::addTriangle(const glm::vec3& a, const glm::vec3& b, const glm::ve
     triangles.push_back({c, colour});
 }
 
-void DrawList::addArrow(const glm::vec3& from, const glm::vec3& to, const glm::vec4& colour)
+namespace {
+
+/// An arrow's shaft and two barbs, in the plane of the arrow and the horizontal, a quarter of
+/// its length.
+void arrowInto(std::vector<ColouredVertex>& lines, const glm::vec3& from, const glm::vec3& to, const glm::vec4& colour)
 {
     const glm::vec3 d = to - from;
     const float length = glm::length(d);
     if (length <= 0.0f)
         return;
-    addLine(from, to, colour);
-    // Two barbs in the plane of the arrow and the horizontal, a quarter of its length.
     glm::vec3 side = glm::cross(d, glm::vec3(0, 0, 1));
     if (glm::length(side) < 1e-6f * length)
         side = glm::cross(d, glm::vec3(1, 0, 0));
     side = glm::normalize(side) * (0.12f * length);
     const glm::vec3 back = to - 0.25f * d;
-    addLine(to, back + side, colour);
-    addLine(to, back - side, colour);
+    for (const glm::vec3& end : {from, back + side, back - side}) {
+        lines.push_back({to, colour});
+        lines.push_back({end, colour});
+    }
+}
+
+} // namespace
+
+void DrawList::addArrow(const glm::vec3& from, const glm::vec3& to, const glm::vec4& colour)
+{
+    arrowInto(lines, from, to, colour);
+}
+
+void DrawList::addOverlayLine(const glm::vec3& a, const glm::vec3& b, const glm::vec4& colour)
+{
+    overlayLines.push_back({a, colour});
+    overlayLines.push_back({b, colour});
+}
+
+void DrawList::addOverlayArrow(const glm::vec3& from, const glm::vec3& to, const glm::vec4& colour)
+{
+    arrowInto(overlayLines, from, to, colour);
 }
 
 void DrawList::addPoints(const float* xyz, std::size_t n, float radius, const glm::vec4& colour)

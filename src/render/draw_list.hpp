@@ -44,12 +44,18 @@ struct DrawList {
     std::vector<ColouredVertex> triangles; ///< triples, drawn blended after everything opaque
     std::vector<LitVertex> surfaces;       ///< triples, opaque and lit, both sides
     std::optional<Floor> floor;
+    /// Marks drawn last, over everything, with no depth test: contact points, joint frames and
+    /// body axes, which lie inside or under the bodies they describe.
+    std::vector<ColouredVertex> overlayLines;
+    std::vector<Sprite> overlaySprites;
 
     void clear();
     void addLine(const glm::vec3& a, const glm::vec3& b, const glm::vec4& colour);
     void addBoxEdges(const glm::vec3& lo, const glm::vec3& hi, const glm::vec4& colour);
     void addTriangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec4& colour);
     void addArrow(const glm::vec3& from, const glm::vec3& to, const glm::vec4& colour);
+    void addOverlayLine(const glm::vec3& a, const glm::vec3& b, const glm::vec4& colour);
+    void addOverlayArrow(const glm::vec3& from, const glm::vec3& to, const glm::vec4& colour);
     /// n sprites from a packed float array x0 y0 z0 x1 y1 z1 ... (swarms).
     void addPoints(const float* xyz, std::size_t n, float radius, const glm::vec4& colour);
     /// n sprites from structure-of-arrays coordinates (swarms).

@@ -26,6 +26,12 @@ public:
                                      double dt);
 
     OrbitCamera& camera() { return m_camera; }
+    /// Draws from this camera instead of the one framing the world.
+    void setCamera(const OrbitCamera& camera)
+    {
+        m_camera = camera;
+        m_cameraSet = true;
+    }
     int width() const { return m_context.width(); }
     int height() const { return m_context.height(); }
     std::string driver() const { return m_context.renderer(); }

@@ -1,6 +1,7 @@
 #include "overlay.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -8,8 +9,9 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
+#include "body_groups.hpp"
+#include "collision_note.hpp"
 #include "pba/world.hpp"
-#include "world_view.hpp"
 
 namespace pba::render {
 
@@ -54,23 +56,66 @@ void ImGuiLayer::endFrame()
 
 namespace {
 
-void fabricLegend(const World& world, const FabricLayout& fabric)
+/// The integrator a group's moving bodies use, or "fixed".
+std::string integratorText(const World& world, const BodyGroup& group)
 {
-    auto line = [&](std::size_t first, const std::string& text) {
-        if (first >= world.bodyCount())
-            return;
-        const glm::vec4 c = integratorColour(world.body(first).getIntegrator());
-        ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1.0f), "o");
-        ImGui::SameLine();
-        ImGui::Text("%s  (%s)", text.c_str(), std::string(integratorName(world.body(first).getIntegrator())).c_str());
-    };
-    for (const RopeLayout& rope : fabric.ropes)
-        if (!rope.particles.empty())
-            line(rope.particles.front(),
-                 "rope " + rope.name + ": " + std::to_string(rope.particles.size()) + " particles");
-    for (const ClothLayout& cloth : fabric.cloths)
-        line(cloth.first, "cloth " + cloth.name + ": " + std::to_string(cloth.width) + " x " +
-                              std::to_string(cloth.height) + " particles");
+    for (const std::size_t i : group.members)
+        if (!world.body(i).isFixed())
+            return std::string(integratorName(world.body(i).getIntegrator()));
+    return "fixed";
+}
+
+void bullet(const glm::vec4& c)
+{
+    ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1.0f), "o");
+    ImGui::SameLine();
+}
+
+/// Which collision rule applies to this scene's bodies, readable on the picture.
+void collisionLine(const World& world)
+{
+    const std::string note = collisionNote(world);
+    if (note.empty())
+        return;
+    ImGui::PushTextWrapPos(std::max(200.0f, ImGui::GetIO().DisplaySize.x - 40.0f)); // within the picture
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.80f, 0.86f, 0.95f, 1.0f));
+    ImGui::TextWrapped("%s", note.c_str());
+    ImGui::PopStyleColor();
+    ImGui::PopTextWrapPos();
+}
+
+/// One line per group in its colour: a body with its integrator (and its mass where masses
+/// differ), a rope or cloth as one line.
+void groupLines(const World& world, const BodyGroups& groups, bool compact)
+{
+    bool massesDiffer = false, balls = false; // then each mass is given, which sets a ball's drawn size
+    std::optional<double> mass;
+    for (const BodyGroup& g : groups.groups()) {
+        if (g.fabric())
+            continue;
+        const Body& body = world.body(g.members.front());
+        massesDiffer = massesDiffer || (mass && *mass != body.getMass());
+        mass = body.getMass();
+        balls = balls || !world.isRigid(g.members.front());
+    }
+    // Compact, the legend keeps to about a quarter of the picture's height (8 lines at 720 pixels,
+    // 3 at 360), so a small picture's scene is not hidden behind a list of boxes.
+    const int fits = int(0.25f * ImGui::GetIO().DisplaySize.y / ImGui::GetTextLineHeightWithSpacing()) - 2;
+    const std::size_t shown = compact ? std::min<std::size_t>(groups.size(), std::clamp(fits, 2, 8)) : groups.size();
+    for (std::size_t g = 0; g < shown; ++g) {
+        const BodyGroup& group = groups[g];
+        bullet(group.colour);
+        const std::string integrator = integratorText(world, group);
+        if (!group.fabric() && massesDiffer)
+            ImGui::Text("%s  %.3g kg  (%s)", group.label.c_str(), world.body(group.members.front()).getMass(),
+                        integrator.c_str());
+        else
+            ImGui::Text("%s  (%s)", group.label.c_str(), integrator.c_str());
+    }
+    if (massesDiffer && balls)
+        ImGui::TextDisabled("balls of one density: the heavier, the larger");
+    if (shown < groups.size())
+        ImGui::Text("... and %zu more", groups.size() - shown);
 }
 
 } // namespace
@@ -86,55 +131,11 @@ void drawLegend(const World& world, const std::string& sceneName, double dt, dou
                                    ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
     if (ImGui::Begin("legend", nullptr, flags)) {
         ImGui::Text("%s   t = %.2f s   dt = %g s", sceneName.c_str(), shownTime, dt);
-        if (!world.planes().empty()) { // wrapped within the picture, however narrow
-            ImGui::PushTextWrapPos(std::max(200.0f, ImGui::GetIO().DisplaySize.x - 40.0f));
-            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-            // The collision response is the points' rule: rigid bodies meet the room with contact
-            // impulses whatever it is.
-            if (world.hasPoints())
-                ImGui::TextWrapped("collisions: %s%s%s",
-                                   std::string(collisionResponseSummary(world.collisionResponse())).c_str(),
-                                   world.coupledBodiesReflect() ? "; bodies joined by springs: reflect" : "",
-                                   world.hasRigidBodies() ? "; rigid bodies: contact impulses" : "");
-            else
-                ImGui::TextWrapped("contacts: impulses with each body's restitution and friction");
-            ImGui::PopStyleColor();
-            ImGui::PopTextWrapPos();
-        }
-        if (fabric)
-            fabricLegend(world, *fabric);
-        // The particles that are no rope's or cloth's, each on its line.
-        std::vector<std::size_t> loose;
-        const std::vector<bool> member = fabricMembers(world, fabric ? *fabric : FabricLayout{});
-        for (std::size_t i = 0; i < world.bodyCount(); ++i)
-            if (!member[i])
-                loose.push_back(i);
-        const std::size_t shown = compact ? std::min<std::size_t>(loose.size(), 8) : loose.size();
-        bool massesDiffer = false; // then the legend says each mass, which sets its drawn size
-        for (const std::size_t i : loose)
-            massesDiffer = massesDiffer || world.body(i).getMass() != world.body(loose.front()).getMass();
-        for (std::size_t k = 0; k < shown; ++k) {
-            const Body& body = world.body(loose[k]);
-            const glm::vec4 c = bodyColour(body);
-            ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1.0f), "o");
-            ImGui::SameLine();
-            const std::string integrator = body.isFixed() ? "fixed" : std::string(integratorName(body.getIntegrator()));
-            if (massesDiffer)
-                ImGui::Text("%s  %g kg  (%s)", body.getName().c_str(), body.getMass(), integrator.c_str());
-            else
-                ImGui::Text("%s  (%s)", body.getName().c_str(), integrator.c_str());
-        }
-        bool balls = false; // particles, drawn as balls sized by mass (a rigid body is drawn as its shape)
-        for (const std::size_t i : loose)
-            balls = balls || !world.isRigid(i);
-        if (massesDiffer && balls)
-            ImGui::TextDisabled("balls of one density: the heavier, the larger");
-        if (shown < loose.size())
-            ImGui::Text("... and %zu more", loose.size() - shown);
+        collisionLine(world);
+        const BodyGroups groups(world, fabric ? *fabric : FabricLayout{});
+        groupLines(world, groups, compact);
         for (std::size_t s = 0; s < world.swarmCount(); ++s) {
-            const glm::vec4 c = integratorColour(world.swarm(s).integrator());
-            ImGui::TextColored(ImVec4(c.r, c.g, c.b, 1.0f), "o");
-            ImGui::SameLine();
+            bullet(groups.swarmColour(s));
             ImGui::Text("swarm %s: %zu particles (%s)", world.swarm(s).name().c_str(), world.swarm(s).size(),
                         std::string(integratorName(world.swarm(s).integrator())).c_str());
         }

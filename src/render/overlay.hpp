@@ -29,8 +29,9 @@ private:
     bool m_windowed;
 };
 
-/// A small box naming the scene, the time and each particle in its colour with its integrator
-/// (a rope or cloth of `fabric` on one line of its own, not particle by particle).
+/// A small box naming the scene, the time, the collision rules that apply, and each body in its
+/// colour with its integrator (a rope or cloth of `fabric` on one line of its own, not particle by
+/// particle); `compact` shows the first few, as many as a quarter of the picture's height holds.
 void drawLegend(const World& world, const std::string& sceneName, double dt, double shownTime, bool compact = false,
                 const FabricLayout* fabric = nullptr);
 

@@ -1,9 +1,12 @@
 #pragma once
-// The integrators' colours, defined once for every picture pba makes: the viewer and `pba
-// render` draw each body in its integrator's colour, and the gnuplot figures of `pba compare`
-// draw each integrator's line in the same one, so a reader learns the colours once. Plain
-// numbers, no OpenGL: the plotting code includes this header too.
+// The colours of every picture pba makes, defined once. The viewer and `pba render` draw each
+// body (and each rope, cloth and swarm) in a colour of its own, which its legend bullet and its
+// plots share, so a reader follows one thing by one colour; the legend's text names its
+// integrator. The integrator study's gnuplot figures (`pba compare`) compare integrators, so
+// they draw each integrator's line in the integrator's colour. Plain numbers, no OpenGL: the
+// plotting code includes this header too.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -20,6 +23,26 @@ inline constexpr Rgb kVelocityVerlet = 0x458cf2;    // blue
 inline constexpr Rgb kRK4 = 0xf2b233;               // amber
 inline constexpr Rgb kImplicitGyroscopic = 0xa66bd9; // violet
 inline constexpr Rgb kFixed = 0xb2b2b8;             // grey: a body that does not move
+
+/// The bodies' colours, in the order bodies take them: saturated enough to read on the dark
+/// background and on the light floor, neighbours far apart in hue, none grey (grey is a fixed
+/// body's).
+inline constexpr std::array<Rgb, 10> kBodies = {
+    0xf28e2b, // orange
+    0x4e9ff0, // blue
+    0x59c26b, // green
+    0xe8484b, // red
+    0xb483e0, // violet
+    0xedc948, // yellow
+    0x4fc9c0, // teal
+    0xff8fc0, // pink
+    0xb8875a, // brown
+    0xa8d93a, // lime
+};
+
+/// The colour of the body (or rope, cloth or swarm) with this index: the same on every run, so
+/// a picture, its legend and its plots agree, and so do two pictures of one scene.
+constexpr Rgb bodyRgb(std::size_t index) { return kBodies[index % kBodies.size()]; }
 
 constexpr Rgb integratorRgb(Integrator integrator)
 {

@@ -55,6 +55,12 @@ void Renderer::draw(const DrawList& list, const OrbitCamera& camera, int width, 
     drawColoured(list.triangles, GL_TRIANGLES);
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
+    // The marks (contacts, joint frames, axes) describe what lies inside or under the bodies:
+    // drawn over everything, as a physics engine's debug drawing is.
+    glDisable(GL_DEPTH_TEST);
+    drawColoured(list.overlayLines, GL_LINES);
+    drawSprites(list.overlaySprites);
+    glEnable(GL_DEPTH_TEST);
     glBindVertexArray(0);
 }
 

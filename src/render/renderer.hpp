@@ -17,7 +17,8 @@ public:
 
     /// Clears the target to `background` and draws into its bottom-left width x height (the
     /// viewer's room beside its panel, or the whole image): floor, lines and sprites with depth, then the
-    /// translucent triangles blended on top without writing depth.
+    /// translucent triangles blended on top without writing depth, and last the overlay's marks
+    /// with no depth test.
     void draw(const DrawList& list, const OrbitCamera& camera, int width, int height,
               const glm::vec3& background = glm::vec3(0.11f, 0.12f, 0.15f));
 

@@ -8,23 +8,9 @@
 #include "pba/blow_dryer.hpp"
 #include "pba/forces.hpp"
 #include "pba/spring_network.hpp"
-#include "palette.hpp"
+#include "rigid_view.hpp"
 
 namespace pba::render {
-
-glm::vec4 integratorColour(Integrator integrator)
-{
-    const auto [r, g, b] = palette::channels(palette::integratorRgb(integrator));
-    return {r, g, b, 1.0f};
-}
-
-glm::vec4 bodyColour(const Body& body)
-{
-    if (!body.isFixed())
-        return integratorColour(body.getIntegrator());
-    const auto [r, g, b] = palette::channels(palette::kFixed);
-    return {r, g, b, 1.0f};
-}
 
 float drawnRadius(const Body& body, const ViewSettings& settings)
 {
@@ -197,9 +183,12 @@ void addCone(const BlowDryerField& f, bool arrows, DrawList& out)
 }
 
 /// A rope: a line through its particles with a small bead on each; pins drawn grey.
-void addRope(const World& world, const RopeLayout& rope, double alpha, const ViewSettings& settings, DrawList& out)
+void addRope(const World& world, const RopeLayout& rope, double alpha, const ViewSettings& settings,
+             const BodyGroups& groups, DrawList& out)
 {
-    const glm::vec4 colour(0.92f, 0.74f, 0.42f, 1.0f);
+    if (rope.particles.empty() || rope.particles.front() >= world.bodyCount())
+        return;
+    const glm::vec4 colour = groups[groups.groupOf(rope.particles.front())].colour;
     for (std::size_t k = 0; k < rope.particles.size(); ++k) {
         const std::size_t i = rope.particles[k];
         if (i >= world.bodyCount())
@@ -209,13 +198,14 @@ void addRope(const World& world, const RopeLayout& rope, double alpha, const Vie
             out.addLine(drawnPosition(world, rope.particles[k - 1], alpha, settings.interpolate), at, colour);
         const bool pinned = world.body(i).isFixed();
         out.sprites.push_back(
-            {at, settings.particleRadius * (pinned ? 0.8f : 0.45f), pinned ? bodyColour(world.body(i)) : colour});
+            {at, settings.particleRadius * (pinned ? 0.8f : 0.45f), pinned ? groups.bodyColour(i) : colour});
     }
 }
 
 /// A cloth: two triangles a grid cell, each vertex with the normal of the faces around it
 /// (area-weighted by the unnormalised cross products), so the sheet is shaded smoothly.
-void addCloth(const World& world, const ClothLayout& cloth, double alpha, const ViewSettings& settings, DrawList& out)
+void addCloth(const World& world, const ClothLayout& cloth, double alpha, const ViewSettings& settings,
+              const BodyGroups& groups, DrawList& out)
 {
     const std::size_t w = cloth.width, h = cloth.height;
     if (w < 2 || h < 2 || cloth.first + w * h > world.bodyCount())
@@ -230,7 +220,7 @@ void addCloth(const World& world, const ClothLayout& cloth, double alpha, const 
             for (const std::size_t v : {a, b, c, d})
                 n[v] += face;
         }
-    const glm::vec4 front(0.86f, 0.33f, 0.30f, 1.0f), back(0.95f, 0.62f, 0.45f, 1.0f);
+    const glm::vec4 front = groups[groups.groupOf(cloth.first)].colour, back = glm::mix(front, glm::vec4(1.0f), 0.4f);
     for (std::size_t j = 0; j + 1 < h; ++j)
         for (std::size_t i = 0; i + 1 < w; ++i) {
             const std::size_t a = j * w + i, b = a + 1, c = a + w, d = c + 1;
@@ -241,45 +231,28 @@ void addCloth(const World& world, const ClothLayout& cloth, double alpha, const 
         }
     for (std::size_t k = 0; k < w * h; ++k)
         if (world.body(cloth.first + k).isFixed())
-            out.sprites.push_back({x[k], settings.particleRadius * 0.8f, bodyColour(world.body(cloth.first + k))});
+            out.sprites.push_back({x[k], settings.particleRadius * 0.8f, groups.bodyColour(cloth.first + k)});
 }
 
-void addFabric(const World& world, double alpha, const ViewSettings& settings, DrawList& out)
+void addFabric(const World& world, double alpha, const ViewSettings& settings, const BodyGroups& groups, DrawList& out)
 {
     for (const RopeLayout& rope : settings.fabric.ropes)
-        addRope(world, rope, alpha, settings, out);
+        addRope(world, rope, alpha, settings, groups, out);
     for (const ClothLayout& cloth : settings.fabric.cloths)
-        addCloth(world, cloth, alpha, settings, out);
-}
-
-/// A rigid body: its mesh, lit, at its pose (the position blended and the orientation slerped
-/// between the last two steps), after the mesh's own local rotation and scale.
-void addRigidBody(const World& world, std::size_t i, double alpha, const ViewSettings& settings, DrawList& out)
-{
-    const Body& body = world.body(i);
-    const Mesh& mesh = body.getMesh();
-    const glm::vec3 at = drawnPosition(world, i, alpha, settings.interpolate);
-    const glm::mat4 pose = glm::mat4(glm::mat3_cast(glm::quat(world.interpolatedOrientation(i, settings.interpolate ? alpha : 1.0))));
-    const glm::mat4 model = pose * mesh.getRotate() * mesh.getScale();
-    const glm::mat3 normals = glm::transpose(glm::inverse(glm::mat3(model)));
-    const glm::vec4 colour = bodyColour(body);
-    for (const std::uint32_t k : mesh.indices())
-        out.surfaces.push_back({at + glm::vec3(model * glm::vec4(mesh.vertices()[k], 1.0f)),
-                                glm::normalize(normals * mesh.normals()[k]), colour});
+        addCloth(world, cloth, alpha, settings, groups, out);
 }
 
 void addBodies(const World& world, const World& initial, double alpha, const ViewSettings& settings,
-               const Trails* trails, DrawList& out)
+               const Trails* trails, const BodyGroups& groups, DrawList& out)
 {
-    const std::vector<bool> fabric = fabricMembers(world, settings.fabric);
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
-        if (fabric[i])
+        if (groups.inFabric(i))
             continue;
+        const glm::vec4 colour = groups.bodyColour(i);
         if (world.isRigid(i)) {
-            addRigidBody(world, i, alpha, settings, out);
+            addRigidBody(world, i, alpha, settings, colour, out);
             continue;
         }
-        const glm::vec4 colour = bodyColour(world.body(i));
         const glm::vec3 at = drawnCentre(world, i, alpha, settings);
         out.sprites.push_back({at, drawnRadius(world.body(i), settings), colour});
         if (settings.ghost) {
@@ -355,14 +328,18 @@ void buildDrawList(const World& world, const World& initial, double alpha, const
     if (settings.cone)
         for (const WorldDryer& dryer : blowDryers(world))
             addCone(dryer.field, settings.fieldArrows, out);
+    const BodyGroups groups(world, settings.fabric);
     addSprings(world, alpha, settings, out);
-    addFabric(world, alpha, settings, out);
-    addBodies(world, initial, alpha, settings, trails, out);
+    addFabric(world, alpha, settings, groups, out);
+    addBodies(world, initial, alpha, settings, trails, groups, out);
+    addJoints(world, alpha, settings, groups, out);
+    addContacts(world, alpha, settings, out);
+    addBodyAxes(world, alpha, settings, out);
     // Swarms keep no previous state (24 bytes a particle is the budget): drawn where they are.
     for (std::size_t s = 0; s < world.swarmCount(); ++s) {
         const Swarm& swarm = world.swarm(s);
         out.addPoints(swarm.px().data(), swarm.py().data(), swarm.pz().data(), swarm.size(),
-                      settings.particleRadius * 0.3f, integratorColour(swarm.integrator()));
+                      settings.particleRadius * 0.3f, groups.swarmColour(s));
     }
 }
 

@@ -1,12 +1,14 @@
 #pragma once
-// The World as a picture: the room or ground, each particle at its interpolated state,
-// coloured by integrator, its fading trail, a line at its start height, and the blow
-// dryer's cone and field arrows. Reads the world; never writes it.
+// The World as a picture: the room or ground, each body at its interpolated state in a colour
+// of its own (body_groups.hpp), a particle's fading trail and a line at its start height, ropes
+// and cloths, rigid bodies and their joints (rigid_view.hpp), and the blow dryer's cone and field
+// arrows. Reads the world; never writes it.
 #include <deque>
 #include <functional>
 #include <optional>
 #include <vector>
 
+#include "body_groups.hpp"
 #include "camera.hpp"
 #include "draw_list.hpp"
 #include "pba/fabric.hpp"
@@ -21,6 +23,9 @@ struct ViewSettings {
     bool cone = true;             ///< the blow dryer's region, translucent
     bool fieldArrows = false;     ///< arrows on a grid inside the cone, scaled by magnitude
     float particleRadius = 0.08f; ///< drawn radius, m (particles are points)
+    bool contacts = false;        ///< each contact point of the last step and its normal, on top
+    bool joints = false;          ///< each joint's frame: a dot at its point on each body, a hinge's axis
+    bool axes = false;            ///< each rigid body's axes, with its omega and L arrows
     /// Integrator lanes: where the exact solution puts body i at time t, drawn as a translucent
     /// ghost beside the body (nothing where there is no exact solution). Set by the program,
     /// which knows the oracles; the renderer only draws.
@@ -29,10 +34,6 @@ struct ViewSettings {
     /// than balls with trails: the scene's layout, set by the program that loaded it.
     FabricLayout fabric;
 };
-
-/// The colour of each integrator (and grey for fixed bodies), shared by the legend.
-glm::vec4 integratorColour(Integrator integrator);
-glm::vec4 bodyColour(const Body& body);
 
 /// Recent drawn positions of each body, for fading trails.
 class Trails {

@@ -51,8 +51,7 @@ std::size_t addFabricParticle(ObjectReader& reader, const std::string& key, Fabr
     if (!target.names.insert(name).second)
         reader.fail("name", fmt::format("its particle '{}' is named like another particle", oneLine(name)));
     if (!insideSurfaces(target.world, at))
-        reader.fail(key, fmt::format("particle '{}' at ({}, {}, {}) lies outside the ground or room", oneLine(name),
-                                     at.x, at.y, at.z));
+        reader.fail(key, fmt::format("particle '{}' at {}", oneLine(name), outsideText(target.world, at)));
     Particle p;
     p.setName(name);
     p.setPos(at);

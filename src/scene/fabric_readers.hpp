@@ -24,6 +24,11 @@ void readCloth(const Json& value, const std::string& path, const std::string& fi
 // Shared with the particles' reader (scene_loader.cpp).
 Integrator readIntegrator(ObjectReader& reader, const std::string& key, Integrator fallback);
 bool insideSurfaces(const World& world, const dvec3& x);
+/// "the room spans x -2 to 2, y 0 to 4, z -2 to 2 m" (or the ground's height): the bounds a
+/// position outside them is told.
+std::string surfacesText(const World& world);
+/// "(x, y, z) lies outside the ground or room: " and the bounds.
+std::string outsideText(const World& world, const dvec3& x);
 std::string readName(ObjectReader& reader, const std::string& key, const std::optional<std::string>& fallback = {});
 
 } // namespace pba::scene_detail

@@ -57,6 +57,21 @@ bool insideSurfaces(const World& world, const dvec3& x)
     return true;
 }
 
+std::string surfacesText(const World& world)
+{
+    if (const auto& room = world.room())
+        return fmt::format("the room spans x {:g} to {:g}, y {:g} to {:g}, z {:g} to {:g} m", room->min.x, room->max.x,
+                           room->min.y, room->max.y, room->min.z, room->max.z);
+    if (const auto& ground = world.ground())
+        return fmt::format("the ground is at y = {:g} m", *ground);
+    return "no surfaces";
+}
+
+std::string outsideText(const World& world, const dvec3& x)
+{
+    return fmt::format("({:g}, {:g}, {:g}) lies outside the ground or room: {}", x.x, x.y, x.z, surfacesText(world));
+}
+
 /// A name (of the scene, a particle, a swarm): it goes into summaries, CSV rows, pictures and
 /// titles, so control characters (a newline, a tab, an escape) are refused.
 std::string readName(ObjectReader& reader, const std::string& key, const std::optional<std::string>& fallback)
@@ -76,6 +91,7 @@ namespace {
 using scene_detail::Json;
 using scene_detail::ObjectReader;
 using scene_detail::insideSurfaces;
+using scene_detail::outsideText;
 using scene_detail::readIntegrator;
 using scene_detail::oneLine;
 using scene_detail::readName;
@@ -131,7 +147,7 @@ void readParticle(const Json& value, const std::string& path, const std::string&
     p.setIntegrator(readIntegrator(reader, "integrator", Integrator::SemiImplicitEuler));
     p.setFixed(reader.boolean("fixed", false));
     if (!insideSurfaces(world, p.getPos()))
-        reader.fail("position", "lies outside the ground or room");
+        reader.fail("position", outsideText(world, p.getPos()));
     reader.finish();
     world.addParticle(p);
 }

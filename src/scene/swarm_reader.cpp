@@ -54,7 +54,8 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
             region.fail("min", fmt::format("must not be above max (axis {})", "xyz"[i]));
     region.finish();
     if (!insideSurfaces(world, desc.regionMin) || !insideSurfaces(world, desc.regionMax))
-        reader.fail("region", "lies outside the ground or room");
+        reader.fail("region", fmt::format("its corner {}", outsideText(world, insideSurfaces(world, desc.regionMin)
+                                                                             ? desc.regionMax : desc.regionMin)));
     desc.velocity = reader.vec3("velocity", dvec3(0.0));
     desc.velocityJitter = reader.nonNegative("velocity_jitter", 0.0);
     requireFloat(region, "min", desc.regionMin);

@@ -287,4 +287,69 @@ TEST(PbaSim, HelpSaysWhatExitThreeMeans)
             EXPECT_NE(r.out.find(part), std::string::npos) << args << ": " << part << "\n" << r.out;
         }
     }
+
+// A rope or cloth is one row of totals, not a row per particle (on request, those too); the
+// whole scene's energy and momentum close the table: two free particles in no gravity have
+// exactly their start's, m1 v1 + m2 v2 = 1 * 2 + 0.5 * (-2) = 1 kg m/s along x, and
+// 1/2 (1 * 4 + 0.5 * 4) = 3 J.
+TEST(PbaSim, ARopeOrClothIsOneRowAndTheSceneHasTotals)
+{
+    const CommandResult cloth = runPba("sim cloth --duration 0.05");
+    ASSERT_EQ(cloth.exitCode, 0) << cloth.err;
+    EXPECT_NE(cloth.out.find("cloth sheet                  144 semi-implicit-euler"), std::string::npos) << cloth.out;
+    EXPECT_EQ(cloth.out.find("sheet[3,3]"), std::string::npos) << "no row per particle";
+    EXPECT_LT(std::count(cloth.out.begin(), cloth.out.end(), '\n'), 8) << cloth.out;
+    EXPECT_NE(cloth.out.find("all bodies: energy"), std::string::npos) << cloth.out;
+    const CommandResult every = runPba("sim cloth --duration 0.05 --every-particle");
+    EXPECT_NE(every.out.find("sheet[3,3]"), std::string::npos);
+
+    const auto dir = freshDir("sim_totals");
+    std::ofstream(dir / "pair.json") << R"({"gravity": [0, 0, 0], "particles": [
+        {"name": "a", "position": [0, 1, 0], "velocity": [2, 0, 0], "mass": 1, "integrator": "velocity-verlet"},
+        {"name": "b", "position": [0, 2, 0], "velocity": [-2, 0, 0], "mass": 0.5, "integrator": "velocity-verlet"}]})";
+    const CommandResult pair = runPba("sim " + (dir / "pair.json").string() + " --duration 1");
+    ASSERT_EQ(pair.exitCode, 0) << pair.err;
+    EXPECT_NE(pair.out.find("all bodies: energy 3 J, 3 J at the start: E now/E start 1.000000; momentum (1.0000, "
+                            "0.0000, 0.0000) kg m/s, (1.0000, 0.0000, 0.0000) at the start"),
+              std::string::npos)
+        << pair.out;
+}
+
+// The blow dryer does work on a ball in its cone: its energy ratio (1.76 after 5 s) says so
+// beside it, and a line says what that means; a scene without a dryer says nothing of it.
+TEST(PbaSim, TheDryersWorkIsNamedBesideTheEnergyRatio)
+{
+    const CommandResult dryer = runPba("sim blow-dryer --duration 5");
+    ASSERT_EQ(dryer.exitCode, 0) << dryer.err;
+    const auto row = dryer.out.find("\nball ");
+    ASSERT_NE(row, std::string::npos) << dryer.out;
+    const std::string line = dryer.out.substr(row + 1, dryer.out.find('\n', row + 1) - row - 1);
+    EXPECT_NE(line.find("1.76"), std::string::npos) << line;
+    EXPECT_NE(line.find("(+ the dryer's work)"), std::string::npos) << line;
+    EXPECT_NE(dryer.out.find("the blow dryer does work on what is in its cone"), std::string::npos);
+    const CommandResult plain = runPba("sim integrators --duration 1");
+    EXPECT_EQ(plain.out.find("dryer"), std::string::npos) << plain.out;
+}
+
+// A position outside the room is told the room's bounds (or the ground's height), so the fix
+// can be read off the message.
+TEST(PbaSim, APositionOutsideTheRoomIsToldItsBounds)
+{
+    const auto dir = freshDir("sim_outside");
+    std::ofstream(dir / "room.json") << R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]},
+        "particles": [{"name": "a", "position": [0, 5, 0]}]})";
+    std::ofstream(dir / "ground.json") << R"({"ground": {"height": 0.5}, "ropes": [{"name": "r", "from": [0, 1, 0],
+        "to": [2, 0, 0], "count": 3, "stiffness": 10}]})";
+    CommandResult r = runPba("sim " + (dir / "room.json").string());
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("particles[0].position: (0, 5, 0) lies outside the ground or room: the room spans x -2 to 2, "
+                         "y 0 to 4, z -2 to 2 m\n"),
+              std::string::npos)
+        << r.err;
+    r = runPba("sim " + (dir / "ground.json").string());
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("ropes[0].to: particle 'r[2]' at (2, 0, 0) lies outside the ground or room: the ground is at "
+                         "y = 0.5 m\n"),
+              std::string::npos)
+        << r.err;
 }

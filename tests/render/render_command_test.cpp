@@ -2,6 +2,8 @@
 // window under a virtual X server, and a blow-up's exit 3.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <stb_image.h>
 
 #include "support/run_command.hpp"
@@ -88,19 +90,20 @@ TEST(PbaView, WindowUnderXvfbShowsThePanelAndTheParticles)
     int w = 0, h = 0;
     const std::vector<unsigned char> data = loadRgba(png, w, h);
     ASSERT_FALSE(data.empty());
-    int red = 0, green = 0, panelBlue = 0;
+    int blue = 0, green = 0, panelBlue = 0;
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             const unsigned char* p = data.data() + (static_cast<std::size_t>(y) * w + x) * 4;
-            if (p[0] > 150 && p[1] < 110 && p[2] < 110)
-                ++red; // the forward Euler particle
-            if (p[1] > 130 && p[0] < 110 && p[2] < 130)
+            const bool scene = x < w - 440 && y < h - 150; // left of the panel, above the legend
+            if (scene && p[2] > 150 && p[0] < 110 && p[2] > p[1] + 40)
+                ++blue; // the forward Euler particle, in its own colour
+            if (scene && p[1] > 130 && p[0] < 110 && p[2] < 130)
                 ++green; // the semi-implicit Euler particle
             if (x > w - 440 && p[2] > p[0] + 40 && p[2] > 80)
                 ++panelBlue; // ImGui's blue widgets in the panel on the right
         }
     }
-    EXPECT_GT(red, 30);
+    EXPECT_GT(blue, 30);
     EXPECT_GT(green, 30);
     EXPECT_GT(panelBlue, 2000);
 }
@@ -176,4 +179,34 @@ TEST(PbaRender, ABlowUpIsExitThreeNamingTheBodyAndWritesNothing)
     EXPECT_NE(r.err.find("no energy source"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(png));
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0) << "no temporary files left";
+// --camera and --show: a named view or a position and a target, and the marks by name; a bad
+// value is one line naming the flag, exit 2, before any picture (and no file).
+TEST(PbaRender, CameraAndShowFlags)
+{
+    const auto dir = freshDir("render_camera");
+    const CommandResult side =
+        runPba("render pendulum --camera side --show joints,axes --time 0.3 --size 160x90 --out " + (dir / "a.png").string());
+    ASSERT_EQ(side.exitCode, 0) << side.err;
+    const CommandResult at = runPba("render dominoes --camera=-3,1.5,3,-1,0.3,0 --show contacts --time 0.5 --size 160x90 "
+                                    "--out " + (dir / "b.png").string());
+    ASSERT_EQ(at.exitCode, 0) << at.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "a.png"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "b.png"));
+    const std::pair<const char*, const char*> bad[] = {
+        {"--camera frnt", "--camera: expected a view (front, side, top, corner)"},
+        {"--camera 1,2,3", "--camera: expected a view"},
+        {"--camera 0,2,0,0,2,0", "--camera: the position and the target must be 0.1 to 1000 m apart"},
+        {"--camera 0,9,0,0,1,0", "--camera: the position is straight above the target"},
+        {"--show contact", "--show: unknown mark 'contact' (expected a comma-separated list of contacts, joints, axes)"},
+    };
+    for (const auto& [flags, message] : bad) {
+        const CommandResult r = runPba(std::string("render dice --size 64x48 ") + flags + " --out " + (dir / "x.png").string());
+        EXPECT_EQ(r.exitCode, 2) << flags;
+        EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+    const CommandResult view = runPba("view dice --camera top,1 --time 1 --screenshot " + (dir / "y.png").string());
+    EXPECT_EQ(view.exitCode, 2) << "checked before the window opens: " << view.err;
+    EXPECT_NE(view.err.find("--camera:"), std::string::npos) << view.err;
 }

@@ -2,6 +2,8 @@
 // pixel is known from the camera's projection of the world.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "pba/scene/scene.hpp"
 #include "render/offscreen.hpp"
 
@@ -29,6 +31,21 @@ Rgb pixelAt(const std::vector<std::uint8_t>& image, const OrbitCamera& camera, c
     return pixel(image, static_cast<int>(p.x), static_cast<int>(p.y));
 }
 
+/// Whether a lit pixel is of this colour's hue: its largest and smallest channels are the
+/// colour's, well apart (light and shade change the levels, not their order).
+testing::AssertionResult ofHue(const Rgb& p, const glm::vec4& colour)
+{
+    const int channels[3] = {p.r, p.g, p.b};
+    const auto most = [](const auto& c) { return c[0] >= c[1] && c[0] >= c[2] ? 0 : c[1] >= c[2] ? 1 : 2; };
+    const auto least = [](const auto& c) { return c[0] <= c[1] && c[0] <= c[2] ? 0 : c[1] <= c[2] ? 1 : 2; };
+    const float expected[3] = {colour.r, colour.g, colour.b};
+    if (most(channels) == most(expected) && least(channels) == least(expected) &&
+        channels[most(channels)] - channels[least(channels)] > 40)
+        return testing::AssertionSuccess();
+    return testing::AssertionFailure() << "pixel " << p.r << "," << p.g << "," << p.b << " is not of the hue of "
+                                       << colour.r << "," << colour.g << "," << colour.b;
+}
+
 /// The renderer and the scene, without the legend so that every pixel is the scene's.
 struct Fixture {
     Scene scene = loadScene("integrators");
@@ -51,19 +68,19 @@ TEST(HeadlessRender, BackgroundWhereNothingIsDrawn)
     EXPECT_NEAR(sky.b, 0.15 * 255, 2);
 }
 
-TEST(HeadlessRender, ParticlesInTheirIntegratorColoursAboveAVisibleFloor)
+// Each body in its own colour, the one its legend bullet and plots take: the forward Euler and
+// semi-implicit Euler balls are told apart by colour, their integrators by the legend's text.
+TEST(HeadlessRender, ParticlesInTheirOwnColoursAboveAVisibleFloor)
 {
     Fixture f;
     const auto image = f.draw();
     const OrbitCamera& camera = f.renderer.camera();
-    const glm::vec3 forward(f.scene.world.body(1).getPos());   // forward Euler: red
-    const glm::vec3 semiImplicit(f.scene.world.body(2).getPos()); // semi-implicit Euler: green
-    const Rgb red = pixelAt(image, camera, forward);
-    EXPECT_GT(red.r, red.g + 60) << red.r << "," << red.g << "," << red.b;
-    EXPECT_GT(red.r, red.b + 60);
-    const Rgb green = pixelAt(image, camera, semiImplicit);
-    EXPECT_GT(green.g, green.r + 40) << green.r << "," << green.g << "," << green.b;
-    EXPECT_GT(green.g, green.b + 40);
+    const BodyGroups groups(f.scene.world, f.scene.fabric);
+    const glm::vec3 forward(f.scene.world.body(1).getPos());
+    const glm::vec3 semiImplicit(f.scene.world.body(2).getPos());
+    EXPECT_TRUE(ofHue(pixelAt(image, camera, forward), groups.bodyColour(1)));
+    EXPECT_TRUE(ofHue(pixelAt(image, camera, semiImplicit), groups.bodyColour(2)));
+    EXPECT_FALSE(ofHue(pixelAt(image, camera, semiImplicit), groups.bodyColour(1))) << "two colours";
     // Straight below the particle lies the checkered floor: light grey.
     const Rgb floor = pixelAt(image, camera, glm::vec3(forward.x, 0.0f, forward.z + 0.3f));
     EXPECT_GT(floor.r, 120);
@@ -131,7 +148,7 @@ TEST(HeadlessRender, TheBlowDryerConeIsDrawn)
 }
 
 // A cloth is drawn as a surface: at the middle of one of its cells (no particle there), the
-// picture shows the sheet's red, lit, not the room behind it.
+// picture shows the sheet in its colour, lit, not the room behind it.
 TEST(HeadlessRender, TheClothIsASurfaceWhereItHangs)
 {
     Scene scene = loadScene("cloth");
@@ -149,8 +166,66 @@ TEST(HeadlessRender, TheClothIsASurfaceWhereItHangs)
         for (const std::size_t k : {sheet.at(i, j), sheet.at(i + 1, j), sheet.at(i, j + 1), sheet.at(i + 1, j + 1)})
             centre += 0.25f * glm::vec3(scene.world.body(k).getPos());
         const Rgb cloth = pixelAt(image, renderer.camera(), centre);
-        EXPECT_GT(cloth.r, cloth.g + 60) << i << "," << j;
-        EXPECT_GT(cloth.r, cloth.b + 60) << i << "," << j;
-        EXPECT_GT(cloth.r, 90) << i << "," << j; // lit, not a dark silhouette
+        EXPECT_TRUE(ofHue(cloth, BodyGroups(scene.world, scene.fabric)[0].colour)) << i << "," << j;
+        EXPECT_GT(std::max({cloth.r, cloth.g, cloth.b}), 90) << i << "," << j; // lit, not a dark silhouette
     }
+}
+
+namespace {
+
+/// How much greener (green over red) the greenest pixel within one of `at` is in `after` than in
+/// `before`: a line is one pixel wide, antialiased, and a projected point rounds to either side.
+int greener(const std::vector<std::uint8_t>& before, const std::vector<std::uint8_t>& after, const glm::vec3& at)
+{
+    int most = -255;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            const Rgb a = pixel(before, int(at.x) + dx, int(at.y) + dy), b = pixel(after, int(at.x) + dx, int(at.y) + dy);
+            most = std::max(most, (b.g - b.r) - (a.g - a.r));
+        }
+    return most;
+}
+
+} // namespace
+
+// The three faces of an unturned box the camera sees (+x, +y, +z) are three shades of the box's
+// one colour, far enough apart to tell (so a die's faces, and its turning, can be seen).
+TEST(HeadlessRender, ABoxsFacesAreShadesOfItsColour)
+{
+    Scene scene = parseScene(R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "rigid_bodies": [{"name": "die",
+        "shape": {"type": "box", "size": [1, 1, 1]}, "density": 100, "position": [0, 0.5, 0]}]})", "die.json");
+    OffscreenRenderer renderer(kWidth, kHeight, false);
+    renderer.setCamera(OrbitCamera::lookingFrom(glm::vec3(2.5f, 3.0f, 3.5f), glm::vec3(0.0f, 0.5f, 0.0f)));
+    ViewSettings settings;
+    const auto image = renderer.render(scene.world, scene.world, 1.0, settings, nullptr, "", 0.01);
+    const glm::vec4 colour = BodyGroups(scene.world, scene.fabric).bodyColour(0);
+    std::vector<Rgb> faces;
+    for (const glm::vec3& centre : {glm::vec3(0.5f, 0.5f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(0.0f, 0.5f, 0.5f)}) {
+        faces.push_back(pixelAt(image, renderer.camera(), centre));
+        EXPECT_TRUE(ofHue(faces.back(), colour));
+    }
+    for (std::size_t a = 0; a < 3; ++a)
+        for (std::size_t b = a + 1; b < 3; ++b)
+            EXPECT_GT(std::abs(faces[a].r - faces[b].r) + std::abs(faces[a].g - faces[b].g) +
+                          std::abs(faces[a].b - faces[b].b), 30)
+                << a << " and " << b;
+}
+
+// The marks are drawn over the bodies: the racket's y axis, inside its box, shows green through
+// the box's orange when the axes are on.
+TEST(HeadlessRender, AxesAreDrawnOverTheBodyTheyDescribe)
+{
+    Scene scene = loadScene("tennis-racket"); // unturned at the start: its y axis is the world's
+    OffscreenRenderer renderer(kWidth, kHeight, false);
+    const glm::vec3 centre(scene.world.body(0).getPos());
+    renderer.setCamera(OrbitCamera::lookingFrom(centre + glm::vec3(0.6f, 0.4f, 1.5f), centre));
+    ViewSettings settings;
+    settings.trails = false;
+    const glm::vec3 inside = renderer.camera().project(centre + glm::vec3(0.0f, 0.2f, 0.0f), kWidth, kHeight);
+    const auto without = renderer.render(scene.world, scene.world, 1.0, settings, nullptr, "", 0.01);
+    const Rgb racket = pixel(without, int(inside.x), int(inside.y));
+    EXPECT_GT(racket.r, racket.g) << "the racket's orange is there, in front of its axis";
+    settings.axes = true;
+    const auto with = renderer.render(scene.world, scene.world, 1.0, settings, nullptr, "", 0.01);
+    EXPECT_GT(greener(without, with, inside), 60);
 }

@@ -1,8 +1,10 @@
 // Where a particle's ball is drawn: resting on the surface the particle touches, never half
-// sunk into it; where it is, away from surfaces and over the floor's hole.
+// sunk into it; where it is, away from surfaces and over the floor's hole. What the legend says of
+// collisions, and where the camera stands.
 #include <gtest/gtest.h>
 
 #include "pba/scene/scene.hpp"
+#include "render/collision_note.hpp"
 #include "render/world_view.hpp"
 
 using namespace pba;
@@ -71,4 +73,54 @@ TEST(WorldView, AClothIsASurfaceAndARopeALineOfBeads)
     const std::size_t beads = rope.fabric.ropes.at(0).particles.size();
     EXPECT_EQ(list.sprites.size(), beads);
     EXPECT_EQ(list.lines.size(), roomEdges + 2 * (beads - 1));
+}
+
+// The legend's collision line names the rule each kind of body in the scene meets the surfaces
+// with, and semi-implicit Euler only where a particle the rule applies to uses it.
+TEST(CollisionNote, SaysWhatAppliesToThisScenesBodies)
+{
+    const std::string integrators = collisionNote(loadScene("integrators").world);
+    EXPECT_NE(integrators.find("particles: reflect"), std::string::npos) << integrators;
+    EXPECT_NE(integrators.find("semi-implicit Euler keeps its bounce height"), std::string::npos) << integrators;
+    EXPECT_EQ(integrators.find("rigid"), std::string::npos) << integrators;
+
+    const std::string dice = collisionNote(loadScene("dice").world); // rigid bodies only
+    EXPECT_EQ(dice, "collisions: rigid bodies: contact impulses with their restitution and friction");
+
+    // A rope's particles are joined by springs: exact acts as reflect for them, and no particle
+    // bounces on its own, so nothing is said of semi-implicit Euler's bounce.
+    const std::string rope = collisionNote(loadScene("rope").world);
+    EXPECT_NE(rope.find("particles joined by springs: reflect"), std::string::npos) << rope;
+    EXPECT_EQ(rope.find("semi-implicit"), std::string::npos) << rope;
+    EXPECT_EQ(rope.find("particles: exact"), std::string::npos) << rope;
+
+    Scene rk4 = loadScene("integrators");
+    for (std::size_t i = 0; i < rk4.world.bodyCount(); ++i)
+        rk4.world.body(i).setIntegrator(Integrator::RK4);
+    const std::string text = collisionNote(rk4.world);
+    EXPECT_EQ(text.find("semi-implicit"), std::string::npos) << text;
+    EXPECT_EQ(collisionNote(parseScene(R"({"particles": [{"name": "a", "position": [0, 1, 0]}]})", "free.json").world),
+              "") << "no surfaces, nothing to collide with";
+}
+
+// A camera given by its position and target is there and looks there; a named view keeps the
+// framing's target and distance.
+TEST(Camera, LookingFromAPositionAtATargetAndNamedViews)
+{
+    const OrbitCamera camera = OrbitCamera::lookingFrom(glm::vec3(1, 2, 3), glm::vec3(0, 1, 0));
+    EXPECT_NEAR(glm::length(camera.eye() - glm::vec3(1, 2, 3)), 0.0f, 1e-5f);
+    EXPECT_EQ(camera.target, glm::vec3(0, 1, 0));
+    const glm::vec3 centre = camera.project(glm::vec3(0, 1, 0), 640, 360);
+    EXPECT_NEAR(centre.x, 320.0f, 0.01f);
+    EXPECT_NEAR(centre.y, 180.0f, 0.01f);
+    const OrbitCamera framing = frameWorld(loadScene("dice").world);
+    const OrbitCamera front = namedView(NamedView::Front, framing);
+    EXPECT_EQ(front.target, framing.target);
+    EXPECT_EQ(front.distance, framing.distance);
+    EXPECT_NEAR(front.eye().x, framing.target.x, 1e-4f) << "straight in front: on the z axis through the target";
+    EXPECT_GT(front.eye().z, framing.target.z);
+    const OrbitCamera side = namedView(NamedView::Side, framing);
+    EXPECT_NEAR(side.eye().z, framing.target.z, 1e-4f);
+    EXPECT_GT(side.eye().x, framing.target.x);
+    EXPECT_GT(namedView(NamedView::Top, framing).eye().y, framing.target.y + 0.99f * framing.distance);
 }

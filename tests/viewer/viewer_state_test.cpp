@@ -5,6 +5,7 @@
 
 #include <string>
 #include <vector>
+#include <algorithm>
 
 #include "frame_steps.hpp"
 #include "viewer_state.hpp"
@@ -235,4 +236,87 @@ TEST(ViewerState, EveryBlowUpPausesTheViewerWithItsMessage)
         EXPECT_FALSE(state.error.has_value());
         EXPECT_EQ(state.scene.world.time(), 0.0);
     }
+
+// A 10 x 10 cloth is one row of the panel, not 100: one group with its name and count, one
+// integrator for the whole system (applied live and kept by reset), its pins left fixed.
+TEST(ViewerState, AClothIsOneRowWithOneIntegratorForTheWholeSystem)
+{
+    ViewerState state = loaded("cloth-in-the-dryer");
+    ASSERT_EQ(state.groups.size(), 1u);
+    const render::BodyGroup& sheet = state.groups[0];
+    EXPECT_EQ(sheet.kind, render::BodyGroup::Kind::Cloth);
+    EXPECT_EQ(sheet.label, "cloth sheet: 10 x 10 particles");
+    EXPECT_EQ(sheet.members.size(), state.scene.world.bodyCount());
+    state.setGroupIntegrator(0, Integrator::RK4);
+    state.setGroupRestitution(0, 0.2);
+    state.reset();
+    for (const std::size_t i : sheet.members) {
+        const Body& body = state.scene.world.body(i);
+        if (!body.isFixed()) {
+            EXPECT_EQ(body.getIntegrator(), Integrator::RK4) << i;
+        }
+        EXPECT_EQ(body.getCor(), 0.2) << i;
+    }
+    EXPECT_NO_THROW(state.stepWorld(5));
+}
+
+// The plots: a particle's height and energy, a rope's total energy over its start, and for a
+// rigid body the components of omega in its own frame; in zero gravity no height (it is flat).
+TEST(ViewerState, EachGroupGetsThePlotsThatShowWhatItDoes)
+{
+    const ViewerState integrators = loaded("integrators");
+    EXPECT_EQ(plotKinds(integrators.scene.world, integrators.groups[1]),
+              (std::vector<PlotKind>{PlotKind::Height, PlotKind::EnergyRatio}));
+    const ViewerState dice = loaded("dice");
+    EXPECT_EQ(plotKinds(dice.scene.world, dice.groups[0]),
+              (std::vector<PlotKind>{PlotKind::Height, PlotKind::BodySpin, PlotKind::EnergyRatio}));
+    const ViewerState racket = loaded("tennis-racket");
+    EXPECT_EQ(plotKinds(racket.scene.world, racket.groups[0]),
+              (std::vector<PlotKind>{PlotKind::BodySpin, PlotKind::EnergyRatio}));
+
+    // The rope's energy plot is its particles' total over their total at the start.
+    ViewerState rope = loaded("rope");
+    EXPECT_EQ(plotKinds(rope.scene.world, rope.groups[0]), std::vector<PlotKind>{PlotKind::EnergyRatio});
+    rope.advanceTo(0.5);
+    const std::vector<double> now = rope.scene.world.energies(), start = rope.initial.energies();
+    const double ratio = render::groupEnergy(rope.groups[0], now) / render::groupEnergy(rope.groups[0], start);
+    EXPECT_NEAR(rope.plots[0].energyRatio.values().back(), ratio, 1e-6);
+    EXPECT_LT(ratio, 1.0) << "damping, drag and bounces take energy";
+}
+
+// The tennis racket spins about its middle (z) axis: omega_z in its own frame starts at +6 rad/s
+// and the flip turns it to about -6 within 4 s, while the world-frame omega keeps pointing near L.
+// The plots sample every 1/60 s of simulated time, whatever dt (0.002 s here).
+TEST(ViewerState, TheTennisRacketsSpinPlotShowsItsFlip)
+{
+    ViewerState state = loaded("tennis-racket");
+    state.advanceTo(4.0);
+    const std::vector<float>& z = state.plots[0].spin[2].values();
+    EXPECT_EQ(z.size(), 241u) << "t = 0 and every 1/60 s to 4 s";
+    EXPECT_NEAR(z.front(), 6.0f, 0.01f);
+    EXPECT_LT(*std::min_element(z.begin(), z.end()), -5.5f);
+    const std::vector<float>& e = state.plots[0].energyRatio.values();
+    EXPECT_NEAR(*std::min_element(e.begin(), e.end()), 1.0f, 1e-6f) << "free of torques: energy kept";
+}
+
+// n, j and a toggle the contacts, joint frames and axes; c puts the camera back where --camera
+// put it at the start.
+TEST(ViewerState, KeysToggleTheMarksAndCReturnsToTheStartsCamera)
+{
+    ViewerState state;
+    state.cameraChoice = parseCamera("0,2,6,0,1,0");
+    state.load(loadScene("dice"));
+    EXPECT_NEAR(glm::length(state.camera.eye() - glm::vec3(0, 2, 6)), 0.0f, 1e-5f);
+    KeyInput keys;
+    for (const int key : {78 /* N */, 74 /* J */, 65 /* A */, 67 /* C */})
+        keys.onKey(key, 1 /* GLFW_PRESS */, 0);
+    state.camera.orbit(1.0f, 0.2f);
+    for (const ViewerCommand command : keys.take())
+        state.apply(command);
+    EXPECT_TRUE(state.settings.contacts);
+    EXPECT_TRUE(state.settings.joints);
+    EXPECT_TRUE(state.settings.axes);
+    EXPECT_NEAR(glm::length(state.camera.eye() - glm::vec3(0, 2, 6)), 0.0f, 1e-5f);
+    state.apply(ViewerCommand::ToggleContacts);
+    EXPECT_FALSE(state.settings.contacts);
 }

@@ -1,0 +1,216 @@
+// The panel's rows and plots: each rope, cloth and other body of the scene as one row with its
+// controls, the scene's totals, and the first rows' plots in their colours.
+#include "viewer_rows.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include "render/rigid_view.hpp"
+
+namespace pba::app {
+
+namespace {
+
+ImVec4 imColour(const glm::vec4& c) { return ImVec4(c.r, c.g, c.b, 1.0f); }
+
+/// One body's controls: its integrator (a rigid body may take the fifth method, its rotation's
+/// implicit gyroscopic step; a particle the four of the study), restitution and friction.
+void bodyControls(ViewerState& state, std::size_t i)
+{
+    const Body& body = state.scene.world.body(i);
+    if (body.isFixed())
+        return;
+    const bool rigid = state.scene.world.isRigid(i);
+    int integrator = static_cast<int>(body.getIntegrator());
+    ImGui::SetNextItemWidth(170);
+    if (ImGui::Combo("integrator", &integrator, kIntegratorNames, rigid ? 5 : 4))
+        state.setIntegrator(i, static_cast<Integrator>(integrator));
+    ImGui::SameLine();
+    float e = float(body.getCor());
+    ImGui::SetNextItemWidth(100);
+    if (ImGui::SliderFloat("e", &e, 0.0f, 1.0f, "%.2f"))
+        state.setRestitution(i, e);
+    if (rigid) { // on a line of its own: the panel is too narrow for a third control
+        float mu = float(static_cast<const RigidBody&>(body).getFriction());
+        ImGui::SetNextItemWidth(170);
+        if (ImGui::SliderFloat("friction (mu)", &mu, 0.0f, 1.5f, "%.2f"))
+            state.setFriction(i, mu);
+    }
+}
+
+/// A rope's or cloth's particles, listed when its row is opened (a clipper: a cloth may have
+/// 16,384), each with its height and energy over its start.
+void memberList(const ViewerState& state, const render::BodyGroup& group, const std::vector<double>& now,
+                const std::vector<double>& start)
+{
+    ImGuiListClipper clipper;
+    clipper.Begin(static_cast<int>(group.members.size()));
+    while (clipper.Step())
+        for (int k = clipper.DisplayStart; k < clipper.DisplayEnd; ++k) {
+            const std::size_t i = group.members[static_cast<std::size_t>(k)];
+            const Body& body = state.scene.world.body(i);
+            ImGui::Text("%s  y = %.3f m   E/E0 = %.4f%s", body.getName().c_str(), body.getPos().y,
+                        start[i] != 0.0 ? now[i] / start[i] : 1.0, body.isFixed() ? "   (pinned)" : "");
+        }
+}
+
+/// A rope or cloth as one row: its name, particle count, total energy, and one integrator menu
+/// and restitution for the whole system; opened, its particles.
+void fabricRow(ViewerState& state, std::size_t g, const std::vector<double>& now, const std::vector<double>& start)
+{
+    const render::BodyGroup& group = state.groups[g];
+    const double e = render::groupEnergy(group, now), e0 = render::groupEnergy(group, start);
+    const bool open = ImGui::TreeNode("##members", "%s", "");
+    ImGui::SameLine();
+    ImGui::TextColored(imColour(group.colour), "%s", group.label.c_str());
+    ImGui::Text("  E = %.4g J   E/E0 = %.4f", e, e0 != 0.0 ? e / e0 : 1.0);
+    const auto moving = std::find_if(group.members.begin(), group.members.end(),
+                                     [&](std::size_t i) { return !state.scene.world.body(i).isFixed(); });
+    if (moving != group.members.end()) {
+        const Body& first = state.scene.world.body(*moving);
+        int integrator = static_cast<int>(first.getIntegrator());
+        ImGui::SetNextItemWidth(170);
+        if (ImGui::Combo("integrator", &integrator, kIntegratorNames, 4))
+            state.setGroupIntegrator(g, static_cast<Integrator>(integrator));
+        ImGui::SameLine();
+        float cor = float(first.getCor());
+        ImGui::SetNextItemWidth(100);
+        if (ImGui::SliderFloat("e", &cor, 0.0f, 1.0f, "%.2f"))
+            state.setGroupRestitution(g, cor);
+    }
+    if (open) {
+        memberList(state, group, now, start);
+        ImGui::TreePop();
+    }
+}
+
+} // namespace
+
+void bodiesSection(ViewerState& state)
+{
+    const World& world = state.scene.world;
+    const std::vector<double> now = world.energies(), start = state.initial.energies();
+    double total = 0.0, total0 = 0.0;
+    dvec3 momentum(0.0);
+    for (const render::BodyGroup& group : state.groups.groups()) {
+        total += render::groupEnergy(group, now);
+        total0 += render::groupEnergy(group, start);
+        momentum += render::groupMomentum(world, group);
+    }
+    ImGui::Text("all: E = %.4g J   E/E0 = %.4f   |p| = %.3g kg m/s", total, total0 != 0.0 ? total / total0 : 1.0,
+                glm::length(momentum));
+    constexpr std::size_t kRows = 12;
+    const std::size_t shown = std::min(state.groups.size(), kRows);
+    for (std::size_t g = 0; g < shown; ++g) {
+        ImGui::PushID(static_cast<int>(g));
+        const render::BodyGroup& group = state.groups[g];
+        if (group.fabric()) {
+            fabricRow(state, g, now, start);
+        } else {
+            const std::size_t i = group.members.front();
+            ImGui::TextColored(imColour(state.groups.bodyColour(i)), "%s", group.label.c_str());
+            ImGui::SameLine();
+            ImGui::Text("  y = %.3f m   E/E0 = %.4f", world.body(i).getPos().y, start[i] != 0.0 ? now[i] / start[i] : 1.0);
+            bodyControls(state, i);
+        }
+        ImGui::PopID();
+    }
+    if (shown < state.groups.size())
+        ImGui::TextDisabled("... and %zu more (pba sim lists them all)", state.groups.size() - shown);
+}
+
+namespace {
+
+/// A plot with its y scale: the label above it, where it is never cut off; the ends of the range
+/// written at its top and bottom left; and a margin, so that a flat line (E/E0 = 1 from the start)
+/// is drawn inside the frame rather than on its bottom edge. `minSpan` keeps rounding noise from
+/// filling the plot.
+void plotWithScale(const char* id, const std::string& label, const std::vector<float>& values, const char* format,
+                   float minSpan)
+{
+    ImGui::TextUnformatted(label.c_str());
+    float lo = values.empty() ? 0.0f : *std::min_element(values.begin(), values.end());
+    float hi = values.empty() ? 0.0f : *std::max_element(values.begin(), values.end());
+    const float middle = 0.5f * (lo + hi), half = 0.55f * std::max(hi - lo, minSpan);
+    lo = middle - half;
+    hi = middle + half;
+    ImGui::PlotLines(id, values.data(), static_cast<int>(values.size()), 0, nullptr, lo, hi,
+                     ImVec2(ImGui::GetContentRegionAvail().x, 52));
+    const ImVec2 top = ImGui::GetItemRectMin(), bottom = ImGui::GetItemRectMax();
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    const ImU32 colour = ImGui::GetColorU32(ImGuiCol_TextDisabled);
+    draw->AddText(ImVec2(top.x + 4, top.y + 1), colour, fmt::format(fmt::runtime(format), hi).c_str());
+    draw->AddText(ImVec2(top.x + 4, bottom.y - ImGui::GetFontSize() - 1), colour,
+                  fmt::format(fmt::runtime(format), lo).c_str());
+}
+
+/// Omega's three components in the body's frame on one plot, in the colours of the body's axes
+/// (x red, y green, z blue), one scale for the three.
+void spinPlot(const std::array<Series, 3>& spin)
+{
+    ImGui::TextUnformatted("omega in the body's frame (rad/s): x red, y green, z blue");
+    float lo = 0.0f, hi = 0.0f;
+    for (const Series& s : spin)
+        for (const float v : s.values())
+            lo = std::min(lo, v), hi = std::max(hi, v);
+    const float middle = 0.5f * (lo + hi), half = 0.55f * std::max(hi - lo, 0.1f);
+    lo = middle - half;
+    hi = middle + half;
+    const ImVec2 size(ImGui::GetContentRegionAvail().x, 64);
+    const ImVec2 top = ImGui::GetCursorScreenPos(), bottom(top.x + size.x, top.y + size.y);
+    ImGui::Dummy(size);
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->AddRectFilled(top, bottom, ImGui::GetColorU32(ImGuiCol_FrameBg));
+    const float zero = bottom.y - (0.0f - lo) / (hi - lo) * size.y;
+    if (zero > top.y && zero < bottom.y)
+        draw->AddLine(ImVec2(top.x, zero), ImVec2(bottom.x, zero), ImGui::GetColorU32(ImGuiCol_TextDisabled));
+    for (int k = 0; k < 3; ++k) {
+        const std::vector<float>& v = spin[k].values();
+        const glm::vec4 c = render::kAxisColours[k];
+        for (std::size_t n = 1; n < v.size(); ++n) {
+            auto at = [&](std::size_t m) {
+                return ImVec2(top.x + size.x * float(m) / float(Series::kLength - 1),
+                              bottom.y - (v[m] - lo) / (hi - lo) * size.y);
+            };
+            draw->AddLine(at(n - 1), at(n), ImGui::GetColorU32(ImVec4(c.r, c.g, c.b, 1.0f)), 1.5f);
+        }
+    }
+    const ImU32 text = ImGui::GetColorU32(ImGuiCol_TextDisabled);
+    draw->AddText(ImVec2(top.x + 4, top.y + 1), text, fmt::format("{:.2f}", hi).c_str());
+    draw->AddText(ImVec2(top.x + 4, bottom.y - ImGui::GetFontSize() - 1), text, fmt::format("{:.2f}", lo).c_str());
+}
+
+} // namespace
+
+void plotsSection(const ViewerState& state)
+{
+    for (std::size_t g = 0; g < state.plots.size(); ++g) {
+        const render::BodyGroup& group = state.groups[g];
+        const GroupPlots& p = state.plots[g];
+        ImGui::PushID(static_cast<int>(g));
+        ImGui::PushStyleColor(ImGuiCol_PlotLines, imColour(group.colour));
+        for (const PlotKind kind : plotKinds(state.scene.world, group)) {
+            switch (kind) {
+            case PlotKind::Height:
+                plotWithScale("##height", fmt::format("height of {} (m)", group.name), p.height.values(), "{:.2f}", 0.1f);
+                break;
+            case PlotKind::EnergyRatio:
+                plotWithScale("##energy",
+                              group.fabric() ? fmt::format("E/E0 of {} {}, all its particles",
+                                                           group.kind == render::BodyGroup::Kind::Rope ? "rope" : "cloth",
+                                                           group.name)
+                                             : fmt::format("E/E0 of {}", group.name),
+                              p.energyRatio.values(), "{:.3f}", 0.01f);
+                break;
+            case PlotKind::BodySpin: spinPlot(p.spin); break;
+            }
+        }
+        ImGui::PopStyleColor();
+        ImGui::PopID();
+    }
+}
+
+} // namespace pba::app
