@@ -20,7 +20,7 @@ gl='^(PbaRender|PbaView|HeadlessRender|Security|Outputs)\.'
 # tests packaging, which the plain build already does. The simulated hours (tunnelling, soak)
 # run the same code as the short tests 10^4 times over; unvectorised and checked at every load
 # they would take most of CI's half hour, so they run in the plain build only.
-long='^(Tunnelling|Soak)\.'
+long='^(Tunnelling|Soak|Pile)\.'
 ctest --test-dir build-asan --output-on-failure -j "$jobs" -E "$gl|^install\.|$long"
 # The OpenGL tests (and the output tests, whose pba children render) run with address and UB
 # checks but without leak checks: llvmpipe's JIT-compiled

@@ -15,9 +15,12 @@ struct ContactSettings {
     int positionIterations = 8;
     double linearSlop = 0.0005;
     double baumgarte = 0.8;
-    /// Contacts are kept while the shapes are this much (m) further apart than their motion in
-    /// the step could close, so a resting contact keeps its points, and its impulses, from step to step.
-    double contactMargin = 0.005;
+    /// Contacts are kept while the shapes are this much (m) further apart than their free motion
+    /// in the step could close, so a resting contact keeps its points, and its impulses, from step
+    /// to step. It is also all the warning a body at rest has of one kicked into it within the
+    /// step (a die on the floor struck by one landing on it): at 5 mm a thousand dice's heap
+    /// showed overlaps of 6-8 mm, at 1 cm under 3.5 mm.
+    double contactMargin = 0.01;
     /// Whether still islands sleep: a body slower than sleepSpeed (m/s; its centre, or its furthest
     /// point turning) for timeToSleep seconds, with all of its island, sleeps until touched.
     bool sleeping = true;
