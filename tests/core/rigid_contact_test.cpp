@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "pba/forces.hpp"
@@ -194,4 +195,87 @@ TEST(RigidContact, ABoxDroppedFlatReboundsToESquaredHAtEveryDtForEveryIntegrator
             ASSERT_TRUE(bounced);
             EXPECT_NEAR(apex, e * e * h, 0.03 * e * e * h) << "dt " << dt << ", " << integratorName(integrator);
         }
+}
+
+// Each body keeps its own integrator, and a contact between two bodies stepped by different ones
+// is the same exchange: equal spheres head-on with e = 1 swap their velocities to 1e-9 for every
+// pair of methods (no gravity, so every method's free step is the exact straight line).
+TEST(RigidContact, BodiesWithDifferentIntegratorsCollideWithEachOther)
+{
+    for (const Integrator left : kEveryIntegrator)
+        for (const Integrator right : kEveryIntegrator) {
+            World world;
+            RigidBody& a = addSphere(world, 0.1, 2.0, dvec3(-0.5, 0.0, 0.0), dvec3(1.5, 0.0, 0.0));
+            RigidBody& b = addSphere(world, 0.1, 2.0, dvec3(0.5, 0.0, 0.0), dvec3(-0.5, 0.0, 0.0));
+            a.setCor(1.0);
+            b.setCor(1.0);
+            a.setIntegrator(left);
+            b.setIntegrator(right);
+            for (int n = 0; n < 100; ++n)
+                world.step(0.01);
+            const std::string pair = std::string(integratorName(left)) + " against " + std::string(integratorName(right));
+            EXPECT_NEAR(a.getVel().x, -0.5, 1e-9) << pair;
+            EXPECT_NEAR(b.getVel().x, 1.5, 1e-9) << pair;
+        }
+}
+
+// A fixed body is static geometry anywhere, at any angle: a ball dropped onto a fixed box turned
+// 30 degrees about z leaves along the mirror image of its arrival about the face's normal (e = 1,
+// no friction), and the fixed box does not move.
+TEST(RigidContact, AFixedTurnedBoxReflectsABallAboutItsFacesNormal)
+{
+    World world;
+    const double tilt = std::numbers::pi / 6.0;
+    auto slab = std::make_unique<RigidBody>(Shape::box(dvec3(2.0, 0.2, 2.0)), 100.0);
+    slab->setFixed(true);
+    slab->setOrientation(glm::angleAxis(tilt, dvec3(0.0, 0.0, 1.0)));
+    slab->setCor(1.0);
+    slab->setFriction(0.0);
+    const RigidBody& ramp = static_cast<RigidBody&>(world.addBody(std::move(slab)));
+    RigidBody& ball = addSphere(world, 0.05, 1.0, dvec3(0.0, 0.5, 0.0), dvec3(0.0, -2.0, 0.0));
+    ball.setCor(1.0);
+    ball.setFriction(0.0);
+    for (int n = 0; n < 100; ++n)
+        world.step(0.005);
+    const dvec3 normal(-std::sin(tilt), std::cos(tilt), 0.0);
+    const dvec3 in(0.0, -2.0, 0.0);
+    const dvec3 out = in - 2.0 * glm::dot(in, normal) * normal;
+    EXPECT_NEAR(glm::length(ball.getVel() - out), 0.0, 1e-9);
+    EXPECT_NEAR(glm::length(ball.getAngularVelocity()), 0.0, 1e-9);
+    EXPECT_EQ(ramp.getPos(), dvec3(0.0));
+    EXPECT_EQ(ramp.getVel(), dvec3(0.0));
+}
+
+// Sleep is by island: two boxes at rest on the floor, far apart, both fall asleep; a ball dropped
+// on one wakes it (and only it), and once the ball has settled, the two sleep again.
+TEST(RigidContact, IslandsSleepAndWakeWhenTouched)
+{
+    World world;
+    world.setRoom(Aabb{dvec3(-2.0, 0.0, -2.0), dvec3(2.0, 4.0, 2.0)});
+    world.addForce(std::make_unique<Gravity>(dvec3(0.0, -kG, 0.0)));
+    auto addBox = [&](double x) -> RigidBody& {
+        auto body = std::make_unique<RigidBody>(Shape::box(dvec3(0.3)), 10.0);
+        body->setPos(dvec3(x, 0.15, 0.0));
+        return static_cast<RigidBody&>(world.addBody(std::move(body)));
+    };
+    addBox(-1.0);
+    addBox(1.0);
+    const double dt = 0.005;
+    for (int n = 0; n < int(1.0 / dt); ++n)
+        world.step(dt);
+    ASSERT_TRUE(world.isAsleep(0));
+    ASSERT_TRUE(world.isAsleep(1));
+    RigidBody& ball = addSphere(world, 0.05, 0.5, dvec3(-1.0, 0.8, 0.0), dvec3(0.0));
+    ball.setCor(0.0);
+    bool woke = false;
+    for (int n = 0; n < int(0.5 / dt); ++n) {
+        world.step(dt);
+        woke = woke || !world.isAsleep(0);
+        EXPECT_TRUE(world.isAsleep(1)) << "the far box woke at step " << n;
+    }
+    EXPECT_TRUE(woke);
+    for (int n = 0; n < int(3.0 / dt); ++n)
+        world.step(dt);
+    EXPECT_TRUE(world.isAsleep(0));
+    EXPECT_TRUE(world.isAsleep(2));
 }

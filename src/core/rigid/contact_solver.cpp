@@ -276,7 +276,11 @@ bool ContactSolver::collideOne(const Constraint& c)
             continue;
         const SurfacePoints sp = surfacePoints(c.radiusA, c.radiusB, m_contacts[c.contact].points[i], xa, qa, xb, qb);
         ImpactRow& row = rows[count];
-        const dvec3 p = 0.5 * (sp.a + sp.b);
+        // A sphere touches at its own surface point on the normal, exactly: the other shape's
+        // point was found at the start, and a sphere sliding in across a face has moved on since
+        // (their midpoint would lever the sphere into a spin no frictionless contact gives).
+        const bool sphereA = c.radiusA > 0.0, sphereB = c.radiusB > 0.0;
+        const dvec3 p = sphereA && !sphereB ? sp.a : sphereB && !sphereA ? sp.b : 0.5 * (sp.a + sp.b);
         row.point = i;
         row.rows.rA = p - xa;
         row.rows.rB = p - xb;
