@@ -26,6 +26,11 @@ rigid dominoes 1.6 -0.6,1.3,2.8,-1.0,0.1,0 contacts
 rigid newtons-cradle 0.62 0.1,1.3,2.4,0.1,1.05,0
 rigid wrecking-ball 1.8 1.2,1.6,6.0,0.2,0.8,0
 rigid chain 0.45 0,2.4,4.6,-0.6,2.0,0 joints
+rigid box-stack 2 2.4,2.2,4.4,0,0.55,0
+rigid incline 0.6 0.6,2.4,4.6,0,0.3,0
+rigid pendulum 0.4 0,2.5,5,0,2,0 joints
+# The README's first scene, from the example file it shows.
+"$pba" render docs/examples/first-scene.json --size 640x360 --time 3 --camera=0,2,6,0,1.6,0 --out "$out/first-scene.png"
 "$pba" render dice --size 640x360 --camera=0,2.4,3.8,0,0.1,-0.5 --out "$out/dice.png" # at the end: every die at rest
 "$pba" render blow-dryer-swarm --size 640x360 --time 1.5 --out "$out/blow-dryer-swarm.png"
 "$pba" field blow-dryer-flow --slice --out "$out/field-blow-dryer-flow.png"

@@ -159,11 +159,11 @@ TEST(AtomicWrites, AFailedRunLeavesAnExistingFileUntouched)
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1) << "only run.csv";
 }
 
-// The README's Hardening section says what exit 3 means, with the factor the code uses, and the
-// exit codes' section points there.
-TEST(NonFinite, TheReadmeStatesWhatExitThreeMeans)
+// docs/hardening.md's Hardening section says what exit 3 means, with the factor the code uses,
+// and the exit codes' section points there; the README's exit code table says it in short.
+TEST(NonFinite, TheDocsStateWhatExitThreeMeans)
 {
-    const std::string readme = readFile(std::filesystem::path(PBA_SOURCE_DIR) / "README.md");
+    const std::string readme = readFile(std::filesystem::path(PBA_SOURCE_DIR) / "docs" / "hardening.md");
     const std::size_t hardening = readme.find("\n## Hardening\n");
     const std::size_t codes = readme.find("\n## Exit codes\n");
     ASSERT_NE(hardening, std::string::npos);
@@ -176,4 +176,7 @@ TEST(NonFinite, TheReadmeStatesWhatExitThreeMeans)
                                     std::string("no energy source"), std::string("blew_up_at")})
         EXPECT_NE(section.find(part), std::string::npos) << part;
     EXPECT_NE(readme.find("3 simulation failure (the run blew up", codes), std::string::npos);
+    const std::string front = readFile(std::filesystem::path(PBA_SOURCE_DIR) / "README.md");
+    EXPECT_NE(front.find("| 3 | simulation failure: the run blew up"), std::string::npos);
+    EXPECT_NE(front.find("docs/hardening.md"), std::string::npos);
 }

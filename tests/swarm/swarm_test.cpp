@@ -332,7 +332,7 @@ TEST(Swarm, NoParticleEverLeavesTheRoom)
 
 #include "support/run_command.hpp"
 
-// pba bench's JSON has the keys the README documents, for every layout; a row's rate is its
+// pba bench's JSON has the keys docs/commands.md documents, for every layout; a row's rate is its
 // best window, so never below its median, and its fraction of the bound is best over best.
 TEST(PbaBench, QuickJsonHasEveryLayout)
 {
