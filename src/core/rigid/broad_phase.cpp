@@ -90,7 +90,9 @@ void BroadPhase::pairsOfSmall(std::span<const Box> boxes, std::span<const Motion
         out.clear();
         const std::size_t end = std::min(n, (chunk + 1) * kChunk);
         for (std::size_t i = chunk * kChunk; i < end; ++i) {
-            if (m_large[i])
+            // Pairs are found from their awake bodies: a sleeping pile's own pairs are carried
+            // over by the contact cache, and its bodies are only looked up as partners.
+            if (m_large[i] || motion[i] != Motion::Awake)
                 continue;
             // A partner no larger than a cell has its lowest corner within a cell below this
             // box's lowest corner and no further than its highest.
@@ -102,11 +104,12 @@ void BroadPhase::pairsOfSmall(std::span<const Box> boxes, std::span<const Motion
                         const std::uint32_t h = hashOf(cell, mask);
                         for (std::uint32_t e = m_bucketStart[h]; e < m_bucketStart[h + 1]; ++e) {
                             const std::uint32_t j = m_entries[e];
-                            if (j <= i || (motion[i] != Motion::Awake && motion[j] != Motion::Awake))
+                            // Two awake bodies: once, from the first.
+                            if (j == i || (j < i && motion[j] == Motion::Awake))
                                 continue;
                             // Another cell of the same bucket would find j twice.
                             if (m_cells[j] == cell && boxes[i].overlaps(boxes[j]))
-                                out.push_back({BodyIndex(i), j});
+                                out.push_back({BodyIndex(std::min<std::size_t>(i, j)), BodyIndex(std::max<std::size_t>(i, j))});
                         }
                     }
         }

@@ -235,6 +235,10 @@ void RigidSystem::findContacts(std::span<const Plane> planes, double dt)
         m_cache.clear(); // the room's surfaces are numbered anew
     }
     m_planes.assign(planes.begin(), planes.end());
+    // Nothing awake: every contact is a sleeping one, as the cache holds it (a settled pile costs
+    // a look at each body, no more).
+    if (m_awake.empty())
+        return;
     m_cache.beginStep();
     boundingBoxes(dt);
     m_broadPhase.findPairs(m_boxes, m_motion, m_pairs);
@@ -494,6 +498,10 @@ void RigidSystem::solve(const dvec3& gravity, double dt)
 {
     const std::size_t n = m_world.size();
     m_gravity = gravity;
+    if (m_awake.empty()) {
+        m_islands.build(m_motion, {}, {});
+        return;
+    }
     prepareBodies(dt, m_surfaces);
     m_links.resize(m_joints.size());
     for (std::size_t k = 0; k < m_joints.size(); ++k)

@@ -76,6 +76,8 @@ public:
     /// Every contact of the last step (body pairs by system index; a room surface is
     /// size() + 1 + its surface id).
     const std::vector<Contact>& contacts() const { return m_cache.contacts(); }
+    /// The islands of the last step's solve (for statistics and pictures).
+    const Islands& islands() const { return m_islands; }
     /// Wakes every body (a program changed something the contacts cannot see: a force, a pose).
     void wakeAll();
     /// Forgets every contact (the room changed, or a body was moved by hand).
