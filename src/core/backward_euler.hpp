@@ -5,10 +5,11 @@
 //     (M - dt D - dt^2 K) dv = dt (f0 + dt K v0),     v1 = v0 + dv,  x1 = x0 + dt v1,
 // f0 every force at the start. The springs are implicit, every other force (gravity, drag, the
 // blow dryer) explicit: a particle with no spring moves as by semi-implicit Euler. The system is
-// solved by conjugate gradients, preconditioned by its 3 x 3 diagonal blocks, matrix-free: each
-// product runs as the spring network's forces do, a pass over the springs and a pass over the
-// bodies that sums each body's springs in their order, on all cores. Its dot products are
-// reduced over a fixed tree of blocks, so the result is the same on any number of threads.
+// solved by conjugate gradients, preconditioned by its 3 x 3 diagonal blocks, from the last
+// step's dv, matrix-free: each product runs as the spring network's forces do, a pass over the
+// springs and a pass over the bodies that sums each body's springs in their order, on all cores.
+// Its dot products are reduced over a fixed tree of blocks, so the result is the same on any
+// number of threads.
 //
 // A spring's stiffness block is k (u u^T + g (I - u u^T)) with g = 1 - L / |d|, its geometric
 // term, clamped at zero: a compressed spring's would make the matrix indefinite, where conjugate
@@ -29,7 +30,7 @@ class BackwardEuler {
 public:
     /// Conjugate gradients stop when the residual's preconditioned norm falls below this fraction
     /// of the right-hand side's, or after kMaxIterations.
-    static constexpr double kTolerance = 1e-6;
+    static constexpr double kTolerance = 1e-5;
     static constexpr int kMaxIterations = 500;
 
     /// One step of the system: x and v (one per member, in the springs' member order) from the
@@ -60,9 +61,8 @@ private:
 
     void setUp(const SpringSystem& springs, std::span<const double> mass, std::span<const dvec3> x,
                std::span<const dvec3> v, std::span<const dvec3> force, double dt);
-    /// y = A w, and returns w . y.
-    double multiply(const SpringSystem& springs, std::span<const double> mass, const std::vector<dvec3>& w,
-                    std::vector<dvec3>& y);
+    /// Each spring's B (w_a - w_b), into m_perSpring.
+    void springPass(const SpringSystem& springs, const std::vector<dvec3>& w);
     void solve(const SpringSystem& springs, std::span<const double> mass);
 
     std::vector<Block> m_blocks;     ///< one per spring

@@ -44,10 +44,28 @@ public:
     std::size_t colours() const { return m_colourStart.empty() ? 0 : m_colourStart.size() - 1; }
 
 private:
-    void project(const SpringSystem& springs, std::span<dvec3> x, double h);
+    /// A spring as its projection reads it, stored colour by colour so that a colour's pass reads
+    /// its constraints in order (the springs' own arrays, read through a colour's list of indices,
+    /// were a cache miss a spring).
+    struct Constraint {
+        std::uint32_t a = 0, b = 0; ///< b == SpringSystem::kFixed: fixed at the spring's fixed point
+        std::uint32_t spring = 0;   ///< the spring's index, for its fixed point
+        double restLength = 0.0;
+        double inverseStiffness = 0.0;     ///< 1 / k, the compliance; negative: no stiffness, no constraint
+        double dampingOverStiffness = 0.0; ///< c / k
+    };
+    /// What a projection needs that is the same in every substep of a step: each end's share of the
+    /// correction, w / ((1 + gamma) (w_a + w_b) + 1 / (k h^2)), and gamma.
+    struct Scale {
+        double a = 0.0, b = 0.0, gamma = 0.0;
+    };
+    void scale(double h);
+    void project(const SpringSystem& springs, std::span<dvec3> x);
 
-    /// The springs by colour: m_order[m_colourStart[c]] up to m_order[m_colourStart[c + 1]].
-    std::vector<std::uint32_t> m_order, m_colourStart;
+    /// The constraints by colour: m_constraints[m_colourStart[c]] up to m_constraints[m_colourStart[c + 1]].
+    std::vector<Constraint> m_constraints;
+    std::vector<Scale> m_scales; ///< one per constraint, for the step's h
+    std::vector<std::uint32_t> m_colourStart;
     std::vector<double> m_inverseMass;
     std::vector<dvec3> m_start, m_accel;
 };
