@@ -20,6 +20,9 @@ struct SpringSolver {
     SpringSystem springs;
     BackwardEuler backwardEuler;
     Xpbd xpbd;
+    /// Scratch of a step: where every body is (for the fixed ends), and the members' forces at the
+    /// start. Members, not thread_local: a lambda run on a pool thread names that thread's copy.
+    std::vector<dvec3> positions, startForces;
 
     /// Makes the springs (and, for XPBD, their colours) anew unless they were made for these
     /// members and forces.

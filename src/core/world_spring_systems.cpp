@@ -23,7 +23,7 @@ void World::startSpringSystem(const std::vector<std::size_t>& members, detail::S
         s.mass[k] = m_masses[members[k]];
     });
     // The fixed ends where the fixed bodies are (a program may have moved one between steps).
-    thread_local std::vector<dvec3> positions;
+    std::vector<dvec3>& positions = solver.positions;
     positions.resize(m_bodies.size());
     for (std::size_t i = 0; i < m_bodies.size(); ++i)
         positions[i] = m_previous[i].pos;
@@ -45,7 +45,7 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
     detail::forEachIndex(n, [&](std::size_t k) { s.forces[members[k]] = dvec3(0.0); });
     for (const auto& force : m_forces)
         force->accumulate(in, out);
-    thread_local std::vector<dvec3> start;
+    std::vector<dvec3>& start = solver.startForces;
     start.resize(n);
     detail::forEachIndex(n, [&](std::size_t k) {
         start[k] = s.forces[members[k]];

@@ -398,8 +398,8 @@ void World::storeRigidBodies()
             if (k < system.size() && !system.isAsleep(k) && !m_bodies[system.worldIndex(k)]->isFixed())
                 ++m_bounces[system.worldIndex(k)];
     }
-    thread_local std::vector<std::size_t> all;
-    all.resize(system.size());
+    // A local, not thread_local: lowestFailing reads it on the pool's threads.
+    std::vector<std::size_t> all(system.size());
     for (std::size_t k = 0; k < system.size(); ++k)
         all[k] = system.worldIndex(k);
     const std::size_t bad = lowestFailing(all, 256, m_bodies.size(), [&](std::size_t k) {
