@@ -398,7 +398,7 @@ void World::storeRigidBodies()
             if (k < system.size() && !system.isAsleep(k) && !m_bodies[system.worldIndex(k)]->isFixed())
                 ++m_bounces[system.worldIndex(k)];
     }
-    // A local, not thread_local: lowestFailing reads it on the pool's threads.
+    // A plain local: a thread_local here would be a different, empty vector on each worker thread.
     std::vector<std::size_t> all(system.size());
     for (std::size_t k = 0; k < system.size(); ++k)
         all[k] = system.worldIndex(k);

@@ -206,7 +206,7 @@ std::vector<BlowUp> blowUps()
              s["rigid_bodies"][0]["mass"] = 1e-12;
              s["forces"] = nlohmann::json::parse(R"([{"type": "drag", "coefficient": 0.05}])");
          },
-         {}, "one", " the energy "},
+         {}, "die0", " the energy "},
         {"gravity 1e200 on the dryer's boxes", "blow-dryer-boxes", [](nlohmann::json& s) { s["gravity"] = {0, -1e200, 0}; },
          {}, "light", "the orientation of body 'light' is not finite"},
         {"rope of stiffness 1e300", "rope", [](nlohmann::json& s) { s["ropes"][0]["stiffness"] = 1e300; }, {}, "",
@@ -214,8 +214,8 @@ std::vector<BlowUp> blowUps()
         {"rope with dampers of 1e300", "rope", [](nlohmann::json& s) { s["ropes"][0]["damping"] = 1e300; }, {}, "",
          "no energy source"},
         {"rope at dt 0.05", "rope", [](nlohmann::json&) {}, {"--dt", "0.05"}, "", "no energy source"},
-        {"ball thrown down at 1e50 m/s", "rolling", [](nlohmann::json& s) { s["rigid_bodies"][0]["velocity"] = {0, -1e50, 0}; },
-         {}, "ball", "inside the floor"},
+        // (A ball thrown down at 1e50 m/s used to end its step half in the floor; the contact
+        // pipeline now stops it on the floor: RigidBlowUp.ABallThrownAtTenToTheFifty... .)
     };
 }
 
@@ -287,6 +287,7 @@ TEST(PbaSim, HelpSaysWhatExitThreeMeans)
             EXPECT_NE(r.out.find(part), std::string::npos) << args << ": " << part << "\n" << r.out;
         }
     }
+}
 
 // A rope or cloth is one row of totals, not a row per particle (on request, those too); the
 // whole scene's energy and momentum close the table: two free particles in no gravity have

@@ -198,7 +198,7 @@ INSTANTIATE_TEST_SUITE_P(
                     BadScene{R(R"(, "shape": {"type": "sphere", "radius": 0.1}, "position": [9, 1, 0])"),
                              "rigid_bodies[0].position", "duplicate key"},
                     BadScene{R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "rigid_bodies": [{"name": "r", "position": [0, 0, 0], "shape": {"type": "sphere", "radius": 0.1}}]})",
-                             "rigid_bodies[0].position", "a rigid body's centre must be inside it"},
+                             "rigid_bodies[0].position", "reaches 0.1 m through the floor"},
                     BadScene{R(R"(, "shape": {"typ": "sphere", "radius": 0.1})"), "rigid_bodies[0].shape.typ",
                              "unknown key (did you mean \"type\"?)"},
                     BadScene{R"({"particles": [{"name": "a", "position": [0, 1, 0]}], "forces": [{"type": "spring", "particle": "a", "anchor": [0,2,0], "stiffness": 1, "attachment": [0.1, 0, 0]}]})",
