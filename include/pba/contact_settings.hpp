@@ -12,9 +12,9 @@ struct ContactSettings {
     int maxVelocityIterations = 64;
     /// Sweeps of the position pass, which pushes apart what overlaps beyond linearSlop (m) by
     /// baumgarte of the overlap a sweep, on the poses alone.
-    int positionIterations = 3;
+    int positionIterations = 8;
     double linearSlop = 0.0005;
-    double baumgarte = 0.2;
+    double baumgarte = 0.8;
     /// Contacts are kept while the shapes are this much (m) further apart than their motion in
     /// the step could close, so a resting contact keeps its points, and its impulses, from step to step.
     double contactMargin = 0.005;

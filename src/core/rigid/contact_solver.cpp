@@ -158,19 +158,20 @@ bool ContactSolver::collide()
     return any;
 }
 
-ContactSolver::SurfacePoints ContactSolver::surfacePoints(const Constraint& c, const ContactPoint& p, const dvec3& xa,
-                                                         const dquat& qa, const dvec3& xb, const dquat& qb) const
+ContactSolver::SurfacePoints ContactSolver::surfacePoints(double radiusA, double radiusB, const ContactPoint& p,
+                                                         const dvec3& xa, const dquat& qa, const dvec3& xb,
+                                                         const dquat& qb)
 {
     SurfacePoints s;
     s.n = p.normal;
-    if (c.radiusA > 0.0 && c.radiusB > 0.0) {
+    if (radiusA > 0.0 && radiusB > 0.0) {
         // Two spheres touch along the line of their centres, wherever that has turned.
         const dvec3 d = xb - xa;
         if (const double len = glm::length(d); len > 0.0)
             s.n = d / len;
     }
-    s.a = c.radiusA > 0.0 ? xa + c.radiusA * s.n : xa + glm::mat3_cast(qa) * p.anchorA;
-    s.b = c.radiusB > 0.0 ? xb - c.radiusB * s.n : xb + glm::mat3_cast(qb) * p.anchorB;
+    s.a = radiusA > 0.0 ? xa + radiusA * s.n : xa + glm::mat3_cast(qa) * p.anchorA;
+    s.b = radiusB > 0.0 ? xb - radiusB * s.n : xb + glm::mat3_cast(qb) * p.anchorB;
     return s;
 }
 
@@ -214,7 +215,7 @@ double ContactSolver::refineArrival(const Constraint& c, int point, double tPrev
     for (int k = 0; k < 8; ++k) {
         const double f = tau / dt;
         const dvec3 xa = a.freePosition(f, dt), xb = b.freePosition(f, dt);
-        const SurfacePoints sp = surfacePoints(c, p, xa, a.freeOrientation(f), xb, b.freeOrientation(f));
+        const SurfacePoints sp = surfacePoints(c.radiusA, c.radiusB, p, xa, a.freeOrientation(f), xb, b.freeOrientation(f));
         const double gap = glm::dot(sp.b - sp.a, sp.n);
         const dvec3 u = b.velocityAt(f) + glm::cross(b.spinAt(f), sp.b - xb) - a.velocityAt(f) -
                         glm::cross(a.spinAt(f), sp.a - xa);
@@ -273,7 +274,7 @@ bool ContactSolver::collideOne(const Constraint& c)
     for (int i = 0; i < c.count; ++i) {
         if (!arrives[i])
             continue;
-        const SurfacePoints sp = surfacePoints(c, m_contacts[c.contact].points[i], xa, qa, xb, qb);
+        const SurfacePoints sp = surfacePoints(c.radiusA, c.radiusB, m_contacts[c.contact].points[i], xa, qa, xb, qb);
         ImpactRow& row = rows[count];
         const dvec3 p = 0.5 * (sp.a + sp.b);
         row.point = i;
@@ -426,34 +427,34 @@ void ContactSolver::storeImpulses()
     }
 }
 
-void ContactSolver::solvePositions()
+void ContactSolver::solvePositions(std::span<const Contact> contacts)
 {
     const SolverSettings& s = m_settings;
-    for (const Constraint& c : m_constraints) {
-        SolverBody& a = m_bodies[c.a];
-        SolverBody& b = m_bodies[c.b];
-        const Contact& contact = m_contacts[c.contact];
-        for (int i = 0; i < c.count; ++i) {
+    for (const Contact& contact : contacts) {
+        SolverBody& a = m_bodies[contact.a];
+        SolverBody& b = m_bodies[contact.b];
+        for (int i = 0; i < contact.count; ++i) {
             const ContactPoint& p = contact.points[i];
-            // The normal is held as it was at the start of the step (as Box2D holds it through
-            // its substeps), but for two spheres: the bodies turn little within one.
-            const SurfacePoints sp = surfacePoints(c, p, a.endPosition, a.endOrientation, b.endPosition, b.endOrientation);
+            // The normal is held as it was found (as Box2D holds it through its substeps), but
+            // for two spheres: the bodies turn little within a sweep.
+            const SurfacePoints sp = surfacePoints(contact.radiusA, contact.radiusB, p, a.endPosition, a.endOrientation,
+                                                   b.endPosition, b.endOrientation);
             const dvec3 &pa = sp.a, &pb = sp.b, &n = sp.n;
             const double separation = glm::dot(pb - pa, n);
             const double correction = std::clamp(s.baumgarte * (separation + s.linearSlop), -s.maxCorrection, 0.0);
             if (correction == 0.0)
                 continue;
-            const dvec3 ra = pa - a.endPosition, rb = pb - b.endPosition;
-            const double mass = effectiveMass(a, b, ra, rb, n);
-            const dvec3 push = (-correction * mass) * n;
-            if (!a.isStatic()) {
+            // Apart along the normal, without turning: a turn about one point of a manifold (an
+            // edge crossing an edge has only one) digs another corner in, which this manifold,
+            // found before the sweeps, does not hold.
+            const double k = a.inverseMass + b.inverseMass;
+            if (k == 0.0)
+                continue;
+            const dvec3 push = (-correction / k) * n;
+            if (!a.isStatic())
                 a.endPosition -= push * a.inverseMass;
-                a.endOrientation = turned(a.endOrientation, -(a.inverseInertia * glm::cross(ra, push)));
-            }
-            if (!b.isStatic()) {
+            if (!b.isStatic())
                 b.endPosition += push * b.inverseMass;
-                b.endOrientation = turned(b.endOrientation, b.inverseInertia * glm::cross(rb, push));
-            }
         }
     }
 }

@@ -84,8 +84,9 @@ public:
     bool solveVelocities();
     /// Each point's impulses back into its contact, for the next step's warm start.
     void storeImpulses();
-    /// Pass 3, on the bodies' end poses; one sweep.
-    void solvePositions();
+    /// Pass 3, on the bodies' end poses; one sweep over `contacts`, found at those poses (what
+    /// the step's turning brought into contact is there, which the start's manifolds missed).
+    void solvePositions(std::span<const Contact> contacts);
 
 private:
     struct Constraint {
@@ -100,8 +101,8 @@ private:
     struct SurfacePoints {
         dvec3 a{0.0}, b{0.0}, n{0.0};
     };
-    SurfacePoints surfacePoints(const Constraint& c, const ContactPoint& p, const dvec3& xa, const dquat& qa,
-                                const dvec3& xb, const dquat& qb) const;
+    static SurfacePoints surfacePoints(double radiusA, double radiusB, const ContactPoint& p, const dvec3& xa,
+                                       const dquat& qa, const dvec3& xb, const dquat& qb);
     /// A point's rows where it arrives, and what the collision pass wants of it.
     struct ImpactRow {
         int point = 0;

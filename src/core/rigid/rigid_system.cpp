@@ -313,17 +313,76 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
         b.endOrientation = turned(b.endOrientation, b.turn);
     }
     // The velocities are final: no contact may have added to the island's energy (capEnergy).
-    // The position pass then moves the poses alone, and adds no motion, whatever it moves; the
-    // room has the last word in each of its sweeps, as the boundary nothing may leave.
+    // The position pass then moves the poses alone, adding no motion. The room is the boundary
+    // nothing may leave: what is beyond it is taken back before the pass (so that the pass's
+    // contacts are found where the bodies are) and after it.
     capEnergy(island);
-    for (int it = 0; it < std::max(settings.positionIterations, 1); ++it) {
-        if (it < settings.positionIterations) {
-            joints.solvePositions();
-            solver.solvePositions();
-        }
-        for (const std::uint32_t k : bodies) {
-            SolverBody& b = m_solverBodies[k];
-            pushOutOfRoom(*m_material[k].shape, b.endPosition, b.endOrientation, m_planes);
+    pushOutOfRoom(bodies);
+    thread_local std::vector<Contact> atEnd;
+    contactsAtEnd(island, atEnd);
+    for (int it = 0; it < settings.positionIterations; ++it) {
+        joints.solvePositions();
+        solver.solvePositions(atEnd);
+    }
+    pushOutOfRoom(bodies);
+    // A joint does no work: what its position pass adds to the island's height is taken from its
+    // motion (a chain's energy never grows). Not for contacts alone, whose pass only undoes an
+    // overlap the step made, and whose resting bodies have no motion to take it from.
+    if (!m_islands.links(island).empty())
+        capEnergy(island);
+}
+
+void RigidSystem::pushOutOfRoom(std::span<const std::uint32_t> bodies)
+{
+    for (const std::uint32_t k : bodies) {
+        SolverBody& b = m_solverBodies[k];
+        rigid::pushOutOfRoom(*m_material[k].shape, b.endPosition, b.endOrientation, m_planes);
+    }
+}
+
+void RigidSystem::contactsAtEnd(std::size_t island, std::vector<Contact>& out) const
+{
+    // Not only what overlaps: what the sweeps may push together (a die pushed up out of the floor
+    // into the one above it) must be there for them to push apart again.
+    constexpr double kPositionMargin = 0.01;
+    // The narrow phase again, at the end poses, for the pairs that touched or could have and for
+    // the island's bodies against the room: the position pass works on what overlaps now, the
+    // room's surfaces in the same sweeps as the bodies (a die pushed down into the floor by the
+    // one landing on it is pushed back up within the sweep, and the other one further away).
+    out.clear();
+    const std::size_t n = m_world.size();
+    for (const std::uint32_t k : m_islands.bodies(island)) {
+        const SolverBody& b = m_solverBodies[k];
+        const std::size_t first = out.size();
+        collideWithRoom(*m_material[k].shape, Transform{b.endPosition, glm::mat3_cast(b.endOrientation)}, m_planes,
+                        kPositionMargin, BodyIndex(k), BodyIndex(n + 1), out);
+        for (std::size_t e = first; e < out.size(); ++e)
+            out[e].radiusA = sphereRadius(*m_material[k].shape);
+    }
+    for (const std::uint32_t index : m_islands.contacts(island)) {
+        const Contact& c = m_cache.contacts()[index];
+        if (c.b >= n)
+            continue;
+        const SolverBody& a = m_solverBodies[c.a];
+        const SolverBody& b = m_solverBodies[c.b];
+        contact::SatCache sat = c.sat;
+        const contact::Manifold m =
+            contact::collide(*m_material[c.a].shape, Transform{a.endPosition, glm::mat3_cast(a.endOrientation)},
+                             *m_material[c.b].shape, Transform{b.endPosition, glm::mat3_cast(b.endOrientation)},
+                             kPositionMargin, &sat);
+        if (m.count == 0)
+            continue;
+        Contact& e = out.emplace_back();
+        e.a = c.a;
+        e.b = c.b;
+        e.radiusA = c.radiusA;
+        e.radiusB = c.radiusB;
+        e.count = m.count;
+        for (int i = 0; i < m.count; ++i) {
+            e.points[i].normal = m.normal;
+            e.points[i].anchorA = m.points[i].anchorA;
+            e.points[i].anchorB = m.points[i].anchorB;
+            e.points[i].separation = m.points[i].separation;
         }
     }
 }

@@ -98,6 +98,8 @@ private:
     void prepareBodies(double dt, std::size_t surfaces);
     void solveIsland(std::size_t island, const SolverSettings& settings);
     void capEnergy(std::size_t island);
+    void pushOutOfRoom(std::span<const std::uint32_t> bodies);
+    void contactsAtEnd(std::size_t island, std::vector<Contact>& out) const;
     void finishBodies();
     void updateSleep(double dt);
 
