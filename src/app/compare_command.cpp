@@ -165,6 +165,7 @@ bool isStudyFile(const std::string& name)
 {
     static const std::vector<std::string> names = [] {
         std::vector<std::string> all{"report.md", "results.csv", "orders.csv", "stability.csv", "clocks.csv",
+                                     "work_precision.csv", study::kWorkPrecisionPlotFile,
                                      study::kClockPlotFile,
                                      study::kStabilityPlotFile, study::kDriftPlotFile, study::kFlipPlotFile,
                                      study::kPeriodPlotFile};
@@ -253,7 +254,9 @@ int runCompare(const CompareOptions& options)
         writeStabilityCsv(dir / "stability.csv", result);
     const bool plots = writePlots(dir, config, result);
     sayIfNoPlots(plots);
-    writeReport(dir / "report.md", config, result, plots);
+    const std::vector<study::WorkPrecisionPoint> points = study::runWorkPrecision();
+    const std::string workPrecision = writeWorkPrecision(dir, points, plots);
+    writeReport(dir / "report.md", config, result, plots, workPrecision);
     folder.commit();
     const auto responses = study::distinctResponses(config, result);
     for (CollisionResponse c : responses)
@@ -272,6 +275,8 @@ int runCompare(const CompareOptions& options)
                        std::isnan(s.theoryDt) ? std::string("none") : fmt::format("{:.5g} s", s.theoryDt));
     }
     fmt::print("\n\n{}", study::findings(config, result));
+    fmt::print("\nwork against precision (work_precision.csv), cheapest to an error of 1e-3 on one thread:\n{}",
+               study::workPrecisionFindings(points, 1e-3));
     progress.finish(fmt::format("wrote {}/report.md, results.csv, orders.csv{}{} ({} runs)", options.out,
                                 result.stability.empty() ? "" : ", stability.csv", plots ? " and plots" : "",
                                 result.runs.size()));
