@@ -17,32 +17,64 @@
 
 namespace pba {
 
-/// ImplicitGyroscopic is semi-implicit Euler whose rotation takes the implicit gyroscopic step
-/// (rotation.hpp): it differs from SemiImplicitEuler only for a body that turns.
-enum class Integrator { ForwardEuler, SemiImplicitEuler, VelocityVerlet, RK4, ImplicitGyroscopic };
+/// The methods a body may name. The first four are explicit and move anything the same way:
+/// a particle, a swarm, a coupled system, a rigid body (translation and rotation alike).
+///  - ImplicitGyroscopic is semi-implicit Euler whose rotation takes the implicit gyroscopic step
+///    (rotation.hpp): it differs from SemiImplicitEuler only for a body that turns.
+///  - Splitting is velocity Verlet whose rotation takes a symplectic splitting of the free rigid
+///    body (rotation.hpp): it keeps |L| to rounding and the energy bounded; for a particle it is
+///    velocity Verlet.
+///  - ImplicitEuler (backward Euler, linearised once a step, implicit in the springs) and Xpbd
+///    (the springs as constraints of compliance 1/k, in substeps) step particles joined by springs
+///    as one system (the World's integrateBackwardEuler and integrateXpbd): ropes, cloth, a
+///    particle on a spring. A rigid body or a swarm cannot take them.
+enum class Integrator { ForwardEuler, SemiImplicitEuler, VelocityVerlet, RK4, ImplicitGyroscopic, Splitting,
+                        ImplicitEuler, Xpbd };
 
-/// The four methods of the integrator study: what moves a point (a particle, a swarm).
+/// The four explicit methods of the integrator study: what moves a point (a particle, a swarm).
 inline constexpr std::array<Integrator, 4> kAllIntegrators{
     Integrator::ForwardEuler, Integrator::SemiImplicitEuler, Integrator::VelocityVerlet, Integrator::RK4};
-/// Every method a body may name: the four, and the rigid bodies' fifth.
-inline constexpr std::array<Integrator, 5> kEveryIntegrator{Integrator::ForwardEuler, Integrator::SemiImplicitEuler,
-                                                            Integrator::VelocityVerlet, Integrator::RK4,
-                                                            Integrator::ImplicitGyroscopic};
+/// The methods that move particles differently (the particle study's): the four, and the two that
+/// step springs implicitly. Each is one system of the World's coupled bodies.
+inline constexpr std::array<Integrator, 6> kParticleIntegrators{
+    Integrator::ForwardEuler, Integrator::SemiImplicitEuler, Integrator::VelocityVerlet, Integrator::RK4,
+    Integrator::ImplicitEuler, Integrator::Xpbd};
+/// The methods a rigid body may take (the rotation study's): the four, and the two that treat its
+/// rotation on their own.
+inline constexpr std::array<Integrator, 6> kRigidIntegrators{
+    Integrator::ForwardEuler, Integrator::SemiImplicitEuler, Integrator::VelocityVerlet, Integrator::RK4,
+    Integrator::ImplicitGyroscopic, Integrator::Splitting};
+/// Every method a body may name.
+inline constexpr std::array<Integrator, 8> kEveryIntegrator{
+    Integrator::ForwardEuler, Integrator::SemiImplicitEuler, Integrator::VelocityVerlet, Integrator::RK4,
+    Integrator::ImplicitGyroscopic, Integrator::Splitting, Integrator::ImplicitEuler, Integrator::Xpbd};
 
-/// The method that moves a point: ImplicitGyroscopic's translation is semi-implicit Euler.
+/// The method that moves a point: ImplicitGyroscopic's translation is semi-implicit Euler and
+/// Splitting's velocity Verlet; the others are their own.
 constexpr Integrator translationalMethod(Integrator integrator)
 {
-    return integrator == Integrator::ImplicitGyroscopic ? Integrator::SemiImplicitEuler : integrator;
+    switch (integrator) {
+    case Integrator::ImplicitGyroscopic: return Integrator::SemiImplicitEuler;
+    case Integrator::Splitting: return Integrator::VelocityVerlet;
+    default: return integrator;
+    }
+}
+
+/// Whether the method steps particles joined by springs as one implicit system (ImplicitEuler,
+/// Xpbd): never a rigid body or a swarm.
+constexpr bool isSpringSystemMethod(Integrator integrator)
+{
+    return integrator == Integrator::ImplicitEuler || integrator == Integrator::Xpbd;
 }
 
 /// Scene and command-line name: "forward-euler", "semi-implicit-euler", "velocity-verlet", "rk4",
-/// "implicit-gyroscopic".
+/// "implicit-gyroscopic", "splitting", "implicit-euler", "xpbd".
 std::string_view integratorName(Integrator integrator);
 std::optional<Integrator> integratorFromName(std::string_view name);
-/// Every name integratorFromName takes, as an error lists them: "forward-euler, ..., rk4 or
-/// implicit-gyroscopic".
+/// Every name integratorFromName takes, as an error lists them: "forward-euler, ..., implicit-euler
+/// or xpbd".
 std::string integratorNameList();
-/// Global order of accuracy: 1, 1, 2, 4, 1.
+/// Global order of accuracy: 1, 1, 2, 4, 1, 2, 1, 1 (XPBD's in the substep, dt / substeps).
 int integratorOrder(Integrator integrator);
 
 /// x(t+dt) = x + v dt, v(t+dt) = v + a(x, v) dt. First order; gains energy on oscillators.
@@ -103,8 +135,13 @@ inline void integrate(Integrator integrator, X& x, X& v, T dt, Accel&& accel)
     switch (integrator) {
     case Integrator::ForwardEuler: forwardEuler(x, v, dt, accel); return;
     case Integrator::SemiImplicitEuler:
-    case Integrator::ImplicitGyroscopic: semiImplicitEuler(x, v, dt, accel); return;
-    case Integrator::VelocityVerlet: velocityVerlet(x, v, dt, accel); return;
+    case Integrator::ImplicitGyroscopic:
+    // The World steps the spring systems' methods itself; a point with no spring, its forces all
+    // taken at the start, moves by them as by semi-implicit Euler.
+    case Integrator::ImplicitEuler:
+    case Integrator::Xpbd: semiImplicitEuler(x, v, dt, accel); return;
+    case Integrator::VelocityVerlet:
+    case Integrator::Splitting: velocityVerlet(x, v, dt, accel); return;
     case Integrator::RK4: rk4(x, v, dt, accel); return;
     }
 }

@@ -14,6 +14,9 @@ namespace contact {
 struct CollisionShape;
 }
 
+/// The method a scene's rigid body takes unless it names one.
+inline constexpr Integrator kDefaultRigidIntegrator = Integrator::SemiImplicitEuler;
+
 class RigidBody : public Body {
 public:
     /// A unit cube of 1 kg at rest, unrotated.

@@ -11,7 +11,10 @@
 //      its own path (the exact time of impact): forces are summed at every trial state
 //   4. integrate the coupled bodies, one system per integrator: every stage of the integrator
 //      evaluates every force for every body of the system at that stage's state (RK4 of a
-//      coupled system is RK4 of the whole system)
+//      coupled system is RK4 of the whole system); implicit-euler's and xpbd's systems (every
+//      moving particle that takes them, joined by springs or not) take their own steps:
+//      integrateBackwardEuler solves for the velocities with the springs' Jacobian,
+//      integrateXpbd projects the springs as constraints in substeps
 //   5. collide and store the coupled bodies: each one found behind a surface gets the
 //      reflect or clamp rule of its own (exact acts as reflect for them), in the pass that
 //      writes their new states
@@ -53,6 +56,10 @@ namespace pba {
 
 namespace rigid {
 class RigidSystem;
+}
+namespace detail {
+struct SpringSolver;
+struct SpringSolvers;
 }
 
 /// An axis-aligned box: the room.
@@ -139,6 +146,14 @@ public:
     /// Threads for stepping swarms and coupled bodies (a cloth): 0 (the default) uses all cores;
     /// results do not depend on it.
     void setThreads(int threads) { m_threads = threads; }
+    /// The substeps of a step of the bodies that take `xpbd` (default kDefaultXpbdSubsteps).
+    /// Throws std::invalid_argument unless it is from 1 to kMaxXpbdSubsteps.
+    void setXpbdSubsteps(int substeps);
+    int xpbdSubsteps() const { return m_xpbdSubsteps; }
+    static constexpr int kDefaultXpbdSubsteps = 10;
+    static constexpr int kMaxXpbdSubsteps = 10000;
+    /// The conjugate-gradient iterations of implicit-euler's last step (0 without its system).
+    int lastImplicitIterations() const;
     /// Keep a copy of every swarm before each step, so that a failed step rolls the swarms back
     /// with the bodies (the viewer pauses on the last finite state). Off by default: the copy
     /// doubles a swarm's memory and its traffic each step, and a program that stops at the
@@ -187,8 +202,9 @@ public:
 
     // ---- stepping ----
     /// Advances every moving body and swarm by exactly dt. Throws std::invalid_argument (before
-    /// moving anything) unless dt is finite and positive, or if two moving bodies coupled by a
-    /// force use different integrators. Throws BlowUpError, with the bodies (and with
+    /// moving anything) unless dt is finite and positive, if two moving bodies coupled by a
+    /// force use different integrators, or if a rigid body takes implicit-euler or xpbd (methods
+    /// for particles joined by springs). Throws BlowUpError, with the bodies (and with
     /// setSwarmRollback the swarms) back at their state before the step, if it made a state that
     /// cannot be: NonFiniteStateError for a position, velocity, orientation or angular momentum
     /// that is not finite (or an orientation that no longer has a length to normalise), and
@@ -254,7 +270,8 @@ public:
     double totalPotentialEnergy() const;
     /// Kinetic plus potential energy of all bodies (swarms not included).
     double totalEnergy() const;
-    /// Whether body i is integrated in a coupled group (it moves, and a force couples it to a body).
+    /// Whether body i is integrated in a coupled group: it moves, and a force couples it to a
+    /// body, or it takes implicit-euler or xpbd (whose step is a system's, joined by springs or not).
     bool isCoupled(std::size_t i) const;
     /// Whether any moving body is coupled: then `exact` acts as `reflect` on those bodies.
     bool hasCoupledBodies() const;
@@ -268,15 +285,17 @@ private:
     /// springs are not walked every step) with what it was made from: each body's fixed flag and
     /// integrator, which a program may change between steps.
     struct Coupling {
-        std::array<std::vector<std::size_t>, kAllIntegrators.size()> systems;
+        /// By kParticleIntegrators: each method's system.
+        std::array<std::vector<std::size_t>, kParticleIntegrators.size()> systems;
         std::vector<std::size_t> independent; ///< every other body, fixed ones too, in order
         /// Per system, one flag per body of the world: its members (the forces' wanted list).
-        std::array<std::vector<std::uint8_t>, kAllIntegrators.size()> wanted;
+        std::array<std::vector<std::uint8_t>, kParticleIntegrators.size()> wanted;
         std::vector<std::uint8_t> madeFrom;
     };
     /// integrateCoupled's buffers, reused so that a step allocates (almost) nothing.
     struct CoupledScratch {
         Vec3Array x, v, acc; ///< the system's state, and its acceleration at the start
+        std::vector<double> mass; ///< the spring systems': each member's
         std::vector<State> trial;
         std::vector<dvec3> forces;
         std::vector<dvec3> forceScratch; ///< the forces' working memory (Accumulators::scratch)
@@ -290,6 +309,12 @@ private:
     void integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members,
                           std::span<const std::uint8_t> wanted, double dt);
     void collideAndStore(const std::vector<std::size_t>& members);
+    void integrateBackwardEuler(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                                double dt);
+    void integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt);
+    /// The system's start state into m_scratch.x and .v, and its masses; the springs' fixed ends
+    /// placed.
+    void startSpringSystem(const std::vector<std::size_t>& members, detail::SpringSolver& solver);
     void stepRigidBodies(double dt);
     void integrateRigidFreely(std::span<const std::uint32_t> bodies, double dt);
     void stepRigid(Integrator integrator, const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
@@ -332,6 +357,8 @@ private:
     };
     RigidScratch m_rigidScratch;
     ClonePtr<rigid::RigidSystem> m_rigidSystem;
+    ClonePtr<detail::SpringSolvers> m_springSolvers;
+    int m_xpbdSubsteps = kDefaultXpbdSubsteps;
     /// Each body's index in the rigid system (kNotRigid for a particle).
     std::vector<std::uint32_t> m_rigidIndex;
     static constexpr std::uint32_t kNotRigid = 0xffffffffu;

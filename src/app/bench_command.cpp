@@ -220,12 +220,19 @@ void printJson(const std::vector<Row>& rows, const std::vector<ClothRow>& cloth,
                               {"steps_per_s", scene.stepsPerSecond},
                               {"steps_per_s_overall", scene.overallStepsPerSecond}, {"spans", scene.spans},
                               {"steps_per_span", scene.spanSteps}, {"slowest_span_from_s", scene.slowestFrom}});
-    for (const ClothRow& c : cloth)
-        out["results"].push_back({{"layout", "cloth"}, {"scene", "cloth-in-the-dryer"},
-                                  {"integrator", "semi-implicit-euler"}, {"n", c.particles}, {"springs", c.springs},
-                                  {"threads", c.threads}, {"steps_per_s", c.stepsPerSecond},
-                                  {"steps_per_s_median", c.medianStepsPerSecond},
-                                  {"spring_evaluations_per_s", c.stepsPerSecond * double(c.springs)}});
+    for (const ClothRow& c : cloth) {
+        nlohmann::json row{{"layout", "cloth"}, {"scene", "cloth-in-the-dryer"},
+                           {"integrator", std::string(integratorName(c.integrator))}, {"dt", c.dt},
+                           {"n", c.particles}, {"springs", c.springs}, {"threads", c.threads},
+                           {"steps_per_s", c.stepsPerSecond}, {"steps_per_s_median", c.medianStepsPerSecond}};
+        if (c.integrator == Integrator::SemiImplicitEuler)
+            row["spring_evaluations_per_s"] = c.stepsPerSecond * double(c.springs);
+        if (c.integrator == Integrator::ImplicitEuler)
+            row["cg_iterations"] = c.iterations;
+        if (c.integrator == Integrator::Xpbd)
+            row["substeps"] = c.substeps;
+        out["results"].push_back(row);
+    }
     for (const PileRun& pile : piles) {
         const SpanRun& run = pile.run;
         out["results"].push_back({{"layout", "pile"}, {"scene", "dice"}, {"integrator", "semi-implicit-euler"},
@@ -242,13 +249,18 @@ void printTables(const std::vector<Row>& rows, const std::vector<ClothRow>& clot
                  const SceneRun& fountain)
 {
     fmt::print("{}{}", table(rows), spreadNotes(rows));
-    fmt::print("\n{:<7} {:>9} {:>9} {:>7} {:>12} {:>10} {:>20}\n", "layout", "particles", "springs", "threads",
-               "steps/s", "median", "spring evaluations/s");
-    for (const ClothRow& c : cloth)
-        fmt::print("{:<7} {:>9} {:>9} {:>7} {:>12.0f} {:>10.0f} {:>20.3e}\n", "cloth", c.particles, c.springs,
-                   c.threads, c.stepsPerSecond, c.medianStepsPerSecond, c.stepsPerSecond * double(c.springs));
-    fmt::print("(cloth-in-the-dryer at {} x {}, springs and dryer scaled with the particles' mass: "
-               "semi-implicit Euler, gravity, the dryer and the room; target 1,000 steps/s on all cores)\n",
+    fmt::print("\n{:<7} {:<20} {:>8} {:>9} {:>9} {:>7} {:>9} {:>9}  {}\n", "layout", "integrator", "dt (s)",
+               "particles", "springs", "threads", "steps/s", "median", "a step");
+    for (const ClothRow& c : cloth) {
+        const std::string cost = c.integrator == Integrator::ImplicitEuler ? fmt::format("{} CG iterations", c.iterations)
+                                 : c.integrator == Integrator::Xpbd       ? fmt::format("{} substeps", c.substeps)
+                                                                          : std::string("one force evaluation");
+        fmt::print("{:<7} {:<20} {:>8.4g} {:>9} {:>9} {:>7} {:>9.0f} {:>9.0f}  {}\n", "cloth", integratorName(c.integrator),
+                   c.dt, c.particles, c.springs, c.threads, c.stepsPerSecond, c.medianStepsPerSecond, cost);
+    }
+    fmt::print("(cloth-in-the-dryer at {} x {}, springs and dryer scaled with the particles' mass: gravity, the dryer "
+               "and the room; targets on all cores: semi-implicit Euler 1,000 steps/s at dt 0.002, implicit-euler and "
+               "xpbd 60 steps/s at dt 1/60, real time with one step a frame)\n",
                kClothSide, kClothSide);
     fmt::print("\n{:<7} {:>6} {:>7} {:>16} {:>10} {:>12}  {}\n", "layout", "dice", "threads", "slowest steps/s",
                "from t (s)", "over run", "target (bench/peers/pile.py measures Bullet's rate beside it)");
@@ -383,11 +395,12 @@ void addBenchCommand(CLI::App& root, Action& selected)
                   "Every rate, the bound's and each row's, is its best window (a slower one is other work on\n"
                   "the machine getting in the way), so the ratios compare best with best; the median window\n"
                   "is printed beside it. Compare rows of one run, not across runs.\n"
-                  "Then the cloth row: cloth-in-the-dryer with a 128 x 128 sheet (16,384 particles and 97,026\n"
+                  "Then the cloth rows: cloth-in-the-dryer with a 128 x 128 sheet (16,384 particles and 97,026\n"
                   "springs, their stiffness and damping and the dryer's strength scaled with the particles' mass\n"
-                  "so that each moves as in the 10 x 10 built-in), semi-implicit Euler at dt = 0.002, on 1\n"
-                  "thread and on all cores, windows as above: physics steps per second and spring evaluations\n"
-                  "per second (one per spring a step). Its states are the same on any number of threads.\n"
+                  "so that each moves as in the 10 x 10 built-in), semi-implicit Euler at dt = 0.002 and\n"
+                  "implicit-euler and xpbd at dt = 1/60 (a frame), each on 1 thread and on all cores, windows\n"
+                  "as above: physics steps per second, and what a step cost (a force evaluation, the conjugate\n"
+                  "gradients' iterations, xpbd's substeps). Its states are the same on any number of threads.\n"
                   "Then the pile rows: 1,000 and 10,000 rigid 10 cm boxes thrown into the dice scene's room\n"
                   "(manyDice: from cells of a lattice over the room, none overlapping another), semi-implicit\n"
                   "Euler with contacts on all cores, stepped from the throw through the landing to rest (4 s;\n"

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <utility>
 
 #include "bench_pile.hpp"
@@ -15,10 +16,12 @@ namespace pba::app::bench {
 namespace {
 
 /// cloth-in-the-dryer at kClothSide x kClothSide (resizedClothInTheDryer): one system of springs
-/// (structural, shear and bending), semi-implicit Euler, gravity, the blow dryer and the room.
-World clothWorld(int threads)
+/// (structural, shear and bending) on `integrator`, gravity, the blow dryer and the room.
+World clothWorld(Integrator integrator, int threads)
 {
     World world = resizedClothInTheDryer(kClothSide).world;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        world.body(i).setIntegrator(integrator);
     world.setThreads(threads);
     return world;
 }
@@ -45,24 +48,34 @@ std::vector<ClothRow> measureCloth(double minTime, int repeats, int cores)
 {
     struct ClothSubject {
         ClothRow row;
+        std::shared_ptr<World> world; ///< the stepped one, for what its last step cost
         std::function<void()> step, restart;
         long steps = 0;
         std::vector<double> rates;
     };
     std::vector<ClothSubject> subjects;
-    for (int threads : {1, cores}) {
-        World world = clothWorld(threads);
-        const ClothRow row{threads, world.bodyCount(), springCount(world), 0.0, 0.0};
-        Restartable r = restartable(std::move(world));
-        subjects.push_back({row, std::move(r.step), std::move(r.restart), 0, {}});
-        if (threads == cores)
-            break;
-    }
+    for (const ClothMethod& method : kClothMethods)
+        for (int threads : {1, cores}) {
+            auto first = std::make_shared<const World>(clothWorld(method.integrator, threads));
+            auto world = std::make_shared<World>(*first);
+            ClothRow row;
+            row.integrator = method.integrator;
+            row.dt = method.dt;
+            row.threads = threads;
+            row.particles = world->bodyCount();
+            row.springs = springCount(*world);
+            const double dt = method.dt;
+            subjects.push_back({row, world, [world, dt] { world->step(dt); }, [world, first] { *world = *first; }, 0, {}});
+            if (threads == cores)
+                break;
+        }
     timeInTurn(subjects, 1, minTime, repeats);
     std::vector<ClothRow> rows;
     for (ClothSubject& s : subjects) {
         s.row.stepsPerSecond = best(s.rates);
         s.row.medianStepsPerSecond = median(s.rates);
+        s.row.iterations = s.world->lastImplicitIterations();
+        s.row.substeps = s.row.integrator == Integrator::Xpbd ? s.world->xpbdSubsteps() : 0;
         rows.push_back(s.row);
     }
     return rows;

@@ -6,22 +6,41 @@
 #include <string>
 #include <vector>
 
+#include "pba/integrator.hpp"
+
 namespace pba::app::bench {
 
 /// The cloth row's side: 128 x 128 particles, 97,026 springs.
 constexpr int kClothSide = 128;
 
-/// A cloth row: its physics steps per second (best window) and the spring evaluations they make
-/// (semi-implicit Euler evaluates each spring once a step).
+/// A cloth row: its method and dt, its physics steps per second (best window and median), and
+/// what a step costs: semi-implicit Euler evaluates each spring once a step, implicit-euler
+/// solves (its conjugate-gradient iterations in the last step of the last window), xpbd projects
+/// each spring once a substep.
 struct ClothRow {
+    Integrator integrator = Integrator::SemiImplicitEuler;
+    double dt = 0.0;
     int threads = 1;
     std::size_t particles = 0, springs = 0;
     double stepsPerSecond = 0.0, medianStepsPerSecond = 0.0;
+    int iterations = 0; ///< implicit-euler's
+    int substeps = 0;   ///< xpbd's
 };
 
-/// The cloth on 1 thread and on all cores, their windows taken in turn (as measureSize's), each
-/// window the same work: from the scene's first state (the sheet falling flat toward the jet),
-/// as many steps as filled a first window.
+/// The cloth methods: semi-implicit Euler at its own dt, 0.002 (omega dt about 0.7 on this sheet,
+/// a third of its limit), and the two that step springs implicitly at a frame's dt, 1/60 s
+/// (real time with one step a frame).
+struct ClothMethod {
+    Integrator integrator;
+    double dt;
+};
+inline constexpr std::array<ClothMethod, 3> kClothMethods{ClothMethod{Integrator::SemiImplicitEuler, 0.002},
+                                                          ClothMethod{Integrator::ImplicitEuler, 1.0 / 60.0},
+                                                          ClothMethod{Integrator::Xpbd, 1.0 / 60.0}};
+
+/// The cloth with each method on 1 thread and on all cores, their windows taken in turn (as
+/// measureSize's), each window the same work: from the scene's first state (the sheet falling
+/// flat toward the jet), as many steps as filled a first window.
 std::vector<ClothRow> measureCloth(double minTime, int repeats, int cores);
 
 /// The pile rows' dice counts: manyDice's 10 cm boxes.

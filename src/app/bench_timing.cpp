@@ -38,11 +38,11 @@ double median(std::vector<double> rates)
 
 double best(const std::vector<double>& rates) { return *std::max_element(rates.begin(), rates.end()); }
 
-Restartable restartable(World world)
+Restartable restartable(World world, double dt)
 {
     auto first = std::make_shared<const World>(std::move(world));
     auto current = std::make_shared<World>(*first);
-    return {[current] { current->step(0.002); }, [current, first] { *current = *first; }};
+    return {[current, dt] { current->step(dt); }, [current, first] { *current = *first; }};
 }
 
 SpanTimes timeSpans(World& world, double dt, int spans, int spanSteps)

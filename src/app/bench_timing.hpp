@@ -48,12 +48,13 @@ void timeInTurn(std::vector<S>& subjects, std::size_t perStep, double minTime, i
         }
 }
 
-/// A world that a subject steps (at the swarm scenes' dt, 0.002), and restarts from where it began.
+/// A world that a subject steps (at the swarm scenes' dt, 0.002, or another), and restarts from
+/// where it began.
 struct Restartable {
     std::function<void()> step, restart;
 };
 
-Restartable restartable(World world);
+Restartable restartable(World world, double dt = 0.002);
 
 /// A world stepped as a program steps it, `spans` spans of `spanSteps` steps, each timed: the
 /// slowest span's steps per second and its index (from 0), and the seconds of the whole run.

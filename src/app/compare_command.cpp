@@ -8,12 +8,14 @@
 
 #include <fmt/format.h>
 
+#include "clock_report.hpp"
 #include "command.hpp"
 #include "compare_report.hpp"
 #include "io/folder_output.hpp"
 #include "progress.hpp"
 #include "rotation_report.hpp"
 #include "study/findings.hpp"
+#include "study/clock_plots.hpp"
 #include "study/plots.hpp"
 #include "study/rotation_plots.hpp"
 #include "scene_options.hpp"
@@ -30,6 +32,8 @@ struct CompareOptions {
     std::vector<double> dts;
     std::optional<double> duration;
     int jobs = 0;
+    bool clocks = false;
+    bool workPrecision = false; ///< --work-precision: also the four scenes' work against precision
 };
 
 /// Keeps the first of each repeated entry, in the order given.
@@ -161,7 +165,9 @@ study::RotationConfig makeRotationConfig(const CompareOptions& options, Scene sc
 bool isStudyFile(const std::string& name)
 {
     static const std::vector<std::string> names = [] {
-        std::vector<std::string> all{"report.md", "results.csv", "orders.csv", "stability.csv",
+        std::vector<std::string> all{"report.md", "results.csv", "orders.csv", "stability.csv", "clocks.csv",
+                                     "work_precision.csv", study::kWorkPrecisionPlotFile,
+                                     study::kClockPlotFile,
                                      study::kStabilityPlotFile, study::kDriftPlotFile, study::kFlipPlotFile,
                                      study::kPeriodPlotFile};
         all.insert(all.end(), study::kPlotFiles.begin(), study::kPlotFiles.end());
@@ -194,8 +200,42 @@ int runRotationCompare(const CompareOptions& options, Scene scene)
     return kExitSuccess;
 }
 
+/// --clocks: the scene with each clock at 30, 60 and 144 Hz, steady and through a hitch, at its
+/// dt or the one --dt names. The integrator study's other choices do not apply: refused.
+int runClockCompare(const CompareOptions& options)
+{
+    if (!options.integrators.empty() || !options.collisions.empty())
+        throw UsageError("--clocks: runs the scene as it is, with each clock: --integrators and --collisions do not "
+                         "apply (set them in the scene, or run pba compare without --clocks)");
+    if (options.dts.size() > 1)
+        throw UsageError(fmt::format("--clocks: takes one --dt (the fixed clock's), got {}", options.dts.size()));
+    study::ClockConfig config;
+    config.scene = loadScene(options.scene);
+    config.duration = readDuration(options, config.scene);
+    if (config.duration < study::kClockMinDuration)
+        throw UsageError(fmt::format("--duration: the clocks study needs at least {:g} s (the hitch is at {:g} s), "
+                                     "got {:g} s", study::kClockMinDuration, study::kHitchAt, config.duration));
+    std::vector<double> dts{config.scene.dt};
+    readDts(options, config.duration, dts);
+    config.dt = dts.front();
+    io::FolderOutput folder(options.out, isStudyFile);
+    const study::ClockResult result = study::runClockStudy(config);
+    const std::filesystem::path dir = folder.path();
+    writeClockCsv(dir / "clocks.csv", result);
+    const bool plot = writeClockPlot(dir, config, result);
+    sayIfNoPlots(plot);
+    writeClockReport(dir / "report.md", config, result, plot);
+    folder.commit();
+    fmt::print("largest distance of a body from the 60 Hz run, {} at dt = {:g} s:\n{}\n{}", config.scene.name,
+               config.dt, clockTable(config, result, false), clockFindings(config, result));
+    fmt::print(stderr, "pba: wrote {}/report.md, clocks.csv{}\n", options.out, plot ? " and clocks.png" : "");
+    return kExitSuccess;
+}
+
 int runCompare(const CompareOptions& options)
 {
+    if (options.clocks)
+        return runClockCompare(options);
     {
         // A scene with a moving rigid body gets the rotation study.
         Scene scene = loadScene(options.scene);
@@ -215,7 +255,11 @@ int runCompare(const CompareOptions& options)
         writeStabilityCsv(dir / "stability.csv", result);
     const bool plots = writePlots(dir, config, result);
     sayIfNoPlots(plots);
-    writeReport(dir / "report.md", config, result, plots);
+    // About a minute of runs (the references at dt 1e-4 s): on request only.
+    const std::vector<study::WorkPrecisionPoint> points =
+        options.workPrecision ? study::runWorkPrecision() : std::vector<study::WorkPrecisionPoint>{};
+    const std::string workPrecision = options.workPrecision ? writeWorkPrecision(dir, points, plots) : std::string();
+    writeReport(dir / "report.md", config, result, plots, workPrecision);
     folder.commit();
     const auto responses = study::distinctResponses(config, result);
     for (CollisionResponse c : responses)
@@ -234,6 +278,9 @@ int runCompare(const CompareOptions& options)
                        std::isnan(s.theoryDt) ? std::string("none") : fmt::format("{:.5g} s", s.theoryDt));
     }
     fmt::print("\n\n{}", study::findings(config, result));
+    if (options.workPrecision)
+        fmt::print("\nwork against precision (work_precision.csv), cheapest to an error of 1e-3 on one thread:\n{}",
+                   study::workPrecisionFindings(points, 1e-3));
     progress.finish(fmt::format("wrote {}/report.md, results.csv, orders.csv{}{} ({} runs)", options.out,
                                 result.stability.empty() ? "" : ", stability.csv", plots ? " and plots" : "",
                                 result.runs.size()));
@@ -264,6 +311,13 @@ void addCompareCommand(CLI::App& root, Action& selected)
         ->option_text("DT,...");
     compare->add_option("--duration", options->duration, "Simulated time of each run (default the scene's)")
         ->type_name("SECONDS");
+    compare->add_flag("--clocks", options->clocks,
+                      "Instead of the integrators: the scene with each clock (fixed, semi-fixed, variable) at 30, 60 "
+                      "and 144 frames a second, steady and with a 0.25 s frame, and how far the runs drift apart");
+    compare->add_flag("--work-precision", options->workPrecision,
+                      "Also run the spring, chain, cloth and tennis racket with every method they take at six dt and "
+                      "write work_precision.csv and .png: error against CPU time, the cheapest method for an accuracy "
+                      "(about a minute)");
     compare->add_option("--jobs", options->jobs, "Runs in parallel (default all cores); results do not depend on it")
         ->type_name("N");
     compare->footer("\nOn a scene with rigid bodies (dice, tennis-racket, rolling, blow-dryer-boxes) it studies rotation\n"

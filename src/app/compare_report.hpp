@@ -6,6 +6,7 @@
 #include <string>
 
 #include "study/study.hpp"
+#include "study/work_precision.hpp"
 
 namespace pba::app {
 
@@ -32,7 +33,12 @@ std::string stabilitySection(const study::StudyConfig& config, const study::Stud
 /// Draws height.png, energy.png, convergence.png and (with springs) stability.png with gnuplot; returns false (and writes
 /// nothing) if gnuplot is missing.
 bool writePlots(const std::filesystem::path& dir, const study::StudyConfig& config, const study::StudyResult& result);
+/// `workPrecision`: the report's work-precision section (Markdown, from its heading), or "".
 void writeReport(const std::filesystem::path& path, const study::StudyConfig& config, const study::StudyResult& result,
-                 bool withPlots);
+                 bool withPlots, const std::string& workPrecision = "");
+/// work_precision.csv (scene,integrator,dt,error,cpu_s; runs that blew up left out), and with
+/// gnuplot work_precision.png; returns the report's section on them.
+std::string writeWorkPrecision(const std::filesystem::path& dir, const std::vector<study::WorkPrecisionPoint>& points,
+                               bool plots);
 
 } // namespace pba::app

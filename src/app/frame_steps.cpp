@@ -3,6 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
+#include "command.hpp"
+#include "pba/clock.hpp"
+
 namespace pba::app {
 
 std::uint64_t stepsToReach(const World& world, double t, double dt)
@@ -26,5 +31,28 @@ double stepToFrame(Scene& scene, double t, const BlowUpWatch& watch)
     }
     return alphaAt(scene.world, t);
 }
+
+double stepFrameWith(ClockKind clock, Scene& scene, double frameTime, const BlowUpWatch& watch)
+{
+    if (frameTime <= 0.0)
+        return 1.0;
+    for (const double h : frameSteps(clock, scene.dt, frameTime, FixedTimestepClock::kDefaultMaxFrameTime)) {
+        scene.world.step(h);
+        watch.check(scene.world);
+    }
+    return 1.0;
+}
+
+ClockKind parseClockOption(const std::string& name)
+{
+    if (const auto clock = clockFromName(name))
+        return *clock;
+    throw UsageError(fmt::format("--clock: unknown clock '{}' (fixed, semi-fixed or variable)", name));
+}
+
+const char* const kClockOptionHelp =
+    "The physics clock (Fiedler's \"Fix Your Timestep\"): fixed (default: whole steps of dt, the rest of a frame "
+    "drawn by interpolation), semi-fixed (steps of dt and a shorter one for the rest of each frame) or variable (one "
+    "step of each frame's time: the naive clock, its physics changes with the frame rate)";
 
 } // namespace pba::app

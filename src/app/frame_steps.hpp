@@ -3,8 +3,10 @@
 // way. `pba render` draws every frame so, and the viewer's capture mode (`pba view --time T`)
 // reaches T so, which is why the two show the same state at the same time on any machine.
 #include <cstdint>
+#include <string>
 
 #include "pba/blow_up_watch.hpp"
+#include "pba/frame_clock.hpp"
 #include "pba/scene/scene.hpp"
 
 namespace pba::app {
@@ -23,5 +25,15 @@ double alphaAt(const World& world, double t);
 /// as the window's clock interpolates between the last two states. Returns that alpha. Throws
 /// BlowUpError at a step that blows up (the world's checks, then `watch`'s).
 double stepToFrame(Scene& scene, double t, const BlowUpWatch& watch);
+
+/// A synthetic frame of frameTime with the semi-fixed or variable clock (frameSteps, with the
+/// scene's dt): the steps it takes, with nothing left over, so the state drawn is the last one
+/// (alpha 1). A frame time of zero takes no step. Throws BlowUpError as stepToFrame does.
+double stepFrameWith(ClockKind clock, Scene& scene, double frameTime, const BlowUpWatch& watch);
+
+/// `--clock NAME`: the clock, or UsageError naming the option, the value and the names it takes.
+ClockKind parseClockOption(const std::string& name);
+/// The option's help text, the same for view and render.
+extern const char* const kClockOptionHelp;
 
 } // namespace pba::app

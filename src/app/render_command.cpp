@@ -36,6 +36,8 @@ struct RenderOptions {
     bool lanes = false;
     std::optional<std::string> camera;
     std::optional<std::string> show;
+    std::string clock = "fixed";
+    bool noInterpolation = false;
 };
 
 /// A picture's pixels: rendering one takes about 45 bytes a pixel at its peak (multisampled colour
@@ -63,6 +65,7 @@ int runRender(const RenderOptions& options)
     parseSize(options.size, width, height);
     if (options.fps <= 0 || options.fps > 1000)
         throw UsageError(fmt::format("--fps: must be between 1 and 1000, got {}", options.fps));
+    const ClockKind clock = parseClockOption(options.clock);
     const OutputKind kind = outputKind(options.out);
     if (options.time && kind != OutputKind::Png)
         throw UsageError("--time applies to a single PNG (--out FILE.png)");
@@ -81,6 +84,7 @@ int runRender(const RenderOptions& options)
     FrameSink sink(kind, options.out, width, height, options.fps); // checks the path before any work
 
     settings.fieldArrows = options.arrows;
+    settings.interpolate = !options.noInterpolation;
     settings.trails = !options.noTrails;
     settings.fabric = scene.fabric;
     if (options.lanes)
@@ -92,13 +96,17 @@ int runRender(const RenderOptions& options)
     const auto frames = static_cast<long>(std::floor(until * options.fps + 1e-9)) + 1;
     Progress progress("rendering", frames);
     double alpha = 0.0;
+    double shownTime = 0.0; // the last frame's time: the semi-fixed and variable clocks step the frame between
     const BlowUpWatch watch(scene.world);
     try {
         for (long frame = 0; frame < frames; ++frame) {
             // A PNG's last frame is at exactly --time, not at the last frame of 1/fps before it
             // (the frames before it only feed the trails).
             const bool last = frame == frames - 1;
-            alpha = stepToFrame(scene, kind == OutputKind::Png && last ? until : double(frame) / options.fps, watch);
+            const double t = kind == OutputKind::Png && last ? until : double(frame) / options.fps;
+            alpha = clock == ClockKind::Fixed ? stepToFrame(scene, t, watch)
+                                              : stepFrameWith(clock, scene, t - shownTime, watch);
+            shownTime = t;
             trails.record(scene.world, alpha, settings);
             if (kind != OutputKind::Png || last)
                 sink.add(renderer.render(scene.world, initial, alpha, settings, &trails, scene.name, scene.dt));
@@ -154,6 +162,10 @@ void addRenderCommand(CLI::App& root, Action& selected)
     render->add_option("--fps", options->fps, "Frames per second of video time (default 60)")->type_name("HZ");
     render->add_option("--size", options->size, "Image size, 16 to 8192 a side and at most 4096x4096 pixels in all "
                                                "(default 1280x720)")->type_name("WxH");
+    render->add_option("--clock", options->clock, kClockOptionHelp)->type_name("NAME");
+    render->add_flag("--no-interpolation", options->noInterpolation,
+                     "Draw the last physics state made rather than the state interpolated to the frame's time (the "
+                     "stutter the fixed clock's interpolation hides)");
     render->add_flag("--arrows", options->arrows, "Draw the blow dryer's field as arrows inside its cone");
     render->add_flag("--no-trails", options->noTrails, "Do not draw the particles' fading trails");
     render->add_flag("--lanes", options->lanes, "Integrator lanes: a ghost of the exact solution beside each particle "

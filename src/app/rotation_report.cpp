@@ -39,6 +39,51 @@ std::string cell(const study::RotationRun* r, RotationMeasure measure, double ex
     return "?";
 }
 
+/// The runs at the largest dt that did not blow up, for the findings: the dt where the methods differ most.
+double largestDt(const study::RotationConfig& config) { return config.dts.empty() ? 0.0 : config.dts.back(); }
+
+/// Whether forward and semi-implicit Euler drifted alike at dt (their rotations are one step).
+bool sameEulers(const study::RotationResult& result, double dt)
+{
+    const study::RotationRun* forward = nullptr;
+    const study::RotationRun* semi = nullptr;
+    for (const study::RotationRun& r : result.runs) {
+        if (r.dt == dt && r.integrator == Integrator::ForwardEuler)
+            forward = &r;
+        if (r.dt == dt && r.integrator == Integrator::SemiImplicitEuler)
+            semi = &r;
+    }
+    return forward && semi && forward->maxEnergyDrift == semi->maxEnergyDrift;
+}
+
+/// A measure's findings in a sentence per method at the largest dt: how far it drifted, or that
+/// it blew up, and (for |L|) which methods keep it to rounding.
+std::string driftFindings(const study::RotationConfig& config, const study::RotationResult& result, bool momentum)
+{
+    const double dt = largestDt(config);
+    std::string out = fmt::format("At the largest dt, {:g} s:", dt);
+    for (const study::RotationRun& r : result.runs) {
+        if (r.dt != dt)
+            continue;
+        const double drift = momentum ? r.maxMomentumDrift : r.maxEnergyDrift;
+        out += !std::isnan(r.blewUpAt) ? fmt::format(" {} blew up at t = {:.3g} s;", integratorName(r.integrator), r.blewUpAt)
+               : momentum && drift < 1e-12
+                   ? fmt::format(" {} keeps |L| to rounding ({:.1e});", integratorName(r.integrator), drift)
+                   : fmt::format(" {} drifts by up to {:.3g}{};", integratorName(r.integrator), drift,
+                                 momentum ? "" : (r.energyRatioEnd > 1.0 ? " (gaining)" : " (losing)"));
+    }
+    out.back() = '.';
+    out += momentum ? " A free body's torque-free step must keep L; a method that integrates omega rather than "
+                      "turning L with the body changes |L|, and the implicit gyroscopic step damps it.\n\n"
+                    : " Losing energy is the implicit gyroscopic step's dissipation; a bounded drift that does not "
+                      "grow with time is the splitting's.\n\n";
+    if (!momentum && sameEulers(result, dt))
+        out.insert(out.size() - 2, " Forward and semi-implicit Euler give the same numbers: on a free body they differ "
+                                   "only in the translation (which velocity moves the position), and their rotation "
+                                   "step is the same explicit one, which gains energy.");
+    return out;
+}
+
 } // namespace
 
 std::string rotationTable(const study::RotationConfig& config, const study::RotationResult& result,
@@ -88,14 +133,17 @@ void writeRotationReport(const std::filesystem::path& path, const study::Rotatio
                        "about its centre of mass, conserved only while no torque acts (no contact, no force at a "
                        "point). The columns of `results.csv` are described in docs/compare.md.\n\n",
                        config.scene.name, config.duration, result.body);
-    out << "## Largest energy drift, max |E/E0 - 1|\n\n" << rotationTable(config, result, RotationMeasure::EnergyDrift, true);
-    out << "\n## Largest drift of |L|, max ||L|/|L0| - 1|\n\n"
+    out << "## Largest energy drift, max |E/E0 - 1|\n\n" << driftFindings(config, result, false)
+        << rotationTable(config, result, RotationMeasure::EnergyDrift, true);
+    out << "\n## Largest drift of |L|, max ||L|/|L0| - 1|\n\n" << driftFindings(config, result, true)
         << rotationTable(config, result, RotationMeasure::MomentumDrift, true);
     if (!std::isnan(result.exactPeriod))
         out << fmt::format("\n## Flip period against the exact one\n\nSpun near its intermediate axis, a free body "
                            "flips over and back with the period T = 4 K(k) sqrt(a b c / ((b - a)(2 E c - L^2))) (K the "
                            "complete elliptic integral of the first kind): here T_exact = {:.6f} s. Each cell is "
-                           "(T - T_exact) / T_exact.\n\n",
+                           "(T - T_exact) / T_exact. An error near -1/2 or below is no longer a period error: a "
+                           "method that drifts the energy across the separatrix stops the flip, and what it "
+                           "measures is a wobble about another axis (see flip.png).\n\n",
                            result.exactPeriod)
             << rotationTable(config, result, RotationMeasure::PeriodError, true);
     else

@@ -46,9 +46,14 @@ void addSceneOptions(CLI::App& command, SceneOptions& options, const std::string
     command.add_option("--duration", options.duration, "Simulated time in seconds (overrides the scene)")
         ->type_name("SECONDS");
     command.add_option("--integrator", options.integrator,
-                       "forward-euler, semi-implicit-euler, velocity-verlet, rk4 or implicit-gyroscopic (semi-implicit Euler with the "
-                       "implicit gyroscopic step for a rigid body's rotation), for every moving body")
+                       "For every moving body: forward-euler, semi-implicit-euler, velocity-verlet, rk4; "
+                       "implicit-gyroscopic or splitting (semi-implicit Euler or velocity Verlet whose rigid "
+                       "rotation takes the implicit gyroscopic step or the momentum-keeping splitting); "
+                       "implicit-euler or xpbd (particles joined by springs: backward Euler, or the springs as "
+                       "constraints in --substeps)")
         ->type_name("NAME");
+    command.add_option("--substeps", options.substeps, "xpbd's substeps a step (overrides the scene; default 10)")
+        ->type_name("N");
     command.add_option("--collision", options.collision,
                        "Collision response: exact (time of impact), reflect (mirror back) or clamp (put back)")
         ->type_name("MODE");
@@ -87,11 +92,27 @@ Scene loadSceneWithOverrides(const SceneOptions& options)
     }
     if (options.integrator) {
         const Integrator integrator = integratorFlag(*options.integrator);
+        if (isSpringSystemMethod(integrator))
+            for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
+                if (scene.world.isRigid(i) && !scene.world.body(i).isFixed())
+                    throw UsageError(fmt::format("--integrator: {} steps particles joined by springs, and {} has "
+                                                 "rigid body '{}'", *options.integrator, scene.source,
+                                                 scene.world.body(i).getName()));
+        if (isSpringSystemMethod(integrator) && scene.world.swarmCount() > 0)
+            throw UsageError(fmt::format("--integrator: {} steps particles joined by springs, and {} has swarm "
+                                         "'{}', which has none", *options.integrator, scene.source,
+                                         scene.world.swarm(0).name()));
         for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
             if (!scene.world.body(i).isFixed())
                 scene.world.body(i).setIntegrator(integrator);
         for (std::size_t i = 0; i < scene.world.swarmCount(); ++i)
             scene.world.swarm(i).setIntegrator(integrator);
+    }
+    if (options.substeps) {
+        if (*options.substeps < 1 || *options.substeps > World::kMaxXpbdSubsteps)
+            throw UsageError(fmt::format("--substeps: must be from 1 to {}, got {}", World::kMaxXpbdSubsteps,
+                                         *options.substeps));
+        scene.world.setXpbdSubsteps(*options.substeps);
     }
     if (options.collision) {
         const auto response = collisionResponseFromName(*options.collision);

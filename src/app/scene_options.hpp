@@ -16,9 +16,10 @@ struct SceneOptions {
     std::optional<double> duration;
     std::optional<std::string> integrator;
     std::optional<std::string> collision;
+    std::optional<int> substeps;
 };
 
-/// Adds the positional SCENE (with `defaultScene`) and --dt, --duration, --integrator, --collision,
+/// Adds the positional SCENE (with `defaultScene`) and --dt, --duration, --integrator, --substeps, --collision,
 /// and the list of built-in scenes to the command's help.
 void addSceneOptions(CLI::App& command, SceneOptions& options, const std::string& defaultScene);
 

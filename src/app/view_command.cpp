@@ -9,6 +9,7 @@
 #include "command.hpp"
 #include "scene_options.hpp"
 #include "picture_options.hpp"
+#include "frame_steps.hpp"
 #include "viewer.hpp"
 #include "render/gl_context.hpp"
 
@@ -24,6 +25,8 @@ struct ViewOptions {
     bool lanes = false;
     std::optional<std::string> camera;
     std::optional<std::string> show;
+    std::string clock = "fixed";
+    bool noInterpolation = false;
 };
 
 int runView(const ViewOptions& options)
@@ -50,6 +53,8 @@ int runView(const ViewOptions& options)
     run.screenshot = options.screenshot;
     run.pauseAt = options.scene.duration; // only when asked for: a scene's duration sizes batch runs
     run.lanes = options.lanes;
+    run.clock = parseClockOption(options.clock);
+    run.noInterpolation = options.noInterpolation;
     if (options.camera)
         run.camera = parseCamera(*options.camera);
     if (options.show) {
@@ -96,6 +101,9 @@ void addViewCommand(CLI::App& root, Action& selected)
         ->type_name("SECONDS");
     view->add_option("--screenshot", options->screenshot, "With --time: save the window at that time to this PNG")
         ->type_name("FILE.png");
+    view->add_option("--clock", options->clock, kClockOptionHelp)->type_name("NAME");
+    view->add_flag("--no-interpolation", options->noInterpolation,
+                   "Draw the last physics state made rather than the one interpolated to the frame (key i toggles it)");
     view->add_flag("--lanes", options->lanes, "Integrator lanes: the exact solution's ghost beside each particle");
     addPictureFlags(*view, options->camera, options->show);
     view->footer("\n--duration D pauses the run when the simulated time reaches D (play goes on past it).\n"

@@ -125,6 +125,9 @@ int runViewer(Scene scene, const ViewerRun& run)
     render::ImGuiLayer imgui(window.window());
     ViewerState state;
     state.pauseAt = run.pauseAt;
+    state.clockKind = run.clock;
+    if (run.noInterpolation)
+        state.settings.interpolate = false;
     state.cameraChoice = run.camera;
     if (run.show)
         applyShow(*run.show, state.settings);

@@ -18,6 +18,8 @@ struct ViewerRun {
     std::optional<std::string> screenshot; ///< with `time`: save the frame at it here, then close
     std::optional<double> pauseAt;   ///< pause when the simulated time reaches it
     bool lanes = false;
+    ClockKind clock = ClockKind::Fixed; ///< `--clock`
+    bool noInterpolation = false;       ///< `--no-interpolation`
     std::optional<CameraChoice> camera; ///< `--camera`
     std::optional<std::string> show;    ///< `--show`, already checked
 };

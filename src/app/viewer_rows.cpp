@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <string>
 
 #include <fmt/format.h>
 #include <imgui.h>
@@ -16,18 +17,37 @@ namespace {
 
 ImVec4 imColour(const glm::vec4& c) { return ImVec4(c.r, c.g, c.b, 1.0f); }
 
-/// One body's controls: its integrator (a rigid body may take the fifth method, its rotation's
-/// implicit gyroscopic step; a particle the four of the study), restitution and friction.
+/// A menu of the methods `choices` (a particle's or a rigid body's); sets `chosen` and returns
+/// true when one is picked.
+template <std::size_t N>
+bool integratorMenu(const std::array<Integrator, N>& choices, Integrator& chosen)
+{
+    bool picked = false;
+    if (ImGui::BeginCombo("integrator", std::string(integratorName(chosen)).c_str())) {
+        for (const Integrator integrator : choices) {
+            const bool current = integrator == chosen;
+            if (ImGui::Selectable(std::string(integratorName(integrator)).c_str(), current) && !current) {
+                chosen = integrator;
+                picked = true;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    return picked;
+}
+
+/// One body's controls: its integrator (a particle the study's methods, a rigid body the methods
+/// for rigid bodies), restitution and friction.
 void bodyControls(ViewerState& state, std::size_t i)
 {
     const Body& body = state.scene.world.body(i);
     if (body.isFixed())
         return;
     const bool rigid = state.scene.world.isRigid(i);
-    int integrator = static_cast<int>(body.getIntegrator());
+    Integrator integrator = body.getIntegrator();
     ImGui::SetNextItemWidth(170);
-    if (ImGui::Combo("integrator", &integrator, kIntegratorNames, rigid ? 5 : 4))
-        state.setIntegrator(i, static_cast<Integrator>(integrator));
+    if (rigid ? integratorMenu(kRigidIntegrators, integrator) : integratorMenu(kParticleIntegrators, integrator))
+        state.setIntegrator(i, integrator);
     ImGui::SameLine();
     float e = float(body.getCor());
     ImGui::SetNextItemWidth(100);
@@ -71,10 +91,10 @@ void fabricRow(ViewerState& state, std::size_t g, const std::vector<double>& now
                                      [&](std::size_t i) { return !state.scene.world.body(i).isFixed(); });
     if (moving != group.members.end()) {
         const Body& first = state.scene.world.body(*moving);
-        int integrator = static_cast<int>(first.getIntegrator());
+        Integrator integrator = first.getIntegrator();
         ImGui::SetNextItemWidth(170);
-        if (ImGui::Combo("integrator", &integrator, kIntegratorNames, 4))
-            state.setGroupIntegrator(g, static_cast<Integrator>(integrator));
+        if (integratorMenu(kParticleIntegrators, integrator))
+            state.setGroupIntegrator(g, integrator);
         ImGui::SameLine();
         float cor = float(first.getCor());
         ImGui::SetNextItemWidth(100);

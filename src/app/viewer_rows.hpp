@@ -5,10 +5,6 @@
 
 namespace pba::app {
 
-/// The integrator menu's names, in Integrator's order: a particle takes the first four (the
-/// study's), a rigid body all five.
-inline constexpr const char* kIntegratorNames[] = {"forward-euler", "semi-implicit-euler", "velocity-verlet", "rk4",
-                                                   "implicit-gyroscopic"};
 
 /// A row per group: a rope or cloth as one (its count, total energy, one integrator menu for the
 /// system), every other body with its own controls; the scene's energy and momentum above them.

@@ -158,7 +158,14 @@ void ViewerState::advance(double frameSeconds)
     stepsThisFrame = 0;
     if (error)
         return;
-    if (!paused && frameSeconds > 0.0) {
+    if (!paused && frameSeconds > 0.0 && clockKind != ClockKind::Fixed) {
+        const double before = scene.world.time();
+        stepWorld(frameSteps(clockKind, clock.dt(), frameSeconds * timeScale, clock.maxFrameTime()));
+        shownAlpha = 1.0; // neither clock keeps a remainder: the state drawn is the last one made
+        // The frame that reaches pauseAt pauses, wherever its last step ends: these clocks' steps vary.
+        if (pauseAt && before < *pauseAt && scene.world.time() >= *pauseAt - 1e-9 * clock.dt())
+            paused = true;
+    } else if (!paused && frameSeconds > 0.0) {
         shownAlpha.reset();
         std::uint64_t steps = static_cast<std::uint64_t>(clock.advance(frameSeconds * timeScale));
         // At pauseAt the run stops on the step that reaches it, and shows the state at exactly it.
@@ -192,6 +199,21 @@ void ViewerState::stepWorld(std::uint64_t steps)
     try {
         for (std::uint64_t n = 0; n < steps; ++n) {
             scene.world.step(clock.dt()); // the fixed dt: the frame time only decided how many steps
+            ++stepsThisFrame;
+            watch.check(scene.world);
+            record();
+        }
+    } catch (const BlowUpError& e) {
+        error = e.what();
+        paused = true;
+    }
+}
+
+void ViewerState::stepWorld(const std::vector<double>& lengths)
+{
+    try {
+        for (const double h : lengths) {
+            scene.world.step(h);
             ++stepsThisFrame;
             watch.check(scene.world);
             record();

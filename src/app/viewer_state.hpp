@@ -13,6 +13,7 @@
 #include "pba/blow_dryer.hpp"
 #include "pba/blow_up_watch.hpp"
 #include "pba/clock.hpp"
+#include "pba/frame_clock.hpp"
 #include "pba/scene/scene.hpp"
 #include "render/body_groups.hpp"
 #include "render/camera.hpp"
@@ -59,6 +60,9 @@ struct ViewerState {
     Scene loaded;  ///< the scene as loaded (file and command-line options): what reload restores
     World initial; ///< where reset restarts: the loaded world with the panel's settings applied
     FixedTimestepClock clock{0.01};
+    /// `--clock`: fixed steps the world by `clock`; semi-fixed and variable by frameSteps, with
+    /// clock.dt() as their dt and nothing left over to interpolate.
+    ClockKind clockKind = ClockKind::Fixed;
     render::ViewSettings settings;
     render::Trails trails;
     render::OrbitCamera camera;
@@ -109,6 +113,8 @@ struct ViewerState {
     /// shows the state at t, whatever the clock.
     void advanceTo(double t);
     void stepWorld(std::uint64_t steps);
+    /// Steps of these lengths, as the semi-fixed or variable clock takes a frame.
+    void stepWorld(const std::vector<double>& lengths);
     void record();
     void apply(ViewerCommand command);
     /// The alpha the world is drawn with.

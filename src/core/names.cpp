@@ -31,6 +31,9 @@ std::string_view integratorName(Integrator integrator)
     case Integrator::VelocityVerlet: return "velocity-verlet";
     case Integrator::RK4: return "rk4";
     case Integrator::ImplicitGyroscopic: return "implicit-gyroscopic";
+    case Integrator::Splitting: return "splitting";
+    case Integrator::ImplicitEuler: return "implicit-euler";
+    case Integrator::Xpbd: return "xpbd";
     }
     return "?";
 }
@@ -53,8 +56,11 @@ int integratorOrder(Integrator integrator)
     switch (integrator) {
     case Integrator::ForwardEuler:
     case Integrator::SemiImplicitEuler:
-    case Integrator::ImplicitGyroscopic: return 1;
-    case Integrator::VelocityVerlet: return 2;
+    case Integrator::ImplicitGyroscopic:
+    case Integrator::ImplicitEuler:
+    case Integrator::Xpbd: return 1;
+    case Integrator::VelocityVerlet:
+    case Integrator::Splitting: return 2;
     case Integrator::RK4: return 4;
     }
     return 0;

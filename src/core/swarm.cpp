@@ -153,9 +153,12 @@ std::uint64_t stepSwarmRange(Integrator integrator, const Arrays& a, std::size_t
         return stepBlocks<Integrator::ForwardEuler>(a, begin, end, fields, restitution, dt, planes, response);
     case Integrator::SemiImplicitEuler:
     case Integrator::ImplicitGyroscopic: // a point does not turn
+    case Integrator::ImplicitEuler:      // refused by World::addSwarm: no springs to step
+    case Integrator::Xpbd:
         return stepBlocks<Integrator::SemiImplicitEuler>(a, begin, end, fields, restitution, dt, planes,
                                                          response);
     case Integrator::VelocityVerlet:
+    case Integrator::Splitting: // a point does not turn
         return stepBlocks<Integrator::VelocityVerlet>(a, begin, end, fields, restitution, dt, planes,
                                                       response);
     case Integrator::RK4:

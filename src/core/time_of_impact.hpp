@@ -65,8 +65,11 @@ inline std::optional<T> timeOfImpact(Integrator integrator, const PlaneT<T>& pla
     switch (integrator) {
     case Integrator::ForwardEuler: return firstQuadraticCrossing(c0, c1, T(0), limit);
     case Integrator::SemiImplicitEuler:
-    case Integrator::ImplicitGyroscopic: return firstQuadraticCrossing(c0, c1, an, limit);
-    case Integrator::VelocityVerlet: return firstQuadraticCrossing(c0, c1, T(0.5) * an, limit);
+    case Integrator::ImplicitGyroscopic:
+    case Integrator::ImplicitEuler: // stepped as a system (reflect); alone, semi-implicit Euler
+    case Integrator::Xpbd: return firstQuadraticCrossing(c0, c1, an, limit);
+    case Integrator::VelocityVerlet:
+    case Integrator::Splitting: return firstQuadraticCrossing(c0, c1, T(0.5) * an, limit);
     case Integrator::RK4: break;
     }
     // RK4: the constant-acceleration estimate and a few samples find the first sign change.

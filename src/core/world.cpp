@@ -14,6 +14,7 @@
 #include "collision_rules.hpp"
 #include "rigid/joint_solver.hpp"
 #include "rigid/rigid_system.hpp"
+#include "spring_solvers.hpp"
 
 namespace pba {
 
@@ -36,8 +37,11 @@ NonFiniteStateError NonFiniteStateError::inSwarm(const std::string& swarm, std::
     return NonFiniteStateError(fmt::format("{}[{}]", swarm, index), step, time, std::move(quantity));
 }
 
-// Out of line: the rigid system is a type of the core's own (src/core/rigid/).
-World::World() : m_rigidSystem(std::make_unique<rigid::RigidSystem>()) {}
+// Out of line: the rigid system and the spring solvers are types of the core's own (src/core/).
+World::World()
+    : m_rigidSystem(std::make_unique<rigid::RigidSystem>()), m_springSolvers(std::make_unique<detail::SpringSolvers>())
+{
+}
 World::World(const World&) = default;
 World& World::operator=(const World&) = default;
 World::World(World&&) noexcept = default;
@@ -218,6 +222,9 @@ void requireActsOnSwarms(const Force& force, const std::string& swarm)
 
 Swarm& World::addSwarm(const SwarmDesc& desc)
 {
+    if (isSpringSystemMethod(desc.integrator))
+        throw std::invalid_argument(fmt::format("swarm '{}' takes {}, a method for particles joined by springs: a "
+                                                "swarm has none", desc.name, integratorName(desc.integrator)));
     for (const auto& force : m_forces)
         requireActsOnSwarms(*force, desc.name);
     m_swarms.emplace_back(std::make_unique<Swarm>(desc));
@@ -244,6 +251,16 @@ Force& World::addForce(std::unique_ptr<Force> force)
     m_forces.push_back(std::move(force));
     return *m_forces.back();
 }
+
+void World::setXpbdSubsteps(int substeps)
+{
+    if (substeps < 1 || substeps > kMaxXpbdSubsteps)
+        throw std::invalid_argument(
+            fmt::format("xpbd's substeps must be from 1 to {}, got {}", kMaxXpbdSubsteps, substeps));
+    m_xpbdSubsteps = substeps;
+}
+
+int World::lastImplicitIterations() const { return m_springSolvers->backwardEuler.backwardEuler.iterations(); }
 
 dvec3 World::gravity() const
 {

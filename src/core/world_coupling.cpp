@@ -25,6 +25,16 @@ void markMembers(const std::array<std::vector<std::size_t>, N>& lists, std::size
     }
 }
 
+/// "forward-euler, ..., or splitting": the methods a rigid body may take.
+std::string rigidIntegratorNames()
+{
+    std::string names;
+    for (std::size_t k = 0; k < kRigidIntegrators.size(); ++k)
+        names += fmt::format("{}{}", k == 0 ? "" : k + 1 == kRigidIntegrators.size() ? " or " : ", ",
+                             integratorName(kRigidIntegrators[k]));
+    return names;
+}
+
 } // namespace
 
 const World::Coupling& World::couple()
@@ -64,9 +74,17 @@ World::Coupling World::makeCoupling() const
     coupling.madeFrom = m_keys;
     for (std::size_t i = 0; i < m_bodies.size(); ++i) {
         const Integrator integrator = m_bodies[i]->getIntegrator();
-        if (coupled[i] != 0) {
-            const auto k = std::find(kAllIntegrators.begin(), kAllIntegrators.end(), translationalMethod(integrator));
-            coupling.systems[std::size_t(k - kAllIntegrators.begin())].push_back(i);
+        if (isRigid(i) && isSpringSystemMethod(integrator) && !m_bodies[i]->isFixed())
+            throw std::invalid_argument(fmt::format(
+                "rigid body '{}' takes {}, a method for particles joined by springs: a rigid body takes {}",
+                m_bodies[i]->getName(), integratorName(integrator), rigidIntegratorNames()));
+        // A particle on implicit-euler or xpbd is stepped as a system even with no spring: its
+        // step is the system's (a lone particle's system is itself).
+        const bool system = isSpringSystemMethod(integrator) && !isRigid(i) && !m_bodies[i]->isFixed();
+        if (coupled[i] != 0 || system) {
+            const auto k =
+                std::find(kParticleIntegrators.begin(), kParticleIntegrators.end(), translationalMethod(integrator));
+            coupling.systems[std::size_t(k - kParticleIntegrators.begin())].push_back(i);
         } else if (!isRigid(i)) { // the rigid system steps the rigid ones, fixed or moving
             coupling.independent.push_back(i);
         }
@@ -77,12 +95,19 @@ World::Coupling World::makeCoupling() const
 
 bool World::isCoupled(std::size_t i) const
 {
-    return !m_bodies[i]->isFixed() && std::any_of(m_couplings.begin(), m_couplings.end(),
-                                                  [i](const auto& p) { return p.first == i || p.second == i; });
+    if (m_bodies[i]->isFixed())
+        return false;
+    if (!isRigid(i) && isSpringSystemMethod(m_bodies[i]->getIntegrator()))
+        return true;
+    return std::any_of(m_couplings.begin(), m_couplings.end(),
+                       [i](const auto& p) { return p.first == i || p.second == i; });
 }
 
 bool World::hasCoupledBodies() const
 {
+    for (std::size_t i = 0; i < m_bodies.size(); ++i)
+        if (!isRigid(i) && !m_bodies[i]->isFixed() && isSpringSystemMethod(m_bodies[i]->getIntegrator()))
+            return true;
     return std::any_of(m_couplings.begin(), m_couplings.end(), [this](const auto& p) {
         return !m_bodies[p.first]->isFixed() || !m_bodies[p.second]->isFixed();
     });

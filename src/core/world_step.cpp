@@ -80,9 +80,18 @@ void World::step(double dt)
         storePreviousStates();
         const Coupling& coupling = couple(); // a mixed coupled group throws before anything moves
         integrateIndependent(coupling, dt);
-        for (std::size_t k = 0; k < kAllIntegrators.size(); ++k)
-            if (!coupling.systems[k].empty())
-                integrateCoupled(kAllIntegrators[k], coupling.systems[k], coupling.wanted[k], dt);
+        for (std::size_t k = 0; k < kParticleIntegrators.size(); ++k) {
+            const Integrator integrator = kParticleIntegrators[k];
+            const auto& members = coupling.systems[k];
+            if (members.empty())
+                continue;
+            if (integrator == Integrator::ImplicitEuler)
+                integrateBackwardEuler(members, coupling.wanted[k], dt);
+            else if (integrator == Integrator::Xpbd)
+                integrateXpbd(members, coupling.wanted[k], dt);
+            else
+                integrateCoupled(integrator, members, coupling.wanted[k], dt);
+        }
         if (m_rigidSystem->size() > 0)
             stepRigidBodies(dt);
     });

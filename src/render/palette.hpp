@@ -22,6 +22,9 @@ inline constexpr Rgb kSemiImplicitEuler = 0x4cbf61; // green
 inline constexpr Rgb kVelocityVerlet = 0x458cf2;    // blue
 inline constexpr Rgb kRK4 = 0xf2b233;               // amber
 inline constexpr Rgb kImplicitGyroscopic = 0xa66bd9; // violet
+inline constexpr Rgb kSplitting = 0x1fb5c4;          // teal
+inline constexpr Rgb kImplicitEuler = 0x9c6b4e;      // brown: damps
+inline constexpr Rgb kXpbd = 0xe0609f;               // pink
 inline constexpr Rgb kFixed = 0xb2b2b8;             // grey: a body that does not move
 
 /// The bodies' colours, in the order bodies take them: saturated enough to read on the dark
@@ -52,6 +55,9 @@ constexpr Rgb integratorRgb(Integrator integrator)
     case Integrator::VelocityVerlet: return kVelocityVerlet;
     case Integrator::RK4: return kRK4;
     case Integrator::ImplicitGyroscopic: return kImplicitGyroscopic;
+    case Integrator::Splitting: return kSplitting;
+    case Integrator::ImplicitEuler: return kImplicitEuler;
+    case Integrator::Xpbd: return kXpbd;
     }
     return 0xffffff;
 }

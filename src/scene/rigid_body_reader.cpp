@@ -163,7 +163,12 @@ void readRigidBody(const Json& value, const std::string& path, const std::string
         reader.fail("restitution", fmt::format("must be in [0, 1], got {}", restitution));
     body->setCor(restitution);
     body->setFriction(reader.nonNegative("friction", 0.5));
-    body->setIntegrator(readIntegrator(reader, "integrator", Integrator::SemiImplicitEuler));
+    body->setIntegrator(readIntegrator(reader, "integrator", kDefaultRigidIntegrator));
+    if (isSpringSystemMethod(body->getIntegrator()))
+        reader.fail("integrator", fmt::format("{} steps particles joined by springs, not rigid bodies: take "
+                                              "forward-euler, semi-implicit-euler, velocity-verlet, rk4, "
+                                              "implicit-gyroscopic or splitting",
+                                              integratorName(body->getIntegrator())));
     body->setFixed(reader.boolean("fixed", false));
     if (!std::isfinite(body->getRotationalKineticEnergy()))
         reader.fail("angular_velocity", "too large: the rotational kinetic energy is not finite");

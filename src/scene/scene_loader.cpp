@@ -243,8 +243,8 @@ void requireFiniteEnergies(const World& world, const FabricLayout& fabric, const
 Scene readScene(const Json& document, const std::string& file, const std::filesystem::path& directory)
 {
     ObjectReader root(document, "", file);
-    root.expectKeys({"name", "summary", "description", "dt", "duration", "gravity", "collision_response", "ground",
-                     "room", "particles", "ropes", "cloths", "rigid_bodies", "joints", "swarms", "forces"});
+    root.expectKeys({"name", "summary", "description", "dt", "duration", "gravity", "collision_response", "substeps",
+                     "ground", "room", "particles", "ropes", "cloths", "rigid_bodies", "joints", "swarms", "forces"});
     Scene scene;
     scene.source = file;
     scene.name = readName(root, "name", "unnamed");
@@ -261,6 +261,13 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
                       fmt::format("unknown collision response '{}' (expected {})", oneLine(name),
                                   collisionResponseNameList()));
         scene.world.setCollisionResponse(*response);
+    }
+    if (root.has("substeps")) {
+        const double substeps = root.number("substeps");
+        if (!(substeps >= 1 && substeps <= World::kMaxXpbdSubsteps && substeps == std::floor(substeps)))
+            root.fail("substeps", fmt::format("xpbd's substeps a step: a whole number from 1 to {}, got {}",
+                                              World::kMaxXpbdSubsteps, substeps));
+        scene.world.setXpbdSubsteps(static_cast<int>(substeps));
     }
     readSurfaces(root, scene.world);
     scene.world.addForce(std::make_unique<Gravity>(g));

@@ -71,6 +71,10 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
     if (!(desc.restitution >= 0.0 && desc.restitution <= 1.0))
         reader.fail("restitution", fmt::format("must be in [0, 1], got {}", desc.restitution));
     desc.integrator = readIntegrator(reader, "integrator", Integrator::SemiImplicitEuler);
+    if (isSpringSystemMethod(desc.integrator))
+        reader.fail("integrator", fmt::format("{} steps particles joined by springs; a swarm has none: take "
+                                              "forward-euler, semi-implicit-euler, velocity-verlet or rk4",
+                                              integratorName(desc.integrator)));
     desc.seed = readCount(reader, "seed", 9007199254740992.0);
     reader.finish();
     world.addSwarm(desc);

@@ -17,7 +17,7 @@ namespace pba::study {
 
 struct RotationConfig {
     Scene scene;
-    std::vector<Integrator> integrators{kEveryIntegrator.begin(), kEveryIntegrator.end()};
+    std::vector<Integrator> integrators{kRigidIntegrators.begin(), kRigidIntegrators.end()};
     std::vector<double> dts{0.0005, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05};
     double duration = 10.0;
     int jobs = 1; ///< runs at once; the results do not depend on it

@@ -204,7 +204,11 @@ double theoryDtLimit(Integrator integrator, double omega)
     case Integrator::SemiImplicitEuler:
     case Integrator::ImplicitGyroscopic:
     case Integrator::VelocityVerlet:
+    case Integrator::Splitting:
         return 2.0 / omega;
+    case Integrator::ImplicitEuler:
+    case Integrator::Xpbd:
+        return std::numeric_limits<double>::infinity();
     case Integrator::RK4:
         return 2.0 * std::sqrt(2.0) / omega;
     }

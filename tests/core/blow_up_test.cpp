@@ -103,7 +103,7 @@ TEST(RigidBlowUp, AnOrientationThatOverflowsIsANonFiniteStateNamingTheBody)
 // from there: the body stops against it, whatever the integrator, and nothing blows up.
 TEST(RigidBlowUp, ABallThrownAtTenToTheFiftyStopsAgainstTheSurfaceWithEveryIntegrator)
 {
-    for (const Integrator integrator : kEveryIntegrator) {
+    for (const Integrator integrator : kRigidIntegrators) {
         World world;
         world.setRoom(Aabb{dvec3(0.0), dvec3(4.0)});
         auto ball = std::make_unique<RigidBody>(Shape::sphere(0.2), 1000.0);
@@ -261,10 +261,10 @@ TEST(BlowUpWatch, RopesThatBlowUpInsideTheRoomAreCaught)
     }
 }
 
-// The scenes without an energy source, at their own dt with every integrator, stay under the
-// bound to their end, but for forward Euler on the stiff ones (the rope and the cloth, omega dt
-// near 0.6, and the stiff spring, omega dt = 0.3, all grow by 1 + (omega dt)^2 a step: that is
-// the blow-up the rule is for).
+// The scenes without an energy source, at their own dt with every integrator they can take (a
+// rigid body does not take implicit-euler or xpbd), stay under the bound to their end, but for
+// forward Euler on the stiff ones (the rope and the cloth, omega dt near 0.6, and the stiff
+// spring, omega dt = 0.3, all grow by 1 + (omega dt)^2 a step: that is the blow-up the rule is for).
 class OrdinaryScene : public testing::TestWithParam<const char*> {};
 
 TEST_P(OrdinaryScene, AtItsOwnDtNeverTripsTheWatch)
@@ -275,6 +275,8 @@ TEST_P(OrdinaryScene, AtItsOwnDtNeverTripsTheWatch)
         if (integrator == Integrator::ForwardEuler && stiff)
             continue;
         Scene scene = loadScene(name);
+        if (isSpringSystemMethod(integrator) && scene.world.hasRigidBodies())
+            continue;
         for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
             if (!scene.world.body(i).isFixed())
                 scene.world.body(i).setIntegrator(integrator);

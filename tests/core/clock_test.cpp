@@ -80,3 +80,48 @@ TEST(FixedTimestepClock, ChangingDtKeepsTheFractionOfAStep)
     clock.setDt(1.0 / 16.0);
     EXPECT_DOUBLE_EQ(clock.alpha(), 0.5);
 }
+
+// The semi-fixed and variable clocks (frame_clock.hpp): what steps a frame takes.
+#include "pba/frame_clock.hpp"
+
+TEST(FrameSteps, SemiFixedTakesWholeStepsThenTheRest)
+{
+    // 1/60 s at dt 1/512: eight steps of dt, then one of the 0.00104 s left.
+    const double dt = 1.0 / 512.0, frame = 1.0 / 60.0;
+    const std::vector<double> steps = frameSteps(ClockKind::SemiFixed, dt, frame, 0.25);
+    ASSERT_EQ(steps.size(), 9u);
+    for (std::size_t k = 0; k < 8; ++k)
+        EXPECT_EQ(steps[k], dt);
+    EXPECT_NEAR(steps[8], frame - 8 * dt, 1e-15);
+    EXPECT_LT(steps[8], dt);
+}
+
+TEST(FrameSteps, SemiFixedClampsAHitchAndNeverStepsLongerThanDt)
+{
+    const double dt = 1.0 / 128.0;
+    const std::vector<double> steps = frameSteps(ClockKind::SemiFixed, dt, 2.0, 0.25);
+    EXPECT_EQ(steps.size(), 32u); // 0.25 s of the 2 s frame, in whole steps of dt
+    for (const double h : steps)
+        EXPECT_EQ(h, dt);
+}
+
+TEST(FrameSteps, VariableTakesTheWholeFrameInOneStep)
+{
+    EXPECT_EQ(frameSteps(ClockKind::Variable, 0.01, 0.25, 0.25), std::vector<double>{0.25});
+    EXPECT_EQ(frameSteps(ClockKind::Variable, 0.01, 2.0, 0.25), std::vector<double>{2.0}); // no clamp: its lesson
+}
+
+TEST(FrameSteps, RefusesTheFixedClockAndBadTimes)
+{
+    EXPECT_THROW(frameSteps(ClockKind::Fixed, 0.01, 0.1, 0.25), std::invalid_argument);
+    EXPECT_THROW(frameSteps(ClockKind::Variable, 0.01, 0.0, 0.25), std::invalid_argument);
+    EXPECT_THROW(frameSteps(ClockKind::SemiFixed, kNaN, 0.1, 0.25), std::invalid_argument);
+    EXPECT_THROW(frameSteps(ClockKind::SemiFixed, 0.01, kInf, 0.25), std::invalid_argument);
+}
+
+TEST(FrameSteps, NamesRoundTrip)
+{
+    for (const ClockKind kind : kClockKinds)
+        EXPECT_EQ(clockFromName(clockName(kind)), kind);
+    EXPECT_FALSE(clockFromName("semi_fixed").has_value());
+}

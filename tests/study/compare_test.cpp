@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -392,7 +393,7 @@ TEST(PbaCompare, RigidSceneGetsTheRotationStudy)
     int rows = 0;
     while (std::getline(csv, line))
         ++rows;
-    EXPECT_EQ(rows, 10); // five integrators, two dt
+    EXPECT_EQ(rows, 12); // the six rigid integrators (splitting among them), two dt
     for (const char* picture : {"drift.png", "flip.png", "period.png"}) {
         int w = 0, h = 0, channels = 0;
         stbi_uc* pixels = stbi_load((dir / "racket" / picture).string().c_str(), &w, &h, &channels, 3);
@@ -454,7 +455,44 @@ TEST(PbaCompare, ARigidRunThatBlowsUpIsRecordedAndTheStudyGoesOn)
             EXPECT_LE(std::stod(last), 0.2) << line;
         }
     }
-    EXPECT_EQ(rows, 10); // five integrators, two dt
+    EXPECT_EQ(rows, 12); // the six rigid integrators (splitting among them), two dt
     EXPECT_GT(blown, 0);
     EXPECT_TRUE(std::filesystem::exists(dir / "study/report.md"));
+}
+
+// Work against precision (--work-precision): work_precision.csv has every scene and method that did not blow up,
+// the report its section and picture, and the spring's points have the methods' orders: halving
+// dt divides RK4's error by about 16, backward Euler's and XPBD's by about 2.
+TEST(PbaCompare, WritesWorkPrecisionWithTheMethodsOrders)
+{
+    const auto dir = freshDir("compare-work-precision");
+    const CommandResult r = runPba("compare --duration 1 --dt 0.01,0.02 --integrators semi-implicit-euler "
+                                   "--collisions reflect --work-precision --out " + (dir / "out").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::istringstream csv(readFile(dir / "out/work_precision.csv"));
+    std::string line;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "scene,integrator,dt,error,cpu_s");
+    std::map<std::string, double> error; // "scene integrator dt"
+    std::set<std::string> scenes;
+    while (std::getline(csv, line)) {
+        std::vector<std::string> cells;
+        std::stringstream fields(line);
+        for (std::string cell; std::getline(fields, cell, ',');)
+            cells.push_back(cell);
+        ASSERT_EQ(cells.size(), 5u) << line;
+        scenes.insert(cells[0]);
+        EXPECT_GT(std::stod(cells[4]), 0.0) << line;
+        error[cells[0] + " " + cells[1] + " " + cells[2]] = std::stod(cells[3]);
+    }
+    EXPECT_EQ(scenes, (std::set<std::string>{"spring", "chain", "cloth", "tennis-racket"}));
+    const auto ratio = [&](const std::string& method) {
+        return error.at("spring " + method + " 0.001") / error.at("spring " + method + " 0.002");
+    };
+    EXPECT_NEAR(std::log2(ratio("rk4")), -4.0, 0.5);
+    EXPECT_NEAR(std::log2(ratio("implicit-euler")), -1.0, 0.3);
+    EXPECT_NEAR(std::log2(ratio("xpbd")), -1.0, 0.3);
+    const std::string report = readFile(dir / "out/report.md");
+    EXPECT_NE(report.find("## Work against precision"), std::string::npos);
+    EXPECT_NE(r.out.find("work against precision"), std::string::npos);
 }

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <map>
 #include <set>
 
 #include "pba/scene/scene.hpp"
@@ -390,20 +391,34 @@ TEST(PbaBench, QuickJsonHasEveryLayout)
         EXPECT_TRUE(from == 0.0 || std::abs(from - 0.05) < 1e-12) << from;
     }
     EXPECT_EQ(swarmPhases, (std::set<std::string>{"flight", "landed", "rested"}));
-    // The cloth: 128 x 128 on 1 thread and on all cores, one spring evaluation per spring a step.
-    ASSERT_GE(cloth.size(), 1u);
-    EXPECT_EQ(cloth.front()["threads"], 1);
-    EXPECT_EQ(cloth.back()["threads"], json["machine"]["cores"]);
+    // The cloth: 128 x 128 with each method on 1 thread and on all cores: semi-implicit Euler at
+    // dt 0.002 (one spring evaluation per spring a step), implicit-euler and xpbd at 1/60.
+    std::map<std::string, double> dts;
+    std::map<std::string, std::set<int>> threads;
     for (const auto& row : cloth) {
         EXPECT_EQ(row["scene"], "cloth-in-the-dryer");
-        EXPECT_EQ(row["integrator"], "semi-implicit-euler");
         EXPECT_EQ(row["n"], 16384);
         EXPECT_EQ(row["springs"], 97026);
+        const std::string integrator = row["integrator"].get<std::string>();
+        dts[integrator] = row["dt"].get<double>();
+        threads[integrator].insert(row["threads"].get<int>());
         const double steps = row["steps_per_s"].get<double>();
         EXPECT_GT(steps, 0.0);
         EXPECT_LE(row["steps_per_s_median"].get<double>(), steps);
-        EXPECT_DOUBLE_EQ(row["spring_evaluations_per_s"].get<double>(), steps * 97026.0);
+        if (integrator == "semi-implicit-euler") {
+            EXPECT_DOUBLE_EQ(row["spring_evaluations_per_s"].get<double>(), steps * 97026.0);
+        }
+        if (integrator == "implicit-euler") {
+            EXPECT_GT(row["cg_iterations"].get<int>(), 0);
+        }
+        if (integrator == "xpbd") {
+            EXPECT_EQ(row["substeps"], 10);
+        }
     }
+    EXPECT_EQ(dts, (std::map<std::string, double>{{"semi-implicit-euler", 0.002}, {"implicit-euler", 1.0 / 60.0},
+                                                  {"xpbd", 1.0 / 60.0}}));
+    for (const auto& [integrator, counts] : threads)
+        EXPECT_EQ(counts, (std::set<int>{1, json["machine"]["cores"].get<int>()})) << integrator;
     EXPECT_EQ(scene["scene"], "fountain-1m");
     EXPECT_EQ(scene["n"], 1000000);
     EXPECT_GT(scene["steps_per_s"].get<double>(), 0.0);

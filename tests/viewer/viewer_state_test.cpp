@@ -321,3 +321,44 @@ TEST(ViewerState, KeysToggleTheMarksAndCReturnsToTheStartsCamera)
     state.apply(ViewerCommand::ToggleContacts);
     EXPECT_FALSE(state.settings.contacts);
 }
+
+// --clock: a frame of 0.055 s at dt 0.01 s is five steps of dt with the fixed clock (the rest
+// kept for the next frame and drawn by interpolation), five of dt and one of 0.005 s with the
+// semi-fixed clock, one step of 0.055 s with the variable clock; the last two do not interpolate.
+TEST(ViewerState, EachClockStepsAFrameItsWay)
+{
+    struct Expected {
+        ClockKind clock;
+        int steps;
+        double time, lastStep;
+    };
+    for (const Expected& e : {Expected{ClockKind::Fixed, 5, 0.05, 0.01}, Expected{ClockKind::SemiFixed, 6, 0.055, 0.005},
+                              Expected{ClockKind::Variable, 1, 0.055, 0.055}}) {
+        ViewerState state = loaded("integrators");
+        state.clockKind = e.clock;
+        state.advance(0.055);
+        EXPECT_EQ(state.stepsThisFrame, e.steps) << clockName(e.clock);
+        EXPECT_NEAR(state.scene.world.time(), e.time, 1e-12) << clockName(e.clock);
+        EXPECT_NEAR(state.scene.world.time() - state.scene.world.previousTime(), e.lastStep, 1e-12);
+        if (e.clock == ClockKind::Fixed) {
+            EXPECT_NEAR(state.alpha(), 0.5, 1e-9);
+        } else {
+            EXPECT_EQ(state.alpha(), 1.0) << clockName(e.clock);
+        }
+    }
+}
+
+TEST(ViewerState, TheVariableClockPausesOnTheFrameThatReachesTheDurationAndPlaysOn)
+{
+    ViewerState state = loaded("integrators");
+    state.clockKind = ClockKind::Variable;
+    state.pauseAt = 0.5;
+    for (int frame = 0; frame < 100 && !state.paused; ++frame)
+        state.advance(0.07);
+    ASSERT_TRUE(state.paused);
+    EXPECT_NEAR(state.scene.world.time(), 0.56, 1e-9); // eight frames of 0.07 s
+    state.apply(ViewerCommand::TogglePause);
+    state.advance(0.07);
+    EXPECT_FALSE(state.paused);
+    EXPECT_NEAR(state.scene.world.time(), 0.63, 1e-9);
+}

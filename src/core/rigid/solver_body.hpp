@@ -11,8 +11,9 @@
 namespace pba::rigid {
 
 /// How much of a method's position update its end velocity drives, for constant forces:
-/// (semi-)implicit Euler's all of it (x1 = x0 + v1 dt), velocity Verlet's and RK4's half
-/// (x1 = x0 + (v0 + v1) dt / 2), forward Euler's none (x1 = x0 + v0 dt). An impulse that changes
+/// (semi-)implicit Euler's all of it (x1 = x0 + v1 dt), velocity Verlet's, the splitting's (whose
+/// translation is velocity Verlet) and RK4's half (x1 = x0 + (v0 + v1) dt / 2), forward Euler's
+/// none (x1 = x0 + v0 dt). An impulse that changes
 /// the end velocity moves the end position by that share of it times dt, so that a body resting
 /// on a surface stays exactly where it is whatever its integrator.
 inline double driftWeight(Integrator integrator)
@@ -20,9 +21,12 @@ inline double driftWeight(Integrator integrator)
     switch (integrator) {
     case Integrator::ForwardEuler: return 0.0;
     case Integrator::VelocityVerlet:
+    case Integrator::Splitting:
     case Integrator::RK4: return 0.5;
     case Integrator::SemiImplicitEuler:
-    case Integrator::ImplicitGyroscopic: return 1.0;
+    case Integrator::ImplicitGyroscopic:
+    case Integrator::ImplicitEuler: // not a rigid body's: World::step refuses them
+    case Integrator::Xpbd: return 1.0;
     }
     return 1.0;
 }

@@ -1,0 +1,47 @@
+#pragma once
+// What the World keeps for its systems stepped by backward Euler and by XPBD: each one's springs,
+// gathered once, and its solver's state (the conjugate gradients' buffers, the constraints'
+// colours), made anew when the system's members or the world's forces change.
+#include <algorithm>
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "backward_euler.hpp"
+#include "spring_system.hpp"
+#include "xpbd.hpp"
+
+namespace pba::detail {
+
+struct SpringSolver {
+    std::vector<std::size_t> members; ///< what it was made for
+    std::size_t forces = 0;
+    SpringSystem springs;
+    BackwardEuler backwardEuler;
+    Xpbd xpbd;
+    /// Scratch of a step: where every body is (for the fixed ends), and the members' forces at the
+    /// start. Members, not thread_local: a lambda run on a pool thread names that thread's copy.
+    std::vector<dvec3> positions, startForces;
+
+    /// Makes the springs (and, for XPBD, their colours) anew unless they were made for these
+    /// members and forces.
+    void prepare(std::span<const ClonePtr<Force>> worldForces, std::span<const std::size_t> system,
+                 std::size_t bodyCount, bool colour)
+    {
+        if (forces == worldForces.size() && members.size() == system.size() &&
+            std::equal(members.begin(), members.end(), system.begin()))
+            return;
+        members.assign(system.begin(), system.end());
+        forces = worldForces.size();
+        springs = SpringSystem(worldForces, system, bodyCount);
+        xpbd = colour ? Xpbd(springs) : Xpbd();
+    }
+};
+
+struct SpringSolvers {
+    SpringSolver backwardEuler, xpbd;
+    std::unique_ptr<SpringSolvers> clone() const { return std::make_unique<SpringSolvers>(*this); }
+};
+
+} // namespace pba::detail

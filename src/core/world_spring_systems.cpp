@@ -1,0 +1,88 @@
+// A World's phases for the systems whose springs are stepped implicitly: backward Euler
+// (implicit-euler) and XPBD (xpbd). Each takes the system's start state, steps it with its solver
+// (src/core/backward_euler.cpp, xpbd.cpp) and hands the end states to collideAndStore, as
+// integrateCoupled does for the explicit methods.
+#include "pba/world.hpp"
+
+#include "parallel.hpp"
+#include "spring_solvers.hpp"
+
+namespace pba {
+
+void World::startSpringSystem(const std::vector<std::size_t>& members, detail::SpringSolver& solver)
+{
+    const std::size_t n = members.size();
+    CoupledScratch& s = m_scratch;
+    s.x.resize(n);
+    s.v.resize(n);
+    s.acc.resize(n);
+    s.mass.resize(n);
+    detail::forEachIndex(n, [&](std::size_t k) {
+        s.x[k] = m_previous[members[k]].pos;
+        s.v[k] = m_previous[members[k]].vel;
+        s.mass[k] = m_masses[members[k]];
+    });
+    // The fixed ends where the fixed bodies are (a program may have moved one between steps).
+    std::vector<dvec3>& positions = solver.positions;
+    positions.resize(m_bodies.size());
+    for (std::size_t i = 0; i < m_bodies.size(); ++i)
+        positions[i] = m_previous[i].pos;
+    solver.springs.placeFixedEnds(positions);
+}
+
+void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                                   double dt)
+{
+    detail::SpringSolver& solver = m_springSolvers->backwardEuler;
+    solver.prepare(m_forces, members, m_bodies.size(), false);
+    startSpringSystem(members, solver);
+    const std::size_t n = members.size();
+    CoupledScratch& s = m_scratch;
+    // Every force at the start of the step (the system's bodies are at it in s.trial already).
+    s.forces.resize(m_bodies.size());
+    const BodyStates in{m_bodies, s.trial, wanted, m_masses, {}};
+    Accumulators out{s.forces, {}, &s.forceScratch};
+    detail::forEachIndex(n, [&](std::size_t k) { s.forces[members[k]] = dvec3(0.0); });
+    for (const auto& force : m_forces)
+        force->accumulate(in, out);
+    std::vector<dvec3>& start = solver.startForces;
+    start.resize(n);
+    detail::forEachIndex(n, [&](std::size_t k) {
+        start[k] = s.forces[members[k]];
+        s.acc[k] = start[k] / s.mass[k];
+    });
+    solver.backwardEuler.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n),
+                              start, dt);
+    collideAndStore(members);
+}
+
+void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt)
+{
+    detail::SpringSolver& solver = m_springSolvers->xpbd;
+    solver.prepare(m_forces, members, m_bodies.size(), true);
+    startSpringSystem(members, solver);
+    const std::size_t n = members.size();
+    CoupledScratch& s = m_scratch;
+    s.forces.resize(m_bodies.size());
+    const BodyStates in{m_bodies, s.trial, wanted, m_masses, {}};
+    Accumulators out{s.forces, {}, &s.forceScratch};
+    // Every force but the springs, which are the constraints, at each substep's start.
+    const detail::Xpbd::External external = [&](std::span<const dvec3> x, std::span<const dvec3> v,
+                                                std::span<dvec3> accel) {
+        detail::forEachIndex(n, [&](std::size_t k) {
+            s.trial[members[k]] = State{x[k], v[k]};
+            s.forces[members[k]] = dvec3(0.0);
+        });
+        for (std::size_t f = 0; f < m_forces.size(); ++f)
+            if (!solver.springs.isSpring(f))
+                m_forces[f]->accumulate(in, out);
+        detail::forEachIndex(n, [&](std::size_t k) { accel[k] = s.forces[members[k]] / s.mass[k]; });
+    };
+    solver.xpbd.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n), dt,
+                     m_xpbdSubsteps, external);
+    // The step's mean acceleration: XPBD has no force at the start to keep.
+    detail::forEachIndex(n, [&](std::size_t k) { s.acc[k] = (s.v[k] - m_previous[members[k]].vel) / dt; });
+    collideAndStore(members);
+}
+
+} // namespace pba

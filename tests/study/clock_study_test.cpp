@@ -1,0 +1,113 @@
+// The clocks study (`pba compare --clocks`): the fixed clock's runs agree to the bit at every
+// frame rate, the variable clock's do not, and the hitch is one step of a quarter second.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numeric>
+#include <sstream>
+
+#include "pba/scene/scene.hpp"
+#include "study/clock_study.hpp"
+#include "support/run_command.hpp"
+
+using namespace pba;
+using namespace pba::study;
+
+namespace {
+
+ClockResult runScene(const std::string& scene, double duration)
+{
+    ClockConfig config;
+    config.scene = loadScene(scene);
+    config.dt = config.scene.dt;
+    config.duration = duration;
+    return runClockStudy(config);
+}
+
+const ClockDrift& drift(const ClockResult& r, ClockKind clock, bool hitch, int rate)
+{
+    for (const ClockDrift& d : r.drifts)
+        if (d.clock == clock && d.hitch == hitch && d.rate == rate)
+            return d;
+    throw std::logic_error("no such drift");
+}
+
+} // namespace
+
+TEST(ClockStudy, FixedIsIdenticalToTheBitAtEveryRateAndVariableIsNot)
+{
+    const ClockResult r = runScene("integrators", 3.0);
+    ASSERT_EQ(r.runs.size(), 3u * 2u * 3u);
+    ASSERT_EQ(r.drifts.size(), 3u * 2u * 2u);
+    for (const bool hitch : {false, true})
+        for (const int rate : {30, 144}) {
+            const ClockDrift& fixed = drift(r, ClockKind::Fixed, hitch, rate);
+            EXPECT_TRUE(fixed.identical) << rate;
+            EXPECT_EQ(fixed.maxDistance, 0.0);
+            EXPECT_GE(fixed.t.size(), 10u); // the shared frames were sampled
+            EXPECT_FALSE(drift(r, ClockKind::Variable, hitch, rate).identical) << rate;
+            EXPECT_GT(drift(r, ClockKind::Variable, hitch, rate).maxDistance, 1e-3) << rate;
+            EXPECT_FALSE(drift(r, ClockKind::SemiFixed, hitch, rate).identical) << rate;
+        }
+}
+
+TEST(ClockStudy, TheHitchIsOneLongStepOnlyForTheVariableClock)
+{
+    const ClockResult r = runScene("integrators", 2.5);
+    for (const ClockRun& run : r.runs) {
+        // The semi-fixed clock's steps are never longer than dt, nor than a frame (1/144 s < dt).
+        const double frame = 1.0 / run.rate;
+        const double longest = run.clock == ClockKind::Variable    ? (run.hitch ? 0.25 : frame)
+                               : run.clock == ClockKind::SemiFixed ? (run.hitch ? 0.01 : std::min(0.01, frame))
+                                                                   : 0.01;
+        EXPECT_NEAR(run.longestStep, longest, 1e-12) << clockName(run.clock) << ' ' << run.rate << ' ' << run.hitch;
+    }
+}
+
+TEST(ClockStudy, FrameTimesAddUpToTheRunWithTheHitchInside)
+{
+    for (const int rate : {30, 60, 144}) {
+        const std::vector<double> steady = frameTimes(rate, false, 3.0);
+        EXPECT_EQ(steady.size(), std::size_t(3 * rate));
+        EXPECT_NEAR(std::accumulate(steady.begin(), steady.end(), 0.0), 3.0, 1e-12);
+        const std::vector<double> hitched = frameTimes(rate, true, 3.0);
+        EXPECT_EQ(std::count(hitched.begin(), hitched.end(), kHitchSeconds), 1) << rate;
+        EXPECT_NEAR(std::accumulate(hitched.begin(), hitched.end(), 0.0), 3.0, 1.0 / rate);
+    }
+}
+
+TEST(ClockStudy, RefusesARunTooShortForTheHitch)
+{
+    EXPECT_THROW(runScene("integrators", 2.0), std::invalid_argument);
+}
+
+TEST(PbaCompareClocks, WritesTheReportTableAndCsv)
+{
+    const auto dir = pba::test::freshDir("compare-clocks");
+    const auto r = pba::test::runPba("compare --clocks integrators --duration 2.5 --out " + (dir / "out").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream in(dir / "out/report.md");
+    std::stringstream report;
+    report << in.rdbuf();
+    EXPECT_NE(report.str().find("## Findings"), std::string::npos);
+    EXPECT_NE(report.str().find("| fixed | steady | identical (to the bit) | identical (to the bit) |"), std::string::npos);
+    std::ifstream csv(dir / "out/clocks.csv");
+    std::string header;
+    std::getline(csv, header);
+    EXPECT_EQ(header, "clock,hitch,rate,t,distance");
+    EXPECT_NE(r.out.find("variable"), std::string::npos);
+}
+
+TEST(PbaCompareClocks, RefusesWhatDoesNotApply)
+{
+    const auto dir = pba::test::freshDir("compare-clocks-bad");
+    const std::string out = " --out " + (dir / "out").string();
+    for (const std::string args : {"--clocks --integrators rk4", "--clocks --dt 0.01,0.02", "--clocks --duration 1"}) {
+        const auto r = pba::test::runPba("compare integrators " + args + out);
+        EXPECT_EQ(r.exitCode, 2) << args;
+        EXPECT_NE(r.err.find("--"), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "out")) << args;
+    }
+}
