@@ -179,6 +179,8 @@ TEST(PbaRender, ABlowUpIsExitThreeNamingTheBodyAndWritesNothing)
     EXPECT_NE(r.err.find("no energy source"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(png));
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0) << "no temporary files left";
+}
+
 // --camera and --show: a named view or a position and a target, and the marks by name; a bad
 // value is one line naming the flag, exit 2, before any picture (and no file).
 TEST(PbaRender, CameraAndShowFlags)
