@@ -141,8 +141,8 @@ struct BlowDryerKernelT {
 
 /// What the kernel knows of the dryer's axis when it is compiled: nothing (`Any`), or that it is
 /// exactly +y (`Up`, every built-in scene), which turns the axial and radial projections into
-/// picking coordinates: a sixth fewer multiplications in a swarm step, measured about 15%
-/// faster on all cores. Both are the same arithmetic otherwise.
+/// picking coordinates: a sixth fewer multiplications in a swarm step. Both are the same
+/// arithmetic otherwise.
 enum class DryerAxis { Any, Up };
 
 /// Where a point x lies in the dryer's frame: its offset d from the nozzle, its height h along

@@ -161,8 +161,8 @@ private:
     /// element k of the six lies at six different offsets within a page. Six separate vectors
     /// start at the same offset in their pages, and the loop that reads element k of one while
     /// it writes element k of another then waits on false store-to-load dependencies (4K
-    /// aliasing) and evicts its own lines from the L1 sets they share: measured 1.2e9 against
-    /// 1.65e9 particle-steps/s for the integration loop alone at a million particles.
+    /// aliasing) and evicts its own lines from the L1 sets they share, which cost the
+    /// integration loop a quarter of its speed (docs/performance.md).
     std::size_t m_stride = 0;
     /// Cache-line aligned (every 16-float vector of the loop is one line), in huge pages where the
     /// kernel has them (see LargeArrayAllocator).

@@ -69,21 +69,19 @@ bool samePlanes(std::span<const PlaneT<float>> a, std::span<const PlaneT<float>>
     });
 }
 
-/// Below this many particles threads cost more than they save (measured: 3x slower at 1,000).
+/// Below this many particles threads cost more than they save (several times slower at 1,000).
 constexpr std::size_t kParallelThreshold = 32768;
 
 /// A range's step, block by block: integrate (checking the states are finite as they are
 /// written); test which particles are near a surface; the rule for those, gathered from several
-/// blocks when few, over the whole block when many (passInRoom in a World's room). Measured
-/// against the simplest design, one fused pass a block that integrates and runs the rule's first
-/// pass over every surface as selects for every particle (1e6, 2 threads): these phases ran
-/// 1.35e9 particle-steps/s in flight and 1.28e9 landed, the fused pass 0.94-1.07e9 and
-/// 0.82-0.91e9. The selects cost every particle what the surface test costs only those near a
+/// blocks when few, over the whole block when many (passInRoom in a World's room). Against the
+/// simplest design, one fused pass a block that integrates and runs the rule's first pass over
+/// every surface as selects for every particle, these phases are about 1.3-1.4 times as fast in
+/// flight and landed. The selects cost every particle what the surface test costs only those near a
 /// surface, and one long chain a particle (roots, divisions, then the rule) leaves the
 /// out-of-order core less to overlap than two short loops. Fused only where the pass runs over
 /// the whole block anyway (a crowded block) it was no faster either. Loading a block from L1
-/// twice is not what these loops wait on; their instructions are. (docs/performance.md, "The
-/// step's phases against one fused pass".)
+/// twice is not what these loops wait on; their instructions are (docs/performance.md).
 template <Integrator kIntegrator>
 std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const SwarmKernelFields& fields,
                          float restitution, float dt, std::span<const PlaneT<float>> planes,
@@ -238,11 +236,9 @@ void Swarm::findNonFinite()
     }
 }
 
-/// Measured against TBB's default partitioner, which hands blocks to whichever thread is free
-/// (blow-dryer-swarm, 2 threads, alternated windows, two sittings, 2026-11-27): at 1e6 2-2.5%
-/// faster in flight, 2.7% landed and 2-4% at rest, at 1e7 5.4% at rest in both and the same in
-/// flight. A static split (each thread a fixed half) was 5-9% slower: a thread that the machine
-/// delays holds up the step.
+/// Each thread takes the same blocks as in the last step, so they are still in its caches,
+/// where TBB's default partitioner hands blocks to whichever thread is free. A static split
+/// (each thread a fixed half) was slower: a thread that the machine delays holds up the step.
 struct Swarm::ThreadAffinity {
     tbb::affinity_partitioner partitioner;
 };

@@ -321,7 +321,7 @@ void expectAxisPlanesAgree(bool exact)
 }
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-// Again compiled with fused multiply-adds, as a swarm's loops are on this machine.
+// Again compiled with fused multiply-adds, as a swarm's loops are on a CPU that has them.
 [[gnu::target("arch=x86-64-v3"), gnu::flatten]] void expectAxisPlanesAgreeWithFma()
 {
     expectAxisPlanesAgree<float>(false);
