@@ -11,6 +11,7 @@
 #include <span>
 #include <type_traits>
 
+#include "pba/detail/swarm_kernel.hpp"
 #include "pba/swarm.hpp"
 #include "room_surfaces.hpp"
 #include "surface_tests.hpp"

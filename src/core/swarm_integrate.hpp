@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "pba/detail/swarm_kernel.hpp"
 #include "pba/swarm.hpp"
 #include "swarm_block.hpp"
 
