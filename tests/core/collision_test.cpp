@@ -105,9 +105,10 @@ TEST(Collisions, ForwardEulerGainsEnergyInEveryResponse)
             int n = 0;
             for (; n < steps && world.bounceCount(0) == 0; ++n) {
                 world.step(dt);
-                if (world.bounceCount(0) == 0)
+                if (world.bounceCount(0) == 0) {
                     ASSERT_NEAR(world.energy(0), e0 + (n + 1) * m * kG * kG * dt * dt / 2, 1e-10 * e0)
                         << collisionResponseName(response) << " dt " << dt << " step " << n + 1;
+                }
             }
             ASSERT_GT(n, 10) << "the first fall takes more than a few steps";
             for (; n < steps; ++n)
