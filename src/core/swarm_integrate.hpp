@@ -259,7 +259,7 @@ bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float
 /// once and keep the one loop: every split tried for them (by block, by vector of 16 or 32) cost
 /// more than the roots it skipped. A block that had more than kGatherMax particles to step again
 /// is busy for the next 64 steps: gathering more than that, as in flight, stalls on the
-/// scatter. (The measurements: docs/performance.md, "The split away from the dryer".)
+/// scatter. (The measurements: docs/performance.md, the design-choice table.)
 template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag>
 bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
                       CollisionResponse response, const SwarmKernelFields& fields, const BlowDryerReach& reach)
