@@ -287,6 +287,7 @@ TEST(PbaSim, HelpSaysWhatExitThreeMeans)
             EXPECT_NE(r.out.find(part), std::string::npos) << args << ": " << part << "\n" << r.out;
         }
     }
+}
 
 // A rope or cloth is one row of totals, not a row per particle (on request, those too); the
 // whole scene's energy and momentum close the table: two free particles in no gravity have
