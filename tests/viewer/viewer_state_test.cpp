@@ -236,6 +236,7 @@ TEST(ViewerState, EveryBlowUpPausesTheViewerWithItsMessage)
         EXPECT_FALSE(state.error.has_value());
         EXPECT_EQ(state.scene.world.time(), 0.0);
     }
+}
 
 // A 10 x 10 cloth is one row of the panel, not 100: one group with its name and count, one
 // integrator for the whole system (applied live and kept by reset), its pins left fixed.
