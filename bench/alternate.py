@@ -7,7 +7,8 @@ Each build runs `pba bench --peer-worker` in its own process (blow-dryer-swarm o
 the phase's start state); the rounds take one window of each, in turn, reversing the order every
 round, so a machine's drifting speed slows them alike. It prints each build's median and best
 window and the median of its per-round ratio to the first build's: the figure to weigh a change by
-(docs/performance.md's "alternated windows"). Compare builds of one tree, on an idle machine.
+(docs/performance.md, "The machine, and how to compare two builds"). Compare builds of one tree,
+on an idle machine.
 """
 import argparse
 import os

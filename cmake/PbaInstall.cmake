@@ -1,8 +1,10 @@
 # `cmake --install` puts the core's headers, library and a CMake package in place, so another
 # project can `find_package(pba)` and link `pba::core`, and, where the build has it, the scene
 # loader `pba::scene` with its header pba/scene/scene.hpp (installed only with its library).
+# pba/detail/ is not installed: its templates are what pba's own libraries and tests inline, and
+# no installed header includes them.
 include(CMakePackageConfigHelpers)
-install(DIRECTORY include/pba DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} PATTERN scene EXCLUDE)
+install(DIRECTORY include/pba DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} PATTERN scene EXCLUDE PATTERN detail EXCLUDE)
 set(PBA_INSTALLED_TARGETS pba_core)
 set(PBA_WITH_SCENE OFF)
 if(TARGET pba_scene)

@@ -225,7 +225,7 @@ def main():
                 print(f"| {n:.0e} | {name} | {' | '.join(cells)} | {min(windows, args.windows)} x {steps[name]} |")
         print("\npba over Numba round by round: the median of each round's ratio of pba's window to Numba's, "
               "taken one after the other, which a change of the machine's speed between rounds does not move "
-              "(docs/performance.md, 'Two levels of memory bandwidth'):")
+              "(docs/performance.md, 'Memory bandwidth'):")
         for n in sizes:
             cells = []
             for phase in ("flight", "landed", "rested"):

@@ -39,14 +39,13 @@ public:
     // ---- get methods (the practical's names) ----
     Mesh& getMesh() { return m_mesh; }
     const Mesh& getMesh() const { return m_mesh; }
-    glm::mat4 getTranslate() const { return m_mesh.getTranslate(); }
-    glm::mat4 getRotate() const { return m_mesh.getRotate(); }
-    glm::mat4 getScale() const { return m_mesh.getScale(); }
+    /// The body's position as a translation: where its mesh is drawn (the mesh has no position).
+    glm::mat4 getTranslate() const;
+    /// Where the mesh's vertices are drawn: the body's translation times the mesh's own frame.
+    glm::mat4 getModel() const { return getTranslate() * m_mesh.getLocal(); }
 
     dvec3& getAcc() { return m_acc; }
     dvec3& getVel() { return m_vel; }
-    /// Writing through this reference does not move the mesh: prefer setPos.
-    dvec3& getPos() { return m_pos; }
     const dvec3& getAcc() const { return m_acc; }
     const dvec3& getVel() const { return m_vel; }
     const dvec3& getPos() const { return m_pos; }
@@ -59,22 +58,17 @@ public:
     void setAcc(const dvec3& acc) { m_acc = acc; }
     void setVel(const dvec3& vel) { m_vel = vel; }
     void setVel(int i, double v) { m_vel[i] = v; }
-    /// Moves the body and keeps the mesh's translation in sync.
-    void setPos(const dvec3& pos)
-    {
-        m_pos = pos;
-        m_mesh.setPos(glm::vec3(pos));
-    }
-    void setPos(int i, double p);
+    void setPos(const dvec3& pos) { m_pos = pos; }
+    void setPos(int i, double p) { m_pos[i] = p; }
     /// Throws std::invalid_argument unless mass is finite and positive.
     void setMass(double mass);
     /// Coefficient of restitution; throws std::invalid_argument outside [0, 1].
     void setCor(double cor);
 
-    // ---- transformation methods: delegate to the mesh ----
-    void translate(const glm::vec3& offset) { m_mesh.translate(offset); }
-    void rotate(float angle, const glm::vec3& axis) { m_mesh.rotate(angle, axis); }
-    void scale(const glm::vec3& factors) { m_mesh.scale(factors); }
+    // ---- transformation: the body moves, its mesh is drawn where it is ----
+    /// Moves the body by `offset`. A body's mesh is turned and scaled in its own frame through
+    /// getMesh() (Mesh::rotate, Mesh::scale), which moves nothing.
+    void translate(const dvec3& offset) { m_pos += offset; }
 
     // ---- pba's additions ----
     const std::string& getName() const { return m_name; }
@@ -98,9 +92,9 @@ protected:
     Body& operator=(const Body&) = default;
 
 private:
-    // What a step reads and writes comes first and, with the mesh's position that setPos writes,
-    // fits the object's first two cache lines (the class is aligned to them): a cloth's step
-    // visits every body's object twice, in memory far from the others', and each line is felt.
+    // What a step reads and writes comes first and fits the object's first two cache lines (the
+    // class is aligned to them): a cloth's step visits every body's object twice, in memory far
+    // from the others', and each line is felt.
     double m_mass = 1.0;  ///< mass, kg
     double m_cor = 1.0;   ///< coefficient of restitution in [0, 1]
     dvec3 m_acc{0.0};     ///< acceleration at the start of the last step (its first force evaluation), m/s^2
@@ -108,7 +102,7 @@ private:
     dvec3 m_pos{0.0};     ///< position, m
     Integrator m_integrator = Integrator::SemiImplicitEuler;
     bool m_fixed = false;
-    Mesh m_mesh;          ///< mesh used to represent the body
+    Mesh m_mesh;          ///< the mesh drawn for the body, in the body's own frame
     std::string m_name;
 };
 

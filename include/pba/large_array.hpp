@@ -10,10 +10,8 @@ namespace pba {
 /// whole 2 MiB, and (on Linux) advised to the kernel as transparent huge pages before anything
 /// touches it. A step streams six arrays of 4 KB pages through the TLB, which maps 12 MB of
 /// them: every page of a larger swarm is a page walk, and the hardware prefetchers stop at
-/// page boundaries. blow-dryer-swarm at rest on 2 threads, alternated (2026-11-26): at 1e7
-/// particles 0.79-0.91e9 particle-steps/s against 0.68-0.81e9 with 4 KB pages; at 1e6 1-7%
-/// faster (the kernel's huge pages switched on for every allocation, the same code). NumPy
-/// advises its large arrays the same way.
+/// page boundaries (docs/performance.md has what it saves at 1e7). NumPy advises its large
+/// arrays the same way.
 /// Where the kernel has no huge pages to give (or is not Linux) the memory is ordinary.
 void* allocateLargeArray(std::size_t bytes);
 /// Frees what allocateLargeArray(bytes) returned, with the same `bytes`.

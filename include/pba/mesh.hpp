@@ -21,29 +21,20 @@ public:
     const std::vector<glm::vec3>& normals() const { return geometry().normals; }
     const std::vector<std::uint32_t>& indices() const { return geometry().indices; }
 
-    /// The translation as a matrix (the mesh keeps only its position: a body's setPos writes it
-    /// every step, and 12 bytes share the body's hot cache lines where a matrix would not).
-    glm::mat4 getTranslate() const
-    {
-        glm::mat4 t(1.0f);
-        t[3] = glm::vec4(m_position, 1.0f);
-        return t;
-    }
+    /// The mesh in its body's own frame: turned and scaled about the body's centre. Where the mesh
+    /// is drawn is the body's business (its position, and a rigid body's orientation): the mesh
+    /// keeps no position of its own.
     const glm::mat4& getRotate() const { return m_rotate; }
     const glm::mat4& getScale() const { return m_scale; }
-    /// Model matrix: translate * rotate * scale.
-    glm::mat4 getModel() const { return getTranslate() * m_rotate * m_scale; }
+    /// rotate * scale: the mesh's vertices in its body's frame.
+    glm::mat4 getLocal() const { return m_rotate * m_scale; }
 
-    glm::vec3 getPos() const { return m_position; }
-    void setPos(const glm::vec3& position) { m_position = position; }
-    void setPos(int i, float p) { m_position[i] = p; }
-
-    void translate(const glm::vec3& offset);
+    /// Turns the mesh in its body's frame (the body does not turn).
     void rotate(float angle, const glm::vec3& axis);
+    /// Scales the mesh in its body's frame (the body's mass and collisions do not change).
     void scale(const glm::vec3& factors);
 
 private:
-    glm::vec3 m_position{0.0f}; // first: a body's setPos writes it every step
     glm::mat4 m_rotate{1.0f};
     glm::mat4 m_scale{1.0f};
     /// The vertices, normals and triangles, which never change once made: shared by every copy

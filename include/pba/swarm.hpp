@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "pba/blow_dryer.hpp"
+#include "pba/clone_ptr.hpp"
 #include "pba/collision.hpp"
 #include "pba/forces.hpp"
 #include "pba/integrator.hpp"
@@ -45,35 +46,7 @@ struct SwarmFields {
     std::vector<BlowDryerFieldT<float>> dryers;
 };
 
-/// The same fields laid out for the inner loop, as the accelerations they give a particle of
-/// one swarm's mass (1 / m folded into the drag and the dryers' strengths once a step, not
-/// multiplied in for every particle): the first dryer held by value (with a zero strength when
-/// there is none), so the common case is one straight-line expression.
-struct SwarmKernelFields {
-    Vec3<float> gravity{0.0f};
-    float dragPerMass = 0.0f; ///< the drag coefficient over m
-    BlowDryerKernelT<float> dryer{};
-    std::vector<BlowDryerKernelT<float>> more; ///< dryers after the first
-    std::size_t moreCount = 0;
-    bool dryerUp = false; ///< the first dryer points exactly along +y (see DryerAxis)
-    bool noDryer = false; ///< no dryer at all: `dryer` is one of zero strength, which pushes nothing
-    bool air = false;     ///< some dryer has air terms (drag toward the air, axis pull)
-
-    SwarmKernelFields(const SwarmFields& f, float inverseMass) : gravity(f.gravity), dragPerMass(f.drag * inverseMass)
-    {
-        BlowDryerFieldT<float> off;
-        off.strength = 0.0f;
-        dryer = BlowDryerKernelT<float>(f.dryers.empty() ? off : f.dryers.front(), inverseMass);
-        for (std::size_t k = 1; k < f.dryers.size(); ++k)
-            more.emplace_back(f.dryers[k], inverseMass);
-        moreCount = more.size();
-        noDryer = f.dryers.empty();
-        dryerUp = dryer.axis == Vec3<float>(0.0f, 1.0f, 0.0f);
-        air = dryer.hasAirTerms();
-        for (const auto& k : more)
-            air = air || k.hasAirTerms();
-    }
-};
+struct SwarmKernelFields; // pba/detail/swarm_kernel.hpp
 
 /// Where a swarm's step spends its time, phase by phase, summed over its threads: filled while a
 /// swarm has it (Swarm::setPhaseTimes), read by `pba bench --phases`. Each block of 512
@@ -90,8 +63,13 @@ public:
     /// Positions and velocities from a counter-based generator: particle i's values depend on
     /// (seed, i) only, so they do not depend on how the work is split.
     explicit Swarm(const SwarmDesc& desc);
+    Swarm(const Swarm&);
+    Swarm(Swarm&&) noexcept;
+    Swarm& operator=(const Swarm&);
+    Swarm& operator=(Swarm&&) noexcept;
+    ~Swarm();
     /// A deep copy (what a World's copy makes of its swarms).
-    std::unique_ptr<Swarm> clone() const { return std::make_unique<Swarm>(*this); }
+    std::unique_ptr<Swarm> clone() const;
 
     const SwarmDesc& desc() const { return m_desc; }
     const std::string& name() const { return m_desc.name; }
@@ -111,9 +89,8 @@ public:
 
     /// One step of dt for every particle; `threads` 0 means all cores. The result is the same
     /// whatever the thread count: particles are independent and each is stepped the same way.
-    /// Returns the number of bounces.
-    std::uint64_t step(const SwarmFields& fields, std::span<const PlaneT<float>> planes, CollisionResponse response,
-                       float dt, int threads = 0);
+    void step(const SwarmFields& fields, std::span<const PlaneT<float>> planes, CollisionResponse response, float dt,
+              int threads = 0);
 
     /// The first particle whose state stopped being finite in the last step, if any: every
     /// step checks each block while it is still in cache.
@@ -135,10 +112,10 @@ public:
     }
 
 private:
-    std::uint64_t stepRange(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes,
-                            CollisionResponse response, float dt, std::size_t begin, std::size_t end);
-    std::uint64_t stepAll(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes,
-                          CollisionResponse response, float dt, int threads);
+    void stepRange(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes, CollisionResponse response,
+                   float dt, std::size_t begin, std::size_t end);
+    void stepAll(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes, CollisionResponse response,
+                 float dt, int threads);
     void findNonFinite();
 
     SwarmDesc m_desc;
@@ -161,59 +138,18 @@ private:
     /// element k of the six lies at six different offsets within a page. Six separate vectors
     /// start at the same offset in their pages, and the loop that reads element k of one while
     /// it writes element k of another then waits on false store-to-load dependencies (4K
-    /// aliasing) and evicts its own lines from the L1 sets they share: measured 1.2e9 against
-    /// 1.65e9 particle-steps/s for the integration loop alone at a million particles.
+    /// aliasing) and evicts its own lines from the L1 sets they share, which cost the
+    /// integration loop a quarter of its speed (docs/performance.md).
     std::size_t m_stride = 0;
     /// Cache-line aligned (every 16-float vector of the loop is one line), in huge pages where the
     /// kernel has them (see LargeArrayAllocator).
     LargeArray<float> m_state;
-    std::vector<std::uint8_t> m_clear; ///< exact response only, per particle: clear of every surface after its last step
-    std::vector<std::uint8_t> m_finite; ///< per 512-particle block: all finite after the last step
-    std::vector<std::uint8_t> m_crowded; ///< per block: most of it met a surface last step (see stepBlocks)
-    std::vector<std::uint8_t> m_blowing; ///< per block: steps left with the dryer busy in it (see integrateInDryer)
     std::optional<NonFiniteParticle> m_nonFinite;
-    std::vector<PlaneT<float>> m_clearOf; ///< the surfaces m_clear was computed against
     SwarmPhaseTimes* m_phaseTimes = nullptr; ///< not owned; not copied meaningfully (a copy times into the same)
-
-    /// Which thread stepped which blocks (a tbb::affinity_partitioner, in swarm.cpp), so that the
-    /// next step hands each thread the blocks it had, still in its core's caches: a hint that
-    /// changes no result. A copy of the swarm starts without one.
-    struct ThreadAffinity;
-    struct ThreadAffinityDeleter {
-        void operator()(ThreadAffinity* affinity) const;
-    };
-    struct ThreadAffinitySlot {
-        std::unique_ptr<ThreadAffinity, ThreadAffinityDeleter> held;
-        ThreadAffinitySlot() = default;
-        ThreadAffinitySlot(const ThreadAffinitySlot&) {}
-        ThreadAffinitySlot& operator=(const ThreadAffinitySlot&)
-        {
-            held.reset();
-            return *this;
-        }
-        ThreadAffinitySlot(ThreadAffinitySlot&&) = default;
-        ThreadAffinitySlot& operator=(ThreadAffinitySlot&&) = default;
-        ~ThreadAffinitySlot() = default;
-    };
-    ThreadAffinitySlot m_affinity;
+    /// What a step keeps for the next besides the state (per-block hints, the exact response's
+    /// flags, the threads' blocks): swarm.cpp's. None of it changes a result.
+    struct StepMemory;
+    ClonePtr<StepMemory> m_memory;
 };
-
-/// The acceleration a swarm particle feels at (x, v): one inline expression of the same
-/// kernels the Force classes wrap (the first dryer only: see swarmAccelerationAll), the dryer's
-/// air terms included.
-inline Vec3<float> swarmAcceleration(const SwarmKernelFields& f, const Vec3<float>& x, const Vec3<float>& v)
-{
-    return f.gravity + dragForce(f.dragPerMass, v) + blowDryerForce<DryerAxis::Any, true>(f.dryer, x, v);
-}
-
-/// With every dryer: the loop over dryers keeps the particle loop from vectorising, so it is
-/// used only when a scene has more than one, or air terms.
-inline Vec3<float> swarmAccelerationAll(const SwarmKernelFields& f, const Vec3<float>& x, const Vec3<float>& v)
-{
-    Vec3<float> a = swarmAcceleration(f, x, v);
-    for (std::size_t k = 0; k < f.moreCount; ++k)
-        a += blowDryerForce<DryerAxis::Any, true>(f.more[k], x, v);
-    return a;
-}
 
 } // namespace pba

@@ -22,7 +22,7 @@ std::string table(const std::vector<Row>& rows)
 }
 
 /// This machine's bandwidth at 1e7 sits at one of two levels, about 75 or 135 GB/s, for ten
-/// seconds to a minute at a time, whatever runs (docs/performance.md, "Two levels of memory
+/// seconds to a minute at a time, whatever runs (docs/performance.md, "Memory
 /// bandwidth"); within a level a row's windows spread by a few percent.
 constexpr double kLevelSpread = 1.25;
 

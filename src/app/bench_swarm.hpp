@@ -20,7 +20,7 @@ namespace pba::app::bench {
 /// 10 cm of the floor in any step: few particles a block meet a surface), some in the jet and
 /// the hole. Rested, at 8 s: nearly all of it on the floor (mean height 2 mm, 99.8% within
 /// 1 cm; fountain-1m's state from about 4 s to its end), where the collision code runs for
-/// every particle every step. (Measured at 1e5 particles, 2026-11-26.)
+/// every particle every step.
 struct Phase {
     const char* name;
     double time;

@@ -4,6 +4,7 @@
 
 #include <type_traits>
 
+#include "pba/detail/blow_dryer_kernel.hpp"
 #include "pba/swarm.hpp"
 #include "pba/world.hpp"
 
@@ -40,14 +41,60 @@ void addSpreadOverSurface(const BodyStates& in, std::size_t i, const At& at, Acc
 
 } // namespace
 
+dvec3 blowDryerForce(const BlowDryerField& f, const dvec3& x, const dvec3& v)
+{
+    return blowDryerForce<DryerAxis::Any, true>(BlowDryerKernelT<double>(f), x, v);
+}
+
+dvec3 blowDryerAirVelocity(const BlowDryerField& f, const dvec3& x)
+{
+    if (!(f.airSpeed > 0.0) || f.strength == 0.0)
+        return dvec3(0.0);
+    BlowDryerField pushOnly = f;
+    pushOnly.airSpeed = 0.0;
+    pushOnly.axisPull = 0.0;
+    return blowDryerForce(pushOnly, x) * (f.airSpeed / f.strength);
+}
+
+bool insideBlowDryerCone(const BlowDryerField& f, const dvec3& x)
+{
+    const dvec3 d = x - f.nozzle;
+    const double h = glm::dot(d, f.axis);
+    const double r = glm::length(d - h * f.axis);
+    return h >= 0.0 && h < f.height && r < f.nozzleRadius + (f.topRadius - f.nozzleRadius) * h / f.height;
+}
+
+bool insideBlowDryerShaft(const BlowDryerField& f, const dvec3& x)
+{
+    const auto [d, h, rho, r2, across2] = DryerFrameT<DryerAxis::Any, double>(f.nozzle, f.axis, x);
+    return inBlowDryerShaft(BlowDryerKernelT<double>(f), d.y, across2);
+}
+
+BlowDryer::BlowDryer(const BlowDryerField& field)
+    : m_field(field), m_kernel(std::make_shared<const BlowDryerKernelT<double>>(field))
+{
+}
+
+dvec3 BlowDryer::force(std::size_t, const Body&, const dvec3& x, const dvec3& v) const
+{
+    return blowDryerForce<DryerAxis::Any, true>(*m_kernel, x, v);
+}
+
+void BlowDryer::setField(const BlowDryerField& field)
+{
+    m_field = field;
+    m_kernel = std::make_shared<const BlowDryerKernelT<double>>(field);
+}
+
 void BlowDryer::accumulate(const BodyStates& in, Accumulators& out) const
 {
     // An upward axis (every built-in scene's) picks coordinates instead of projecting on it, as
     // in a swarm's loop: the same values, found with fewer multiplications.
     // Without a pull (axis_pull 0, as in every built-in scene) its arithmetic is left out.
+    const BlowDryerKernelT<double>& kernel = *m_kernel;
     auto each = [&](auto axis, auto pull) {
         const auto at = [&](const dvec3& x, const dvec3& v) {
-            return blowDryerForce<decltype(axis)::value, true, double, decltype(pull)::value>(m_kernel, x, v);
+            return blowDryerForce<decltype(axis)::value, true, double, decltype(pull)::value>(kernel, x, v);
         };
         if (in.poses.empty()) // no body of the world turns: every one is a point
             detail::addToEachMoving(in, out, [&](std::size_t i) { return at(in.states[i].pos, in.states[i].vel); });
@@ -60,7 +107,7 @@ void BlowDryer::accumulate(const BodyStates& in, Accumulators& out) const
     using Up = std::integral_constant<DryerAxis, DryerAxis::Up>;
     using Any = std::integral_constant<DryerAxis, DryerAxis::Any>;
     const bool up = m_field.axis == dvec3(0.0, 1.0, 0.0);
-    if (m_kernel.pull != 0.0)
+    if (kernel.pull != 0.0)
         up ? each(Up{}, std::true_type{}) : each(Any{}, std::true_type{});
     else
         up ? each(Up{}, std::false_type{}) : each(Any{}, std::false_type{});

@@ -8,16 +8,13 @@
 
 namespace pba {
 
-void Body::setMesh(Mesh mesh)
-{
-    m_mesh = std::move(mesh);
-    m_mesh.setPos(glm::vec3(m_pos));
-}
+void Body::setMesh(Mesh mesh) { m_mesh = std::move(mesh); }
 
-void Body::setPos(int i, double p)
+glm::mat4 Body::getTranslate() const
 {
-    m_pos[i] = p;
-    m_mesh.setPos(i, static_cast<float>(p));
+    glm::mat4 t(1.0f);
+    t[3] = glm::vec4(glm::vec3(m_pos), 1.0f);
+    return t;
 }
 
 void Body::setMass(double mass)

@@ -26,8 +26,6 @@ Mesh Mesh::quad()
     return quad;
 }
 
-void Mesh::translate(const glm::vec3& offset) { m_position += offset; }
-
 void Mesh::rotate(float angle, const glm::vec3& axis) { m_rotate = glm::rotate(m_rotate, angle, axis); }
 
 void Mesh::scale(const glm::vec3& factors) { m_scale = glm::scale(m_scale, factors); }

@@ -7,8 +7,8 @@ namespace pba {
 Particle::Particle()
 {
     setMesh(Mesh::quad());
-    scale(glm::vec3(0.1f));
-    rotate(std::numbers::pi_v<float> / 2.0f, glm::vec3(1.0f, 0.0f, 0.0f));
+    getMesh().scale(glm::vec3(0.1f));
+    getMesh().rotate(std::numbers::pi_v<float> / 2.0f, glm::vec3(1.0f, 0.0f, 0.0f));
     setAcc(dvec3(0.0));
     setVel(dvec3(0.0));
     setMass(1.0);

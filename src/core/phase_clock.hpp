@@ -18,10 +18,9 @@ namespace {
 /// On x86-64 it reads the time-stamp counter, converted to nanoseconds with a rate measured
 /// once against steady_clock: an instruction, where steady_clock::now() is a call, which
 /// makes the compiler keep none of a loop's constants in vector registers across it (the
-/// calling convention saves none of them). With steady_clock, four laps a block of 512 made a
-/// timed step of blow-dryer-swarm at 1e6 14-18% slower than the untimed one in flight and 28-29%
-/// at rest, and charged most of it to the short phases (the check, which stores a flag, 0.07-0.08
-/// thread-ms a step); with the counter 4% and 6-15%, the check 0.023 (2026-11-26).
+/// calling convention saves none of them). With steady_clock a timed step was a fifth to a
+/// third slower than an untimed one, most of it charged to the short phases; with the counter
+/// the difference is a few percent.
 class PhaseClock {
 public:
     explicit PhaseClock(SwarmPhaseTimes* times) : m_times(times)

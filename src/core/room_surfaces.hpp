@@ -40,10 +40,9 @@ struct RoomSurfacesT {
     /// is one that needsWholeRule, and so is any that this pass leaves outside. For every
     /// other body it is the whole first pass, the surfaces it leaves out doing nothing to it
     /// (see Swarm's passInRoom). `kHole` false, for a floor without a hole, skips the hole's
-    /// arithmetic (the same result). The grille was in it until a swarm at rest on the floor
-    /// measured 14% faster without (blow-dryer-swarm from t = 8 s at 1e6, the median of six
-    /// alternations, 2026-11-26): the few particles on it (of the 0.1% in the shaft) take the
-    /// whole rule, and the pass's loop has its registers for the floor's constants.
+    /// arithmetic (the same result). The grille is left out too: the few particles on it (of the
+    /// 0.1% in the shaft) take the whole rule, and the pass's loop keeps its registers for the
+    /// floor's constants, which a swarm at rest feels most (docs/performance.md).
     /// It moves x and v along y only and reads no other component of v: passInRoom relies on it.
     template <bool kHole>
     void commonPass(T restitution, T back, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v, int& bounces) const
@@ -79,8 +78,8 @@ struct RoomSurfacesT {
     /// floats rounds to a number of the exact difference's sign (zero only when they are
     /// equal), so the least margin is >= 0 exactly when x is within every bound. Six
     /// comparisons joined by `and` were a chain of masked compares, each waiting for the last,
-    /// the pass's hottest instructions; blow-dryer-swarm at rest ran 10% faster at 1e6 and 8%
-    /// at 1e7 without it (a Zen 5, alternated windows, the same states). The one difference is
+    /// the pass's hottest instructions, and a swarm at rest ran about 10% slower with them
+    /// (docs/performance.md). The one difference is
     /// a NaN coordinate, which the minimum may drop: that particle may stay with the pass, but its
     /// state is already flagged as not finite by the integration's check, which saw it.
     bool needsWholeRule(const Vec3<T>& x) const

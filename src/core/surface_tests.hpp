@@ -127,9 +127,8 @@ inline void setClearanceInBox(const BoxWallsT<T>& box, const T* __restrict x, co
 /// fewer where particles meet the walls outweighs the flags written for nothing in flight.)
 /// The test is the margin's sign, not six comparisons joined by `and` (the same answer: with
 /// gradual underflow x - lo > 0 exactly when x > lo, and a NaN the rule leaves as it is): the
-/// comparisons become a chain of six masked compares, each waiting for the last, and measured
-/// 2.2 times slower than five minima and one compare on a block in L1 (0.25 against 0.12 ns a
-/// particle), a fifth of a swarm's step in flight.
+/// comparisons become a chain of six masked compares, each waiting for the last, twice as slow
+/// as five minima and one compare, a fifth of a swarm's step in flight.
 template <class T>
 inline std::uint32_t markUnclearInBox(const ClearRegionT<T> region, const T* __restrict x, const T* __restrict y,
                                       const T* __restrict z, std::size_t n, std::uint8_t* __restrict unclear)

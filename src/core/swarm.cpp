@@ -9,7 +9,7 @@
 #include <span>
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
+#include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
@@ -69,29 +69,26 @@ bool samePlanes(std::span<const PlaneT<float>> a, std::span<const PlaneT<float>>
     });
 }
 
-/// Below this many particles threads cost more than they save (measured: 3x slower at 1,000).
+/// Below this many particles threads cost more than they save (several times slower at 1,000).
 constexpr std::size_t kParallelThreshold = 32768;
 
 /// A range's step, block by block: integrate (checking the states are finite as they are
 /// written); test which particles are near a surface; the rule for those, gathered from several
-/// blocks when few, over the whole block when many (passInRoom in a World's room). Measured
-/// against the simplest design, one fused pass a block that integrates and runs the rule's first
-/// pass over every surface as selects for every particle (1e6, 2 threads): these phases ran
-/// 1.35e9 particle-steps/s in flight and 1.28e9 landed, the fused pass 0.94-1.07e9 and
-/// 0.82-0.91e9. The selects cost every particle what the surface test costs only those near a
+/// blocks when few, over the whole block when many (passInRoom in a World's room). Against the
+/// simplest design, one fused pass a block that integrates and runs the rule's first pass over
+/// every surface as selects for every particle, these phases are about 1.3-1.4 times as fast in
+/// flight and landed. The selects cost every particle what the surface test costs only those near a
 /// surface, and one long chain a particle (roots, divisions, then the rule) leaves the
 /// out-of-order core less to overlap than two short loops. Fused only where the pass runs over
 /// the whole block anyway (a crowded block) it was no faster either. Loading a block from L1
-/// twice is not what these loops wait on; their instructions are. (docs/performance.md, "The
-/// step's phases against one fused pass".)
+/// twice is not what these loops wait on; their instructions are (docs/performance.md).
 template <Integrator kIntegrator>
-std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const SwarmKernelFields& fields,
+void stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const SwarmKernelFields& fields,
                          float restitution, float dt, std::span<const PlaneT<float>> planes,
                          CollisionResponse response)
 {
     alignas(64) float start[6][kStartRow];
     alignas(64) std::uint8_t hit[kBlock + 64]; // room for listHits' last word
-    std::uint64_t bounces = 0;
     const std::optional<BoxWallsT<float>> box = boxWalls(planes);
     const bool coversAll = box && boxCoversAll(*box, planes);
     const bool exact = response == CollisionResponse::Exact;
@@ -118,22 +115,21 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
         clock.lap(SwarmPhaseTimes::SurfaceTest);
         std::size_t moved = 0;
         if (hits > 0 && exact) {
-            bounces += collideExactly<kIntegrator>(a, b, n, fields, restitution, dt, planes, start, hit);
+            collideExactly<kIntegrator>(a, b, n, fields, restitution, dt, planes, start, hit);
             finite = allFinite(a, b, n);
         } else if (hits > 0 && hits <= kGatherMax && hits < n) {
-            bounces += gathered.add(b, n, hit, start); // checked again when the batch is resolved
+            gathered.add(b, n, hit, start); // checked again when the batch is resolved
         } else if (hits > 0) {
-            bounces += collideHits(a, b, n, restitution, planes, response, room, {start[0], start[1], start[2]},
-                                   finite, moved);
+            collideHits(a, b, n, restitution, planes, response, room, {start[0], start[1], start[2]}, finite,
+                        moved);
         }
         crowded = static_cast<std::uint8_t>(moved > kGatherMax);
         clock.lap(SwarmPhaseTimes::Collide);
         a.finite[b / kBlock] = finite;
         clock.lap(SwarmPhaseTimes::Check);
     }
-    bounces += gathered.collide();
+    gathered.collide();
     clock.lap(SwarmPhaseTimes::Collide);
-    return bounces;
 }
 
 /// Every integrator's loop for a range of particles, compiled three times: for AVX-512
@@ -144,34 +140,57 @@ std::uint64_t stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, co
 /// (Vector width and fused multiply-adds change the last bits of a result from one kind of CPU
 /// to another; on one machine it is the same for every thread count.)
 PBA_FOR_EACH_INSTRUCTION_SET
-std::uint64_t stepSwarmRange(Integrator integrator, const Arrays& a, std::size_t begin, std::size_t end,
+void stepSwarmRange(Integrator integrator, const Arrays& a, std::size_t begin, std::size_t end,
                              const SwarmKernelFields& fields, float restitution, float dt,
                              std::span<const PlaneT<float>> planes, CollisionResponse response)
 {
     switch (integrator) {
     case Integrator::ForwardEuler:
-        return stepBlocks<Integrator::ForwardEuler>(a, begin, end, fields, restitution, dt, planes, response);
+        stepBlocks<Integrator::ForwardEuler>(a, begin, end, fields, restitution, dt, planes, response);
+        return;
     case Integrator::SemiImplicitEuler:
     case Integrator::ImplicitGyroscopic: // a point does not turn
     case Integrator::ImplicitEuler:      // refused by World::addSwarm: no springs to step
     case Integrator::Xpbd:
-        return stepBlocks<Integrator::SemiImplicitEuler>(a, begin, end, fields, restitution, dt, planes,
-                                                         response);
+        stepBlocks<Integrator::SemiImplicitEuler>(a, begin, end, fields, restitution, dt, planes, response);
+        return;
     case Integrator::VelocityVerlet:
     case Integrator::Splitting: // a point does not turn
-        return stepBlocks<Integrator::VelocityVerlet>(a, begin, end, fields, restitution, dt, planes,
-                                                      response);
+        stepBlocks<Integrator::VelocityVerlet>(a, begin, end, fields, restitution, dt, planes, response);
+        return;
     case Integrator::RK4:
-        return stepBlocks<Integrator::RK4>(a, begin, end, fields, restitution, dt, planes, response);
+        stepBlocks<Integrator::RK4>(a, begin, end, fields, restitution, dt, planes, response);
+        return;
     }
-    return 0;
 }
 
 } // namespace
 
+/// What a step keeps for the next besides the state: hints that change no result, and the exact
+/// response's flags of which particles ended clear of every surface.
+struct Swarm::StepMemory {
+    std::vector<std::uint8_t> clear; ///< exact response only, per particle: clear of every surface after its last step
+    std::vector<PlaneT<float>> clearOf; ///< the surfaces `clear` was computed against
+    std::vector<std::uint8_t> finite;  ///< per 512-particle block: all finite after the last step
+    std::vector<std::uint8_t> crowded; ///< per block: most of it met a surface last step (see stepBlocks)
+    std::vector<std::uint8_t> blowing; ///< per block: steps left with the dryer busy in it (see integrateInDryer)
+    /// Which thread stepped which blocks, so that the next step hands each thread the blocks it
+    /// had, still in its core's caches (see stepAll). A copy starts without it.
+    tbb::affinity_partitioner affinity;
+
+    std::unique_ptr<StepMemory> clone() const
+    {
+        auto copy = std::make_unique<StepMemory>();
+        copy->clear = clear, copy->clearOf = clearOf, copy->finite = finite;
+        copy->crowded = crowded, copy->blowing = blowing;
+        return copy;
+    }
+};
+
 Swarm::Swarm(const SwarmDesc& desc)
     : m_desc(desc), m_mass(float(desc.mass)), m_restitution(float(desc.restitution)), m_integrator(desc.integrator),
-      m_count(desc.count), m_stride(strideFor(desc.count)), m_state(6 * m_stride)
+      m_count(desc.count), m_stride(strideFor(desc.count)), m_state(6 * m_stride),
+      m_memory(std::make_unique<StepMemory>())
 {
     for (std::size_t i = 0; i < desc.count; ++i) {
         const dvec3 x = desc.regionMin + (desc.regionMax - desc.regionMin) *
@@ -183,51 +202,61 @@ Swarm::Swarm(const SwarmDesc& desc)
     }
 }
 
+Swarm::Swarm(const Swarm&) = default;
+Swarm::Swarm(Swarm&&) noexcept = default;
+Swarm& Swarm::operator=(const Swarm&) = default;
+Swarm& Swarm::operator=(Swarm&&) noexcept = default;
+Swarm::~Swarm() = default;
+
+std::unique_ptr<Swarm> Swarm::clone() const { return std::make_unique<Swarm>(*this); }
+
 void Swarm::set(std::size_t i, const Vec3<float>& x, const Vec3<float>& v)
 {
     array(0)[i] = x.x, array(1)[i] = x.y, array(2)[i] = x.z;
     array(3)[i] = v.x, array(4)[i] = v.y, array(5)[i] = v.z;
-    if (!m_clear.empty())
-        m_clear[i] = 0; // unknown until the next step tests it
+    if (!m_memory->clear.empty())
+        m_memory->clear[i] = 0; // unknown until the next step tests it
 }
 
-std::uint64_t Swarm::stepRange(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes,
+void Swarm::stepRange(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes,
                                CollisionResponse response, float dt, std::size_t begin, std::size_t end)
 {
-    const Arrays a{array(0),       array(1),        array(2),         array(3),    array(4), array(5),
-                   m_clear.data(), m_finite.data(), m_crowded.data(), m_blowing.data(), m_phaseTimes};
-    return stepSwarmRange(m_integrator, a, begin, end, fields, m_restitution, dt, planes, response);
+    StepMemory& m = *m_memory;
+    const Arrays a{array(0),        array(1),        array(2),         array(3),          array(4), array(5),
+                   m.clear.data(), m.finite.data(), m.crowded.data(), m.blowing.data(), m_phaseTimes};
+    stepSwarmRange(m_integrator, a, begin, end, fields, m_restitution, dt, planes, response);
 }
 
-std::uint64_t Swarm::step(const SwarmFields& swarmFields, std::span<const PlaneT<float>> planes,
-                          CollisionResponse response, float dt, int threads)
+void Swarm::step(const SwarmFields& swarmFields, std::span<const PlaneT<float>> planes, CollisionResponse response,
+                 float dt, int threads)
 {
     const SwarmKernelFields fields(swarmFields, 1.0f / m_mass); // once a step, not once a task
     const std::size_t n = size();
     // The remembered "clear of every surface" flags hold only for the surfaces they were
     // computed against: new surfaces (a moved hole, another room) mean testing everything again.
-    const bool same = samePlanes(planes, m_clearOf);
+    StepMemory& m = *m_memory;
+    const bool same = samePlanes(planes, m.clearOf);
     if (response != CollisionResponse::Exact) {
         // Reflect and clamp look at where a step ends only: no flags to keep (or to move).
-        m_clear = {};
-        m_clearOf.clear();
-    } else if (!same || m_clear.size() != n) {
-        m_clear.assign(n, std::uint8_t(0));
-        m_clearOf.assign(planes.begin(), planes.end());
+        m.clear = {};
+        m.clearOf.clear();
+    } else if (!same || m.clear.size() != n) {
+        m.clear.assign(n, std::uint8_t(0));
+        m.clearOf.assign(planes.begin(), planes.end());
     }
-    m_finite.resize((n + kBlock - 1) / kBlock);
-    m_crowded.resize(m_finite.size()); // hints only: a stale one changes no result
-    m_blowing.resize(m_finite.size());
-    const std::uint64_t bounces = stepAll(fields, planes, response, dt, threads);
+    m.finite.resize((n + kBlock - 1) / kBlock);
+    m.crowded.resize(m.finite.size()); // hints only: a stale one changes no result
+    m.blowing.resize(m.finite.size());
+    stepAll(fields, planes, response, dt, threads);
     findNonFinite();
-    return bounces;
 }
 
 void Swarm::findNonFinite()
 {
     m_nonFinite.reset();
-    for (std::size_t block = 0; block < m_finite.size(); ++block) {
-        if (m_finite[block])
+    const std::vector<std::uint8_t>& finite = m_memory->finite;
+    for (std::size_t block = 0; block < finite.size(); ++block) {
+        if (finite[block])
             continue;
         for (std::size_t i = block * kBlock; i < std::min(m_count, (block + 1) * kBlock); ++i) {
             const Vec3<float> x = position(i), v = velocity(i);
@@ -241,38 +270,24 @@ void Swarm::findNonFinite()
     }
 }
 
-/// Measured against TBB's default partitioner, which hands blocks to whichever thread is free
-/// (blow-dryer-swarm, 2 threads, alternated windows, two sittings, 2026-11-27): at 1e6 2-2.5%
-/// faster in flight, 2.7% landed and 2-4% at rest, at 1e7 5.4% at rest in both and the same in
-/// flight. A static split (each thread a fixed half) was 5-9% slower: a thread that the machine
-/// delays holds up the step.
-struct Swarm::ThreadAffinity {
-    tbb::affinity_partitioner partitioner;
-};
-
-void Swarm::ThreadAffinityDeleter::operator()(ThreadAffinity* affinity) const
-{
-    delete affinity;
-}
-
-std::uint64_t Swarm::stepAll(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes,
-                             CollisionResponse response, float dt, int threads)
+/// Each thread takes the same blocks as in the last step, so they are still in its caches,
+/// where TBB's default partitioner hands blocks to whichever thread is free. A static split
+/// (each thread a fixed half) was slower: a thread that the machine delays holds up the step.
+void Swarm::stepAll(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes, CollisionResponse response,
+                    float dt, int threads)
 {
     const std::size_t n = size();
     if (threads == 1 || n < kParallelThreshold)
         return stepRange(fields, planes, response, dt, 0, n);
     // Whole blocks per task; a particle's result does not depend on which thread steps it.
     const std::size_t blocks = (n + kBlock - 1) / kBlock;
-    if (!m_affinity.held)
-        m_affinity.held.reset(new ThreadAffinity);
-    tbb::affinity_partitioner& affinity = m_affinity.held->partitioner;
     auto body = [&] {
-        return tbb::parallel_reduce(
-            tbb::blocked_range<std::size_t>(0, blocks, 16), std::uint64_t(0),
-            [&](const tbb::blocked_range<std::size_t>& r, std::uint64_t sum) {
-                return sum + stepRange(fields, planes, response, dt, r.begin() * kBlock, std::min(n, r.end() * kBlock));
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(0, blocks, 16),
+            [&](const tbb::blocked_range<std::size_t>& r) {
+                stepRange(fields, planes, response, dt, r.begin() * kBlock, std::min(n, r.end() * kBlock));
             },
-            std::plus<>(), affinity);
+            m_memory->affinity);
     };
     if (threads <= 0 || threads >= tbb::this_task_arena::max_concurrency())
         return body(); // all cores: the default arena, not a new one every step

@@ -11,6 +11,7 @@
 #include <span>
 #include <type_traits>
 
+#include "pba/detail/swarm_kernel.hpp"
 #include "pba/swarm.hpp"
 #include "room_surfaces.hpp"
 #include "surface_tests.hpp"
@@ -124,10 +125,10 @@ struct PassResult {
 /// whole rule (wholeRule). A particle clear of every surface is left exactly as it was.
 ///
 /// One loop where there were four (which planes were crossed, a pass a plane, which particles
-/// were still outside, the fold): fountain-1m at rest 5-10% faster, the same states. The shaft's
+/// were still outside, the fold), faster at rest with the same states. The shaft's
 /// wall is left to the whole rule: the dryer blows particles out of the shaft within a tenth of
 /// a second, a few hundred a step of a million, and its square root and two divisions in this
-/// loop for every particle cost 11-19% (docs/performance.md).
+/// loop for every particle cost more than a tenth of the step (docs/performance.md).
 template <bool kHole>
 PassResult passInRoom(const float* __restrict px, float* __restrict py, const float* __restrict pz,
                       float* __restrict vy, const float* __restrict s0, const float* __restrict s1,
@@ -160,8 +161,7 @@ PassResult passInRoom(const float* __restrict px, float* __restrict py, const fl
 
 /// The first index from k on, below n, whose flag in `which` is set; n if there is none. Sixteen
 /// flags at a time: a collision pass at rest marks one particle in a block or none, and a
-/// branch on each of the block's 512 flags was most of the whole rule's time (7% of a step of
-/// blow-dryer-swarm from t = 8 s, 2026-11-26).
+/// branch on each of the block's 512 flags was most of the whole rule's time.
 std::size_t nextMarked(const std::uint32_t* which, std::size_t k, std::size_t n)
 {
     for (; k + 16 <= n; k += 16) {
@@ -229,7 +229,7 @@ std::size_t nextMarked(const std::uint32_t* which, std::size_t k, std::size_t n)
 /// over. Returns the bounces; clears `finite` if a state it wrote is not; sets `moved` to how
 /// many particles the pass bounced or left to the whole rule (all n among other planes): what
 /// keeps a block crowded, a hint that changes no result (from the pass's counts: counting the
-/// particles it moved, four instructions a vector more, was 2-5% slower at rest).
+/// particles it moved, four instructions a vector more, was slower at rest).
 PBA_FOR_EACH_INSTRUCTION_SET
 std::uint64_t collideHits(const Arrays& a, std::size_t b, std::size_t n, float restitution,
                           std::span<const PlaneT<float>> planes, CollisionResponse response,
@@ -259,8 +259,7 @@ std::uint64_t collideHits(const Arrays& a, std::size_t b, std::size_t n, float r
 /// lands: a handful of the 512): collideHits over just those particles, gathered from
 /// several blocks into a batch of their own and scattered back. Over one block's handful,
 /// padded to a vector, the rule's pass costs as much as listing and gathering them; over the
-/// whole block it cost more (blow-dryer-swarm from t = 2 s at 1e6 on 2 threads: 1.04-1.08e9
-/// particle-steps/s without the gathering, 1.24-1.27e9 with it; the same in flight). A
+/// whole block it cost a sixth of the landed phase's step (docs/performance.md). A
 /// particle clear of every surface is left exactly as it was by every part of the rule, and
 /// the rule treats each particle by itself, so the result is the same bit for bit (tested). The
 /// batch is filled up to whole vectors with copies of one such particle, so its loops have no

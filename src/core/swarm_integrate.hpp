@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "pba/detail/swarm_kernel.hpp"
 #include "pba/swarm.hpp"
 #include "swarm_block.hpp"
 
@@ -100,8 +101,8 @@ bool integrateAwayBlock(float* __restrict px, float* __restrict py, float* __res
             // taken once, at the start, for every stage. RK4 no longer forms its three stage
             // points nor their zero terms, which nothing else reads (a step whose stage point
             // overflows ends beyond the largest float either way, and is reported): RK4 up to
-            // 12% faster landed (docs/performance.md). Captured as floats: a closure holding a
-            // Vec3 left the loop scalar ("more than one data ref"), 4 times slower.
+            // about a tenth faster landed (docs/performance.md). Captured as floats: a closure
+            // holding a Vec3 left the loop scalar ("more than one data ref").
             const Vec3<float> a0 = away(x0, v0);
             const float ax = a0.x, ay = a0.y, az = a0.z;
             integrateAs<kIntegrator>(x, v, dt, [ax, ay, az](const Vec3<float>&, const Vec3<float>&) {
@@ -140,9 +141,9 @@ bool integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, flo
 /// by value, so the loop that calls it needs no alias checks: gravity, drag with `kDrag`, and
 /// the dryer's term push(x). Without drag (`kDrag` false, every built-in swarm scene) the drag
 /// is left out rather than multiplied by zero: the same result for every finite velocity, and
-/// the loop measured 14% faster (three multiply-adds fewer, and registers to spare for the
-/// dryer's constants). One closure type for both: a closure without the unused `drag` measured
-/// 1-2% slower in every phase (GCC 12 scheduled the loop otherwise).
+/// the loop is faster (three multiply-adds fewer, and registers to spare for the dryer's
+/// constants). One closure type for both: a closure without the unused `drag` was no faster
+/// (GCC scheduled the loop otherwise).
 /// Gravity's -0 components are made +0 first (g + 0, once), for an upward dryer's force, which
 /// may have -0 components: it adds nothing after its products (dryerForceFrom), where it added a
 /// zero that made each -0 +0. For any g and f, (g + 0) + f is g + (f + 0) bit for bit, so the
@@ -181,8 +182,7 @@ auto oneDryer(const SwarmKernelFields& fields)
 /// differently from the loop with a dryer (it did, for semi-implicit Euler: every particle's
 /// last bits). The loop away from the dryer computed the dryer's own zero instead (its offset
 /// from the nozzle, its height, their products with zero: ten instructions an evaluation, two a
-/// step for velocity Verlet and four for RK4), and measured slower: RK4's 10% in an L1 harness
-/// (docs/performance.md, 2026-11-27).
+/// step for velocity Verlet and four for RK4), and was slower (docs/performance.md).
 template <bool kDrag>
 auto withoutDryer(const SwarmKernelFields& fields)
 {
@@ -259,7 +259,7 @@ bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float
 /// once and keep the one loop: every split tried for them (by block, by vector of 16 or 32) cost
 /// more than the roots it skipped. A block that had more than kGatherMax particles to step again
 /// is busy for the next 64 steps: gathering more than that, as in flight, stalls on the
-/// scatter. (The measurements: docs/performance.md, "The split away from the dryer".)
+/// scatter. (The measurements: docs/performance.md, the design-choice table.)
 template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag>
 bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
                       CollisionResponse response, const SwarmKernelFields& fields, const BlowDryerReach& reach)

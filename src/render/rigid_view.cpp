@@ -82,7 +82,7 @@ void addRigidBody(const World& world, std::size_t i, double alpha, const ViewSet
 {
     const Mesh& mesh = world.body(i).getMesh();
     const DrawnPose pose = drawnPose(world, i, alpha, settings.interpolate);
-    const glm::mat4 local = mesh.getRotate() * mesh.getScale(); // the mesh in the body's frame
+    const glm::mat4 local = mesh.getLocal(); // the mesh in the body's frame
     const glm::mat3 localNormals = glm::transpose(glm::inverse(glm::mat3(local)));
     const glm::mat3 turn = glm::mat3_cast(pose.turn);
     const auto& vertices = mesh.vertices();

@@ -6,6 +6,7 @@
 
 #include "fabric_readers.hpp"
 #include "one_line.hpp"
+#include "pba/detail/swarm_kernel.hpp"
 #include "pba/swarm.hpp"
 #include "pba/scene/scene.hpp"
 

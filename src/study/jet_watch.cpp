@@ -92,9 +92,7 @@ bool mayBeInCone(const BlowDryerKernelT<float>& kernel, float margin, const Vec3
 /// alone, whether it holds one, and the list of the particles under the hole is made again from
 /// those chunks, each carrying its count of steps from the last list (both in index order), a
 /// segment of the swarm at a time on all cores. (A counter per particle, read and written every
-/// step beside all three coordinates, made this watch 40% of `pba sim fountain-1m`'s time. With
-/// both of its passes on one core it was still half: 3.8-4.3 s against 2.0-2.1 s without the
-/// watch; on both cores, with the cone's count tested in floats first, 2.5-2.6 s, 2026-11-28.)
+/// step beside all three coordinates, made this watch 40% of `pba sim fountain-1m`'s time.)
 void JetWatch::countStepsInShaft(const World& world)
 {
     const BlowDryerKernelT<float> kernel(m_field->as<float>());

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pba/blow_dryer.hpp"
+#include "pba/detail/blow_dryer_kernel.hpp"
 #include "pba/world.hpp"
 
 namespace pba::study {

@@ -24,23 +24,31 @@ TEST(Particle, DefaultsFollowThePractical)
     EXPECT_EQ(p.getMesh().indices().size(), 6u);
     // Every particle's quad is one geometry, not a copy each (a cloth has thousands).
     EXPECT_EQ(Particle().getMesh().vertices().data(), p.getMesh().vertices().data());
-    EXPECT_FLOAT_EQ(p.getScale()[0][0], 0.1f);
-    EXPECT_FLOAT_EQ(p.getScale()[1][1], 0.1f);
+    EXPECT_FLOAT_EQ(p.getMesh().getScale()[0][0], 0.1f);
+    EXPECT_FLOAT_EQ(p.getMesh().getScale()[1][1], 0.1f);
     // Rotated by pi/2 about x: the quad's +y axis maps to +z, so it lies in the xz plane.
-    const glm::vec4 y = p.getRotate() * glm::vec4(0, 1, 0, 0);
+    const glm::vec4 y = p.getMesh().getRotate() * glm::vec4(0, 1, 0, 0);
     EXPECT_NEAR(y.z, 1.0f, 1e-6f);
     EXPECT_NEAR(y.y, 0.0f, 1e-6f);
 }
 
-TEST(Body, SetPosKeepsTheMeshTranslationInSync)
+// One truth: the body's position says where its mesh is drawn; the mesh has none of its own.
+TEST(Body, TheMeshIsDrawnWhereTheBodyIs)
 {
     Particle p;
     p.setPos(dvec3(1.5, -2.0, 3.25));
     EXPECT_EQ(p.getPos(), dvec3(1.5, -2.0, 3.25));
     EXPECT_EQ(glm::vec3(p.getTranslate()[3]), glm::vec3(1.5f, -2.0f, 3.25f));
     p.setPos(1, 7.0);
-    EXPECT_EQ(p.getPos().y, 7.0);
+    EXPECT_EQ(p.getPos(), dvec3(1.5, 7.0, 3.25));
     EXPECT_EQ(p.getTranslate()[3][1], 7.0f);
+    p.setState({dvec3(0.5, 1.0, -1.0), dvec3(0.0)});
+    // The quad's corner (0.5, 0.5, 0) in its own frame: scaled by 0.1, turned into the xz plane
+    // (+y to +z), then drawn at the body's position.
+    const glm::vec4 corner = p.getModel() * glm::vec4(0.5f, 0.5f, 0.0f, 1.0f);
+    EXPECT_NEAR(corner.x, 0.5f + 0.05f, 1e-6f);
+    EXPECT_NEAR(corner.y, 1.0f, 1e-6f);
+    EXPECT_NEAR(corner.z, -1.0f + 0.05f, 1e-6f);
 }
 
 TEST(Body, AccessorsReturnReferencesAndSetSingleComponents)
@@ -55,16 +63,32 @@ TEST(Body, AccessorsReturnReferencesAndSetSingleComponents)
     EXPECT_EQ(p.getAcc(), dvec3(0, 1, 0));
 }
 
-TEST(Body, TransformationsDelegateToTheMesh)
+// translate moves the body, and its mesh with it: the state is what moves.
+TEST(Body, TranslateMovesTheBodyAndWhereItsMeshIsDrawn)
 {
     Particle p;
-    p.translate(glm::vec3(1, 0, 0));
-    EXPECT_FLOAT_EQ(p.getTranslate()[3][0], 1.0f);
-    p.scale(glm::vec3(2.0f));
-    EXPECT_FLOAT_EQ(p.getScale()[0][0], 0.2f);
-    const glm::mat4 before = p.getRotate();
-    p.rotate(std::numbers::pi_v<float>, glm::vec3(0, 1, 0));
-    EXPECT_NE(p.getRotate(), before);
+    p.setPos(dvec3(1.0, 2.0, 3.0));
+    p.translate(dvec3(1.0, 0.0, -0.5));
+    EXPECT_EQ(p.getPos(), dvec3(2.0, 2.0, 2.5));
+    EXPECT_EQ(p.getState().pos, dvec3(2.0, 2.0, 2.5));
+    EXPECT_EQ(glm::vec3(p.getModel()[3]), glm::vec3(2.0f, 2.0f, 2.5f));
+}
+
+// Turning or scaling the mesh changes how the body is drawn about its centre, never where the
+// body is or how it moves.
+TEST(Body, TurningOrScalingTheMeshMovesNothing)
+{
+    Particle p;
+    p.setPos(dvec3(1.0, 2.0, 3.0));
+    p.setVel(dvec3(0.0, 1.0, 0.0));
+    const glm::mat4 before = p.getMesh().getRotate();
+    p.getMesh().rotate(std::numbers::pi_v<float>, glm::vec3(0, 1, 0));
+    p.getMesh().scale(glm::vec3(2.0f));
+    EXPECT_NE(p.getMesh().getRotate(), before);
+    EXPECT_FLOAT_EQ(p.getMesh().getScale()[0][0], 0.2f);
+    EXPECT_EQ(p.getPos(), dvec3(1.0, 2.0, 3.0));
+    EXPECT_EQ(p.getVel(), dvec3(0.0, 1.0, 0.0));
+    EXPECT_EQ(glm::vec3(p.getModel()[3]), glm::vec3(1.0f, 2.0f, 3.0f)) << "the mesh's centre stays on the body";
 }
 
 TEST(Body, RejectsBadMassAndRestitutionNamingTheValue)

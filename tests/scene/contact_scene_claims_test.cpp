@@ -12,6 +12,7 @@
 #include "pba/scene/scene.hpp"
 #include "pba/world.hpp"
 #include "support/box_overlap.hpp"
+#include "support/scene_claim.hpp"
 
 using namespace pba;
 
@@ -70,7 +71,7 @@ double deepestBoxOverlap(const World& world)
 
 } // namespace
 
-TEST(ContactSceneClaims, TheDiceTumbleIntoAPileAndRestNoneInsideAnother)
+SCENE_CLAIM(ContactSceneClaims, TheDiceTumbleIntoAPileAndRestNoneInsideAnother, "dice")
 {
     Scene scene = loadScene("dice");
     World& world = scene.world;
@@ -85,7 +86,7 @@ TEST(ContactSceneClaims, TheDiceTumbleIntoAPileAndRestNoneInsideAnother)
         EXPECT_TRUE(world.isAsleep(i)) << world.body(i).getName() << " is still moving at 4 s";
 }
 
-TEST(ContactSceneClaims, TheTowerOfTenStandsAMinuteItsTopSlabStill)
+SCENE_CLAIM(ContactSceneClaims, TheTowerOfTenStandsAMinuteItsTopSlabStill, "box-stack")
 {
     Scene scene = loadScene("box-stack");
     const std::size_t top = bodyNamed(scene.world, "slab9");
@@ -94,7 +95,7 @@ TEST(ContactSceneClaims, TheTowerOfTenStandsAMinuteItsTopSlabStill)
     EXPECT_LT(glm::length(scene.world.body(top).getPos() - start), 1e-3);
 }
 
-TEST(ContactSceneClaims, ThePyramidOf210StandsEveryBoxWithinFiveMillimetres)
+SCENE_CLAIM(ContactSceneClaims, ThePyramidOf210StandsEveryBoxWithinFiveMillimetres, "pyramid")
 {
     Scene scene = loadScene("pyramid");
     ASSERT_EQ(scene.world.bodyCount(), 210u);
@@ -108,7 +109,7 @@ TEST(ContactSceneClaims, ThePyramidOf210StandsEveryBoxWithinFiveMillimetres)
     EXPECT_LT(worst, 5e-3);
 }
 
-TEST(ContactSceneClaims, TwentyDominoesFallOneAfterAnother)
+SCENE_CLAIM(ContactSceneClaims, TwentyDominoesFallOneAfterAnother, "dominoes")
 {
     Scene scene = loadScene("dominoes");
     const std::size_t n = scene.world.bodyCount();
@@ -130,7 +131,7 @@ TEST(ContactSceneClaims, TwentyDominoesFallOneAfterAnother)
     }
 }
 
-TEST(ContactSceneClaims, FrictionHoldsTheBoxOnTheGentleRampAndLetsTheSteepOneSlide)
+SCENE_CLAIM(ContactSceneClaims, FrictionHoldsTheBoxOnTheGentleRampAndLetsTheSteepOneSlide, "incline")
 {
     Scene scene = loadScene("incline");
     World& world = scene.world;
@@ -150,7 +151,7 @@ TEST(ContactSceneClaims, FrictionHoldsTheBoxOnTheGentleRampAndLetsTheSteepOneSli
     EXPECT_LT(glm::length(world.body(gentle).getPos() - still), 1e-4);
 }
 
-TEST(ContactSceneClaims, NewtonsCradlePassesTheBlowToTheLastBall)
+SCENE_CLAIM(ContactSceneClaims, NewtonsCradlePassesTheBlowToTheLastBall, "newtons-cradle")
 {
     Scene scene = loadScene("newtons-cradle");
     World& world = scene.world;
@@ -180,7 +181,7 @@ TEST(ContactSceneClaims, NewtonsCradlePassesTheBlowToTheLastBall)
     EXPECT_NEAR(totalKinetic(world), energyBefore, 0.01 * energyBefore);
 }
 
-TEST(ContactSceneClaims, ThePendulumSwingsWithTheEllipticIntegralsPeriodItsRodHolding)
+SCENE_CLAIM(ContactSceneClaims, ThePendulumSwingsWithTheEllipticIntegralsPeriodItsRodHolding, "pendulum")
 {
     Scene scene = loadScene("pendulum");
     World& world = scene.world;
@@ -210,7 +211,7 @@ TEST(ContactSceneClaims, ThePendulumSwingsWithTheEllipticIntegralsPeriodItsRodHo
     EXPECT_LT(worst, 1e-3);
 }
 
-TEST(ContactSceneClaims, TheDoublePendulumsRodsHoldAndItsEnergyNeverGrows)
+SCENE_CLAIM(ContactSceneClaims, TheDoublePendulumsRodsHoldAndItsEnergyNeverGrows, "double-pendulum")
 {
     Scene scene = loadScene("double-pendulum");
     World& world = scene.world;
@@ -226,7 +227,7 @@ TEST(ContactSceneClaims, TheDoublePendulumsRodsHoldAndItsEnergyNeverGrows)
     EXPECT_LT(worst, 1e-3);
 }
 
-TEST(ContactSceneClaims, TheChainsEnergyNeverGrows)
+SCENE_CLAIM(ContactSceneClaims, TheChainsEnergyNeverGrows, "chain")
 {
     Scene scene = loadScene("chain");
     World& world = scene.world;
@@ -240,7 +241,7 @@ TEST(ContactSceneClaims, TheChainsEnergyNeverGrows)
     }
 }
 
-TEST(ContactSceneClaims, TheWreckingBallKnocksTheWallDown)
+SCENE_CLAIM(ContactSceneClaims, TheWreckingBallKnocksTheWallDown, "wrecking-ball")
 {
     Scene scene = loadScene("wrecking-ball");
     World& world = scene.world;

@@ -12,6 +12,7 @@
 #include "pba/forces.hpp"
 #include "pba/spring_network.hpp"
 #include "pba/scene/scene.hpp"
+#include "support/scene_claim.hpp"
 
 using namespace pba;
 
@@ -154,7 +155,7 @@ TEST(Fabric, BuiltInScenesLoadAndRunFinite)
 
 // The built-in rope's claim: "it swings down, the particles at its free end strike the floor ...
 // and it ends hanging below its pin with its last particles on the floor, having lost energy".
-TEST(Fabric, RopeSwingsDownToTheFloorAndHangsBelowItsPin)
+SCENE_CLAIM(Fabric, RopeSwingsDownToTheFloorAndHangsBelowItsPin, "rope")
 {
     Scene scene = loadScene("rope");
     World& world = scene.world;
@@ -176,7 +177,7 @@ TEST(Fabric, RopeSwingsDownToTheFloorAndHangsBelowItsPin)
 // room", and the scene's description: over the built-in scene's run, the kinetic energy after the fall dies away to a small
 // fraction of its peak, each second's mean below the one before from the third second on, and
 // every particle stays inside the room (a point on its walls counts as inside) at every step.
-TEST(Fabric, PinnedClothSettlesAndNeverLeavesTheRoom)
+SCENE_CLAIM(Fabric, PinnedClothSettlesAndNeverLeavesTheRoom, "cloth")
 {
     Scene scene = loadScene("cloth");
     World& world = scene.world;

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "pba/scene/scene.hpp"
+#include "pba/detail/swarm_kernel.hpp"
 #include "pba/world.hpp"
 #include "support/fast_swarm.hpp"
 
