@@ -1,10 +1,11 @@
 # `cmake --install` puts the core's headers, library and a CMake package in place, so another
 # project can `find_package(pba)` and link `pba::core`, and, where the build has it, the scene
 # loader `pba::scene` with its header pba/scene/scene.hpp (installed only with its library).
-# pba/detail/ is not installed: its templates are what pba's own libraries and tests inline, and
-# no installed header includes them.
+# Of pba/detail/ only what an installed header includes is installed (rotation.hpp's rigid step,
+# a template a user instantiates); the rest are what pba's own libraries and tests inline.
 include(CMakePackageConfigHelpers)
 install(DIRECTORY include/pba DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} PATTERN scene EXCLUDE PATTERN detail EXCLUDE)
+install(FILES include/pba/detail/rigid_step.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/pba/detail)
 set(PBA_INSTALLED_TARGETS pba_core)
 set(PBA_WITH_SCENE OFF)
 if(TARGET pba_scene)
