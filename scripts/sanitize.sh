@@ -18,8 +18,9 @@ gl='^(PbaRender|PbaView|HeadlessRender|Security|Outputs)\.'
 # The install test links an uninstrumented consumer against these instrumented libraries: it
 # tests packaging, which the plain build already does. The simulated hours (tunnelling, soak)
 # run the same code as the short tests 10^4 times over; unvectorised and checked at every load
-# they would take most of CI's half hour, so they run in the plain build only.
-long='^(Tunnelling|Soak|Pile)\.'
+# they would take most of CI's half hour, so they run in the plain build only; so do the rigid
+# scenes' claims and the thousand-dice piles, whose contact code the rigid unit tests run here.
+long='^(Tunnelling|Soak|Pile|ContactSceneClaims)\.|^RigidWorld\.ManyDice'
 ctest --test-dir build-asan --output-on-failure -j "$jobs" -E "$gl|^install\.|$long"
 # The OpenGL tests (and the output tests, whose pba children render) run with address and UB
 # checks but without leak checks: llvmpipe's JIT-compiled
