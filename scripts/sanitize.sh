@@ -14,7 +14,7 @@ export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1:strict_stri
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 # Mesa's driver (llvmpipe) and libEGL keep caches alive until exit; those are not ours.
 export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
-gl='^(PbaRender|PbaView|HeadlessRender|Security|Outputs)\.'
+gl='^(PbaRender|PbaView|HeadlessRender|RenderClock|Security|Outputs)\.'
 # The install test links an uninstrumented consumer against these instrumented libraries: it
 # tests packaging, which the plain build already does. The simulated hours (tunnelling, soak)
 # run the same code as the short tests 10^4 times over; unvectorised and checked at every load

@@ -11,11 +11,17 @@ namespace {
 
 using Cell = BroadPhase::Cell;
 
-Cell cellOf(const dvec3& p, double size)
+/// A coordinate's cell, held within 2^31 cells of the origin: a body blowing up (which the
+/// step's own checks report) may reach 1e19 m or NaN, which no integer holds, and the hash's
+/// products of a held index cannot overflow.
+std::int64_t cellIndex(double v, double size)
 {
-    return {std::int64_t(std::floor(p.x / size)), std::int64_t(std::floor(p.y / size)),
-            std::int64_t(std::floor(p.z / size))};
+    constexpr double kFar = 2147483648.0;
+    const double c = std::floor(v / size);
+    return std::int64_t(c > -kFar ? (c < kFar ? c : kFar) : -kFar); // NaN too goes to -kFar
 }
+
+Cell cellOf(const dvec3& p, double size) { return {cellIndex(p.x, size), cellIndex(p.y, size), cellIndex(p.z, size)}; }
 
 std::uint32_t hashOf(const Cell& c, std::uint32_t mask)
 {
