@@ -146,11 +146,29 @@ void ContactSolver::prepare(std::span<Contact> contacts, std::span<const std::ui
 
 bool ContactSolver::collide()
 {
+    // A contact that found no arrival finds none again until one of its bodies is struck: each
+    // body counts its blows, and a contact is looked at again only when the counts it last saw
+    // have changed (the sweeps' results are those of looking at every contact every sweep).
+    if (m_blows.size() < m_bodies.size())
+        m_blows.resize(m_bodies.size());
+    for (const Constraint& c : m_constraints)
+        m_blows[c.a] = m_blows[c.b] = 0;
+    m_seen.assign(m_constraints.size(), ~std::uint64_t(0));
     bool any = false;
     for (int sweep = 0; sweep < kMaxCollisionSweeps; ++sweep) {
         bool changed = false;
-        for (const Constraint& c : m_constraints)
-            changed = collideOne(c) || changed;
+        for (std::size_t k = 0; k < m_constraints.size(); ++k) {
+            const Constraint& c = m_constraints[k];
+            const std::uint64_t blows = (std::uint64_t(m_blows[c.a]) << 32) | m_blows[c.b];
+            if (blows == m_seen[k])
+                continue;
+            m_seen[k] = blows;
+            if (collideOne(c)) {
+                m_blows[c.a] += m_bodies[c.a].isStatic() ? 0 : 1; // a static body never changes
+                m_blows[c.b] += m_bodies[c.b].isStatic() ? 0 : 1;
+                changed = true;
+            }
+        }
         if (!changed)
             break;
         any = true;
@@ -159,8 +177,8 @@ bool ContactSolver::collide()
 }
 
 ContactSolver::SurfacePoints ContactSolver::surfacePoints(double radiusA, double radiusB, const ContactPoint& p,
-                                                         const dvec3& xa, const dquat& qa, const dvec3& xb,
-                                                         const dquat& qb)
+                                                         const dvec3& xa, const dmat3& ra, const dvec3& xb,
+                                                         const dmat3& rb)
 {
     SurfacePoints s;
     s.n = p.normal;
@@ -170,8 +188,8 @@ ContactSolver::SurfacePoints ContactSolver::surfacePoints(double radiusA, double
         if (const double len = glm::length(d); len > 0.0)
             s.n = d / len;
     }
-    s.a = radiusA > 0.0 ? xa + radiusA * s.n : xa + glm::mat3_cast(qa) * p.anchorA;
-    s.b = radiusB > 0.0 ? xb - radiusB * s.n : xb + glm::mat3_cast(qb) * p.anchorB;
+    s.a = radiusA > 0.0 ? xa + radiusA * s.n : xa + ra * p.anchorA;
+    s.b = radiusB > 0.0 ? xb - radiusB * s.n : xb + rb * p.anchorB;
     return s;
 }
 
@@ -215,7 +233,8 @@ double ContactSolver::refineArrival(const Constraint& c, int point, double tPrev
     for (int k = 0; k < 8; ++k) {
         const double f = tau / dt;
         const dvec3 xa = a.freePosition(f, dt), xb = b.freePosition(f, dt);
-        const SurfacePoints sp = surfacePoints(c.radiusA, c.radiusB, p, xa, a.freeOrientation(f), xb, b.freeOrientation(f));
+        const SurfacePoints sp = surfacePoints(c.radiusA, c.radiusB, p, xa, glm::mat3_cast(a.freeOrientation(f)), xb,
+                                               glm::mat3_cast(b.freeOrientation(f)));
         const double gap = glm::dot(sp.b - sp.a, sp.n);
         const dvec3 u = b.velocityAt(f) + glm::cross(b.spinAt(f), sp.b - xb) - a.velocityAt(f) -
                         glm::cross(a.spinAt(f), sp.a - xa);
@@ -267,7 +286,7 @@ bool ContactSolver::collideOne(const Constraint& c)
     // nothing, and the energy by exactly what restitution and friction take.
     const double f = tau / dt;
     const dvec3 xa = a.freePosition(f, dt), xb = b.freePosition(f, dt);
-    const dquat qa = a.freeOrientation(f), qb = b.freeOrientation(f);
+    const dmat3 qa = glm::mat3_cast(a.freeOrientation(f)), qb = glm::mat3_cast(b.freeOrientation(f));
     const dvec3 va = a.velocityAt(f), wa = a.spinAt(f), vb = b.velocityAt(f), wb = b.spinAt(f);
     ImpactRow rows[kMaxPoints];
     int count = 0;
@@ -437,24 +456,25 @@ void ContactSolver::solvePositions(std::span<const Contact> contacts)
     for (const Contact& contact : contacts) {
         SolverBody& a = m_bodies[contact.a];
         SolverBody& b = m_bodies[contact.b];
+        const double k = a.inverseMass + b.inverseMass;
+        if (k == 0.0)
+            continue;
+        // The pass moves the poses without turning them: one rotation each for all the points.
+        const dmat3 ra = glm::mat3_cast(a.endOrientation), rb = glm::mat3_cast(b.endOrientation);
         for (int i = 0; i < contact.count; ++i) {
             const ContactPoint& p = contact.points[i];
             // The normal is held as it was found (as Box2D holds it through its substeps), but
             // for two spheres: the bodies turn little within a sweep.
-            const SurfacePoints sp = surfacePoints(contact.radiusA, contact.radiusB, p, a.endPosition, a.endOrientation,
-                                                   b.endPosition, b.endOrientation);
-            const dvec3 &pa = sp.a, &pb = sp.b, &n = sp.n;
-            const double separation = glm::dot(pb - pa, n);
+            const SurfacePoints sp =
+                surfacePoints(contact.radiusA, contact.radiusB, p, a.endPosition, ra, b.endPosition, rb);
+            const double separation = glm::dot(sp.b - sp.a, sp.n);
             const double correction = std::clamp(s.baumgarte * (separation + s.linearSlop), -s.maxCorrection, 0.0);
             if (correction == 0.0)
                 continue;
             // Apart along the normal, without turning: a turn about one point of a manifold (an
             // edge crossing an edge has only one) digs another corner in, which this manifold,
             // found before the sweeps, does not hold.
-            const double k = a.inverseMass + b.inverseMass;
-            if (k == 0.0)
-                continue;
-            const dvec3 push = (-correction / k) * n;
+            const dvec3 push = (-correction / k) * sp.n;
             if (!a.isStatic())
                 a.endPosition -= push * a.inverseMass;
             if (!b.isStatic())

@@ -102,7 +102,7 @@ private:
         dvec3 a{0.0}, b{0.0}, n{0.0};
     };
     static SurfacePoints surfacePoints(double radiusA, double radiusB, const ContactPoint& p, const dvec3& xa,
-                                       const dquat& qa, const dvec3& xb, const dquat& qb);
+                                       const dmat3& ra, const dvec3& xb, const dmat3& rb);
     /// A point's rows where it arrives, and what the collision pass wants of it.
     struct ImpactRow {
         int point = 0;
@@ -121,6 +121,8 @@ private:
     SolverSettings m_settings;
     std::vector<Constraint> m_constraints;
     std::vector<PointRows> m_rows;
+    std::vector<std::uint32_t> m_blows; ///< the collision pass's: per body, the blows it took
+    std::vector<std::uint64_t> m_seen;  ///< per contact, its bodies' blows when last looked at
     double m_change = 0.0, m_largest = 0.0; ///< the last sweep's largest change and impulse
 };
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "rigid/room_contacts.hpp"
 
@@ -51,6 +52,11 @@ double sphereRadius(const CollisionShape& shape)
 {
     return shape.kind == CollisionShape::Kind::Sphere ? shape.radius : 0.0;
 }
+
+/// The end poses' contacts reach this far apart, not only what overlaps: what the sweeps may
+/// push together (a die pushed up out of the floor into the one above it) must be there for
+/// them to push apart again.
+constexpr double kPositionMargin = 0.01;
 
 double combinedFriction(double a, double b) { return std::sqrt(a * b); }
 double combinedRestitution(double a, double b) { return std::max(a, b); }
@@ -346,16 +352,42 @@ void RigidSystem::pushOutOfRoom(std::span<const std::uint32_t> bodies)
 
 void RigidSystem::contactsAtEnd(std::size_t island, std::vector<Contact>& out) const
 {
-    // Not only what overlaps: what the sweeps may push together (a die pushed up out of the floor
-    // into the one above it) must be there for them to push apart again.
-    constexpr double kPositionMargin = 0.01;
     // The narrow phase again, at the end poses, for the pairs that touched or could have and for
     // the island's bodies against the room: the position pass works on what overlaps now, the
     // room's surfaces in the same sweeps as the bodies (a die pushed down into the floor by the
     // one landing on it is pushed back up within the sweep, and the other one further away).
+    // A large island's in fixed chunks on every core, joined in order: the same list on any.
+    const auto bodies = m_islands.bodies(island);
+    const auto contacts = m_islands.contacts(island);
+    constexpr std::size_t kChunk = 128;
+    const std::size_t bodyChunks = (bodies.size() + kChunk - 1) / kChunk;
+    const std::size_t chunks = bodyChunks + (contacts.size() + kChunk - 1) / kChunk;
     out.clear();
+    if (chunks <= 2) {
+        roomAtEnd(bodies, out);
+        pairsAtEnd(contacts, out);
+        return;
+    }
+    std::vector<std::vector<Contact>> found(chunks);
+    // Isolated: a thread waiting here takes no other island's work, whose scratch it holds.
+    tbb::this_task_arena::isolate([&] {
+        tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t chunk) {
+            if (chunk < bodyChunks)
+                roomAtEnd(bodies.subspan(chunk * kChunk, std::min(kChunk, bodies.size() - chunk * kChunk)), found[chunk]);
+            else {
+                const std::size_t first = (chunk - bodyChunks) * kChunk;
+                pairsAtEnd(contacts.subspan(first, std::min(kChunk, contacts.size() - first)), found[chunk]);
+            }
+        });
+    });
+    for (const auto& part : found)
+        out.insert(out.end(), part.begin(), part.end());
+}
+
+void RigidSystem::roomAtEnd(std::span<const std::uint32_t> bodies, std::vector<Contact>& out) const
+{
     const std::size_t n = m_world.size();
-    for (const std::uint32_t k : m_islands.bodies(island)) {
+    for (const std::uint32_t k : bodies) {
         const SolverBody& b = m_solverBodies[k];
         const std::size_t first = out.size();
         collideWithRoom(*m_material[k].shape, Transform{b.endPosition, glm::mat3_cast(b.endOrientation)}, m_planes,
@@ -363,7 +395,12 @@ void RigidSystem::contactsAtEnd(std::size_t island, std::vector<Contact>& out) c
         for (std::size_t e = first; e < out.size(); ++e)
             out[e].radiusA = sphereRadius(*m_material[k].shape);
     }
-    for (const std::uint32_t index : m_islands.contacts(island)) {
+}
+
+void RigidSystem::pairsAtEnd(std::span<const std::uint32_t> contacts, std::vector<Contact>& out) const
+{
+    const std::size_t n = m_world.size();
+    for (const std::uint32_t index : contacts) {
         const Contact& c = m_cache.contacts()[index];
         if (c.b >= n)
             continue;

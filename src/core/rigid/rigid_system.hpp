@@ -102,6 +102,8 @@ private:
     void capEnergy(std::size_t island);
     void pushOutOfRoom(std::span<const std::uint32_t> bodies);
     void contactsAtEnd(std::size_t island, std::vector<Contact>& out) const;
+    void roomAtEnd(std::span<const std::uint32_t> bodies, std::vector<Contact>& out) const;
+    void pairsAtEnd(std::span<const std::uint32_t> contacts, std::vector<Contact>& out) const;
     void finishBodies();
     void updateSleep(double dt);
 
