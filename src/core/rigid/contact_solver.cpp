@@ -468,7 +468,7 @@ void ContactSolver::solvePositions(std::span<const Contact> contacts)
             const SurfacePoints sp =
                 surfacePoints(contact.radiusA, contact.radiusB, p, a.endPosition, ra, b.endPosition, rb);
             const double separation = glm::dot(sp.b - sp.a, sp.n);
-            const double correction = std::clamp(s.baumgarte * (separation + s.linearSlop), -s.maxCorrection, 0.0);
+            const double correction = std::clamp(s.contact.baumgarte * (separation + s.contact.linearSlop), -s.maxCorrection, 0.0);
             if (correction == 0.0)
                 continue;
             // Apart along the normal, without turning: a turn about one point of a manifold (an

@@ -15,29 +15,27 @@
 //     energy.
 // Every pass visits the island's contacts in their order (by body pair), on one thread: the
 // result depends on nothing else.
+#include <algorithm>
 #include <span>
 #include <vector>
 
+#include "pba/contact_settings.hpp"
 #include "rigid/contact.hpp"
 #include "rigid/solver_body.hpp"
 
 namespace pba::rigid {
 
+/// What one step's solve works with: the world's knobs, and what this step makes of them.
 struct SolverSettings {
+    ContactSettings contact;
     double dt = 0.0;
     /// Below this arriving speed a point does not bounce: one step of gravity's, twice over.
     double restingSpeed = 0.0;
-    int velocityIterations = 8;
-    /// Sweeps past velocityIterations while the impulses still change (a stack's new contacts
-    /// need more than a warm-started pile's), at most this many in all.
-    int maxVelocityIterations = 8;
-    int positionIterations = 3;
-    /// Overlap the position pass leaves alone, so that touching bodies are not pushed apart
-    /// and back every step.
-    double linearSlop = 0.001;
-    /// The share of the overlap beyond the slop removed in one position sweep, and the most.
-    double baumgarte = 0.2;
+    /// The most one position sweep moves a contact apart (m).
     double maxCorrection = 0.2;
+    /// Velocity sweeps: at least contact.velocityIterations, and on while the impulses still
+    /// change, up to this many in all.
+    int maxVelocityIterations() const { return std::max(contact.velocityIterations, contact.maxVelocityIterations); }
 };
 
 /// What an impulse of 1 along a direction u at a point does, worked out once a step so that a

@@ -304,10 +304,10 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     }
     joints.warmStart();
     solver.warmStart();
-    for (int it = 0; it < settings.maxVelocityIterations; ++it) {
+    for (int it = 0; it < settings.maxVelocityIterations(); ++it) {
         joints.solveVelocities();
         const bool converged = solver.solveVelocities();
-        if (converged && it + 1 >= settings.velocityIterations)
+        if (converged && it + 1 >= settings.contact.velocityIterations)
             break;
     }
     joints.storeImpulses();
@@ -330,7 +330,7 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     pushOutOfRoom(bodies);
     thread_local std::vector<Contact> atEnd;
     contactsAtEnd(island, atEnd);
-    for (int it = 0; it < settings.positionIterations; ++it) {
+    for (int it = 0; it < settings.contact.positionIterations; ++it) {
         joints.solvePositions();
         solver.solvePositions(atEnd);
     }
@@ -547,11 +547,7 @@ void RigidSystem::solve(const dvec3& gravity, double dt)
     SolverSettings settings;
     settings.dt = dt;
     settings.restingSpeed = 2.0 * glm::length(gravity) * dt;
-    settings.velocityIterations = m_settings.velocityIterations;
-    settings.maxVelocityIterations = std::max(m_settings.velocityIterations, m_settings.maxVelocityIterations);
-    settings.positionIterations = m_settings.positionIterations;
-    settings.linearSlop = m_settings.linearSlop;
-    settings.baumgarte = m_settings.baumgarte;
+    settings.contact = m_settings;
     tbb::parallel_for(std::size_t(0), m_islands.count(), [&](std::size_t island) { solveIsland(island, settings); });
     finishBodies();
     updateSleep(dt);
