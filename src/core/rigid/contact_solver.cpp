@@ -87,6 +87,7 @@ double arrival(double gap, double u, double a, double span)
 
 constexpr int kMaxPoints = contact::Manifold::kMaxPoints;
 constexpr int kMaxCollisionSweeps = 16;
+
 constexpr int kMaxImpactSweeps = 32;
 /// A sweep that changes no impulse by more than this share of the largest has converged.
 constexpr double kConverged = 1e-6;
@@ -144,7 +145,7 @@ void ContactSolver::prepare(std::span<Contact> contacts, std::span<const std::ui
     }
 }
 
-bool ContactSolver::collide()
+bool ContactSolver::collide(int maxStrikes)
 {
     // A contact that found no arrival finds none again until one of its bodies is struck: each
     // body counts its blows, and a contact is looked at again only when the counts it last saw
@@ -154,16 +155,18 @@ bool ContactSolver::collide()
     for (const Constraint& c : m_constraints)
         m_blows[c.a] = m_blows[c.b] = 0;
     m_seen.assign(m_constraints.size(), ~std::uint64_t(0));
+    m_strikes.assign(m_constraints.size(), 0);
     bool any = false;
     for (int sweep = 0; sweep < kMaxCollisionSweeps; ++sweep) {
         bool changed = false;
         for (std::size_t k = 0; k < m_constraints.size(); ++k) {
             const Constraint& c = m_constraints[k];
             const std::uint64_t blows = (std::uint64_t(m_blows[c.a]) << 32) | m_blows[c.b];
-            if (blows == m_seen[k])
+            if (blows == m_seen[k] || m_strikes[k] >= maxStrikes)
                 continue;
             m_seen[k] = blows;
             if (collideOne(c)) {
+                ++m_strikes[k];
                 m_blows[c.a] += m_bodies[c.a].isStatic() ? 0 : 1; // a static body never changes
                 m_blows[c.b] += m_bodies[c.b].isStatic() ? 0 : 1;
                 changed = true;

@@ -73,8 +73,14 @@ class ContactSolver {
 public:
     void prepare(std::span<Contact> contacts, std::span<const std::uint32_t> island, std::span<SolverBody> bodies,
                  const SolverSettings& settings);
-    /// Pass 1: restitution at the time of arrival. Returns whether any point bounced.
-    bool collide();
+    /// Pass 1: restitution at the time of arrival, each contact giving at most `maxStrikes` blows
+    /// (kEveryStrike: as many as the sweeps find). Returns whether any point bounced.
+    bool collide(int maxStrikes = kEveryStrike);
+    static constexpr int kEveryStrike = 255;
+    /// A heap's: a row of balls passes a blow on with one a contact (Newton's cradle), while a
+    /// jammed heap of dice would pass blows back and forth through every contact until the
+    /// sweeps run out (a 10,000-dice pile: 28,000 blows a step, nearly 16 sweeps).
+    static constexpr int kHeapStrikes = 2;
     /// Pass 2: the last step's impulses (of the points that did not bounce), then the sweeps are
     /// the caller's, interleaved with the joints'.
     void warmStart();
@@ -121,6 +127,7 @@ private:
     std::vector<PointRows> m_rows;
     std::vector<std::uint32_t> m_blows; ///< the collision pass's: per body, the blows it took
     std::vector<std::uint64_t> m_seen;  ///< per contact, its bodies' blows when last looked at
+    std::vector<std::uint8_t> m_strikes; ///< per contact, the blows it gave this step
     double m_change = 0.0, m_largest = 0.0; ///< the last sweep's largest change and impulse
 };
 

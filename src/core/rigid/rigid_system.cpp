@@ -294,7 +294,8 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     thread_local JointSolver joints;
     solver.prepare(m_cache.contacts(), m_islands.contacts(island), m_solverBodies, settings);
     joints.prepare(m_joints, m_islands.links(island), m_solverBodies, settings, worldBody());
-    solver.collide();
+    // A jointed island is a mechanism (a chain, a cradle on its threads): its blows pass in full.
+    solver.collide(m_islands.links(island).empty() ? ContactSolver::kHeapStrikes : ContactSolver::kEveryStrike);
     const auto bodies = m_islands.bodies(island);
     thread_local std::vector<dvec3> marks;
     marks.resize(2 * bodies.size());
