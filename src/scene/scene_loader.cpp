@@ -240,11 +240,40 @@ void requireFiniteEnergies(const World& world, const FabricLayout& fabric, const
     }
 }
 
+/// A whole number of sweeps from `least` to 1,000.
+int readSweeps(ObjectReader& reader, const std::string& key, int least, int fallback)
+{
+    if (!reader.has(key))
+        return fallback;
+    const double sweeps = reader.number(key);
+    if (!(sweeps >= least && sweeps <= 1000 && sweeps == std::floor(sweeps)))
+        reader.fail(key, fmt::format("a whole number of sweeps from {} to 1000, got {}", least, sweeps));
+    return static_cast<int>(sweeps);
+}
+
+/// How the rigid bodies' contacts are solved: the velocity pass's sweeps (a fixed count when
+/// both are given alike, as an engine compared sweep for sweep), the position pass's, sleep.
+void readContactSettings(ObjectReader reader, ContactSettings& settings)
+{
+    reader.expectKeys({"velocity_iterations", "max_velocity_iterations", "position_iterations", "sleeping"});
+    settings.velocityIterations = readSweeps(reader, "velocity_iterations", 1, settings.velocityIterations);
+    settings.maxVelocityIterations = readSweeps(reader, "max_velocity_iterations", 1,
+                                                std::max(settings.velocityIterations, settings.maxVelocityIterations));
+    if (settings.maxVelocityIterations < settings.velocityIterations)
+        reader.fail("max_velocity_iterations",
+                    fmt::format("{} is fewer than velocity_iterations ({}): the sweeps go on past those, never short",
+                                settings.maxVelocityIterations, settings.velocityIterations));
+    settings.positionIterations = readSweeps(reader, "position_iterations", 0, settings.positionIterations);
+    settings.sleeping = reader.boolean("sleeping", settings.sleeping);
+    reader.finish();
+}
+
 Scene readScene(const Json& document, const std::string& file, const std::filesystem::path& directory)
 {
     ObjectReader root(document, "", file);
     root.expectKeys({"name", "summary", "description", "dt", "duration", "gravity", "collision_response", "substeps",
-                     "ground", "room", "particles", "ropes", "cloths", "rigid_bodies", "joints", "swarms", "forces"});
+                     "contacts", "ground", "room", "particles", "ropes", "cloths", "rigid_bodies", "joints", "swarms",
+                     "forces"});
     Scene scene;
     scene.source = file;
     scene.name = readName(root, "name", "unnamed");
@@ -269,6 +298,8 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
                                               World::kMaxXpbdSubsteps, substeps));
         scene.world.setXpbdSubsteps(static_cast<int>(substeps));
     }
+    if (root.has("contacts"))
+        readContactSettings(root.object("contacts"), scene.world.contactSettings());
     readSurfaces(root, scene.world);
     scene.world.addForce(std::make_unique<Gravity>(g));
     if (document.is_object() && document.contains("swarms") && !(fitsFloat(g.x) && fitsFloat(g.y) && fitsFloat(g.z)))

@@ -50,6 +50,24 @@ TEST(SceneLoader, LoadsAFileByPath)
     EXPECT_EQ(scene.world.planes().size(), 6u);
 }
 
+TEST(SceneLoader, ContactsSetHowTheRigidBodiesContactsAreSolved)
+{
+    const Scene fixed = parseScene(R"({"contacts": {"velocity_iterations": 10, "max_velocity_iterations": 10,
+        "position_iterations": 3, "sleeping": false}})", "s.json");
+    const ContactSettings& s = fixed.world.contactSettings();
+    EXPECT_EQ(s.velocityIterations, 10);
+    EXPECT_EQ(s.maxVelocityIterations, 10);
+    EXPECT_EQ(s.positionIterations, 3);
+    EXPECT_FALSE(s.sleeping);
+    // More sweeps than the default's most: the most follows them.
+    const Scene many = parseScene(R"({"contacts": {"velocity_iterations": 100}})", "s.json");
+    EXPECT_EQ(many.world.contactSettings().velocityIterations, 100);
+    EXPECT_EQ(many.world.contactSettings().maxVelocityIterations, 100);
+    const ContactSettings defaults;
+    const Scene none = parseScene("{}", "s.json");
+    EXPECT_EQ(none.world.contactSettings().maxVelocityIterations, defaults.maxVelocityIterations);
+}
+
 struct BadScene {
     const char* json;
     const char* field;
@@ -114,6 +132,13 @@ INSTANTIATE_TEST_SUITE_P(
                     BadScene{R"({"gravity": [0, -9.81]})", "gravity", "array of 3 numbers"},
                     BadScene{R"({"gravty": [0, -9.81, 0]})", "gravty", "unknown key"},
                     BadScene{R"({"collision_response": "bounce"})", "collision_response", "unknown collision response"},
+                    BadScene{R"({"contacts": {"velocity_iterations": 0}})", "contacts.velocity_iterations",
+                             "a whole number of sweeps from 1 to 1000, got 0"},
+                    BadScene{R"({"contacts": {"position_iterations": 2.5}})", "contacts.position_iterations",
+                             "a whole number of sweeps from 0 to 1000, got 2.5"},
+                    BadScene{R"({"contacts": {"velocity_iterations": 12, "max_velocity_iterations": 8}})",
+                             "contacts.max_velocity_iterations", "fewer than velocity_iterations (12)"},
+                    BadScene{R"({"contacts": {"sweeps": 8}})", "contacts.sweeps", "unknown key"},
                     BadScene{R"({"room": {"min": [0, 0, 0], "max": [1, 0, 1]}})", "room.min", "must be below max"},
                     BadScene{R"({"ground": {"height": 0}, "room": {"min": [0,0,0], "max": [1,1,1]}})", "room", "not both"},
                     BadScene{R"({"ground": {"hieght": 0}})", "ground.hieght", "unknown key"},
