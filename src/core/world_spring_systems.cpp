@@ -12,43 +12,43 @@ namespace pba {
 void World::startSpringSystem(const std::vector<std::size_t>& members, detail::SpringSolver& solver)
 {
     const std::size_t n = members.size();
-    CoupledScratch& s = m_scratch;
+    CoupledScratch& s = m_particleSystems.scratch;
     s.x.resize(n);
     s.v.resize(n);
     s.acc.resize(n);
     s.mass.resize(n);
     detail::forEachIndex(n, [&](std::size_t k) {
-        s.x[k] = m_previous[members[k]].pos;
-        s.v[k] = m_previous[members[k]].vel;
-        s.mass[k] = m_masses[members[k]];
+        s.x[k] = m_bodies.previous[members[k]].pos;
+        s.v[k] = m_bodies.previous[members[k]].vel;
+        s.mass[k] = m_bodies.masses[members[k]];
     });
     // The fixed ends where the fixed bodies are (a program may have moved one between steps).
     std::vector<dvec3>& positions = solver.positions;
-    positions.resize(m_bodies.size());
-    for (std::size_t i = 0; i < m_bodies.size(); ++i)
-        positions[i] = m_previous[i].pos;
+    positions.resize(m_bodies.objects.size());
+    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
+        positions[i] = m_bodies.previous[i].pos;
     solver.springs.placeFixedEnds(positions);
 }
 
 void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
                                    double dt)
 {
-    detail::SpringSolver& solver = m_springSolvers->backwardEuler;
-    solver.prepare(m_forces, members, m_bodies.size(), false);
+    detail::SpringSolver& solver = m_particleSystems.springSolvers->backwardEuler;
+    solver.prepare(m_forces.objects, members, m_bodies.objects.size(), false);
     startSpringSystem(members, solver);
     const std::size_t n = members.size();
-    CoupledScratch& s = m_scratch;
-    // Every force at the start of the step (the system's bodies are at it in s.trial already).
-    s.forces.resize(m_bodies.size());
-    const BodyStates in{m_bodies, s.trial, wanted, m_masses, {}};
-    Accumulators out{s.forces, {}, &s.forceScratch};
-    detail::forEachIndex(n, [&](std::size_t k) { s.forces[members[k]] = dvec3(0.0); });
-    for (const auto& force : m_forces)
+    CoupledScratch& s = m_particleSystems.scratch;
+    // Every force at the start of the step (the system's bodies are at it in m_bodies.trial already).
+    m_forces.sums.resize(m_bodies.objects.size());
+    const BodyStates in{m_bodies.objects, m_bodies.trial, wanted, m_bodies.masses, {}};
+    Accumulators out{m_forces.sums, {}, &m_forces.scratch};
+    detail::forEachIndex(n, [&](std::size_t k) { m_forces.sums[members[k]] = dvec3(0.0); });
+    for (const auto& force : m_forces.objects)
         force->accumulate(in, out);
     std::vector<dvec3>& start = solver.startForces;
     start.resize(n);
     detail::forEachIndex(n, [&](std::size_t k) {
-        start[k] = s.forces[members[k]];
+        start[k] = m_forces.sums[members[k]];
         s.acc[k] = start[k] / s.mass[k];
     });
     solver.backwardEuler.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n),
@@ -58,30 +58,30 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
 
 void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt)
 {
-    detail::SpringSolver& solver = m_springSolvers->xpbd;
-    solver.prepare(m_forces, members, m_bodies.size(), true);
+    detail::SpringSolver& solver = m_particleSystems.springSolvers->xpbd;
+    solver.prepare(m_forces.objects, members, m_bodies.objects.size(), true);
     startSpringSystem(members, solver);
     const std::size_t n = members.size();
-    CoupledScratch& s = m_scratch;
-    s.forces.resize(m_bodies.size());
-    const BodyStates in{m_bodies, s.trial, wanted, m_masses, {}};
-    Accumulators out{s.forces, {}, &s.forceScratch};
+    CoupledScratch& s = m_particleSystems.scratch;
+    m_forces.sums.resize(m_bodies.objects.size());
+    const BodyStates in{m_bodies.objects, m_bodies.trial, wanted, m_bodies.masses, {}};
+    Accumulators out{m_forces.sums, {}, &m_forces.scratch};
     // Every force but the springs, which are the constraints, at each substep's start.
     const detail::Xpbd::External external = [&](std::span<const dvec3> x, std::span<const dvec3> v,
                                                 std::span<dvec3> accel) {
         detail::forEachIndex(n, [&](std::size_t k) {
-            s.trial[members[k]] = State{x[k], v[k]};
-            s.forces[members[k]] = dvec3(0.0);
+            m_bodies.trial[members[k]] = State{x[k], v[k]};
+            m_forces.sums[members[k]] = dvec3(0.0);
         });
-        for (std::size_t f = 0; f < m_forces.size(); ++f)
+        for (std::size_t f = 0; f < m_forces.objects.size(); ++f)
             if (!solver.springs.isSpring(f))
-                m_forces[f]->accumulate(in, out);
-        detail::forEachIndex(n, [&](std::size_t k) { accel[k] = s.forces[members[k]] / s.mass[k]; });
+                m_forces.objects[f]->accumulate(in, out);
+        detail::forEachIndex(n, [&](std::size_t k) { accel[k] = m_forces.sums[members[k]] / s.mass[k]; });
     };
     solver.xpbd.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n), dt,
-                     m_xpbdSubsteps, external);
+                     m_particleSystems.xpbdSubsteps, external);
     // The step's mean acceleration: XPBD has no force at the start to keep.
-    detail::forEachIndex(n, [&](std::size_t k) { s.acc[k] = (s.v[k] - m_previous[members[k]].vel) / dt; });
+    detail::forEachIndex(n, [&](std::size_t k) { s.acc[k] = (s.v[k] - m_bodies.previous[members[k]].vel) / dt; });
     collideAndStore(members);
 }
 

@@ -75,7 +75,7 @@ void World::step(double dt)
 {
     if (!(dt > 0.0 && std::isfinite(dt)))
         throw std::invalid_argument(fmt::format("a step's dt must be finite and positive, got {} s", dt));
-    m_firstNonFinite = m_firstInside = m_bodies.size();
+    m_bodies.firstNonFinite = m_bodies.firstInside = m_bodies.objects.size();
     detail::onCores(m_threads, [&] {
         storePreviousStates();
         const Coupling& coupling = couple(); // a mixed coupled group throws before anything moves
@@ -92,7 +92,7 @@ void World::step(double dt)
             else
                 integrateCoupled(integrator, members, coupling.wanted[k], dt);
         }
-        if (m_rigidSystem->size() > 0)
+        if (m_rigid.system->size() > 0)
             stepRigidBodies(dt);
     });
     stepSwarms(dt);
@@ -105,19 +105,19 @@ void World::checkFinite(double dt)
 {
     // Every body (the integration phases checked each as they wrote it), and every swarm
     // (whose step checked its blocks).
-    if (m_firstNonFinite < m_bodies.size()) {
-        const Body& bad = *m_bodies[m_firstNonFinite];
+    if (m_bodies.firstNonFinite < m_bodies.objects.size()) {
+        const Body& bad = *m_bodies.objects[m_bodies.firstNonFinite];
         std::string quantity = isFinite(bad.getPos()) ? "velocity" : "position";
-        if (isRigid(m_firstNonFinite) && isFinite(bad.getPos()) && isFinite(bad.getVel()))
+        if (isRigid(m_bodies.firstNonFinite) && isFinite(bad.getPos()) && isFinite(bad.getVel()))
             quantity = isFinite(static_cast<const RigidBody&>(bad).getAngularMomentum()) ? "orientation"
                                                                                        : "angular velocity";
         rollBack();
-        throw NonFiniteStateError(bad.getName(), m_steps + 1, m_time + dt, quantity);
+        throw NonFiniteStateError(bad.getName(), m_clock.steps + 1, m_clock.time + dt, quantity);
     }
-    for (const auto& swarm : m_swarms)
+    for (const auto& swarm : m_swarms.objects)
         if (const auto& bad = swarm->nonFinite()) {
             const NonFiniteStateError error =
-                NonFiniteStateError::inSwarm(swarm->name(), bad->index, m_steps + 1, m_time + dt, bad->quantity);
+                NonFiniteStateError::inSwarm(swarm->name(), bad->index, m_clock.steps + 1, m_clock.time + dt, bad->quantity);
             rollBack();
             throw error;
         }
@@ -125,16 +125,16 @@ void World::checkFinite(double dt)
 
 void World::checkInsideSurfaces(double dt)
 {
-    if (m_firstInside >= m_bodies.size())
+    if (m_bodies.firstInside >= m_bodies.objects.size())
         return;
-    const auto& bad = static_cast<const RigidBody&>(*m_bodies[m_firstInside]);
-    const int p = surfaceHolding(m_planes, bad.getPos(), bad.getBoundingRadius());
-    const dvec3 normal = p >= 0 ? m_planes[std::size_t(p)].normal : dvec3(0.0, 1.0, 0.0);
-    const bool grille = m_hole && p == int(m_planes.size()) - 1;
-    const char* surface = grille ? "the blow dryer's grille" : normal.y > 0.5 ? (m_ground ? "the ground" : "the floor")
+    const auto& bad = static_cast<const RigidBody&>(*m_bodies.objects[m_bodies.firstInside]);
+    const int p = surfaceHolding(m_surfaces.planes, bad.getPos(), bad.getBoundingRadius());
+    const dvec3 normal = p >= 0 ? m_surfaces.planes[std::size_t(p)].normal : dvec3(0.0, 1.0, 0.0);
+    const bool grille = m_surfaces.hole && p == int(m_surfaces.planes.size()) - 1;
+    const char* surface = grille ? "the blow dryer's grille" : normal.y > 0.5 ? (m_surfaces.ground ? "the ground" : "the floor")
                           : normal.y < -0.5                               ? "the ceiling"
                                                                           : "a wall";
-    BlowUpError error(bad.getName(), m_steps + 1, m_time + dt,
+    BlowUpError error(bad.getName(), m_clock.steps + 1, m_clock.time + dt,
                       fmt::format("the centre of mass of body '{}' is inside {}", bad.getName(), surface));
     rollBack();
     throw error;
@@ -144,43 +144,43 @@ void World::advanceClock(double dt)
 {
     // t = t0 + k dt from the last change of dt, rather than a running sum, so the time of
     // step n is n dt to rounding instead of drifting by n rounding errors.
-    m_previousTime = m_time;
-    if (dt != m_lastDt) {
-        m_lastDt = dt;
-        m_baseTime = m_time;
-        m_baseSteps = m_steps;
+    m_clock.previousTime = m_clock.time;
+    if (dt != m_clock.lastDt) {
+        m_clock.lastDt = dt;
+        m_clock.baseTime = m_clock.time;
+        m_clock.baseSteps = m_clock.steps;
     }
-    ++m_steps;
-    m_time = m_baseTime + static_cast<double>(m_steps - m_baseSteps) * dt;
+    ++m_clock.steps;
+    m_clock.time = m_clock.baseTime + static_cast<double>(m_clock.steps - m_clock.baseSteps) * dt;
 }
 
 void World::storePreviousStates()
 {
     // One visit to each body's object for all the step reads of it: a 128 x 128 cloth's 16,384
     // heap objects are slow memory, and each further pass over them cost as much as its springs.
-    const std::size_t n = m_bodies.size();
-    m_masses.resize(n);
-    m_cors.resize(n);
-    m_keys.resize(n);
-    m_scratch.trial.resize(n);
+    const std::size_t n = m_bodies.objects.size();
+    m_bodies.masses.resize(n);
+    m_bodies.cors.resize(n);
+    m_bodies.keys.resize(n);
+    m_bodies.trial.resize(n);
     detail::forEachIndex(n, [this](std::size_t i) {
-        const Body& b = *m_bodies[i];
-        m_previous[i] = b.getState();
-        m_scratch.trial[i] = m_previous[i]; // the coupled systems' stages start from here
-        m_masses[i] = b.getMass();
-        m_cors[i] = b.getCor();
-        m_keys[i] = couplingKey(b);
-        if (m_isRigid[i] != 0) {
+        const Body& b = *m_bodies.objects[i];
+        m_bodies.previous[i] = b.getState();
+        m_bodies.trial[i] = m_bodies.previous[i]; // the coupled systems' stages start from here
+        m_bodies.masses[i] = b.getMass();
+        m_bodies.cors[i] = b.getCor();
+        m_bodies.keys[i] = couplingKey(b);
+        if (m_bodies.isRigid[i] != 0) {
             const auto& rigid = static_cast<const RigidBody&>(b);
-            m_previousRotation[i] = rigid.getRotation();
+            m_bodies.previousRotation[i] = rigid.getRotation();
             if (b.isFixed()) // a moving one's pose is set at each stage of its system's step
-                m_poses[i] = Pose{rigid.getOrientation(), rigid.getAngularVelocity()};
+                m_bodies.poses[i] = Pose{rigid.getOrientation(), rigid.getAngularVelocity()};
         }
     });
-    if (m_swarmRollback) {
-        m_swarmsBefore.resize(m_swarms.size());
-        for (std::size_t s = 0; s < m_swarms.size(); ++s)
-            m_swarms[s]->saveState(m_swarmsBefore[s]);
+    if (m_swarms.rollback) {
+        m_swarms.before.resize(m_swarms.objects.size());
+        for (std::size_t s = 0; s < m_swarms.objects.size(); ++s)
+            m_swarms.objects[s]->saveState(m_swarms.before[s]);
     }
 }
 
@@ -188,21 +188,21 @@ void World::rollBack()
 {
     // So a viewer can pause on the last finite state instead of drawing garbage (previous and
     // current then coincide: nothing moves between them).
-    for (std::size_t i = 0; i < m_bodies.size(); ++i) {
-        m_bodies[i]->setState(m_previous[i]);
+    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i) {
+        m_bodies.objects[i]->setState(m_bodies.previous[i]);
         if (isRigid(i))
-            static_cast<RigidBody&>(*m_bodies[i]).setRotation(m_previousRotation[i]);
+            static_cast<RigidBody&>(*m_bodies.objects[i]).setRotation(m_bodies.previousRotation[i]);
     }
-    if (m_swarmRollback)
-        for (std::size_t s = 0; s < m_swarms.size() && s < m_swarmsBefore.size(); ++s)
-            m_swarms[s]->restoreState(m_swarmsBefore[s]);
+    if (m_swarms.rollback)
+        for (std::size_t s = 0; s < m_swarms.objects.size() && s < m_swarms.before.size(); ++s)
+            m_swarms.objects[s]->restoreState(m_swarms.before[s]);
 }
 
 dvec3 World::aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const
 {
-    const Body& b = *m_bodies[i];
+    const Body& b = *m_bodies.objects[i];
     dvec3 f(0.0);
-    for (const auto& force : m_forces)
+    for (const auto& force : m_forces.objects)
         f += force->force(i, b, x, v);
     return f / b.getMass();
 }
@@ -210,7 +210,7 @@ dvec3 World::aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) co
 void World::integrateIndependent(const Coupling& coupling, double dt)
 {
     for (const std::size_t i : coupling.independent) {
-        Body& b = *m_bodies[i];
+        Body& b = *m_bodies.objects[i];
         if (b.isFixed()) {
             noteIfNotFinite(i, b.getState()); // a program may have put it anywhere
             continue;
@@ -228,9 +228,9 @@ void World::integrateIndependent(const Coupling& coupling, double dt)
             return a;
         };
         State s = b.getState();
-        const int bounces = stepWithCollisions(m_response, b.getIntegrator(), std::span<const Plane>(m_planes),
+        const int bounces = stepWithCollisions(m_surfaces.response, b.getIntegrator(), std::span<const Plane>(m_surfaces.planes),
                                                b.getCor(), s.pos, s.vel, dt, accel);
-        m_bounces[i] += static_cast<std::uint64_t>(bounces);
+        m_bodies.bounces[i] += static_cast<std::uint64_t>(bounces);
         b.setState(s);
         b.setAcc(startAcc);
         noteIfNotFinite(i, s);
@@ -241,32 +241,32 @@ void World::integrateCoupled(Integrator integrator, const std::vector<std::size_
                              std::span<const std::uint8_t> wanted, double dt)
 {
     const std::size_t n = members.size();
-    CoupledScratch& s = m_scratch;
+    CoupledScratch& s = m_particleSystems.scratch;
     s.x.resize(n);
     s.v.resize(n);
     s.acc.resize(n);
     detail::forEachIndex(n, [&](std::size_t k) {
-        s.x[k] = m_previous[members[k]].pos;
-        s.v[k] = m_previous[members[k]].vel;
+        s.x[k] = m_bodies.previous[members[k]].pos;
+        s.v[k] = m_bodies.previous[members[k]].vel;
     });
     // Every body of the world sits at its start-of-step state (storePreviousStates put it in
-    // s.trial) except the system's, which take each stage's trial state. (A system integrated
+    // m_bodies.trial) except the system's, which take each stage's trial state. (A system integrated
     // before this one leaves its bodies at its last stage: no force couples two systems.)
-    s.forces.resize(m_bodies.size());
-    const BodyStates in{m_bodies, s.trial, wanted, m_masses, {}};
-    Accumulators out{s.forces, {}, &s.forceScratch};
+    m_forces.sums.resize(m_bodies.objects.size());
+    const BodyStates in{m_bodies.objects, m_bodies.trial, wanted, m_bodies.masses, {}};
+    Accumulators out{m_forces.sums, {}, &m_forces.scratch};
     bool first = true;
     auto accel = [&](const Vec3Array& xs, const Vec3Array& vs) {
         detail::forEachIndex(n, [&](std::size_t k) {
-            s.trial[members[k]] = State{xs[k], vs[k]};
-            s.forces[members[k]] = dvec3(0.0);
+            m_bodies.trial[members[k]] = State{xs[k], vs[k]};
+            m_forces.sums[members[k]] = dvec3(0.0);
         });
-        for (const auto& force : m_forces)
+        for (const auto& force : m_forces.objects)
             force->accumulate(in, out);
         Vec3Array a(n);
         // The first stage is at the start state: the bodies' acceleration, kept in s.acc.
         detail::forEachIndex(n, [&](std::size_t k) {
-            a[k] = s.forces[members[k]] / m_masses[members[k]];
+            a[k] = m_forces.sums[members[k]] / m_bodies.masses[members[k]];
             if (first)
                 s.acc[k] = a[k];
         });
@@ -281,34 +281,34 @@ void World::collideAndStore(const std::vector<std::size_t>& members)
 {
     // Collisions, the bodies' new states and the check that they are finite in one pass, so
     // each body's object is visited once here: a cloth's bodies are many and far apart.
-    const std::span<const Plane> planes(m_planes);
-    const CoupledScratch& s = m_scratch;
-    const std::size_t bad = lowestFailing(members, 2048, m_bodies.size(), [&](std::size_t k) {
+    const std::span<const Plane> planes(m_surfaces.planes);
+    const CoupledScratch& s = m_particleSystems.scratch;
+    const std::size_t bad = lowestFailing(members, 2048, m_bodies.objects.size(), [&](std::size_t k) {
         const std::size_t i = members[k];
         State end{s.x[k], s.v[k]};
         if (!planes.empty())
-            m_bounces[i] += static_cast<std::uint64_t>(
+            m_bodies.bounces[i] += static_cast<std::uint64_t>(
                 coupledCollisionResponse() == CollisionResponse::Clamp
-                    ? clampAfterStep(planes, m_cors[i], m_previous[i].pos, end.pos, end.vel)
-                    : reflectAfterStep(planes, m_cors[i], m_previous[i].pos, end.pos, end.vel));
-        Body& b = *m_bodies[i];
+                    ? clampAfterStep(planes, m_bodies.cors[i], m_bodies.previous[i].pos, end.pos, end.vel)
+                    : reflectAfterStep(planes, m_bodies.cors[i], m_bodies.previous[i].pos, end.pos, end.vel));
+        Body& b = *m_bodies.objects[i];
         b.setState(end);
         b.setAcc(s.acc[k]);
         return isFinite(end.pos) && isFinite(end.vel);
     });
-    m_firstNonFinite = std::min(m_firstNonFinite, bad);
+    m_bodies.firstNonFinite = std::min(m_bodies.firstNonFinite, bad);
 }
 
 void World::stepRigidBodies(double dt)
 {
-    rigid::RigidSystem& system = *m_rigidSystem;
+    rigid::RigidSystem& system = *m_rigid.system;
     thread_local std::vector<const RigidBody*> bodies;
     bodies.resize(system.size());
     for (std::size_t k = 0; k < system.size(); ++k)
-        bodies[k] = static_cast<const RigidBody*>(m_bodies[system.worldIndex(k)].get());
+        bodies[k] = static_cast<const RigidBody*>(m_bodies.objects[system.worldIndex(k)].get());
     system.begin(bodies);
     integrateRigidFreely(system.awake(), dt);
-    system.findContacts(m_planes, dt);
+    system.findContacts(m_surfaces.planes, dt);
     integrateRigidFreely(system.woken(), dt); // touched by an awake body: they move this step too
     system.solve(gravity(), dt);
     storeRigidBodies();
@@ -319,13 +319,13 @@ void World::integrateRigidFreely(std::span<const std::uint32_t> bodies, double d
     // One system per integrator, of the awake bodies only: a sleeping pile costs nothing here.
     if (bodies.empty())
         return;
-    rigid::RigidSystem& system = *m_rigidSystem;
-    RigidScratch& r = m_rigidScratch;
+    rigid::RigidSystem& system = *m_rigid.system;
+    RigidScratch& r = m_rigid.scratch;
     for (auto& members : r.members)
         members.clear();
     for (const std::uint32_t k : bodies) {
         const std::size_t i = system.worldIndex(k);
-        const auto at = std::find(kEveryIntegrator.begin(), kEveryIntegrator.end(), m_bodies[i]->getIntegrator());
+        const auto at = std::find(kEveryIntegrator.begin(), kEveryIntegrator.end(), m_bodies.objects[i]->getIntegrator());
         r.members[std::size_t(at - kEveryIntegrator.begin())].push_back(i);
     }
     for (std::size_t m = 0; m < kEveryIntegrator.size(); ++m) {
@@ -336,18 +336,18 @@ void World::integrateRigidFreely(std::span<const std::uint32_t> bodies, double d
         r.states.resize(n);
         r.inertia.resize(n);
         r.startAcc.resize(n);
-        r.wanted.assign(m_bodies.size(), 0);
+        r.wanted.assign(m_bodies.objects.size(), 0);
         for (const std::size_t i : members)
             r.wanted[i] = 1;
         detail::forEachIndex(n, [&](std::size_t k) {
-            const auto& b = static_cast<const RigidBody&>(*m_bodies[members[k]]);
-            r.states[k] = system.start(m_rigidIndex[members[k]]);
+            const auto& b = static_cast<const RigidBody&>(*m_bodies.objects[members[k]]);
+            r.states[k] = system.start(m_bodies.rigidIndex[members[k]]);
             r.inertia[k] = RigidInertia{1.0 / b.getMass(), b.getInertiaBody(), b.getInverseInertiaBody()};
         });
         stepRigid(kEveryIntegrator[m], members, r.wanted, dt);
         detail::forEachIndex(n, [&](std::size_t k) {
-            system.setFreeEnd(m_rigidIndex[members[k]], r.states[k]);
-            m_rigidAcc[members[k]] = r.startAcc[k];
+            system.setFreeEnd(m_bodies.rigidIndex[members[k]], r.states[k]);
+            m_bodies.rigidAcc[members[k]] = r.startAcc[k];
         });
     }
 }
@@ -357,28 +357,28 @@ void World::stepRigid(Integrator integrator, const std::vector<std::size_t>& mem
 {
     // As integrateCoupled: the other bodies stay at their start-of-step states and poses while
     // the system's take each stage's.
-    RigidScratch& r = m_rigidScratch;
+    RigidScratch& r = m_rigid.scratch;
     const std::size_t n = members.size();
-    m_scratch.forces.resize(m_bodies.size());
-    m_torques.resize(m_bodies.size());
-    const BodyStates in{m_bodies, m_scratch.trial, wanted, m_masses, m_poses};
-    Accumulators out{m_scratch.forces, m_torques, &m_scratch.forceScratch};
+    m_forces.sums.resize(m_bodies.objects.size());
+    m_forces.torques.resize(m_bodies.objects.size());
+    const BodyStates in{m_bodies.objects, m_bodies.trial, wanted, m_bodies.masses, m_bodies.poses};
+    Accumulators out{m_forces.sums, m_forces.torques, &m_forces.scratch};
     bool first = true;
     const auto wrenches = [&](std::span<const RigidState> at, std::span<Wrench> result) {
         detail::forEachIndex(n, [&](std::size_t k) {
             const std::size_t i = members[k];
-            m_scratch.trial[i] = State{at[k].x, at[k].v};
+            m_bodies.trial[i] = State{at[k].x, at[k].v};
             const Rotation& turn = at[k].rotation;
-            m_poses[i] = Pose{turn.orientation, angularVelocity(turn.orientation, r.inertia[k].inverseInertiaBody, turn.momentum)};
-            m_scratch.forces[i] = m_torques[i] = dvec3(0.0);
+            m_bodies.poses[i] = Pose{turn.orientation, angularVelocity(turn.orientation, r.inertia[k].inverseInertiaBody, turn.momentum)};
+            m_forces.sums[i] = m_forces.torques[i] = dvec3(0.0);
         });
-        for (const auto& force : m_forces)
+        for (const auto& force : m_forces.objects)
             force->accumulate(in, out);
         detail::forEachIndex(n, [&](std::size_t k) {
             const std::size_t i = members[k];
-            result[k] = Wrench{m_scratch.forces[i], m_torques[i]};
+            result[k] = Wrench{m_forces.sums[i], m_forces.torques[i]};
             if (first) // the first stage is at the start: the bodies' acceleration
-                r.startAcc[k] = m_scratch.forces[i] * r.inertia[k].inverseMass;
+                r.startAcc[k] = m_forces.sums[i] * r.inertia[k].inverseMass;
         });
         first = false;
     };
@@ -389,22 +389,22 @@ void World::stepRigid(Integrator integrator, const std::vector<std::size_t>& mem
 
 void World::storeRigidBodies()
 {
-    const rigid::RigidSystem& system = *m_rigidSystem;
+    const rigid::RigidSystem& system = *m_rigid.system;
     // A body that took a restitution impulse bounced (and so did the body it hit).
     for (const rigid::Contact& c : system.contacts()) {
         if (std::none_of(c.points.begin(), c.points.begin() + c.count, [](const auto& p) { return p.bounced; }))
             continue;
         for (const rigid::BodyIndex k : {c.a, c.b})
-            if (k < system.size() && !system.isAsleep(k) && !m_bodies[system.worldIndex(k)]->isFixed())
-                ++m_bounces[system.worldIndex(k)];
+            if (k < system.size() && !system.isAsleep(k) && !m_bodies.objects[system.worldIndex(k)]->isFixed())
+                ++m_bodies.bounces[system.worldIndex(k)];
     }
     // A plain local: a thread_local here would be a different, empty vector on each worker thread.
     std::vector<std::size_t> all(system.size());
     for (std::size_t k = 0; k < system.size(); ++k)
         all[k] = system.worldIndex(k);
-    const std::size_t bad = lowestFailing(all, 256, m_bodies.size(), [&](std::size_t k) {
+    const std::size_t bad = lowestFailing(all, 256, m_bodies.objects.size(), [&](std::size_t k) {
         const std::size_t i = system.worldIndex(k);
-        auto& b = static_cast<RigidBody&>(*m_bodies[i]);
+        auto& b = static_cast<RigidBody&>(*m_bodies.objects[i]);
         if (b.isFixed())
             return isFinite(b.getPos()) && isFinite(b.getVel());
         const RigidState& s = system.end(k);
@@ -414,42 +414,42 @@ void World::storeRigidBodies()
             return false;
         }
         b.setRotation(s.rotation);
-        b.setAcc(m_rigidAcc[i]);
+        b.setAcc(m_bodies.rigidAcc[i]);
         return true;
     });
-    m_firstNonFinite = std::min(m_firstNonFinite, bad);
-    if (m_planes.empty())
+    m_bodies.firstNonFinite = std::min(m_bodies.firstNonFinite, bad);
+    if (m_surfaces.planes.empty())
         return;
-    const std::size_t inside = lowestFailing(all, 1024, m_bodies.size(), [&](std::size_t k) {
-        if (m_bodies[all[k]]->isFixed())
+    const std::size_t inside = lowestFailing(all, 1024, m_bodies.objects.size(), [&](std::size_t k) {
+        if (m_bodies.objects[all[k]]->isFixed())
             return true;
         // The bounding radius (a visit to the body's object) only for a centre on or behind a plane.
         const dvec3& x = system.end(k).x;
-        const auto reach = [&] { return static_cast<const RigidBody&>(*m_bodies[all[k]]).getBoundingRadius(); };
-        for (const Plane& plane : m_planes)
+        const auto reach = [&] { return static_cast<const RigidBody&>(*m_bodies.objects[all[k]]).getBoundingRadius(); };
+        for (const Plane& plane : m_surfaces.planes)
             if (plane.distance(x) <= 0.0)
-                return surfaceHolding(m_planes, x, reach()) < 0;
+                return surfaceHolding(m_surfaces.planes, x, reach()) < 0;
         return true;
     });
-    m_firstInside = std::min(m_firstInside, inside);
+    m_bodies.firstInside = std::min(m_bodies.firstInside, inside);
 }
 
 void World::noteIfNotFinite(std::size_t i, const State& state)
 {
     if (!isFinite(state.pos) || !isFinite(state.vel))
-        m_firstNonFinite = std::min(m_firstNonFinite, i);
+        m_bodies.firstNonFinite = std::min(m_bodies.firstNonFinite, i);
 }
 
 void World::stepSwarms(double dt)
 {
-    if (m_swarms.empty())
+    if (m_swarms.objects.empty())
         return;
     const SwarmFields fields = swarmFields();
     std::vector<PlaneT<float>> planes;
-    for (const Plane& p : m_planes)
+    for (const Plane& p : m_surfaces.planes)
         planes.push_back({Vec3<float>(p.normal), float(p.offset), float(p.holeRadius), Vec3<float>(p.holeCentre)});
-    for (const auto& swarm : m_swarms)
-        swarm->step(fields, planes, m_response, float(dt), m_threads);
+    for (const auto& swarm : m_swarms.objects)
+        swarm->step(fields, planes, m_surfaces.response, float(dt), m_threads);
 }
 
 } // namespace pba
