@@ -58,6 +58,7 @@ namespace rigid {
 class RigidSystem;
 }
 namespace detail {
+class SpringSystem;
 struct SpringSolver;
 struct SpringSolvers;
 }
@@ -390,9 +391,16 @@ private:
     void integrateBackwardEuler(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
                                 double dt);
     void integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt);
-    /// The system's start state into m_particleSystems.scratch.x and .v, and its masses; the springs' fixed ends
-    /// placed.
-    void startSpringSystem(const std::vector<std::size_t>& members, detail::SpringSolver& solver);
+    /// The system's start-of-step state into the particle systems' scratch (x and v).
+    void startSystem(const std::vector<std::size_t>& members);
+    /// Every force on the system's members at the states (x, v) (at m_bodies.trial if x is
+    /// empty), every other body at its start-of-step state: the members' sums in m_forces.sums.
+    /// A spring of `constraints`, if given, is left out (xpbd's constraints).
+    void sumSystemForces(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                         std::span<const dvec3> x, std::span<const dvec3> v, const detail::SpringSystem* constraints);
+    /// The spring solver of implicit-euler (or xpbd) made for the system, the system started
+    /// with its masses, and the springs' fixed ends placed.
+    detail::SpringSolver& startSpringSystem(const std::vector<std::size_t>& members, bool xpbd);
     void stepRigidBodies(double dt);
     void integrateRigidFreely(std::span<const std::uint32_t> bodies, double dt);
     void stepRigid(Integrator integrator, const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,

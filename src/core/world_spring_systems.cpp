@@ -9,42 +9,31 @@
 
 namespace pba {
 
-void World::startSpringSystem(const std::vector<std::size_t>& members, detail::SpringSolver& solver)
+detail::SpringSolver& World::startSpringSystem(const std::vector<std::size_t>& members, bool xpbd)
 {
-    const std::size_t n = members.size();
+    detail::SpringSolver& solver = xpbd ? m_particleSystems.springSolvers->xpbd : m_particleSystems.springSolvers->backwardEuler;
+    solver.prepare(m_forces.objects, members, m_bodies.objects.size(), xpbd); // XPBD colours its constraints
+    startSystem(members);
     CoupledScratch& s = m_particleSystems.scratch;
-    s.x.resize(n);
-    s.v.resize(n);
-    s.acc.resize(n);
-    s.mass.resize(n);
-    detail::forEachIndex(n, [&](std::size_t k) {
-        s.x[k] = m_bodies.previous[members[k]].pos;
-        s.v[k] = m_bodies.previous[members[k]].vel;
-        s.mass[k] = m_bodies.masses[members[k]];
-    });
+    s.mass.resize(members.size());
+    detail::forEachIndex(members.size(), [&](std::size_t k) { s.mass[k] = m_bodies.masses[members[k]]; });
     // The fixed ends where the fixed bodies are (a program may have moved one between steps).
     std::vector<dvec3>& positions = solver.positions;
     positions.resize(m_bodies.objects.size());
     for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
         positions[i] = m_bodies.previous[i].pos;
     solver.springs.placeFixedEnds(positions);
+    return solver;
 }
 
 void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
                                    double dt)
 {
-    detail::SpringSolver& solver = m_particleSystems.springSolvers->backwardEuler;
-    solver.prepare(m_forces.objects, members, m_bodies.objects.size(), false);
-    startSpringSystem(members, solver);
+    detail::SpringSolver& solver = startSpringSystem(members, false);
     const std::size_t n = members.size();
     CoupledScratch& s = m_particleSystems.scratch;
     // Every force at the start of the step (the system's bodies are at it in m_bodies.trial already).
-    m_forces.sums.resize(m_bodies.objects.size());
-    const BodyStates in{m_bodies.objects, m_bodies.trial, wanted, m_bodies.masses, {}};
-    Accumulators out{m_forces.sums, {}, &m_forces.scratch};
-    detail::forEachIndex(n, [&](std::size_t k) { m_forces.sums[members[k]] = dvec3(0.0); });
-    for (const auto& force : m_forces.objects)
-        force->accumulate(in, out);
+    sumSystemForces(members, wanted, {}, {}, nullptr);
     std::vector<dvec3>& start = solver.startForces;
     start.resize(n);
     detail::forEachIndex(n, [&](std::size_t k) {
@@ -58,24 +47,13 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
 
 void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt)
 {
-    detail::SpringSolver& solver = m_particleSystems.springSolvers->xpbd;
-    solver.prepare(m_forces.objects, members, m_bodies.objects.size(), true);
-    startSpringSystem(members, solver);
+    detail::SpringSolver& solver = startSpringSystem(members, true);
     const std::size_t n = members.size();
     CoupledScratch& s = m_particleSystems.scratch;
-    m_forces.sums.resize(m_bodies.objects.size());
-    const BodyStates in{m_bodies.objects, m_bodies.trial, wanted, m_bodies.masses, {}};
-    Accumulators out{m_forces.sums, {}, &m_forces.scratch};
     // Every force but the springs, which are the constraints, at each substep's start.
     const detail::Xpbd::External external = [&](std::span<const dvec3> x, std::span<const dvec3> v,
                                                 std::span<dvec3> accel) {
-        detail::forEachIndex(n, [&](std::size_t k) {
-            m_bodies.trial[members[k]] = State{x[k], v[k]};
-            m_forces.sums[members[k]] = dvec3(0.0);
-        });
-        for (std::size_t f = 0; f < m_forces.objects.size(); ++f)
-            if (!solver.springs.isSpring(f))
-                m_forces.objects[f]->accumulate(in, out);
+        sumSystemForces(members, wanted, x, v, &solver.springs);
         detail::forEachIndex(n, [&](std::size_t k) { accel[k] = m_forces.sums[members[k]] / s.mass[k]; });
     };
     solver.xpbd.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n), dt,

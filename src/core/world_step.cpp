@@ -13,6 +13,7 @@
 #include "collision_rules.hpp"
 #include "parallel.hpp"
 #include "rigid/rigid_system.hpp"
+#include "spring_system.hpp"
 
 namespace pba {
 
@@ -237,8 +238,7 @@ void World::integrateIndependent(const Coupling& coupling, double dt)
     }
 }
 
-void World::integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members,
-                             std::span<const std::uint8_t> wanted, double dt)
+void World::startSystem(const std::vector<std::size_t>& members)
 {
     const std::size_t n = members.size();
     CoupledScratch& s = m_particleSystems.scratch;
@@ -249,20 +249,37 @@ void World::integrateCoupled(Integrator integrator, const std::vector<std::size_
         s.x[k] = m_bodies.previous[members[k]].pos;
         s.v[k] = m_bodies.previous[members[k]].vel;
     });
+}
+
+void World::sumSystemForces(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                            std::span<const dvec3> x, std::span<const dvec3> v, const detail::SpringSystem* constraints)
+{
     // Every body of the world sits at its start-of-step state (storePreviousStates put it in
     // m_bodies.trial) except the system's, which take each stage's trial state. (A system integrated
     // before this one leaves its bodies at its last stage: no force couples two systems.)
     m_forces.sums.resize(m_bodies.objects.size());
+    detail::forEachIndex(members.size(), [&](std::size_t k) {
+        if (!x.empty())
+            m_bodies.trial[members[k]] = State{x[k], v[k]};
+        m_forces.sums[members[k]] = dvec3(0.0);
+    });
     const BodyStates in{m_bodies.objects, m_bodies.trial, wanted, m_bodies.masses, {}};
     Accumulators out{m_forces.sums, {}, &m_forces.scratch};
+    for (std::size_t f = 0; f < m_forces.objects.size(); ++f)
+        if (!constraints || !constraints->isSpring(f))
+            m_forces.objects[f]->accumulate(in, out);
+}
+
+void World::integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members,
+                             std::span<const std::uint8_t> wanted, double dt)
+{
+    const std::size_t n = members.size();
+    CoupledScratch& s = m_particleSystems.scratch;
+    startSystem(members);
     bool first = true;
     auto accel = [&](const Vec3Array& xs, const Vec3Array& vs) {
-        detail::forEachIndex(n, [&](std::size_t k) {
-            m_bodies.trial[members[k]] = State{xs[k], vs[k]};
-            m_forces.sums[members[k]] = dvec3(0.0);
-        });
-        for (const auto& force : m_forces.objects)
-            force->accumulate(in, out);
+        sumSystemForces(members, wanted, std::span<const dvec3>(xs.begin(), n), std::span<const dvec3>(vs.begin(), n),
+                        nullptr);
         Vec3Array a(n);
         // The first stage is at the start state: the bodies' acceleration, kept in s.acc.
         detail::forEachIndex(n, [&](std::size_t k) {
