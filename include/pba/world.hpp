@@ -1,33 +1,48 @@
 #pragma once
 // The World owns bodies, forces and the surfaces that bound them, and advances them by
-// a fixed dt. The step runs in named phases over every body and swarm (the way Box2D's
-// solver stages and Jolt's step jobs are named):
-//   1. store previous states (for the renderer's interpolation and the rollback), reading
-//      each body's object once for all the step needs of it (state, mass, restitution, key)
+// a fixed dt. It is made of parts, each the data of one concern (as Jolt's PhysicsSystem is
+// made of a body manager, a broad phase, a contact manager...); they are World's private
+// members, declared at the end of this file:
+//   Bodies           every body, and what the step keeps of each (previous state and rotation,
+//                    mass, restitution, coupling key, state and pose at the current stage,
+//                    bounces, the first one not finite or inside a surface)
+//   Forces           the forces, the pairs of bodies they couple, and their accumulators
+//   ParticleSystems  the coupling of the moving particles into systems, one per integrator,
+//                    their scratch, and implicit-euler's and xpbd's spring solvers
+//   RigidBodies      the rigid system (src/core/rigid/: broad phase, narrow phase, contact
+//                    cache, islands with their sleep, contact solver and joints) and the
+//                    buffers of the bodies' free step
+//   Swarms           the swarms (float arrays, all cores) and their copies for a rollback
+//   Surfaces         the ground or the room, the floor hole, their planes, the collision response
+//   StepClock        the time and the step count
+// step() runs in named phases (the way Box2D's solver stages and Jolt's step jobs are named),
+// each a function over one part or a named few:
+//   1. Bodies::storePreviousStates (and Swarms::keepForRollback): the states before the step,
+//      for the renderer's interpolation and the rollback, reading each body's object once for
+//      all the step needs of it (state, mass, restitution, key)
 //   2. couple: bodies joined (transitively) by forces between bodies, such as a two-body
 //      spring, form a coupled group that shares one integrator (kept from step to step, made
 //      anew when a body's fixed flag or integrator changes)
-//   3. integrate the independent bodies, each with its own integrator, with collisions along
+//   3. integrateIndependent: each other particle with its own integrator, with collisions along
 //      its own path (the exact time of impact): forces are summed at every trial state
-//   4. integrate the coupled bodies, one system per integrator: every stage of the integrator
-//      evaluates every force for every body of the system at that stage's state (RK4 of a
-//      coupled system is RK4 of the whole system); implicit-euler's and xpbd's systems (every
-//      moving particle that takes them, joined by springs or not) take their own steps:
-//      integrateBackwardEuler solves for the velocities with the springs' Jacobian,
-//      integrateXpbd projects the springs as constraints in substeps
-//   5. collide and store the coupled bodies: each one found behind a surface gets the
-//      reflect or clamp rule of its own (exact acts as reflect for them), in the pass that
-//      writes their new states
-//   5b. step the rigid bodies (stepRigidBodies): each awake one freely with its integrator, one
-//      system per integrator, translation and rotation together (every stage evaluates every
-//      force, with torques); then the rigid system (src/core/rigid/) finds their contacts with
-//      each other and with the room and solves them, island by island, and puts still islands
-//      to sleep
-//   6. step the swarms (float arrays, all cores) with the same integrator, force and
-//      collision templates
-//   7. check that every state (bodies and swarms) is finite, and that no rigid body's centre
-//      ended inside a surface: each was checked as it was written; here the first one that is
-//      not rolls the step back and throws
+//   4. integrateParticleSystems: one system per integrator. integrateCoupled: every stage of
+//      an explicit method evaluates every force for every body of the system at that stage's
+//      state (RK4 of a coupled system is RK4 of the whole system); implicit-euler's and xpbd's
+//      systems (every moving particle that takes them, joined by springs or not) take their
+//      own steps: integrateBackwardEuler solves for the velocities with the springs' Jacobian,
+//      integrateXpbd projects the springs as constraints in substeps. Each ends in
+//      collideAndStore: a body found behind a surface gets the reflect or clamp rule of its own
+//      (exact acts as reflect for them), in the pass that writes its new state
+//   5. stepRigidBodies: integrateRigidFreely steps each awake rigid body under every force, one
+//      system per integrator, translation and rotation together; then the rigid system finds
+//      their contacts with each other and with the room (findContacts), the bodies it woke take
+//      their free step too, it solves the contacts and joints island by island and puts still
+//      islands to sleep (solve), and storeRigidBodies writes each end state into its body
+//   6. stepSwarms: the swarms with the same integrator, force and collision templates
+//   7. checkFinite and checkInsideSurfaces: every state (bodies and swarms) was checked as it
+//      was written, and each rigid body's centre against the surfaces; here the first one that
+//      is not finite, or inside, rolls the step back and throws
+//   8. StepClock::advance
 // It knows no window, no file format and no clock: frame time never reaches it.
 #include <array>
 #include <cstdint>
@@ -307,6 +322,14 @@ private:
         /// The lowest index of a rigid body the step left with its centre inside a surface;
         /// bodyCount() if none.
         std::size_t firstInside = 0;
+
+        /// Phase 1: each body's state before the step, for the renderer's interpolation and the
+        /// rollback, with all else the step reads of its object (mass, restitution, key).
+        void storePreviousStates();
+        /// Notes body i as not finite if its new state is not.
+        void noteIfNotFinite(std::size_t i, const State& state);
+        /// Every body back at its state before the step.
+        void rollBack();
     };
     /// The forces, the pairs of bodies they couple, and the accumulators they add to.
     struct Forces {
@@ -357,10 +380,16 @@ private:
         ClonePtr<rigid::RigidSystem> system;
         RigidScratch scratch;
     };
+    /// The swarms, and their copies for a rollback.
     struct Swarms {
         std::vector<ClonePtr<Swarm>> objects; ///< each its own object: addSwarm's references stay valid
         bool rollback = false;
         std::vector<std::vector<float>> before; ///< with rollback: each swarm before the step
+
+        /// With rollback: a copy of each swarm before the step.
+        void keepForRollback();
+        /// With rollback: each swarm back at its copy.
+        void rollBack();
     };
     /// What bounds the bodies and swarms, and how they bounce off it.
     struct Surfaces {
@@ -369,7 +398,11 @@ private:
         std::optional<FloorHole> hole;
         std::vector<Plane> planes; ///< made of the three above
         CollisionResponse response = CollisionResponse::Exact;
+
+        /// The planes of the ground or the room, with the hole cut in the floor and its grille.
+        void rebuildPlanes();
     };
+    /// The time of the world, which each step advances.
     struct StepClock {
         double time = 0.0;
         double previousTime = 0.0;
@@ -377,17 +410,26 @@ private:
         double lastDt = 0.0;       ///< dt of the previous step
         double baseTime = 0.0;     ///< time when dt last changed
         std::uint64_t baseSteps = 0;
+
+        /// Phase 8: the time after a step of dt.
+        void advance(double dt);
     };
     static constexpr std::uint32_t kNotRigid = 0xffffffffu;
 
-    void rebuildPlanes();
-    void storePreviousStates();
+    // ---- the phases of step(), in order; the parts each works on in brackets ----
+    /// Phase 2 (ParticleSystems, from Bodies and Forces): the coupling, made anew if a body's
+    /// key changed. Throws for a coupled pair that cannot share an integrator.
     const Coupling& couple();
     Coupling makeCoupling() const;
-    void integrateIndependent(const Coupling& coupling, double dt);
+    /// Phase 3 (Bodies, Forces, Surfaces): each body alone with its integrator, colliding
+    /// along its own path.
+    void integrateIndependent(const std::vector<std::size_t>& bodies, double dt);
+    dvec3 aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const;
+    /// Phase 4 (ParticleSystems, Bodies, Forces, Surfaces): each particle system with its
+    /// method, then collideAndStore.
+    void integrateParticleSystems(const Coupling& coupling, double dt);
     void integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members,
                           std::span<const std::uint8_t> wanted, double dt);
-    void collideAndStore(const std::vector<std::size_t>& members);
     void integrateBackwardEuler(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
                                 double dt);
     void integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt);
@@ -401,20 +443,26 @@ private:
     /// The spring solver of implicit-euler (or xpbd) made for the system, the system started
     /// with its masses, and the springs' fixed ends placed.
     detail::SpringSolver& startSpringSystem(const std::vector<std::size_t>& members, bool xpbd);
+    /// The system's end states through the surfaces into its bodies, each checked finite.
+    void collideAndStore(const std::vector<std::size_t>& members);
+    /// Phase 5 (RigidBodies, Bodies, Forces, Surfaces): the awake bodies' free step
+    /// (integrateRigidFreely), the rigid system's findContacts, the free step of the bodies it
+    /// woke, its solve, then storeRigidBodies.
     void stepRigidBodies(double dt);
     void integrateRigidFreely(std::span<const std::uint32_t> bodies, double dt);
     void stepRigid(Integrator integrator, const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
                    double dt);
     void storeRigidBodies();
-    void noteIfNotFinite(std::size_t i, const State& state);
+    /// Phase 6 (Swarms, Forces, Surfaces).
+    void stepSwarms(double dt);
+    /// Phase 7 (Bodies, Swarms, Surfaces): the first state that cannot be rolls the step back
+    /// (Bodies and Swarms) and throws.
     void checkFinite(double dt);
     void checkInsideSurfaces(double dt);
-    void advanceClock(double dt);
-    dvec3 aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const;
+    void rollBack();
+
     /// Every body's state (and, in a world with rigid bodies, its pose) as the read-outs see it.
     BodyStates currentStates(std::vector<State>& storage, std::vector<Pose>& poses) const;
-    void stepSwarms(double dt);
-    void rollBack();
 
     Bodies m_bodies;
     Forces m_forces;

@@ -278,14 +278,14 @@ void World::setGround(double height)
 {
     m_surfaces.room.reset();
     m_surfaces.ground = height;
-    rebuildPlanes();
+    m_surfaces.rebuildPlanes();
 }
 
 void World::setRoom(const Aabb& room)
 {
     m_surfaces.ground.reset();
     m_surfaces.room = room;
-    rebuildPlanes();
+    m_surfaces.rebuildPlanes();
 }
 
 void World::clearSurfaces()
@@ -304,24 +304,24 @@ void World::setFloorHole(const FloorHole& hole)
         throw std::invalid_argument(fmt::format("a floor hole needs a positive radius and depth, got {} and {}",
                                                 hole.radius, hole.depth));
     m_surfaces.hole = hole;
-    rebuildPlanes();
+    m_surfaces.rebuildPlanes();
 }
 
-void World::rebuildPlanes()
+void World::Surfaces::rebuildPlanes()
 {
-    m_surfaces.planes.clear();
-    if (m_surfaces.ground) {
-        const auto planes = groundPlanes(*m_surfaces.ground);
-        m_surfaces.planes.assign(planes.begin(), planes.end());
-    } else if (m_surfaces.room) {
-        const auto planes = roomPlanes(m_surfaces.room->min, m_surfaces.room->max);
-        m_surfaces.planes.assign(planes.begin(), planes.end());
+    planes.clear();
+    if (ground) {
+        const auto made = groundPlanes(*ground);
+        planes.assign(made.begin(), made.end());
+    } else if (room) {
+        const auto made = roomPlanes(room->min, room->max);
+        planes.assign(made.begin(), made.end());
     }
-    if (m_surfaces.hole && !m_surfaces.planes.empty()) {
-        Plane& floor = m_surfaces.planes.front(); // both builders put the floor first
-        floor.holeRadius = m_surfaces.hole->radius;
-        floor.holeCentre = dvec3(m_surfaces.hole->centre.x, floor.offset, m_surfaces.hole->centre.z);
-        m_surfaces.planes.push_back(Plane{floor.normal, floor.offset - m_surfaces.hole->depth}); // the grille
+    if (hole && !planes.empty()) {
+        Plane& floor = planes.front(); // both builders put the floor first
+        floor.holeRadius = hole->radius;
+        floor.holeCentre = dvec3(hole->centre.x, floor.offset, hole->centre.z);
+        planes.push_back(Plane{floor.normal, floor.offset - hole->depth}); // the grille
     }
 }
 

@@ -78,28 +78,17 @@ void World::step(double dt)
         throw std::invalid_argument(fmt::format("a step's dt must be finite and positive, got {} s", dt));
     m_bodies.firstNonFinite = m_bodies.firstInside = m_bodies.objects.size();
     detail::onCores(m_threads, [&] {
-        storePreviousStates();
+        m_bodies.storePreviousStates();
+        m_swarms.keepForRollback();
         const Coupling& coupling = couple(); // a mixed coupled group throws before anything moves
-        integrateIndependent(coupling, dt);
-        for (std::size_t k = 0; k < kParticleIntegrators.size(); ++k) {
-            const Integrator integrator = kParticleIntegrators[k];
-            const auto& members = coupling.systems[k];
-            if (members.empty())
-                continue;
-            if (integrator == Integrator::ImplicitEuler)
-                integrateBackwardEuler(members, coupling.wanted[k], dt);
-            else if (integrator == Integrator::Xpbd)
-                integrateXpbd(members, coupling.wanted[k], dt);
-            else
-                integrateCoupled(integrator, members, coupling.wanted[k], dt);
-        }
-        if (m_rigid.system->size() > 0)
-            stepRigidBodies(dt);
+        integrateIndependent(coupling.independent, dt);
+        integrateParticleSystems(coupling, dt);
+        stepRigidBodies(dt);
     });
     stepSwarms(dt);
     checkFinite(dt);
     checkInsideSurfaces(dt);
-    advanceClock(dt);
+    m_clock.advance(dt);
 }
 
 void World::checkFinite(double dt)
@@ -141,62 +130,76 @@ void World::checkInsideSurfaces(double dt)
     throw error;
 }
 
-void World::advanceClock(double dt)
+void World::StepClock::advance(double dt)
 {
     // t = t0 + k dt from the last change of dt, rather than a running sum, so the time of
     // step n is n dt to rounding instead of drifting by n rounding errors.
-    m_clock.previousTime = m_clock.time;
-    if (dt != m_clock.lastDt) {
-        m_clock.lastDt = dt;
-        m_clock.baseTime = m_clock.time;
-        m_clock.baseSteps = m_clock.steps;
+    previousTime = time;
+    if (dt != lastDt) {
+        lastDt = dt;
+        baseTime = time;
+        baseSteps = steps;
     }
-    ++m_clock.steps;
-    m_clock.time = m_clock.baseTime + static_cast<double>(m_clock.steps - m_clock.baseSteps) * dt;
+    ++steps;
+    time = baseTime + static_cast<double>(steps - baseSteps) * dt;
 }
 
-void World::storePreviousStates()
+void World::Bodies::storePreviousStates()
 {
     // One visit to each body's object for all the step reads of it: a 128 x 128 cloth's 16,384
     // heap objects are slow memory, and each further pass over them cost as much as its springs.
-    const std::size_t n = m_bodies.objects.size();
-    m_bodies.masses.resize(n);
-    m_bodies.cors.resize(n);
-    m_bodies.keys.resize(n);
-    m_bodies.trial.resize(n);
+    const std::size_t n = objects.size();
+    masses.resize(n);
+    cors.resize(n);
+    keys.resize(n);
+    trial.resize(n);
     detail::forEachIndex(n, [this](std::size_t i) {
-        const Body& b = *m_bodies.objects[i];
-        m_bodies.previous[i] = b.getState();
-        m_bodies.trial[i] = m_bodies.previous[i]; // the coupled systems' stages start from here
-        m_bodies.masses[i] = b.getMass();
-        m_bodies.cors[i] = b.getCor();
-        m_bodies.keys[i] = couplingKey(b);
-        if (m_bodies.isRigid[i] != 0) {
+        const Body& b = *objects[i];
+        previous[i] = b.getState();
+        trial[i] = previous[i]; // the coupled systems' stages start from here
+        masses[i] = b.getMass();
+        cors[i] = b.getCor();
+        keys[i] = couplingKey(b);
+        if (isRigid[i] != 0) {
             const auto& rigid = static_cast<const RigidBody&>(b);
-            m_bodies.previousRotation[i] = rigid.getRotation();
+            previousRotation[i] = rigid.getRotation();
             if (b.isFixed()) // a moving one's pose is set at each stage of its system's step
-                m_bodies.poses[i] = Pose{rigid.getOrientation(), rigid.getAngularVelocity()};
+                poses[i] = Pose{rigid.getOrientation(), rigid.getAngularVelocity()};
         }
     });
-    if (m_swarms.rollback) {
-        m_swarms.before.resize(m_swarms.objects.size());
-        for (std::size_t s = 0; s < m_swarms.objects.size(); ++s)
-            m_swarms.objects[s]->saveState(m_swarms.before[s]);
-    }
+}
+
+void World::Swarms::keepForRollback()
+{
+    if (!rollback)
+        return;
+    before.resize(objects.size());
+    for (std::size_t s = 0; s < objects.size(); ++s)
+        objects[s]->saveState(before[s]);
 }
 
 void World::rollBack()
 {
     // So a viewer can pause on the last finite state instead of drawing garbage (previous and
     // current then coincide: nothing moves between them).
-    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i) {
-        m_bodies.objects[i]->setState(m_bodies.previous[i]);
-        if (isRigid(i))
-            static_cast<RigidBody&>(*m_bodies.objects[i]).setRotation(m_bodies.previousRotation[i]);
+    m_bodies.rollBack();
+    m_swarms.rollBack();
+}
+
+void World::Bodies::rollBack()
+{
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+        objects[i]->setState(previous[i]);
+        if (isRigid[i] != 0)
+            static_cast<RigidBody&>(*objects[i]).setRotation(previousRotation[i]);
     }
-    if (m_swarms.rollback)
-        for (std::size_t s = 0; s < m_swarms.objects.size() && s < m_swarms.before.size(); ++s)
-            m_swarms.objects[s]->restoreState(m_swarms.before[s]);
+}
+
+void World::Swarms::rollBack()
+{
+    if (rollback)
+        for (std::size_t s = 0; s < objects.size() && s < before.size(); ++s)
+            objects[s]->restoreState(before[s]);
 }
 
 dvec3 World::aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const
@@ -208,12 +211,12 @@ dvec3 World::aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) co
     return f / b.getMass();
 }
 
-void World::integrateIndependent(const Coupling& coupling, double dt)
+void World::integrateIndependent(const std::vector<std::size_t>& bodies, double dt)
 {
-    for (const std::size_t i : coupling.independent) {
+    for (const std::size_t i : bodies) {
         Body& b = *m_bodies.objects[i];
         if (b.isFixed()) {
-            noteIfNotFinite(i, b.getState()); // a program may have put it anywhere
+            m_bodies.noteIfNotFinite(i, b.getState()); // a program may have put it anywhere
             continue;
         }
         // Every integrator's first evaluation is at the start state: that one is kept as the
@@ -234,7 +237,23 @@ void World::integrateIndependent(const Coupling& coupling, double dt)
         m_bodies.bounces[i] += static_cast<std::uint64_t>(bounces);
         b.setState(s);
         b.setAcc(startAcc);
-        noteIfNotFinite(i, s);
+        m_bodies.noteIfNotFinite(i, s);
+    }
+}
+
+void World::integrateParticleSystems(const Coupling& coupling, double dt)
+{
+    for (std::size_t k = 0; k < kParticleIntegrators.size(); ++k) {
+        const Integrator integrator = kParticleIntegrators[k];
+        const auto& members = coupling.systems[k];
+        if (members.empty())
+            continue;
+        if (integrator == Integrator::ImplicitEuler)
+            integrateBackwardEuler(members, coupling.wanted[k], dt);
+        else if (integrator == Integrator::Xpbd)
+            integrateXpbd(members, coupling.wanted[k], dt);
+        else
+            integrateCoupled(integrator, members, coupling.wanted[k], dt);
     }
 }
 
@@ -319,6 +338,8 @@ void World::collideAndStore(const std::vector<std::size_t>& members)
 void World::stepRigidBodies(double dt)
 {
     rigid::RigidSystem& system = *m_rigid.system;
+    if (system.size() == 0)
+        return;
     thread_local std::vector<const RigidBody*> bodies;
     bodies.resize(system.size());
     for (std::size_t k = 0; k < system.size(); ++k)
@@ -451,10 +472,10 @@ void World::storeRigidBodies()
     m_bodies.firstInside = std::min(m_bodies.firstInside, inside);
 }
 
-void World::noteIfNotFinite(std::size_t i, const State& state)
+void World::Bodies::noteIfNotFinite(std::size_t i, const State& state)
 {
     if (!isFinite(state.pos) || !isFinite(state.vel))
-        m_bodies.firstNonFinite = std::min(m_bodies.firstNonFinite, i);
+        firstNonFinite = std::min(firstNonFinite, i);
 }
 
 void World::stepSwarms(double dt)
