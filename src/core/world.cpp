@@ -1,6 +1,7 @@
 // A World: its bodies, swarms, forces and surfaces, and what can be read of it between steps
-// (states, energies, interpolation for drawing). Its step is in world_step.cpp, the coupling of
-// its bodies into systems in world_coupling.cpp.
+// (states, energies, interpolation for drawing). Its step is in world_step.cpp, with the phases
+// of its particle systems and rigid bodies in world_particle_systems.cpp and
+// world_rigid_bodies.cpp, and the coupling of its bodies into systems in world_coupling.cpp.
 #include "pba/world.hpp"
 
 #include <algorithm>
