@@ -262,7 +262,10 @@ void World::setXpbdSubsteps(int substeps)
     m_particleSystems.xpbdSubsteps = substeps;
 }
 
-int World::lastImplicitIterations() const { return m_particleSystems.springSolvers->backwardEuler.backwardEuler.iterations(); }
+int World::lastImplicitIterations() const
+{
+    return m_particleSystems.springSolvers->backwardEuler.backwardEuler.iterations();
+}
 
 dvec3 World::gravity() const
 {
@@ -377,7 +380,8 @@ dquat World::interpolatedOrientation(std::size_t i, double alpha) const
 
 bool World::hasPoints() const
 {
-    return !m_swarms.objects.empty() || std::any_of(m_bodies.isRigid.begin(), m_bodies.isRigid.end(), [](std::uint8_t r) { return r == 0; });
+    const auto& flags = m_bodies.isRigid;
+    return !m_swarms.objects.empty() || std::any_of(flags.begin(), flags.end(), [](std::uint8_t r) { return r == 0; });
 }
 
 bool World::isAsleep(std::size_t i) const

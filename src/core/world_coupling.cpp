@@ -105,9 +105,11 @@ bool World::isCoupled(std::size_t i) const
 
 bool World::hasCoupledBodies() const
 {
-    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
-        if (!isRigid(i) && !m_bodies.objects[i]->isFixed() && isSpringSystemMethod(m_bodies.objects[i]->getIntegrator()))
+    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i) {
+        const Body& b = *m_bodies.objects[i];
+        if (!isRigid(i) && !b.isFixed() && isSpringSystemMethod(b.getIntegrator()))
             return true;
+    }
     return std::any_of(m_forces.couplings.begin(), m_forces.couplings.end(), [this](const auto& p) {
         return !m_bodies.objects[p.first]->isFixed() || !m_bodies.objects[p.second]->isFixed();
     });

@@ -108,7 +108,8 @@ void World::collideAndStore(const std::vector<std::size_t>& members)
 
 detail::SpringSolver& World::startSpringSystem(const std::vector<std::size_t>& members, bool xpbd)
 {
-    detail::SpringSolver& solver = xpbd ? m_particleSystems.springSolvers->xpbd : m_particleSystems.springSolvers->backwardEuler;
+    detail::SpringSolvers& solvers = *m_particleSystems.springSolvers;
+    detail::SpringSolver& solver = xpbd ? solvers.xpbd : solvers.backwardEuler;
     solver.prepare(m_forces.objects, members, m_bodies.objects.size(), xpbd); // XPBD colours its constraints
     startSystem(members);
     CoupledScratch& s = m_particleSystems.scratch;

@@ -52,7 +52,8 @@ void World::integrateRigidFreely(std::span<const std::uint32_t> bodies, double d
         members.clear();
     for (const std::uint32_t k : bodies) {
         const std::size_t i = system.worldIndex(k);
-        const auto at = std::find(kEveryIntegrator.begin(), kEveryIntegrator.end(), m_bodies.objects[i]->getIntegrator());
+        const Integrator integrator = m_bodies.objects[i]->getIntegrator();
+        const auto at = std::find(kEveryIntegrator.begin(), kEveryIntegrator.end(), integrator);
         r.members[std::size_t(at - kEveryIntegrator.begin())].push_back(i);
     }
     for (std::size_t m = 0; m < kEveryIntegrator.size(); ++m) {
@@ -79,8 +80,8 @@ void World::integrateRigidFreely(std::span<const std::uint32_t> bodies, double d
     }
 }
 
-void World::stepRigid(Integrator integrator, const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
-                      double dt)
+void World::stepRigid(Integrator integrator, const std::vector<std::size_t>& members,
+                      std::span<const std::uint8_t> wanted, double dt)
 {
     // As integrateCoupled: the other bodies stay at their start-of-step states and poses while
     // the system's take each stage's.
@@ -96,7 +97,8 @@ void World::stepRigid(Integrator integrator, const std::vector<std::size_t>& mem
             const std::size_t i = members[k];
             m_bodies.trial[i] = State{at[k].x, at[k].v};
             const Rotation& turn = at[k].rotation;
-            m_bodies.poses[i] = Pose{turn.orientation, angularVelocity(turn.orientation, r.inertia[k].inverseInertiaBody, turn.momentum)};
+            const dvec3 omega = angularVelocity(turn.orientation, r.inertia[k].inverseInertiaBody, turn.momentum);
+            m_bodies.poses[i] = Pose{turn.orientation, omega};
             m_forces.sums[i] = m_forces.torques[i] = dvec3(0.0);
         });
         for (const auto& force : m_forces.objects)
@@ -136,7 +138,8 @@ void World::storeRigidBodies()
             return detail::isFinite(b.getPos()) && detail::isFinite(b.getVel());
         const RigidState& s = system.end(k);
         b.setState(State{s.x, s.v}); // a body that is not finite: the rollback restores it, the message reads it
-        if (!detail::isFinite(s.x) || !detail::isFinite(s.v) || !detail::isFinite(s.rotation.momentum) || !isUnit(s.rotation.orientation)) {
+        if (!detail::isFinite(s.x) || !detail::isFinite(s.v) || !detail::isFinite(s.rotation.momentum) ||
+            !isUnit(s.rotation.orientation)) {
             b.setAngularMomentum(s.rotation.momentum); // for the message: its spin, or its orientation
             return false;
         }

@@ -52,14 +52,14 @@ void World::checkFinite(double dt)
         std::string quantity = detail::isFinite(bad.getPos()) ? "velocity" : "position";
         if (isRigid(m_bodies.firstNonFinite) && detail::isFinite(bad.getPos()) && detail::isFinite(bad.getVel()))
             quantity = detail::isFinite(static_cast<const RigidBody&>(bad).getAngularMomentum()) ? "orientation"
-                                                                                       : "angular velocity";
+                                                                                               : "angular velocity";
         rollBack();
         throw NonFiniteStateError(bad.getName(), m_clock.steps + 1, m_clock.time + dt, quantity);
     }
     for (const auto& swarm : m_swarms.objects)
         if (const auto& bad = swarm->nonFinite()) {
-            const NonFiniteStateError error =
-                NonFiniteStateError::inSwarm(swarm->name(), bad->index, m_clock.steps + 1, m_clock.time + dt, bad->quantity);
+            const NonFiniteStateError error = NonFiniteStateError::inSwarm(swarm->name(), bad->index, m_clock.steps + 1,
+                                                                           m_clock.time + dt, bad->quantity);
             rollBack();
             throw error;
         }
@@ -73,7 +73,8 @@ void World::checkInsideSurfaces(double dt)
     const int p = detail::surfaceHolding(m_surfaces.planes, bad.getPos(), bad.getBoundingRadius());
     const dvec3 normal = p >= 0 ? m_surfaces.planes[std::size_t(p)].normal : dvec3(0.0, 1.0, 0.0);
     const bool grille = m_surfaces.hole && p == int(m_surfaces.planes.size()) - 1;
-    const char* surface = grille ? "the blow dryer's grille" : normal.y > 0.5 ? (m_surfaces.ground ? "the ground" : "the floor")
+    const char* floor = m_surfaces.ground ? "the ground" : "the floor";
+    const char* surface = grille ? "the blow dryer's grille" : normal.y > 0.5 ? floor
                           : normal.y < -0.5                               ? "the ceiling"
                                                                           : "a wall";
     BlowUpError error(bad.getName(), m_clock.steps + 1, m_clock.time + dt,
@@ -184,8 +185,9 @@ void World::integrateIndependent(const std::vector<std::size_t>& bodies, double 
             return a;
         };
         State s = b.getState();
-        const int bounces = stepWithCollisions(m_surfaces.response, b.getIntegrator(), std::span<const Plane>(m_surfaces.planes),
-                                               b.getCor(), s.pos, s.vel, dt, accel);
+        const int bounces = stepWithCollisions(m_surfaces.response, b.getIntegrator(),
+                                               std::span<const Plane>(m_surfaces.planes), b.getCor(), s.pos, s.vel, dt,
+                                               accel);
         m_bodies.bounces[i] += static_cast<std::uint64_t>(bounces);
         b.setState(s);
         b.setAcc(startAcc);
