@@ -1,33 +1,48 @@
 #pragma once
 // The World owns bodies, forces and the surfaces that bound them, and advances them by
-// a fixed dt. The step runs in named phases over every body and swarm (the way Box2D's
-// solver stages and Jolt's step jobs are named):
-//   1. store previous states (for the renderer's interpolation and the rollback), reading
-//      each body's object once for all the step needs of it (state, mass, restitution, key)
+// a fixed dt. It is made of parts, each the data of one concern (as Jolt's PhysicsSystem is
+// made of a body manager, a broad phase, a contact manager...); they are World's private
+// members, declared at the end of this file:
+//   Bodies           every body, and what the step keeps of each (previous state and rotation,
+//                    mass, restitution, coupling key, state and pose at the current stage,
+//                    bounces, the first one not finite or inside a surface)
+//   Forces           the forces, the pairs of bodies they couple, and their accumulators
+//   ParticleSystems  the coupling of the moving particles into systems, one per integrator,
+//                    their scratch, and implicit-euler's and xpbd's spring solvers
+//   RigidBodies      the rigid system (src/core/rigid/: broad phase, narrow phase, contact
+//                    cache, islands with their sleep, contact solver and joints) and the
+//                    buffers of the bodies' free step
+//   Swarms           the swarms (float arrays, all cores) and their copies for a rollback
+//   Surfaces         the ground or the room, the floor hole, their planes, the collision response
+//   StepClock        the time and the step count
+// step() runs in named phases (the way Box2D's solver stages and Jolt's step jobs are named),
+// each a function over one part or a named few:
+//   1. Bodies::storePreviousStates (and Swarms::keepForRollback): the states before the step,
+//      for the renderer's interpolation and the rollback, reading each body's object once for
+//      all the step needs of it (state, mass, restitution, key)
 //   2. couple: bodies joined (transitively) by forces between bodies, such as a two-body
 //      spring, form a coupled group that shares one integrator (kept from step to step, made
 //      anew when a body's fixed flag or integrator changes)
-//   3. integrate the independent bodies, each with its own integrator, with collisions along
+//   3. integrateIndependent: each other particle with its own integrator, with collisions along
 //      its own path (the exact time of impact): forces are summed at every trial state
-//   4. integrate the coupled bodies, one system per integrator: every stage of the integrator
-//      evaluates every force for every body of the system at that stage's state (RK4 of a
-//      coupled system is RK4 of the whole system); implicit-euler's and xpbd's systems (every
-//      moving particle that takes them, joined by springs or not) take their own steps:
-//      integrateBackwardEuler solves for the velocities with the springs' Jacobian,
-//      integrateXpbd projects the springs as constraints in substeps
-//   5. collide and store the coupled bodies: each one found behind a surface gets the
-//      reflect or clamp rule of its own (exact acts as reflect for them), in the pass that
-//      writes their new states
-//   5b. step the rigid bodies (stepRigidBodies): each awake one freely with its integrator, one
-//      system per integrator, translation and rotation together (every stage evaluates every
-//      force, with torques); then the rigid system (src/core/rigid/) finds their contacts with
-//      each other and with the room and solves them, island by island, and puts still islands
-//      to sleep
-//   6. step the swarms (float arrays, all cores) with the same integrator, force and
-//      collision templates
-//   7. check that every state (bodies and swarms) is finite, and that no rigid body's centre
-//      ended inside a surface: each was checked as it was written; here the first one that is
-//      not rolls the step back and throws
+//   4. integrateParticleSystems: one system per integrator. integrateCoupled: every stage of
+//      an explicit method evaluates every force for every body of the system at that stage's
+//      state (RK4 of a coupled system is RK4 of the whole system); implicit-euler's and xpbd's
+//      systems (every moving particle that takes them, joined by springs or not) take their
+//      own steps: integrateBackwardEuler solves for the velocities with the springs' Jacobian,
+//      integrateXpbd projects the springs as constraints in substeps. Each ends in
+//      collideAndStore: a body found behind a surface gets the reflect or clamp rule of its own
+//      (exact acts as reflect for them), in the pass that writes its new state
+//   5. stepRigidBodies: integrateRigidFreely steps each awake rigid body under every force, one
+//      system per integrator, translation and rotation together; then the rigid system finds
+//      their contacts with each other and with the room (findContacts), the bodies it woke take
+//      their free step too, it solves the contacts and joints island by island and puts still
+//      islands to sleep (solve), and storeRigidBodies writes each end state into its body
+//   6. stepSwarms: the swarms with the same integrator, force and collision templates
+//   7. checkFinite and checkInsideSurfaces: every state (bodies and swarms) was checked as it
+//      was written, and each rigid body's centre against the surfaces; here the first one that
+//      is not finite, or inside, rolls the step back and throws
+//   8. StepClock::advance
 // It knows no window, no file format and no clock: frame time never reaches it.
 #include <array>
 #include <cstdint>
@@ -58,6 +73,7 @@ namespace rigid {
 class RigidSystem;
 }
 namespace detail {
+class SpringSystem;
 struct SpringSolver;
 struct SpringSolvers;
 }
@@ -122,9 +138,9 @@ public:
     // ---- bodies ----
     Body& addBody(std::unique_ptr<Body> body);
     Particle& addParticle(const Particle& particle);
-    std::size_t bodyCount() const { return m_bodies.size(); }
-    Body& body(std::size_t i) { return *m_bodies[i]; }
-    const Body& body(std::size_t i) const { return *m_bodies[i]; }
+    std::size_t bodyCount() const { return m_bodies.objects.size(); }
+    Body& body(std::size_t i) { return *m_bodies.objects[i]; }
+    const Body& body(std::size_t i) const { return *m_bodies.objects[i]; }
     std::optional<std::size_t> findBody(std::string_view name) const;
 
     // ---- joints between rigid bodies (or a rigid body and the world) ----
@@ -140,16 +156,16 @@ public:
     /// Throws std::invalid_argument if a force of the world cannot act on a swarm. The reference
     /// stays valid as more swarms are added (each swarm is an object of its own, as a body is).
     Swarm& addSwarm(const SwarmDesc& desc);
-    std::size_t swarmCount() const { return m_swarms.size(); }
-    Swarm& swarm(std::size_t i) { return *m_swarms[i]; }
-    const Swarm& swarm(std::size_t i) const { return *m_swarms[i]; }
+    std::size_t swarmCount() const { return m_swarms.objects.size(); }
+    Swarm& swarm(std::size_t i) { return *m_swarms.objects[i]; }
+    const Swarm& swarm(std::size_t i) const { return *m_swarms.objects[i]; }
     /// Threads for stepping swarms and coupled bodies (a cloth): 0 (the default) uses all cores;
     /// results do not depend on it.
     void setThreads(int threads) { m_threads = threads; }
     /// The substeps of a step of the bodies that take `xpbd` (default kDefaultXpbdSubsteps).
     /// Throws std::invalid_argument unless it is from 1 to kMaxXpbdSubsteps.
     void setXpbdSubsteps(int substeps);
-    int xpbdSubsteps() const { return m_xpbdSubsteps; }
+    int xpbdSubsteps() const { return m_particleSystems.xpbdSubsteps; }
     static constexpr int kDefaultXpbdSubsteps = 10;
     static constexpr int kMaxXpbdSubsteps = 10000;
     /// The conjugate-gradient iterations of implicit-euler's last step (0 without its system).
@@ -158,7 +174,7 @@ public:
     /// with the bodies (the viewer pauses on the last finite state). Off by default: the copy
     /// doubles a swarm's memory and its traffic each step, and a program that stops at the
     /// failure has no use for it; without it the swarms keep the failed step's state.
-    void setSwarmRollback(bool keep) { m_swarmRollback = keep; }
+    void setSwarmRollback(bool keep) { m_swarms.rollback = keep; }
     /// The forces that act on swarms, in float: gravity, drag and blow dryers.
     SwarmFields swarmFields() const;
 
@@ -166,9 +182,9 @@ public:
     /// Throws std::invalid_argument if the world has swarms and the force cannot act on them
     /// (Force::addToSwarmFields).
     Force& addForce(std::unique_ptr<Force> force);
-    std::size_t forceCount() const { return m_forces.size(); }
-    Force& force(std::size_t i) { return *m_forces[i]; }
-    const Force& force(std::size_t i) const { return *m_forces[i]; }
+    std::size_t forceCount() const { return m_forces.objects.size(); }
+    Force& force(std::size_t i) { return *m_forces.objects[i]; }
+    const Force& force(std::size_t i) const { return *m_forces.objects[i]; }
     /// The gravitational acceleration of the world's Gravity forces (zero without any).
     dvec3 gravity() const;
 
@@ -179,23 +195,23 @@ public:
     /// Cuts a hole in the floor (of the room or the ground); one hole at most, as the planes
     /// carry one each. Throws std::invalid_argument without a floor or for a bad radius/depth.
     void setFloorHole(const FloorHole& hole);
-    const std::optional<FloorHole>& floorHole() const { return m_hole; }
-    const std::optional<double>& ground() const { return m_ground; }
-    const std::optional<Aabb>& room() const { return m_room; }
-    std::span<const Plane> planes() const { return m_planes; }
-    CollisionResponse collisionResponse() const { return m_response; }
+    const std::optional<FloorHole>& floorHole() const { return m_surfaces.hole; }
+    const std::optional<double>& ground() const { return m_surfaces.ground; }
+    const std::optional<Aabb>& room() const { return m_surfaces.room; }
+    std::span<const Plane> planes() const { return m_surfaces.planes; }
+    CollisionResponse collisionResponse() const { return m_surfaces.response; }
     /// The rule coupled bodies get: a coupled body has no path of its own to find a time of
     /// impact on (its group moves as one), so `exact` acts as `reflect` for it.
     CollisionResponse coupledCollisionResponse() const
     {
-        return m_response == CollisionResponse::Exact ? CollisionResponse::Reflect : m_response;
+        return m_surfaces.response == CollisionResponse::Exact ? CollisionResponse::Reflect : m_surfaces.response;
     }
     /// Whether some bodies get another rule than collisionResponse(): coupled ones under `exact`.
     bool coupledBodiesReflect() const
     {
-        return coupledCollisionResponse() != m_response && hasCoupledBodies();
+        return coupledCollisionResponse() != m_surfaces.response && hasCoupledBodies();
     }
-    void setCollisionResponse(CollisionResponse response) { m_response = response; }
+    void setCollisionResponse(CollisionResponse response) { m_surfaces.response = response; }
     /// Whether the response has anything to act on: a particle or a swarm (rigid bodies meet the
     /// room with contact impulses whatever it is).
     bool hasPoints() const;
@@ -212,22 +228,22 @@ public:
     /// floor hole's reach): at least half of it inside the floor or a wall, which its contacts
     /// never allow (they leave a point at most a step of gravity's sinking, g dt^2, beyond).
     void step(double dt);
-    double time() const { return m_time; }
+    double time() const { return m_clock.time; }
     /// The time of the previous states (before the last step).
-    double previousTime() const { return m_previousTime; }
-    std::uint64_t stepCount() const { return m_steps; }
+    double previousTime() const { return m_clock.previousTime; }
+    std::uint64_t stepCount() const { return m_clock.steps; }
     /// The state before the last step (equal to the current one before any step).
-    const State& previousState(std::size_t i) const { return m_previous[i]; }
+    const State& previousState(std::size_t i) const { return m_bodies.previous[i]; }
     /// Blend of previous and current state for rendering, alpha in [0, 1).
     State interpolatedState(std::size_t i, double alpha) const;
     /// Body i's orientation blended (slerp) between the previous and the current step, as
     /// interpolatedState blends its position; the identity for a body that does not turn.
     dquat interpolatedOrientation(std::size_t i, double alpha) const;
     /// Whether body i is a RigidBody (it turns, and meets the room with contact impulses).
-    bool isRigid(std::size_t i) const { return m_isRigid[i] != 0; }
+    bool isRigid(std::size_t i) const { return m_bodies.isRigid[i] != 0; }
     bool hasRigidBodies() const;
     /// Bounces of body i since the start.
-    std::uint64_t bounceCount(std::size_t i) const { return m_bounces[i]; }
+    std::uint64_t bounceCount(std::size_t i) const { return m_bodies.bounces[i]; }
     /// Whether rigid body i sleeps: it and every body it touches have been still for a while,
     /// and none of them moves until an awake body touches one (see ContactSettings).
     bool isAsleep(std::size_t i) const;
@@ -248,8 +264,8 @@ public:
     ContactSettings& contactSettings();
     const ContactSettings& contactSettings() const;
     /// The rigid bodies' contact pipeline: its settings, contacts and joints.
-    rigid::RigidSystem& rigidSystem() { return *m_rigidSystem; }
-    const rigid::RigidSystem& rigidSystem() const { return *m_rigidSystem; }
+    rigid::RigidSystem& rigidSystem() { return *m_rigid.system; }
+    const rigid::RigidSystem& rigidSystem() const { return *m_rigid.system; }
 
     // ---- physics read-outs ----
     /// Net force over mass on body i at the trial state (x, v), every other body at its
@@ -280,6 +296,51 @@ public:
     std::vector<std::size_t> coupledGroup(std::size_t i) const;
 
 private:
+    // ---- the parts: each phase of step() works on one of them (or a named few) ----
+
+    /// The bodies, and what the step keeps of each, by world index.
+    struct Bodies {
+        std::vector<ClonePtr<Body>> objects;
+        std::vector<State> previous;          ///< each body's state before the last step
+        std::vector<Rotation> previousRotation; ///< rigid bodies' (the identity for the others)
+        std::vector<std::uint8_t> isRigid;
+        /// Each body's index in the rigid system (kNotRigid for a particle).
+        std::vector<std::uint32_t> rigidIndex;
+        /// What storePreviousStates read of each body besides its state: mass, restitution, and
+        /// the key of its coupling (fixed flag and integrator).
+        std::vector<double> masses, cors;
+        std::vector<std::uint8_t> keys;
+        /// Each body's state and pose at the current stage of an integrator (BodyStates): the
+        /// start of the step for every body but those of the system being integrated.
+        std::vector<State> trial;
+        std::vector<Pose> poses;
+        /// Each rigid body's acceleration at the start of its last free step.
+        std::vector<dvec3> rigidAcc;
+        std::vector<std::uint64_t> bounces;
+        /// The lowest index of a body whose state the step made not finite; bodyCount() if none.
+        std::size_t firstNonFinite = 0;
+        /// The lowest index of a rigid body the step left with its centre inside a surface;
+        /// bodyCount() if none.
+        std::size_t firstInside = 0;
+
+        /// Phase 1: each body's state before the step, for the renderer's interpolation and the
+        /// rollback, with all else the step reads of its object (mass, restitution, key).
+        void storePreviousStates();
+        /// Notes body i as not finite if its new state is not.
+        void noteIfNotFinite(std::size_t i, const State& state);
+        /// Every body back at its state before the step.
+        void rollBack();
+    };
+    /// The forces, the pairs of bodies they couple, and the accumulators they add to.
+    struct Forces {
+        std::vector<ClonePtr<Force>> objects;
+        /// Every force's coupled pairs (Force::appendCouplings), gathered as the forces are added.
+        std::vector<std::pair<std::size_t, std::size_t>> couplings;
+        std::vector<std::size_t> couplingForce; ///< the force of each pair, for the messages
+        /// Every body's force and torque at the current stage (Accumulators), and the forces'
+        /// working memory (Accumulators::scratch).
+        std::vector<dvec3> sums, torques, scratch;
+    };
     /// The bodies integrated together: the moving bodies some force couples, by integrator (one
     /// system each), and the others. Kept from step to step (a cloth's 97,000
     /// springs are not walked every step) with what it was made from: each body's fixed flag and
@@ -292,61 +353,19 @@ private:
         std::array<std::vector<std::uint8_t>, kParticleIntegrators.size()> wanted;
         std::vector<std::uint8_t> madeFrom;
     };
-    /// integrateCoupled's buffers, reused so that a step allocates (almost) nothing.
+    /// A coupled system's buffers, reused so that a step allocates (almost) nothing.
     struct CoupledScratch {
         Vec3Array x, v, acc; ///< the system's state, and its acceleration at the start
         std::vector<double> mass; ///< the spring systems': each member's
-        std::vector<State> trial;
-        std::vector<dvec3> forces;
-        std::vector<dvec3> forceScratch; ///< the forces' working memory (Accumulators::scratch)
     };
-
-    void rebuildPlanes();
-    void storePreviousStates();
-    const Coupling& couple();
-    Coupling makeCoupling() const;
-    void integrateIndependent(const Coupling& coupling, double dt);
-    void integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members,
-                          std::span<const std::uint8_t> wanted, double dt);
-    void collideAndStore(const std::vector<std::size_t>& members);
-    void integrateBackwardEuler(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
-                                double dt);
-    void integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt);
-    /// The system's start state into m_scratch.x and .v, and its masses; the springs' fixed ends
-    /// placed.
-    void startSpringSystem(const std::vector<std::size_t>& members, detail::SpringSolver& solver);
-    void stepRigidBodies(double dt);
-    void integrateRigidFreely(std::span<const std::uint32_t> bodies, double dt);
-    void stepRigid(Integrator integrator, const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
-                   double dt);
-    void storeRigidBodies();
-    void noteIfNotFinite(std::size_t i, const State& state);
-    void checkFinite(double dt);
-    void checkInsideSurfaces(double dt);
-    void advanceClock(double dt);
-    dvec3 aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const;
-    /// Every body's state (and, in a world with rigid bodies, its pose) as the read-outs see it.
-    BodyStates currentStates(std::vector<State>& storage, std::vector<Pose>& poses) const;
-    void stepSwarms(double dt);
-    void rollBack();
-
-    std::vector<ClonePtr<Body>> m_bodies;
-    std::vector<ClonePtr<Force>> m_forces;
-    /// Every force's coupled pairs (Force::appendCouplings), gathered as the forces are added.
-    std::vector<std::pair<std::size_t, std::size_t>> m_couplings;
-    std::vector<std::size_t> m_couplingForce; ///< the force of each pair, for the messages
-    Coupling m_coupling;
-    CoupledScratch m_scratch;
-    std::vector<ClonePtr<Swarm>> m_swarms; ///< each its own object: addSwarm's references stay valid
-    int m_threads = 0;
-    bool m_swarmRollback = false;
-    std::vector<std::vector<float>> m_swarmsBefore; ///< with m_swarmRollback: each swarm before the step
-    std::vector<State> m_previous;
-    std::vector<Rotation> m_previousRotation; ///< rigid bodies' (the identity for the others)
-    std::vector<std::uint8_t> m_isRigid;
-    std::vector<Pose> m_poses;      ///< each body's pose at the current stage (BodyStates::poses)
-    std::vector<dvec3> m_torques;   ///< the torques' accumulators
-    /// integrateRigid's buffers, reused from step to step.
+    /// The particles integrated as systems: the coupling, and what each method keeps.
+    struct ParticleSystems {
+        Coupling coupling;
+        CoupledScratch scratch;
+        ClonePtr<detail::SpringSolvers> springSolvers; ///< implicit-euler's and xpbd's
+        int xpbdSubsteps = kDefaultXpbdSubsteps;
+    };
+    /// The free step's buffers of the rigid bodies, reused from step to step.
     struct RigidScratch {
         std::vector<RigidState> states;
         std::vector<RigidInertia> inertia;
@@ -355,35 +374,104 @@ private:
         std::vector<std::uint8_t> wanted;
         RigidStepBuffers buffers;
     };
-    RigidScratch m_rigidScratch;
-    ClonePtr<rigid::RigidSystem> m_rigidSystem;
-    ClonePtr<detail::SpringSolvers> m_springSolvers;
-    int m_xpbdSubsteps = kDefaultXpbdSubsteps;
-    /// Each body's index in the rigid system (kNotRigid for a particle).
-    std::vector<std::uint32_t> m_rigidIndex;
+    /// The rigid bodies: their contact pipeline (src/core/rigid/: broad phase, narrow phase,
+    /// contact cache, islands, solver and joints) and the buffers of their free step.
+    struct RigidBodies {
+        ClonePtr<rigid::RigidSystem> system;
+        RigidScratch scratch;
+    };
+    /// The swarms, and their copies for a rollback.
+    struct Swarms {
+        std::vector<ClonePtr<Swarm>> objects; ///< each its own object: addSwarm's references stay valid
+        bool rollback = false;
+        std::vector<std::vector<float>> before; ///< with rollback: each swarm before the step
+
+        /// With rollback: a copy of each swarm before the step.
+        void keepForRollback();
+        /// With rollback: each swarm back at its copy.
+        void rollBack();
+    };
+    /// What bounds the bodies and swarms, and how they bounce off it.
+    struct Surfaces {
+        std::optional<double> ground;
+        std::optional<Aabb> room;
+        std::optional<FloorHole> hole;
+        std::vector<Plane> planes; ///< made of the three above
+        CollisionResponse response = CollisionResponse::Exact;
+
+        /// The planes of the ground or the room, with the hole cut in the floor and its grille.
+        void rebuildPlanes();
+    };
+    /// The time of the world, which each step advances.
+    struct StepClock {
+        double time = 0.0;
+        double previousTime = 0.0;
+        std::uint64_t steps = 0;
+        double lastDt = 0.0;       ///< dt of the previous step
+        double baseTime = 0.0;     ///< time when dt last changed
+        std::uint64_t baseSteps = 0;
+
+        /// Phase 8: the time after a step of dt.
+        void advance(double dt);
+    };
     static constexpr std::uint32_t kNotRigid = 0xffffffffu;
-    /// Each rigid body's acceleration at the start of its last free step.
-    std::vector<dvec3> m_rigidAcc;
-    /// What storePreviousStates read of each body besides its state: mass, restitution, and
-    /// the key of its coupling (fixed flag and integrator).
-    std::vector<double> m_masses, m_cors;
-    std::vector<std::uint8_t> m_keys;
-    /// The lowest index of a body whose state the step made not finite; bodyCount() if none.
-    std::size_t m_firstNonFinite = 0;
-    /// The lowest index of a rigid body the step left with its centre inside a surface; bodyCount() if none.
-    std::size_t m_firstInside = 0;
-    std::vector<std::uint64_t> m_bounces;
-    std::optional<double> m_ground;
-    std::optional<Aabb> m_room;
-    std::optional<FloorHole> m_hole;
-    std::vector<Plane> m_planes;
-    CollisionResponse m_response = CollisionResponse::Exact;
-    double m_time = 0.0;
-    double m_previousTime = 0.0;
-    std::uint64_t m_steps = 0;
-    double m_lastDt = 0.0;       ///< dt of the previous step
-    double m_baseTime = 0.0;     ///< time when dt last changed
-    std::uint64_t m_baseSteps = 0;
+
+    // ---- the phases of step(), in order; the parts each works on in brackets ----
+    /// Phase 2 (ParticleSystems, from Bodies and Forces): the coupling, made anew if a body's
+    /// key changed. Throws for a coupled pair that cannot share an integrator.
+    const Coupling& couple();
+    Coupling makeCoupling() const;
+    /// Phase 3 (Bodies, Forces, Surfaces): each body alone with its integrator, colliding
+    /// along its own path.
+    void integrateIndependent(const std::vector<std::size_t>& bodies, double dt);
+    dvec3 aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const;
+    /// Phase 4 (ParticleSystems, Bodies, Forces, Surfaces): each particle system with its
+    /// method, then collideAndStore.
+    void integrateParticleSystems(const Coupling& coupling, double dt);
+    void integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members,
+                          std::span<const std::uint8_t> wanted, double dt);
+    void integrateBackwardEuler(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                                double dt);
+    void integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt);
+    /// The system's start-of-step state into the particle systems' scratch (x and v).
+    void startSystem(const std::vector<std::size_t>& members);
+    /// Every force on the system's members at the states (x, v) (at m_bodies.trial if x is
+    /// empty), every other body at its start-of-step state: the members' sums in m_forces.sums.
+    /// A spring of `constraints`, if given, is left out (xpbd's constraints).
+    void sumSystemForces(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                         std::span<const dvec3> x, std::span<const dvec3> v, const detail::SpringSystem* constraints);
+    /// The spring solver of implicit-euler (or xpbd) made for the system, the system started
+    /// with its masses, and the springs' fixed ends placed.
+    detail::SpringSolver& startSpringSystem(const std::vector<std::size_t>& members, bool xpbd);
+    /// The system's end states through the surfaces into its bodies, each checked finite.
+    void collideAndStore(const std::vector<std::size_t>& members);
+    /// Phase 5 (RigidBodies, Bodies, Forces, Surfaces): the awake bodies' free step
+    /// (integrateRigidFreely), the rigid system's findContacts, the free step of the bodies it
+    /// woke, its solve, then storeRigidBodies.
+    void stepRigidBodies(double dt);
+    void integrateRigidFreely(std::span<const std::uint32_t> bodies, double dt);
+    void stepRigid(Integrator integrator, const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                   double dt);
+    void storeRigidBodies();
+    /// Phase 6 (Swarms, Forces, Surfaces).
+    void stepSwarms(double dt);
+    /// Phase 7 (Bodies, Swarms, Surfaces): the first state that cannot be rolls the step back
+    /// (Bodies and Swarms) and throws.
+    void checkFinite(double dt);
+    void checkInsideSurfaces(double dt);
+    void rollBack();
+
+    /// Every body's state (and, in a world with rigid bodies, its pose) as the read-outs see it.
+    BodyStates currentStates(std::vector<State>& storage, std::vector<Pose>& poses) const;
+
+    Bodies m_bodies;
+    Forces m_forces;
+    ParticleSystems m_particleSystems;
+    RigidBodies m_rigid;
+    Swarms m_swarms;
+    Surfaces m_surfaces;
+    StepClock m_clock;
+    int m_threads = 0; ///< for every phase of the step
 };
 
 } // namespace pba

@@ -1,6 +1,7 @@
 // A World: its bodies, swarms, forces and surfaces, and what can be read of it between steps
-// (states, energies, interpolation for drawing). Its step is in world_step.cpp, the coupling of
-// its bodies into systems in world_coupling.cpp.
+// (states, energies, interpolation for drawing). Its step is in world_step.cpp, with the phases
+// of its particle systems and rigid bodies in world_particle_systems.cpp and
+// world_rigid_bodies.cpp, and the coupling of its bodies into systems in world_coupling.cpp.
 #include "pba/world.hpp"
 
 #include <algorithm>
@@ -39,8 +40,9 @@ NonFiniteStateError NonFiniteStateError::inSwarm(const std::string& swarm, std::
 
 // Out of line: the rigid system and the spring solvers are types of the core's own (src/core/).
 World::World()
-    : m_rigidSystem(std::make_unique<rigid::RigidSystem>()), m_springSolvers(std::make_unique<detail::SpringSolvers>())
 {
+    m_rigid.system = std::make_unique<rigid::RigidSystem>();
+    m_particleSystems.springSolvers = std::make_unique<detail::SpringSolvers>();
 }
 World::World(const World&) = default;
 World& World::operator=(const World&) = default;
@@ -51,17 +53,17 @@ World::~World() = default;
 Body& World::addBody(std::unique_ptr<Body> body)
 {
     const auto* rigid = dynamic_cast<const RigidBody*>(body.get());
-    m_isRigid.push_back(rigid ? 1 : 0);
-    m_rigidIndex.push_back(rigid ? std::uint32_t(m_rigidSystem->size()) : kNotRigid);
-    m_rigidAcc.push_back(dvec3(0.0));
+    m_bodies.isRigid.push_back(rigid ? 1 : 0);
+    m_bodies.rigidIndex.push_back(rigid ? std::uint32_t(m_rigid.system->size()) : kNotRigid);
+    m_bodies.rigidAcc.push_back(dvec3(0.0));
     if (rigid)
-        m_rigidSystem->add(m_bodies.size());
-    m_previousRotation.push_back(rigid ? rigid->getRotation() : Rotation{});
-    m_poses.push_back(rigid ? Pose{rigid->getOrientation(), rigid->getAngularVelocity()} : Pose{});
-    m_previous.push_back(body->getState());
-    m_bounces.push_back(0);
-    m_bodies.push_back(std::move(body));
-    return *m_bodies.back();
+        m_rigid.system->add(m_bodies.objects.size());
+    m_bodies.previousRotation.push_back(rigid ? rigid->getRotation() : Rotation{});
+    m_bodies.poses.push_back(rigid ? Pose{rigid->getOrientation(), rigid->getAngularVelocity()} : Pose{});
+    m_bodies.previous.push_back(body->getState());
+    m_bodies.bounces.push_back(0);
+    m_bodies.objects.push_back(std::move(body));
+    return *m_bodies.objects.back();
 }
 
 Particle& World::addParticle(const Particle& particle)
@@ -94,8 +96,8 @@ dvec3 across(const dvec3& axis)
 
 std::size_t World::addJoint(const JointDesc& desc)
 {
-    const RigidBody& a = rigidBodyOf(m_bodies, desc.bodyA, "first");
-    const RigidBody* b = desc.bodyB ? &rigidBodyOf(m_bodies, *desc.bodyB, "second") : nullptr;
+    const RigidBody& a = rigidBodyOf(m_bodies.objects, desc.bodyA, "first");
+    const RigidBody* b = desc.bodyB ? &rigidBodyOf(m_bodies.objects, *desc.bodyB, "second") : nullptr;
     if (b == &a)
         throw std::invalid_argument(fmt::format("a joint joins two bodies, and both are '{}'", a.getName()));
     const dquat qa = a.getOrientation(), qb = b ? b->getOrientation() : dquat(1.0, 0.0, 0.0, 0.0);
@@ -105,8 +107,8 @@ std::size_t World::addJoint(const JointDesc& desc)
     auto inB = [&](const dvec3& p) { return glm::conjugate(qb) * (p - xb); };
     rigid::Joint j;
     j.type = desc.type;
-    j.a = m_rigidIndex[desc.bodyA];
-    j.b = b ? m_rigidIndex[*desc.bodyB] : rigid::kWorldBody;
+    j.a = m_bodies.rigidIndex[desc.bodyA];
+    j.b = b ? m_bodies.rigidIndex[*desc.bodyB] : rigid::kWorldBody;
     const dvec3 onA = desc.type == JointType::Distance ? desc.anchors[0] : desc.anchor;
     const dvec3 onB = desc.type == JointType::Distance ? desc.anchors[1] : desc.anchor;
     if (!finite(onA) || !finite(onB))
@@ -147,13 +149,13 @@ std::size_t World::addJoint(const JointDesc& desc)
         j.stiffness = desc.stiffness.value_or(0.0);
         j.damping = desc.damping;
     }
-    m_rigidSystem->addJoint(j);
-    return m_rigidSystem->joints().size() - 1;
+    m_rigid.system->addJoint(j);
+    return m_rigid.system->joints().size() - 1;
 }
 
 std::vector<World::ContactPointView> World::contactPoints() const
 {
-    const rigid::RigidSystem& system = *m_rigidSystem;
+    const rigid::RigidSystem& system = *m_rigid.system;
     std::vector<ContactPointView> out;
     for (const rigid::Contact& c : system.contacts())
         for (int k = 0; k < c.count; ++k) {
@@ -172,24 +174,24 @@ std::vector<World::ContactPointView> World::contactPoints() const
     return out;
 }
 
-std::size_t World::jointCount() const { return m_rigidSystem->joints().size(); }
+std::size_t World::jointCount() const { return m_rigid.system->joints().size(); }
 
 JointFrame World::jointFrame(std::size_t i) const
 {
-    const rigid::Joint& j = m_rigidSystem->joints()[i];
+    const rigid::Joint& j = m_rigid.system->joints()[i];
     auto pose = [&](rigid::BodyIndex k) {
         if (k == rigid::kWorldBody)
             return std::pair{dvec3(0.0), dquat(1.0, 0.0, 0.0, 0.0)};
-        const auto& b = static_cast<const RigidBody&>(*m_bodies[m_rigidSystem->worldIndex(k)]);
+        const auto& b = static_cast<const RigidBody&>(*m_bodies.objects[m_rigid.system->worldIndex(k)]);
         return std::pair{b.getPos(), b.getOrientation()};
     };
     const auto [xa, qa] = pose(j.a);
     const auto [xb, qb] = pose(j.b);
     JointFrame frame;
     frame.type = j.type;
-    frame.bodyA = m_rigidSystem->worldIndex(j.a);
+    frame.bodyA = m_rigid.system->worldIndex(j.a);
     if (j.b != rigid::kWorldBody)
-        frame.bodyB = m_rigidSystem->worldIndex(j.b);
+        frame.bodyB = m_rigid.system->worldIndex(j.b);
     frame.onA = xa + qa * j.localA;
     frame.onB = xb + qb * j.localB;
     if (j.type == JointType::Hinge)
@@ -199,8 +201,8 @@ JointFrame World::jointFrame(std::size_t i) const
 
 std::optional<std::size_t> World::findBody(std::string_view name) const
 {
-    for (std::size_t i = 0; i < m_bodies.size(); ++i)
-        if (m_bodies[i]->getName() == name)
+    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
+        if (m_bodies.objects[i]->getName() == name)
             return i;
     return std::nullopt;
 }
@@ -225,31 +227,31 @@ Swarm& World::addSwarm(const SwarmDesc& desc)
     if (isSpringSystemMethod(desc.integrator))
         throw std::invalid_argument(fmt::format("swarm '{}' takes {}, a method for particles joined by springs: a "
                                                 "swarm has none", desc.name, integratorName(desc.integrator)));
-    for (const auto& force : m_forces)
+    for (const auto& force : m_forces.objects)
         requireActsOnSwarms(*force, desc.name);
-    m_swarms.emplace_back(std::make_unique<Swarm>(desc));
-    return *m_swarms.back();
+    m_swarms.objects.emplace_back(std::make_unique<Swarm>(desc));
+    return *m_swarms.objects.back();
 }
 
 SwarmFields World::swarmFields() const
 {
     SwarmFields fields;
-    for (const auto& force : m_forces)
+    for (const auto& force : m_forces.objects)
         force->addToSwarmFields(fields); // each can: addForce and addSwarm refuse the others
     return fields;
 }
 
 Force& World::addForce(std::unique_ptr<Force> force)
 {
-    if (!m_swarms.empty())
-        requireActsOnSwarms(*force, m_swarms.front()->name());
-    const std::size_t before = m_couplings.size();
-    force->appendCouplings(m_couplings);
-    m_couplingForce.resize(m_couplings.size(), m_forces.size());
-    if (m_couplings.size() != before)
-        m_coupling.madeFrom.clear(); // new couplings: make the coupling anew at the next step
-    m_forces.push_back(std::move(force));
-    return *m_forces.back();
+    if (!m_swarms.objects.empty())
+        requireActsOnSwarms(*force, m_swarms.objects.front()->name());
+    const std::size_t before = m_forces.couplings.size();
+    force->appendCouplings(m_forces.couplings);
+    m_forces.couplingForce.resize(m_forces.couplings.size(), m_forces.objects.size());
+    if (m_forces.couplings.size() != before)
+        m_particleSystems.coupling.madeFrom.clear(); // new couplings: make the coupling anew at the next step
+    m_forces.objects.push_back(std::move(force));
+    return *m_forces.objects.back();
 }
 
 void World::setXpbdSubsteps(int substeps)
@@ -257,10 +259,13 @@ void World::setXpbdSubsteps(int substeps)
     if (substeps < 1 || substeps > kMaxXpbdSubsteps)
         throw std::invalid_argument(
             fmt::format("xpbd's substeps must be from 1 to {}, got {}", kMaxXpbdSubsteps, substeps));
-    m_xpbdSubsteps = substeps;
+    m_particleSystems.xpbdSubsteps = substeps;
 }
 
-int World::lastImplicitIterations() const { return m_springSolvers->backwardEuler.backwardEuler.iterations(); }
+int World::lastImplicitIterations() const
+{
+    return m_particleSystems.springSolvers->backwardEuler.backwardEuler.iterations();
+}
 
 dvec3 World::gravity() const
 {
@@ -268,134 +273,135 @@ dvec3 World::gravity() const
         dvec3 g{0.0};
         void visit(const Gravity& gravity) override { g += gravity.acceleration(); }
     } sum;
-    for (const auto& force : m_forces)
+    for (const auto& force : m_forces.objects)
         force->accept(sum);
     return sum.g;
 }
 
 void World::setGround(double height)
 {
-    m_room.reset();
-    m_ground = height;
-    rebuildPlanes();
+    m_surfaces.room.reset();
+    m_surfaces.ground = height;
+    m_surfaces.rebuildPlanes();
 }
 
 void World::setRoom(const Aabb& room)
 {
-    m_ground.reset();
-    m_room = room;
-    rebuildPlanes();
+    m_surfaces.ground.reset();
+    m_surfaces.room = room;
+    m_surfaces.rebuildPlanes();
 }
 
 void World::clearSurfaces()
 {
-    m_ground.reset();
-    m_room.reset();
-    m_hole.reset();
-    m_planes.clear();
+    m_surfaces.ground.reset();
+    m_surfaces.room.reset();
+    m_surfaces.hole.reset();
+    m_surfaces.planes.clear();
 }
 
 void World::setFloorHole(const FloorHole& hole)
 {
-    if (!m_ground && !m_room)
+    if (!m_surfaces.ground && !m_surfaces.room)
         throw std::invalid_argument("a floor hole needs a ground or a room");
     if (!(hole.radius > 0.0 && std::isfinite(hole.radius)) || !(hole.depth > 0.0 && std::isfinite(hole.depth)))
         throw std::invalid_argument(fmt::format("a floor hole needs a positive radius and depth, got {} and {}",
                                                 hole.radius, hole.depth));
-    m_hole = hole;
-    rebuildPlanes();
+    m_surfaces.hole = hole;
+    m_surfaces.rebuildPlanes();
 }
 
-void World::rebuildPlanes()
+void World::Surfaces::rebuildPlanes()
 {
-    m_planes.clear();
-    if (m_ground) {
-        const auto planes = groundPlanes(*m_ground);
-        m_planes.assign(planes.begin(), planes.end());
-    } else if (m_room) {
-        const auto planes = roomPlanes(m_room->min, m_room->max);
-        m_planes.assign(planes.begin(), planes.end());
+    planes.clear();
+    if (ground) {
+        const auto made = groundPlanes(*ground);
+        planes.assign(made.begin(), made.end());
+    } else if (room) {
+        const auto made = roomPlanes(room->min, room->max);
+        planes.assign(made.begin(), made.end());
     }
-    if (m_hole && !m_planes.empty()) {
-        Plane& floor = m_planes.front(); // both builders put the floor first
-        floor.holeRadius = m_hole->radius;
-        floor.holeCentre = dvec3(m_hole->centre.x, floor.offset, m_hole->centre.z);
-        m_planes.push_back(Plane{floor.normal, floor.offset - m_hole->depth}); // the grille
+    if (hole && !planes.empty()) {
+        Plane& floor = planes.front(); // both builders put the floor first
+        floor.holeRadius = hole->radius;
+        floor.holeCentre = dvec3(hole->centre.x, floor.offset, hole->centre.z);
+        planes.push_back(Plane{floor.normal, floor.offset - hole->depth}); // the grille
     }
 }
 
 BodyStates World::currentStates(std::vector<State>& storage, std::vector<Pose>& poses) const
 {
-    storage.resize(m_bodies.size());
-    for (std::size_t i = 0; i < m_bodies.size(); ++i)
-        storage[i] = m_bodies[i]->getState();
+    storage.resize(m_bodies.objects.size());
+    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
+        storage[i] = m_bodies.objects[i]->getState();
     poses.clear();
     if (hasRigidBodies()) {
-        poses.resize(m_bodies.size());
-        for (std::size_t i = 0; i < m_bodies.size(); ++i)
+        poses.resize(m_bodies.objects.size());
+        for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
             if (isRigid(i)) {
-                const auto& rigid = static_cast<const RigidBody&>(*m_bodies[i]);
+                const auto& rigid = static_cast<const RigidBody&>(*m_bodies.objects[i]);
                 poses[i] = Pose{rigid.getOrientation(), rigid.getAngularVelocity()};
             }
     }
-    return BodyStates{m_bodies, storage, {}, {}, poses};
+    return BodyStates{m_bodies.objects, storage, {}, {}, poses};
 }
 
 dvec3 World::acceleration(std::size_t i, const dvec3& x, const dvec3& v) const
 {
-    const Body& b = *m_bodies[i];
+    const Body& b = *m_bodies.objects[i];
     if (b.isFixed())
         return dvec3(0.0);
     std::vector<State> states;
     std::vector<Pose> poses;
     BodyStates in = currentStates(states, poses);
     states[i] = State{x, v};
-    std::vector<std::uint8_t> wanted(m_bodies.size(), 0);
+    std::vector<std::uint8_t> wanted(m_bodies.objects.size(), 0);
     wanted[i] = 1;
     in.wanted = wanted;
-    std::vector<dvec3> forces(m_bodies.size(), dvec3(0.0));
+    std::vector<dvec3> forces(m_bodies.objects.size(), dvec3(0.0));
     Accumulators out{forces, {}};
-    for (const auto& force : m_forces)
+    for (const auto& force : m_forces.objects)
         force->accumulate(in, out);
     return forces[i] / b.getMass();
 }
 
 State World::interpolatedState(std::size_t i, double alpha) const
 {
-    return interpolate(m_previous[i], m_bodies[i]->getState(), alpha);
+    return interpolate(m_bodies.previous[i], m_bodies.objects[i]->getState(), alpha);
 }
 
 dquat World::interpolatedOrientation(std::size_t i, double alpha) const
 {
     if (!isRigid(i))
         return dquat(1.0, 0.0, 0.0, 0.0);
-    const dquat& now = static_cast<const RigidBody&>(*m_bodies[i]).getOrientation();
-    return glm::slerp(m_previousRotation[i].orientation, now, alpha);
+    const dquat& now = static_cast<const RigidBody&>(*m_bodies.objects[i]).getOrientation();
+    return glm::slerp(m_bodies.previousRotation[i].orientation, now, alpha);
 }
 
 bool World::hasPoints() const
 {
-    return !m_swarms.empty() || std::any_of(m_isRigid.begin(), m_isRigid.end(), [](std::uint8_t r) { return r == 0; });
+    const auto& flags = m_bodies.isRigid;
+    return !m_swarms.objects.empty() || std::any_of(flags.begin(), flags.end(), [](std::uint8_t r) { return r == 0; });
 }
 
 bool World::isAsleep(std::size_t i) const
 {
-    return m_rigidIndex[i] != kNotRigid && m_rigidSystem->isAsleep(m_rigidIndex[i]);
+    return m_bodies.rigidIndex[i] != kNotRigid && m_rigid.system->isAsleep(m_bodies.rigidIndex[i]);
 }
 
-void World::wakeAll() { m_rigidSystem->wakeAll(); }
+void World::wakeAll() { m_rigid.system->wakeAll(); }
 
-ContactSettings& World::contactSettings() { return m_rigidSystem->settings(); }
-const ContactSettings& World::contactSettings() const { return m_rigidSystem->settings(); }
+ContactSettings& World::contactSettings() { return m_rigid.system->settings(); }
+const ContactSettings& World::contactSettings() const { return m_rigid.system->settings(); }
 
 bool World::hasRigidBodies() const
 {
-    return std::any_of(m_isRigid.begin(), m_isRigid.end(), [](std::uint8_t r) { return r != 0; });
+    return std::any_of(m_bodies.isRigid.begin(), m_bodies.isRigid.end(), [](std::uint8_t r) { return r != 0; });
 }
 
 double World::kineticEnergy(std::size_t i) const
 {
-    const Body& b = *m_bodies[i];
+    const Body& b = *m_bodies.objects[i];
     const double translation = 0.5 * b.getMass() * glm::dot(b.getVel(), b.getVel());
     return isRigid(i) ? translation + static_cast<const RigidBody&>(b).getRotationalKineticEnergy() : translation;
 }
@@ -406,7 +412,7 @@ double World::potentialEnergy(std::size_t i) const
     std::vector<Pose> poses;
     const BodyStates in = currentStates(states, poses);
     double e = 0.0;
-    for (const auto& force : m_forces)
+    for (const auto& force : m_forces.objects)
         e += force->potentialEnergyShare(i, in);
     return e;
 }
@@ -416,10 +422,10 @@ std::vector<double> World::energies() const
     std::vector<State> states;
     std::vector<Pose> poses;
     const BodyStates in = currentStates(states, poses);
-    std::vector<double> e(m_bodies.size());
-    for (std::size_t i = 0; i < m_bodies.size(); ++i) {
+    std::vector<double> e(m_bodies.objects.size());
+    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i) {
         e[i] = kineticEnergy(i);
-        for (const auto& force : m_forces)
+        for (const auto& force : m_forces.objects)
             e[i] += force->potentialEnergyShare(i, in);
     }
     return e;
@@ -431,7 +437,7 @@ double World::totalPotentialEnergy() const
     std::vector<Pose> poses;
     const BodyStates in = currentStates(states, poses);
     double e = 0.0;
-    for (const auto& force : m_forces)
+    for (const auto& force : m_forces.objects)
         e += force->totalPotentialEnergy(in);
     return e;
 }
@@ -439,7 +445,7 @@ double World::totalPotentialEnergy() const
 double World::totalEnergy() const
 {
     double e = totalPotentialEnergy();
-    for (std::size_t i = 0; i < m_bodies.size(); ++i)
+    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
         e += kineticEnergy(i);
     return e;
 }

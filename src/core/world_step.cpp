@@ -1,67 +1,20 @@
-// A World's step: each body alone, each coupled system and each rigid system with its
-// integrator, then the swarms, the check that every state is finite, and the clock.
+// A World's step: its list of phases, the phases of the bodies alone, the swarms, the checks
+// that every state is finite and outside the surfaces, and the clock. The particle systems'
+// phases are in world_particle_systems.cpp, the rigid bodies' in world_rigid_bodies.cpp.
 #include "pba/world.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
-#include <tbb/parallel_reduce.h>
-
-#include "pba/vec3_array.hpp"
 
 #include "collision_rules.hpp"
 #include "parallel.hpp"
-#include "rigid/rigid_system.hpp"
+#include "world_checks.hpp"
 
 namespace pba {
 
 namespace {
-
-/// The smallest index of a body, among `members`, for which `check(k)` (which may also store
-/// member k's new state) reports false, on all cores in ranges of `grain`; `none` when it
-/// reports true for every one. (Each body's work is its own: the answer does not depend on the
-/// thread count.)
-template <class Check>
-std::size_t lowestFailing(const std::vector<std::size_t>& members, std::size_t grain, std::size_t none, Check&& check)
-{
-    return tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, members.size(), grain), none,
-        [&](const tbb::blocked_range<std::size_t>& r, std::size_t lowest) {
-            for (std::size_t k = r.begin(); k < r.end(); ++k)
-                if (!check(k))
-                    lowest = std::min(lowest, members[k]);
-            return lowest;
-        },
-        [](std::size_t a, std::size_t b) { return std::min(a, b); });
-}
-
-bool isFinite(const dvec3& u) { return std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z); }
-
-/// Whether q is the unit quaternion every rigid step ends with. One whose components overflow
-/// when squared normalises to zero (a spin of 1e200 rad/s turns it by that much a step) and one
-/// that is not finite to NaN: either is a blow-up, not an orientation.
-bool isUnit(const dquat& q)
-{
-    return std::abs(glm::length(q) - 1.0) < 1e-3; // false for NaN
-}
-
-/// The first of `planes` that a rigid body's centre x lies on or beyond: at least half the body
-/// inside the floor or a wall, since its centre of mass lies within the hull of its points. Not
-/// the floor within `reach` (the body's bounding radius) of a hole's edge, where part of a body
-/// hangs into the shaft. -1 if none.
-int surfaceHolding(std::span<const Plane> planes, const dvec3& x, double reach)
-{
-    for (std::size_t p = 0; p < planes.size(); ++p) {
-        const Plane& plane = planes[p];
-        if (!(plane.distance(x) <= 0.0))
-            continue;
-        if (plane.holeRadius > 0.0 && glm::length(plane.fromHoleAxis(x)) < plane.holeRadius + reach)
-            continue;
-        return int(p);
-    }
-    return -1;
-}
 
 /// What a body's coupling depends on, in a byte: whether it is fixed, and its integrator.
 std::uint8_t couplingKey(const Body& body)
@@ -75,49 +28,38 @@ void World::step(double dt)
 {
     if (!(dt > 0.0 && std::isfinite(dt)))
         throw std::invalid_argument(fmt::format("a step's dt must be finite and positive, got {} s", dt));
-    m_firstNonFinite = m_firstInside = m_bodies.size();
+    m_bodies.firstNonFinite = m_bodies.firstInside = m_bodies.objects.size();
     detail::onCores(m_threads, [&] {
-        storePreviousStates();
+        m_bodies.storePreviousStates();
+        m_swarms.keepForRollback();
         const Coupling& coupling = couple(); // a mixed coupled group throws before anything moves
-        integrateIndependent(coupling, dt);
-        for (std::size_t k = 0; k < kParticleIntegrators.size(); ++k) {
-            const Integrator integrator = kParticleIntegrators[k];
-            const auto& members = coupling.systems[k];
-            if (members.empty())
-                continue;
-            if (integrator == Integrator::ImplicitEuler)
-                integrateBackwardEuler(members, coupling.wanted[k], dt);
-            else if (integrator == Integrator::Xpbd)
-                integrateXpbd(members, coupling.wanted[k], dt);
-            else
-                integrateCoupled(integrator, members, coupling.wanted[k], dt);
-        }
-        if (m_rigidSystem->size() > 0)
-            stepRigidBodies(dt);
+        integrateIndependent(coupling.independent, dt);
+        integrateParticleSystems(coupling, dt);
+        stepRigidBodies(dt);
     });
     stepSwarms(dt);
     checkFinite(dt);
     checkInsideSurfaces(dt);
-    advanceClock(dt);
+    m_clock.advance(dt);
 }
 
 void World::checkFinite(double dt)
 {
     // Every body (the integration phases checked each as they wrote it), and every swarm
     // (whose step checked its blocks).
-    if (m_firstNonFinite < m_bodies.size()) {
-        const Body& bad = *m_bodies[m_firstNonFinite];
-        std::string quantity = isFinite(bad.getPos()) ? "velocity" : "position";
-        if (isRigid(m_firstNonFinite) && isFinite(bad.getPos()) && isFinite(bad.getVel()))
-            quantity = isFinite(static_cast<const RigidBody&>(bad).getAngularMomentum()) ? "orientation"
-                                                                                       : "angular velocity";
+    if (m_bodies.firstNonFinite < m_bodies.objects.size()) {
+        const Body& bad = *m_bodies.objects[m_bodies.firstNonFinite];
+        std::string quantity = detail::isFinite(bad.getPos()) ? "velocity" : "position";
+        if (isRigid(m_bodies.firstNonFinite) && detail::isFinite(bad.getPos()) && detail::isFinite(bad.getVel()))
+            quantity = detail::isFinite(static_cast<const RigidBody&>(bad).getAngularMomentum()) ? "orientation"
+                                                                                               : "angular velocity";
         rollBack();
-        throw NonFiniteStateError(bad.getName(), m_steps + 1, m_time + dt, quantity);
+        throw NonFiniteStateError(bad.getName(), m_clock.steps + 1, m_clock.time + dt, quantity);
     }
-    for (const auto& swarm : m_swarms)
+    for (const auto& swarm : m_swarms.objects)
         if (const auto& bad = swarm->nonFinite()) {
-            const NonFiniteStateError error =
-                NonFiniteStateError::inSwarm(swarm->name(), bad->index, m_steps + 1, m_time + dt, bad->quantity);
+            const NonFiniteStateError error = NonFiniteStateError::inSwarm(swarm->name(), bad->index, m_clock.steps + 1,
+                                                                           m_clock.time + dt, bad->quantity);
             rollBack();
             throw error;
         }
@@ -125,94 +67,109 @@ void World::checkFinite(double dt)
 
 void World::checkInsideSurfaces(double dt)
 {
-    if (m_firstInside >= m_bodies.size())
+    if (m_bodies.firstInside >= m_bodies.objects.size())
         return;
-    const auto& bad = static_cast<const RigidBody&>(*m_bodies[m_firstInside]);
-    const int p = surfaceHolding(m_planes, bad.getPos(), bad.getBoundingRadius());
-    const dvec3 normal = p >= 0 ? m_planes[std::size_t(p)].normal : dvec3(0.0, 1.0, 0.0);
-    const bool grille = m_hole && p == int(m_planes.size()) - 1;
-    const char* surface = grille ? "the blow dryer's grille" : normal.y > 0.5 ? (m_ground ? "the ground" : "the floor")
+    const auto& bad = static_cast<const RigidBody&>(*m_bodies.objects[m_bodies.firstInside]);
+    const int p = detail::surfaceHolding(m_surfaces.planes, bad.getPos(), bad.getBoundingRadius());
+    const dvec3 normal = p >= 0 ? m_surfaces.planes[std::size_t(p)].normal : dvec3(0.0, 1.0, 0.0);
+    const bool grille = m_surfaces.hole && p == int(m_surfaces.planes.size()) - 1;
+    const char* floor = m_surfaces.ground ? "the ground" : "the floor";
+    const char* surface = grille ? "the blow dryer's grille" : normal.y > 0.5 ? floor
                           : normal.y < -0.5                               ? "the ceiling"
                                                                           : "a wall";
-    BlowUpError error(bad.getName(), m_steps + 1, m_time + dt,
+    BlowUpError error(bad.getName(), m_clock.steps + 1, m_clock.time + dt,
                       fmt::format("the centre of mass of body '{}' is inside {}", bad.getName(), surface));
     rollBack();
     throw error;
 }
 
-void World::advanceClock(double dt)
+void World::StepClock::advance(double dt)
 {
     // t = t0 + k dt from the last change of dt, rather than a running sum, so the time of
     // step n is n dt to rounding instead of drifting by n rounding errors.
-    m_previousTime = m_time;
-    if (dt != m_lastDt) {
-        m_lastDt = dt;
-        m_baseTime = m_time;
-        m_baseSteps = m_steps;
+    previousTime = time;
+    if (dt != lastDt) {
+        lastDt = dt;
+        baseTime = time;
+        baseSteps = steps;
     }
-    ++m_steps;
-    m_time = m_baseTime + static_cast<double>(m_steps - m_baseSteps) * dt;
+    ++steps;
+    time = baseTime + static_cast<double>(steps - baseSteps) * dt;
 }
 
-void World::storePreviousStates()
+void World::Bodies::storePreviousStates()
 {
     // One visit to each body's object for all the step reads of it: a 128 x 128 cloth's 16,384
     // heap objects are slow memory, and each further pass over them cost as much as its springs.
-    const std::size_t n = m_bodies.size();
-    m_masses.resize(n);
-    m_cors.resize(n);
-    m_keys.resize(n);
-    m_scratch.trial.resize(n);
+    const std::size_t n = objects.size();
+    masses.resize(n);
+    cors.resize(n);
+    keys.resize(n);
+    trial.resize(n);
     detail::forEachIndex(n, [this](std::size_t i) {
-        const Body& b = *m_bodies[i];
-        m_previous[i] = b.getState();
-        m_scratch.trial[i] = m_previous[i]; // the coupled systems' stages start from here
-        m_masses[i] = b.getMass();
-        m_cors[i] = b.getCor();
-        m_keys[i] = couplingKey(b);
-        if (m_isRigid[i] != 0) {
+        const Body& b = *objects[i];
+        previous[i] = b.getState();
+        trial[i] = previous[i]; // the coupled systems' stages start from here
+        masses[i] = b.getMass();
+        cors[i] = b.getCor();
+        keys[i] = couplingKey(b);
+        if (isRigid[i] != 0) {
             const auto& rigid = static_cast<const RigidBody&>(b);
-            m_previousRotation[i] = rigid.getRotation();
+            previousRotation[i] = rigid.getRotation();
             if (b.isFixed()) // a moving one's pose is set at each stage of its system's step
-                m_poses[i] = Pose{rigid.getOrientation(), rigid.getAngularVelocity()};
+                poses[i] = Pose{rigid.getOrientation(), rigid.getAngularVelocity()};
         }
     });
-    if (m_swarmRollback) {
-        m_swarmsBefore.resize(m_swarms.size());
-        for (std::size_t s = 0; s < m_swarms.size(); ++s)
-            m_swarms[s]->saveState(m_swarmsBefore[s]);
-    }
+}
+
+void World::Swarms::keepForRollback()
+{
+    if (!rollback)
+        return;
+    before.resize(objects.size());
+    for (std::size_t s = 0; s < objects.size(); ++s)
+        objects[s]->saveState(before[s]);
 }
 
 void World::rollBack()
 {
     // So a viewer can pause on the last finite state instead of drawing garbage (previous and
     // current then coincide: nothing moves between them).
-    for (std::size_t i = 0; i < m_bodies.size(); ++i) {
-        m_bodies[i]->setState(m_previous[i]);
-        if (isRigid(i))
-            static_cast<RigidBody&>(*m_bodies[i]).setRotation(m_previousRotation[i]);
+    m_bodies.rollBack();
+    m_swarms.rollBack();
+}
+
+void World::Bodies::rollBack()
+{
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+        objects[i]->setState(previous[i]);
+        if (isRigid[i] != 0)
+            static_cast<RigidBody&>(*objects[i]).setRotation(previousRotation[i]);
     }
-    if (m_swarmRollback)
-        for (std::size_t s = 0; s < m_swarms.size() && s < m_swarmsBefore.size(); ++s)
-            m_swarms[s]->restoreState(m_swarmsBefore[s]);
+}
+
+void World::Swarms::rollBack()
+{
+    if (rollback)
+        for (std::size_t s = 0; s < objects.size() && s < before.size(); ++s)
+            objects[s]->restoreState(before[s]);
 }
 
 dvec3 World::aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const
 {
-    const Body& b = *m_bodies[i];
+    const Body& b = *m_bodies.objects[i];
     dvec3 f(0.0);
-    for (const auto& force : m_forces)
+    for (const auto& force : m_forces.objects)
         f += force->force(i, b, x, v);
     return f / b.getMass();
 }
 
-void World::integrateIndependent(const Coupling& coupling, double dt)
+void World::integrateIndependent(const std::vector<std::size_t>& bodies, double dt)
 {
-    for (const std::size_t i : coupling.independent) {
-        Body& b = *m_bodies[i];
+    for (const std::size_t i : bodies) {
+        Body& b = *m_bodies.objects[i];
         if (b.isFixed()) {
-            noteIfNotFinite(i, b.getState()); // a program may have put it anywhere
+            m_bodies.noteIfNotFinite(i, b.getState()); // a program may have put it anywhere
             continue;
         }
         // Every integrator's first evaluation is at the start state: that one is kept as the
@@ -228,228 +185,32 @@ void World::integrateIndependent(const Coupling& coupling, double dt)
             return a;
         };
         State s = b.getState();
-        const int bounces = stepWithCollisions(m_response, b.getIntegrator(), std::span<const Plane>(m_planes),
-                                               b.getCor(), s.pos, s.vel, dt, accel);
-        m_bounces[i] += static_cast<std::uint64_t>(bounces);
+        const int bounces = stepWithCollisions(m_surfaces.response, b.getIntegrator(),
+                                               std::span<const Plane>(m_surfaces.planes), b.getCor(), s.pos, s.vel, dt,
+                                               accel);
+        m_bodies.bounces[i] += static_cast<std::uint64_t>(bounces);
         b.setState(s);
         b.setAcc(startAcc);
-        noteIfNotFinite(i, s);
+        m_bodies.noteIfNotFinite(i, s);
     }
 }
 
-void World::integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members,
-                             std::span<const std::uint8_t> wanted, double dt)
+void World::Bodies::noteIfNotFinite(std::size_t i, const State& state)
 {
-    const std::size_t n = members.size();
-    CoupledScratch& s = m_scratch;
-    s.x.resize(n);
-    s.v.resize(n);
-    s.acc.resize(n);
-    detail::forEachIndex(n, [&](std::size_t k) {
-        s.x[k] = m_previous[members[k]].pos;
-        s.v[k] = m_previous[members[k]].vel;
-    });
-    // Every body of the world sits at its start-of-step state (storePreviousStates put it in
-    // s.trial) except the system's, which take each stage's trial state. (A system integrated
-    // before this one leaves its bodies at its last stage: no force couples two systems.)
-    s.forces.resize(m_bodies.size());
-    const BodyStates in{m_bodies, s.trial, wanted, m_masses, {}};
-    Accumulators out{s.forces, {}, &s.forceScratch};
-    bool first = true;
-    auto accel = [&](const Vec3Array& xs, const Vec3Array& vs) {
-        detail::forEachIndex(n, [&](std::size_t k) {
-            s.trial[members[k]] = State{xs[k], vs[k]};
-            s.forces[members[k]] = dvec3(0.0);
-        });
-        for (const auto& force : m_forces)
-            force->accumulate(in, out);
-        Vec3Array a(n);
-        // The first stage is at the start state: the bodies' acceleration, kept in s.acc.
-        detail::forEachIndex(n, [&](std::size_t k) {
-            a[k] = s.forces[members[k]] / m_masses[members[k]];
-            if (first)
-                s.acc[k] = a[k];
-        });
-        first = false;
-        return a;
-    };
-    integrate(integrator, s.x, s.v, dt, accel);
-    collideAndStore(members);
-}
-
-void World::collideAndStore(const std::vector<std::size_t>& members)
-{
-    // Collisions, the bodies' new states and the check that they are finite in one pass, so
-    // each body's object is visited once here: a cloth's bodies are many and far apart.
-    const std::span<const Plane> planes(m_planes);
-    const CoupledScratch& s = m_scratch;
-    const std::size_t bad = lowestFailing(members, 2048, m_bodies.size(), [&](std::size_t k) {
-        const std::size_t i = members[k];
-        State end{s.x[k], s.v[k]};
-        if (!planes.empty())
-            m_bounces[i] += static_cast<std::uint64_t>(
-                coupledCollisionResponse() == CollisionResponse::Clamp
-                    ? clampAfterStep(planes, m_cors[i], m_previous[i].pos, end.pos, end.vel)
-                    : reflectAfterStep(planes, m_cors[i], m_previous[i].pos, end.pos, end.vel));
-        Body& b = *m_bodies[i];
-        b.setState(end);
-        b.setAcc(s.acc[k]);
-        return isFinite(end.pos) && isFinite(end.vel);
-    });
-    m_firstNonFinite = std::min(m_firstNonFinite, bad);
-}
-
-void World::stepRigidBodies(double dt)
-{
-    rigid::RigidSystem& system = *m_rigidSystem;
-    thread_local std::vector<const RigidBody*> bodies;
-    bodies.resize(system.size());
-    for (std::size_t k = 0; k < system.size(); ++k)
-        bodies[k] = static_cast<const RigidBody*>(m_bodies[system.worldIndex(k)].get());
-    system.begin(bodies);
-    integrateRigidFreely(system.awake(), dt);
-    system.findContacts(m_planes, dt);
-    integrateRigidFreely(system.woken(), dt); // touched by an awake body: they move this step too
-    system.solve(gravity(), dt);
-    storeRigidBodies();
-}
-
-void World::integrateRigidFreely(std::span<const std::uint32_t> bodies, double dt)
-{
-    // One system per integrator, of the awake bodies only: a sleeping pile costs nothing here.
-    if (bodies.empty())
-        return;
-    rigid::RigidSystem& system = *m_rigidSystem;
-    RigidScratch& r = m_rigidScratch;
-    for (auto& members : r.members)
-        members.clear();
-    for (const std::uint32_t k : bodies) {
-        const std::size_t i = system.worldIndex(k);
-        const auto at = std::find(kEveryIntegrator.begin(), kEveryIntegrator.end(), m_bodies[i]->getIntegrator());
-        r.members[std::size_t(at - kEveryIntegrator.begin())].push_back(i);
-    }
-    for (std::size_t m = 0; m < kEveryIntegrator.size(); ++m) {
-        const std::vector<std::size_t>& members = r.members[m];
-        if (members.empty())
-            continue;
-        const std::size_t n = members.size();
-        r.states.resize(n);
-        r.inertia.resize(n);
-        r.startAcc.resize(n);
-        r.wanted.assign(m_bodies.size(), 0);
-        for (const std::size_t i : members)
-            r.wanted[i] = 1;
-        detail::forEachIndex(n, [&](std::size_t k) {
-            const auto& b = static_cast<const RigidBody&>(*m_bodies[members[k]]);
-            r.states[k] = system.start(m_rigidIndex[members[k]]);
-            r.inertia[k] = RigidInertia{1.0 / b.getMass(), b.getInertiaBody(), b.getInverseInertiaBody()};
-        });
-        stepRigid(kEveryIntegrator[m], members, r.wanted, dt);
-        detail::forEachIndex(n, [&](std::size_t k) {
-            system.setFreeEnd(m_rigidIndex[members[k]], r.states[k]);
-            m_rigidAcc[members[k]] = r.startAcc[k];
-        });
-    }
-}
-
-void World::stepRigid(Integrator integrator, const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
-                      double dt)
-{
-    // As integrateCoupled: the other bodies stay at their start-of-step states and poses while
-    // the system's take each stage's.
-    RigidScratch& r = m_rigidScratch;
-    const std::size_t n = members.size();
-    m_scratch.forces.resize(m_bodies.size());
-    m_torques.resize(m_bodies.size());
-    const BodyStates in{m_bodies, m_scratch.trial, wanted, m_masses, m_poses};
-    Accumulators out{m_scratch.forces, m_torques, &m_scratch.forceScratch};
-    bool first = true;
-    const auto wrenches = [&](std::span<const RigidState> at, std::span<Wrench> result) {
-        detail::forEachIndex(n, [&](std::size_t k) {
-            const std::size_t i = members[k];
-            m_scratch.trial[i] = State{at[k].x, at[k].v};
-            const Rotation& turn = at[k].rotation;
-            m_poses[i] = Pose{turn.orientation, angularVelocity(turn.orientation, r.inertia[k].inverseInertiaBody, turn.momentum)};
-            m_scratch.forces[i] = m_torques[i] = dvec3(0.0);
-        });
-        for (const auto& force : m_forces)
-            force->accumulate(in, out);
-        detail::forEachIndex(n, [&](std::size_t k) {
-            const std::size_t i = members[k];
-            result[k] = Wrench{m_scratch.forces[i], m_torques[i]};
-            if (first) // the first stage is at the start: the bodies' acceleration
-                r.startAcc[k] = m_scratch.forces[i] * r.inertia[k].inverseMass;
-        });
-        first = false;
-    };
-    const auto onCores = [](std::size_t count, const auto& fn) { detail::forEachIndex(count, fn); };
-    stepRigidSystem(integrator, std::span<RigidState>(r.states), std::span<const RigidInertia>(r.inertia), dt, wrenches,
-                    onCores, &r.buffers);
-}
-
-void World::storeRigidBodies()
-{
-    const rigid::RigidSystem& system = *m_rigidSystem;
-    // A body that took a restitution impulse bounced (and so did the body it hit).
-    for (const rigid::Contact& c : system.contacts()) {
-        if (std::none_of(c.points.begin(), c.points.begin() + c.count, [](const auto& p) { return p.bounced; }))
-            continue;
-        for (const rigid::BodyIndex k : {c.a, c.b})
-            if (k < system.size() && !system.isAsleep(k) && !m_bodies[system.worldIndex(k)]->isFixed())
-                ++m_bounces[system.worldIndex(k)];
-    }
-    // A plain local: a thread_local here would be a different, empty vector on each worker thread.
-    std::vector<std::size_t> all(system.size());
-    for (std::size_t k = 0; k < system.size(); ++k)
-        all[k] = system.worldIndex(k);
-    const std::size_t bad = lowestFailing(all, 256, m_bodies.size(), [&](std::size_t k) {
-        const std::size_t i = system.worldIndex(k);
-        auto& b = static_cast<RigidBody&>(*m_bodies[i]);
-        if (b.isFixed())
-            return isFinite(b.getPos()) && isFinite(b.getVel());
-        const RigidState& s = system.end(k);
-        b.setState(State{s.x, s.v}); // a body that is not finite: the rollback restores it, the message reads it
-        if (!isFinite(s.x) || !isFinite(s.v) || !isFinite(s.rotation.momentum) || !isUnit(s.rotation.orientation)) {
-            b.setAngularMomentum(s.rotation.momentum); // for the message: its spin, or its orientation
-            return false;
-        }
-        b.setRotation(s.rotation);
-        b.setAcc(m_rigidAcc[i]);
-        return true;
-    });
-    m_firstNonFinite = std::min(m_firstNonFinite, bad);
-    if (m_planes.empty())
-        return;
-    const std::size_t inside = lowestFailing(all, 1024, m_bodies.size(), [&](std::size_t k) {
-        if (m_bodies[all[k]]->isFixed())
-            return true;
-        // The bounding radius (a visit to the body's object) only for a centre on or behind a plane.
-        const dvec3& x = system.end(k).x;
-        const auto reach = [&] { return static_cast<const RigidBody&>(*m_bodies[all[k]]).getBoundingRadius(); };
-        for (const Plane& plane : m_planes)
-            if (plane.distance(x) <= 0.0)
-                return surfaceHolding(m_planes, x, reach()) < 0;
-        return true;
-    });
-    m_firstInside = std::min(m_firstInside, inside);
-}
-
-void World::noteIfNotFinite(std::size_t i, const State& state)
-{
-    if (!isFinite(state.pos) || !isFinite(state.vel))
-        m_firstNonFinite = std::min(m_firstNonFinite, i);
+    if (!detail::isFinite(state.pos) || !detail::isFinite(state.vel))
+        firstNonFinite = std::min(firstNonFinite, i);
 }
 
 void World::stepSwarms(double dt)
 {
-    if (m_swarms.empty())
+    if (m_swarms.objects.empty())
         return;
     const SwarmFields fields = swarmFields();
     std::vector<PlaneT<float>> planes;
-    for (const Plane& p : m_planes)
+    for (const Plane& p : m_surfaces.planes)
         planes.push_back({Vec3<float>(p.normal), float(p.offset), float(p.holeRadius), Vec3<float>(p.holeCentre)});
-    for (const auto& swarm : m_swarms)
-        swarm->step(fields, planes, m_response, float(dt), m_threads);
+    for (const auto& swarm : m_swarms.objects)
+        swarm->step(fields, planes, m_surfaces.response, float(dt), m_threads);
 }
 
 } // namespace pba

@@ -1,0 +1,164 @@
+// A World's phase for its particle systems (integrateParticleSystems): each system of the
+// coupling with its method. integrateCoupled steps the explicit methods' systems, every stage
+// evaluating every force; integrateBackwardEuler and integrateXpbd the systems whose springs
+// are stepped implicitly, with their solvers (src/core/backward_euler.cpp, xpbd.cpp). Each
+// hands the end states to collideAndStore.
+#include "pba/world.hpp"
+
+#include "collision_rules.hpp"
+#include "parallel.hpp"
+#include "spring_solvers.hpp"
+#include "world_checks.hpp"
+
+namespace pba {
+
+void World::integrateParticleSystems(const Coupling& coupling, double dt)
+{
+    for (std::size_t k = 0; k < kParticleIntegrators.size(); ++k) {
+        const Integrator integrator = kParticleIntegrators[k];
+        const auto& members = coupling.systems[k];
+        if (members.empty())
+            continue;
+        if (integrator == Integrator::ImplicitEuler)
+            integrateBackwardEuler(members, coupling.wanted[k], dt);
+        else if (integrator == Integrator::Xpbd)
+            integrateXpbd(members, coupling.wanted[k], dt);
+        else
+            integrateCoupled(integrator, members, coupling.wanted[k], dt);
+    }
+}
+
+void World::startSystem(const std::vector<std::size_t>& members)
+{
+    const std::size_t n = members.size();
+    CoupledScratch& s = m_particleSystems.scratch;
+    s.x.resize(n);
+    s.v.resize(n);
+    s.acc.resize(n);
+    detail::forEachIndex(n, [&](std::size_t k) {
+        s.x[k] = m_bodies.previous[members[k]].pos;
+        s.v[k] = m_bodies.previous[members[k]].vel;
+    });
+}
+
+void World::sumSystemForces(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                            std::span<const dvec3> x, std::span<const dvec3> v, const detail::SpringSystem* constraints)
+{
+    // Every body of the world sits at its start-of-step state (storePreviousStates put it in
+    // m_bodies.trial) except the system's, which take each stage's trial state. (A system integrated
+    // before this one leaves its bodies at its last stage: no force couples two systems.)
+    m_forces.sums.resize(m_bodies.objects.size());
+    detail::forEachIndex(members.size(), [&](std::size_t k) {
+        if (!x.empty())
+            m_bodies.trial[members[k]] = State{x[k], v[k]};
+        m_forces.sums[members[k]] = dvec3(0.0);
+    });
+    const BodyStates in{m_bodies.objects, m_bodies.trial, wanted, m_bodies.masses, {}};
+    Accumulators out{m_forces.sums, {}, &m_forces.scratch};
+    for (std::size_t f = 0; f < m_forces.objects.size(); ++f)
+        if (!constraints || !constraints->isSpring(f))
+            m_forces.objects[f]->accumulate(in, out);
+}
+
+void World::integrateCoupled(Integrator integrator, const std::vector<std::size_t>& members,
+                             std::span<const std::uint8_t> wanted, double dt)
+{
+    const std::size_t n = members.size();
+    CoupledScratch& s = m_particleSystems.scratch;
+    startSystem(members);
+    bool first = true;
+    auto accel = [&](const Vec3Array& xs, const Vec3Array& vs) {
+        sumSystemForces(members, wanted, std::span<const dvec3>(xs.begin(), n), std::span<const dvec3>(vs.begin(), n),
+                        nullptr);
+        Vec3Array a(n);
+        // The first stage is at the start state: the bodies' acceleration, kept in s.acc.
+        detail::forEachIndex(n, [&](std::size_t k) {
+            a[k] = m_forces.sums[members[k]] / m_bodies.masses[members[k]];
+            if (first)
+                s.acc[k] = a[k];
+        });
+        first = false;
+        return a;
+    };
+    integrate(integrator, s.x, s.v, dt, accel);
+    collideAndStore(members);
+}
+
+void World::collideAndStore(const std::vector<std::size_t>& members)
+{
+    // Collisions, the bodies' new states and the check that they are finite in one pass, so
+    // each body's object is visited once here: a cloth's bodies are many and far apart.
+    const std::span<const Plane> planes(m_surfaces.planes);
+    const CoupledScratch& s = m_particleSystems.scratch;
+    const std::size_t bad = detail::lowestFailing(members, 2048, m_bodies.objects.size(), [&](std::size_t k) {
+        const std::size_t i = members[k];
+        State end{s.x[k], s.v[k]};
+        if (!planes.empty())
+            m_bodies.bounces[i] += static_cast<std::uint64_t>(
+                coupledCollisionResponse() == CollisionResponse::Clamp
+                    ? clampAfterStep(planes, m_bodies.cors[i], m_bodies.previous[i].pos, end.pos, end.vel)
+                    : reflectAfterStep(planes, m_bodies.cors[i], m_bodies.previous[i].pos, end.pos, end.vel));
+        Body& b = *m_bodies.objects[i];
+        b.setState(end);
+        b.setAcc(s.acc[k]);
+        return detail::isFinite(end.pos) && detail::isFinite(end.vel);
+    });
+    m_bodies.firstNonFinite = std::min(m_bodies.firstNonFinite, bad);
+}
+
+detail::SpringSolver& World::startSpringSystem(const std::vector<std::size_t>& members, bool xpbd)
+{
+    detail::SpringSolvers& solvers = *m_particleSystems.springSolvers;
+    detail::SpringSolver& solver = xpbd ? solvers.xpbd : solvers.backwardEuler;
+    solver.prepare(m_forces.objects, members, m_bodies.objects.size(), xpbd); // XPBD colours its constraints
+    startSystem(members);
+    CoupledScratch& s = m_particleSystems.scratch;
+    s.mass.resize(members.size());
+    detail::forEachIndex(members.size(), [&](std::size_t k) { s.mass[k] = m_bodies.masses[members[k]]; });
+    // The fixed ends where the fixed bodies are (a program may have moved one between steps).
+    std::vector<dvec3>& positions = solver.positions;
+    positions.resize(m_bodies.objects.size());
+    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
+        positions[i] = m_bodies.previous[i].pos;
+    solver.springs.placeFixedEnds(positions);
+    return solver;
+}
+
+void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                                   double dt)
+{
+    detail::SpringSolver& solver = startSpringSystem(members, false);
+    const std::size_t n = members.size();
+    CoupledScratch& s = m_particleSystems.scratch;
+    // Every force at the start of the step (the system's bodies are at it in m_bodies.trial already).
+    sumSystemForces(members, wanted, {}, {}, nullptr);
+    std::vector<dvec3>& start = solver.startForces;
+    start.resize(n);
+    detail::forEachIndex(n, [&](std::size_t k) {
+        start[k] = m_forces.sums[members[k]];
+        s.acc[k] = start[k] / s.mass[k];
+    });
+    solver.backwardEuler.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n),
+                              start, dt);
+    collideAndStore(members);
+}
+
+void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt)
+{
+    detail::SpringSolver& solver = startSpringSystem(members, true);
+    const std::size_t n = members.size();
+    CoupledScratch& s = m_particleSystems.scratch;
+    // Every force but the springs, which are the constraints, at each substep's start.
+    const detail::Xpbd::External external = [&](std::span<const dvec3> x, std::span<const dvec3> v,
+                                                std::span<dvec3> accel) {
+        sumSystemForces(members, wanted, x, v, &solver.springs);
+        detail::forEachIndex(n, [&](std::size_t k) { accel[k] = m_forces.sums[members[k]] / s.mass[k]; });
+    };
+    solver.xpbd.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n), dt,
+                     m_particleSystems.xpbdSubsteps, external);
+    // The step's mean acceleration: XPBD has no force at the start to keep.
+    detail::forEachIndex(n, [&](std::size_t k) { s.acc[k] = (s.v[k] - m_bodies.previous[members[k]].vel) / dt; });
+    collideAndStore(members);
+}
+
+} // namespace pba
