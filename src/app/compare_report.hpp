@@ -19,6 +19,11 @@ std::string integratorTable(const std::vector<Integrator>& integrators, const st
 std::string energyTable(const study::StudyConfig& config, const study::StudyResult& result,
                         CollisionResponse collision, bool markdown);
 
+/// For a study that follows a system: the centre of mass's largest distance from the reference
+/// run, integrators down and dt across.
+std::string centreErrorTable(const study::StudyConfig& config, const study::StudyResult& result,
+                             CollisionResponse collision, bool markdown);
+
 /// The table's title: the response it is for, or that every response gave it when nothing collided.
 std::string energyTableHeading(const study::StudyConfig& config, const study::StudyResult& result,
                                CollisionResponse collision);
