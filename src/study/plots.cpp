@@ -257,7 +257,7 @@ std::string stabilityPlot(const std::filesystem::path& dir, const StudyConfig& c
         const std::string measured = std::isnan(s.measuredDt) ? std::string("limit not measured")
                                                               : fmt::format("limit measured {:.4g} s", s.measuredDt);
         script += fmt::format("set title '{}: {}, {}'\nplot ", name, measured, theory);
-        if (std::isnan(s.measuredDt)) {
+        if (std::isnan(s.measuredDt) && s.below.series.t.empty()) {
             script += fmt::format("1 with lines lc rgb 'gray50' dt 3 title 'not measured: {}'\n", s.unmeasured);
             continue;
         }
@@ -268,11 +268,14 @@ std::string stabilityPlot(const std::filesystem::path& dir, const StudyConfig& c
             std::ofstream out(dir / file);
             for (std::size_t i = 0; i < run->series.t.size(); ++i)
                 out << run->series.t[i] * omega / (2.0 * std::numbers::pi) << ' ' << run->series.energyRatio[i] << '\n';
-            line += fmt::format("'{}' with lines {} lc rgb '{}' title 'dt = {:.4g} s ({})', ", file,
+            // Above a measured limit a stable run means the stability is not monotone in dt there.
+            const std::string verdict = run->stable ? (below || std::isnan(s.measuredDt) ? "stable"
+                                                                                         : "stable again: not monotone in dt")
+                                        : run->leftLinearRegime ? "a spring leaves (0, 2L)"
+                                                                : "crosses the bound";
+            line += fmt::format("'{}' with lines {} lc rgb '{}' title 'dt = {:.4g} s, ω dt = {:.3g} ({})', ", file,
                                 below ? "lw 2" : "lw 2 dt (8,4)", colour(s.integrator, below ? -0.3 : 0.35), run->dt,
-                                run->stable              ? "stable"
-                                : run->leftLinearRegime ? "a spring leaves (0, 2L)"
-                                                         : "crosses the bound");
+                                run->dt * omega, verdict);
         }
         script += line + fmt::format("{} with lines lc rgb 'gray30' dt 2 title '{}', 1 with lines lc rgb 'gray60' dt 3 "
                                      "title 'E_0'\n",

@@ -196,6 +196,19 @@ std::optional<double> highestFrequency(const World& world)
     return std::sqrt(lambda);
 }
 
+double largestStartStretch(const World& world)
+{
+    SpanCollector springs;
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        world.force(i).accept(springs);
+    double stretch = 0.0;
+    for (const auto& s : springs.spans) {
+        const dvec3 other = s.b == kNone ? s.anchor : world.body(s.b).getPos();
+        stretch = std::max(stretch, std::abs(glm::length(world.body(s.a).getPos() - other) - s.restLength) / s.restLength);
+    }
+    return stretch;
+}
+
 double theoryDtLimit(Integrator integrator, double omega)
 {
     switch (integrator) {
@@ -303,6 +316,9 @@ StabilityResult measureStabilityLimit(const Scene& scene, Integrator integrator,
                 result.unmeasured = fmt::format("a spring leaves lengths (0, 2 L) at t = {:.3g} s whatever the dt: "
                                                 "the scene leaves the linear regime the theory is for",
                                                 leftAt);
+                // Its panel still shows how: at the smallest dt tried and at omega dt = 1.
+                result.below = runStability(scene, integrator, lo, omega, criterion);
+                result.above = runStability(scene, integrator, 1.0 / omega, omega, criterion);
                 return result;
             }
             if (0.5 * lo * omega < kMinOmegaDt) {

@@ -213,3 +213,46 @@ TEST(StabilityStudy, ARunThatBlowsUpIsRecordedNotThrown)
     const auto stable = study::measureRun(scene, Integrator::SemiImplicitEuler, CollisionResponse::Exact, 0.01, 1.0);
     EXPECT_TRUE(std::isnan(stable.front().blewUpAt));
 }
+
+// `spring` starts 1 m off a 2 m rest length. Semi-implicit Euler's modified energy keeps its
+// states on an ellipse whose largest x, from rest at A, is A / sqrt(1 - (w dt / 2)^2); that
+// reaches the rest length, the spring through zero length, at w dt = 2 sqrt(1 - (A/L)^2) =
+// sqrt(3): the limit the study measures, short of the theory's 2 for that reason.
+TEST(StabilityLimit, OnTheSpringSemiImplicitEulerStopsWhereItsSwingReachesZeroLength)
+{
+    const Scene spring = loadScene("spring");
+    EXPECT_DOUBLE_EQ(study::largestStartStretch(spring.world), 0.5);
+    const double omega = std::sqrt(10.0);
+    const auto s = study::measureStabilityLimit(spring, Integrator::SemiImplicitEuler, omega, {});
+    EXPECT_NEAR(s.measuredDt * omega, std::sqrt(3.0), 2e-3);
+    EXPECT_TRUE(s.above.leftLinearRegime);
+}
+
+// The report says why each limit falls short of the theory, a run above a limit that is stable
+// is called stable again (not just stable), and forward Euler's panel, not measured, still
+// shows its runs.
+TEST(PbaCompareStability, TheSpringReportSaysWhyLimitsFallShortAndNoPanelIsEmpty)
+{
+    const auto dir = freshDir("compare_spring_stability");
+    const CommandResult run = runPba("compare spring --dt 0.01 --duration 1 --integrators "
+                                     "forward-euler,semi-implicit-euler,rk4 --out " + dir.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const std::string report = readFile(dir / "report.md");
+    EXPECT_NE(report.find("semi-implicit-euler's limit is 0.866 of its theory because a spring leaves lengths (0, 2 L)"),
+              std::string::npos) << report;
+    EXPECT_NE(report.find("at omega dt = 2 sqrt(1 - (A/L)^2) = 1.732"), std::string::npos) << report;
+    EXPECT_NE(report.find("rk4's run 2% above its measured limit is stable again"), std::string::npos) << report;
+
+    study::StudyConfig config;
+    config.scene = loadScene("spring");
+    config.integrators = {Integrator::ForwardEuler, Integrator::RK4};
+    config.dts = {0.01};
+    config.duration = 1.0;
+    const auto result = study::runStudy(config);
+    const std::string script = study::plotScript(freshDir("spring_stability_plot"), config, result);
+    EXPECT_NE(script.find("(stable again: not monotone in dt)"), std::string::npos) << script;
+    EXPECT_EQ(script.find("title 'not measured:"), std::string::npos) << script; // forward Euler's panel has its runs
+    ASSERT_EQ(result.stability.size(), 2u);
+    EXPECT_FALSE(result.stability[0].below.series.t.empty());
+    EXPECT_FALSE(result.stability[0].above.series.t.empty());
+}
