@@ -112,7 +112,9 @@ void writeStabilityCsv(const std::filesystem::path& path, const study::StudyResu
     file.stream() << "integrator,omega_max,measured_dt_limit,theory_dt_limit\n";
     for (const auto& s : result.stability)
         file.stream() << fmt::format("{},{},{},{}\n", integratorName(s.integrator), s.omegaMax, number(s.measuredDt),
-                                     std::isnan(s.theoryDt) ? std::string("none") : number(s.theoryDt));
+                                     std::isnan(s.theoryDt)   ? std::string("none")
+                                     : std::isinf(s.theoryDt) ? std::string("any")
+                                                              : number(s.theoryDt));
     file.commit();
 }
 
@@ -135,6 +137,14 @@ std::string stabilityRow(const study::StudyResult& result, const study::Stabilit
     if (std::isnan(s.theoryDt))
         return fmt::format("| {} | none: gains energy at every dt | {} | {} | - |\n", integratorName(s.integrator),
                            measured, omegaDt);
+    if (std::isinf(s.theoryDt)) {
+        const double largest = std::size(study::kLadderOmegaDt) > 0 ? study::kLadderOmegaDt[std::size(study::kLadderOmegaDt) - 1] : 0.0;
+        const std::string upTo = std::isnan(s.measuredDt) ? "not measured: " + s.unmeasured
+                                 : s.measuredDt * omega >= largest * (1 - 1e-9)
+                                     ? fmt::format("stable up to the largest dt tried, {:.5g}", s.measuredDt)
+                                     : fmt::format("stable up to {:.5g}, not above (see below)", s.measuredDt);
+        return fmt::format("| {} | any: stable at every dt | {} | {} | - |\n", integratorName(s.integrator), upTo, omegaDt);
+    }
     const std::string ratio = std::isnan(s.measuredDt) ? std::string("-") : fmt::format("{:.4f}", s.measuredDt / s.theoryDt);
     return fmt::format("| {} | {:.5g} (omega dt = {:.4g}) | {} | {} | {} |\n", integratorName(s.integrator), s.theoryDt,
                        omega * s.theoryDt, measured, omegaDt, ratio);
@@ -188,6 +198,53 @@ std::string shortOfTheory(const study::StudyConfig& config, const study::StudyRe
     return out;
 }
 
+/// The energy a run keeps over one period T of the highest mode: E(t)/E0 at the first sample at
+/// or after T, scaled to T as (E(t)/E0)^(T/t). Measured over the first period, not the whole run,
+/// whose end energy of a strongly damped run is rounding.
+double keptPerPeriod(const study::StabilityRun& run, double omega)
+{
+    const double period = 2.0 * std::numbers::pi / omega;
+    const auto& t = run.series.t;
+    for (std::size_t i = 1; i < t.size(); ++i)
+        if (t[i] >= period * (1 - 1e-9))
+            return std::pow(std::max(0.0, run.series.energyRatio[i]), period / t[i]);
+    return std::numeric_limits<double>::quiet_NaN();
+}
+
+/// The ladder of the methods stable at every dt: what each omega dt costs in damping.
+std::string dampingTable(const study::StudyConfig& config, const study::StudyResult& result)
+{
+    const double periods = config.stability.periods;
+    std::string rows;
+    for (const auto& s : result.stability) {
+        if (s.ladder.empty())
+            continue;
+        rows += fmt::format("| {}", integratorName(s.integrator));
+        for (const auto& run : s.ladder)
+            rows += " | " + (run.stable ? fmt::format("{:.3g}", keptPerPeriod(run, s.omegaMax))
+                             : run.leftLinearRegime ? std::string("a spring leaves (0, 2 L)")
+                                                    : std::string("crosses the bound"));
+        rows += " |\n";
+    }
+    if (rows.empty())
+        return "";
+    std::string head = fmt::format(
+        "\nThe methods stable at every dt pay in damping. Each is run at a ladder of omega dt, up to 128 times "
+        "semi-implicit Euler's limit of 2, over the same {:g} periods of the highest mode, stable when its energy "
+        "stays under {:g} E0; the table gives the energy kept over the first period T = 2 pi / omega, "
+        "E(t)/E0 at the first step t >= T, scaled to T as (E(t)/E0)^(T/t) (an undamped spring keeps 1; backward Euler multiplies a "
+        "single oscillator's energy by 1 / (1 + (omega dt)^2) every step, (1 + (omega dt)^2)^(-2 pi / (omega dt)) a "
+        "period), or why the run stopped. The energy includes gravity's, so a falling rope's reads near 1 whatever "
+        "its springs lose.\n\n| integrator",
+        periods, config.stability.energyFactor);
+    std::string rule = "|---";
+    for (double w : study::kLadderOmegaDt) {
+        head += fmt::format(" | omega dt = {:g}", w);
+        rule += "|---:";
+    }
+    return head + " |\n" + rule + "|\n" + rows;
+}
+
 } // namespace
 
 std::string stabilitySection(const study::StudyConfig& config, const study::StudyResult& result, bool withPlots)
@@ -229,7 +286,7 @@ std::string stabilitySection(const study::StudyConfig& config, const study::Stud
                 "{:.4g}); a longer horizon or a tighter factor gives a smaller dt, without end.\n",
                 c.energyFactor, c.periods, c.energyFactor, c.periods,
                 std::log(c.energyFactor) / (2.0 * std::numbers::pi * c.periods), omega * s.measuredDt);
-    out += shortOfTheory(config, result);
+    out += shortOfTheory(config, result) + dampingTable(config, result);
     if (withPlots)
         out += fmt::format("\n![stability](stability.png)\n\nEach panel: E/E0 at dt {:g}% below (darker, solid) and "
                            "{:g}% above (lighter, dashed) the measured limit; a run above it stops where it crosses "

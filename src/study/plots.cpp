@@ -230,6 +230,25 @@ std::string convergencePlot(const std::filesystem::path& dir, const StudyResult&
 /// The bound a stable run stays under, for the plot's key.
 std::string boundText(double factor) { return fmt::format("bound: {:g} E_0", factor); }
 
+/// A method stable at every dt: a line per omega dt of its ladder, darker for the smaller.
+std::string ladderLines(const std::filesystem::path& dir, const StabilityResult& s, double omega)
+{
+    std::string line;
+    const std::string name(integratorName(s.integrator));
+    for (std::size_t k = 0; k < s.ladder.size(); ++k) {
+        const StabilityRun& run = s.ladder[k];
+        const std::string file = fmt::format("s_{}_ladder{}.dat", name, k);
+        std::ofstream out(dir / file);
+        for (std::size_t i = 0; i < run.series.t.size(); ++i)
+            out << run.series.t[i] * omega / (2.0 * std::numbers::pi) << ' ' << run.series.energyRatio[i] << '\n';
+        const double shade = -0.5 + double(k) / double(std::max<std::size_t>(1, s.ladder.size() - 1));
+        line += fmt::format("'{}' with lines lw 2 lc rgb '{}' title 'ω dt = {:g}{}', ", file, colour(s.integrator, shade),
+                            run.dt * omega, run.stable ? "" : run.leftLinearRegime ? " (a spring leaves (0, 2L))"
+                                                                                   : " (crosses the bound)");
+    }
+    return line;
+}
+
 /// One panel per integrator: E/E0 against time in periods of the highest mode, on a log scale,
 /// at dt just below the measured limit (the integrator's colour, darker) and just above it
 /// (lighter, dashed, ending where it crosses the bound).
@@ -253,7 +272,9 @@ std::string stabilityPlot(const std::filesystem::path& dir, const StudyConfig& c
                     factor * 30.0, config.stability.periods);
     for (const auto& s : result.stability) {
         const std::string name(integratorName(s.integrator));
-        const std::string theory = std::isnan(s.theoryDt) ? std::string("theory: none, gains energy at every dt") : fmt::format("theory {:.4g} s", s.theoryDt);
+        const std::string theory = std::isnan(s.theoryDt)   ? std::string("theory: none, gains energy at every dt")
+                                   : std::isinf(s.theoryDt) ? std::string("theory: stable at every dt")
+                                                            : fmt::format("theory {:.4g} s", s.theoryDt);
         const std::string measured = std::isnan(s.measuredDt) ? std::string("limit not measured")
                                                               : fmt::format("limit measured {:.4g} s", s.measuredDt);
         script += fmt::format("set title '{}: {}, {}'\nplot ", name, measured, theory);
@@ -262,6 +283,13 @@ std::string stabilityPlot(const std::filesystem::path& dir, const StudyConfig& c
             continue;
         }
         std::string line;
+        if (!s.ladder.empty()) {
+            script += ladderLines(dir, s, omega) +
+                      fmt::format("{} with lines lc rgb 'gray30' dt 2 title '{}', 1 with lines lc rgb 'gray60' dt 3 "
+                                  "title 'E_0'\n",
+                                  factor, boundText(factor));
+            continue;
+        }
         for (const auto* run : {&s.below, &s.above}) {
             const bool below = run == &s.below;
             const std::string file = fmt::format("s_{}_{}.dat", name, below ? "below" : "above");

@@ -286,6 +286,19 @@ StabilityResult measureStabilityLimit(const Scene& scene, Integrator integrator,
         result.unmeasured = "the scene starts with no energy (at rest at equilibrium): no bound to set";
         return result;
     }
+    if (std::isinf(result.theoryDt)) {
+        // No limit to bisect for: run the ladder, each run's end energy the damping it costs.
+        bool allStable = true;
+        for (double omegaDt : kLadderOmegaDt) {
+            result.ladder.push_back(runStability(scene, integrator, omegaDt / omega, omega, criterion));
+            allStable = allStable && result.ladder.back().stable;
+            if (allStable)
+                result.measuredDt = omegaDt / omega;
+        }
+        if (std::isnan(result.measuredDt))
+            result.unmeasured = fmt::format("unstable at omega dt = {:g} already", kLadderOmegaDt[0]);
+        return result;
+    }
     // The last two runs' reasons: a spring that leaves its linear range at the same time at dt
     // and dt / 2 does so by the scene's own motion (a hanging cloth stretching), not the
     // integrator's, and halving further would only cost time.

@@ -65,7 +65,15 @@ struct StabilityResult {
     /// At measuredDt (1 + kStabilityMargin); stable when stability is not monotone in dt near the
     /// limit. Not measured as for `below`: at omega dt = 1.
     StabilityRun above;
+    /// For a method the theory calls stable at every dt (implicit-euler, xpbd): a run at each
+    /// omega dt of kLadderOmegaDt, whose end energy over the start is the damping it costs, and
+    /// measuredDt the largest stable one ("stable up to the largest dt tried" when it is the last).
+    std::vector<StabilityRun> ladder;
 };
+
+/// The omega dt an unconditionally stable method is run at, up to 128 times semi-implicit
+/// Euler's limit of 2: its damping at each, and whether it stays stable.
+inline constexpr double kLadderOmegaDt[] = {0.25, 1.0, 4.0, 16.0, 64.0, 256.0};
 
 /// The bracket's range: below kMinOmegaDt a run of 50 periods is 60,000 steps and more.
 inline constexpr double kMinOmegaDt = 0.005;

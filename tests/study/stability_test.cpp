@@ -256,3 +256,76 @@ TEST(PbaCompareStability, TheSpringReportSaysWhyLimitsFallShortAndNoPanelIsEmpty
     EXPECT_FALSE(result.stability[0].below.series.t.empty());
     EXPECT_FALSE(result.stability[0].above.series.t.empty());
 }
+
+namespace {
+
+/// The largest E(t)/E0 over a run of `scene` with every moving body on `integrator` at dt for
+/// `duration`: the "energy never growing" target reads it as never above the start.
+double largestEnergyRatio(const Scene& scene, Integrator integrator, double dt, double duration)
+{
+    World world = scene.world;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (!world.body(i).isFixed())
+            world.body(i).setIntegrator(integrator);
+    const double e0 = world.totalEnergy();
+    double largest = 1.0;
+    for (int n = 0; n < static_cast<int>(std::ceil(duration / dt)); ++n) {
+        world.step(dt);
+        largest = std::max(largest, world.totalEnergy() / e0);
+    }
+    return largest;
+}
+
+/// The target: implicit-euler and xpbd stable at 100 times semi-implicit Euler's
+/// measured limit on `scene`, their energy never above the start.
+void expectStableAtAHundredTimesSemiImplicitEuler(const std::string& name, double duration)
+{
+    const Scene scene = loadScene(name);
+    const double omega = *study::highestFrequency(scene.world);
+    const auto sie = study::measureStabilityLimit(scene, Integrator::SemiImplicitEuler, omega, {});
+    ASSERT_FALSE(std::isnan(sie.measuredDt)) << name;
+    for (Integrator integrator : {Integrator::ImplicitEuler, Integrator::Xpbd})
+        EXPECT_LE(largestEnergyRatio(scene, integrator, 100.0 * sie.measuredDt, duration), 1.0 + 1e-9)
+            << name << " " << integratorName(integrator);
+}
+
+} // namespace
+
+// Backward Euler on an undamped oscillator multiplies the energy by 1 / (1 + (w dt)^2) every
+// step: over a period 2 pi / w, (1 + (w dt)^2)^(-2 pi / (w dt)). The ladder's runs on the stiff
+// spring keep that over their first period, and stay stable up to the largest omega dt tried.
+TEST(StabilityLimit, ImplicitMethodsAreStableUpTheLadderAndBackwardEulerDampsAsTheTheorySays)
+{
+    const Scene stiff = loadScene("stiff-spring");
+    const double omega = 30.0;
+    for (Integrator integrator : {Integrator::ImplicitEuler, Integrator::Xpbd}) {
+        const auto s = study::measureStabilityLimit(stiff, integrator, omega, {});
+        EXPECT_TRUE(std::isinf(s.theoryDt));
+        ASSERT_EQ(s.ladder.size(), std::size(study::kLadderOmegaDt));
+        EXPECT_NEAR(s.measuredDt * omega, study::kLadderOmegaDt[std::size(study::kLadderOmegaDt) - 1], 1e-9)
+            << integratorName(integrator);
+        if (integrator != Integrator::ImplicitEuler)
+            continue;
+        for (const auto& run : s.ladder) {
+            const double w = run.dt * omega;
+            ASSERT_GE(run.series.t.size(), 2u);
+            // The first step: exactly one factor 1 / (1 + (w dt)^2).
+            EXPECT_NEAR(run.series.energyRatio[1], 1.0 / (1.0 + w * w), 1e-6 / (1.0 + w * w)) << "omega dt " << w;
+        }
+    }
+}
+
+TEST(StabilityTargets, ImplicitEulerAndXpbdHoldTheStiffSpringAtAHundredTimesSemiImplicitEulersLimit)
+{
+    expectStableAtAHundredTimesSemiImplicitEuler("stiff-spring", 60.0);
+}
+
+// The same target on the rope and the cloth is not met: measured, the rope's energy peaks at
+// 131 E0 (implicit-euler) and 45 E0 (xpbd) at 100 times, and stays under E0 up to 10 and 2
+// times; the cloth's at 625 E0 and 6.9 E0, under E0 up to 20 times for both. Enable when the
+// methods hold it.
+TEST(StabilityTargets, DISABLED_ImplicitEulerAndXpbdHoldTheRopeAndClothAtAHundredTimesSemiImplicitEulersLimit)
+{
+    expectStableAtAHundredTimesSemiImplicitEuler("rope", 10.0);
+    expectStableAtAHundredTimesSemiImplicitEuler("cloth", 8.0);
+}
