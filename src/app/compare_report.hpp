@@ -15,7 +15,8 @@ namespace pba::app {
 std::string integratorTable(const std::vector<Integrator>& integrators, const std::vector<double>& dts, bool markdown,
                             const std::function<std::string(Integrator, double)>& cell);
 
-/// The first moving particle's rows, as a table of E(end)/E(0): integrators down, dt across.
+/// The followed rows (the first moving particle's, or the system's), as a table of E(end)/E(0):
+/// integrators down, dt across.
 std::string energyTable(const study::StudyConfig& config, const study::StudyResult& result,
                         CollisionResponse collision, bool markdown);
 
