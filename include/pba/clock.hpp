@@ -14,6 +14,8 @@ class FixedTimestepClock {
 public:
     static constexpr double kDefaultMaxFrameTime = 0.25; ///< s: longer frames are clamped
     static constexpr int kDefaultMaxStepsPerFrame = 500;
+    /// A step short of dt by at most this fraction of it is the sum's rounding, and is taken.
+    static constexpr double kRoundingTolerance = 1e-9;
 
     /// Throws std::invalid_argument for a dt, clamp or step cap that is not finite and positive.
     explicit FixedTimestepClock(double dt, double maxFrameTime = kDefaultMaxFrameTime,
@@ -28,7 +30,7 @@ public:
     int advance(double frameTime);
 
     /// Accumulator / dt, in [0, 1): how far the present lies between the last two states.
-    double alpha() const { return m_accumulator / m_dt; }
+    double alpha() const { return accumulator() / m_dt; }
 
     double dt() const { return m_dt; }
     /// Changing dt keeps alpha (the fraction of a step already accumulated).
@@ -38,7 +40,7 @@ public:
     int maxStepsPerFrame() const { return m_maxStepsPerFrame; }
     void setMaxStepsPerFrame(int steps);
 
-    double accumulator() const { return m_accumulator; }
+    double accumulator() const { return m_accumulator + m_compensation; }
     /// Simulated time given up to the clamp and the step cap since the last reset.
     double droppedTime() const { return m_dropped; }
     std::uint64_t totalSteps() const { return m_totalSteps; }
@@ -48,7 +50,11 @@ private:
     double m_dt;
     double m_maxFrameTime;
     int m_maxStepsPerFrame;
+    /// The accumulator as a compensated (Neumaier) sum, m_accumulator + m_compensation: a
+    /// plain sum of frame times loses an ulp a frame, and a long run a whole step.
+    void accumulate(double seconds);
     double m_accumulator = 0.0;
+    double m_compensation = 0.0;
     double m_dropped = 0.0;
     std::uint64_t m_totalSteps = 0;
 };

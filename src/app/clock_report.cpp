@@ -163,9 +163,8 @@ void writeClockReport(const std::filesystem::path& path, const study::ClockConfi
     out << fmt::format(
         "Scene `{}`, {:g} s of wall-clock time at dt = {:g} s, driven by each clock at 30, 60 and 144 frames a second, "
         "steady and with one frame of {:g} s at t = {:g} s (a simulated stall). The runs at 30 and 144 Hz are compared "
-        "with the run at 60 Hz of the same clock at the frames all three share (every 1/6 s, leaving out those on a "
-        "step of dt, where rounding puts the fixed clock on either side of the step): the largest distance of a moving "
-        "body. `clocks.csv` holds every sample (clock, hitch, rate, t, distance in m).\n\n",
+        "with the run at 60 Hz of the same clock at the frames all three share (every 1/6 s): the largest distance of a "
+        "moving body. `clocks.csv` holds every sample (clock, hitch, rate, t, distance in m).\n\n",
         config.scene.name, config.duration, config.dt, study::kHitchSeconds, study::kHitchAt);
     out << "## Findings\n\n" << clockFindings(config, result) << "\n";
     out << "## Distance from the 60 Hz run\n\n" << clockTable(config, result, true) << "\n";

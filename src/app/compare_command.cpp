@@ -263,10 +263,15 @@ int runCompare(const CompareOptions& options)
     folder.commit();
     const auto responses = study::distinctResponses(config, result);
     for (CollisionResponse c : responses)
-        fmt::print("E(end)/E(0), {}, first moving particle of {}:\n{}\n",
-                   responses.size() < config.collisions.size() ? "every collision response (nothing collides)"
-                                                               : fmt::format("{} response", collisionResponseName(c)),
-                   config.scene.name, energyTable(config, result, c, false));
+        fmt::print("E(end)/E(0), {}, {} of {}:\n{}\n",
+                   !study::anyCollision(result) && config.collisions.size() > 1
+                       ? "every collision response (nothing collides)"
+                       : fmt::format("{} response{}", collisionResponseName(c),
+                                     c == CollisionResponse::Reflect && study::exactShownAsReflect(config, result)
+                                         ? " (and exact, the same runs)"
+                                         : ""),
+                   result.followsSystem ? "the whole system" : "first moving particle", config.scene.name,
+                   energyTable(config, result, c, false));
     fmt::print("order of accuracy (spring):");
     for (const auto& o : result.orders)
         fmt::print("  {} {} (expected {})", integratorName(o.integrator), study::orderText(o), o.expected);
@@ -275,7 +280,9 @@ int runCompare(const CompareOptions& options)
         for (const auto& s : result.stability)
             fmt::print("  {} {} (theory {})", integratorName(s.integrator),
                        std::isnan(s.measuredDt) ? std::string("not measured") : fmt::format("{:.5g} s", s.measuredDt),
-                       std::isnan(s.theoryDt) ? std::string("none") : fmt::format("{:.5g} s", s.theoryDt));
+                       std::isnan(s.theoryDt)   ? std::string("none")
+                       : std::isinf(s.theoryDt) ? std::string("any dt")
+                                                : fmt::format("{:.5g} s", s.theoryDt));
     }
     fmt::print("\n\n{}", study::findings(config, result));
     if (options.workPrecision)

@@ -15,9 +15,15 @@ namespace pba::app {
 std::string integratorTable(const std::vector<Integrator>& integrators, const std::vector<double>& dts, bool markdown,
                             const std::function<std::string(Integrator, double)>& cell);
 
-/// The first moving particle's rows, as a table of E(end)/E(0): integrators down, dt across.
+/// The followed rows (the first moving particle's, or the system's), as a table of E(end)/E(0):
+/// integrators down, dt across.
 std::string energyTable(const study::StudyConfig& config, const study::StudyResult& result,
                         CollisionResponse collision, bool markdown);
+
+/// For a study that follows a system: the centre of mass's largest distance from the reference
+/// run, integrators down and dt across.
+std::string centreErrorTable(const study::StudyConfig& config, const study::StudyResult& result,
+                             CollisionResponse collision, bool markdown);
 
 /// The table's title: the response it is for, or that every response gave it when nothing collided.
 std::string energyTableHeading(const study::StudyConfig& config, const study::StudyResult& result,

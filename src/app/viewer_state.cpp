@@ -196,24 +196,20 @@ void ViewerState::advanceTo(double t)
 
 void ViewerState::stepWorld(std::uint64_t steps)
 {
-    try {
-        for (std::uint64_t n = 0; n < steps; ++n) {
-            scene.world.step(clock.dt()); // the fixed dt: the frame time only decided how many steps
-            ++stepsThisFrame;
-            watch.check(scene.world);
-            record();
-        }
-    } catch (const BlowUpError& e) {
-        error = e.what();
-        paused = true;
-    }
+    // The fixed dt: the frame time only decided how many steps.
+    takeSteps(steps, [&](std::uint64_t) { return clock.dt(); });
 }
 
 void ViewerState::stepWorld(const std::vector<double>& lengths)
 {
+    takeSteps(lengths.size(), [&](std::uint64_t n) { return lengths[n]; });
+}
+
+void ViewerState::takeSteps(std::uint64_t count, const std::function<double(std::uint64_t)>& length)
+{
     try {
-        for (const double h : lengths) {
-            scene.world.step(h);
+        for (std::uint64_t n = 0; n < count; ++n) {
+            scene.world.step(length(n));
             ++stepsThisFrame;
             watch.check(scene.world);
             record();

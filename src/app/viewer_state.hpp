@@ -4,6 +4,8 @@
 // without a display, so the viewer's logic (reset, reload, keys, capture at a time) is tested
 // without one.
 #include <array>
+#include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -115,6 +117,9 @@ struct ViewerState {
     void stepWorld(std::uint64_t steps);
     /// Steps of these lengths, as the semi-fixed or variable clock takes a frame.
     void stepWorld(const std::vector<double>& lengths);
+    /// `count` steps, the n-th of length(n), each checked and recorded; a blow-up pauses with
+    /// its message.
+    void takeSteps(std::uint64_t count, const std::function<double(std::uint64_t)>& length);
     void record();
     void apply(ViewerCommand command);
     /// The alpha the world is drawn with.

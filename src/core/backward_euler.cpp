@@ -5,25 +5,13 @@
 #include <functional>
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
+
+#include "parallel.hpp"
 
 namespace pba::detail {
 
 namespace {
-
-/// Springs or bodies a task: enough work that a thread's start is paid for.
-constexpr std::size_t kGrain = 2048;
-
-/// fn(i) for every i < n, on all cores.
-template <class F>
-void forEach(std::size_t n, F&& fn)
-{
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t i = r.begin(); i < r.end(); ++i)
-            fn(i);
-    });
-}
 
 /// The sum of term(i) over i < n (term may also write i's results), on all cores. The blocks and
 /// the tree that adds them depend on n alone, so the sum is the same on any number of threads.
@@ -31,7 +19,7 @@ template <class F>
 double sumOf(std::size_t n, F&& term)
 {
     return tbb::parallel_deterministic_reduce(
-        tbb::blocked_range<std::size_t>(0, n, kGrain), 0.0,
+        tbb::blocked_range<std::size_t>(0, n, kIndexGrain), 0.0,
         [&](const tbb::blocked_range<std::size_t>& r, double sum) {
             for (std::size_t i = r.begin(); i < r.end(); ++i)
                 sum += term(i);
@@ -67,7 +55,7 @@ void BackwardEuler::step(const SpringSystem& springs, std::span<const double> ma
 {
     setUp(springs, mass, x, v, force, dt);
     solve(springs, mass);
-    forEach(x.size(), [&](std::size_t p) {
+    forEachIndex(x.size(), [&](std::size_t p) {
         v[p] += m_dv[p];
         x[p] += v[p] * dt;
     });
@@ -80,7 +68,7 @@ void BackwardEuler::setUp(const SpringSystem& springs, std::span<const double> m
     m_blocks.resize(springs.size());
     m_perSpring.resize(springs.size());
     // Each spring's block, and its part of the right-hand side, dt^2 K (v_a - v_b).
-    forEach(springs.size(), [&](std::size_t s) {
+    forEachIndex(springs.size(), [&](std::size_t s) {
         const std::uint32_t a = springs.a(s), b = springs.b(s);
         const dvec3 d = (b == SpringSystem::kFixed ? springs.fixedPoint(s) : x[b]) - x[a];
         const double length = glm::length(d);
@@ -103,7 +91,7 @@ void BackwardEuler::setUp(const SpringSystem& springs, std::span<const double> m
     m_rhs.resize(n);
     m_inverseDiagonal.resize(n);
     // Each body's right-hand side dt f0 - sum dt^2 K (v_a - v_b), and its diagonal block's inverse.
-    forEach(n, [&](std::size_t p) {
+    forEachIndex(n, [&](std::size_t p) {
         m_rhs[p] = dt * force[p] - springSum(springs, m_perSpring, p);
         dmat3 diagonal(mass[p]);
         for (const std::uint32_t end : springs.incident(p)) {
@@ -117,7 +105,7 @@ void BackwardEuler::setUp(const SpringSystem& springs, std::span<const double> m
 
 void BackwardEuler::springPass(const SpringSystem& springs, const std::vector<dvec3>& w)
 {
-    forEach(springs.size(), [&](std::size_t s) { m_perSpring[s] = m_blocks[s].apply(w[springs.a(s)] - atB(springs, s, w)); });
+    forEachIndex(springs.size(), [&](std::size_t s) { m_perSpring[s] = m_blocks[s].apply(w[springs.a(s)] - atB(springs, s, w)); });
 }
 
 void BackwardEuler::solve(const SpringSystem& springs, std::span<const double> mass)

@@ -24,6 +24,14 @@ FixedTimestepClock::FixedTimestepClock(double dt, double maxFrameTime, int maxSt
         throw std::invalid_argument(fmt::format("maximum steps per frame must be positive, got {}", maxStepsPerFrame));
 }
 
+void FixedTimestepClock::accumulate(double seconds)
+{
+    const double sum = m_accumulator + seconds;
+    m_compensation += std::abs(m_accumulator) >= std::abs(seconds) ? (m_accumulator - sum) + seconds
+                                                                     : (seconds - sum) + m_accumulator;
+    m_accumulator = sum;
+}
+
 int FixedTimestepClock::advance(double frameTime)
 {
     requirePositive(frameTime, "frame time");
@@ -31,18 +39,25 @@ int FixedTimestepClock::advance(double frameTime)
         m_dropped += frameTime - m_maxFrameTime;
         frameTime = m_maxFrameTime;
     }
-    m_accumulator += frameTime;
+    accumulate(frameTime);
+    // Neither the frame times nor dt are exact in binary (1/60 s, 0.001 s): sixty frames of 1/60 s
+    // hold a hair less than a thousand steps of 0.001 s even summed exactly. A step short of dt
+    // by no more than that rounding, a billionth of dt, is taken; the compensated sum keeps the
+    // rounding of any run far below it.
+    const double step = m_dt * (1.0 - kRoundingTolerance);
     int steps = 0;
-    while (m_accumulator >= m_dt && steps < m_maxStepsPerFrame) {
-        m_accumulator -= m_dt;
+    while (accumulator() >= step && steps < m_maxStepsPerFrame) {
+        accumulate(-m_dt);
         ++steps;
     }
-    if (m_accumulator >= m_dt) { // the cap was hit: give up the whole steps that remain
-        const double excess = std::floor(m_accumulator / m_dt) * m_dt;
-        m_accumulator -= excess;
+    if (accumulator() >= step) { // the cap was hit: give up the whole steps that remain
+        const double excess = std::floor(accumulator() / step) * m_dt;
+        accumulate(-excess);
         m_dropped += excess;
-        if (m_accumulator >= m_dt || m_accumulator < 0.0)
-            m_accumulator = 0.0; // rounding at the boundary: keep alpha in [0, 1)
+    }
+    if (accumulator() >= m_dt || accumulator() < 0.0) { // rounding at the boundary: keep alpha in [0, 1)
+        m_accumulator = 0.0;
+        m_compensation = 0.0;
     }
     m_totalSteps += static_cast<std::uint64_t>(steps);
     return steps;
@@ -54,6 +69,7 @@ void FixedTimestepClock::setDt(double dt)
     const double fraction = alpha();
     m_dt = dt;
     m_accumulator = fraction * dt;
+    m_compensation = 0.0;
 }
 
 void FixedTimestepClock::setMaxFrameTime(double seconds)
@@ -72,6 +88,7 @@ void FixedTimestepClock::setMaxStepsPerFrame(int steps)
 void FixedTimestepClock::reset()
 {
     m_accumulator = 0.0;
+    m_compensation = 0.0;
     m_dropped = 0.0;
     m_totalSteps = 0;
 }

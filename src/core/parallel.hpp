@@ -22,12 +22,15 @@ decltype(auto) onCores(int threads, F&& fn)
     return arena.execute(fn);
 }
 
-/// fn(i) for every i < n, a few thousand indices a task (below that, starting a thread costs
-/// more than the work: a rope's or a few particles' loop runs on the calling thread).
+/// Indices a task: a few thousand (below that, starting a thread costs more than the work: a
+/// rope's or a few particles' loop runs on the calling thread).
+inline constexpr std::size_t kIndexGrain = 2048;
+
+/// fn(i) for every i < n, kIndexGrain indices a task.
 template <class F>
 void forEachIndex(std::size_t n, F&& fn)
 {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 2048), [&](const tbb::blocked_range<std::size_t>& r) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kIndexGrain), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t i = r.begin(); i < r.end(); ++i)
             fn(i);
     });

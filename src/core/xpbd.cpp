@@ -3,25 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include "parallel.hpp"
 
 namespace pba::detail {
-
-namespace {
-
-constexpr std::size_t kGrain = 2048;
-
-template <class F>
-void forEach(std::size_t n, F&& fn)
-{
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t i = r.begin(); i < r.end(); ++i)
-            fn(i);
-    });
-}
-
-} // namespace
 
 Xpbd::Xpbd(const SpringSystem& springs)
 {
@@ -70,24 +54,24 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
     m_inverseMass.resize(n);
     m_start.resize(n);
     m_accel.resize(n);
-    forEach(n, [&](std::size_t p) { m_inverseMass[p] = 1.0 / mass[p]; });
+    forEachIndex(n, [&](std::size_t p) { m_inverseMass[p] = 1.0 / mass[p]; });
     scale(h);
     for (int sub = 0; sub < substeps; ++sub) {
         external(x, v, m_accel);
-        forEach(n, [&](std::size_t p) {
+        forEachIndex(n, [&](std::size_t p) {
             v[p] += h * m_accel[p];
             m_start[p] = x[p];
             x[p] += h * v[p];
         });
         project(springs, x);
-        forEach(n, [&](std::size_t p) { v[p] = (x[p] - m_start[p]) / h; });
+        forEachIndex(n, [&](std::size_t p) { v[p] = (x[p] - m_start[p]) / h; });
     }
 }
 
 void Xpbd::scale(double h)
 {
     m_scales.resize(m_constraints.size());
-    forEach(m_constraints.size(), [&](std::size_t k) {
+    forEachIndex(m_constraints.size(), [&](std::size_t k) {
         const Constraint& con = m_constraints[k];
         if (con.inverseStiffness < 0.0) {
             m_scales[k] = Scale{};
@@ -108,7 +92,7 @@ void Xpbd::project(const SpringSystem& springs, std::span<dvec3> x)
     dvec3* positions = x.data();
     for (std::size_t c = 0; c + 1 < m_colourStart.size(); ++c) {
         const std::size_t begin = m_colourStart[c];
-        forEach(m_colourStart[c + 1] - begin, [&](std::size_t k) {
+        forEachIndex(m_colourStart[c + 1] - begin, [&](std::size_t k) {
             const Constraint& con = constraints[begin + k];
             const Scale& scale = scales[begin + k];
             const bool fixed = con.b == SpringSystem::kFixed;

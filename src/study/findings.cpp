@@ -1,6 +1,7 @@
 #include "findings.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <optional>
 
@@ -58,6 +59,26 @@ std::string endRatios(const std::vector<const ParticleResult*>& rows)
     return text;
 }
 
+/// "its energy after 10 s is 0.9737 times the start at dt = 0.0005 and it blew up at t = 0.21 s
+/// at dt = 0.1": a run that blew up has no end energy to quote, only when it blew up.
+std::string endClauses(const std::vector<const ParticleResult*>& rows, double duration)
+{
+    const auto one = [&](const ParticleResult& r) {
+        return std::isnan(r.blewUpAt)
+                   ? fmt::format("its energy after {} s is {} times the start at dt = {}", duration,
+                                 ratioText(r.energyRatioEnd), r.dt)
+                   : fmt::format("it blew up at t = {:.3g} s at dt = {}", r.blewUpAt, r.dt);
+    };
+    return rows.size() > 1 ? one(*rows.front()) + " and " + one(*rows.back()) : one(*rows.front());
+}
+
+std::string capitalised(std::string text)
+{
+    if (!text.empty())
+        text[0] = char(std::toupper(static_cast<unsigned char>(text[0])));
+    return text;
+}
+
 std::string nothingCollides(const StudyConfig& config, const StudyResult& result)
 {
     if (anyCollision(result) || config.collisions.size() < 2)
@@ -68,6 +89,41 @@ std::string nothingCollides(const StudyConfig& config, const StudyResult& result
     return fmt::format("**Nothing collides.** No particle met a surface in any run, so the collision responses ({}) "
                        "never acted and give the same numbers: the tables and plots show them once.\n\n",
                        names);
+}
+
+std::string exactAsReflect(const StudyConfig& config, const StudyResult& result)
+{
+    if (!exactShownAsReflect(config, result))
+        return "";
+    return "**`exact` is `reflect` here.** Every moving particle is joined to others by springs, and a coupled "
+           "particle has no path of its own along which to find a time of impact (its group moves as one), so the "
+           "`exact` response acts as `reflect` on it (docs/scenes.md): the two give the same runs, to the bit, and "
+           "the tables and plots show them once, as `reflect`.\n\n";
+}
+
+/// For a system: which methods kept it finite at every dt, and the largest dt each survived.
+std::string survivors(const StudyConfig& config, const StudyResult& result)
+{
+    if (!result.followsSystem)
+        return "";
+    const CollisionResponse c = distinctResponses(config, result).front();
+    std::string text;
+    for (Integrator integrator : config.integrators) {
+        double largest = 0.0;
+        bool all = true;
+        for (const auto* r : rowsOf(config, result, integrator, c)) {
+            if (std::isnan(r->blewUpAt))
+                largest = std::max(largest, r->dt);
+            else
+                all = false;
+        }
+        text += fmt::format("{}{} ", text.empty() ? "" : "; ", integratorName(integrator));
+        text += all ? "at every dt" : largest > 0 ? fmt::format("up to dt = {}", largest) : "at none";
+    }
+    return fmt::format("**Which dt the system survives** (`{}` response, {} s): {}. Past its stability limit the "
+                       "stiffest springs' mode grows geometrically and the run blows up; below it the total energy "
+                       "falls, to the springs' damping, the drag and the bounces.\n\n",
+                       collisionResponseName(c), config.duration, text);
 }
 
 std::string forwardEuler(const StudyConfig& config, const StudyResult& result)
@@ -86,8 +142,9 @@ std::string forwardEuler(const StudyConfig& config, const StudyResult& result)
             gains = gains && rows[i]->energyRatioEnd > 1.0;
             growing = growing && rows.size() > 1 && (i == 0 || rows[i]->energyRatioEnd > rows[i - 1]->energyRatioEnd);
         }
-        numbers += responses.size() > 1 ? fmt::format("With the `{}` response its", collisionResponseName(c)) : "Its";
-        numbers += fmt::format(" energy after {} s is {}. ", config.duration, endRatios(rows));
+        numbers += responses.size() > 1 ? fmt::format("With the `{}` response {}. ", collisionResponseName(c),
+                                                      endClauses(rows, config.duration))
+                                        : capitalised(endClauses(rows, config.duration)) + ". ";
     }
     if (!any)
         return "";
@@ -178,14 +235,16 @@ std::string semiImplicitEuler(const StudyConfig& config, const StudyResult& resu
 {
     if (!has(config.integrators, Integrator::SemiImplicitEuler))
         return "";
-    if (anyCollision(result))
+    // The bounce findings are a single particle's (its shadow energy, the mirror's gain): a
+    // system's energy is spread over modes the bounces do not speak for.
+    if (anyCollision(result) && !result.followsSystem)
         return semiImplicitEulerBounces(config, result);
-    const auto rows = rowsOf(config, result, Integrator::SemiImplicitEuler, config.collisions.front());
+    const auto rows = rowsOf(config, result, Integrator::SemiImplicitEuler, distinctResponses(config, result).front());
     if (rows.empty())
         return "";
     const auto exact = firstExact(config);
     if (!exact || exact->kind() != ExactSolution::Kind::Oscillator)
-        return fmt::format("**Semi-implicit Euler.** Its energy after {} s is {}.\n\n", config.duration, endRatios(rows));
+        return fmt::format("**Semi-implicit Euler.** {}.\n\n", capitalised(endClauses(rows, config.duration)));
     // Symplectic only below its stability limit: past it the energy grows geometrically.
     std::vector<const ParticleResult*> stable, unstable;
     for (const auto* r : rows)
@@ -197,9 +256,9 @@ std::string semiImplicitEuler(const StudyConfig& config, const StudyResult& resu
                             "does.",
                             config.duration, endRatios(stable));
     if (!unstable.empty())
-        text += fmt::format("{}Above {} its energy grows without bound: {} after {} s.", stable.empty() ? "" : " ",
-                            stabilityLimitText(result, Integrator::SemiImplicitEuler), endRatios(unstable),
-                            config.duration);
+        text += fmt::format("{}Above {} its energy grows without bound: {}.", stable.empty() ? "" : " ",
+                            stabilityLimitText(result, Integrator::SemiImplicitEuler),
+                            endClauses(unstable, config.duration));
     return text + "\n\n";
 }
 
@@ -302,7 +361,7 @@ std::string mirrorAgainstPrediction(const ExactSolution& exact, const std::vecto
 /// The gain of an integrator exact in flight, with the reflect response: the response's own.
 std::string reflectGain(const StudyConfig& config, const StudyResult& result)
 {
-    if (!has(config.collisions, CollisionResponse::Reflect) || !anyCollision(result))
+    if (!has(config.collisions, CollisionResponse::Reflect) || !anyCollision(result) || result.followsSystem)
         return "";
     std::vector<Integrator> gaining;
     std::vector<const ParticleResult*> shown; // of the first gaining integrator
@@ -406,9 +465,23 @@ bool anyCollision(const StudyResult& result)
 
 std::vector<CollisionResponse> distinctResponses(const StudyConfig& config, const StudyResult& result)
 {
-    if (anyCollision(result) || config.collisions.empty())
+    if (config.collisions.empty())
         return config.collisions;
-    return {config.collisions.front()};
+    if (!anyCollision(result))
+        return {config.collisions.front()};
+    if (!result.exactActsAsReflect || !has(config.collisions, CollisionResponse::Reflect))
+        return config.collisions;
+    std::vector<CollisionResponse> distinct;
+    for (CollisionResponse c : config.collisions)
+        if (c != CollisionResponse::Exact)
+            distinct.push_back(c);
+    return distinct;
+}
+
+bool exactShownAsReflect(const StudyConfig& config, const StudyResult& result)
+{
+    return anyCollision(result) && result.exactActsAsReflect && has(config.collisions, CollisionResponse::Exact) &&
+           has(config.collisions, CollisionResponse::Reflect);
 }
 
 std::string describeDts(const std::vector<double>& dts)
@@ -432,7 +505,8 @@ std::string ratioText(double ratio)
 
 std::string findings(const StudyConfig& config, const StudyResult& result)
 {
-    return nothingCollides(config, result) + forwardEuler(config, result) + semiImplicitEuler(config, result) +
+    return nothingCollides(config, result) + exactAsReflect(config, result) + survivors(config, result) +
+           forwardEuler(config, result) + semiImplicitEuler(config, result) +
            exactWithExactImpacts(config, result, Integrator::VelocityVerlet) +
            exactWithExactImpacts(config, result, Integrator::RK4) + reflectGain(config, result) + orders(result);
 }

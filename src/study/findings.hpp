@@ -15,9 +15,14 @@ const ParticleResult* findRun(const StudyResult& result, Integrator integrator, 
 /// acted, and every response gives the same numbers.
 bool anyCollision(const StudyResult& result);
 
-/// The collision responses whose results differ: all those studied, or only the first when
-/// nothing collided.
+/// The collision responses whose results differ: all those studied, only the first when
+/// nothing collided, and without `exact` beside `reflect` when every moving body is coupled
+/// (then `exact` acts as `reflect`).
 std::vector<CollisionResponse> distinctResponses(const StudyConfig& config, const StudyResult& result);
+
+/// Whether `exact` was studied but is shown as `reflect`, its runs being the same (see
+/// StudyResult::exactActsAsReflect).
+bool exactShownAsReflect(const StudyConfig& config, const StudyResult& result);
 
 /// "dt = 0.3 s", "dt = 0.01 and 0.05 s", "dt from 0.0005 to 0.1 s (8 values)".
 std::string describeDts(const std::vector<double>& dts);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <optional>
 
@@ -66,7 +67,7 @@ double shadeOf(std::size_t k, std::size_t typical, std::size_t n)
 
 std::string heightPlot(const std::filesystem::path& dir, const StudyConfig& config, const StudyResult& result)
 {
-    const CollisionResponse collision = config.collisions.front();
+    const CollisionResponse collision = distinctResponses(config, result).front();
     // The smallest dt, a typical one and a large one: each integrator's line in shades of its
     // colour, its own for the typical dt, darker for smaller dt and lighter for larger.
     std::vector<double> shown{config.dts.front()};
@@ -85,13 +86,18 @@ std::string heightPlot(const std::filesystem::path& dir, const StudyConfig& conf
             out << t << ' ' << exact->position(t).y << '\n';
         }
     }
-    const double start = first < world.bodyCount() ? world.body(first).getPos().y : 0.0;
+    const ParticleResult* any = findRun(result, config.integrators.front(), collision, config.dts.front());
+    const double start = any && !any->series.y.empty()       ? any->series.y.front()
+                         : first < world.bodyCount() ? world.body(first).getPos().y
+                                                     : 0.0;
     // Without collisions every response gives the same motion: naming one would mislead.
-    const std::string title = anyCollision(result)
-                                  ? fmt::format("height against time ({} collision response)", collisionResponseName(collision))
-                                  : std::string("height against time");
+    const std::string what = result.followsSystem ? "height of the centre of mass" : "height";
+    const std::string title = anyCollision(result) ? fmt::format("{} against time ({} collision response)", what,
+                                                                 collisionResponseName(collision))
+                                                   : what + " against time";
     std::string script = multiplot(config.integrators.size(), "height.png", title) +
-                         "set xlabel 't (s)'\nset ylabel 'y (m)'\nset key outside right\n";
+                         fmt::format("set xlabel 't (s)'\nset ylabel '{} (m)'\nset key outside right\n",
+                                     result.followsSystem ? "centre of mass y" : "y");
     for (Integrator integrator : config.integrators) {
         std::string line = fmt::format("set title '{}'\nplot ", integratorName(integrator));
         for (std::size_t k = 0; k < shown.size(); ++k) {
@@ -112,34 +118,84 @@ std::string heightPlot(const std::filesystem::path& dir, const StudyConfig& conf
     return script + "unset multiplot\n";
 }
 
+/// Whether the energy ratios the plot shows span more than a decade and a half: then a linear
+/// axis flattens all but the largest into one line at its foot.
+bool spansDecades(const StudyConfig& config, const StudyResult& result, double dt)
+{
+    double least = std::numeric_limits<double>::infinity(), most = 0.0;
+    for (CollisionResponse collision : distinctResponses(config, result))
+        for (Integrator integrator : config.integrators)
+            if (const ParticleResult* r = findRun(result, integrator, collision, dt))
+                for (double e : r->series.energyRatio)
+                    if (std::isfinite(e) && e > 0.0) {
+                        least = std::min(least, e);
+                        most = std::max(most, e);
+                    }
+    return most > 30.0 * least;
+}
+
+/// Integrator k's line: its colour, its own dash pattern and point type, points spaced out, so
+/// that lines on the same curve (velocity Verlet and RK4 are both exact in flight, and every
+/// stable method follows a rope alike) all stay visible.
+std::string lineStyle(Integrator integrator, std::size_t k)
+{
+    static constexpr const char* kDashes[] = {"1", "(12,5)", "(4,4)", "(14,4,3,4)", "(2,3)", "(20,6)"};
+    return fmt::format("with linespoints lw 2 dt {} pt {} ps 1.1 pi -{} lc rgb '{}'", kDashes[k % 6], 4 + 2 * (k % 5),
+                       40 + 7 * k, colour(integrator));
+}
+
+/// The energy plot's dt: the one nearest 0.01 s among those at which the most runs stayed
+/// finite, so that the plot compares methods rather than blow-ups.
+double energyPlotDt(const StudyConfig& config, const StudyResult& result)
+{
+    const auto survivors = [&](double dt) {
+        int n = 0;
+        for (CollisionResponse collision : config.collisions)
+            for (Integrator integrator : config.integrators)
+                if (const ParticleResult* r = findRun(result, integrator, collision, dt); r && std::isnan(r->blewUpAt))
+                    ++n;
+        return n;
+    };
+    int most = 0;
+    for (double dt : config.dts)
+        most = std::max(most, survivors(dt));
+    std::vector<double> candidates;
+    for (double dt : config.dts)
+        if (survivors(dt) == most)
+            candidates.push_back(dt);
+    return closest(candidates, 0.01);
+}
+
 std::string energyPlot(const std::filesystem::path& dir, const StudyConfig& config, const StudyResult& result)
 {
-    const double dt = closest(config.dts, 0.01);
+    const double dt = energyPlotDt(config, result);
     const auto responses = distinctResponses(config, result);
     const bool collides = anyCollision(result);
+    const std::string what = result.followsSystem ? "total energy (every body)" : "energy";
     std::string script = fmt::format("set terminal pngcairo size {},500 font 'sans,10'\nset output 'energy.png'\n"
-                                     "set multiplot layout 1,{} title 'energy over its start value, dt = {} s'\n"
+                                     "set multiplot layout 1,{} title '{} over its start value, dt = {} s'\n"
                                      "set xlabel 't (s)'\nset ylabel 'E / E0'\nset key inside top left\n",
-                                     responses.size() == 1 ? 900 : 1400, responses.size(), dt);
+                                     responses.size() == 1 ? 900 : 1400, responses.size(), what, dt);
+    if (spansDecades(config, result, dt))
+        script += "set logscale y\nset format y '10^{%L}'\nset grid\n";
     for (CollisionResponse collision : responses) {
         std::string line = collides ? fmt::format("set title '{} response'\nplot ", collisionResponseName(collision))
                                     : std::string("unset title\nplot ");
-        // The last integrator thinner and dashed over the others, so that two on the same curve
-        // (velocity Verlet and RK4 are both exact in flight) both stay visible.
-        line += "1 with lines lc rgb 'gray50' dt 3 title 'exact', ";
-        for (Integrator integrator : config.integrators) {
+        line += fmt::format("1 with lines lc rgb 'gray50' dt 3 title '{}', ",
+                            result.followsSystem ? "start energy" : "exact");
+        for (std::size_t k = 0; k < config.integrators.size(); ++k) {
+            const Integrator integrator = config.integrators[k];
             const ParticleResult* r = findRun(result, integrator, collision, dt);
             if (!r)
                 continue;
-            const bool last = integrator == config.integrators.back() && config.integrators.size() > 1;
             const std::string file = fmt::format("e_{}_{}.dat", integratorName(integrator), collisionResponseName(collision));
             writeSeries(dir / file, r->series, true);
-            line += fmt::format("'{}' with lines {} lc rgb '{}' title '{}', ", file, last ? "lw 1.8 dt (10,6)" : "lw 2.5",
-                                colour(integrator), integratorName(integrator));
+            const std::string end = std::isnan(r->blewUpAt) ? "" : fmt::format(" (blew up at {:.3g} s)", r->blewUpAt);
+            line += fmt::format("'{}' {} title '{}{}', ", file, lineStyle(integrator, k), integratorName(integrator), end);
         }
         script += line.substr(0, line.size() - 2) + "\n";
     }
-    return script + "unset multiplot\n";
+    return script + "unset multiplot\nunset logscale\nunset grid\nset format y '%g'\n";
 }
 
 std::string convergencePlot(const std::filesystem::path& dir, const StudyResult& result)
@@ -174,6 +230,25 @@ std::string convergencePlot(const std::filesystem::path& dir, const StudyResult&
 /// The bound a stable run stays under, for the plot's key.
 std::string boundText(double factor) { return fmt::format("bound: {:g} E_0", factor); }
 
+/// A method stable at every dt: a line per omega dt of its ladder, darker for the smaller.
+std::string ladderLines(const std::filesystem::path& dir, const StabilityResult& s, double omega)
+{
+    std::string line;
+    const std::string name(integratorName(s.integrator));
+    for (std::size_t k = 0; k < s.ladder.size(); ++k) {
+        const StabilityRun& run = s.ladder[k];
+        const std::string file = fmt::format("s_{}_ladder{}.dat", name, k);
+        std::ofstream out(dir / file);
+        for (std::size_t i = 0; i < run.series.t.size(); ++i)
+            out << run.series.t[i] * omega / (2.0 * std::numbers::pi) << ' ' << run.series.energyRatio[i] << '\n';
+        const double shade = -0.5 + double(k) / double(std::max<std::size_t>(1, s.ladder.size() - 1));
+        line += fmt::format("'{}' with lines lw 2 lc rgb '{}' title 'ω dt = {:g}{}', ", file, colour(s.integrator, shade),
+                            run.dt * omega, run.stable ? "" : run.leftLinearRegime ? " (a spring leaves (0, 2L))"
+                                                                                   : " (crosses the bound)");
+    }
+    return line;
+}
+
 /// One panel per integrator: E/E0 against time in periods of the highest mode, on a log scale,
 /// at dt just below the measured limit (the integrator's colour, darker) and just above it
 /// (lighter, dashed, ending where it crosses the bound).
@@ -197,26 +272,38 @@ std::string stabilityPlot(const std::filesystem::path& dir, const StudyConfig& c
                     factor * 30.0, config.stability.periods);
     for (const auto& s : result.stability) {
         const std::string name(integratorName(s.integrator));
-        const std::string theory = std::isnan(s.theoryDt) ? std::string("theory: none, gains energy at every dt") : fmt::format("theory {:.4g} s", s.theoryDt);
+        const std::string theory = std::isnan(s.theoryDt)   ? std::string("theory: none, gains energy at every dt")
+                                   : std::isinf(s.theoryDt) ? std::string("theory: stable at every dt")
+                                                            : fmt::format("theory {:.4g} s", s.theoryDt);
         const std::string measured = std::isnan(s.measuredDt) ? std::string("limit not measured")
                                                               : fmt::format("limit measured {:.4g} s", s.measuredDt);
         script += fmt::format("set title '{}: {}, {}'\nplot ", name, measured, theory);
-        if (std::isnan(s.measuredDt)) {
+        if (std::isnan(s.measuredDt) && s.below.series.t.empty()) {
             script += fmt::format("1 with lines lc rgb 'gray50' dt 3 title 'not measured: {}'\n", s.unmeasured);
             continue;
         }
         std::string line;
+        if (!s.ladder.empty()) {
+            script += ladderLines(dir, s, omega) +
+                      fmt::format("{} with lines lc rgb 'gray30' dt 2 title '{}', 1 with lines lc rgb 'gray60' dt 3 "
+                                  "title 'E_0'\n",
+                                  factor, boundText(factor));
+            continue;
+        }
         for (const auto* run : {&s.below, &s.above}) {
             const bool below = run == &s.below;
             const std::string file = fmt::format("s_{}_{}.dat", name, below ? "below" : "above");
             std::ofstream out(dir / file);
             for (std::size_t i = 0; i < run->series.t.size(); ++i)
                 out << run->series.t[i] * omega / (2.0 * std::numbers::pi) << ' ' << run->series.energyRatio[i] << '\n';
-            line += fmt::format("'{}' with lines {} lc rgb '{}' title 'dt = {:.4g} s ({})', ", file,
+            // Above a measured limit a stable run means the stability is not monotone in dt there.
+            const std::string verdict = run->stable ? (below || std::isnan(s.measuredDt) ? "stable"
+                                                                                         : "stable again: not monotone in dt")
+                                        : run->leftLinearRegime ? "a spring leaves (0, 2L)"
+                                                                : "crosses the bound";
+            line += fmt::format("'{}' with lines {} lc rgb '{}' title 'dt = {:.4g} s, ω dt = {:.3g} ({})', ", file,
                                 below ? "lw 2" : "lw 2 dt (8,4)", colour(s.integrator, below ? -0.3 : 0.35), run->dt,
-                                run->stable              ? "stable"
-                                : run->leftLinearRegime ? "a spring leaves (0, 2L)"
-                                                         : "crosses the bound");
+                                run->dt * omega, verdict);
         }
         script += line + fmt::format("{} with lines lc rgb 'gray30' dt 2 title '{}', 1 with lines lc rgb 'gray60' dt 3 "
                                      "title 'E_0'\n",

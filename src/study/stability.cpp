@@ -196,6 +196,19 @@ std::optional<double> highestFrequency(const World& world)
     return std::sqrt(lambda);
 }
 
+double largestStartStretch(const World& world)
+{
+    SpanCollector springs;
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        world.force(i).accept(springs);
+    double stretch = 0.0;
+    for (const auto& s : springs.spans) {
+        const dvec3 other = s.b == kNone ? s.anchor : world.body(s.b).getPos();
+        stretch = std::max(stretch, std::abs(glm::length(world.body(s.a).getPos() - other) - s.restLength) / s.restLength);
+    }
+    return stretch;
+}
+
 double theoryDtLimit(Integrator integrator, double omega)
 {
     switch (integrator) {
@@ -273,6 +286,19 @@ StabilityResult measureStabilityLimit(const Scene& scene, Integrator integrator,
         result.unmeasured = "the scene starts with no energy (at rest at equilibrium): no bound to set";
         return result;
     }
+    if (std::isinf(result.theoryDt)) {
+        // No limit to bisect for: run the ladder, each run's end energy the damping it costs.
+        bool allStable = true;
+        for (double omegaDt : kLadderOmegaDt) {
+            result.ladder.push_back(runStability(scene, integrator, omegaDt / omega, omega, criterion));
+            allStable = allStable && result.ladder.back().stable;
+            if (allStable)
+                result.measuredDt = omegaDt / omega;
+        }
+        if (std::isnan(result.measuredDt))
+            result.unmeasured = fmt::format("unstable at omega dt = {:g} already", kLadderOmegaDt[0]);
+        return result;
+    }
     // The last two runs' reasons: a spring that leaves its linear range at the same time at dt
     // and dt / 2 does so by the scene's own motion (a hanging cloth stretching), not the
     // integrator's, and halving further would only cost time.
@@ -303,6 +329,9 @@ StabilityResult measureStabilityLimit(const Scene& scene, Integrator integrator,
                 result.unmeasured = fmt::format("a spring leaves lengths (0, 2 L) at t = {:.3g} s whatever the dt: "
                                                 "the scene leaves the linear regime the theory is for",
                                                 leftAt);
+                // Its panel still shows how: at the smallest dt tried and at omega dt = 1.
+                result.below = runStability(scene, integrator, lo, omega, criterion);
+                result.above = runStability(scene, integrator, 1.0 / omega, omega, criterion);
                 return result;
             }
             if (0.5 * lo * omega < kMinOmegaDt) {

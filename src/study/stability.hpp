@@ -36,6 +36,10 @@ std::optional<double> highestFrequency(const World& world);
 /// iteration takes seconds on a large cloth (its highest modes lie close together).
 bool hasMovingSprings(const World& world);
 
+/// The largest |length - L| / L over the springs (of rest length L > 0) at the start: how far
+/// from small swings, the linear theory's premise, the scene starts (0 without such springs).
+double largestStartStretch(const World& world);
+
 /// The largest stable dt an undamped harmonic oscillator of frequency omega allows: 2 / omega
 /// for semi-implicit Euler and velocity Verlet, 2 sqrt(2) / omega for RK4; NaN for forward
 /// Euler, which gains energy at every dt.
@@ -55,9 +59,21 @@ struct StabilityResult {
     double theoryDt = 0.0;   ///< NaN: no finite limit (forward Euler)
     double measuredDt = 0.0; ///< the bisection's largest stable dt; NaN if not measured
     std::string unmeasured;  ///< why measuredDt is NaN ("" when measured)
-    StabilityRun below;      ///< at measuredDt (1 - kStabilityMargin)
-    StabilityRun above;      ///< at measuredDt (1 + kStabilityMargin)
+    /// At measuredDt (1 - kStabilityMargin); when the scene leaves the linear regime whatever
+    /// the dt (the limit not measured), the smallest dt tried, to show how it leaves.
+    StabilityRun below;
+    /// At measuredDt (1 + kStabilityMargin); stable when stability is not monotone in dt near the
+    /// limit. Not measured as for `below`: at omega dt = 1.
+    StabilityRun above;
+    /// For a method the theory calls stable at every dt (implicit-euler, xpbd): a run at each
+    /// omega dt of kLadderOmegaDt, whose end energy over the start is the damping it costs, and
+    /// measuredDt the largest stable one ("stable up to the largest dt tried" when it is the last).
+    std::vector<StabilityRun> ladder;
 };
+
+/// The omega dt an unconditionally stable method is run at, up to 128 times semi-implicit
+/// Euler's limit of 2: its damping at each, and whether it stays stable.
+inline constexpr double kLadderOmegaDt[] = {0.25, 1.0, 4.0, 16.0, 64.0, 256.0};
 
 /// The bracket's range: below kMinOmegaDt a run of 50 periods is 60,000 steps and more.
 inline constexpr double kMinOmegaDt = 0.005;

@@ -2,6 +2,7 @@
 
 #include "parallel_runs.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <exception>
@@ -17,7 +18,6 @@ namespace pba::study {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr std::size_t kSeriesPoints = 2000;
 
 /// Follows one particle through a run: energy, apexes (from the state just before vy turns
 /// down: y + vy^2 / 2g, exact for a state on an exact parabola), and the position error.
@@ -71,15 +71,100 @@ struct Tracker {
     }
 };
 
+/// Follows the whole system through a run: the world's total energy, the moving bodies' bounces
+/// and centre of mass. A rope or a cloth has no exact solution, and any one of its particles
+/// (the one next to the pin barely moves) says little about how the rope moved.
+struct SystemTracker {
+    std::vector<std::size_t> moving;
+    double e0 = 0.0;
+    ParticleResult result;
+    std::size_t stride = 1;
+
+    dvec3 centre(const World& world) const
+    {
+        dvec3 sum(0.0);
+        double mass = 0.0;
+        for (std::size_t i : moving) {
+            sum += world.body(i).getMass() * world.body(i).getPos();
+            mass += world.body(i).getMass();
+        }
+        return sum / mass;
+    }
+
+    void sample(const World& world, const std::vector<double>& energies)
+    {
+        double e = 0.0;
+        for (double x : energies)
+            e += x;
+        const double ratio = e0 != 0.0 ? e / e0 : 1.0;
+        result.maxEnergyDeviation = std::max(result.maxEnergyDeviation, std::abs(ratio - 1.0));
+        if (world.stepCount() > 0)
+            result.meanEnergyRatio += ratio / double(result.steps);
+        if (std::isnan(result.firstImpactAt) &&
+            std::any_of(moving.begin(), moving.end(), [&](std::size_t i) { return world.bounceCount(i) > 0; }))
+            result.firstImpactAt = world.time();
+        if (world.stepCount() % stride == 0) {
+            const dvec3 c = centre(world);
+            result.series.t.push_back(world.time());
+            result.series.y.push_back(c.y);
+            result.series.energyRatio.push_back(ratio);
+            result.series.centre.push_back(c);
+        }
+    }
+};
+
+double sum(const std::vector<double>& values)
+{
+    double s = 0.0;
+    for (double x : values)
+        s += x;
+    return s;
+}
+
+/// The largest distance between a run's centre of mass and the reference's at the run's
+/// samples up to `until`, the reference (every step of a finer dt) interpolated linearly between
+/// its steps; NaN when the reference blew up, and so is no reference.
+double maxCentreDistance(const ParticleResult& run, const ParticleResult& reference, double until)
+{
+    if (!std::isnan(reference.blewUpAt))
+        return kNaN;
+    const Series& r = reference.series;
+    double worst = 0.0;
+    for (std::size_t k = 0; k < run.series.t.size() && run.series.t[k] <= until; ++k) {
+        const double t = run.series.t[k];
+        const auto hi = std::size_t(std::lower_bound(r.t.begin(), r.t.end(), t) - r.t.begin());
+        if (hi >= r.t.size())
+            break;
+        const std::size_t lo = hi == 0 ? 0 : hi - 1;
+        const double w = r.t[hi] > r.t[lo] ? (t - r.t[lo]) / (r.t[hi] - r.t[lo]) : 1.0;
+        const dvec3 c = r.centre[lo] + w * (r.centre[hi] - r.centre[lo]);
+        worst = std::max(worst, glm::length(run.series.centre[k] - c));
+    }
+    return worst;
+}
+
 } // namespace
 
+bool followsSystem(const World& world)
+{
+    std::size_t moving = 0, first = world.bodyCount();
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (!world.body(i).isFixed()) {
+            first = std::min(first, i);
+            ++moving;
+        }
+    return moving > 1 && !ExactSolution::find(world, first);
+}
+
 std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator, CollisionResponse collision,
-                                       double dt, double duration)
+                                       double dt, double duration, bool system, std::size_t seriesPoints)
 {
     World world = scene.world;
     world.setCollisionResponse(collision);
     std::vector<Tracker> trackers;
     const std::vector<double> startEnergies = world.energies();
+    SystemTracker whole;
+    whole.e0 = sum(startEnergies);
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
         if (world.body(i).isFixed())
             continue;
@@ -87,15 +172,24 @@ std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator
         Tracker t{i, ExactSolution::find(world, i), startEnergies[i], {}};
         t.result.particle = world.body(i).getName();
         trackers.push_back(std::move(t));
+        whole.moving.push_back(i);
     }
     const auto steps = static_cast<std::uint64_t>(std::max(1.0, std::round(duration / dt)));
+    whole.result.particle = kSystemRow;
+    whole.result.integrator = integrator;
+    whole.result.collision = collision;
+    whole.result.dt = dt;
+    whole.result.steps = steps;
+    whole.stride = std::max<std::size_t>(1, static_cast<std::size_t>(steps / std::max<std::size_t>(1, seriesPoints)));
+    if (system)
+        whole.sample(world, startEnergies);
     for (auto& t : trackers) {
         t.result.integrator = integrator;
         t.result.collision = collision;
         t.result.dt = dt;
         t.result.steps = steps;
-        t.stride = std::max<std::size_t>(1, static_cast<std::size_t>(steps / kSeriesPoints));
-        t.keepSeries = &t == &trackers.front();
+        t.stride = std::max<std::size_t>(1, static_cast<std::size_t>(steps / std::max<std::size_t>(1, seriesPoints)));
+        t.keepSeries = !system && &t == &trackers.front();
         t.sample(world, startEnergies);
     }
     std::vector<State> before(trackers.size());
@@ -117,12 +211,25 @@ std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator
                 trackers[k].afterStep(world, before[k]);
                 trackers[k].sample(world, energies);
             }
+            if (system)
+                whole.sample(world, energies);
         }
     } catch (const BlowUpError& error) {
         blewUpAt = error.time();
     }
     std::vector<ParticleResult> results;
     const std::vector<double> endEnergies = world.energies();
+    if (system) {
+        ParticleResult& r = whole.result;
+        r.blewUpAt = blewUpAt;
+        r.energyRatioEnd = !std::isnan(blewUpAt) ? std::numeric_limits<double>::infinity()
+                           : whole.e0 != 0.0     ? sum(endEnergies) / whole.e0
+                                                 : 1.0;
+        for (std::size_t i : whole.moving)
+            r.bounces += world.bounceCount(i);
+        r.apexRatioLast = r.periodError = r.maxPositionError = kNaN; // the error is set against the reference
+        results.push_back(std::move(r));
+    }
     for (auto& t : trackers) {
         ParticleResult& r = t.result;
         r.blewUpAt = blewUpAt;
@@ -174,8 +281,43 @@ long studyTaskCount(const StudyConfig& config)
 {
     const std::size_t n = config.integrators.size();
     const std::size_t limits = hasMovingSprings(config.scene.world) ? n : 0; // the count shown, not a promise
-    return static_cast<long>(n * config.collisions.size() * config.dts.size() + n + limits);
+    const std::size_t references = followsSystem(config.scene.world) ? n * config.collisions.size() : 0;
+    return static_cast<long>(n * config.collisions.size() * config.dts.size() + n + limits + references);
 }
+
+namespace {
+
+bool allMovingCoupled(const World& world)
+{
+    bool any = false;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (!world.body(i).isFixed()) {
+            any = true;
+            if (!world.isCoupled(i))
+                return false;
+        }
+    return any;
+}
+
+/// Sets each system row's error: its centre of mass against the reference run of its method
+/// and response.
+void compareWithReferences(std::vector<std::vector<ParticleResult>>& runs,
+                           const std::vector<std::vector<ParticleResult>>& references)
+{
+    for (auto& run : runs)
+        for (const auto& reference : references)
+            if (!run.empty() && !reference.empty() && run.front().integrator == reference.front().integrator &&
+                run.front().collision == reference.front().collision)
+            {
+                const ParticleResult& ref = reference.front();
+                const double impact = std::isnan(ref.firstImpactAt) ? std::numeric_limits<double>::infinity()
+                                                                    : ref.firstImpactAt;
+                run.front().maxPositionError = maxCentreDistance(run.front(), ref, std::numeric_limits<double>::infinity());
+                run.front().errorBeforeImpact = maxCentreDistance(run.front(), ref, impact);
+            }
+}
+
+} // namespace
 
 StudyResult runStudy(const StudyConfig& config, const std::function<void(long, long)>& progress)
 {
@@ -192,15 +334,38 @@ StudyResult runStudy(const StudyConfig& config, const std::function<void(long, l
     const Scene spring = loadScene("spring");
     StudyResult result;
     result.omegaMax = highestFrequency(config.scene.world);
+    result.followsSystem = followsSystem(config.scene.world);
+    result.exactActsAsReflect = allMovingCoupled(config.scene.world);
+    std::vector<Task> referenceTasks;
+    if (result.followsSystem) {
+        // A quarter of the smallest dt: the reference's own error is then a quarter (order 1) or
+        // less of the finest run's, and the finest run's error is mostly its own.
+        result.referenceDt = *std::min_element(config.dts.begin(), config.dts.end()) / 4.0;
+        for (Integrator integrator : config.integrators)
+            for (CollisionResponse collision : config.collisions)
+                referenceTasks.push_back({integrator, collision, result.referenceDt});
+    }
     const std::size_t orders = config.integrators.size();
     const std::size_t limits = result.omegaMax ? config.integrators.size() : 0;
-    const std::size_t total = tasks.size() + orders + limits;
-    std::vector<std::vector<ParticleResult>> runs(tasks.size());
+    const std::size_t references = referenceTasks.size();
+    const std::size_t total = references + tasks.size() + orders + limits;
+    std::vector<std::vector<ParticleResult>> runs(tasks.size()), referenceRuns(references);
     result.orders.resize(orders);
     result.stability.resize(limits);
+    const bool system = result.followsSystem;
     runInParallel(total, config.jobs, [&](std::size_t i) {
+        // The references first: they are the longest runs, and would otherwise finish last alone.
+        if (i < references) {
+            const Task& t = referenceTasks[i];
+            referenceRuns[i] = measureRun(config.scene, t.integrator, t.collision, t.dt, config.duration, true,
+                                          std::numeric_limits<std::size_t>::max());
+            referenceRuns[i].resize(1);
+            return;
+        }
+        i -= references;
         if (i < tasks.size())
-            runs[i] = measureRun(config.scene, tasks[i].integrator, tasks[i].collision, tasks[i].dt, config.duration);
+            runs[i] = measureRun(config.scene, tasks[i].integrator, tasks[i].collision, tasks[i].dt, config.duration,
+                                 system);
         else if (i < tasks.size() + orders)
             result.orders[i - tasks.size()] =
                 measureOrder(spring, config.integrators[i - tasks.size()], config.dts, result.orderWindow);
@@ -208,6 +373,7 @@ StudyResult runStudy(const StudyConfig& config, const std::function<void(long, l
             result.stability[i - tasks.size() - orders] = measureStabilityLimit(
                 config.scene, config.integrators[i - tasks.size() - orders], *result.omegaMax, config.stability);
     }, progress);
+    compareWithReferences(runs, referenceRuns);
     for (auto& run : runs)
         for (auto& r : run)
             result.runs.push_back(std::move(r));

@@ -1,6 +1,7 @@
 #pragma once
 // The integrator study: run one scene for every (integrator, collision response, dt), measure
-// each moving particle against the exact solution, and measure each integrator's order of
+// each moving particle against the exact solution (a system without one, a rope or a cloth, as
+// a whole against a fine-dt run of the same method), and measure each integrator's order of
 // accuracy on the harmonic oscillator. Runs are independent and deterministic, so the results
 // do not depend on how many run at once.
 #include <functional>
@@ -26,6 +27,10 @@ struct StudyConfig {
     StabilityCriterion stability;
 };
 
+/// The name of the row that stands for the whole system in a study that follows one
+/// (StudyResult::followsSystem): its energy is the world's total, its position the centre of mass.
+inline constexpr const char* kSystemRow = "(system)";
+
 /// What one particle did in one run. NaN where a measure does not apply (no exact solution,
 /// no complete bounce).
 struct ParticleResult {
@@ -40,11 +45,18 @@ struct ParticleResult {
     std::uint64_t bounces = 0;
     double apexRatioLast = 0.0;      ///< apex after the last bounce / drop height
     double periodError = 0.0;        ///< (measured mean period - exact) / exact
-    double maxPositionError = 0.0;   ///< max |x(t) - x_exact(t)|, m
+    double maxPositionError = 0.0;   ///< max |x(t) - x_exact(t)|, m; for the system row, its centre of mass against the reference run's
+    /// The system row's: its centre of mass's largest distance from the reference's before the
+    /// reference's first impact, m (the runs part at impacts, where the responses act on
+    /// positions found a step late); NaN for other rows and without a reference.
+    double errorBeforeImpact = std::numeric_limits<double>::quiet_NaN();
+    /// The system row's: when a moving body first met a surface, s (NaN: never, or another row).
+    double firstImpactAt = std::numeric_limits<double>::quiet_NaN();
     /// The time at which the run's state stopped being finite (NaN when it did not): the run
     /// stops there, its energy ratios read infinite and its series end there.
     double blewUpAt = std::numeric_limits<double>::quiet_NaN();
-    /// The first moving particle's (the one the plots follow); empty for the others.
+    /// The first row's of a run (the one the plots follow: the first moving particle, or the
+    /// system); empty for the others.
     Series series;
 };
 
@@ -63,7 +75,19 @@ struct OrderResult {
 };
 
 struct StudyResult {
-    std::vector<ParticleResult> runs; ///< in (integrator, collision, dt, particle) order
+    /// In (integrator, collision, dt, particle) order; a study that follows the system puts its
+    /// row first in each run.
+    std::vector<ParticleResult> runs;
+    /// Whether the study follows the whole system (total energy, centre of mass) rather than one
+    /// particle: several bodies move and the first has no exact solution. One particle of a rope
+    /// says little about the rope, and has nothing exact to be compared with.
+    bool followsSystem = false;
+    /// The dt of the reference runs a system is compared with (the same method and response at a
+    /// quarter of the smallest dt studied); NaN when the study does not follow a system.
+    double referenceDt = std::numeric_limits<double>::quiet_NaN();
+    /// Whether every moving body is coupled: then `exact` acts as `reflect` (a coupled body has
+    /// no path of its own to find a time of impact on) and the two responses give the same runs.
+    bool exactActsAsReflect = false;
     std::vector<OrderResult> orders;
     double orderWindow = 2.0;         ///< s, the time window of the order study
     /// The scene's highest natural frequency, rad/s; empty without springs on moving bodies,
@@ -79,9 +103,15 @@ long studyTaskCount(const StudyConfig& config);
 /// `progress(done, total)` is called from the calling thread only.
 StudyResult runStudy(const StudyConfig& config, const std::function<void(long, long)>& progress = {});
 
-/// Runs `scene` with the given integrator and response and measures its moving particles.
+/// Runs `scene` with the given integrator and response and measures its moving particles; with
+/// `system`, a row for the whole system first (see kSystemRow), whose series keeps
+/// `seriesPoints` samples at most, the centre of mass included.
 std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator, CollisionResponse collision,
-                                       double dt, double duration);
+                                       double dt, double duration, bool system = false,
+                                       std::size_t seriesPoints = 2000);
+
+/// Whether a study of `world` follows the whole system (see StudyResult::followsSystem).
+bool followsSystem(const World& world);
 
 /// Order of accuracy from the spring scene: max position error over [0, window] for each dt;
 /// the slope is fitted over the dt <= kOrderMaxDt whose error stands above rounding

@@ -125,3 +125,23 @@ TEST(FrameSteps, NamesRoundTrip)
         EXPECT_EQ(clockFromName(clockName(kind)), kind);
     EXPECT_FALSE(clockFromName("semi_fixed").has_value());
 }
+
+// Frames of 1/30, 1/60 and 1/144 s are not exact in binary, nor is a dt of 1/1000 s: summed
+// plainly, 60 frames of 1/60 s hold a hair less than 1000 steps of 0.001 s and the clock ran
+// 999. The clock's sum is compensated and a step that is short of dt by rounding alone (a
+// billionth of it) is taken, so after k frames of 1/r s it has taken exactly floor(k q / r)
+// steps of 1/q s, at every frame: the fixed clock's runs at any frame rate are then the same
+// steps, to the bit.
+TEST(FixedTimestepClock, TakesExactlyTheExpectedStepsAtEveryFrameOfCommonFrameRates)
+{
+    for (const std::uint64_t q : {1000u, 500u, 120u, 100u, 60u})
+        for (const std::uint64_t r : {30u, 60u, 144u, 25u, 240u}) {
+            FixedTimestepClock clock(1.0 / double(q));
+            for (std::uint64_t k = 1; k <= 20 * r; ++k) {
+                clock.advance(1.0 / double(r));
+                ASSERT_EQ(clock.totalSteps(), k * q / r) << "dt 1/" << q << " s, frame 1/" << r << " s, frame " << k;
+                ASSERT_GE(clock.alpha(), 0.0);
+                ASSERT_LT(clock.alpha(), 1.0);
+            }
+        }
+}

@@ -53,6 +53,33 @@ TEST(ClockStudy, FixedIsIdenticalToTheBitAtEveryRateAndVariableIsNot)
         }
 }
 
+// The fixed clock takes floor(t / dt) steps by the last frame's end t at every frame rate: 300
+// in 3 s at dt = 0.01 s, or 298 at 30 Hz with the hitch, whose frames end at 2.9833 s (0.25 s is
+// the clamp, so no time is dropped). A sum of frame times that rounds below a step still takes
+// it, and every shared frame, those on a step of dt included, compares equal.
+TEST(ClockStudy, TheFixedClockTakesExactlyTheExpectedStepsAtEveryRate)
+{
+    const ClockResult r = runScene("integrators", 3.0);
+    for (const ClockRun& run : r.runs)
+        if (run.clock == ClockKind::Fixed) {
+            // The last frame's end, the sum of the frame times.
+            const std::vector<double> frames = frameTimes(run.rate, run.hitch, 3.0);
+            const double end = std::accumulate(frames.begin(), frames.end(), 0.0);
+            const auto expected = static_cast<std::uint64_t>(std::floor(end / 0.01 + 1e-6));
+            EXPECT_EQ(run.steps, expected) << run.rate << " Hz" << (run.hitch ? ", hitch" : "");
+            EXPECT_EQ(run.steps, run.hitch && run.rate == 30 ? 298u : 300u) << run.rate << " Hz";
+        }
+    for (const bool hitch : {false, true})
+        for (const int rate : {30, 144}) {
+            const ClockDrift& fixed = drift(r, ClockKind::Fixed, hitch, rate);
+            const auto onAStep = std::count_if(fixed.t.begin(), fixed.t.end(), [](double t) {
+                return std::abs(t * 100.0 - std::round(t * 100.0)) < 1e-6;
+            });
+            EXPECT_GE(onAStep, 4) << rate << (hitch ? " Hz, hitch" : " Hz");
+            EXPECT_TRUE(fixed.identical) << rate;
+        }
+}
+
 TEST(ClockStudy, TheHitchIsOneLongStepOnlyForTheVariableClock)
 {
     const ClockResult r = runScene("integrators", 2.5);

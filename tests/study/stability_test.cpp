@@ -213,3 +213,119 @@ TEST(StabilityStudy, ARunThatBlowsUpIsRecordedNotThrown)
     const auto stable = study::measureRun(scene, Integrator::SemiImplicitEuler, CollisionResponse::Exact, 0.01, 1.0);
     EXPECT_TRUE(std::isnan(stable.front().blewUpAt));
 }
+
+// `spring` starts 1 m off a 2 m rest length. Semi-implicit Euler's modified energy keeps its
+// states on an ellipse whose largest x, from rest at A, is A / sqrt(1 - (w dt / 2)^2); that
+// reaches the rest length, the spring through zero length, at w dt = 2 sqrt(1 - (A/L)^2) =
+// sqrt(3): the limit the study measures, short of the theory's 2 for that reason.
+TEST(StabilityLimit, OnTheSpringSemiImplicitEulerStopsWhereItsSwingReachesZeroLength)
+{
+    const Scene spring = loadScene("spring");
+    EXPECT_DOUBLE_EQ(study::largestStartStretch(spring.world), 0.5);
+    const double omega = std::sqrt(10.0);
+    const auto s = study::measureStabilityLimit(spring, Integrator::SemiImplicitEuler, omega, {});
+    EXPECT_NEAR(s.measuredDt * omega, std::sqrt(3.0), 2e-3);
+    EXPECT_TRUE(s.above.leftLinearRegime);
+}
+
+// The report says why each limit falls short of the theory, a run above a limit that is stable
+// is called stable again (not just stable), and forward Euler's panel, not measured, still
+// shows its runs.
+TEST(PbaCompareStability, TheSpringReportSaysWhyLimitsFallShortAndNoPanelIsEmpty)
+{
+    const auto dir = freshDir("compare_spring_stability");
+    const CommandResult run = runPba("compare spring --dt 0.01 --duration 1 --integrators "
+                                     "forward-euler,semi-implicit-euler,rk4 --out " + dir.string());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const std::string report = readFile(dir / "report.md");
+    EXPECT_NE(report.find("semi-implicit-euler's limit is 0.866 of its theory because a spring leaves lengths (0, 2 L)"),
+              std::string::npos) << report;
+    EXPECT_NE(report.find("at omega dt = 2 sqrt(1 - (A/L)^2) = 1.732"), std::string::npos) << report;
+    EXPECT_NE(report.find("rk4's run 2% above its measured limit is stable again"), std::string::npos) << report;
+
+    study::StudyConfig config;
+    config.scene = loadScene("spring");
+    config.integrators = {Integrator::ForwardEuler, Integrator::RK4};
+    config.dts = {0.01};
+    config.duration = 1.0;
+    const auto result = study::runStudy(config);
+    const std::string script = study::plotScript(freshDir("spring_stability_plot"), config, result);
+    EXPECT_NE(script.find("(stable again: not monotone in dt)"), std::string::npos) << script;
+    EXPECT_EQ(script.find("title 'not measured:"), std::string::npos) << script; // forward Euler's panel has its runs
+    ASSERT_EQ(result.stability.size(), 2u);
+    EXPECT_FALSE(result.stability[0].below.series.t.empty());
+    EXPECT_FALSE(result.stability[0].above.series.t.empty());
+}
+
+namespace {
+
+/// The largest E(t)/E0 over a run of `scene` with every moving body on `integrator` at dt for
+/// `duration`: the "energy never growing" target reads it as never above the start.
+double largestEnergyRatio(const Scene& scene, Integrator integrator, double dt, double duration)
+{
+    World world = scene.world;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (!world.body(i).isFixed())
+            world.body(i).setIntegrator(integrator);
+    const double e0 = world.totalEnergy();
+    double largest = 1.0;
+    for (int n = 0; n < static_cast<int>(std::ceil(duration / dt)); ++n) {
+        world.step(dt);
+        largest = std::max(largest, world.totalEnergy() / e0);
+    }
+    return largest;
+}
+
+/// The target: implicit-euler and xpbd stable at 100 times semi-implicit Euler's
+/// measured limit on `scene`, their energy never above the start.
+void expectStableAtAHundredTimesSemiImplicitEuler(const std::string& name, double duration)
+{
+    const Scene scene = loadScene(name);
+    const double omega = *study::highestFrequency(scene.world);
+    const auto sie = study::measureStabilityLimit(scene, Integrator::SemiImplicitEuler, omega, {});
+    ASSERT_FALSE(std::isnan(sie.measuredDt)) << name;
+    for (Integrator integrator : {Integrator::ImplicitEuler, Integrator::Xpbd})
+        EXPECT_LE(largestEnergyRatio(scene, integrator, 100.0 * sie.measuredDt, duration), 1.0 + 1e-9)
+            << name << " " << integratorName(integrator);
+}
+
+} // namespace
+
+// Backward Euler on an undamped oscillator multiplies the energy by 1 / (1 + (w dt)^2) every
+// step: over a period 2 pi / w, (1 + (w dt)^2)^(-2 pi / (w dt)). The ladder's runs on the stiff
+// spring keep that over their first period, and stay stable up to the largest omega dt tried.
+TEST(StabilityLimit, ImplicitMethodsAreStableUpTheLadderAndBackwardEulerDampsAsTheTheorySays)
+{
+    const Scene stiff = loadScene("stiff-spring");
+    const double omega = 30.0;
+    for (Integrator integrator : {Integrator::ImplicitEuler, Integrator::Xpbd}) {
+        const auto s = study::measureStabilityLimit(stiff, integrator, omega, {});
+        EXPECT_TRUE(std::isinf(s.theoryDt));
+        ASSERT_EQ(s.ladder.size(), std::size(study::kLadderOmegaDt));
+        EXPECT_NEAR(s.measuredDt * omega, study::kLadderOmegaDt[std::size(study::kLadderOmegaDt) - 1], 1e-9)
+            << integratorName(integrator);
+        if (integrator != Integrator::ImplicitEuler)
+            continue;
+        for (const auto& run : s.ladder) {
+            const double w = run.dt * omega;
+            ASSERT_GE(run.series.t.size(), 2u);
+            // The first step: exactly one factor 1 / (1 + (w dt)^2).
+            EXPECT_NEAR(run.series.energyRatio[1], 1.0 / (1.0 + w * w), 1e-6 / (1.0 + w * w)) << "omega dt " << w;
+        }
+    }
+}
+
+TEST(StabilityTargets, ImplicitEulerAndXpbdHoldTheStiffSpringAtAHundredTimesSemiImplicitEulersLimit)
+{
+    expectStableAtAHundredTimesSemiImplicitEuler("stiff-spring", 60.0);
+}
+
+// The same target on the rope and the cloth is not met: measured, the rope's energy peaks at
+// 131 E0 (implicit-euler) and 45 E0 (xpbd) at 100 times, and stays under E0 up to 10 and 2
+// times; the cloth's at 625 E0 and 6.9 E0, under E0 up to 20 times for both. Enable when the
+// methods hold it.
+TEST(StabilityTargets, DISABLED_ImplicitEulerAndXpbdHoldTheRopeAndClothAtAHundredTimesSemiImplicitEulersLimit)
+{
+    expectStableAtAHundredTimesSemiImplicitEuler("rope", 10.0);
+    expectStableAtAHundredTimesSemiImplicitEuler("cloth", 8.0);
+}
