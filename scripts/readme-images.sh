@@ -29,6 +29,14 @@ rigid chain 0.45 0,2.4,4.6,-0.6,2.0,0 joints
 rigid box-stack 2 2.4,2.2,4.4,0,0.55,0
 rigid incline 0.6 0.6,2.4,4.6,0,0.3,0
 rigid pendulum 0.4 0,2.5,5,0,2,0 joints
+rigid rolling 0.8 -0.8,1.5,3.8,-1.1,0.2,0 axes
+rigid tennis-racket 4.5 1.4,2.6,2.2,0,2,0 axes
+rigid blow-dryer-boxes 4 0.4,3.4,3.6,0,2.5,0
+rigid double-pendulum 3.7 0,2.4,4.6,0,2.3,0 joints # the rods bent: the chaos shows
+# Ropes, cloth and the stiff spring, framed the same way.
+rigid rope 0.8 0,2.8,6.5,-0.3,1.2,0 # the free end striking the floor
+rigid cloth 1.2 0,2.6,5,0,2.2,0
+"$pba" render stiff-spring --size 640x360 --time 1.5 --camera=0,5.2,10.5,0,4.4,0 --out "$out/stiff-spring.png"
 # The README's first scene, from the example file it shows.
 "$pba" render docs/examples/first-scene.json --size 640x360 --time 3 --camera=0,2,6,0,1.6,0 --out "$out/first-scene.png"
 "$pba" render dice --size 640x360 --camera=0,2.4,3.8,0,0.1,-0.5 --out "$out/dice.png" # at the end: every die at rest

@@ -44,7 +44,8 @@ std::string_view collisionResponseSummary(CollisionResponse response);
 /// The half-space dot(normal, x) >= offset; `normal` is a unit vector pointing inside.
 /// A plane may have a round hole (the blow dryer's, in the floor): a body crossing the plane
 /// within holeRadius of holeCentre passes through, into a short shaft closed below by
-/// another plane (the dryer's grille), and is kept inside the shaft's radius.
+/// another plane (the dryer's grille), and is kept inside the shaft's radius. Its members stay
+/// inline here: the swarm's loops and a Particle's rule call them for every point, every step.
 template <class T>
 struct PlaneT {
     Vec3<T> normal;

@@ -1,6 +1,7 @@
 #pragma once
-// The basic forces. Each one's physics is a small template kernel (usable in float
-// by swarms); the class around it adapts the kernel to the Force interface.
+// The basic forces. Each one's physics is a small kernel, and the class around it adapts the
+// kernel to the Force interface. Drag's is a template here because a swarm's float loop (an
+// installed detail header) inlines it; the spring's, used by the core alone, is in src/core.
 #include "pba/force.hpp"
 
 namespace pba {
@@ -51,20 +52,9 @@ private:
     double m_angular;
 };
 
-/// Damped spring between a fixed anchor and one particle:
-/// F = -k (|d| - L) d/|d| - c (v . d/|d|) d/|d|, with d = x - anchor.
-template <class T>
-inline Vec3<T> springForce(const Vec3<T>& anchor, T stiffness, T restLength, T damping, const Vec3<T>& x, const Vec3<T>& v)
-{
-    const Vec3<T> d = x - anchor;
-    const T length = glm::length(d);
-    if (length <= T(0))
-        return Vec3<T>(T(0)); // direction undefined at the anchor: no force rather than NaN
-    const Vec3<T> u = d * (T(1) / length); // one division rather than three
-    return -(stiffness * (length - restLength) + damping * glm::dot(v, u)) * u;
-}
-
-/// It ties one named particle: a swarm in the same world feels nothing of it.
+/// A damped spring from a fixed anchor, F = -k (|d| - L) d/|d| - c (v . d/|d|) d/|d| with
+/// d = x - anchor: its kernel is springForce (src/core/spring_force.hpp). It ties one named
+/// particle: a swarm in the same world feels nothing of it.
 class Spring final : public ForceBase<Spring> {
 public:
     /// `attachment`: where on the body the spring is tied, in the body's own frame (a rigid

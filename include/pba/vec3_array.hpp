@@ -26,19 +26,11 @@ public:
     auto begin() const { return m_items.begin(); }
     auto end() const { return m_items.end(); }
 
-    Vec3Array& operator+=(const Vec3Array& other)
-    {
-        for (std::size_t i = 0; i < m_items.size(); ++i)
-            m_items[i] += other.m_items[i];
-        return *this;
-    }
+    /// Body by body, out of line (src/core/vec3_array.cpp): each is a loop over the whole group,
+    /// beside which a call costs nothing.
+    Vec3Array& operator+=(const Vec3Array& other);
     friend Vec3Array operator+(Vec3Array a, const Vec3Array& b) { return a += b; }
-    friend Vec3Array operator*(Vec3Array a, double s)
-    {
-        for (dvec3& u : a.m_items)
-            u *= s;
-        return a;
-    }
+    friend Vec3Array operator*(Vec3Array a, double s);
     friend Vec3Array operator*(double s, Vec3Array a) { return std::move(a) * s; }
 
 private:

@@ -4,6 +4,7 @@
 #include "pba/swarm.hpp"
 
 #include "parallel.hpp"
+#include "spring_force.hpp"
 
 namespace pba {
 

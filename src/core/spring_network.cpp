@@ -11,6 +11,7 @@
 
 #include "pba/body.hpp"
 #include "pba/forces.hpp"
+#include "spring_force.hpp"
 
 namespace pba {
 
