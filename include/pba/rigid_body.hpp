@@ -15,7 +15,7 @@ struct CollisionShape;
 }
 
 /// The method a scene's rigid body takes unless it names one.
-inline constexpr Integrator kDefaultRigidIntegrator = Integrator::SemiImplicitEuler;
+inline constexpr Integrator kDefaultRigidIntegrator = Integrator::Splitting;
 
 class RigidBody : public Body {
 public:
