@@ -129,6 +129,8 @@ void RigidSystem::collidePairs()
 {
     // Written in place, in the pairs' order: the cache's list starts with them.
     auto& out = m_cache.contacts();
+    // Room for the room's contacts too: growing the list under them would copy every pair's.
+    out.reserve(m_pairs.size() + 2 * m_awake.size());
     out.resize(m_pairs.size());
     tbb::parallel_for(std::size_t(0), m_pairs.size(), [&](std::size_t p) {
         const BodyPair pair = m_pairs[p];
