@@ -379,6 +379,7 @@ private:
     struct RigidBodies {
         ClonePtr<rigid::RigidSystem> system;
         RigidScratch scratch;
+        std::size_t bodiesSeen = 0; ///< the bodies looked at for particles with a radius
     };
     /// The swarms, and their copies for a rollback.
     struct Swarms {
@@ -453,6 +454,12 @@ private:
     void stepRigid(Integrator integrator, const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
                    double dt);
     void storeRigidBodies();
+    /// The particles that touch rigid bodies (those with a radius, in a world with rigid bodies)
+    /// join the rigid system as point bodies; each step gives it their states and takes back
+    /// what their contacts and joints made of them.
+    void joinPointBodies();
+    void givePointBodies();
+    void storePointBodies();
     /// Phase 6 (Swarms, Forces, Surfaces).
     void stepSwarms(double dt);
     /// Phase 7 (Bodies, Swarms, Surfaces): the first state that cannot be rolls the step back
