@@ -309,6 +309,10 @@ private:
         /// What storePreviousStates read of each body besides its state: mass, restitution, and
         /// the key of its coupling (fixed flag and integrator).
         std::vector<double> masses, cors;
+        /// Each particle's radius and Coulomb friction, read with its mass (0 for a rigid body:
+        /// its shape says where it touches).
+        std::vector<double> radii, frictions;
+        std::vector<std::uint8_t> isParticle;
         std::vector<std::uint8_t> keys;
         /// Each body's state and pose at the current stage of an integrator (BodyStates): the
         /// start of the step for every body but those of the system being integrated.

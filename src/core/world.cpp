@@ -54,6 +54,7 @@ Body& World::addBody(std::unique_ptr<Body> body)
 {
     const auto* rigid = dynamic_cast<const RigidBody*>(body.get());
     m_bodies.isRigid.push_back(rigid ? 1 : 0);
+    m_bodies.isParticle.push_back(dynamic_cast<const Particle*>(body.get()) ? 1 : 0);
     m_bodies.rigidIndex.push_back(rigid ? std::uint32_t(m_rigid.system->size()) : kNotRigid);
     m_bodies.rigidAcc.push_back(dvec3(0.0));
     if (rigid)
