@@ -11,6 +11,7 @@
 
 #include "pba/scene/scene.hpp"
 #include "pba/world.hpp"
+#include "support/scene_claim.hpp"
 
 using namespace pba;
 
@@ -44,7 +45,7 @@ double speedOf(const Body& b) { return glm::length(b.getVel()); }
 
 } // namespace
 
-TEST(TouchSceneClaims, ClothOnBoxDrapesOverTheBoxWithNoParticleInsideIt)
+SCENE_CLAIM(TouchSceneClaims, ClothOnBoxDrapesOverTheBoxWithNoParticleInsideIt, "cloth-on-box")
 {
     Scene scene = loadScene("cloth-on-box");
     World& world = scene.world;
@@ -71,7 +72,7 @@ TEST(TouchSceneClaims, ClothOnBoxDrapesOverTheBoxWithNoParticleInsideIt)
     EXPECT_LT(fastest, 0.01);
 }
 
-TEST(TouchSceneClaims, TrampolineThrowsTheCrateBackUpAndHoldsItAtRest)
+SCENE_CLAIM(TouchSceneClaims, TrampolineThrowsTheCrateBackUpAndHoldsItAtRest, "trampoline")
 {
     Scene scene = loadScene("trampoline");
     World& world = scene.world;
@@ -95,7 +96,7 @@ TEST(TouchSceneClaims, TrampolineThrowsTheCrateBackUpAndHoldsItAtRest)
     EXPECT_LT(speedOf(crate), 1e-3);
 }
 
-TEST(TouchSceneClaims, HangingCrateKnocksTheWallDownOnARopeWhoseJointHolds)
+SCENE_CLAIM(TouchSceneClaims, HangingCrateKnocksTheWallDownOnARopeWhoseJointHolds, "hanging-crate")
 {
     Scene scene = loadScene("hanging-crate");
     World& world = scene.world;
