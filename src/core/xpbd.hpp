@@ -59,8 +59,8 @@ public:
     std::size_t colours() const { return m_colourStart.empty() ? 0 : m_colourStart.size() - 1; }
 
 private:
-    /// A spring as its projection reads it, stored colour by colour so that a colour's pass reads
-    /// its constraints in order (the springs' own arrays, read through a colour's list of indices,
+    /// A spring as a constraint, stored colour by colour so that a colour's pass reads its
+    /// constraints in order (the springs' own arrays, read through a colour's list of indices,
     /// were a cache miss a spring).
     struct Constraint {
         std::uint32_t a = 0, b = 0; ///< b == SpringSystem::kFixed: fixed at the spring's fixed point
@@ -69,12 +69,18 @@ private:
         double inverseStiffness = 0.0;     ///< 1 / k, the compliance; negative: no stiffness, no constraint
         double dampingOverStiffness = 0.0; ///< c / k
     };
-    /// What a projection needs that is the same in every substep of a step: each end's share of the
-    /// correction, w / ((1 + gamma) (w_a + w_b) + 1 / (k h^2)), and gamma.
-    struct Scale {
-        double a = 0.0, b = 0.0, gamma = 0.0;
-        double compliance = 0.0;         ///< alpha~ = 1 / (k h^2)
-        double inverseDenominator = 0.0; ///< 1 / ((1 + gamma) (w_a + w_b) + alpha~)
+    /// What a projection reads, the same in every substep of a step, one record per constraint in
+    /// colour order and nothing else, since the sweep streams them: the ends, the rest length,
+    /// each end's share of the correction, w / ((1 + gamma) (w_a + w_b) + 1 / (k h^2)), and gamma.
+    /// (A spring of no stiffness has shares of zero: its projection moves nothing.)
+    struct Projection {
+        std::uint32_t a = 0, b = 0; ///< b == SpringSystem::kFixed: fixed at the spring's fixed point
+        double restLength = 0.0, shareA = 0.0, shareB = 0.0, gamma = 0.0;
+    };
+    /// What the repeated sweeps read besides: alpha~ = 1 / (k h^2) and 1 / ((1 + gamma) (w_a + w_b)
+    /// + alpha~), zero for a spring of no stiffness.
+    struct Multiplier {
+        double compliance = 0.0, inverseDenominator = 0.0;
     };
     void scale(double h);
     /// One sweep over the constraints. kSweeps: with the multipliers of the substep's earlier
@@ -84,7 +90,8 @@ private:
 
     /// The constraints by colour: m_constraints[m_colourStart[c]] up to m_constraints[m_colourStart[c + 1]].
     std::vector<Constraint> m_constraints;
-    std::vector<Scale> m_scales; ///< one per constraint, for the step's h
+    std::vector<Projection> m_projections; ///< one per constraint, for the step's h
+    std::vector<Multiplier> m_multipliers; ///< one per constraint, for the step's h
     std::vector<std::uint32_t> m_colourStart;
     std::vector<double> m_inverseMass;
     std::vector<dvec3> m_start, m_accel;

@@ -281,7 +281,7 @@ TEST(SpringMethods, GiveTheSameStatesOnAnyNumberOfThreads)
     // At a frame's dt, and at a quarter second, where backward Euler solves Newton's corrections
     // and xpbd sweeps a substep until its errors are small (stopping at the same sweep on any
     // number of threads: a sweep's largest error is a maximum, exact in any order).
-    for (const auto [dt, steps] : {std::pair{1.0 / 60.0, 20}, std::pair{0.25, 3}})
+    for (const auto& [dt, steps] : {std::pair{1.0 / 60.0, 20}, std::pair{0.25, 3}})
         for (const Integrator integrator : {Integrator::ImplicitEuler, Integrator::Xpbd}) {
             auto run = [&](int threads) {
                 Scene scene = resizedClothInTheDryer(24);
