@@ -56,15 +56,8 @@ void BackwardEuler::step(const SpringSystem& springs, std::span<const double> ma
     const std::size_t n = x.size();
     m_x0.assign(x.begin(), x.end());
     m_v0.assign(v.begin(), v.end());
-    // The forces other than the springs stay at their start values: the start's net force less
-    // the springs' part of it.
-    m_u0.resize(springs.size());
-    springForces(springs, x, v, true);
-    m_otherForce.resize(n);
-    forEachIndex(n, [&](std::size_t p) { m_otherForce[p] = force[p] - springSum(springs, m_perSpring, p); });
     // Baraff and Witkin's step, linearised at the start, from the last step's dv.
-    linearise(springs, mass, x, dt);
-    firstRightHandSide(springs, force, v, dt);
+    linearise(springs, mass, x, dt, v, force);
     if (m_dv.size() != n)
         m_dv.assign(n, dvec3(0.0));
     m_iterations = 0;
@@ -85,7 +78,7 @@ bool BackwardEuler::correct(const SpringSystem& springs, std::span<const double>
     // The equations' residual at the end of the step, -grad Phi, in the last linearisation's norm.
     const std::size_t n = x.size();
     forEachIndex(n, [&](std::size_t p) { x[p] = m_x0[p] + dt * v[p]; });
-    springForces(springs, x, v, false);
+    springForces(springs, x, v);
     const double remaining = sumOf(n, [&](std::size_t p) {
         m_rhs[p] = dt * (m_otherForce[p] + springSum(springs, m_perSpring, p)) - mass[p] * (v[p] - m_v0[p]);
         return glm::dot(m_rhs[p], m_inverseDiagonal[p].apply(m_rhs[p]));
@@ -133,8 +126,7 @@ double BackwardEuler::phi(const SpringSystem& springs, std::span<const double> m
     });
 }
 
-void BackwardEuler::springForces(const SpringSystem& springs, std::span<const dvec3> x, std::span<const dvec3> v,
-                                 bool start)
+void BackwardEuler::springForces(const SpringSystem& springs, std::span<const dvec3> x, std::span<const dvec3> v)
 {
     // Spring s's force on its first end: k (|d| - L) u + c (u0 . (v_b - v_a)) u0, the damping
     // along the start's direction u0 (springForce's at the start), so that it has a potential.
@@ -145,8 +137,6 @@ void BackwardEuler::springForces(const SpringSystem& springs, std::span<const dv
         const dvec3 d = (fixed ? springs.fixedPoint(s) : x[b]) - x[a];
         const double length = glm::length(d);
         const dvec3 u = length > 0.0 ? d / length : dvec3(0.0); // no direction: no force (springForce)
-        if (start)
-            m_u0[s] = u;
         const dvec3 dv = (fixed ? dvec3(0.0) : v[b]) - v[a];
         m_perSpring[s] = springs.stiffness(s) * (length - springs.restLength(s)) * u +
                          springs.damping(s) * glm::dot(m_u0[s], dv) * m_u0[s];
@@ -154,25 +144,47 @@ void BackwardEuler::springForces(const SpringSystem& springs, std::span<const dv
 }
 
 void BackwardEuler::linearise(const SpringSystem& springs, std::span<const double> mass, std::span<const dvec3> x,
-                              double dt)
+                              double dt, std::span<const dvec3> v0, std::span<const dvec3> f0)
 {
     const std::size_t n = x.size();
+    const bool start = !v0.empty();
     m_blocks.resize(springs.size());
-    // Each spring's block.
+    if (start) {
+        m_u0.resize(springs.size());
+        m_perSpring.resize(springs.size());
+        m_startSpringForce.resize(springs.size());
+    }
+    // Each spring's block; at the start also its direction u0, its force on its first end, and its
+    // part of the right-hand side, dt^2 K (v_a - v_b): one pass, as the springs are many.
     forEachIndex(springs.size(), [&](std::size_t s) {
         const std::uint32_t a = springs.a(s), b = springs.b(s);
         const dvec3 d = (b == SpringSystem::kFixed ? springs.fixedPoint(s) : x[b]) - x[a];
         const double length = glm::length(d);
         if (!(length > 0.0)) { // no direction: the spring gives no force here (springForce), nor a block
             m_blocks[s] = Block{};
+            if (start)
+                m_u0[s] = m_perSpring[s] = m_startSpringForce[s] = dvec3(0.0);
             return;
         }
+        const dvec3 u = d / length;
         const double k = springs.stiffness(s);
         const double g = std::max(0.0, 1.0 - springs.restLength(s) / length);
-        m_blocks[s] = Block{d / length, dt * dt * k * g, dt * dt * k * (1.0 - g) + dt * springs.damping(s)};
+        const double kAlong = dt * dt * k * (1.0 - g);
+        m_blocks[s] = Block{u, dt * dt * k * g, kAlong + dt * springs.damping(s)};
+        if (!start)
+            return;
+        const dvec3 dv = v0[a] - atB(springs, s, v0);
+        m_u0[s] = u;
+        m_startSpringForce[s] = (k * (length - springs.restLength(s)) - springs.damping(s) * glm::dot(u, dv)) * u;
+        m_perSpring[s] = (dt * dt * k * g) * dv + (kAlong * glm::dot(u, dv)) * u;
     });
     m_inverseDiagonal.resize(n);
-    // Each body's diagonal block's inverse.
+    if (start) {
+        m_rhs.resize(n);
+        m_otherForce.resize(n);
+    }
+    // Each body's diagonal block's inverse; at the start also its right-hand side dt f0 - sum
+    // dt^2 K (v_a - v_b) and its forces other than the springs, which keep their start values.
     forEachIndex(n, [&](std::size_t p) {
         dmat3 diagonal(mass[p]);
         for (const std::uint32_t end : springs.incident(p)) {
@@ -181,22 +193,11 @@ void BackwardEuler::linearise(const SpringSystem& springs, std::span<const doubl
         }
         const dmat3 inverse = glm::inverse(diagonal);
         m_inverseDiagonal[p] = Sym3{inverse[0][0], inverse[1][1], inverse[2][2], inverse[1][0], inverse[2][0], inverse[2][1]};
+        if (start) {
+            m_rhs[p] = dt * f0[p] - springSum(springs, m_perSpring, p);
+            m_otherForce[p] = f0[p] - springSum(springs, m_startSpringForce, p);
+        }
     });
-}
-
-void BackwardEuler::firstRightHandSide(const SpringSystem& springs, std::span<const dvec3> force,
-                                       std::span<const dvec3> v, double dt)
-{
-    // dt f0 + dt^2 K v0: each spring's dt^2 K (v_a - v_b), its stiffness part of the block.
-    m_perSpring.resize(springs.size());
-    forEachIndex(springs.size(), [&](std::size_t s) {
-        const Block& block = m_blocks[s];
-        const double damping = dt * springs.damping(s);
-        const dvec3 dv = v[springs.a(s)] - atB(springs, s, std::span<const dvec3>(v));
-        m_perSpring[s] = block.alpha * dv + ((block.beta - damping) * glm::dot(block.u, dv)) * block.u;
-    });
-    m_rhs.resize(force.size());
-    forEachIndex(force.size(), [&](std::size_t p) { m_rhs[p] = dt * force[p] - springSum(springs, m_perSpring, p); });
 }
 
 void BackwardEuler::springPass(const SpringSystem& springs, const std::vector<dvec3>& w)

@@ -88,13 +88,13 @@ private:
     /// The step's incremental potential, whose gradient is minus the equations' residual, at v + step m_dv.
     double phi(const SpringSystem& springs, std::span<const double> mass, std::span<const dvec3> v, double dt,
                double step);
-    /// Each spring's force on its first end at (x, v), into m_perSpring; at the start, its direction into m_u0.
-    void springForces(const SpringSystem& springs, std::span<const dvec3> x, std::span<const dvec3> v, bool start);
-    /// The springs' blocks and the preconditioner, linearised at x.
-    void linearise(const SpringSystem& springs, std::span<const double> mass, std::span<const dvec3> x, double dt);
-    /// Baraff and Witkin's right-hand side, dt (f0 + dt K v0), into m_rhs.
-    void firstRightHandSide(const SpringSystem& springs, std::span<const dvec3> force, std::span<const dvec3> v,
-                            double dt);
+    /// Each spring's force on its first end at (x, v), into m_perSpring.
+    void springForces(const SpringSystem& springs, std::span<const dvec3> x, std::span<const dvec3> v);
+    /// The springs' blocks and the preconditioner, linearised at x. At the start of the step (v0
+    /// and f0 given) also Baraff and Witkin's right-hand side dt (f0 + dt K v0) into m_rhs, the
+    /// springs' start directions, and the forces other than the springs.
+    void linearise(const SpringSystem& springs, std::span<const double> mass, std::span<const dvec3> x, double dt,
+                   std::span<const dvec3> v0 = {}, std::span<const dvec3> f0 = {});
     /// Each spring's B (w_a - w_b), into m_perSpring.
     void springPass(const SpringSystem& springs, const std::vector<dvec3>& w);
     /// Solves for m_dv from its value; returns the right-hand side's squared preconditioned norm.
@@ -105,7 +105,8 @@ private:
     std::vector<Sym3> m_inverseDiagonal;
     std::vector<dvec3> m_rhs, m_dv, m_r, m_z, m_p, m_ap;
     std::vector<dvec3> m_x0, m_v0, m_otherForce, m_correction, m_trial;
-    std::vector<dvec3> m_u0; ///< each spring's direction at the start
+    std::vector<dvec3> m_u0;               ///< each spring's direction at the start
+    std::vector<dvec3> m_startSpringForce; ///< each spring's force on its first end at the start
     int m_iterations = 0, m_newtonIterations = 0;
     double m_residual = 0.0;
 };
