@@ -114,6 +114,36 @@ void sayIfNoPlots(bool plots)
                            "gnuplot-nox\n");
 }
 
+/// Fills a study's folder and publishes it: `tables(dir)` writes its tables and plots and says
+/// whether there are plots, `report(dir, plots)` its report; then the folder replaces the old one
+/// whole, so a study that fails leaves the previous one untouched, not a mix of new and old files.
+template <class Tables, class Report>
+bool publishStudy(io::FolderOutput& folder, Tables&& tables, Report&& report)
+{
+    const std::filesystem::path dir = folder.path();
+    const bool plots = tables(dir);
+    sayIfNoPlots(plots);
+    report(dir, plots);
+    folder.commit();
+    return plots;
+}
+
+/// The same for a study of one table, `csvName`, its plots and its report.
+template <class Config, class Result>
+bool publishStudy(io::FolderOutput& folder, const Config& config, const Result& result, const char* csvName,
+                  void (*csv)(const std::filesystem::path&, const Result&),
+                  bool (*plots)(const std::filesystem::path&, const Config&, const Result&),
+                  void (*report)(const std::filesystem::path&, const Config&, const Result&, bool))
+{
+    return publishStudy(
+        folder,
+        [&](const std::filesystem::path& dir) {
+            csv(dir / csvName, result);
+            return plots(dir, config, result);
+        },
+        [&](const std::filesystem::path& dir, bool withPlots) { report(dir / "report.md", config, result, withPlots); });
+}
+
 study::StudyConfig makeConfig(const CompareOptions& options)
 {
     study::StudyConfig config;
@@ -183,12 +213,8 @@ int runRotationCompare(const CompareOptions& options, Scene scene)
     Progress progress("comparing", long(config.integrators.size() * config.dts.size()));
     const study::RotationResult result =
         study::runRotationStudy(config, [&](long done, long) { progress.update(done); });
-    const std::filesystem::path dir = folder.path();
-    writeRotationCsv(dir / "results.csv", result);
-    const bool plots = writeRotationPlots(dir, config, result);
-    sayIfNoPlots(plots);
-    writeRotationReport(dir / "report.md", config, result, plots);
-    folder.commit();
+    const bool plots =
+        publishStudy(folder, config, result, "results.csv", writeRotationCsv, writeRotationPlots, writeRotationReport);
     fmt::print("largest |E/E0 - 1|, rigid body {} of {}:\n{}\n", result.body, config.scene.name,
                rotationTable(config, result, RotationMeasure::EnergyDrift, false));
     fmt::print("largest ||L|/|L0| - 1|:\n{}\n", rotationTable(config, result, RotationMeasure::MomentumDrift, false));
@@ -220,12 +246,7 @@ int runClockCompare(const CompareOptions& options)
     config.dt = dts.front();
     io::FolderOutput folder(options.out, isStudyFile);
     const study::ClockResult result = study::runClockStudy(config);
-    const std::filesystem::path dir = folder.path();
-    writeClockCsv(dir / "clocks.csv", result);
-    const bool plot = writeClockPlot(dir, config, result);
-    sayIfNoPlots(plot);
-    writeClockReport(dir / "report.md", config, result, plot);
-    folder.commit();
+    const bool plot = publishStudy(folder, config, result, "clocks.csv", writeClockCsv, writeClockPlot, writeClockReport);
     fmt::print("largest distance of a body from the 60 Hz run, {} at dt = {:g} s:\n{}\n{}", config.scene.name,
                config.dt, clockTable(config, result, false), clockFindings(config, result));
     fmt::print(stderr, "pba: wrote {}/report.md, clocks.csv{}\n", options.out, plot ? " and clocks.png" : "");
@@ -243,24 +264,26 @@ int runCompare(const CompareOptions& options)
             return runRotationCompare(options, std::move(scene));
     }
     const study::StudyConfig config = makeConfig(options);
-    // The study's files are published together: a failed study leaves the previous one
-    // untouched, not a mix of new tables and an old report.
     io::FolderOutput folder(options.out, isStudyFile);
     Progress progress("comparing", study::studyTaskCount(config));
     const study::StudyResult result = study::runStudy(config, [&](long done, long) { progress.update(done); });
-    const std::filesystem::path dir = folder.path();
-    writeResultsCsv(dir / "results.csv", result);
-    writeOrdersCsv(dir / "orders.csv", result);
-    if (!result.stability.empty())
-        writeStabilityCsv(dir / "stability.csv", result);
-    const bool plots = writePlots(dir, config, result);
-    sayIfNoPlots(plots);
     // About a minute of runs (the references at dt 1e-4 s): on request only.
     const std::vector<study::WorkPrecisionPoint> points =
         options.workPrecision ? study::runWorkPrecision() : std::vector<study::WorkPrecisionPoint>{};
-    const std::string workPrecision = options.workPrecision ? writeWorkPrecision(dir, points, plots) : std::string();
-    writeReport(dir / "report.md", config, result, plots, workPrecision);
-    folder.commit();
+    const bool plots = publishStudy(
+        folder,
+        [&](const std::filesystem::path& dir) {
+            writeResultsCsv(dir / "results.csv", result);
+            writeOrdersCsv(dir / "orders.csv", result);
+            if (!result.stability.empty())
+                writeStabilityCsv(dir / "stability.csv", result);
+            return writePlots(dir, config, result);
+        },
+        [&](const std::filesystem::path& dir, bool withPlots) {
+            const std::string workPrecision =
+                options.workPrecision ? writeWorkPrecision(dir, points, withPlots) : std::string();
+            writeReport(dir / "report.md", config, result, withPlots, workPrecision);
+        });
     const auto responses = study::distinctResponses(config, result);
     for (CollisionResponse c : responses)
         fmt::print("E(end)/E(0), {}, {} of {}:\n{}\n",

@@ -30,7 +30,7 @@ double sumOf(std::size_t n, F&& term)
 
 /// A spring's end b's value of `values`, zero at a fixed end (a fixed end neither moves nor
 /// has a velocity to change).
-dvec3 atB(const SpringSystem& springs, std::size_t s, const std::vector<dvec3>& values)
+dvec3 atB(const SpringSystem& springs, std::size_t s, std::span<const dvec3> values)
 {
     const std::uint32_t b = springs.b(s);
     return b == SpringSystem::kFixed ? dvec3(0.0) : values[b];
@@ -53,46 +53,139 @@ dvec3 springSum(const SpringSystem& springs, const std::vector<dvec3>& perSpring
 void BackwardEuler::step(const SpringSystem& springs, std::span<const double> mass, std::span<dvec3> x,
                          std::span<dvec3> v, std::span<const dvec3> force, double dt)
 {
-    setUp(springs, mass, x, v, force, dt);
+    const std::size_t n = x.size();
+    m_x0.assign(x.begin(), x.end());
+    m_v0.assign(v.begin(), v.end());
+    // Baraff and Witkin's step, linearised at the start, from the last step's dv.
+    linearise(springs, mass, x, dt, v, force);
+    if (m_dv.size() != n)
+        m_dv.assign(n, dvec3(0.0));
+    m_iterations = 0;
+    const double scale = solve(springs, mass);
+    forEachIndex(n, [&](std::size_t p) { v[p] += m_dv[p]; });
+    // Newton's corrections, each linearised where the last left the bodies, until the nonlinear
+    // equations hold: the once-linearised step is only stable while the springs turn little in
+    // a step; across a large rotation its linear springs stretch, and the energy grows.
+    m_newtonIterations = 1;
+    while (m_newtonIterations < kMaxNewtonIterations && correct(springs, mass, x, v, dt, scale))
+        ++m_newtonIterations;
+    forEachIndex(n, [&](std::size_t p) { x[p] = m_x0[p] + dt * v[p]; });
+}
+
+bool BackwardEuler::correct(const SpringSystem& springs, std::span<const double> mass, std::span<dvec3> x,
+                            std::span<dvec3> v, double dt, double scale)
+{
+    // The equations' residual at the end of the step, -grad Phi, in the last linearisation's norm.
+    const std::size_t n = x.size();
+    forEachIndex(n, [&](std::size_t p) { x[p] = m_x0[p] + dt * v[p]; });
+    springForces(springs, x, v);
+    const double remaining = sumOf(n, [&](std::size_t p) {
+        m_rhs[p] = dt * (m_otherForce[p] + springSum(springs, m_perSpring, p)) - mass[p] * (v[p] - m_v0[p]);
+        return glm::dot(m_rhs[p], m_inverseDiagonal[p].apply(m_rhs[p]));
+    });
+    if (!(remaining > kNewtonTolerance * kNewtonTolerance * scale))
+        return false;
+    linearise(springs, mass, x, dt);
+    m_correction.assign(n, dvec3(0.0));
+    std::swap(m_correction, m_dv); // solve from zero, keeping the step's dv for the next step
     solve(springs, mass);
-    forEachIndex(x.size(), [&](std::size_t p) {
-        v[p] += m_dv[p];
-        x[p] += v[p] * dt;
+    // Backtracking on Phi: the clamped matrix is positive definite, so the correction points
+    // downhill, and a step short enough lowers Phi; a full step may not, far from the solution.
+    const double slope = -sumOf(n, [&](std::size_t p) { return glm::dot(m_rhs[p], m_dv[p]); });
+    const double start = phi(springs, mass, v, dt, 0.0);
+    double step = 1.0;
+    while (step > kSmallestStep && !(phi(springs, mass, v, dt, step) <= start + 1e-4 * step * slope))
+        step *= 0.5;
+    forEachIndex(n, [&](std::size_t p) {
+        v[p] += step * m_dv[p];
+        m_correction[p] += step * m_dv[p];
+    });
+    std::swap(m_correction, m_dv);
+    return true;
+}
+
+double BackwardEuler::phi(const SpringSystem& springs, std::span<const double> mass, std::span<const dvec3> v,
+                          double dt, double step)
+{
+    // Phi(v) = 1/2 |v - v0|_M^2 + E(x0 + dt v) + dt Psi(v) - dt f_other . v: the springs' energy E,
+    // their damping's dissipation Psi = sum 1/2 c (u0 . (v_b - v_a))^2 along the start's directions.
+    const std::size_t n = v.size();
+    m_trial.resize(n);
+    const double bodies = sumOf(n, [&](std::size_t p) {
+        m_trial[p] = v[p] + step * m_dv[p];
+        const dvec3 change = m_trial[p] - m_v0[p];
+        return 0.5 * mass[p] * glm::dot(change, change) - dt * glm::dot(m_otherForce[p], m_trial[p]);
+    });
+    return bodies + sumOf(springs.size(), [&](std::size_t s) {
+        const std::uint32_t a = springs.a(s), b = springs.b(s);
+        const bool fixed = b == SpringSystem::kFixed;
+        const dvec3 xb = fixed ? springs.fixedPoint(s) : m_x0[b] + dt * m_trial[b];
+        const double stretch = glm::length(xb - (m_x0[a] + dt * m_trial[a])) - springs.restLength(s);
+        const double along = glm::dot(m_u0[s], (fixed ? dvec3(0.0) : m_trial[b]) - m_trial[a]);
+        return 0.5 * springs.stiffness(s) * stretch * stretch + 0.5 * dt * springs.damping(s) * along * along;
     });
 }
 
-void BackwardEuler::setUp(const SpringSystem& springs, std::span<const double> mass, std::span<const dvec3> x,
-                          std::span<const dvec3> v, std::span<const dvec3> force, double dt)
+void BackwardEuler::springForces(const SpringSystem& springs, std::span<const dvec3> x, std::span<const dvec3> v)
+{
+    // Spring s's force on its first end: k (|d| - L) u + c (u0 . (v_b - v_a)) u0, the damping
+    // along the start's direction u0 (springForce's at the start), so that it has a potential.
+    m_perSpring.resize(springs.size());
+    forEachIndex(springs.size(), [&](std::size_t s) {
+        const std::uint32_t a = springs.a(s), b = springs.b(s);
+        const bool fixed = b == SpringSystem::kFixed;
+        const dvec3 d = (fixed ? springs.fixedPoint(s) : x[b]) - x[a];
+        const double length = glm::length(d);
+        const dvec3 u = length > 0.0 ? d / length : dvec3(0.0); // no direction: no force (springForce)
+        const dvec3 dv = (fixed ? dvec3(0.0) : v[b]) - v[a];
+        m_perSpring[s] = springs.stiffness(s) * (length - springs.restLength(s)) * u +
+                         springs.damping(s) * glm::dot(m_u0[s], dv) * m_u0[s];
+    });
+}
+
+void BackwardEuler::linearise(const SpringSystem& springs, std::span<const double> mass, std::span<const dvec3> x,
+                              double dt, std::span<const dvec3> v0, std::span<const dvec3> f0)
 {
     const std::size_t n = x.size();
+    const bool start = !v0.empty();
     m_blocks.resize(springs.size());
-    m_perSpring.resize(springs.size());
-    // Each spring's block, and its part of the right-hand side, dt^2 K (v_a - v_b).
+    if (start) {
+        m_u0.resize(springs.size());
+        m_perSpring.resize(springs.size());
+        m_startSpringForce.resize(springs.size());
+    }
+    // Each spring's block; at the start also its direction u0, its force on its first end, and its
+    // part of the right-hand side, dt^2 K (v_a - v_b): one pass, as the springs are many.
     forEachIndex(springs.size(), [&](std::size_t s) {
         const std::uint32_t a = springs.a(s), b = springs.b(s);
         const dvec3 d = (b == SpringSystem::kFixed ? springs.fixedPoint(s) : x[b]) - x[a];
         const double length = glm::length(d);
         if (!(length > 0.0)) { // no direction: the spring gives no force here (springForce), nor a block
             m_blocks[s] = Block{};
-            m_perSpring[s] = dvec3(0.0);
+            if (start)
+                m_u0[s] = m_perSpring[s] = m_startSpringForce[s] = dvec3(0.0);
             return;
         }
         const dvec3 u = d / length;
         const double k = springs.stiffness(s);
         const double g = std::max(0.0, 1.0 - springs.restLength(s) / length);
-        Block& block = m_blocks[s];
-        block.u = u;
-        block.alpha = dt * dt * k * g;
-        block.beta = dt * dt * k * (1.0 - g) + dt * springs.damping(s);
-        const dvec3 dv = v[a] - (b == SpringSystem::kFixed ? dvec3(0.0) : v[b]);
         const double kAlong = dt * dt * k * (1.0 - g);
+        m_blocks[s] = Block{u, dt * dt * k * g, kAlong + dt * springs.damping(s)};
+        if (!start)
+            return;
+        const dvec3 dv = v0[a] - atB(springs, s, v0);
+        m_u0[s] = u;
+        m_startSpringForce[s] = (k * (length - springs.restLength(s)) - springs.damping(s) * glm::dot(u, dv)) * u;
         m_perSpring[s] = (dt * dt * k * g) * dv + (kAlong * glm::dot(u, dv)) * u;
     });
-    m_rhs.resize(n);
     m_inverseDiagonal.resize(n);
-    // Each body's right-hand side dt f0 - sum dt^2 K (v_a - v_b), and its diagonal block's inverse.
+    if (start) {
+        m_rhs.resize(n);
+        m_otherForce.resize(n);
+    }
+    // Each body's diagonal block's inverse; at the start also its right-hand side dt f0 - sum
+    // dt^2 K (v_a - v_b) and its forces other than the springs, which keep their start values.
     forEachIndex(n, [&](std::size_t p) {
-        m_rhs[p] = dt * force[p] - springSum(springs, m_perSpring, p);
         dmat3 diagonal(mass[p]);
         for (const std::uint32_t end : springs.incident(p)) {
             const Block& block = m_blocks[end >> 1];
@@ -100,6 +193,10 @@ void BackwardEuler::setUp(const SpringSystem& springs, std::span<const double> m
         }
         const dmat3 inverse = glm::inverse(diagonal);
         m_inverseDiagonal[p] = Sym3{inverse[0][0], inverse[1][1], inverse[2][2], inverse[1][0], inverse[2][0], inverse[2][1]};
+        if (start) {
+            m_rhs[p] = dt * f0[p] - springSum(springs, m_perSpring, p);
+            m_otherForce[p] = f0[p] - springSum(springs, m_startSpringForce, p);
+        }
     });
 }
 
@@ -108,7 +205,7 @@ void BackwardEuler::springPass(const SpringSystem& springs, const std::vector<dv
     forEachIndex(springs.size(), [&](std::size_t s) { m_perSpring[s] = m_blocks[s].apply(w[springs.a(s)] - atB(springs, s, w)); });
 }
 
-void BackwardEuler::solve(const SpringSystem& springs, std::span<const double> mass)
+double BackwardEuler::solve(const SpringSystem& springs, std::span<const double> mass)
 {
     // Preconditioned conjugate gradients from the last step's dv: a motion that changes smoothly
     // changes its velocities by nearly as much from one step to the next, and the solve then starts
@@ -116,8 +213,6 @@ void BackwardEuler::solve(const SpringSystem& springs, std::span<const double> m
     // iteration is three passes (the springs on z, then two over the bodies) rather than four:
     // each pass on all cores waits for the slowest core at its end.
     const std::size_t n = m_rhs.size();
-    if (m_dv.size() != n)
-        m_dv.assign(n, dvec3(0.0));
     m_r.resize(n);
     m_z.resize(n);
     m_p.resize(n);
@@ -131,13 +226,12 @@ void BackwardEuler::solve(const SpringSystem& springs, std::span<const double> m
         m_z[p] = m_inverseDiagonal[p].apply(m_r[p]);
         return glm::dot(m_r[p], m_z[p]);
     });
-    m_iterations = 0;
     m_residual = scale > 0.0 ? std::sqrt(std::max(rz, 0.0) / scale) : 0.0;
     // Done when the residual's preconditioned norm is kTolerance of the right-hand side's. (A
     // right-hand side that is not finite stops it at once: the step's check says so.)
     const double target = kTolerance * kTolerance * scale;
     double beta = 0.0;
-    while (m_iterations < kMaxIterations && rz > target) {
+    for (int iteration = 0; iteration < kMaxIterations && rz > target; ++iteration) {
         springPass(springs, m_z);
         const double pap = sumOf(n, [&](std::size_t p) {
             const dvec3 az = mass[p] * m_z[p] + springSum(springs, m_perSpring, p);
@@ -160,6 +254,7 @@ void BackwardEuler::solve(const SpringSystem& springs, std::span<const double> m
     }
     if (scale > 0.0)
         m_residual = std::sqrt(std::max(rz, 0.0) / scale);
+    return scale;
 }
 
 } // namespace pba::detail

@@ -1,27 +1,20 @@
 #include "pba/clock.hpp"
 
 #include <cmath>
-#include <stdexcept>
 
-#include <fmt/format.h>
+#include "clock_checks.hpp"
 
 namespace pba {
 
-namespace {
-void requirePositive(double value, const char* what)
-{
-    if (!std::isfinite(value) || value <= 0.0)
-        throw std::invalid_argument(fmt::format("{} must be finite and positive, got {}", what, value));
-}
-} // namespace
+using detail::requirePositiveSteps;
+using detail::requirePositiveTime;
 
 FixedTimestepClock::FixedTimestepClock(double dt, double maxFrameTime, int maxStepsPerFrame)
     : m_dt(dt), m_maxFrameTime(maxFrameTime), m_maxStepsPerFrame(maxStepsPerFrame)
 {
-    requirePositive(dt, "dt");
-    requirePositive(maxFrameTime, "maximum frame time");
-    if (maxStepsPerFrame <= 0)
-        throw std::invalid_argument(fmt::format("maximum steps per frame must be positive, got {}", maxStepsPerFrame));
+    requirePositiveTime(dt, "dt");
+    requirePositiveTime(maxFrameTime, "maximum frame time");
+    requirePositiveSteps(maxStepsPerFrame);
 }
 
 void FixedTimestepClock::accumulate(double seconds)
@@ -34,7 +27,7 @@ void FixedTimestepClock::accumulate(double seconds)
 
 int FixedTimestepClock::advance(double frameTime)
 {
-    requirePositive(frameTime, "frame time");
+    requirePositiveTime(frameTime, "frame time");
     if (frameTime > m_maxFrameTime) {
         m_dropped += frameTime - m_maxFrameTime;
         frameTime = m_maxFrameTime;
@@ -65,7 +58,7 @@ int FixedTimestepClock::advance(double frameTime)
 
 void FixedTimestepClock::setDt(double dt)
 {
-    requirePositive(dt, "dt");
+    requirePositiveTime(dt, "dt");
     const double fraction = alpha();
     m_dt = dt;
     m_accumulator = fraction * dt;
@@ -74,14 +67,13 @@ void FixedTimestepClock::setDt(double dt)
 
 void FixedTimestepClock::setMaxFrameTime(double seconds)
 {
-    requirePositive(seconds, "maximum frame time");
+    requirePositiveTime(seconds, "maximum frame time");
     m_maxFrameTime = seconds;
 }
 
 void FixedTimestepClock::setMaxStepsPerFrame(int steps)
 {
-    if (steps <= 0)
-        throw std::invalid_argument(fmt::format("maximum steps per frame must be positive, got {}", steps));
+    requirePositiveSteps(steps);
     m_maxStepsPerFrame = steps;
 }
 

@@ -1,20 +1,15 @@
 #include "pba/frame_clock.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
 
-#include <fmt/format.h>
+#include "pba/clock.hpp"
+
+#include "clock_checks.hpp"
 
 namespace pba {
 
-namespace {
-void requirePositive(double value, const char* what)
-{
-    if (!std::isfinite(value) || value <= 0.0)
-        throw std::invalid_argument(fmt::format("{} must be finite and positive, got {}", what, value));
-}
-} // namespace
+using detail::requirePositiveTime;
 
 std::string_view clockName(ClockKind kind)
 {
@@ -36,18 +31,18 @@ std::optional<ClockKind> clockFromName(std::string_view name)
 
 std::vector<double> frameSteps(ClockKind kind, double dt, double frameTime, double maxFrameTime)
 {
-    requirePositive(dt, "dt");
-    requirePositive(frameTime, "frame time");
-    requirePositive(maxFrameTime, "maximum frame time");
+    requirePositiveTime(dt, "dt");
+    requirePositiveTime(frameTime, "frame time");
+    requirePositiveTime(maxFrameTime, "maximum frame time");
     if (kind == ClockKind::Fixed)
         throw std::invalid_argument("the fixed clock keeps an accumulator: FixedTimestepClock steps it");
     if (kind == ClockKind::Variable)
         return {frameTime};
     // Semi-fixed: Fiedler's `while (frameTime > 0) { step(min(frameTime, dt)); frameTime -= ...; }`.
-    // A remainder below a billionth of dt is the sum's rounding, not time to step.
+    // A remainder below a billionth of dt is the sum's rounding, not time to step (as for the fixed clock).
     double left = std::min(frameTime, maxFrameTime);
     std::vector<double> steps;
-    while (left > 1e-9 * dt) {
+    while (left > FixedTimestepClock::kRoundingTolerance * dt) {
         const double h = std::min(left, dt);
         steps.push_back(h);
         left -= h;

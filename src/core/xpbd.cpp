@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 #include "parallel.hpp"
 
 namespace pba::detail {
@@ -63,57 +67,109 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
             m_start[p] = x[p];
             x[p] += h * v[p];
         });
-        project(springs, x);
+        if (m_stiffest > kStiff) {
+            m_lambda.assign(m_constraints.size(), 0.0);
+            for (int sweep = 0; sweep < kMaxSweeps && project<true>(springs, x) > kTolerance; ++sweep) {
+            }
+        } else {
+            project<false>(springs, x);
+        }
         forEachIndex(n, [&](std::size_t p) { v[p] = (x[p] - m_start[p]) / h; });
     }
 }
 
 void Xpbd::scale(double h)
 {
-    m_scales.resize(m_constraints.size());
+    m_projections.resize(m_constraints.size());
+    m_multipliers.resize(m_constraints.size());
     forEachIndex(m_constraints.size(), [&](std::size_t k) {
         const Constraint& con = m_constraints[k];
+        Projection& projection = m_projections[k];
+        projection = Projection{con.a, con.b, con.restLength, 0.0, 0.0, 0.0};
         if (con.inverseStiffness < 0.0) {
-            m_scales[k] = Scale{};
+            m_multipliers[k] = Multiplier{};
             return;
         }
         const double wa = m_inverseMass[con.a], wb = con.b == SpringSystem::kFixed ? 0.0 : m_inverseMass[con.b];
         const double gamma = con.dampingOverStiffness / h;
         const double denominator = (1.0 + gamma) * (wa + wb) + con.inverseStiffness / (h * h); // alpha~ = alpha / h^2
-        m_scales[k] = Scale{wa / denominator, wb / denominator, gamma};
+        projection.shareA = wa / denominator;
+        projection.shareB = wb / denominator;
+        projection.gamma = gamma;
+        m_multipliers[k] = Multiplier{con.inverseStiffness / (h * h), 1.0 / denominator};
     });
+    m_stiffest = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, m_constraints.size(), kIndexGrain), 0.0,
+        [&](const tbb::blocked_range<std::size_t>& r, double most) {
+            for (std::size_t k = r.begin(); k < r.end(); ++k) {
+                const Projection& p = m_projections[k];
+                const Multiplier& m = m_multipliers[k];
+                if (m.compliance > 0.0) // (w_a + w_b) / alpha~ = (w_a + w_b) k h^2
+                    most = std::max(most, (p.shareA + p.shareB) / (m.inverseDenominator * m.compliance));
+            }
+            return most;
+        },
+        [](double p, double q) { return std::max(p, q); });
 }
 
-void Xpbd::project(const SpringSystem& springs, std::span<dvec3> x)
+template <bool kSweeps>
+double Xpbd::project(const SpringSystem& springs, std::span<dvec3> x)
 {
+    const Projection* projections = m_projections.data();
+    const Multiplier* multipliers = m_multipliers.data();
     const Constraint* constraints = m_constraints.data();
-    const Scale* scales = m_scales.data();
     const dvec3* start = m_start.data();
+    double* lambda = m_lambda.data();
     dvec3* positions = x.data();
+    // Projects constraint k, and returns its error relative to its rest length.
+    auto projectOne = [&](std::size_t k) {
+        const Projection& con = projections[k];
+        const bool fixed = con.b == SpringSystem::kFixed;
+        const dvec3 xa = positions[con.a];
+        const dvec3 xb = fixed ? springs.fixedPoint(constraints[k].spring) : positions[con.b];
+        const dvec3 d = xb - xa;
+        const double length = glm::length(d);
+        if (!(length > 0.0))
+            return 0.0; // no direction to pull along
+        // The constraint's error C (less alpha~ lambda when sweeping again) and its damping term
+        // gamma grad C . (x* - x), along u = d / |d|.
+        double error = length - con.restLength;
+        if (kSweeps)
+            error -= multipliers[k].compliance * lambda[k];
+        if (con.gamma != 0.0) {
+            const dvec3 moved = (fixed ? dvec3(0.0) : xb - start[con.b]) - (xa - start[con.a]);
+            error += con.gamma * glm::dot(d, moved) / length;
+        }
+        const dvec3 pull = d * (error / length);
+        positions[con.a] = xa + con.shareA * pull;
+        if (!fixed)
+            positions[con.b] = xb - con.shareB * pull;
+        if (!kSweeps || !(multipliers[k].inverseDenominator > 0.0))
+            return 0.0; // not sweeping again, or no constraint
+        lambda[k] += error * multipliers[k].inverseDenominator;
+        return std::abs(error) / (con.restLength > 0.0 ? con.restLength : 1.0);
+    };
+    double largest = 0.0;
     for (std::size_t c = 0; c + 1 < m_colourStart.size(); ++c) {
-        const std::size_t begin = m_colourStart[c];
-        forEachIndex(m_colourStart[c + 1] - begin, [&](std::size_t k) {
-            const Constraint& con = constraints[begin + k];
-            const Scale& scale = scales[begin + k];
-            const bool fixed = con.b == SpringSystem::kFixed;
-            const dvec3 xa = positions[con.a];
-            const dvec3 xb = fixed ? springs.fixedPoint(con.spring) : positions[con.b];
-            const dvec3 d = xb - xa;
-            const double length = glm::length(d);
-            if (!(length > 0.0))
-                return; // no direction to pull along
-            // The constraint's error C and its damping term gamma grad C . (x* - x), along u = d / |d|.
-            double error = length - con.restLength;
-            if (scale.gamma != 0.0) {
-                const dvec3 moved = (fixed ? dvec3(0.0) : xb - start[con.b]) - (xa - start[con.a]);
-                error += scale.gamma * glm::dot(d, moved) / length;
-            }
-            const dvec3 pull = d * (error / length);
-            positions[con.a] = xa + scale.a * pull;
-            if (!fixed)
-                positions[con.b] = xb - scale.b * pull;
-        });
+        const tbb::blocked_range<std::size_t> colour(m_colourStart[c], m_colourStart[c + 1], kIndexGrain);
+        if (!kSweeps) {
+            tbb::parallel_for(colour, [&](const tbb::blocked_range<std::size_t>& r) {
+                for (std::size_t k = r.begin(); k < r.end(); ++k)
+                    projectOne(k);
+            });
+            continue;
+        }
+        // A sweep's largest error is a maximum, exact in any order: the same on any number of threads.
+        largest = std::max(largest, tbb::parallel_reduce(
+                                        colour, 0.0,
+                                        [&](const tbb::blocked_range<std::size_t>& r, double worst) {
+                                            for (std::size_t k = r.begin(); k < r.end(); ++k)
+                                                worst = std::max(worst, projectOne(k));
+                                            return worst;
+                                        },
+                                        [](double p, double q) { return std::max(p, q); }));
     }
+    return largest;
 }
 
 } // namespace pba::detail

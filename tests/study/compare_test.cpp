@@ -14,6 +14,7 @@
 #include "study/findings.hpp"
 #include "study/plots.hpp"
 #include "study/study.hpp"
+#include "compare_run.hpp"
 #include "support/run_command.hpp"
 
 using namespace pba;
@@ -471,20 +472,16 @@ TEST(PbaCompare, WritesWorkPrecisionWithTheMethodsOrders)
     const CommandResult r = runPba("compare --duration 1 --dt 0.01,0.02 --integrators semi-implicit-euler "
                                    "--collisions reflect --work-precision --out " + (dir / "out").string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    std::istringstream csv(readFile(dir / "out/work_precision.csv"));
-    std::string line;
-    std::getline(csv, line);
-    EXPECT_EQ(line, "scene,integrator,dt,error,cpu_s");
+    const auto rows = csvRows(dir / "out/work_precision.csv");
+    ASSERT_FALSE(rows.empty());
+    EXPECT_EQ(rows[0], (std::vector<std::string>{"scene", "integrator", "dt", "error", "cpu_s"}));
     std::map<std::string, double> error; // "scene integrator dt"
     std::set<std::string> scenes;
-    while (std::getline(csv, line)) {
-        std::vector<std::string> cells;
-        std::stringstream fields(line);
-        for (std::string cell; std::getline(fields, cell, ',');)
-            cells.push_back(cell);
-        ASSERT_EQ(cells.size(), 5u) << line;
+    for (std::size_t row = 1; row < rows.size(); ++row) {
+        const std::vector<std::string>& cells = rows[row];
+        ASSERT_EQ(cells.size(), 5u) << "row " << row;
         scenes.insert(cells[0]);
-        EXPECT_GT(std::stod(cells[4]), 0.0) << line;
+        EXPECT_GT(std::stod(cells[4]), 0.0) << cells[0];
         error[cells[0] + " " + cells[1] + " " + cells[2]] = std::stod(cells[3]);
     }
     EXPECT_EQ(scenes, (std::set<std::string>{"spring", "chain", "cloth", "tennis-racket"}));

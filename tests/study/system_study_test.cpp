@@ -9,6 +9,7 @@
 #include "study/findings.hpp"
 #include "study/plots.hpp"
 #include "study/study.hpp"
+#include "compare_run.hpp"
 #include "support/run_command.hpp"
 
 using namespace pba;
@@ -116,10 +117,10 @@ TEST(SystemStudy, TheEnergyPlotIsLogarithmicOverDecadesAndEveryLineHasItsOwnDash
 TEST(PbaCompare, ARopeReportSaysWhatItMeasuresAndShowsNoNanNorInfinity)
 {
     const auto dir = freshDir("compare_rope");
-    const CommandResult run = runPba("compare rope --duration 1.2 --dt 0.001,0.002 --integrators "
-                                     "forward-euler,semi-implicit-euler --out " + dir.string());
-    ASSERT_EQ(run.exitCode, 0) << run.err;
-    const std::string report = readFile(dir / "report.md");
+    const CompareRun run =
+        runCompare("rope --duration 1.2 --dt 0.001,0.002 --integrators forward-euler,semi-implicit-euler", dir);
+    ASSERT_TRUE(run.ok()) << run.result.err;
+    const std::string& report = run.report;
     EXPECT_FALSE(std::regex_search(report, std::regex(R"(\bnan\b|\binf\b)", std::regex::icase))) << report;
     EXPECT_EQ(report.find("compared with its exact solution"), std::string::npos) << report;
     EXPECT_NE(report.find("the reference is a run of the same method and response at dt = 0.00025 s"), std::string::npos)
@@ -141,15 +142,14 @@ TEST(PbaCompare, TheImpactsAreBlamedForTheWholeRunsErrorOnlyWhereTheyMakeIt)
 {
     const auto dir = freshDir("compare_impacts");
     const std::string sentence = "At the smallest dt that is over ten times the distance before the impact";
-    const CommandResult rope = runPba("compare rope --duration 3 --dt 0.001,0.002 --integrators semi-implicit-euler "
-                                      "--collisions reflect --out " + (dir / "rope").string());
-    ASSERT_EQ(rope.exitCode, 0) << rope.err;
-    const std::string ropeReport = readFile(dir / "rope/report.md");
+    const std::string common = " --dt 0.001,0.002 --integrators semi-implicit-euler --collisions reflect";
+    const CompareRun rope = runCompare("rope --duration 3" + common, dir / "rope");
+    ASSERT_TRUE(rope.ok()) << rope.result.err;
+    const std::string& ropeReport = rope.report;
     EXPECT_NE(ropeReport.find(sentence), std::string::npos) << ropeReport;
-    const CommandResult cloth = runPba("compare cloth --duration 1.2 --dt 0.001,0.002 --integrators "
-                                       "semi-implicit-euler --collisions reflect --out " + (dir / "cloth").string());
-    ASSERT_EQ(cloth.exitCode, 0) << cloth.err;
-    const std::string clothReport = readFile(dir / "cloth/report.md");
+    const CompareRun cloth = runCompare("cloth --duration 1.2" + common, dir / "cloth");
+    ASSERT_TRUE(cloth.ok()) << cloth.result.err;
+    const std::string& clothReport = cloth.report;
     EXPECT_NE(clothReport.find("Over the whole run"), std::string::npos) << clothReport;
     EXPECT_EQ(clothReport.find(sentence), std::string::npos) << clothReport;
 }
