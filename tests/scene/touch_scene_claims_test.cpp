@@ -118,3 +118,31 @@ SCENE_CLAIM(TouchSceneClaims, HangingCrateKnocksTheWallDownOnARopeWhoseJointHold
     EXPECT_EQ(moved, 6);
     EXPECT_EQ(world.body(bodyNamed(world, "rope[0]")).getPos(), pin);
 }
+
+// Momentum passes both ways: a crate dropped on a rope pinned at both ends slows while the rope under it is
+// pushed down, and the two end moving together.
+TEST(TouchScenes, ACrateDroppedOnARopeSlowsAndTheRopeMoves)
+{
+    Scene scene = parseScene(R"({"dt": 0.001, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 4, 2]},
+        "ropes": [{"name": "rope", "from": [-1, 2, 0], "to": [1, 2, 0], "count": 21, "mass": 0.5, "stiffness": 2000,
+                   "damping": 0.5, "pinned": ["start", "end"], "radius": 0.03}],
+        "rigid_bodies": [{"name": "crate", "shape": {"type": "box", "size": [0.3, 0.3, 0.3]}, "mass": 2,
+                          "position": [0, 2.6, 0.0]}]})",
+                             "slack.json");
+    World& world = scene.world;
+    const auto& crate = world.body(bodyNamed(world, "crate"));
+    const auto& middle = world.body(bodyNamed(world, "rope[10]"));
+    double ropeFastestDown = 0.0;
+    bool slowed = false;
+    for (int n = 0; n < 600; ++n) {
+        const double before = crate.getVel().y;
+        world.step(scene.dt);
+        // Free, it gains g dt of downward speed a step; on the rope, less, or it rises.
+        if (crate.getPos().y < 2.3 && crate.getVel().y > before - 0.5 * 9.81 * scene.dt)
+            slowed = true;
+        ropeFastestDown = std::max(ropeFastestDown, -middle.getVel().y);
+    }
+    EXPECT_TRUE(slowed);
+    EXPECT_GT(ropeFastestDown, 1.0); // pushed down at more than 1 m/s
+    EXPECT_GT(crate.getPos().y, 1.0); // held by the rope, above the floor
+}
