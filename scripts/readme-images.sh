@@ -36,6 +36,10 @@ rigid double-pendulum 3.7 0,2.4,4.6,0,2.3,0 joints # the rods bent: the chaos sh
 # Ropes, cloth and the stiff spring, framed the same way.
 rigid rope 0.8 0,2.8,6.5,-0.3,1.2,0 # the free end striking the floor
 rigid cloth 1.2 0,2.6,5,0,2.2,0
+# Particles, ropes and cloth touching rigid bodies.
+rigid cloth-on-box 4 0,2.3,3.6,0,0.15,0
+rigid trampoline 0.56 0,2.8,4.2,0,0.75,0 # the crate deepest in the cloth
+rigid hanging-crate 1.3 0.6,2.2,6.6,0.2,0.5,0
 "$pba" render stiff-spring --size 640x360 --time 1.5 --camera=0,5.2,10.5,0,4.4,0 --out "$out/stiff-spring.png"
 # The README's first scene, from the example file it shows.
 "$pba" render docs/examples/first-scene.json --size 640x360 --time 3 --camera=0,2,6,0,1.6,0 --out "$out/first-scene.png"

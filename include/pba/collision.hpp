@@ -77,6 +77,13 @@ struct PlaneT {
                 return i;
         return -1;
     }
+    /// The plane a ball of radius r meets with its centre: moved inward by r, its hole narrowed by r
+    /// (a ball passes only where all of it fits; none where it does not fit at all).
+    PlaneT inflatedBy(T r) const
+    {
+        const T hole = holeRadius - r;
+        return {normal, offset + r, hole > T(0) ? hole : T(0), holeCentre};
+    }
     bool overHole(const Vec3<T>& x) const
     {
         const Vec3<T> rho = fromHoleAxis(x);

@@ -33,6 +33,8 @@ struct SwarmDesc {
     double velocityJitter = 0.0; ///< ... plus a uniform offset in [-jitter, jitter] per component, m/s
     double mass = 1.0;
     double restitution = 1.0;
+    double radius = 0.0;   ///< every particle's, m; 0: points
+    double friction = 0.0; ///< Coulomb mu against the room (and each other)
     Integrator integrator = Integrator::SemiImplicitEuler;
     std::uint64_t seed = 1;
 };
@@ -76,6 +78,9 @@ public:
     std::size_t size() const { return m_count; }
     float mass() const { return m_mass; }
     float restitution() const { return m_restitution; }
+    /// Every particle's radius (m) and Coulomb friction, as the desc says.
+    float radius() const { return float(m_desc.radius); }
+    float friction() const { return float(m_desc.friction); }
     Integrator integrator() const { return m_integrator; }
     void setIntegrator(Integrator integrator) { m_integrator = integrator; }
     void setRestitution(float restitution) { m_restitution = restitution; }

@@ -309,6 +309,10 @@ private:
         /// What storePreviousStates read of each body besides its state: mass, restitution, and
         /// the key of its coupling (fixed flag and integrator).
         std::vector<double> masses, cors;
+        /// Each particle's radius and Coulomb friction, read with its mass (0 for a rigid body:
+        /// its shape says where it touches).
+        std::vector<double> radii, frictions;
+        std::vector<std::uint8_t> isParticle;
         std::vector<std::uint8_t> keys;
         /// Each body's state and pose at the current stage of an integrator (BodyStates): the
         /// start of the step for every body but those of the system being integrated.
@@ -379,6 +383,7 @@ private:
     struct RigidBodies {
         ClonePtr<rigid::RigidSystem> system;
         RigidScratch scratch;
+        std::size_t bodiesSeen = 0; ///< the bodies looked at for particles with a radius
     };
     /// The swarms, and their copies for a rollback.
     struct Swarms {
@@ -453,6 +458,12 @@ private:
     void stepRigid(Integrator integrator, const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
                    double dt);
     void storeRigidBodies();
+    /// The particles that touch rigid bodies (those with a radius, in a world with rigid bodies)
+    /// join the rigid system as point bodies; each step gives it their states and takes back
+    /// what their contacts and joints made of them.
+    void joinPointBodies();
+    void givePointBodies();
+    void storePointBodies();
     /// Phase 6 (Swarms, Forces, Surfaces).
     void stepSwarms(double dt);
     /// Phase 7 (Bodies, Swarms, Surfaces): the first state that cannot be rolls the step back

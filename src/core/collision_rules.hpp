@@ -187,6 +187,22 @@ inline std::array<int, 2> wallsOnAxis(std::span<const PlaneT<T>> planes, int axi
 
 } // namespace collision_detail
 
+/// The planes a ball of `radius` meets with its centre (PlaneT::inflatedBy), in `room` (up to
+/// kMaxBallPlanes planes; those beyond are left out); radius 0 hands back `planes` themselves, so a
+/// point is stepped exactly as it was before balls had radii.
+inline constexpr std::size_t kMaxBallPlanes = 8;
+template <class T>
+inline std::span<const PlaneT<T>> ballPlanes(std::span<const PlaneT<T>> planes, T radius,
+                                             std::array<PlaneT<T>, kMaxBallPlanes>& room)
+{
+    if (radius == T(0))
+        return planes;
+    const std::size_t n = std::min(planes.size(), kMaxBallPlanes);
+    for (std::size_t p = 0; p < n; ++p)
+        room[p] = planes[p].inflatedBy(radius);
+    return {room.data(), n};
+}
+
 /// The exact response. Returns the number of bounces during the step.
 ///
 /// Resting contact: a body on a surface whose net acceleration pushes into it is held

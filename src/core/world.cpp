@@ -54,6 +54,7 @@ Body& World::addBody(std::unique_ptr<Body> body)
 {
     const auto* rigid = dynamic_cast<const RigidBody*>(body.get());
     m_bodies.isRigid.push_back(rigid ? 1 : 0);
+    m_bodies.isParticle.push_back(dynamic_cast<const Particle*>(body.get()) ? 1 : 0);
     m_bodies.rigidIndex.push_back(rigid ? std::uint32_t(m_rigid.system->size()) : kNotRigid);
     m_bodies.rigidAcc.push_back(dvec3(0.0));
     if (rigid)
@@ -73,14 +74,18 @@ Particle& World::addParticle(const Particle& particle)
 
 namespace {
 
-const RigidBody& rigidBodyOf(const std::vector<ClonePtr<Body>>& bodies, std::size_t i, const char* role)
+const Body& jointBodyOf(const std::vector<ClonePtr<Body>>& bodies, std::size_t i, const char* role)
 {
     if (i >= bodies.size())
         throw std::invalid_argument(fmt::format("a joint's {} body {} does not exist", role, i));
-    const auto* rigid = dynamic_cast<const RigidBody*>(bodies[i].get());
-    if (!rigid)
-        throw std::invalid_argument(fmt::format("a joint joins rigid bodies, and '{}' is a particle", bodies[i]->getName()));
-    return *rigid;
+    return *bodies[i];
+}
+
+/// A body's pose as a joint reads it: a particle does not turn.
+std::pair<dvec3, dquat> jointPose(const Body& b)
+{
+    const auto* rigid = dynamic_cast<const RigidBody*>(&b);
+    return {b.getPos(), rigid ? rigid->getOrientation() : dquat(1.0, 0.0, 0.0, 0.0)};
 }
 
 bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -96,12 +101,31 @@ dvec3 across(const dvec3& axis)
 
 std::size_t World::addJoint(const JointDesc& desc)
 {
-    const RigidBody& a = rigidBodyOf(m_bodies.objects, desc.bodyA, "first");
-    const RigidBody* b = desc.bodyB ? &rigidBodyOf(m_bodies.objects, *desc.bodyB, "second") : nullptr;
+    const Body& a = jointBodyOf(m_bodies.objects, desc.bodyA, "first");
+    const Body* b = desc.bodyB ? &jointBodyOf(m_bodies.objects, *desc.bodyB, "second") : nullptr;
     if (b == &a)
         throw std::invalid_argument(fmt::format("a joint joins two bodies, and both are '{}'", a.getName()));
-    const dquat qa = a.getOrientation(), qb = b ? b->getOrientation() : dquat(1.0, 0.0, 0.0, 0.0);
-    const dvec3 xa = a.getPos(), xb = b ? b->getPos() : dvec3(0.0);
+    const bool particleA = !isRigid(desc.bodyA), particleB = b && !isRigid(*desc.bodyB);
+    if (particleA || particleB) {
+        // A particle has no orientation for a hinge or a weld to hold, and two particles (or a
+        // particle and the world) are joined by a spring or a pin.
+        const Body& particle = particleA ? a : *b;
+        if (desc.type == JointType::Hinge || desc.type == JointType::Fixed)
+            throw std::invalid_argument(fmt::format("a {} joint needs two rigid bodies, and '{}' is a particle (join "
+                                                    "a particle with a ball or distance joint)",
+                                                    jointTypeName(desc.type), particle.getName()));
+        if (!b || (particleA && particleB))
+            throw std::invalid_argument(fmt::format("a joint joins a particle to a rigid body, and '{}' is joined to "
+                                                    "{}",
+                                                    particle.getName(), b ? "a particle" : "the world"));
+    }
+    for (const std::size_t i : {desc.bodyA, desc.bodyB.value_or(desc.bodyA)})
+        if (m_bodies.rigidIndex[i] == kNotRigid) {
+            m_bodies.rigidIndex[i] = std::uint32_t(m_rigid.system->size());
+            m_rigid.system->addPoint(i);
+        }
+    const auto [xa, qa] = jointPose(a);
+    const auto [xb, qb] = b ? jointPose(*b) : std::pair{dvec3(0.0), dquat(1.0, 0.0, 0.0, 0.0)};
     // World to each body's frame (the world's own frame for the world).
     auto inA = [&](const dvec3& p) { return glm::conjugate(qa) * (p - xa); };
     auto inB = [&](const dvec3& p) { return glm::conjugate(qb) * (p - xb); };
@@ -182,8 +206,7 @@ JointFrame World::jointFrame(std::size_t i) const
     auto pose = [&](rigid::BodyIndex k) {
         if (k == rigid::kWorldBody)
             return std::pair{dvec3(0.0), dquat(1.0, 0.0, 0.0, 0.0)};
-        const auto& b = static_cast<const RigidBody&>(*m_bodies.objects[m_rigid.system->worldIndex(k)]);
-        return std::pair{b.getPos(), b.getOrientation()};
+        return jointPose(*m_bodies.objects[m_rigid.system->worldIndex(k)]);
     };
     const auto [xa, qa] = pose(j.a);
     const auto [xb, qb] = pose(j.b);

@@ -93,11 +93,13 @@ void World::collideAndStore(const std::vector<std::size_t>& members)
     const std::size_t bad = detail::lowestFailing(members, 2048, m_bodies.objects.size(), [&](std::size_t k) {
         const std::size_t i = members[k];
         State end{s.x[k], s.v[k]};
+        std::array<Plane, kMaxBallPlanes> room;
+        const auto ball = ballPlanes(planes, m_bodies.radii[i], room);
         if (!planes.empty())
             m_bodies.bounces[i] += static_cast<std::uint64_t>(
                 coupledCollisionResponse() == CollisionResponse::Clamp
-                    ? clampAfterStep(planes, m_bodies.cors[i], m_bodies.previous[i].pos, end.pos, end.vel)
-                    : reflectAfterStep(planes, m_bodies.cors[i], m_bodies.previous[i].pos, end.pos, end.vel));
+                    ? clampAfterStep(ball, m_bodies.cors[i], m_bodies.previous[i].pos, end.pos, end.vel)
+                    : reflectAfterStep(ball, m_bodies.cors[i], m_bodies.previous[i].pos, end.pos, end.vel));
         Body& b = *m_bodies.objects[i];
         b.setState(end);
         b.setAcc(s.acc[k]);

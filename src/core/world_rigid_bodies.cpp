@@ -29,16 +29,78 @@ void World::stepRigidBodies(double dt)
     rigid::RigidSystem& system = *m_rigid.system;
     if (system.size() == 0)
         return;
+    joinPointBodies();
     thread_local std::vector<const RigidBody*> bodies;
     bodies.resize(system.size());
     for (std::size_t k = 0; k < system.size(); ++k)
-        bodies[k] = static_cast<const RigidBody*>(m_bodies.objects[system.worldIndex(k)].get());
+        bodies[k] = system.isPoint(k) ? nullptr
+                                      : static_cast<const RigidBody*>(m_bodies.objects[system.worldIndex(k)].get());
     system.begin(bodies);
+    givePointBodies();
     integrateRigidFreely(system.awake(), dt);
     system.findContacts(m_surfaces.planes, dt);
     integrateRigidFreely(system.woken(), dt); // touched by an awake body: they move this step too
     system.solve(gravity(), dt);
     storeRigidBodies();
+    storePointBodies();
+}
+
+void World::joinPointBodies()
+{
+    // Looked at again only when bodies were added: a particle takes part from the first step
+    // after it has a radius and the world has a rigid body.
+    if (m_rigid.bodiesSeen == m_bodies.objects.size())
+        return;
+    m_rigid.bodiesSeen = m_bodies.objects.size();
+    if (!hasRigidBodies())
+        return;
+    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i) {
+        if (m_bodies.rigidIndex[i] != kNotRigid)
+            continue;
+        const auto* particle = dynamic_cast<const Particle*>(m_bodies.objects[i].get());
+        if (particle && particle->getRadius() > 0.0) {
+            m_bodies.rigidIndex[i] = std::uint32_t(m_rigid.system->size());
+            m_rigid.system->addPoint(i);
+        }
+    }
+}
+
+void World::givePointBodies()
+{
+    rigid::RigidSystem& system = *m_rigid.system;
+    for (std::size_t k = 0; k < system.size(); ++k) {
+        if (!system.isPoint(k))
+            continue;
+        const std::size_t i = system.worldIndex(k);
+        const auto& p = static_cast<const Particle&>(*m_bodies.objects[i]);
+        const State& before = m_bodies.previous[i];
+        rigid::RigidSystem::PointBody point;
+        point.start = RigidState{before.pos, before.vel, Rotation{}};
+        point.end = RigidState{p.getPos(), p.getVel(), Rotation{}};
+        point.mass = p.getMass();
+        point.radius = p.getRadius();
+        point.friction = p.getFriction();
+        point.restitution = p.getCor();
+        point.integrator = p.getIntegrator();
+        point.fixed = p.isFixed();
+        system.setPoint(k, point);
+    }
+}
+
+void World::storePointBodies()
+{
+    const rigid::RigidSystem& system = *m_rigid.system;
+    for (std::size_t k = 0; k < system.size(); ++k) {
+        if (!system.isPoint(k))
+            continue;
+        const std::size_t i = system.worldIndex(k);
+        Body& p = *m_bodies.objects[i];
+        if (p.isFixed())
+            continue;
+        const RigidState& e = system.end(k);
+        p.setState(State{e.x, e.v});
+        m_bodies.noteIfNotFinite(i, p.getState());
+    }
 }
 
 void World::integrateRigidFreely(std::span<const std::uint32_t> bodies, double dt)
@@ -132,6 +194,8 @@ void World::storeRigidBodies()
     for (std::size_t k = 0; k < system.size(); ++k)
         all[k] = system.worldIndex(k);
     const std::size_t bad = detail::lowestFailing(all, 256, m_bodies.objects.size(), [&](std::size_t k) {
+        if (system.isPoint(k))
+            return true; // storePointBodies
         const std::size_t i = system.worldIndex(k);
         auto& b = static_cast<RigidBody&>(*m_bodies.objects[i]);
         if (b.isFixed())
@@ -151,7 +215,7 @@ void World::storeRigidBodies()
     if (m_surfaces.planes.empty())
         return;
     const std::size_t inside = detail::lowestFailing(all, 1024, m_bodies.objects.size(), [&](std::size_t k) {
-        if (m_bodies.objects[all[k]]->isFixed())
+        if (system.isPoint(k) || m_bodies.objects[all[k]]->isFixed())
             return true;
         // The bounding radius (a visit to the body's object) only for a centre on or behind a plane.
         const dvec3& x = system.end(k).x;

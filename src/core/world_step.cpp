@@ -104,6 +104,8 @@ void World::Bodies::storePreviousStates()
     const std::size_t n = objects.size();
     masses.resize(n);
     cors.resize(n);
+    radii.resize(n);
+    frictions.resize(n);
     keys.resize(n);
     trial.resize(n);
     detail::forEachIndex(n, [this](std::size_t i) {
@@ -112,6 +114,9 @@ void World::Bodies::storePreviousStates()
         trial[i] = previous[i]; // the coupled systems' stages start from here
         masses[i] = b.getMass();
         cors[i] = b.getCor();
+        const auto* particle = isParticle[i] != 0 ? static_cast<const Particle*>(&b) : nullptr;
+        radii[i] = particle ? particle->getRadius() : 0.0;
+        frictions[i] = particle ? particle->getFriction() : 0.0;
         keys[i] = couplingKey(b);
         if (isRigid[i] != 0) {
             const auto& rigid = static_cast<const RigidBody&>(b);
@@ -185,9 +190,10 @@ void World::integrateIndependent(const std::vector<std::size_t>& bodies, double 
             return a;
         };
         State s = b.getState();
-        const int bounces = stepWithCollisions(m_surfaces.response, b.getIntegrator(),
-                                               std::span<const Plane>(m_surfaces.planes), b.getCor(), s.pos, s.vel, dt,
-                                               accel);
+        std::array<Plane, kMaxBallPlanes> room;
+        const auto planes = ballPlanes(std::span<const Plane>(m_surfaces.planes), m_bodies.radii[i], room);
+        const int bounces = stepWithCollisions(m_surfaces.response, b.getIntegrator(), planes, b.getCor(), s.pos,
+                                               s.vel, dt, accel);
         m_bodies.bounces[i] += static_cast<std::uint64_t>(bounces);
         b.setState(s);
         b.setAcc(startAcc);
@@ -209,8 +215,11 @@ void World::stepSwarms(double dt)
     std::vector<PlaneT<float>> planes;
     for (const Plane& p : m_surfaces.planes)
         planes.push_back({Vec3<float>(p.normal), float(p.offset), float(p.holeRadius), Vec3<float>(p.holeCentre)});
-    for (const auto& swarm : m_swarms.objects)
-        swarm->step(fields, planes, m_surfaces.response, float(dt), m_threads);
+    for (const auto& swarm : m_swarms.objects) {
+        std::array<PlaneT<float>, kMaxBallPlanes> room;
+        swarm->step(fields, ballPlanes(std::span<const PlaneT<float>>(planes), swarm->radius(), room),
+                    m_surfaces.response, float(dt), m_threads);
+    }
 }
 
 } // namespace pba

@@ -14,6 +14,9 @@ namespace pba::render {
 
 float drawnRadius(const Body& body, const ViewSettings& settings)
 {
+    // A ball with a radius is drawn at its size: that is where it touches.
+    if (const auto* particle = dynamic_cast<const Particle*>(&body); particle && particle->getRadius() > 0.0)
+        return float(particle->getRadius());
     // Balls of one density: the radius grows as the cube root of the mass, so masses that differ
     // tenfold still differ visibly (2.15x) without hiding the light ones.
     const double scale = std::clamp(std::cbrt(body.getMass() / kDrawnReferenceMass), 0.4, 2.5);
@@ -339,7 +342,8 @@ void buildDrawList(const World& world, const World& initial, double alpha, const
     for (std::size_t s = 0; s < world.swarmCount(); ++s) {
         const Swarm& swarm = world.swarm(s);
         out.addPoints(swarm.px().data(), swarm.py().data(), swarm.pz().data(), swarm.size(),
-                      settings.particleRadius * 0.3f, groups.swarmColour(s));
+                      swarm.radius() > 0.0f ? swarm.radius() : settings.particleRadius * 0.3f,
+                      groups.swarmColour(s));
     }
 }
 

@@ -20,6 +20,7 @@ struct FabricParticles {
     std::string name;
     double mass = 1.0; ///< each particle's
     double restitution = 1.0;
+    ContactKeys contact;
     Integrator integrator = Integrator::SemiImplicitEuler;
 };
 
@@ -41,6 +42,7 @@ FabricParticles readShared(ObjectReader& reader, std::size_t count)
     shared.restitution = reader.number("restitution", 1.0);
     if (!(shared.restitution >= 0.0 && shared.restitution <= 1.0))
         reader.fail("restitution", fmt::format("must be in [0, 1], got {}", shared.restitution));
+    shared.contact = readContactKeys(reader);
     shared.integrator = readIntegrator(reader, "integrator", Integrator::SemiImplicitEuler);
     return shared;
 }
@@ -52,11 +54,16 @@ std::size_t addFabricParticle(ObjectReader& reader, const std::string& key, Fabr
         reader.fail("name", fmt::format("its particle '{}' is named like another particle", oneLine(name)));
     if (!insideSurfaces(target.world, at))
         reader.fail(key, fmt::format("particle '{}' at {}", oneLine(name), outsideText(target.world, at)));
+    if (!insideSurfaces(target.world, at, shared.contact.radius))
+        reader.fail("radius", fmt::format("particle '{}': {}", oneLine(name),
+                                          ballOutsideText(target.world, at, shared.contact.radius)));
     Particle p;
     p.setName(name);
     p.setPos(at);
     p.setMass(shared.mass);
     p.setCor(shared.restitution);
+    p.setRadius(shared.contact.radius);
+    p.setFriction(shared.contact.friction);
     p.setIntegrator(shared.integrator);
     target.world.addParticle(p);
     return target.world.bodyCount() - 1;
@@ -110,7 +117,7 @@ void readRope(const Json& value, const std::string& path, const std::string& fil
 {
     ObjectReader reader(value, path, file);
     reader.expectKeys({"name", "from", "to", "count", "mass", "stiffness", "bending_stiffness", "damping", "pinned",
-                       "restitution", "integrator"});
+                       "restitution", "radius", "friction", "integrator"});
     const std::size_t count = readWholeCount(reader, "count", 100000);
     const FabricParticles shared = readShared(reader, count);
     const dvec3 from = reader.vec3("from");
@@ -223,7 +230,7 @@ void readCloth(const Json& value, const std::string& path, const std::string& fi
 {
     ObjectReader reader(value, path, file);
     reader.expectKeys({"name", "origin", "across", "down", "columns", "rows", "mass", "stiffness", "damping", "pinned",
-                       "restitution", "integrator"});
+                       "restitution", "radius", "friction", "integrator"});
     const std::size_t columns = readWholeCount(reader, "columns", 1000);
     const std::size_t rows = readWholeCount(reader, "rows", 1000);
     const FabricParticles shared = readShared(reader, columns * rows);

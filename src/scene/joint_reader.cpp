@@ -23,8 +23,9 @@ JointType readType(ObjectReader& reader)
                                     oneLine(name), close ? fmt::format(": did you mean '{}'?", *close) : ""));
 }
 
-/// The rigid body a joint names, by its name.
-std::size_t rigidBodyNamed(const ObjectReader& reader, const World& world, const Json& entry, std::size_t k)
+/// The body a joint names, by its name: a rigid body, or a particle (a rope's or cloth's by the
+/// name its CSV columns have, `rope[19]`), which World::addJoint then checks.
+std::size_t bodyNamed(const ObjectReader& reader, const World& world, const Json& entry, std::size_t k)
 {
     const std::string key = fmt::format("bodies[{}]", k);
     if (!entry.is_string())
@@ -34,14 +35,11 @@ std::size_t rigidBodyNamed(const ObjectReader& reader, const World& world, const
     if (!index) {
         std::vector<std::string> names;
         for (std::size_t i = 0; i < world.bodyCount(); ++i)
-            if (world.isRigid(i))
-                names.push_back(world.body(i).getName());
+            names.push_back(world.body(i).getName());
         const auto close = closestName(name, names);
-        reader.fail(key, fmt::format("no rigid body is named '{}'{}", oneLine(name),
+        reader.fail(key, fmt::format("no body is named '{}'{}", oneLine(name),
                                      close ? fmt::format(": did you mean '{}'?", *close) : ""));
     }
-    if (!world.isRigid(*index))
-        reader.fail(key, fmt::format("'{}' is a particle: a joint joins rigid bodies", oneLine(name)));
     return *index;
 }
 
@@ -86,10 +84,11 @@ void readJoint(const Json& value, const std::string& path, const std::string& fi
     joint.type = readType(reader);
     const Json& bodies = reader.raw("bodies");
     if (!bodies.is_array() || bodies.empty() || bodies.size() > 2)
-        reader.fail("bodies", "must name one rigid body (joined to the world) or two: [\"a\"] or [\"a\", \"b\"]");
-    joint.bodyA = rigidBodyNamed(reader, world, bodies[0], 0);
+        reader.fail("bodies", "must name one rigid body (joined to the world) or two (a rigid body and a rigid "
+                              "body or particle): [\"a\"] or [\"a\", \"b\"]");
+    joint.bodyA = bodyNamed(reader, world, bodies[0], 0);
     if (bodies.size() == 2) {
-        joint.bodyB = rigidBodyNamed(reader, world, bodies[1], 1);
+        joint.bodyB = bodyNamed(reader, world, bodies[1], 1);
         if (*joint.bodyB == joint.bodyA)
             reader.fail("bodies", "names the same body twice");
     }

@@ -49,12 +49,28 @@ Integrator readIntegrator(ObjectReader& reader, const std::string& key, Integrat
     return *integrator;
 }
 
-bool insideSurfaces(const World& world, const dvec3& x)
+bool insideSurfaces(const World& world, const dvec3& x, double radius)
 {
     for (const Plane& plane : world.planes())
-        if (plane.distance(x) < 0.0)
+        if (plane.distance(x) < radius)
             return false;
     return true;
+}
+
+std::string ballOutsideText(const World& world, const dvec3& x, double radius)
+{
+    if (radius == 0.0)
+        return outsideText(world, x);
+    return fmt::format("a ball of radius {:g} m at ({:g}, {:g}, {:g}) reaches beyond the ground or room: {}", radius,
+                       x.x, x.y, x.z, surfacesText(world));
+}
+
+ContactKeys readContactKeys(ObjectReader& reader)
+{
+    ContactKeys keys;
+    keys.radius = reader.nonNegative("radius", 0.0);
+    keys.friction = reader.nonNegative("friction", 0.0);
+    return keys;
 }
 
 std::string surfacesText(const World& world)
@@ -92,6 +108,9 @@ using scene_detail::Json;
 using scene_detail::ObjectReader;
 using scene_detail::insideSurfaces;
 using scene_detail::outsideText;
+using scene_detail::ballOutsideText;
+using scene_detail::ContactKeys;
+using scene_detail::readContactKeys;
 using scene_detail::readIntegrator;
 using scene_detail::oneLine;
 using scene_detail::readName;
@@ -128,7 +147,8 @@ void readParticle(const Json& value, const std::string& path, const std::string&
                   std::set<std::string>& names)
 {
     ObjectReader reader(value, path, file);
-    reader.expectKeys({"name", "position", "velocity", "mass", "restitution", "integrator", "fixed"});
+    reader.expectKeys(
+        {"name", "position", "velocity", "mass", "restitution", "radius", "friction", "integrator", "fixed"});
     Particle p;
     const std::string name = readName(reader, "name");
     if (name.empty())
@@ -144,10 +164,15 @@ void readParticle(const Json& value, const std::string& path, const std::string&
     if (!(restitution >= 0.0 && restitution <= 1.0))
         reader.fail("restitution", fmt::format("must be in [0, 1], got {}", restitution));
     p.setCor(restitution);
+    const ContactKeys contact = readContactKeys(reader);
+    p.setRadius(contact.radius);
+    p.setFriction(contact.friction);
     p.setIntegrator(readIntegrator(reader, "integrator", Integrator::SemiImplicitEuler));
     p.setFixed(reader.boolean("fixed", false));
     if (!insideSurfaces(world, p.getPos()))
         reader.fail("position", outsideText(world, p.getPos()));
+    if (!insideSurfaces(world, p.getPos(), contact.radius))
+        reader.fail("radius", ballOutsideText(world, p.getPos(), contact.radius));
     reader.finish();
     world.addParticle(p);
 }

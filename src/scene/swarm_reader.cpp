@@ -38,8 +38,8 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
                std::set<std::string>& names)
 {
     ObjectReader reader(value, path, file);
-    reader.expectKeys({"name", "count", "region", "velocity", "velocity_jitter", "mass", "restitution", "integrator",
-                       "seed"});
+    reader.expectKeys({"name", "count", "region", "velocity", "velocity_jitter", "mass", "restitution", "radius",
+                       "friction", "integrator", "seed"});
     SwarmDesc desc;
     desc.name = readName(reader, "name");
     if (desc.name.empty() || !names.insert(desc.name).second)
@@ -71,6 +71,14 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
     desc.restitution = reader.number("restitution", 1.0);
     if (!(desc.restitution >= 0.0 && desc.restitution <= 1.0))
         reader.fail("restitution", fmt::format("must be in [0, 1], got {}", desc.restitution));
+    const ContactKeys contact = readContactKeys(reader);
+    desc.radius = contact.radius;
+    desc.friction = contact.friction;
+    if (!insideSurfaces(world, desc.regionMin, desc.radius) || !insideSurfaces(world, desc.regionMax, desc.radius))
+        reader.fail("radius", fmt::format("its region's corner: {}",
+                                          ballOutsideText(world, insideSurfaces(world, desc.regionMin, desc.radius)
+                                                                     ? desc.regionMax : desc.regionMin,
+                                                          desc.radius)));
     desc.integrator = readIntegrator(reader, "integrator", Integrator::SemiImplicitEuler);
     if (isSpringSystemMethod(desc.integrator))
         reader.fail("integrator", fmt::format("{} steps particles joined by springs; a swarm has none: take "

@@ -124,3 +124,19 @@ TEST(Camera, LookingFromAPositionAtATargetAndNamedViews)
     EXPECT_GT(side.eye().x, framing.target.x);
     EXPECT_GT(namedView(NamedView::Top, framing).eye().y, framing.target.y + 0.99f * framing.distance);
 }
+
+TEST(WorldView, AParticleWithARadiusIsDrawnAtThatSize)
+{
+    Scene scene = parseScene(R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]},
+        "particles": [{"name": "ping-pong", "position": [0, 0.02, 0], "mass": 0.0027, "radius": 0.02}],
+        "swarms": [{"name": "s", "count": 4, "region": {"min": [0, 1, 0], "max": [1, 2, 1]}, "seed": 1, "radius": 0.03}]})",
+                             "balls.json");
+    ViewSettings settings;
+    EXPECT_FLOAT_EQ(drawnRadius(scene.world.body(0), settings), 0.02f);
+    // Its centre is a radius above the floor already: drawn where it is, not lifted further.
+    EXPECT_FLOAT_EQ(drawnCentre(scene.world, 0, 1.0, settings).y, 0.02f);
+    DrawList list;
+    buildDrawList(scene.world, scene.world, 1.0, settings, nullptr, list);
+    ASSERT_FALSE(list.sprites.empty());
+    EXPECT_FLOAT_EQ(list.sprites.back().radius, 0.03f) << "the swarm's grains at their radius";
+}

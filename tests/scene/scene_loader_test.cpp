@@ -119,6 +119,8 @@ TEST_P(BadSceneTest, IsReportedWithFieldAndReason)
 #define S(change) "@swarms{" change "}"
 #define P(extra) R"({"particles": [{"name": "a", "position": [0, 1, 0])" extra "}]}"
 #define R(extra) R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "rigid_bodies": [{"name": "r", "position": [0, 1, 0])" extra "}]}"
+// A rope and a rigid body, and one joint between them.
+#define J(joint) R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "ropes": [{"name": "rope", "from": [-1, 3, 0], "to": [1, 3, 0], "count": 5, "mass": 1, "stiffness": 100}], "rigid_bodies": [{"name": "r", "position": [0, 1, 0], "shape": {"type": "box", "size": [0.2, 0.2, 0.2]}}], "joints": [)" joint "]}"
 INSTANTIATE_TEST_SUITE_P(
     SceneLoader, BadSceneTest,
     testing::Values(BadScene{"{", "(document)", "malformed JSON"},
@@ -128,6 +130,20 @@ INSTANTIATE_TEST_SUITE_P(
                     BadScene{R"({"dt": -0.1})", "dt", "must be positive"},
                     BadScene{R"({"dt": 1e999})", "dt", "number overflow"},
                     BadScene{P(R"(, "mass": 1e999)"), "particles[0].mass", "number overflow"},
+                    BadScene{P(R"(, "radius": -0.1)"), "particles[0].radius", "must not be negative"},
+                    BadScene{P(R"(, "friction": -1)"), "particles[0].friction", "must not be negative"},
+                    BadScene{R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "particles": [{"name": "a",
+                                "position": [0, 0.05, 0], "radius": 0.1}]})",
+                             "particles[0].radius", "a ball of radius 0.1 m at (0, 0.05, 0) reaches beyond"},
+                    BadScene{R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "ropes": [{"name": "r",
+                                "from": [0, 1, 0], "to": [1.95, 1, 0], "count": 3, "stiffness": 100, "radius": 0.1}]})",
+                             "ropes[0].radius", "particle 'r[2]': a ball of radius 0.1 m"},
+                    BadScene{R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "cloths": [{"name": "c",
+                                "origin": [0, 1, 0], "across": [1, 0, 0], "down": [0, 0, 1], "columns": 2,
+                                "rows": 2, "friction": -0.2}]})",
+                             "cloths[0].friction", "must not be negative"},
+                    BadScene{S(R"("radius": -1)"), "swarms[0].radius", "must not be negative"},
+                    BadScene{S(R"("radius": 1.5)"), "swarms[0].radius", "its region's corner: a ball of radius 1.5"},
                     BadScene{R"({"duration": 0})", "duration", "must be positive"},
                     BadScene{R"({"gravity": [0, -9.81]})", "gravity", "array of 3 numbers"},
                     BadScene{R"({"gravty": [0, -9.81, 0]})", "gravty", "unknown key"},
@@ -224,6 +240,16 @@ INSTANTIATE_TEST_SUITE_P(
                              "rigid_bodies[0].position", "duplicate key"},
                     BadScene{R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "rigid_bodies": [{"name": "r", "position": [0, 0, 0], "shape": {"type": "sphere", "radius": 0.1}}]})",
                              "rigid_bodies[0].position", "reaches 0.1 m through the floor"},
+                    BadScene{J(R"({"type": "hindge", "bodies": ["r"], "anchor": [0, 1, 0]})"), "joints[0].type",
+                             "did you mean 'hinge'?"},
+                    BadScene{J(R"({"type": "ball", "bodies": ["rr"], "anchor": [0, 1, 0]})"), "joints[0].bodies[0]",
+                             "no body is named 'rr': did you mean 'r'?"},
+                    BadScene{J(R"({"type": "hinge", "bodies": ["r", "rope[2]"], "anchor": [0, 1, 0], "axis": [0, 0, 1]})"),
+                             "joints[0]", "a hinge joint needs two rigid bodies, and 'rope[2]' is a particle"},
+                    BadScene{J(R"({"type": "ball", "bodies": ["rope[2]"], "anchor": [0, 1, 0]})"), "joints[0]",
+                             "a joint joins a particle to a rigid body, and 'rope[2]' is joined to the world"},
+                    BadScene{J(R"({"type": "distance", "bodies": ["rope[1]", "rope[2]"], "anchors": [[0, 1, 0], [0, 2, 0]]})"),
+                             "joints[0]", "and 'rope[1]' is joined to a particle"},
                     BadScene{R(R"(, "shape": {"typ": "sphere", "radius": 0.1})"), "rigid_bodies[0].shape.typ",
                              "unknown key (did you mean \"type\"?)"},
                     BadScene{R"({"particles": [{"name": "a", "position": [0, 1, 0]}], "forces": [{"type": "spring", "particle": "a", "anchor": [0,2,0], "stiffness": 1, "attachment": [0.1, 0, 0]}]})",
@@ -231,11 +257,27 @@ INSTANTIATE_TEST_SUITE_P(
                     BadScene{R"({"particles": [{"name": "a", "position": [0, 1, 0]}], "rigid_bodies": [{"name": "r", "shape": {"type": "sphere", "radius": 0.1}, "position": [0, 2, 0]}], "forces": [{"type": "spring", "particles": ["a", "r"], "stiffness": 1}]})",
                              "forces[0].particles", "'r' is a rigid body"}));
 #undef R
+#undef J
 #undef S
 #undef D
 #undef P
 
 // A rigid body of each shape, an OBJ mesh read relative to the scene file, and the defaults.
+TEST(SceneLoader, AJointNamesARopesParticleByItsColumnName)
+{
+    Scene scene = parseScene(R"({"room": {"min": [-3, 0, -2], "max": [3, 4, 2]},
+        "ropes": [{"name": "rope", "from": [0, 3.5, 0], "to": [0, 2.5, 0], "count": 5, "mass": 0.5, "stiffness": 500,
+                   "pinned": ["start"]}],
+        "rigid_bodies": [{"name": "crate", "shape": {"type": "box", "size": [0.2, 0.2, 0.2]}, "mass": 1,
+                          "position": [0, 2.4, 0]}],
+        "joints": [{"type": "ball", "bodies": ["crate", "rope[4]"], "anchor": [0, 2.5, 0]}]})",
+                             "hang.json");
+    ASSERT_EQ(scene.world.jointCount(), 1u);
+    const JointFrame frame = scene.world.jointFrame(0);
+    EXPECT_EQ(frame.bodyB, scene.world.findBody("rope[4]"));
+    EXPECT_EQ(frame.onA, frame.onB);
+}
+
 TEST(SceneLoader, RigidBodiesOfEveryShapeLoadWithTheirKeys)
 {
     const std::string dir = testing::TempDir();

@@ -34,11 +34,12 @@ double largestSide(const Box& b) { return std::max({b.max.x - b.min.x, b.max.y -
 
 } // namespace
 
-double BroadPhase::cellSize(std::span<const Box> boxes, std::span<const Motion> motion)
+double BroadPhase::cellSize(std::span<const Box> boxes, std::span<const Motion> motion,
+                            std::span<const std::uint8_t> isPoint)
 {
     m_sizes.clear();
     for (std::size_t i = 0; i < boxes.size(); ++i)
-        if (motion[i] != Motion::Static)
+        if (motion[i] != Motion::Static && !isPoint[i])
             m_sizes.push_back(largestSide(boxes[i]));
     if (m_sizes.empty())
         return 1.0;
@@ -49,14 +50,21 @@ double BroadPhase::cellSize(std::span<const Box> boxes, std::span<const Motion> 
     return std::max(2.0 * *middle, 1e-9);
 }
 
-void BroadPhase::fillGrid(std::span<const Box> boxes, std::span<const Motion> motion)
+void BroadPhase::fillGrid(std::span<const Box> boxes, std::span<const Motion> motion,
+                          std::span<const std::uint8_t> isPoint)
 {
     const std::size_t n = boxes.size();
     m_large.assign(n, 0);
     m_largeList.clear();
     std::size_t small = 0;
     for (std::size_t i = 0; i < n; ++i) {
-        if (motion[i] == Motion::Static || largestSide(boxes[i]) > m_cell) {
+        if (isPoint[i]) {
+            // Not in the grid: it looks there for its partners (a fixed one is found by them).
+            if (motion[i] == Motion::Static) {
+                m_large[i] = 1;
+                m_largeList.push_back(std::uint32_t(i));
+            }
+        } else if (motion[i] == Motion::Static || largestSide(boxes[i]) > m_cell) {
             m_large[i] = 1;
             m_largeList.push_back(std::uint32_t(i));
         } else {
@@ -73,18 +81,19 @@ void BroadPhase::fillGrid(std::span<const Box> boxes, std::span<const Motion> mo
     // A counting sort into buckets: the bodies of a bucket stay in index order.
     m_bucketStart.assign(buckets + 1, 0);
     for (std::size_t i = 0; i < n; ++i)
-        if (!m_large[i])
+        if (!m_large[i] && !isPoint[i])
             ++m_bucketStart[hashOf(m_cells[i], mask) + 1];
     for (std::uint32_t k = 0; k < buckets; ++k)
         m_bucketStart[k + 1] += m_bucketStart[k];
     m_entries.resize(small);
     std::vector<std::uint32_t> next(m_bucketStart.begin(), m_bucketStart.end() - 1);
     for (std::size_t i = 0; i < n; ++i)
-        if (!m_large[i])
+        if (!m_large[i] && !isPoint[i])
             m_entries[next[hashOf(m_cells[i], mask)]++] = std::uint32_t(i);
 }
 
-void BroadPhase::pairsOfSmall(std::span<const Box> boxes, std::span<const Motion> motion, std::vector<BodyPair>& pairs)
+void BroadPhase::pairsOfSmall(std::span<const Box> boxes, std::span<const Motion> motion,
+                              std::span<const std::uint8_t> isPoint, std::vector<BodyPair>& pairs)
 {
     const std::size_t n = boxes.size();
     const std::uint32_t mask = std::uint32_t(m_bucketStart.size() - 2);
@@ -110,8 +119,9 @@ void BroadPhase::pairsOfSmall(std::span<const Box> boxes, std::span<const Motion
                         const std::uint32_t h = hashOf(cell, mask);
                         for (std::uint32_t e = m_bucketStart[h]; e < m_bucketStart[h + 1]; ++e) {
                             const std::uint32_t j = m_entries[e];
-                            // Two awake bodies: once, from the first.
-                            if (j == i || (j < i && motion[j] == Motion::Awake))
+                            // Two awake bodies: once, from the first (a point is never in the
+                            // grid, so it finds every partner itself).
+                            if (j == i || (j < i && motion[j] == Motion::Awake && !isPoint[i]))
                                 continue;
                             // Another cell of the same bucket would find j twice.
                             if (m_cells[j] == cell && boxes[i].overlaps(boxes[j]))
@@ -124,11 +134,14 @@ void BroadPhase::pairsOfSmall(std::span<const Box> boxes, std::span<const Motion
         pairs.insert(pairs.end(), chunk.begin(), chunk.end());
 }
 
-void BroadPhase::pairsOfLarge(std::span<const Box> boxes, std::span<const Motion> motion, std::vector<BodyPair>& pairs)
+void BroadPhase::pairsOfLarge(std::span<const Box> boxes, std::span<const Motion> motion,
+                              std::span<const std::uint8_t> isPoint, std::vector<BodyPair>& pairs)
 {
     for (const std::uint32_t l : m_largeList)
         for (std::size_t k = 0; k < boxes.size(); ++k) {
             if (k == l || (m_large[k] && k < l)) // two large bodies: once
+                continue;
+            if (isPoint[l] && isPoint[k])
                 continue;
             if (motion[l] != Motion::Awake && motion[k] != Motion::Awake)
                 continue;
@@ -137,15 +150,16 @@ void BroadPhase::pairsOfLarge(std::span<const Box> boxes, std::span<const Motion
         }
 }
 
-void BroadPhase::findPairs(std::span<const Box> boxes, std::span<const Motion> motion, std::vector<BodyPair>& pairs)
+void BroadPhase::findPairs(std::span<const Box> boxes, std::span<const Motion> motion,
+                           std::span<const std::uint8_t> isPoint, std::vector<BodyPair>& pairs)
 {
     pairs.clear();
     if (boxes.empty())
         return;
-    m_cell = cellSize(boxes, motion);
-    fillGrid(boxes, motion);
-    pairsOfSmall(boxes, motion, pairs);
-    pairsOfLarge(boxes, motion, pairs);
+    m_cell = cellSize(boxes, motion, isPoint);
+    fillGrid(boxes, motion, isPoint);
+    pairsOfSmall(boxes, motion, isPoint, pairs);
+    pairsOfLarge(boxes, motion, isPoint, pairs);
     std::sort(pairs.begin(), pairs.end());
 }
 

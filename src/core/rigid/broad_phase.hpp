@@ -5,6 +5,8 @@
 // median body, and looks for partners in the cells around it; the few bodies larger than a cell, and
 // the static ones, are tested against every body. A grid suits a pile of like bodies on a floor,
 // where a sort-and-sweep along one axis would meet every body sharing a slice of the floor.
+// Point bodies (particles: a cloth's thousands, each far smaller than a die) are not put in the
+// grid and do not size its cells: each looks for the bodies around it, never for another point.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -40,14 +42,17 @@ public:
     };
 
     /// The pairs whose boxes overlap and of which at least one body is awake, in increasing
-    /// order (the same whatever the thread count).
-    void findPairs(std::span<const Box> boxes, std::span<const Motion> motion, std::vector<BodyPair>& pairs);
+    /// order (the same whatever the thread count); no pair of two points (isPoint, per body).
+    void findPairs(std::span<const Box> boxes, std::span<const Motion> motion, std::span<const std::uint8_t> isPoint,
+                   std::vector<BodyPair>& pairs);
 
 private:
-    double cellSize(std::span<const Box> boxes, std::span<const Motion> motion);
-    void fillGrid(std::span<const Box> boxes, std::span<const Motion> motion);
-    void pairsOfSmall(std::span<const Box> boxes, std::span<const Motion> motion, std::vector<BodyPair>& pairs);
-    void pairsOfLarge(std::span<const Box> boxes, std::span<const Motion> motion, std::vector<BodyPair>& pairs);
+    double cellSize(std::span<const Box> boxes, std::span<const Motion> motion, std::span<const std::uint8_t> isPoint);
+    void fillGrid(std::span<const Box> boxes, std::span<const Motion> motion, std::span<const std::uint8_t> isPoint);
+    void pairsOfSmall(std::span<const Box> boxes, std::span<const Motion> motion, std::span<const std::uint8_t> isPoint,
+                      std::vector<BodyPair>& pairs);
+    void pairsOfLarge(std::span<const Box> boxes, std::span<const Motion> motion, std::span<const std::uint8_t> isPoint,
+                      std::vector<BodyPair>& pairs);
 
     double m_cell = 1.0;
     std::vector<std::uint8_t> m_large;        ///< per body: tested against every body

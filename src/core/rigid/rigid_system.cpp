@@ -71,10 +71,19 @@ void RigidSystem::add(std::size_t worldIndex)
     m_world.push_back(worldIndex);
     m_material.emplace_back();
     m_motion.push_back(Motion::Awake);
+    m_isPoint.push_back(0);
     m_stillFor.push_back(0.0);
     m_sleepingIsland.push_back(Islands::npos);
     m_start.emplace_back();
     m_end.emplace_back();
+}
+
+void RigidSystem::addPoint(std::size_t worldIndex)
+{
+    add(worldIndex);
+    m_isPoint.back() = 1;
+    // A joint may join it before its first step: a point until setPoint says more.
+    m_material.back().shape = std::make_shared<const CollisionShape>();
 }
 
 void RigidSystem::begin(std::span<const RigidBody* const> bodies)
@@ -82,7 +91,10 @@ void RigidSystem::begin(std::span<const RigidBody* const> bodies)
     const std::size_t n = m_world.size();
     m_awake.clear();
     m_woken.clear();
+    m_points.clear();
     for (std::size_t k = 0; k < n; ++k) {
+        if (m_isPoint[k])
+            continue;
         const RigidBody& b = *bodies[k];
         Material& m = m_material[k];
         m.shape = b.getCollisionShape();
@@ -99,6 +111,46 @@ void RigidSystem::begin(std::span<const RigidBody* const> bodies)
             m_motion[k] = Motion::Awake;
         if (m_motion[k] == Motion::Awake)
             m_awake.push_back(std::uint32_t(k));
+    }
+}
+
+void RigidSystem::setPoint(std::size_t k, const PointBody& p)
+{
+    Material& m = m_material[k];
+    if (!m.shape || m.shape->radius != p.radius) {
+        auto ball = std::make_shared<CollisionShape>();
+        ball->radius = p.radius;
+        m.shape = std::move(ball);
+    }
+    m.friction = p.friction;
+    m.restitution = p.restitution;
+    m.inverseMass = p.fixed ? 0.0 : 1.0 / p.mass;
+    m.inverseInertiaBody = dmat3(0.0); // a point does not turn
+    m.driftWeight = driftWeight(p.integrator);
+    m_start[k] = p.start;
+    m_end[k] = p.end;
+    m_stillFor[k] = 0.0; // its island never sleeps: the particle moves on under its own forces
+    m_motion[k] = p.fixed ? Motion::Static : Motion::Awake;
+    if (!p.fixed)
+        m_points.push_back(std::uint32_t(k));
+}
+
+bool RigidSystem::joinedPoint(BodyIndex a, BodyIndex b) const
+{
+    if (m_joinedPoints.empty() || (!m_isPoint[a] && !m_isPoint[b]))
+        return false;
+    return std::binary_search(m_joinedPoints.begin(), m_joinedPoints.end(), (std::uint64_t(a) << 32) | b);
+}
+
+void RigidSystem::addJoint(const Joint& joint)
+{
+    m_joints.push_back(joint);
+    // A particle joined to a body hangs at a point of its surface (a rope's end on a crate):
+    // their contact would push it off what holds it.
+    if (joint.b != kWorldBody && (m_isPoint[joint.a] || m_isPoint[joint.b])) {
+        const BodyIndex a = std::min(joint.a, joint.b), b = std::max(joint.a, joint.b);
+        m_joinedPoints.insert(std::upper_bound(m_joinedPoints.begin(), m_joinedPoints.end(), (std::uint64_t(a) << 32) | b),
+                              (std::uint64_t(a) << 32) | b);
     }
 }
 
@@ -138,6 +190,8 @@ void RigidSystem::collidePairs()
         c = Contact{};
         c.a = pair.a;
         c.b = pair.b;
+        if (joinedPoint(pair.a, pair.b))
+            return; // no points
         if (const Contact* old = m_cache.previous(c.key()))
             c.sat = old->sat;
         const RigidState& a = m_start[pair.a];
@@ -176,8 +230,8 @@ void RigidSystem::collideRoom(std::span<const Plane> planes)
         auto& out = m_roomChunks[chunk];
         out.clear();
         for (std::size_t k = chunk * kChunk; k < std::min(n, (chunk + 1) * kChunk); ++k) {
-            if (m_motion[k] != Motion::Awake)
-                continue;
+            if (m_motion[k] != Motion::Awake || m_isPoint[k])
+                continue; // a particle meets the room with its own rule
             const RigidState& s = m_start[k];
             const std::size_t first = out.size();
             collideWithRoom(*m_material[k].shape, Transform{s.x, glm::mat3_cast(s.rotation.orientation)}, planes,
@@ -245,11 +299,11 @@ void RigidSystem::findContacts(std::span<const Plane> planes, double dt)
     m_planes.assign(planes.begin(), planes.end());
     // Nothing awake: every contact is a sleeping one, as the cache holds it (a settled pile costs
     // a look at each body, no more).
-    if (m_awake.empty())
+    if (!anythingAwake())
         return;
     m_cache.beginStep();
     boundingBoxes(dt);
-    m_broadPhase.findPairs(m_boxes, m_motion, m_pairs);
+    m_broadPhase.findPairs(m_boxes, m_motion, m_isPoint, m_pairs);
     collidePairs();
     collideRoom(planes);
     carrySleepingContacts();
@@ -276,7 +330,7 @@ void RigidSystem::prepareBodies(double dt, std::size_t surfaces)
         const Material& m = m_material[k];
         const dmat3 r = glm::mat3_cast(s.rotation.orientation);
         b.inverseInertia = r * m.inverseInertiaBody * glm::transpose(r);
-        b.inertia = glm::inverse(b.inverseInertia);
+        b.inertia = m_isPoint[k] ? dmat3(0.0) : glm::inverse(b.inverseInertia);
         b.inverseMass = m.inverseMass;
         b.driftWeight = m.driftWeight;
         b.v = e.v;
@@ -348,6 +402,8 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
 void RigidSystem::pushOutOfRoom(std::span<const std::uint32_t> bodies)
 {
     for (const std::uint32_t k : bodies) {
+        if (m_isPoint[k])
+            continue;
         SolverBody& b = m_solverBodies[k];
         rigid::pushOutOfRoom(*m_material[k].shape, b.endPosition, b.endOrientation, m_planes);
     }
@@ -391,6 +447,8 @@ void RigidSystem::roomAtEnd(std::span<const std::uint32_t> bodies, std::vector<C
 {
     const std::size_t n = m_world.size();
     for (const std::uint32_t k : bodies) {
+        if (m_isPoint[k])
+            continue;
         const SolverBody& b = m_solverBodies[k];
         const std::size_t first = out.size();
         collideWithRoom(*m_material[k].shape, Transform{b.endPosition, glm::mat3_cast(b.endOrientation)}, m_planes,
@@ -505,7 +563,7 @@ void RigidSystem::updateSleep(double dt)
         return;
     const std::size_t n = m_world.size();
     for (std::size_t k = 0; k < n; ++k) {
-        if (m_motion[k] != Motion::Awake)
+        if (m_motion[k] != Motion::Awake || m_isPoint[k])
             continue;
         const RigidState& e = m_end[k];
         const double spin = glm::length(worldAngularVelocity(e, m_material[k].inverseInertiaBody));
@@ -538,7 +596,7 @@ void RigidSystem::solve(const dvec3& gravity, double dt)
 {
     const std::size_t n = m_world.size();
     m_gravity = gravity;
-    if (m_awake.empty()) {
+    if (!anythingAwake()) {
         m_islands.build(m_motion, {}, {});
         return;
     }

@@ -13,6 +13,11 @@
 //   (the World's free step of the bodies just woken)
 //   solve          islands, then per island: collisions, velocities, positions; then sleep
 //   (the World writes each end state back into its body)
+//
+// A particle with a radius (or joined to a rigid body) takes part as a point body: a ball that
+// does not turn, its start and free end states the particle's own step's (setPoint), touching
+// rigid bodies both ways with the same contact rule and joined to them by the same joints. It
+// meets the room with the particle's own rule and other particles not here, and never sleeps.
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -41,14 +46,27 @@ public:
     std::unique_ptr<RigidSystem> clone() const { return std::make_unique<RigidSystem>(*this); }
     /// The world's body `worldIndex` (a RigidBody) joins the system.
     void add(std::size_t worldIndex);
+    /// The world's particle `worldIndex` joins the system as a point body.
+    void addPoint(std::size_t worldIndex);
+    bool isPoint(std::size_t k) const { return m_isPoint[k] != 0; }
+    /// What a point body is for one step: the particle's states before and after its own step.
+    struct PointBody {
+        RigidState start, end; ///< orientation the identity, no angular momentum
+        double mass = 1.0, radius = 0.0, friction = 0.0, restitution = 1.0;
+        Integrator integrator = Integrator::SemiImplicitEuler;
+        bool fixed = false;
+    };
     std::size_t size() const { return m_world.size(); }
     std::size_t worldIndex(std::size_t k) const { return m_world[k]; }
     RigidSettings& settings() { return m_settings; }
     const RigidSettings& settings() const { return m_settings; }
 
     // ---- the step's phases ----
-    /// Reads every body's start state and what it is made of from the world's bodies.
+    /// Reads every rigid body's start state and what it is made of from the world's bodies
+    /// (null for a point body, which setPoint gives).
     void begin(std::span<const RigidBody* const> bodies);
+    /// Point body k this step (after begin).
+    void setPoint(std::size_t k, const PointBody& point);
     /// The awake bodies (system indices) that the World integrates freely this step.
     const std::vector<std::uint32_t>& awake() const { return m_awake; }
     const RigidState& start(std::size_t k) const { return m_start[k]; }
@@ -66,7 +84,7 @@ public:
 
     // ---- joints ----
     /// A joint between two of the system's bodies, or (b == kWorldBody) between a and the world.
-    void addJoint(const Joint& joint) { m_joints.push_back(joint); }
+    void addJoint(const Joint& joint);
     const std::vector<Joint>& joints() const { return m_joints; }
     /// The index the solver gives the world (a static body): after the bodies, before the room.
     BodyIndex worldBody() const { return BodyIndex(m_world.size()); }
@@ -91,6 +109,9 @@ private:
         dmat3 inverseInertiaBody{0.0};
         double driftWeight = 1.0;
     };
+    bool anythingAwake() const { return !m_awake.empty() || !m_points.empty(); }
+    /// Whether a contact between a and b is left out: a particle and the body it is joined to.
+    bool joinedPoint(BodyIndex a, BodyIndex b) const;
     void boundingBoxes(double dt);
     void collidePairs();
     void collideRoom(std::span<const Plane> planes);
@@ -111,6 +132,9 @@ private:
     std::vector<std::size_t> m_world; ///< each body's index in the world
     std::vector<Material> m_material;
     std::vector<Motion> m_motion;
+    std::vector<std::uint8_t> m_isPoint;
+    std::vector<std::uint32_t> m_points; ///< the moving point bodies of this step
+    std::vector<std::uint64_t> m_joinedPoints; ///< sorted keys of point-body pairs a joint joins
     std::vector<double> m_stillFor; ///< seconds below the sleep speed
     std::vector<RigidState> m_start, m_end;
     std::vector<double> m_reach; ///< how far any point of the body moves in the step

@@ -1,0 +1,148 @@
+// The scenes where particles, ropes and cloth touch rigid bodies, held to their one-line claims,
+// each measured here from the bodies' states rather than from the engine's contacts: a sheet
+// drapes over a fixed box with no particle inside it, a crate bounces on a trampoline cloth and
+// comes to rest on it, and a crate on a rope knocks a wall of boxes down with its joint holding.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "pba/scene/scene.hpp"
+#include "pba/world.hpp"
+#include "support/scene_claim.hpp"
+
+using namespace pba;
+
+namespace {
+
+template <class OnStep>
+void run(Scene& scene, const OnStep& onStep)
+{
+    const auto steps = static_cast<long>(std::lround(scene.duration / scene.dt));
+    for (long n = 0; n < steps; ++n) {
+        scene.world.step(scene.dt);
+        onStep(n + 1);
+    }
+}
+
+std::size_t bodyNamed(const World& world, const std::string& name)
+{
+    const auto i = world.findBody(name);
+    EXPECT_TRUE(i.has_value()) << name;
+    return i.value_or(0);
+}
+
+/// How far p lies inside an axis-aligned box (negative: outside, by at least that much).
+double depthInside(const dvec3& p, const dvec3& centre, const dvec3& half)
+{
+    const dvec3 d = half - glm::abs(p - centre);
+    return std::min({d.x, d.y, d.z});
+}
+
+double speedOf(const Body& b) { return glm::length(b.getVel()); }
+
+} // namespace
+
+SCENE_CLAIM(TouchSceneClaims, ClothOnBoxDrapesOverTheBoxWithNoParticleInsideIt, "cloth-on-box")
+{
+    Scene scene = loadScene("cloth-on-box");
+    World& world = scene.world;
+    const auto& box = world.body(bodyNamed(world, "box"));
+    const dvec3 centre = box.getPos(), half(0.4);
+    std::vector<std::size_t> sheet;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (world.body(i).getName().rfind("sheet[", 0) == 0)
+            sheet.push_back(i);
+    ASSERT_EQ(sheet.size(), 256u);
+    double deepest = -INFINITY; // of the particles' surfaces (a radius, 2 cm, from their centres)
+    run(scene, [&](long) {
+        for (const std::size_t i : sheet)
+            deepest = std::max(deepest, depthInside(world.body(i).getPos(), centre, half) + 0.02);
+    });
+    EXPECT_LE(deepest, 1e-3) << "a particle inside the box";
+    const auto& middle = world.body(bodyNamed(world, "sheet[8,8]"));
+    EXPECT_NEAR(middle.getPos().y, 0.8 + 0.02, 1e-3); // on the top, a radius above it
+    for (const char* corner : {"sheet[0,0]", "sheet[15,0]", "sheet[0,15]", "sheet[15,15]"})
+        EXPECT_LT(world.body(bodyNamed(world, corner)).getPos().y, 0.8 - 0.2) << corner << " hangs down a side";
+    double fastest = 0.0;
+    for (const std::size_t i : sheet)
+        fastest = std::max(fastest, speedOf(world.body(i)));
+    EXPECT_LT(fastest, 0.01);
+}
+
+SCENE_CLAIM(TouchSceneClaims, TrampolineThrowsTheCrateBackUpAndHoldsItAtRest, "trampoline")
+{
+    Scene scene = loadScene("trampoline");
+    World& world = scene.world;
+    const auto& crate = world.body(bodyNamed(world, "crate"));
+    const auto& middle = world.body(bodyNamed(world, "trampoline[7,7]"));
+    double lowest = INFINITY, lowestCloth = INFINITY, rebound = -INFINITY;
+    bool landed = false;
+    run(scene, [&](long) {
+        lowest = std::min(lowest, crate.getPos().y);
+        lowestCloth = std::min(lowestCloth, middle.getPos().y);
+        if (crate.getVel().y > 0.0)
+            landed = true;
+        if (landed && scene.world.time() < 1.5)
+            rebound = std::max(rebound, crate.getPos().y);
+    });
+    // The cloth gave way under it (momentum both ways), and threw it back up 0.6 m.
+    EXPECT_LT(lowestCloth, 1.5 - 0.4);
+    EXPECT_GT(rebound - lowest, 0.5);
+    EXPECT_GT(lowest - 0.2, 0.9) << "the crate reached within 0.9 m of the floor";
+    EXPECT_NEAR(crate.getPos().y - 0.2, 1.29, 0.01); // its bottom, at rest in the sag
+    EXPECT_LT(speedOf(crate), 1e-3);
+}
+
+SCENE_CLAIM(TouchSceneClaims, HangingCrateKnocksTheWallDownOnARopeWhoseJointHolds, "hanging-crate")
+{
+    Scene scene = loadScene("hanging-crate");
+    World& world = scene.world;
+    std::vector<std::pair<std::size_t, dvec3>> wall;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (world.isRigid(i) && world.body(i).getName() != "crate")
+            wall.emplace_back(i, world.body(i).getPos());
+    ASSERT_EQ(wall.size(), 20u);
+    const dvec3 pin = world.body(bodyNamed(world, "rope[0]")).getPos();
+    double worstJoint = 0.0;
+    run(scene, [&](long) {
+        const JointFrame f = world.jointFrame(0);
+        worstJoint = std::max(worstJoint, glm::length(f.onA - f.onB));
+    });
+    EXPECT_LT(worstJoint, 1e-6);
+    const auto moved = std::count_if(wall.begin(), wall.end(), [&](const auto& box) {
+        return glm::length(world.body(box.first).getPos() - box.second) > 0.3;
+    });
+    EXPECT_EQ(moved, 6);
+    EXPECT_EQ(world.body(bodyNamed(world, "rope[0]")).getPos(), pin);
+}
+
+// Momentum passes both ways: a crate dropped on a rope pinned at both ends slows while the rope under it is
+// pushed down, and the two end moving together.
+TEST(TouchScenes, ACrateDroppedOnARopeSlowsAndTheRopeMoves)
+{
+    Scene scene = parseScene(R"({"dt": 0.001, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 4, 2]},
+        "ropes": [{"name": "rope", "from": [-1, 2, 0], "to": [1, 2, 0], "count": 21, "mass": 0.5, "stiffness": 2000,
+                   "damping": 0.5, "pinned": ["start", "end"], "radius": 0.03}],
+        "rigid_bodies": [{"name": "crate", "shape": {"type": "box", "size": [0.3, 0.3, 0.3]}, "mass": 2,
+                          "position": [0, 2.6, 0.0]}]})",
+                             "slack.json");
+    World& world = scene.world;
+    const auto& crate = world.body(bodyNamed(world, "crate"));
+    const auto& middle = world.body(bodyNamed(world, "rope[10]"));
+    double ropeFastestDown = 0.0;
+    bool slowed = false;
+    for (int n = 0; n < 600; ++n) {
+        const double before = crate.getVel().y;
+        world.step(scene.dt);
+        // Free, it gains g dt of downward speed a step; on the rope, less, or it rises.
+        if (crate.getPos().y < 2.3 && crate.getVel().y > before - 0.5 * 9.81 * scene.dt)
+            slowed = true;
+        ropeFastestDown = std::max(ropeFastestDown, -middle.getVel().y);
+    }
+    EXPECT_TRUE(slowed);
+    EXPECT_GT(ropeFastestDown, 1.0); // pushed down at more than 1 m/s
+    EXPECT_GT(crate.getPos().y, 1.0); // held by the rope, above the floor
+}
