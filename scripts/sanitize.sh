@@ -19,10 +19,11 @@ gl='^(PbaRender|PbaView|HeadlessRender|RenderClock|Security|Outputs)\.'
 # tests packaging, which the plain build already does. The simulated hours (tunnelling, soak)
 # run the same code as the short tests 10^4 times over; unvectorised and checked at every load
 # they would take most of CI's half hour, so they run in the plain build only; so do the rigid
-# scenes' claims and the thousand-dice piles, whose contact code the rigid unit tests run here,
+# scenes' claims (and the touch scenes': particles on rigid bodies) and the thousand-dice piles,
+# whose contact code the rigid unit tests run here,
 # and the crowded-block comparison (110 s here against 12 s plain), whose crowded blocks the
 # swarm scenes' tests step here too.
-long='^(Tunnelling|Soak|Pile|ContactSceneClaims)\.|^RigidWorld\.ManyDice|^Swarm\.CrowdedBlocksGetTheSameRuleAsParticlesAlone$'
+long='^(Tunnelling|Soak|Pile|ContactSceneClaims|TouchSceneClaims)\.|^RigidWorld\.ManyDice|^Swarm\.CrowdedBlocksGetTheSameRuleAsParticlesAlone$'
 ctest --test-dir build-asan --output-on-failure -j "$jobs" -E "$gl|^install\.|$long"
 # The OpenGL tests (and the output tests, whose pba children render) run with address and UB
 # checks but without leak checks: llvmpipe's JIT-compiled
