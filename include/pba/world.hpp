@@ -448,7 +448,7 @@ private:
     /// with its masses, and the springs' fixed ends placed.
     detail::SpringSolver& startSpringSystem(const std::vector<std::size_t>& members, bool xpbd);
     /// The system's end states through the surfaces into its bodies, each checked finite.
-    void collideAndStore(const std::vector<std::size_t>& members);
+    void collideAndStore(const std::vector<std::size_t>& members, double dt);
     /// Phase 5 (RigidBodies, Bodies, Forces, Surfaces): the awake bodies' free step
     /// (integrateRigidFreely), the rigid system's findContacts, the free step of the bodies it
     /// woke, its solve, then storeRigidBodies.

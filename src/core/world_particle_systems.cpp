@@ -81,10 +81,10 @@ void World::integrateCoupled(Integrator integrator, const std::vector<std::size_
         return a;
     };
     integrate(integrator, s.x, s.v, dt, accel);
-    collideAndStore(members);
+    collideAndStore(members, dt);
 }
 
-void World::collideAndStore(const std::vector<std::size_t>& members)
+void World::collideAndStore(const std::vector<std::size_t>& members, double dt)
 {
     // Collisions, the bodies' new states and the check that they are finite in one pass, so
     // each body's object is visited once here: a cloth's bodies are many and far apart.
@@ -97,9 +97,9 @@ void World::collideAndStore(const std::vector<std::size_t>& members)
         const auto ball = ballPlanes(planes, m_bodies.radii[i], room);
         if (!planes.empty())
             m_bodies.bounces[i] += static_cast<std::uint64_t>(
-                coupledCollisionResponse() == CollisionResponse::Clamp
-                    ? clampAfterStep(ball, m_bodies.cors[i], m_bodies.previous[i].pos, end.pos, end.vel)
-                    : reflectAfterStep(ball, m_bodies.cors[i], m_bodies.previous[i].pos, end.pos, end.vel));
+                afterStepWithFriction(coupledCollisionResponse(), ball, m_bodies.cors[i], m_bodies.frictions[i],
+                                      glm::length(s.acc[k]) * dt, m_bodies.previous[i].pos, end.pos,
+                                      end.vel));
         Body& b = *m_bodies.objects[i];
         b.setState(end);
         b.setAcc(s.acc[k]);
@@ -142,7 +142,7 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
     });
     solver.backwardEuler.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n),
                               start, dt);
-    collideAndStore(members);
+    collideAndStore(members, dt);
 }
 
 void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt)
@@ -160,7 +160,7 @@ void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<con
                      m_particleSystems.xpbdSubsteps, external);
     // The step's mean acceleration: XPBD has no force at the start to keep.
     detail::forEachIndex(n, [&](std::size_t k) { s.acc[k] = (s.v[k] - m_bodies.previous[members[k]].vel) / dt; });
-    collideAndStore(members);
+    collideAndStore(members, dt);
 }
 
 } // namespace pba

@@ -193,7 +193,7 @@ void World::integrateIndependent(const std::vector<std::size_t>& bodies, double 
         std::array<Plane, kMaxBallPlanes> room;
         const auto planes = ballPlanes(std::span<const Plane>(m_surfaces.planes), m_bodies.radii[i], room);
         const int bounces = stepWithCollisions(m_surfaces.response, b.getIntegrator(), planes, b.getCor(), s.pos,
-                                               s.vel, dt, accel);
+                                               s.vel, dt, accel, m_bodies.frictions[i]);
         m_bodies.bounces[i] += static_cast<std::uint64_t>(bounces);
         b.setState(s);
         b.setAcc(startAcc);
