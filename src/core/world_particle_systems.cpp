@@ -7,6 +7,7 @@
 
 #include "collision_rules.hpp"
 #include "parallel.hpp"
+#include "particle_contacts.hpp"
 #include "spring_solvers.hpp"
 #include "world_checks.hpp"
 
@@ -161,6 +162,36 @@ void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<con
     // The step's mean acceleration: XPBD has no force at the start to keep.
     detail::forEachIndex(n, [&](std::size_t k) { s.acc[k] = (s.v[k] - m_bodies.previous[members[k]].vel) / dt; });
     collideAndStore(members, dt);
+}
+
+void World::collideBalls(double dt)
+{
+    detail::BallContacts& contacts = *m_particleSystems.ballContacts;
+    contacts.balls.clear();
+    contacts.bodies.clear();
+    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i) {
+        if (m_bodies.radii[i] == 0.0)
+            continue;
+        const Body& b = *m_bodies.objects[i];
+        contacts.bodies.push_back(i);
+        contacts.balls.push_back({b.getPos(), b.getVel(), b.isFixed() ? 0.0 : 1.0 / m_bodies.masses[i],
+                                  m_bodies.radii[i], m_bodies.cors[i], m_bodies.frictions[i],
+                                  glm::length(b.getAcc()) * dt});
+    }
+    if (contacts.balls.size() < 2)
+        return;
+    const auto& independent = m_particleSystems.coupling.independent;
+    auto coupled = [&](std::uint32_t ball) {
+        return !std::binary_search(independent.begin(), independent.end(), contacts.bodies[ball]);
+    };
+    constexpr int kSweeps = 8;
+    contacts.solve(m_surfaces.planes, kSweeps,
+                   [&](std::uint32_t a, std::uint32_t b) { return !(coupled(a) && coupled(b)); });
+    if (contacts.pairs.empty())
+        return;
+    for (std::size_t k = 0; k < contacts.balls.size(); ++k)
+        if (!m_bodies.objects[contacts.bodies[k]]->isFixed())
+            m_bodies.objects[contacts.bodies[k]]->setState({contacts.balls[k].x, contacts.balls[k].v});
 }
 
 } // namespace pba

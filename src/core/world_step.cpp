@@ -35,6 +35,7 @@ void World::step(double dt)
         const Coupling& coupling = couple(); // a mixed coupled group throws before anything moves
         integrateIndependent(coupling.independent, dt);
         integrateParticleSystems(coupling, dt);
+        collideBalls(dt);
         stepRigidBodies(dt);
     });
     stepSwarms(dt);
