@@ -456,6 +456,9 @@ private:
     /// other after their step are separated and exchange impulses (src/core/particle_contacts.hpp);
     /// particles of one rope or cloth, both coupled, are left to their springs.
     void collideBalls(double dt);
+    /// Phase 6, for a swarm that collides: its grains through the same contacts as collideBalls
+    /// (`restingSpeed`: gravity's speed in one step).
+    void collideGrains(Swarm& swarm, double restingSpeed);
     /// Phase 5 (RigidBodies, Bodies, Forces, Surfaces): the awake bodies' free step
     /// (integrateRigidFreely), the rigid system's findContacts, the free step of the bodies it
     /// woke, its solve, then storeRigidBodies.

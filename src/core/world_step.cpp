@@ -220,6 +220,8 @@ void World::stepSwarms(double dt)
         std::array<PlaneT<float>, kMaxBallPlanes> room;
         swarm->step(fields, ballPlanes(std::span<const PlaneT<float>>(planes), swarm->radius(), room),
                     m_surfaces.response, float(dt), m_threads);
+        if (swarm->desc().collide)
+            collideGrains(*swarm, glm::length(dvec3(fields.gravity)) * dt);
     }
 }
 

@@ -91,3 +91,56 @@ TEST(ParticleContacts, ResultsAreTheSameOnOneAndTwoThreads)
         ASSERT_EQ(one[i].vel, two[i].vel) << i;
     }
 }
+
+namespace {
+
+/// A swarm of colliding grains poured onto the floor of a small room, after `steps` steps.
+World grainPile(int threads, int steps)
+{
+    World world;
+    world.addForce(std::make_unique<Gravity>(dvec3(0, -9.81, 0)));
+    world.setRoom({dvec3(-0.5, 0, -0.5), dvec3(0.5, 2, 0.5)});
+    world.setCollisionResponse(CollisionResponse::Reflect);
+    world.setThreads(threads);
+    SwarmDesc desc;
+    desc.name = "grains";
+    desc.count = 300;
+    desc.regionMin = dvec3(-0.3, 0.3, -0.3);
+    desc.regionMax = dvec3(0.3, 1.2, 0.3);
+    desc.restitution = 0.2;
+    desc.radius = 0.04;
+    desc.friction = 0.5;
+    desc.collide = true;
+    desc.seed = 3;
+    world.addSwarm(desc);
+    for (int step = 0; step < steps; ++step)
+        world.step(2e-3);
+    return world;
+}
+
+} // namespace
+
+TEST(ParticleContacts, ASwarmsGrainsPileUpWithoutOverlappingByMoreThanATenthOfTheirRadius)
+{
+    const World world = grainPile(0, 1500); // 3 s: poured, fallen and settled
+    const Swarm& grains = world.swarm(0);
+    const float r = grains.radius();
+    float deepest = 0.0f, highest = 0.0f;
+    for (std::size_t i = 0; i < grains.size(); ++i) {
+        highest = std::max(highest, grains.position(i).y);
+        ASSERT_GE(grains.position(i).y, r * 0.999f) << "on or above the floor";
+        for (std::size_t j = i + 1; j < grains.size(); ++j)
+            deepest = std::max(deepest, 2.0f * r - glm::length(grains.position(j) - grains.position(i)));
+    }
+    EXPECT_LT(deepest, 0.1f * r);
+    EXPECT_GT(highest, 2.0f * r) << "they stack: 300 grains do not fit in one layer of the room";
+}
+
+TEST(ParticleContacts, ASwarmsGrainsAreTheSameOnOneAndTwoThreads)
+{
+    const World one = grainPile(1, 200), two = grainPile(2, 200);
+    for (std::size_t i = 0; i < one.swarm(0).size(); ++i) {
+        ASSERT_EQ(one.swarm(0).position(i), two.swarm(0).position(i)) << i;
+        ASSERT_EQ(one.swarm(0).velocity(i), two.swarm(0).velocity(i)) << i;
+    }
+}
