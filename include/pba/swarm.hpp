@@ -34,7 +34,8 @@ struct SwarmDesc {
     double mass = 1.0;
     double restitution = 1.0;
     double radius = 0.0;   ///< every particle's, m; 0: points
-    double friction = 0.0; ///< Coulomb mu against the room (and each other)
+    double friction = 0.0; ///< Coulomb mu between its particles when they collide
+    bool collide = false;  ///< its particles collide with each other (they need a radius)
     Integrator integrator = Integrator::SemiImplicitEuler;
     std::uint64_t seed = 1;
 };

@@ -76,6 +76,7 @@ namespace detail {
 class SpringSystem;
 struct SpringSolver;
 struct SpringSolvers;
+struct BallContacts;
 }
 
 /// An axis-aligned box: the room.
@@ -367,6 +368,8 @@ private:
         Coupling coupling;
         CoupledScratch scratch;
         ClonePtr<detail::SpringSolvers> springSolvers; ///< implicit-euler's and xpbd's
+        /// The particles with a radius against each other: their grid, pairs and balls.
+        ClonePtr<detail::BallContacts> ballContacts;
         int xpbdSubsteps = kDefaultXpbdSubsteps;
     };
     /// The free step's buffers of the rigid bodies, reused from step to step.
@@ -449,7 +452,14 @@ private:
     /// with its masses, and the springs' fixed ends placed.
     detail::SpringSolver& startSpringSystem(const std::vector<std::size_t>& members, bool xpbd);
     /// The system's end states through the surfaces into its bodies, each checked finite.
-    void collideAndStore(const std::vector<std::size_t>& members);
+    void collideAndStore(const std::vector<std::size_t>& members, double dt);
+    /// Phase 4b (ParticleSystems, Bodies, Surfaces): the particles with a radius that touch each
+    /// other after their step are separated and exchange impulses (src/core/particle_contacts.hpp);
+    /// particles of one rope or cloth, both coupled, are left to their springs.
+    void collideBalls(double dt);
+    /// Phase 6, for a swarm that collides: its grains through the same contacts as collideBalls
+    /// (`restingSpeed`: gravity's speed in one step).
+    void collideGrains(Swarm& swarm, double restingSpeed);
     /// Phase 5 (RigidBodies, Bodies, Forces, Surfaces): the awake bodies' free step
     /// (integrateRigidFreely), the rigid system's findContacts, the free step of the bodies it
     /// woke, its solve, then storeRigidBodies.

@@ -187,6 +187,32 @@ inline std::array<int, 2> wallsOnAxis(std::span<const PlaneT<T>> planes, int axi
 
 } // namespace collision_detail
 
+/// Coulomb friction of a push off a surface: a body whose velocity changed by `normalChange` (m/s,
+/// not negative) along the unit normal n loses up to mu times that of its velocity along the
+/// surface, and never more than it has (friction stops a body; it never turns it back).
+template <class T>
+inline void rubAlong(const Vec3<T>& n, T mu, T normalChange, Vec3<T>& v)
+{
+    const Vec3<T> vt = v - glm::dot(n, v) * n;
+    const T speed = glm::length(vt);
+    if (speed > T(0))
+        v -= std::min(T(1), mu * normalChange / speed) * vt;
+}
+
+/// The acceleration a surface's friction adds to `a` (already rid of its part into the surface,
+/// of size `pressing` = -a.n) for a body resting on it at velocity v: what would stop it within
+/// dt if that takes no more than mu times the pressing, else that much against it. So a body
+/// at rest stays while the pull along the surface is within the friction cone (static), and a
+/// sliding one is slowed by mu |a.n| (kinetic): Coulomb's law with one mu for both.
+template <class T>
+inline Vec3<T> restingFriction(const Vec3<T>& n, T mu, T pressing, const Vec3<T>& v, const Vec3<T>& a, T dt)
+{
+    const Vec3<T> stop = -((v - glm::dot(n, v) * n) / dt + (a - glm::dot(n, a) * n));
+    const T needed = glm::length(stop);
+    const T limit = mu * pressing;
+    return needed <= limit ? stop : (limit / needed) * stop;
+}
+
 /// The planes a ball of `radius` meets with its centre (PlaneT::inflatedBy), in `room` (up to
 /// kMaxBallPlanes planes; those beyond are left out); radius 0 hands back `planes` themselves, so a
 /// point is stepped exactly as it was before balls had radii.
@@ -213,7 +239,7 @@ inline std::span<const PlaneT<T>> ballPlanes(std::span<const PlaneT<T>> planes, 
 /// lost, so every rebound is kept.
 template <class T, class Accel>
 inline int stepExact(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
-                     Vec3<T>& v, T dt, Accel&& accel)
+                     Vec3<T>& v, T dt, Accel&& accel, T friction = T(0))
 {
     using namespace collision_detail;
     constexpr std::size_t kMaxPlanes = 8;
@@ -222,8 +248,11 @@ inline int stepExact(Integrator integrator, std::span<const PlaneT<T>> planes, T
         Vec3<T> a = accel(px, pv);
         for (std::size_t p = 0; p < planes.size() && p < kMaxPlanes; ++p) {
             const T an = glm::dot(planes[p].normal, a);
-            if (contact[p] && an < T(0))
+            if (contact[p] && an < T(0)) {
                 a -= an * planes[p].normal;
+                if (friction > T(0))
+                    a += restingFriction(planes[p].normal, friction, -an, pv, a, dt);
+            }
         }
         return a;
     };
@@ -263,6 +292,8 @@ inline int stepExact(Integrator integrator, std::span<const PlaneT<T>> planes, T
         const T an = glm::dot(plane.normal, accel(x, v));
         if (vn < T(0)) {
             v -= (T(1) + restitution) * vn * plane.normal;
+            if (friction > T(0))
+                rubAlong(plane.normal, friction, -(T(1) + restitution) * vn, v);
             ++bounces;
             if (restitution < T(1) && an < T(0) && -restitution * vn < -an * dt)
                 v -= glm::dot(plane.normal, v) * plane.normal; // too weak to leave: rest
@@ -395,6 +426,29 @@ inline int clampAfterStep(std::span<const PlaneT<T>> planes, T restitution, cons
     return bounces + collision_detail::keepInside(planes, restitution, start, x, v);
 }
 
+/// The reflect or clamp rule after a full step from `start`, with Coulomb friction from the push
+/// it gave: the body's velocity changed by dv along the push, and loses up to mu |dv| along the
+/// surface (rubAlong). A push on a body that arrived no faster than twice `restingSpeed` (what
+/// its acceleration gives in one step, |a| dt) is resting contact, not a bounce, as the exact
+/// rule's rebound too weak to leave the surface for a step: a body lying on the floor is pulled
+/// below it by every step and pushed back, and a rope's end counted a bounce nearly every step.
+template <class T>
+inline int afterStepWithFriction(CollisionResponse response, std::span<const PlaneT<T>> planes, T restitution,
+                                 T friction, T restingSpeed, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v)
+{
+    const Vec3<T> before = v;
+    const int bounces = response == CollisionResponse::Clamp ? clampAfterStep(planes, restitution, start, x, v)
+                                                             : reflectAfterStep(planes, restitution, start, x, v);
+    const Vec3<T> change = v - before;
+    const T size = glm::length(change);
+    if (!(size > T(0)))
+        return bounces;
+    const Vec3<T> n = change / size;
+    if (friction > T(0))
+        rubAlong(n, friction, size, v);
+    return -glm::dot(n, before) > T(2) * restingSpeed ? bounces : 0;
+}
+
 /// The classic response: a full step, then reflectAfterStep.
 template <class T, class Accel>
 inline int stepReflect(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
@@ -416,20 +470,25 @@ inline int stepClamp(Integrator integrator, std::span<const PlaneT<T>> planes, T
 }
 
 /// One step of a body with the chosen response; returns the number of bounces.
+/// `friction` is the Coulomb mu against the planes (0: none, and the step is exactly the
+/// frictionless one). The exact response rubs while the body rests on a plane and at each bounce;
+/// reflect and clamp rub with their push's impulse (afterStepWithFriction).
 template <class T, class Accel>
 inline int stepWithCollisions(CollisionResponse response, Integrator integrator, std::span<const PlaneT<T>> planes,
-                              T restitution, Vec3<T>& x, Vec3<T>& v, T dt, Accel&& accel)
+                              T restitution, Vec3<T>& x, Vec3<T>& v, T dt, Accel&& accel, T friction = T(0))
 {
     if (planes.empty()) {
         integrate(integrator, x, v, dt, accel);
         return 0;
     }
-    switch (response) {
-    case CollisionResponse::Exact: return stepExact(integrator, planes, restitution, x, v, dt, accel);
-    case CollisionResponse::Reflect: return stepReflect(integrator, planes, restitution, x, v, dt, accel);
-    case CollisionResponse::Clamp: return stepClamp(integrator, planes, restitution, x, v, dt, accel);
-    }
-    return 0;
+    if (response == CollisionResponse::Exact)
+        return stepExact(integrator, planes, restitution, x, v, dt, accel, friction);
+    const Vec3<T> start = x, startVel = v;
+    integrate(integrator, x, v, dt, accel);
+    // The acceleration at the start again only when the rule pushed: most steps it does not.
+    const bool pushed = !collision_detail::insideAll(planes, x);
+    const T restingSpeed = pushed ? glm::length(accel(start, startVel)) * dt : T(0);
+    return afterStepWithFriction(response, planes, restitution, friction, restingSpeed, start, x, v);
 }
 
 } // namespace pba

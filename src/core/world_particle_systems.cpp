@@ -7,6 +7,7 @@
 
 #include "collision_rules.hpp"
 #include "parallel.hpp"
+#include "particle_contacts.hpp"
 #include "spring_solvers.hpp"
 #include "world_checks.hpp"
 
@@ -81,10 +82,10 @@ void World::integrateCoupled(Integrator integrator, const std::vector<std::size_
         return a;
     };
     integrate(integrator, s.x, s.v, dt, accel);
-    collideAndStore(members);
+    collideAndStore(members, dt);
 }
 
-void World::collideAndStore(const std::vector<std::size_t>& members)
+void World::collideAndStore(const std::vector<std::size_t>& members, double dt)
 {
     // Collisions, the bodies' new states and the check that they are finite in one pass, so
     // each body's object is visited once here: a cloth's bodies are many and far apart.
@@ -97,9 +98,9 @@ void World::collideAndStore(const std::vector<std::size_t>& members)
         const auto ball = ballPlanes(planes, m_bodies.radii[i], room);
         if (!planes.empty())
             m_bodies.bounces[i] += static_cast<std::uint64_t>(
-                coupledCollisionResponse() == CollisionResponse::Clamp
-                    ? clampAfterStep(ball, m_bodies.cors[i], m_bodies.previous[i].pos, end.pos, end.vel)
-                    : reflectAfterStep(ball, m_bodies.cors[i], m_bodies.previous[i].pos, end.pos, end.vel));
+                afterStepWithFriction(coupledCollisionResponse(), ball, m_bodies.cors[i], m_bodies.frictions[i],
+                                      glm::length(s.acc[k]) * dt, m_bodies.previous[i].pos, end.pos,
+                                      end.vel));
         Body& b = *m_bodies.objects[i];
         b.setState(end);
         b.setAcc(s.acc[k]);
@@ -142,7 +143,7 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
     });
     solver.backwardEuler.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n),
                               start, dt);
-    collideAndStore(members);
+    collideAndStore(members, dt);
 }
 
 void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt)
@@ -160,7 +161,55 @@ void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<con
                      m_particleSystems.xpbdSubsteps, external);
     // The step's mean acceleration: XPBD has no force at the start to keep.
     detail::forEachIndex(n, [&](std::size_t k) { s.acc[k] = (s.v[k] - m_bodies.previous[members[k]].vel) / dt; });
-    collideAndStore(members);
+    collideAndStore(members, dt);
+}
+
+void World::collideBalls(double dt)
+{
+    detail::BallContacts& contacts = *m_particleSystems.ballContacts;
+    contacts.balls.clear();
+    contacts.bodies.clear();
+    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i) {
+        if (m_bodies.radii[i] == 0.0)
+            continue;
+        const Body& b = *m_bodies.objects[i];
+        contacts.bodies.push_back(i);
+        contacts.balls.push_back({b.getPos(), b.getVel(), b.isFixed() ? 0.0 : 1.0 / m_bodies.masses[i],
+                                  m_bodies.radii[i], m_bodies.cors[i], m_bodies.frictions[i],
+                                  glm::length(b.getAcc()) * dt});
+    }
+    if (contacts.balls.size() < 2)
+        return;
+    const auto& independent = m_particleSystems.coupling.independent;
+    auto coupled = [&](std::uint32_t ball) {
+        return !std::binary_search(independent.begin(), independent.end(), contacts.bodies[ball]);
+    };
+    constexpr int kSweeps = 8;
+    contacts.solve(m_surfaces.planes, kSweeps,
+                   [&](std::uint32_t a, std::uint32_t b) { return !(coupled(a) && coupled(b)); });
+    if (contacts.pairs.empty())
+        return;
+    for (std::size_t k = 0; k < contacts.balls.size(); ++k)
+        if (!m_bodies.objects[contacts.bodies[k]]->isFixed())
+            m_bodies.objects[contacts.bodies[k]]->setState({contacts.balls[k].x, contacts.balls[k].v});
+}
+
+void World::collideGrains(Swarm& swarm, double restingSpeed)
+{
+    // The grains in double precision through the particles' own contacts: one rule for both.
+    detail::BallContacts& contacts = *m_particleSystems.ballContacts;
+    contacts.balls.resize(swarm.size());
+    const double inverseMass = 1.0 / double(swarm.mass());
+    detail::forEachIndex(swarm.size(), [&](std::size_t i) {
+        contacts.balls[i] = {dvec3(swarm.position(i)), dvec3(swarm.velocity(i)), inverseMass, double(swarm.radius()),
+                             double(swarm.restitution()), double(swarm.friction()), restingSpeed};
+    });
+    constexpr int kSweeps = 4;
+    auto always = [](std::uint32_t, std::uint32_t) { return true; };
+    detail::onCores(m_threads, [&] { contacts.solve(m_surfaces.planes, kSweeps, always); });
+    detail::forEachIndex(swarm.size(), [&](std::size_t i) {
+        swarm.set(i, Vec3<float>(contacts.balls[i].x), Vec3<float>(contacts.balls[i].v));
+    });
 }
 
 } // namespace pba

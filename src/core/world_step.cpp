@@ -35,6 +35,7 @@ void World::step(double dt)
         const Coupling& coupling = couple(); // a mixed coupled group throws before anything moves
         integrateIndependent(coupling.independent, dt);
         integrateParticleSystems(coupling, dt);
+        collideBalls(dt);
         stepRigidBodies(dt);
     });
     stepSwarms(dt);
@@ -193,7 +194,7 @@ void World::integrateIndependent(const std::vector<std::size_t>& bodies, double 
         std::array<Plane, kMaxBallPlanes> room;
         const auto planes = ballPlanes(std::span<const Plane>(m_surfaces.planes), m_bodies.radii[i], room);
         const int bounces = stepWithCollisions(m_surfaces.response, b.getIntegrator(), planes, b.getCor(), s.pos,
-                                               s.vel, dt, accel);
+                                               s.vel, dt, accel, m_bodies.frictions[i]);
         m_bodies.bounces[i] += static_cast<std::uint64_t>(bounces);
         b.setState(s);
         b.setAcc(startAcc);
@@ -219,6 +220,8 @@ void World::stepSwarms(double dt)
         std::array<PlaneT<float>, kMaxBallPlanes> room;
         swarm->step(fields, ballPlanes(std::span<const PlaneT<float>>(planes), swarm->radius(), room),
                     m_surfaces.response, float(dt), m_threads);
+        if (swarm->desc().collide)
+            collideGrains(*swarm, glm::length(dvec3(fields.gravity)) * dt);
     }
 }
 

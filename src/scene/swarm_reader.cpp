@@ -39,7 +39,7 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
 {
     ObjectReader reader(value, path, file);
     reader.expectKeys({"name", "count", "region", "velocity", "velocity_jitter", "mass", "restitution", "radius",
-                       "friction", "integrator", "seed"});
+                       "friction", "collide", "integrator", "seed"});
     SwarmDesc desc;
     desc.name = readName(reader, "name");
     if (desc.name.empty() || !names.insert(desc.name).second)
@@ -79,6 +79,9 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
                                           ballOutsideText(world, insideSurfaces(world, desc.regionMin, desc.radius)
                                                                      ? desc.regionMax : desc.regionMin,
                                                           desc.radius)));
+    desc.collide = reader.boolean("collide", false);
+    if (desc.collide && desc.radius == 0.0)
+        reader.fail("collide", "its particles need a \"radius\" to collide: points never touch");
     desc.integrator = readIntegrator(reader, "integrator", Integrator::SemiImplicitEuler);
     if (isSpringSystemMethod(desc.integrator))
         reader.fail("integrator", fmt::format("{} steps particles joined by springs; a swarm has none: take "

@@ -143,6 +143,7 @@ INSTANTIATE_TEST_SUITE_P(
                                 "rows": 2, "friction": -0.2}]})",
                              "cloths[0].friction", "must not be negative"},
                     BadScene{S(R"("radius": -1)"), "swarms[0].radius", "must not be negative"},
+                    BadScene{S(R"("collide": true)"), "swarms[0].collide", "need a \"radius\" to collide"},
                     BadScene{S(R"("radius": 1.5)"), "swarms[0].radius", "its region's corner: a ball of radius 1.5"},
                     BadScene{R"({"duration": 0})", "duration", "must be positive"},
                     BadScene{R"({"gravity": [0, -9.81]})", "gravity", "array of 3 numbers"},

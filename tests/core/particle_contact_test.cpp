@@ -1,0 +1,146 @@
+// Balls against balls. Oracles: a head-on elastic collision conserves momentum and energy, so
+// two equal balls exchange velocities and unequal ones leave with
+// v1' = ((m1 - m2) v1 + 2 m2 v2) / (m1 + m2); a ball resting on another resting on the floor has
+// every force balanced and stays; the pairs are solved in index order, so the thread count
+// changes nothing.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "pba/forces.hpp"
+#include "pba/world.hpp"
+
+using namespace pba;
+
+namespace {
+
+Particle ball(const dvec3& x, const dvec3& v, double mass, double radius, double cor = 1.0, double mu = 0.0)
+{
+    Particle p;
+    p.setPos(x);
+    p.setVel(v);
+    p.setMass(mass);
+    p.setRadius(radius);
+    p.setCor(cor);
+    p.setFriction(mu);
+    return p;
+}
+
+} // namespace
+
+TEST(ParticleContacts, TwoEqualBallsHeadOnExchangeVelocities)
+{
+    World world; // no gravity, no room: only the two balls
+    world.addParticle(ball(dvec3(-1, 1, 0), dvec3(1, 0, 0), 0.5, 0.1));
+    world.addParticle(ball(dvec3(1, 1, 0), dvec3(-1.5, 0, 0), 0.5, 0.1));
+    for (int step = 0; step < 1000; ++step)
+        world.step(1e-3);
+    EXPECT_NEAR(glm::length(world.body(0).getVel() - dvec3(-1.5, 0, 0)), 0.0, 1e-9);
+    EXPECT_NEAR(glm::length(world.body(1).getVel() - dvec3(1, 0, 0)), 0.0, 1e-9);
+    EXPECT_GE(glm::length(world.body(1).getPos() - world.body(0).getPos()), 0.2 - 1e-12) << "apart again";
+}
+
+TEST(ParticleContacts, UnequalBallsHeadOnKeepMomentumAndEnergy)
+{
+    const double m1 = 1.0, m2 = 3.0, v1 = 2.0, v2 = -1.0;
+    World world;
+    world.addParticle(ball(dvec3(-1, 1, 0), dvec3(v1, 0, 0), m1, 0.1));
+    world.addParticle(ball(dvec3(1, 1, 0), dvec3(v2, 0, 0), m2, 0.2));
+    for (int step = 0; step < 1000; ++step)
+        world.step(1e-3);
+    EXPECT_NEAR(world.body(0).getVel().x, ((m1 - m2) * v1 + 2 * m2 * v2) / (m1 + m2), 1e-9);
+    EXPECT_NEAR(world.body(1).getVel().x, ((m2 - m1) * v2 + 2 * m1 * v1) / (m1 + m2), 1e-9);
+}
+
+TEST(ParticleContacts, ABallRestingOnABallRestingOnTheFloorStaysPut)
+{
+    World world;
+    world.addForce(std::make_unique<Gravity>(dvec3(0, -9.81, 0)));
+    world.setRoom({dvec3(-2, 0, -2), dvec3(2, 4, 2)});
+    world.addParticle(ball(dvec3(0, 0.1, 0), dvec3(0.0), 1.0, 0.1, 0.5, 0.3));
+    world.addParticle(ball(dvec3(0, 0.3, 0), dvec3(0.0), 1.0, 0.1, 0.5, 0.3));
+    for (int step = 0; step < 10000; ++step) // 10 s
+        world.step(1e-3);
+    EXPECT_LT(glm::length(world.body(0).getPos() - dvec3(0, 0.1, 0)), 1e-4);
+    EXPECT_LT(glm::length(world.body(1).getPos() - dvec3(0, 0.3, 0)), 1e-4);
+}
+
+TEST(ParticleContacts, ResultsAreTheSameOnOneAndTwoThreads)
+{
+    // More balls than a task's grain, so two threads do split the grid's search.
+    auto run = [](int threads) {
+        World world;
+        world.addForce(std::make_unique<Gravity>(dvec3(0, -9.81, 0)));
+        world.setRoom({dvec3(-1, 0, -1), dvec3(1, 2, 1)});
+        world.setThreads(threads);
+        for (int i = 0; i < 2100; ++i) {
+            const dvec3 at(-0.95 + 0.04 * (i % 48), 0.05 + 0.04 * (i / 2304), -0.95 + 0.04 * ((i / 48) % 48));
+            const dvec3 v(std::sin(1.7 * i), std::cos(2.3 * i), std::sin(0.9 * i));
+            world.addParticle(ball(at, v, 1.0 + 0.1 * (i % 3), 0.015 + 0.002 * (i % 4), 0.6, 0.4));
+        }
+        for (int step = 0; step < 10; ++step)
+            world.step(2e-3);
+        std::vector<State> states;
+        for (std::size_t i = 0; i < world.bodyCount(); ++i)
+            states.push_back(world.body(i).getState());
+        return states;
+    };
+    const auto one = run(1), two = run(2);
+    for (std::size_t i = 0; i < one.size(); ++i) {
+        ASSERT_EQ(one[i].pos, two[i].pos) << i;
+        ASSERT_EQ(one[i].vel, two[i].vel) << i;
+    }
+}
+
+namespace {
+
+/// A swarm of colliding grains poured onto the floor of a small room, after `steps` steps.
+World grainPile(int threads, int steps)
+{
+    World world;
+    world.addForce(std::make_unique<Gravity>(dvec3(0, -9.81, 0)));
+    world.setRoom({dvec3(-0.5, 0, -0.5), dvec3(0.5, 2, 0.5)});
+    world.setCollisionResponse(CollisionResponse::Reflect);
+    world.setThreads(threads);
+    SwarmDesc desc;
+    desc.name = "grains";
+    desc.count = 300;
+    desc.regionMin = dvec3(-0.3, 0.3, -0.3);
+    desc.regionMax = dvec3(0.3, 1.2, 0.3);
+    desc.restitution = 0.2;
+    desc.radius = 0.04;
+    desc.friction = 0.5;
+    desc.collide = true;
+    desc.seed = 3;
+    world.addSwarm(desc);
+    for (int step = 0; step < steps; ++step)
+        world.step(2e-3);
+    return world;
+}
+
+} // namespace
+
+TEST(ParticleContacts, ASwarmsGrainsPileUpWithoutOverlappingByMoreThanATenthOfTheirRadius)
+{
+    const World world = grainPile(0, 1500); // 3 s: poured, fallen and settled
+    const Swarm& grains = world.swarm(0);
+    const float r = grains.radius();
+    float deepest = 0.0f, highest = 0.0f;
+    for (std::size_t i = 0; i < grains.size(); ++i) {
+        highest = std::max(highest, grains.position(i).y);
+        ASSERT_GE(grains.position(i).y, r * 0.999f) << "on or above the floor";
+        for (std::size_t j = i + 1; j < grains.size(); ++j)
+            deepest = std::max(deepest, 2.0f * r - glm::length(grains.position(j) - grains.position(i)));
+    }
+    EXPECT_LT(deepest, 0.1f * r);
+    EXPECT_GT(highest, 2.0f * r) << "they stack: 300 grains do not fit in one layer of the room";
+}
+
+TEST(ParticleContacts, ASwarmsGrainsAreTheSameOnOneAndTwoThreads)
+{
+    const World one = grainPile(1, 200), two = grainPile(2, 200);
+    for (std::size_t i = 0; i < one.swarm(0).size(); ++i) {
+        ASSERT_EQ(one.swarm(0).position(i), two.swarm(0).position(i)) << i;
+        ASSERT_EQ(one.swarm(0).velocity(i), two.swarm(0).velocity(i)) << i;
+    }
+}

@@ -1,0 +1,40 @@
+// The built-in scenes of balls that touch, held to their claims.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "pba/scene/scene.hpp"
+#include "pba/world.hpp"
+#include "support/scene_claim.hpp"
+
+using namespace pba;
+
+SCENE_CLAIM(SceneClaims, BallsInTheDryerJostleInTheJetWithoutPassingThroughEachOther, "balls-in-the-dryer")
+{
+    Scene scene = loadScene("balls-in-the-dryer");
+    World& world = scene.world;
+    ASSERT_EQ(world.bodyCount(), 5u);
+    const int steps = int(std::lround(12.0 / scene.dt)); // 12 s of the minute: caught, then jostling
+    int touchingSteps = 0;
+    double deepest = 0.0;
+    for (int step = 1; step <= steps; ++step) {
+        world.step(scene.dt);
+        bool touching = false;
+        for (std::size_t i = 0; i < 5; ++i) {
+            const auto& a = static_cast<const Particle&>(world.body(i));
+            if (step * scene.dt > 2.0) { // caught within 2 s: near the axis, high in the jet from then on
+                EXPECT_LT(std::hypot(a.getPos().x, a.getPos().z), 1.0) << a.getName() << " at step " << step;
+                EXPECT_GT(a.getPos().y, 1.5) << a.getName() << " at step " << step;
+            }
+            for (std::size_t j = i + 1; j < 5; ++j) {
+                const auto& b = static_cast<const Particle&>(world.body(j));
+                const double gap = glm::length(b.getPos() - a.getPos()) - a.getRadius() - b.getRadius();
+                deepest = std::max(deepest, -gap / std::min(a.getRadius(), b.getRadius()));
+                touching |= gap < 1e-3;
+            }
+        }
+        touchingSteps += touching ? 1 : 0;
+    }
+    EXPECT_LT(deepest, 0.01) << "no ball inside another by a hundredth of its radius";
+    EXPECT_GT(touchingSteps, steps / 10) << "they jostle: some pair touches at least a tenth of the time";
+}
