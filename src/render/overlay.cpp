@@ -11,6 +11,7 @@
 
 #include "body_groups.hpp"
 #include "collision_note.hpp"
+#include "pba/particle.hpp"
 #include "pba/world.hpp"
 
 namespace pba::render {
@@ -96,7 +97,9 @@ void groupLines(const World& world, const BodyGroups& groups, bool compact)
         const Body& body = world.body(g.members.front());
         massesDiffer = massesDiffer || (mass && *mass != body.getMass());
         mass = body.getMass();
-        balls = balls || !world.isRigid(g.members.front());
+        // A particle with a radius is drawn at its size, not by its mass.
+        const auto* particle = dynamic_cast<const Particle*>(&body);
+        balls = balls || (particle && particle->getRadius() == 0.0);
     }
     // Compact, the legend keeps to about a quarter of the picture's height (8 lines at 720 pixels,
     // 3 at 360), so a small picture's scene is not hidden behind a list of boxes.
