@@ -126,8 +126,11 @@ std::size_t World::addJoint(const JointDesc& desc)
             m_bodies.rigidIndex[i] = std::uint32_t(m_rigid.system->size());
             m_rigid.system->addPoint(i);
         }
-    const auto [xa, qa] = jointPose(a);
-    const auto [xb, qb] = b ? jointPose(*b) : std::pair{dvec3(0.0), dquat(1.0, 0.0, 0.0, 0.0)};
+    // Plain variables, not structured bindings: Clang 14 (the sanitizer build's) cannot capture those.
+    const std::pair<dvec3, dquat> poseA = jointPose(a);
+    const std::pair<dvec3, dquat> poseB = b ? jointPose(*b) : std::pair{dvec3(0.0), dquat(1.0, 0.0, 0.0, 0.0)};
+    const dvec3 xa = poseA.first, xb = poseB.first;
+    const dquat qa = poseA.second, qb = poseB.second;
     // World to each body's frame (the world's own frame for the world).
     auto inA = [&](const dvec3& p) { return glm::conjugate(qa) * (p - xa); };
     auto inB = [&](const dvec3& p) { return glm::conjugate(qb) * (p - xb); };

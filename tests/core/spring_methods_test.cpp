@@ -281,7 +281,9 @@ TEST(SpringMethods, GiveTheSameStatesOnAnyNumberOfThreads)
     // At a frame's dt, and at a quarter second, where backward Euler solves Newton's corrections
     // and xpbd sweeps a substep until its errors are small (stopping at the same sweep on any
     // number of threads: a sweep's largest error is a maximum, exact in any order).
-    for (const auto& [dt, steps] : {std::pair{1.0 / 60.0, 20}, std::pair{0.25, 3}})
+    for (const auto& step : {std::pair{1.0 / 60.0, 20}, std::pair{0.25, 3}}) {
+        const double dt = step.first; // not a structured binding: Clang 14 cannot capture one
+        const int steps = step.second;
         for (const Integrator integrator : {Integrator::ImplicitEuler, Integrator::Xpbd}) {
             auto run = [&](int threads) {
                 Scene scene = resizedClothInTheDryer(24);
@@ -295,6 +297,7 @@ TEST(SpringMethods, GiveTheSameStatesOnAnyNumberOfThreads)
             EXPECT_TRUE(sameBits(run(1), run(0))) << integratorName(integrator) << " at dt " << dt;
             EXPECT_TRUE(sameBits(run(1), run(2))) << integratorName(integrator) << " at dt " << dt;
         }
+    }
 }
 
 // They step particles joined by springs: a rigid body or a swarm given one is refused.
