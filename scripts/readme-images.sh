@@ -48,6 +48,7 @@ rigid ping-pong 10 0.3,0.3,0.75,0,0.12,0
 "$pba" render docs/examples/first-scene.json --size 640x360 --time 3 --camera=0,2,6,0,1.6,0 --out "$out/first-scene.png"
 "$pba" render dice --size 640x360 --camera=0,2.4,3.8,0,0.1,-0.5 --out "$out/dice.png" # at the end: every die at rest
 "$pba" render blow-dryer-swarm --size 640x360 --time 1.5 --out "$out/blow-dryer-swarm.png"
+"$pba" render fountain-1m --size 640x360 --time 1.5 --out "$out/fountain-1m.png"
 "$pba" field blow-dryer-flow --slice --out "$out/field-blow-dryer-flow.png"
 
 # The integrator study's height plot (its colours are the viewer's), and the viewer itself with
