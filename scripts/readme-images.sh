@@ -40,11 +40,15 @@ rigid cloth 1.2 0,2.6,5,0,2.2,0
 rigid cloth-on-box 4 0,2.3,3.6,0,0.15,0
 rigid trampoline 0.56 0,2.8,4.2,0,0.75,0 # the crate deepest in the cloth
 rigid hanging-crate 1.3 0.6,2.2,6.6,0.2,0.5,0
+# Balls in the dryer's air: five jostling, and a ping-pong ball up close.
+rigid balls-in-the-dryer 8 0,2.6,7,0,2,0
+rigid ping-pong 10 0.3,0.3,0.75,0,0.12,0
 "$pba" render stiff-spring --size 640x360 --time 1.5 --camera=0,5.2,10.5,0,4.4,0 --out "$out/stiff-spring.png"
 # The README's first scene, from the example file it shows.
 "$pba" render docs/examples/first-scene.json --size 640x360 --time 3 --camera=0,2,6,0,1.6,0 --out "$out/first-scene.png"
 "$pba" render dice --size 640x360 --camera=0,2.4,3.8,0,0.1,-0.5 --out "$out/dice.png" # at the end: every die at rest
 "$pba" render blow-dryer-swarm --size 640x360 --time 1.5 --out "$out/blow-dryer-swarm.png"
+"$pba" render fountain-1m --size 640x360 --time 1.5 --out "$out/fountain-1m.png"
 "$pba" field blow-dryer-flow --slice --out "$out/field-blow-dryer-flow.png"
 
 # The integrator study's height plot (its colours are the viewer's), and the viewer itself with

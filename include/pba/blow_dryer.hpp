@@ -29,6 +29,13 @@
 //    (beta / 2) grad_perp |u|^2 = beta U^2 w dw/dr rho/r, pulls toward the axis; the part along
 //    it is left out, so the hover height stays the one the push alone gives.
 //
+// A third opt-in term, `airDensity` rho_a, makes the air act on a ball by its size: a body with a
+// radius r (a particle, a swarm's grain) then feels, instead of the push and the air drag above,
+// the quadratic drag of the air on its cross-section, F = (1/2) rho_a C_d pi r^2 |u - v| (u - v),
+// and the pull with beta = rho_a (4/3) pi r^3, the air it displaces. Its weight decides where it
+// hovers, not the strength: a 2.7 g, 40 mm ping-pong ball floats where |u| = sqrt(2 m g /
+// (rho_a C_d pi r^2)), 8.6 m/s. A body without a radius still feels the strength's push.
+//
 // The force's kernel, which a swarm's loop inlines and vectorises, is pba/detail/blow_dryer_kernel.hpp.
 #include <algorithm>
 #include <cmath>
@@ -93,6 +100,8 @@ struct BlowDryerFieldT {
     bool shaft = false;             ///< blows up through a hole of radius r0 in the floor: pushes in its shaft
     T airSpeed = T(0);              ///< U, the air's speed at the nozzle on the axis, m/s; 0: no air drag
     T axisPull = T(0);              ///< beta, kg: the Bernoulli pull toward the axis (needs airSpeed)
+    T airDensity = T(0);            ///< rho_a, kg/m^3: a ball feels the air on its cross-section (needs airSpeed); 0: off
+    T dragCoefficient = T(0.47);    ///< C_d of a ball in that air (a smooth sphere's)
 
     /// The air drag's coefficient c = strength / U (0 without air speed), N s/m.
     T airDrag() const { return airSpeed > T(0) ? strength / airSpeed : T(0); }
@@ -101,13 +110,15 @@ struct BlowDryerFieldT {
     BlowDryerFieldT<U> as() const
     {
         return {Vec3<U>(nozzle), Vec3<U>(axis), U(height), U(nozzleRadius), U(topRadius), U(strength),
-                axialFalloff, radialFalloff, direction, shaft, U(airSpeed), U(axisPull)};
+                axialFalloff, radialFalloff, direction, shaft, U(airSpeed), U(axisPull), U(airDensity),
+                U(dragCoefficient)};
     }
 };
 using BlowDryerField = BlowDryerFieldT<double>;
 
-/// The field's force at x on a body moving at v (see the header's comment), its air terms included.
-dvec3 blowDryerForce(const BlowDryerField& f, const dvec3& x, const dvec3& v = dvec3(0.0));
+/// The field's force at x on a body of radius `radius` moving at v (see the header's comment),
+/// its air terms included.
+dvec3 blowDryerForce(const BlowDryerField& f, const dvec3& x, const dvec3& v = dvec3(0.0), double radius = 0.0);
 
 /// The air's velocity u = U w direction at x (zero without air speed): what the air drag pulls
 /// a body's velocity toward, and whose squared length the axis pull climbs.

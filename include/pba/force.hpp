@@ -77,6 +77,8 @@ struct BodyStates {
     /// One per body, or empty when no body of the world turns: a force applied at a point of a
     /// body (body-local offsets, surface samples) finds it at orientation(i).
     std::span<const Pose> poses;
+    /// One per body, or empty: then each body's own (a particle's radius; 0 for any other body).
+    std::span<const double> radii = {};
 
     /// Whether body i is wanted (every body is when there is no list), fixed or not.
     bool wants(std::size_t i) const { return wanted.empty() || wanted[i] != 0; }
@@ -84,6 +86,7 @@ struct BodyStates {
     bool moving(std::size_t i) const { return wanted.empty() ? !isFixed(i) : wanted[i] != 0; }
     bool isFixed(std::size_t i) const;
     double mass(std::size_t i) const;
+    double radius(std::size_t i) const;
     const Pose& pose(std::size_t i) const
     {
         static const Pose unturned;

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
 
 #include <fmt/format.h>
 
+#include "pba/particle.hpp"
 #include "pba/rigid_body.hpp"
 #include "render/body_groups.hpp"
 
@@ -74,6 +76,26 @@ void printFabricInJet(const World& world, const study::JetWatch& jet, const rend
     }
 }
 
+/// In air with a density, what the jet lifts of each size of ball in the world: (1/2) rho C_d pi r^2 U^2 / g.
+std::string ballLifts(const World& world, const BlowDryerField& field, double g)
+{
+    if (!(field.airDensity > 0.0 && field.airSpeed > 0.0 && g > 0.0))
+        return {};
+    std::vector<double> radii;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (const auto* p = dynamic_cast<const Particle*>(&world.body(i)); p && p->getRadius() > 0.0)
+            radii.push_back(p->getRadius());
+    std::sort(radii.begin(), radii.end());
+    radii.erase(std::unique(radii.begin(), radii.end()), radii.end());
+    std::string text;
+    for (const double r : radii) {
+        const double lift = 0.5 * field.airDensity * field.dragCoefficient * std::numbers::pi * r * r *
+                            field.airSpeed * field.airSpeed / g;
+        text += fmt::format("{} a ball of radius {:g} m up to {:.3g} kg", text.empty() ? " (a point);" : ",", r, lift);
+    }
+    return text.empty() ? text : text + fmt::format(" in its air ({:g} m/s, {:g} kg/m^3)", field.airSpeed, field.airDensity);
+}
+
 /// What the bodies did in the blow dryer's jet, and how many swarm particles are in its shaft.
 void printJetSummary(const World& world, const study::JetWatch& jet, const render::BodyGroups& groups,
                      bool everyParticle)
@@ -81,9 +103,10 @@ void printJetSummary(const World& world, const study::JetWatch& jet, const rende
     if (!jet.active())
         return;
     const double g = glm::length(world.gravity());
-    fmt::print("blow dryer: {:g} N at the nozzle ({}), lifts up to {:.3g} kg; a catch is a stay of {:g} s in the cone\n",
+    fmt::print("blow dryer: {:g} N at the nozzle ({}), lifts up to {:.3g} kg{}; a catch is a stay of {:g} s in the "
+               "cone\n",
                jet.field().strength, flowDirectionName(jet.field().direction),
-               g > 0.0 ? jet.field().strength / g : INFINITY, study::kCatchStay);
+               g > 0.0 ? jet.field().strength / g : INFINITY, ballLifts(world, jet.field(), g), study::kCatchStay);
     const auto bodies = jet.bodies();
     bool rows = false;
     for (std::size_t i = 0; i < bodies.size(); ++i)

@@ -1,6 +1,7 @@
 #include "pba/blow_dryer.hpp"
 
 #include "pba/body.hpp"
+#include "pba/particle.hpp"
 
 #include <type_traits>
 
@@ -41,9 +42,9 @@ void addSpreadOverSurface(const BodyStates& in, std::size_t i, const At& at, Acc
 
 } // namespace
 
-dvec3 blowDryerForce(const BlowDryerField& f, const dvec3& x, const dvec3& v)
+dvec3 blowDryerForce(const BlowDryerField& f, const dvec3& x, const dvec3& v, double radius)
 {
-    return blowDryerForce<DryerAxis::Any, true>(BlowDryerKernelT<double>(f), x, v);
+    return blowDryerForce<DryerAxis::Any, true>(BlowDryerKernelT<double>(f), x, v, radius);
 }
 
 dvec3 blowDryerAirVelocity(const BlowDryerField& f, const dvec3& x)
@@ -75,9 +76,11 @@ BlowDryer::BlowDryer(const BlowDryerField& field)
 {
 }
 
-dvec3 BlowDryer::force(std::size_t, const Body&, const dvec3& x, const dvec3& v) const
+dvec3 BlowDryer::force(std::size_t, const Body& body, const dvec3& x, const dvec3& v) const
 {
-    return blowDryerForce<DryerAxis::Any, true>(*m_kernel, x, v);
+    // Only air with a density asks for the body's size (a cast on every call otherwise).
+    const auto* particle = m_kernel->dragPerArea != 0.0 ? dynamic_cast<const Particle*>(&body) : nullptr;
+    return blowDryerForce<DryerAxis::Any, true>(*m_kernel, x, v, particle ? particle->getRadius() : 0.0);
 }
 
 void BlowDryer::setField(const BlowDryerField& field)
@@ -92,22 +95,32 @@ void BlowDryer::accumulate(const BodyStates& in, Accumulators& out) const
     // in a swarm's loop: the same values, found with fewer multiplications.
     // Without a pull (axis_pull 0, as in every built-in scene) its arithmetic is left out.
     const BlowDryerKernelT<double>& kernel = *m_kernel;
+    // Air with a density gives a ball (a body with a radius) a force of its size.
+    const bool sized = kernel.dragPerArea != 0.0;
     auto each = [&](auto axis, auto pull) {
-        const auto at = [&](const dvec3& x, const dvec3& v) {
-            return blowDryerForce<decltype(axis)::value, true, double, decltype(pull)::value>(kernel, x, v);
+        const auto at = [&](const dvec3& x, const dvec3& v, double radius) {
+            return blowDryerForce<decltype(axis)::value, true, double, decltype(pull)::value>(kernel, x, v, radius);
         };
+        const auto atPoint = [&](const dvec3& x, const dvec3& v) { return at(x, v, 0.0); };
         if (in.poses.empty()) // no body of the world turns: every one is a point
-            detail::addToEachMoving(in, out, [&](std::size_t i) { return at(in.states[i].pos, in.states[i].vel); });
+            detail::addToEachMoving(in, out, [&](std::size_t i) {
+                return at(in.states[i].pos, in.states[i].vel, sized ? in.radius(i) : 0.0);
+            });
         else
             detail::forEachIndex(in.bodies.size(), [&](std::size_t i) {
-                if (in.moving(i))
-                    addSpreadOverSurface(in, i, at, out);
+                if (!in.moving(i))
+                    return;
+                const double radius = sized ? in.radius(i) : 0.0;
+                if (radius > 0.0) // a ball: it has no surface samples
+                    out.add(i, at(in.states[i].pos, in.states[i].vel, radius));
+                else
+                    addSpreadOverSurface(in, i, atPoint, out);
             });
     };
     using Up = std::integral_constant<DryerAxis, DryerAxis::Up>;
     using Any = std::integral_constant<DryerAxis, DryerAxis::Any>;
     const bool up = m_field.axis == dvec3(0.0, 1.0, 0.0);
-    if (kernel.pull != 0.0)
+    if (kernel.pull != 0.0 || sized)
         up ? each(Up{}, std::true_type{}) : each(Any{}, std::true_type{});
     else
         up ? each(Up{}, std::false_type{}) : each(Any{}, std::false_type{});

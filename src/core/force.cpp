@@ -1,6 +1,7 @@
 #include "pba/force.hpp"
 
 #include "pba/body.hpp"
+#include "pba/particle.hpp"
 
 namespace pba {
 
@@ -9,6 +10,14 @@ bool BodyStates::isFixed(std::size_t i) const { return bodies[i]->isFixed(); }
 double BodyStates::mass(std::size_t i) const
 {
     return masses.empty() ? bodies[i]->getMass() : masses[i];
+}
+
+double BodyStates::radius(std::size_t i) const
+{
+    if (!radii.empty())
+        return radii[i];
+    const auto* particle = dynamic_cast<const Particle*>(bodies[i].get());
+    return particle ? particle->getRadius() : 0.0;
 }
 
 void Force::accumulate(const BodyStates& in, Accumulators& out) const

@@ -230,7 +230,7 @@ void Swarm::stepRange(const SwarmKernelFields& fields, std::span<const PlaneT<fl
 void Swarm::step(const SwarmFields& swarmFields, std::span<const PlaneT<float>> planes, CollisionResponse response,
                  float dt, int threads)
 {
-    const SwarmKernelFields fields(swarmFields, 1.0f / m_mass); // once a step, not once a task
+    const SwarmKernelFields fields(swarmFields, 1.0f / m_mass, radius()); // once a step, not once a task
     const std::size_t n = size();
     // The remembered "clear of every surface" flags hold only for the surfaces they were
     // computed against: new surfaces (a moved hole, another room) mean testing everything again.

@@ -371,7 +371,7 @@ BodyStates World::currentStates(std::vector<State>& storage, std::vector<Pose>& 
                 poses[i] = Pose{rigid.getOrientation(), rigid.getAngularVelocity()};
             }
     }
-    return BodyStates{m_bodies.objects, storage, {}, {}, poses};
+    return BodyStates{m_bodies.objects, storage, {}, {}, poses, {}};
 }
 
 dvec3 World::acceleration(std::size_t i, const dvec3& x, const dvec3& v) const

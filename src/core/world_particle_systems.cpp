@@ -54,7 +54,7 @@ void World::sumSystemForces(const std::vector<std::size_t>& members, std::span<c
             m_bodies.trial[members[k]] = State{x[k], v[k]};
         m_forces.sums[members[k]] = dvec3(0.0);
     });
-    const BodyStates in{m_bodies.objects, m_bodies.trial, wanted, m_bodies.masses, {}};
+    const BodyStates in{m_bodies.objects, m_bodies.trial, wanted, m_bodies.masses, {}, m_bodies.radii};
     Accumulators out{m_forces.sums, {}, &m_forces.scratch};
     for (std::size_t f = 0; f < m_forces.objects.size(); ++f)
         if (!constraints || !constraints->isSpring(f))

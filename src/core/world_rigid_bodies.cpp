@@ -151,7 +151,7 @@ void World::stepRigid(Integrator integrator, const std::vector<std::size_t>& mem
     const std::size_t n = members.size();
     m_forces.sums.resize(m_bodies.objects.size());
     m_forces.torques.resize(m_bodies.objects.size());
-    const BodyStates in{m_bodies.objects, m_bodies.trial, wanted, m_bodies.masses, m_bodies.poses};
+    const BodyStates in{m_bodies.objects, m_bodies.trial, wanted, m_bodies.masses, m_bodies.poses, m_bodies.radii};
     Accumulators out{m_forces.sums, m_forces.torques, &m_forces.scratch};
     bool first = true;
     const auto wrenches = [&](std::span<const RigidState> at, std::span<Wrench> result) {

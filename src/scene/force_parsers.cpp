@@ -126,6 +126,10 @@ BlowDryerField readBlowDryerField(ObjectReader& reader)
         reader.fail("axis_pull", "needs air_speed: the pull comes from the air's speed");
     if (f.airSpeed > 0.0 && f.strength <= 0.0)
         reader.fail("air_speed", "needs a positive strength (the drag coefficient is strength / air_speed)");
+    f.airDensity = reader.nonNegative("air_density", 0.0);
+    if (f.airDensity > 0.0 && f.airSpeed == 0.0)
+        reader.fail("air_density", "needs air_speed: a ball feels the air's density through its speed");
+    f.dragCoefficient = reader.positive("drag_coefficient", f.dragCoefficient);
     return f;
 }
 
@@ -171,7 +175,7 @@ const std::vector<ForceType>& forceTypes()
         {"drag", &parseDrag, {"coefficient", "angular_coefficient"}},
         {"blow-dryer", &parseBlowDryer,
          {"nozzle", "axis", "height", "nozzle_radius", "top_radius", "strength", "axial_falloff", "radial_falloff",
-          "direction", "air_speed", "axis_pull", "grille_depth"}},
+          "direction", "air_speed", "axis_pull", "air_density", "drag_coefficient", "grille_depth"}},
     };
     return types;
 }

@@ -96,14 +96,15 @@ bool swarmFieldsFit(const World& world)
 {
     const SwarmFields fields = world.swarmFields();
     for (std::size_t s = 0; s < world.swarmCount(); ++s) {
-        const SwarmKernelFields k(fields, 1.0f / world.swarm(s).mass());
+        const SwarmKernelFields k(fields, 1.0f / world.swarm(s).mass(), world.swarm(s).radius());
         auto finite = [](float x) { return std::isfinite(x); };
         bool ok = finite(k.gravity.x) && finite(k.gravity.y) && finite(k.gravity.z) && finite(k.dragPerMass);
         std::vector<BlowDryerKernelT<float>> dryers{k.dryer};
         dryers.insert(dryers.end(), k.more.begin(), k.more.end());
         for (const auto& d : dryers)
             ok = ok && finite(d.axial.a) && finite(d.axial.b) && finite(d.axial.c) && finite(d.shaftPush) &&
-                 finite(d.airDrag) && finite(d.pull) && finite(d.inverseHeight) && finite(d.height * d.height) &&
+                 finite(d.airDrag) && finite(d.pull) && finite(d.airPerPush) && finite(d.dragPerArea) &&
+                 finite(d.pullPerVolume) && finite(d.inverseHeight) && finite(d.height * d.height) &&
                  finite(d.nozzle.x) && finite(d.nozzle.y) && finite(d.nozzle.z) && finite(d.shaftRadius2);
         if (!ok)
             return false;

@@ -352,7 +352,7 @@ StabilityRun runStability(const Scene& scene, Integrator integrator, double dt, 
 StabilityResult measureStabilityLimit(const Scene& scene, Integrator integrator, double omega,
                                       const StabilityCriterion& criterion)
 {
-    StabilityResult result{integrator, omega, theoryDtLimit(integrator, omega), kNaN, {}, {}, {}};
+    StabilityResult result{integrator, omega, theoryDtLimit(integrator, omega), kNaN, {}, {}, {}, {}};
     // "No energy" is measured against the springs' own scale, sum k L^2 / 2 (each stretched by its
     // rest length): a cloth at rest keeps rounding-sized energies that no bound can be set by.
     SpanCollector springs;

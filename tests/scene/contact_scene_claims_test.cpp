@@ -126,8 +126,9 @@ SCENE_CLAIM(ContactSceneClaims, TwentyDominoesFallOneAfterAnother, "dominoes")
     }
     for (std::size_t i = 0; i < n; ++i) {
         ASSERT_GE(fellAt[i], 0.0) << "domino " << i << " still stands at 3 s";
-        if (i > 0)
+        if (i > 0) {
             EXPECT_GT(fellAt[i], fellAt[i - 1]) << "domino " << i << " fell before the one behind it";
+        }
     }
 }
 

@@ -1,8 +1,11 @@
-// The built-in scenes of balls that touch, held to their claims.
+// The built-in scenes of balls, touching each other and held in the dryer's air, held to their claims.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
+#include "pba/blow_dryer.hpp"
 #include "pba/scene/scene.hpp"
 #include "pba/world.hpp"
 #include "support/scene_claim.hpp"
@@ -37,4 +40,28 @@ SCENE_CLAIM(SceneClaims, BallsInTheDryerJostleInTheJetWithoutPassingThroughEachO
     }
     EXPECT_LT(deepest, 0.01) << "no ball inside another by a hundredth of its radius";
     EXPECT_GT(touchingSteps, steps / 10) << "they jostle: some pair touches at least a tenth of the time";
+}
+
+SCENE_CLAIM(SceneClaims, APingPongBallIsCaughtByTheDryersAirAndHovers, "ping-pong")
+{
+    Scene scene = loadScene("ping-pong");
+    World& world = scene.world;
+    ASSERT_EQ(world.bodyCount(), 1u);
+    const auto& ball = static_cast<const Particle&>(world.body(0));
+    const BlowDryerField air = blowDryers(world).at(0).field;
+    // Where the air's speed holds its weight: (1/2) rho C_d pi r^2 |u|^2 = m g, |u| = U (1 - h/H).
+    const double r = ball.getRadius(), g = 9.81;
+    const double held = std::sqrt(2.0 * ball.getMass() * g / (air.airDensity * air.dragCoefficient * std::numbers::pi * r * r));
+    const double hover = air.height * (1.0 - held / air.airSpeed);
+    EXPECT_NEAR(hover, 0.2796, 1e-4) << "the summary's 0.28 m";
+    double lowest = INFINITY;
+    const auto steps = std::lround(scene.duration / scene.dt);
+    for (long step = 0; step < steps; ++step) {
+        world.step(scene.dt);
+        lowest = std::min(lowest, ball.getPos().y);
+    }
+    EXPECT_GT(lowest, 0.05) << "caught: never down at the nozzle";
+    EXPECT_NEAR(ball.getPos().y, hover, 1e-3 * hover);
+    EXPECT_LT(std::hypot(ball.getPos().x, ball.getPos().z), 1e-3) << "on the axis";
+    EXPECT_LT(glm::length(ball.getVel()), 1e-3) << "at rest";
 }

@@ -27,6 +27,10 @@ struct BlowDryerKernelT {
     FalloffCubic<T> axialProfile; ///< the axial profile alone (w's first factor)
     T airDrag;  ///< c (times scale), 0 without air speed
     T pull;     ///< beta U^2 (times scale)
+    // A ball's air (air density on; zero otherwise):
+    T airPerPush;    ///< U / (scale strength): the air's velocity per unit of the push
+    T dragPerArea;   ///< (1/2) rho_a C_d (times scale): a ball's drag over its cross-section
+    T pullPerVolume; ///< rho_a U^2 (times scale): a ball's pull over its volume
 
     BlowDryerKernelT() : BlowDryerKernelT(BlowDryerFieldT<T>{}) {}
     /// `scale` multiplies the force: a swarm passes 1 / m and gets the dryer's acceleration,
@@ -37,11 +41,16 @@ struct BlowDryerKernelT {
           flowSpread(f.direction == FlowDirection::ConeFlow ? spread : T(0)), axial(f.axialFalloff, scale * f.strength),
           radial(f.radialFalloff), shaftRadius2(f.shaft ? f.nozzleRadius * f.nozzleRadius : T(0)),
           shaftPush(scale * f.strength), axialProfile(f.axialFalloff), airDrag(scale * f.airDrag()),
-          pull(scale * f.axisPull * f.airSpeed * f.airSpeed)
+          pull(scale * f.axisPull * f.airSpeed * f.airSpeed),
+          airPerPush(f.airDensity > T(0) && f.strength != T(0) ? f.airSpeed / (scale * f.strength) : T(0)),
+          dragPerArea(f.airDensity > T(0) && f.airSpeed > T(0) ? scale * T(0.5) * f.airDensity * f.dragCoefficient : T(0)),
+          pullPerVolume(dragPerArea != T(0) ? scale * f.airDensity * f.airSpeed * f.airSpeed : T(0))
     {
     }
     /// Whether the air terms are on: then only blowDryerForce<..., true> gives the force.
-    bool hasAirTerms() const { return airDrag != T(0) || pull != T(0); }
+    bool hasAirTerms() const { return airDrag != T(0) || pull != T(0) || dragPerArea != T(0); }
+    /// Whether a ball of radius r feels the air by its size (blowDryerForce's ball branch).
+    bool movesBall(T r) const { return dragPerArea != T(0) && r > T(0); }
 };
 
 /// What the kernel knows of the dryer's axis when it is compiled: nothing (`Any`), or that it is
@@ -121,8 +130,10 @@ inline Vec3<T> dryerForceFrom(const BlowDryerKernelT<T>& f, T along, T radial, c
 /// less to do while it waited.
 /// `kPull` false leaves out the pull's arithmetic (its division among it) for a kernel whose
 /// pull is zero, where it adds nothing: the same force.
+/// `radius`: with kAir, a ball of that radius in air with a density feels the air by its size.
 template <DryerAxis kAxis = DryerAxis::Any, bool kAir = false, class T, bool kPull = kAir>
-inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x, const Vec3<T>& v = Vec3<T>(T(0)))
+inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x, const Vec3<T>& v = Vec3<T>(T(0)),
+                              T radius = T(0))
 {
     constexpr bool kUp = kAxis == DryerAxis::Up;
     const auto [d, h, rho, r2, across2] = DryerFrameT<kAxis, T>(f.nozzle, f.axis, x);
@@ -154,12 +165,26 @@ inline Vec3<T> blowDryerForce(const BlowDryerKernelT<T>& f, const Vec3<T>& x, co
     const T along = inside ? scale * f.height : inShaft ? f.shaftPush : T(0);
     T radial = inside ? scale * f.flowSpread * inverseRadius : T(0);
     Vec3<T> extra(T(0));
-    if constexpr (kPull) {
-        // The pull: beta U^2 w dw/dr rho / r, with w = A(1 - s) Rf(u) and dw/dr = -A(1 - s) Rf'(u) / q.
+    // The pull over rho: beta U^2 w dw/dr / r, with w = A(1 - s) Rf(u) and dw/dr = -A(1 - s) Rf'(u) / q.
+    const auto pullPerR = [&](T betaU2) {
         const T a = f.axialProfile.inRange(T(1) - s);
-        const T pullPerR = f.pull * a * a * f.radial.inRange(u) * f.radial.slope(u) * inverseRadius / r;
-        radial -= (inside & (r > T(0))) ? pullPerR : T(0);
+        const T perR = betaU2 * a * a * f.radial.inRange(u) * f.radial.slope(u) * inverseRadius / r;
+        return (inside & (r > T(0))) ? perR : T(0);
+    };
+    if constexpr (kAir) {
+        if (f.movesBall(radius)) {
+            // The push turned into the air's velocity; the ball feels it on its cross-section, where
+            // the air blows (the room's still air is the `drag` force's).
+            constexpr T kPi = T(3.14159265358979323846);
+            const Vec3<T> relative = dryerForceFrom<kAxis, false>(f, along, radial, d, rho, extra) * f.airPerPush - v;
+            const T area = (inside | inShaft) ? kPi * radius * radius : T(0);
+            const T drag = f.dragPerArea * area * glm::length(relative);
+            const T volume = T(4) / T(3) * kPi * radius * radius * radius;
+            return drag * relative - pullPerR(f.pullPerVolume * volume) * rho;
+        }
     }
+    if constexpr (kPull)
+        radial -= pullPerR(f.pull);
     if constexpr (kAir) {
         // The air drag's velocity term, where the air blows (its push is the force above).
         const T drag = (inside | inShaft) ? f.airDrag : T(0);

@@ -25,8 +25,10 @@ struct SwarmKernelFields {
     bool dryerUp = false; ///< the first dryer points exactly along +y (see DryerAxis)
     bool noDryer = false; ///< no dryer at all: `dryer` is one of zero strength, which pushes nothing
     bool air = false;     ///< some dryer has air terms (drag toward the air, axis pull)
+    float radius = 0.0f;  ///< the grains' radius: in air with a density the dryers push them by their size
 
-    SwarmKernelFields(const SwarmFields& f, float inverseMass) : gravity(f.gravity), dragPerMass(f.drag * inverseMass)
+    SwarmKernelFields(const SwarmFields& f, float inverseMass, float grainRadius = 0.0f)
+        : gravity(f.gravity), dragPerMass(f.drag * inverseMass), radius(grainRadius)
     {
         BlowDryerFieldT<float> off;
         off.strength = 0.0f;
@@ -47,7 +49,7 @@ struct SwarmKernelFields {
 /// air terms included.
 inline Vec3<float> swarmAcceleration(const SwarmKernelFields& f, const Vec3<float>& x, const Vec3<float>& v)
 {
-    return f.gravity + dragForce(f.dragPerMass, v) + blowDryerForce<DryerAxis::Any, true>(f.dryer, x, v);
+    return f.gravity + dragForce(f.dragPerMass, v) + blowDryerForce<DryerAxis::Any, true>(f.dryer, x, v, f.radius);
 }
 
 /// With every dryer: the loop over dryers keeps the particle loop from vectorising, so it is
@@ -56,7 +58,7 @@ inline Vec3<float> swarmAccelerationAll(const SwarmKernelFields& f, const Vec3<f
 {
     Vec3<float> a = swarmAcceleration(f, x, v);
     for (std::size_t k = 0; k < f.moreCount; ++k)
-        a += blowDryerForce<DryerAxis::Any, true>(f.more[k], x, v);
+        a += blowDryerForce<DryerAxis::Any, true>(f.more[k], x, v, f.radius);
     return a;
 }
 
