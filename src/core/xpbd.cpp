@@ -55,11 +55,19 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
 {
     const std::size_t n = x.size();
     const double h = dt / double(substeps);
-    m_inverseMass.resize(n);
     m_start.resize(n);
     m_accel.resize(n);
-    forEachIndex(n, [&](std::size_t p) { m_inverseMass[p] = 1.0 / mass[p]; });
-    scale(h);
+    // The projections depend on h and the masses alone: made again only when one changed.
+    bool changed = m_inverseMass.size() != n || !(h == m_scaledFor);
+    m_inverseMass.resize(n);
+    for (std::size_t p = 0; p < n; ++p) {
+        const double w = 1.0 / mass[p];
+        changed = changed || !(w == m_inverseMass[p]);
+        m_inverseMass[p] = w;
+    }
+    if (changed)
+        scale(h);
+    m_scaledFor = h;
     for (int sub = 0; sub < substeps; ++sub) {
         external(x, v, m_accel);
         forEachIndex(n, [&](std::size_t p) {

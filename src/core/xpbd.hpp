@@ -97,6 +97,7 @@ private:
     std::vector<dvec3> m_start, m_accel;
     std::vector<double> m_lambda; ///< each constraint's accumulated multiplier in the substep
     double m_stiffest = 0.0; ///< the largest (w_a + w_b) k h^2 over the constraints, for the step's h
+    double m_scaledFor = 0.0; ///< the h the projections were made for (0: not yet)
 };
 
 } // namespace pba::detail
