@@ -8,11 +8,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "pba/scene/scene.hpp"
+#include "pba/spring_network.hpp"
 #include "pba/world.hpp"
+#include "spring_neighbours.hpp"
 
 using namespace pba;
 
@@ -111,4 +114,90 @@ TEST(ClothSelf, ASheetFoldedOntoItselfLiesInTwoLayersOneDiameterApart)
             EXPECT_LE(x.y, 3.0 * kRadius + 0.05 * kRadius) << i << "," << j;
         }
     }
+}
+
+TEST(ClothSelf, NeighboursThatOverlapAtRestGetNoContact)
+{
+    // Radius 0.6 of the spacing: each particle overlaps its four nearest by a fifth of the
+    // spacing. A contact between them would push them apart; the springs hold them, at rest
+    // length, so the sheet lying flat on the floor must move as each of its particles would
+    // alone: as the lone particle beside it, of the same mass and radius, on the same floor.
+    Scene scene = parseScene(R"({"dt": 0.002, "gravity": [0, -9.81, 0], "collision_response": "reflect",
+        "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+        "cloths": [{"name": "sheet", "origin": [-0.5, 0.06, -0.5], "across": [1, 0, 0], "down": [0, 0, 1],
+                    "columns": 11, "rows": 11, "mass": 1.21, "stiffness": {"structural": 300, "shear": 30, "bending": 1},
+                    "damping": 0.05, "restitution": 0, "friction": 0.5, "integrator": "implicit-euler",
+                    "radius": 0.06}],
+        "particles": [{"name": "alone", "position": [1.5, 0.06, 1.5], "mass": 0.01, "restitution": 0, "friction": 0.5,
+                       "radius": 0.06, "integrator": "implicit-euler"}]})",
+                             "flat.json");
+    const std::vector<dvec3> start = positions(scene.world);
+    const std::size_t alone = start.size() - 1;
+    for (int step = 0; step < 200; ++step)
+        scene.world.step(scene.dt);
+    const State lone = scene.world.body(alone).getState();
+    for (std::size_t i = 0; i < alone; ++i) {
+        const State s = scene.world.body(i).getState();
+        EXPECT_NEAR(s.pos.x, start[i].x, 1e-12) << i;
+        EXPECT_NEAR(s.pos.z, start[i].z, 1e-12) << i;
+        EXPECT_NEAR(s.pos.y, lone.pos.y, 1e-12) << i;
+        EXPECT_LT(glm::length(s.vel - lone.vel), 1e-9) << i;
+    }
+}
+
+TEST(ClothSelf, NeighboursAreTheSpringsEndsAndWhatLiesWithinTwiceTouchingAlongThem)
+{
+    // A rope of 6 particles 1 m apart (rest lengths), and a seventh joined to the first by a
+    // spring of 10 m: the rest-length path from particle 0 to particle k is k m.
+    auto neighboursAt = [](double radius) {
+        std::vector<SpringNetwork::Link> links;
+        for (std::size_t k = 0; k + 1 < 6; ++k)
+            links.push_back({k, k + 1, 100.0, 1.0, 0.0});
+        links.push_back({0, 6, 100.0, 10.0, 0.0});
+        std::vector<ClonePtr<Force>> forces;
+        forces.emplace_back(std::make_unique<SpringNetwork>(links));
+        std::vector<double> radii(8, radius);
+        radii[5] = 0.0; // no radius: never a neighbour, never collides
+        detail::SpringNeighbours neighbours;
+        neighbours.update(forces, radii);
+        std::vector<std::size_t> near;
+        for (std::size_t k = 1; k < 8; ++k)
+            if (neighbours.near(0, k)) {
+                EXPECT_TRUE(neighbours.near(k, 0)) << "symmetric";
+                near.push_back(k);
+            }
+        return near;
+    };
+    // Twice the touching distance 2 (r + r): 1.2 m takes the spring's ends only, 2.4 m one more
+    // particle along the rope, 4.4 m the next two (particle 5 has no radius); particle 7 has no spring.
+    EXPECT_EQ(neighboursAt(0.3), (std::vector<std::size_t>{1, 6}));
+    EXPECT_EQ(neighboursAt(0.6), (std::vector<std::size_t>{1, 2, 6}));
+    EXPECT_EQ(neighboursAt(1.1), (std::vector<std::size_t>{1, 2, 3, 4, 6}));
+}
+
+TEST(ClothSelf, AFoldingSheetIsTheSameOnOneAndTwoThreads)
+{
+    auto run = [](int threads) {
+        Scene scene = foldingSheet(kRadius);
+        scene.world.setThreads(threads);
+        for (int step = 0; step < 300; ++step)
+            scene.world.step(scene.dt);
+        return positions(scene.world);
+    };
+    EXPECT_EQ(run(1), run(2));
+}
+
+TEST(ClothSelf, ARadiusOfZeroIsTheSameRunToTheBitAsNoRadius)
+{
+    auto run = [](const std::string& radius) {
+        Scene scene = parseScene(R"({"dt": 0.002, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+            "cloths": [{"name": "sheet", "origin": [-0.44, 0.98, -0.1], "across": [0.88, 0, 0], "down": [0, -0.88, 0.15],
+                        "columns": 8, "rows": 8, "mass": 0.2, "stiffness": {"structural": 300, "shear": 30, "bending": 1},
+                        "integrator": "implicit-euler")" + radius + "}]}",
+                                 "sheet.json");
+        for (int step = 0; step < 300; ++step)
+            scene.world.step(scene.dt);
+        return positions(scene.world);
+    };
+    EXPECT_EQ(run(""), run(R"(, "radius": 0)"));
 }
