@@ -1,8 +1,8 @@
-// The scenes where particles, ropes and cloth touch rigid bodies or themselves, held to their one-line claims,
-// each measured here from the bodies' states rather than from the engine's contacts: a sheet
-// drapes over a fixed box with no particle inside it, a crate bounces on a trampoline cloth and
-// comes to rest on it, a crate on a rope knocks a wall of boxes down with its joint holding, and
-// a sheet falls in folds onto the floor without passing through itself.
+// The scenes where particles, ropes and cloth touch rigid bodies or themselves, held to their
+// one-line claims, each measured here from the bodies' states rather than from the engine's
+// contacts: a sheet drapes over a fixed box with no particle inside it, a crate bounces on a
+// trampoline cloth and comes to rest on it, a crate on a rope knocks a wall of boxes down with its
+// joint holding, and a sheet falls in folds onto the floor without passing through itself.
 #include <gtest/gtest.h>
 
 #include <algorithm>
