@@ -62,8 +62,7 @@ void SpringNeighbours::build(const std::vector<ClonePtr<Force>>& forces)
     LinkCollector collector;
     for (const auto& force : forces)
         force->accept(collector);
-    // Only springs between two bodies with a radius matter: a path through a body without one
-    // still counts (its rest lengths are the mesh's), so keep them all.
+    // Every spring is an edge: a path through a body without a radius still measures the mesh.
     const std::size_t n = m_radii.size();
     m_edgeStart.assign(n + 1, 0);
     for (const auto& link : collector.links) {

@@ -223,3 +223,34 @@ TEST(ClothSelf, ARopeFallingOnItselfInCoilsDoesNotPassThroughItself)
     EXPECT_GE(dropped(kRadius), 0.9);
     EXPECT_LT(dropped(0.0), 0.75);
 }
+
+TEST(ClothSelf, ASheetDroppedOnAnotherRestsOnItsBalls)
+{
+    // Two cloths are two systems of springs: the upper, dropped flat from 30 cm, lands on the
+    // lower, lying on the floor, and its balls rest on the lower balls, touching them (2 r from
+    // the nearest), between sqrt(2) r (in the hollow of four, the lower balls' spacing being 2 r)
+    // and 2 r (on top of one) above them.
+    Scene scene = parseScene(R"({"dt": 0.002, "gravity": [0, -9.81, 0], "collision_response": "reflect",
+        "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+        "cloths": [{"name": "lower", "origin": [-0.4, 0.04, -0.4], "across": [0.8, 0, 0], "down": [0, 0, 0.8],
+                    "columns": 11, "rows": 11, "mass": 0.2, "stiffness": {"structural": 300, "shear": 30, "bending": 1},
+                    "damping": 0.05, "restitution": 0, "friction": 0.5, "integrator": "implicit-euler", "radius": 0.04},
+                   {"name": "upper", "origin": [-0.2, 0.34, -0.2], "across": [0.4, 0, 0], "down": [0, 0, 0.4],
+                    "columns": 6, "rows": 6, "mass": 0.1, "stiffness": {"structural": 300, "shear": 30, "bending": 1},
+                    "damping": 0.05, "restitution": 0, "friction": 0.5, "integrator": "implicit-euler", "radius": 0.04}]})",
+                             "two.json");
+    for (int step = 0; step < 500; ++step)
+        scene.world.step(scene.dt);
+    const ClothLayout& lower = scene.fabric.cloths.at(0);
+    const ClothLayout& upper = scene.fabric.cloths.at(1);
+    const World& world = scene.world;
+    for (std::size_t u = upper.first; u < upper.first + upper.width * upper.height; ++u) {
+        const dvec3 x = world.body(u).getPos();
+        double nearest = INFINITY;
+        for (std::size_t l = lower.first; l < lower.first + lower.width * lower.height; ++l)
+            nearest = std::min(nearest, glm::length(world.body(l).getPos() - x));
+        EXPECT_NEAR(nearest, 2.0 * kRadius, 0.05 * kRadius) << u;
+        EXPECT_GE(x.y, kRadius + std::sqrt(2.0) * kRadius - 0.05 * kRadius) << u;
+        EXPECT_LE(x.y, 3.0 * kRadius + 0.05 * kRadius) << u;
+    }
+}
