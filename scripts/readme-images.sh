@@ -40,6 +40,7 @@ rigid cloth 1.2 0,2.6,5,0,2.2,0
 rigid cloth-on-box 4 0,2.3,3.6,0,0.15,0
 rigid trampoline 0.56 0,2.8,4.2,0,0.75,0 # the crate deepest in the cloth
 rigid hanging-crate 1.3 0.6,2.2,6.6,0.2,0.5,0
+rigid cloth-folds 3 0.5,1.0,1.8,0.1,0.0,0
 # Balls in the dryer's air: five jostling, and a ping-pong ball up close.
 rigid balls-in-the-dryer 8 0,2.6,7,0,2,0
 rigid ping-pong 10 0.3,0.3,0.75,0,0.12,0

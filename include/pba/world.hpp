@@ -77,6 +77,7 @@ class SpringSystem;
 struct SpringSolver;
 struct SpringSolvers;
 struct BallContacts;
+class SpringNeighbours;
 }
 
 /// An axis-aligned box: the room.
@@ -370,6 +371,8 @@ private:
         ClonePtr<detail::SpringSolvers> springSolvers; ///< implicit-euler's and xpbd's
         /// The particles with a radius against each other: their grid, pairs and balls.
         ClonePtr<detail::BallContacts> ballContacts;
+        /// Which of them one rope's or cloth's springs hold too near to collide.
+        ClonePtr<detail::SpringNeighbours> neighbours;
         int xpbdSubsteps = kDefaultXpbdSubsteps;
     };
     /// The free step's buffers of the rigid bodies, reused from step to step.
@@ -455,7 +458,7 @@ private:
     void collideAndStore(const std::vector<std::size_t>& members, double dt);
     /// Phase 4b (ParticleSystems, Bodies, Surfaces): the particles with a radius that touch each
     /// other after their step are separated and exchange impulses (src/core/particle_contacts.hpp);
-    /// particles of one rope or cloth, both coupled, are left to their springs.
+    /// neighbours along one rope or cloth are left to their springs (src/core/spring_neighbours.hpp).
     void collideBalls(double dt);
     /// Phase 6, for a swarm that collides: its grains through the same contacts as collideBalls
     /// (`restingSpeed`: gravity's speed in one step).

@@ -16,6 +16,7 @@
 #include "rigid/joint_solver.hpp"
 #include "rigid/rigid_system.hpp"
 #include "particle_contacts.hpp"
+#include "spring_neighbours.hpp"
 #include "spring_solvers.hpp"
 
 namespace pba {
@@ -45,6 +46,7 @@ World::World()
     m_rigid.system = std::make_unique<rigid::RigidSystem>();
     m_particleSystems.springSolvers = std::make_unique<detail::SpringSolvers>();
     m_particleSystems.ballContacts = std::make_unique<detail::BallContacts>();
+    m_particleSystems.neighbours = std::make_unique<detail::SpringNeighbours>();
 }
 World::World(const World&) = default;
 World& World::operator=(const World&) = default;

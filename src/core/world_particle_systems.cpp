@@ -8,6 +8,7 @@
 #include "collision_rules.hpp"
 #include "parallel.hpp"
 #include "particle_contacts.hpp"
+#include "spring_neighbours.hpp"
 #include "spring_solvers.hpp"
 #include "world_checks.hpp"
 
@@ -180,13 +181,14 @@ void World::collideBalls(double dt)
     }
     if (contacts.balls.size() < 2)
         return;
-    const auto& independent = m_particleSystems.coupling.independent;
-    auto coupled = [&](std::uint32_t ball) {
-        return !std::binary_search(independent.begin(), independent.end(), contacts.bodies[ball]);
-    };
+    // Particles of one rope or cloth collide too (a sheet falling in folds), except where its
+    // springs hold them near each other.
+    detail::SpringNeighbours& neighbours = *m_particleSystems.neighbours;
+    neighbours.update(m_forces.objects, m_bodies.radii);
     constexpr int kSweeps = 8;
-    contacts.solve(m_surfaces.planes, kSweeps,
-                   [&](std::uint32_t a, std::uint32_t b) { return !(coupled(a) && coupled(b)); });
+    contacts.solve(m_surfaces.planes, kSweeps, [&](std::uint32_t a, std::uint32_t b) {
+        return !neighbours.near(contacts.bodies[a], contacts.bodies[b]);
+    });
     if (contacts.pairs.empty())
         return;
     for (std::size_t k = 0; k < contacts.balls.size(); ++k)

@@ -1,12 +1,14 @@
-// The scenes where particles, ropes and cloth touch rigid bodies, held to their one-line claims,
-// each measured here from the bodies' states rather than from the engine's contacts: a sheet
-// drapes over a fixed box with no particle inside it, a crate bounces on a trampoline cloth and
-// comes to rest on it, and a crate on a rope knocks a wall of boxes down with its joint holding.
+// The scenes where particles, ropes and cloth touch rigid bodies or themselves, held to their
+// one-line claims, each measured here from the bodies' states rather than from the engine's
+// contacts: a sheet drapes over a fixed box with no particle inside it, a crate bounces on a
+// trampoline cloth and comes to rest on it, a crate on a rope knocks a wall of boxes down with its
+// joint holding, and a sheet falls in folds onto the floor without passing through itself.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pba/scene/scene.hpp"
@@ -145,4 +147,32 @@ TEST(TouchScenes, ACrateDroppedOnARopeSlowsAndTheRopeMoves)
     EXPECT_TRUE(slowed);
     EXPECT_GT(ropeFastestDown, 1.0); // pushed down at more than 1 m/s
     EXPECT_GT(crate.getPos().y, 1.0); // held by the rope, above the floor
+}
+
+SCENE_CLAIM(TouchSceneClaims, ClothFoldsFallsInFoldsNeverThroughItself, "cloth-folds")
+{
+    // Far apart in the flat sheet (at least four radii, whatever its springs are) and so never
+    // held near each other by them: every such pair is checked, every 10 steps.
+    Scene scene = loadScene("cloth-folds");
+    World& world = scene.world;
+    const double radius = 0.04;
+    std::vector<std::pair<std::size_t, std::size_t>> far;
+    for (std::size_t a = 0; a < world.bodyCount(); ++a)
+        for (std::size_t b = a + 1; b < world.bodyCount(); ++b)
+            if (glm::length(world.body(a).getPos() - world.body(b).getPos()) >= 4.0 * radius)
+                far.emplace_back(a, b);
+    ASSERT_EQ(world.bodyCount(), 400u);
+    double closest = INFINITY;
+    run(scene, [&](long n) {
+        if (n % 10 == 0)
+            for (const auto& pair : far)
+                closest = std::min(closest,
+                                   glm::length(world.body(pair.first).getPos() - world.body(pair.second).getPos()));
+    });
+    EXPECT_GE(closest, 0.9 * 2.0 * radius) << "two layers passed into each other";
+    double highest = 0.0;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        highest = std::max(highest, world.body(i).getPos().y);
+    EXPECT_GE(highest, 5.0 * radius) << "in folds, three layers deep somewhere";
+    EXPECT_LT(highest, 0.5) << "on the floor";
 }
