@@ -15,6 +15,7 @@
 #include "collision_rules.hpp"
 #include "rigid/joint_solver.hpp"
 #include "rigid/rigid_system.hpp"
+#include "grain_contacts.hpp"
 #include "particle_contacts.hpp"
 #include "spring_solvers.hpp"
 
@@ -45,6 +46,7 @@ World::World()
     m_rigid.system = std::make_unique<rigid::RigidSystem>();
     m_particleSystems.springSolvers = std::make_unique<detail::SpringSolvers>();
     m_particleSystems.ballContacts = std::make_unique<detail::BallContacts>();
+    m_particleSystems.grainContacts = std::make_unique<detail::GrainContacts>();
 }
 World::World(const World&) = default;
 World& World::operator=(const World&) = default;

@@ -1,0 +1,309 @@
+#include "grain_contacts.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include "collision_rules.hpp"
+#include "pba/swarm.hpp"
+
+namespace pba::detail {
+
+namespace {
+
+using Vec = Vec3<float>;
+
+/// Grains a task in the loops over all of them.
+constexpr std::size_t kGrainBlock = 4096;
+
+/// Coulomb's law on a step's displacement: the sliding `slide` (m) of a contact pressed `depth`
+/// (m) into it is taken away up to mu times the depth.
+inline Vec heldBack(const Vec& slide, float depth, float mu)
+{
+    const float length = glm::length(slide);
+    if (!(length > 0.0f))
+        return Vec(0.0f);
+    return std::min(1.0f, mu * depth / length) * slide;
+}
+
+/// One pair's share of a sweep: BallContacts::touch for two grains of equal mass (their overlap
+/// split in half along the normal, the approach speed that restitution does not give back taken
+/// away, all of it in resting contact, and Coulomb friction on the sliding), with friction on
+/// the step's displacement too (x0: where each grain started the step). Pushing grains apart
+/// along the normal alone lets a heap creep: each step gravity sinks a grain g dt^2 into those
+/// below it and the push out along a slanted normal sends it that much outwards, so friction on
+/// the velocities holds the speeds near zero while the positions flow.
+inline void touch(Vec& xa, Vec& va, const Vec& xa0, Vec& xb, Vec& vb, const Vec& xb0, const GrainRule& rule,
+                  float reach)
+{
+    const Vec d = xb - xa;
+    const float d2 = glm::dot(d, d);
+    if (!(d2 < reach * reach))
+        return;
+    const float distance = std::sqrt(d2);
+    const Vec n = distance > 0.0f ? d / distance : Vec(0.0f, 1.0f, 0.0f); // two at one point: one above
+    const float half = 0.5f * (reach - distance);
+    xa -= half * n;
+    xb += half * n;
+    if (rule.friction > 0.0f) {
+        const Vec moved = (xb - xb0) - (xa - xa0);
+        const Vec back = 0.5f * heldBack(moved - glm::dot(moved, n) * n, 2.0f * half, rule.friction);
+        xa += back;
+        xb -= back;
+    }
+    const Vec relative = vb - va;
+    const float vn = glm::dot(relative, n);
+    if (!(vn < 0.0f))
+        return;
+    // An approach no faster than two steps of gravity is resting contact: no rebound.
+    const float e = -vn <= 2.0f * rule.restingSpeed ? 0.0f : rule.cor;
+    const float dvn = -(1.0f + e) * vn; // the change of their normal approach speed
+    va -= (0.5f * dvn) * n;
+    vb += (0.5f * dvn) * n;
+    const Vec slide = relative - vn * n;
+    const float speed = glm::length(slide);
+    if (rule.friction > 0.0f && speed > 0.0f) {
+        // Coulomb: the sliding loses up to mu times the normal change, and never turns back.
+        const float dvt = std::min(rule.friction * dvn, speed);
+        const Vec t = slide / speed;
+        va += (0.5f * dvt) * t;
+        vb -= (0.5f * dvt) * t;
+    }
+}
+
+/// A grain pushed out of the room by a sweep put back on its walls, its speed into them taken
+/// away, and its sliding along a wall it touches held back by friction, in position and speed.
+inline void keepInRoom(std::span<const PlaneT<float>> room, const GrainRule& rule, bool first, const Vec& x0, Vec& x,
+                       Vec& v)
+{
+    const float touching = 2.0f * rule.restingSpeed * rule.dt; // two steps' fall from rest
+    for (const PlaneT<float>& plane : room) {
+        const float depth = plane.distance(x);
+        if (depth > touching || plane.overHole(x))
+            continue;
+        // How far the wall presses: what the sweep pushed the grain into it, and once a step the
+        // weight's share (which the swarm's own collision with the room undid before the sweeps).
+        const float weight = first ? rule.restingSpeed * std::max(plane.normal.y, 0.0f) : 0.0f;
+        float pressed = weight * rule.dt;
+        if (depth < 0.0f) {
+            collision_detail::snapOnto(plane, x);
+            pressed -= depth;
+        }
+        if (rule.friction > 0.0f) {
+            const Vec moved = x - x0;
+            x -= heldBack(moved - glm::dot(moved, plane.normal) * plane.normal, pressed, rule.friction);
+        }
+        const float vn = glm::dot(plane.normal, v);
+        float push = weight;
+        if (vn < 0.0f) {
+            v -= vn * plane.normal;
+            push -= vn;
+        }
+        if (rule.friction > 0.0f)
+            v -= heldBack(v - glm::dot(plane.normal, v) * plane.normal, push, rule.friction);
+    }
+}
+
+struct Box {
+    Vec lo{std::numeric_limits<float>::max()}, hi{std::numeric_limits<float>::lowest()};
+};
+
+Box boundsOf(const Swarm& swarm)
+{
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, swarm.size(), kGrainBlock), Box{},
+        [&](const tbb::blocked_range<std::size_t>& r, Box box) {
+            for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                box.lo = glm::min(box.lo, swarm.position(i));
+                box.hi = glm::max(box.hi, swarm.position(i));
+            }
+            return box;
+        },
+        [](const Box& a, const Box& b) { return Box{glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)}; });
+}
+
+} // namespace
+
+std::size_t GrainContacts::pairCount() const
+{
+    std::size_t count = 0;
+    for (const auto& slab : m_pairs)
+        count += slab.size();
+    return count;
+}
+
+Vec3<std::int64_t> GrainContacts::cellOf(const Vec& x) const
+{
+    return Vec3<std::int64_t>(glm::floor(x / m_grid.spacing));
+}
+
+std::size_t GrainContacts::keyOf(const Vec3<std::int64_t>& cell) const
+{
+    if (!m_grid.hashed) {
+        // Within the box (only a grain with a non-finite position could lie outside it).
+        const Vec3<std::int64_t> c = glm::clamp(cell - m_grid.lo, Vec3<std::int64_t>(0), m_grid.dims - std::int64_t(1));
+        return std::size_t((c.x * m_grid.dims.y + c.y) * m_grid.dims.z + c.z);
+    }
+    // Large odd multipliers spread neighbouring cells over the table; XOR mixes the three.
+    const std::uint64_t h = std::uint64_t(cell.x) * 92837111u ^ std::uint64_t(cell.y) * 689287499u ^
+                            std::uint64_t(cell.z) * 283923481u;
+    return std::size_t(h % m_grid.cells);
+}
+
+void GrainContacts::plan(float spacing)
+{
+    // Numbered cells while the box holds at most a few per grain; a hash table of twice as many
+    // buckets as grains beyond that (a swarm spread over a large space), in one slab.
+    const std::size_t n = m_x.size();
+    m_grid.spacing = spacing;
+    m_grid.slabWidth = 1;
+    const auto fits = [&](std::int64_t d) { return d > 0 && d < (std::int64_t(1) << 20); };
+    const Vec3<std::int64_t> dims = m_grid.dims;
+    if (fits(dims.x) && fits(dims.y) && fits(dims.z) &&
+        std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z) <= 4 * n + 4096) {
+        m_grid.hashed = false;
+        m_grid.cells = std::size_t(dims.x * dims.y * dims.z);
+    } else {
+        m_grid.hashed = true;
+        m_grid.cells = 2 * n;
+    }
+}
+
+void GrainContacts::sortByCell(const Swarm& swarm)
+{
+    const std::size_t n = swarm.size();
+    const Box box = boundsOf(swarm);
+    m_grid.lo = Vec3<std::int64_t>(glm::floor(box.lo / m_reach));
+    m_grid.dims = Vec3<std::int64_t>(glm::floor(box.hi / m_reach)) - m_grid.lo + std::int64_t(1);
+    m_x.resize(n);
+    m_v.resize(n);
+    plan(m_reach);
+    m_key.resize(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrainBlock), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i)
+            m_key[i] = std::uint32_t(keyOf(cellOf(swarm.position(i))));
+    });
+    // A counting sort, stable: a cell's grains in the swarm's order.
+    m_cellStart.assign(m_grid.cells + 1, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        ++m_cellStart[m_key[i] + 1];
+    for (std::size_t c = 0; c < m_grid.cells; ++c)
+        m_cellStart[c + 1] += m_cellStart[c];
+    m_order.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+        m_order[m_cellStart[m_key[i]]++] = std::uint32_t(i);
+    // Each cell's counter now stands at the next cell's start: shift them back.
+    std::copy_backward(m_cellStart.begin(), m_cellStart.end() - 1, m_cellStart.end());
+    m_cellStart[0] = 0;
+    const std::size_t slabs =
+        m_grid.hashed ? 1 : std::size_t((m_grid.dims.x + m_grid.slabWidth - 1) / m_grid.slabWidth);
+    const std::size_t slabCells = m_grid.hashed ? 0 : std::size_t(m_grid.slabWidth * m_grid.dims.y * m_grid.dims.z);
+    m_slabStart.resize(slabs + 1);
+    for (std::size_t k = 0; k < slabs; ++k)
+        m_slabStart[k] = m_cellStart[k * slabCells];
+    m_slabStart[slabs] = n;
+}
+
+void GrainContacts::gather(const Swarm& swarm, float dt)
+{
+    m_x0.resize(m_x.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_x.size(), kGrainBlock), [&](const auto& r) {
+        for (std::size_t s = r.begin(); s < r.end(); ++s) {
+            m_x[s] = swarm.position(m_order[s]);
+            m_v[s] = swarm.velocity(m_order[s]);
+            // Where the step started: semi-implicit Euler ends a step at x0 + v dt (the other methods
+            // near it), up to the
+            // room's push along its normals, which friction along a wall does not see.
+            m_x0[s] = m_x[s] - dt * m_v[s];
+        }
+    });
+}
+
+void GrainContacts::findPairs(std::size_t slab)
+{
+    auto& pairs = m_pairs[slab];
+    pairs.clear();
+    const float reach2 = m_reach * m_reach;
+    std::array<std::size_t, 27> keys{};
+    for (std::size_t s = m_slabStart[slab]; s < m_slabStart[slab + 1]; ++s) {
+        const Vec3<std::int64_t> c = cellOf(m_x[s]);
+        std::size_t count = 0;
+        for (std::int64_t dx = -1; dx <= 1; ++dx)
+            for (std::int64_t dy = -1; dy <= 1; ++dy)
+                for (std::int64_t dz = -1; dz <= 1; ++dz) {
+                    const Vec3<std::int64_t> d = c + Vec3<std::int64_t>(dx, dy, dz);
+                    const Vec3<std::int64_t> local = d - m_grid.lo;
+                    if (!m_grid.hashed && (glm::any(glm::lessThan(local, Vec3<std::int64_t>(0))) ||
+                                           glm::any(glm::greaterThanEqual(local, m_grid.dims))))
+                        continue;
+                    keys[count++] = keyOf(d);
+                }
+        // Two of the 27 cells may share a bucket: each once. (Numbered cells are all different.)
+        if (m_grid.hashed) {
+            std::sort(keys.begin(), keys.begin() + count);
+            count = std::size_t(std::unique(keys.begin(), keys.begin() + count) - keys.begin());
+        }
+        for (std::size_t k = 0; k < count; ++k)
+            for (std::size_t t = std::max<std::size_t>(m_cellStart[keys[k]], s + 1); t < m_cellStart[keys[k] + 1];
+                 ++t) {
+                const Vec d = m_x[t] - m_x[s];
+                if (glm::dot(d, d) < reach2)
+                    pairs.emplace_back(std::uint32_t(s), std::uint32_t(t));
+            }
+    }
+}
+
+template <class F>
+void GrainContacts::forEachPairInColours(F&& fn)
+{
+    const std::size_t slabs = m_pairs.size();
+    for (std::size_t colour = 0; colour < 2; ++colour) {
+        const std::size_t count = (slabs + 1 - colour) / 2;
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1), [&](const auto& r) {
+            for (std::size_t m = r.begin(); m < r.end(); ++m)
+                for (const auto& [a, b] : m_pairs[2 * m + colour])
+                    fn(a, b);
+        });
+    }
+}
+
+void GrainContacts::sweep(std::span<const PlaneT<float>> room, const GrainRule& rule, bool first)
+{
+    forEachPairInColours([&](std::uint32_t a, std::uint32_t b) {
+        touch(m_x[a], m_v[a], m_x0[a], m_x[b], m_v[b], m_x0[b], rule, m_reach);
+    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_x.size(), kGrainBlock), [&](const auto& r) {
+        for (std::size_t s = r.begin(); s < r.end(); ++s)
+            keepInRoom(room, rule, first, m_x0[s], m_x[s], m_v[s]);
+    });
+}
+
+void GrainContacts::solve(Swarm& swarm, std::span<const PlaneT<float>> room, const GrainRule& rule, int sweeps)
+{
+    const std::size_t n = swarm.size();
+    m_reach = 2.0f * rule.radius;
+    if (n < 2 || !(m_reach > 0.0f)) {
+        m_pairs.clear();
+        return;
+    }
+    sortByCell(swarm);
+    gather(swarm, rule.dt);
+    m_pairs.resize(m_slabStart.size() - 1);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_pairs.size(), 1), [&](const auto& r) {
+        for (std::size_t k = r.begin(); k < r.end(); ++k)
+            findPairs(k);
+    });
+    for (int k = 0; k < sweeps; ++k)
+        sweep(room, rule, k == 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrainBlock), [&](const auto& r) {
+        for (std::size_t s = r.begin(); s < r.end(); ++s)
+            swarm.set(m_order[s], m_x[s], m_v[s]);
+    });
+}
+
+} // namespace pba::detail
