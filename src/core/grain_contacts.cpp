@@ -18,6 +18,9 @@ namespace {
 
 using Vec = Vec3<float>;
 
+/// Two grains touch while their centres are less than this many of their reaches apart.
+constexpr float kTouching = 1.01f;
+
 /// Grains a task in the loops over all of them.
 constexpr std::size_t kGrainBlock = 4096;
 
@@ -41,16 +44,19 @@ inline Vec heldBack(const Vec& slide, float depth, float mu)
 inline void touch(Vec& xa, Vec& va, const Vec& xa0, Vec& xb, Vec& vb, const Vec& xb0, const GrainRule& rule,
                   float reach)
 {
+    // Touching within a hundredth of their reach: a pair that an earlier sweep put exactly at
+    // contact still takes away the approach that later pairs gave it (a grain pressed down from
+    // above onto one it rests on), or a heap's grains keep a speed into each other, and sink.
     const Vec d = xb - xa;
     const float d2 = glm::dot(d, d);
-    if (!(d2 < reach * reach))
+    if (!(d2 < kTouching * kTouching * reach * reach))
         return;
     const float distance = std::sqrt(d2);
     const Vec n = distance > 0.0f ? d / distance : Vec(0.0f, 1.0f, 0.0f); // two at one point: one above
-    const float half = 0.5f * (reach - distance);
+    const float half = std::max(0.0f, 0.5f * (reach - distance));
     xa -= half * n;
     xb += half * n;
-    if (rule.friction > 0.0f) {
+    if (rule.friction > 0.0f && half > 0.0f) {
         const Vec moved = (xb - xb0) - (xa - xa0);
         const Vec back = 0.5f * heldBack(moved - glm::dot(moved, n) * n, 2.0f * half, rule.friction);
         xa += back;
@@ -228,7 +234,7 @@ void GrainContacts::findPairs(std::size_t slab)
 {
     auto& pairs = m_pairs[slab];
     pairs.clear();
-    const float reach2 = m_reach * m_reach;
+    const float reach2 = kTouching * kTouching * m_reach * m_reach;
     std::array<std::size_t, 27> keys{};
     for (std::size_t s = m_slabStart[slab]; s < m_slabStart[slab + 1]; ++s) {
         const Vec3<std::int64_t> c = cellOf(m_x[s]);
