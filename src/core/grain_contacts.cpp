@@ -34,15 +34,10 @@ inline Vec heldBack(const Vec& slide, float depth, float mu)
     return std::min(1.0f, mu * depth / length) * slide;
 }
 
-/// One pair's share of a sweep: BallContacts::touch for two grains of equal mass (their overlap
-/// split in half along the normal, the approach speed that restitution does not give back taken
-/// away, all of it in resting contact, and Coulomb friction on the sliding), with friction on
-/// the step's displacement too (x0: where each grain started the step). Pushing grains apart
-/// along the normal alone lets a heap creep: each step gravity sinks a grain g dt^2 into those
-/// below it and the push out along a slanted normal sends it that much outwards, so friction on
-/// the velocities holds the speeds near zero while the positions flow.
-inline void touch(Vec& xa, Vec& va, const Vec& xa0, Vec& xb, Vec& vb, const Vec& xb0, const GrainRule& rule,
-                  float reach)
+/// One pair's share of a sweep (the rule in grain_contacts.hpp); x0: where each grain started
+/// the step; `first`: the step's first sweep, which decides the rebound.
+inline void touch(Vec& xa, Vec& va, const Vec& xa0, Vec& xb, Vec& vb, const Vec& xb0, GrainPair& pair,
+                  const GrainRule& rule, float reach, bool first)
 {
     // Touching within a hundredth of their reach: a pair that an earlier sweep put exactly at
     // contact still takes away the approach that later pairs gave it (a grain pressed down from
@@ -62,30 +57,33 @@ inline void touch(Vec& xa, Vec& va, const Vec& xa0, Vec& xb, Vec& vb, const Vec&
         xa += back;
         xb -= back;
     }
+    // Speeds as sequential impulses (Box2D's): the normal change accumulated over the sweeps
+    // stays a push (>= 0), and the sliding's accumulated change within mu times it.
     const Vec relative = vb - va;
     const float vn = glm::dot(relative, n);
-    if (!(vn < 0.0f))
-        return;
-    // An approach no faster than two steps of gravity is resting contact: no rebound.
-    const float e = -vn <= 2.0f * rule.restingSpeed ? 0.0f : rule.cor;
-    const float dvn = -(1.0f + e) * vn; // the change of their normal approach speed
+    if (first) // an approach no faster than two steps of gravity is resting contact: no rebound
+        pair.bounce = -vn > 2.0f * rule.restingSpeed ? -rule.cor * vn : 0.0f;
+    const float normal = std::max(pair.normal + pair.bounce - vn, 0.0f);
+    const float dvn = normal - pair.normal;
+    pair.normal = normal;
     va -= (0.5f * dvn) * n;
     vb += (0.5f * dvn) * n;
-    const Vec slide = relative - vn * n;
-    const float speed = glm::length(slide);
-    if (rule.friction > 0.0f && speed > 0.0f) {
-        // Coulomb: the sliding loses up to mu times the normal change, and never turns back.
-        const float dvt = std::min(rule.friction * dvn, speed);
-        const Vec t = slide / speed;
-        va += (0.5f * dvt) * t;
-        vb -= (0.5f * dvt) * t;
+    if (rule.friction > 0.0f) {
+        Vec tangent = pair.tangent - (relative - vn * n);
+        const float most = rule.friction * pair.normal, length = glm::length(tangent);
+        if (length > most)
+            tangent *= most / length;
+        const Vec dvt = tangent - pair.tangent;
+        pair.tangent = tangent;
+        va -= 0.5f * dvt;
+        vb += 0.5f * dvt;
     }
 }
 
 /// A grain pushed out of the room by a sweep put back on its walls, its speed into them taken
 /// away, and its sliding along a wall it touches held back by friction, in position and speed.
 inline void keepInRoom(std::span<const PlaneT<float>> room, const GrainRule& rule, bool first, const Vec& x0, Vec& x,
-                       Vec& v)
+                       Vec& v, float& push, float& slowed)
 {
     const float touching = 2.0f * rule.restingSpeed * rule.dt; // two steps' fall from rest
     for (const PlaneT<float>& plane : room) {
@@ -104,14 +102,21 @@ inline void keepInRoom(std::span<const PlaneT<float>> room, const GrainRule& rul
             const Vec moved = x - x0;
             x -= heldBack(moved - glm::dot(moved, plane.normal) * plane.normal, pressed, rule.friction);
         }
+        // The walls' push over the step's sweeps so far bounds what friction has taken in all.
         const float vn = glm::dot(plane.normal, v);
-        float push = weight;
+        push += weight;
         if (vn < 0.0f) {
             v -= vn * plane.normal;
             push -= vn;
         }
-        if (rule.friction > 0.0f)
-            v -= heldBack(v - glm::dot(plane.normal, v) * plane.normal, push, rule.friction);
+        if (rule.friction > 0.0f) {
+            const Vec slide = v - glm::dot(plane.normal, v) * plane.normal;
+            const float speed = glm::length(slide), most = rule.friction * push - slowed;
+            if (speed > 0.0f && most > 0.0f) {
+                v -= (std::min(speed, most) / speed) * slide;
+                slowed += std::min(speed, most);
+            }
+        }
     }
 }
 
@@ -218,6 +223,8 @@ void GrainContacts::sortByCell(const Swarm& swarm)
 void GrainContacts::gather(const Swarm& swarm, float dt)
 {
     m_x0.resize(m_x.size());
+    m_push.resize(m_x.size());
+    m_slowed.resize(m_x.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_x.size(), kGrainBlock), [&](const auto& r) {
         for (std::size_t s = r.begin(); s < r.end(); ++s) {
             m_x[s] = swarm.position(m_order[s]);
@@ -226,6 +233,7 @@ void GrainContacts::gather(const Swarm& swarm, float dt)
             // near it), up to the
             // room's push along its normals, which friction along a wall does not see.
             m_x0[s] = m_x[s] - dt * m_v[s];
+            m_push[s] = m_slowed[s] = 0.0f;
         }
     });
 }
@@ -259,7 +267,7 @@ void GrainContacts::findPairs(std::size_t slab)
                  ++t) {
                 const Vec d = m_x[t] - m_x[s];
                 if (glm::dot(d, d) < reach2)
-                    pairs.emplace_back(std::uint32_t(s), std::uint32_t(t));
+                    pairs.push_back({std::uint32_t(s), std::uint32_t(t)});
             }
     }
 }
@@ -272,20 +280,20 @@ void GrainContacts::forEachPairInColours(F&& fn)
         const std::size_t count = (slabs + 1 - colour) / 2;
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1), [&](const auto& r) {
             for (std::size_t m = r.begin(); m < r.end(); ++m)
-                for (const auto& [a, b] : m_pairs[2 * m + colour])
-                    fn(a, b);
+                for (GrainPair& pair : m_pairs[2 * m + colour])
+                    fn(pair);
         });
     }
 }
 
 void GrainContacts::sweep(std::span<const PlaneT<float>> room, const GrainRule& rule, bool first)
 {
-    forEachPairInColours([&](std::uint32_t a, std::uint32_t b) {
-        touch(m_x[a], m_v[a], m_x0[a], m_x[b], m_v[b], m_x0[b], rule, m_reach);
+    forEachPairInColours([&](GrainPair& p) {
+        touch(m_x[p.a], m_v[p.a], m_x0[p.a], m_x[p.b], m_v[p.b], m_x0[p.b], p, rule, m_reach, first);
     });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_x.size(), kGrainBlock), [&](const auto& r) {
         for (std::size_t s = r.begin(); s < r.end(); ++s)
-            keepInRoom(room, rule, first, m_x0[s], m_x[s], m_v[s]);
+            keepInRoom(room, rule, first, m_x0[s], m_x[s], m_v[s], m_push[s], m_slowed[s]);
     });
 }
 

@@ -12,12 +12,17 @@
 // within a slab). The slabs come from the grains' positions alone, so every result is the same
 // on any thread count.
 //
-// The rule for a pair is the particles' (BallContacts::touch) for equal masses: the overlap is
-// split in half, the approach speed that restitution does not give back is taken away (all of
-// it in a resting contact), and Coulomb friction takes up to mu times that from the sliding.
-// The room has friction too: a grain on a wall loses up to mu times the wall's push from its
-// sliding, the push counting its weight's share of the step (which the swarm's own collision
-// with the room took away before the contacts run) and what the sweeps press into the wall.
+// A pair's rule is the particles' (BallContacts::touch) for equal masses, written as sequential
+// impulses (Box2D's): the overlap is split in half, the normal speed change accumulated over the
+// sweeps stays a push that leaves them apart at restitution times their approach (none in
+// resting contact), and the accumulated change of their sliding stays within mu times it. Friction
+// holds the step's displacement too: pushing grains apart along slanted normals alone lets a
+// heap creep outwards by g dt^2 a step while its speeds stay near zero. The room has friction
+// as well, bounded by its push over the sweeps, the grain's weight counted (the swarm's own
+// collision with the room takes it away before the contacts run).
+//
+// Gauss-Seidel sweeps converge slowly through a deep heap: with 8 a step, a mound still creeps
+// outwards for seconds after it formed (docs/scenes.md, granular).
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -39,6 +44,14 @@ struct GrainRule {
     float friction = 0.0f;
     float restingSpeed = 0.0f; ///< what gravity gives a grain in one step, |g| dt
     float dt = 0.0f;
+};
+
+/// Two touching grains (in cell order), and what their contact has done over the step's sweeps
+/// so far: how far it pushed them apart (m), the change of their normal and sliding speeds (m/s).
+struct GrainPair {
+    std::uint32_t a = 0, b = 0;
+    float pressed = 0.0f, normal = 0.0f, bounce = 0.0f;
+    Vec3<float> tangent{0.0f};
 };
 
 class GrainContacts {
@@ -67,7 +80,7 @@ private:
     void sortByCell(const Swarm& swarm);
     void findPairs(std::size_t slab);
     void sweep(std::span<const PlaneT<float>> room, const GrainRule& rule, bool first);
-    /// fn(a, b) for every pair: the even slabs' side by side, then the odd slabs'.
+    /// fn(pair) for every pair: the even slabs' side by side, then the odd slabs'.
     template <class F>
     void forEachPairInColours(F&& fn);
     Vec3<std::int64_t> cellOf(const Vec& x) const;
@@ -76,11 +89,12 @@ private:
     Grid m_grid;
     std::vector<Vec> m_x, m_v;                ///< the grains in cell order
     std::vector<Vec> m_x0;                    ///< where each started the step
+    std::vector<float> m_push, m_slowed;      ///< the room's push on each this step (m/s), and its friction's
     std::vector<std::uint32_t> m_order;       ///< cell order -> swarm index
     std::vector<std::uint32_t> m_key;         ///< swarm index -> cell (or bucket)
     std::vector<std::uint32_t> m_cellStart;   ///< cell c's grains are [m_cellStart[c], m_cellStart[c + 1])
     std::vector<std::size_t> m_slabStart;     ///< slab k's grains are [m_slabStart[k], m_slabStart[k + 1])
-    std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> m_pairs; ///< per slab
+    std::vector<std::vector<GrainPair>> m_pairs; ///< per slab
     float m_reach = 0.0f;                     ///< two radii
 };
 

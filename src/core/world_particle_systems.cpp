@@ -199,7 +199,7 @@ void World::collideGrains(Swarm& swarm, std::span<const PlaneT<float>> room, dou
 {
     const detail::GrainRule rule{swarm.radius(), swarm.restitution(), swarm.friction(), float(restingSpeed),
                                  float(dt)};
-    constexpr int kSweeps = 4;
+    constexpr int kSweeps = 8;
     detail::onCores(m_threads, [&] { m_particleSystems.grainContacts->solve(swarm, room, rule, kSweeps); });
 }
 
