@@ -243,6 +243,34 @@ void GrainContacts::findPairs(std::size_t slab)
     auto& pairs = m_pairs[slab];
     pairs.clear();
     const float reach2 = kTouching * kTouching * m_reach * m_reach;
+    const auto near = [&](std::size_t s, std::size_t from, std::size_t to) {
+        for (std::size_t t = std::max(from, s + 1); t < to; ++t) {
+            const Vec d = m_x[t] - m_x[s];
+            if (glm::dot(d, d) < reach2)
+                pairs.push_back({std::uint32_t(s), std::uint32_t(t)});
+        }
+    };
+    if (!m_grid.hashed) {
+        // Numbered cells: only the 14 at or after a grain's own hold grains after it, in five
+        // runs of cells adjacent along z (x-major numbering).
+        const Vec3<std::int64_t> dims = m_grid.dims;
+        for (std::size_t s = m_slabStart[slab]; s < m_slabStart[slab + 1]; ++s) {
+            const Vec3<std::int64_t> c = glm::clamp(cellOf(m_x[s]) - m_grid.lo, Vec3<std::int64_t>(0),
+                                                    dims - std::int64_t(1));
+            const auto run = [&](std::int64_t x, std::int64_t y, std::int64_t z0, std::int64_t z1) {
+                if (x >= dims.x || y < 0 || y >= dims.y)
+                    return;
+                const std::int64_t row = (x * dims.y + y) * dims.z;
+                near(s, m_cellStart[std::size_t(row + std::max<std::int64_t>(z0, 0))],
+                     m_cellStart[std::size_t(row + std::min(z1, dims.z - 1) + 1)]);
+            };
+            run(c.x, c.y, c.z, c.z + 1);
+            run(c.x, c.y + 1, c.z - 1, c.z + 1);
+            for (std::int64_t dy = -1; dy <= 1; ++dy)
+                run(c.x + 1, c.y + dy, c.z - 1, c.z + 1);
+        }
+        return;
+    }
     std::array<std::size_t, 27> keys{};
     for (std::size_t s = m_slabStart[slab]; s < m_slabStart[slab + 1]; ++s) {
         const Vec3<std::int64_t> c = cellOf(m_x[s]);
@@ -251,24 +279,13 @@ void GrainContacts::findPairs(std::size_t slab)
             for (std::int64_t dy = -1; dy <= 1; ++dy)
                 for (std::int64_t dz = -1; dz <= 1; ++dz) {
                     const Vec3<std::int64_t> d = c + Vec3<std::int64_t>(dx, dy, dz);
-                    const Vec3<std::int64_t> local = d - m_grid.lo;
-                    if (!m_grid.hashed && (glm::any(glm::lessThan(local, Vec3<std::int64_t>(0))) ||
-                                           glm::any(glm::greaterThanEqual(local, m_grid.dims))))
-                        continue;
                     keys[count++] = keyOf(d);
                 }
-        // Two of the 27 cells may share a bucket: each once. (Numbered cells are all different.)
-        if (m_grid.hashed) {
-            std::sort(keys.begin(), keys.begin() + count);
-            count = std::size_t(std::unique(keys.begin(), keys.begin() + count) - keys.begin());
-        }
+        // Two of the 27 cells may share a bucket: each once.
+        std::sort(keys.begin(), keys.begin() + count);
+        count = std::size_t(std::unique(keys.begin(), keys.begin() + count) - keys.begin());
         for (std::size_t k = 0; k < count; ++k)
-            for (std::size_t t = std::max<std::size_t>(m_cellStart[keys[k]], s + 1); t < m_cellStart[keys[k] + 1];
-                 ++t) {
-                const Vec d = m_x[t] - m_x[s];
-                if (glm::dot(d, d) < reach2)
-                    pairs.push_back({std::uint32_t(s), std::uint32_t(t)});
-            }
+            near(s, m_cellStart[keys[k]], m_cellStart[keys[k] + 1]);
     }
 }
 
@@ -293,7 +310,8 @@ void GrainContacts::sweep(std::span<const PlaneT<float>> room, const GrainRule& 
     });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_x.size(), kGrainBlock), [&](const auto& r) {
         for (std::size_t s = r.begin(); s < r.end(); ++s)
-            keepInRoom(room, rule, first, m_x0[s], m_x[s], m_v[s], m_push[s], m_slowed[s]);
+            if (m_nearWall[s])
+                keepInRoom(room, rule, first, m_x0[s], m_x[s], m_v[s], m_push[s], m_slowed[s]);
     });
 }
 
@@ -307,6 +325,17 @@ void GrainContacts::solve(Swarm& swarm, std::span<const PlaneT<float>> room, con
     }
     sortByCell(swarm);
     gather(swarm, rule.dt);
+    // The grains the room's walls may meet during the sweeps: those within a few reaches of one
+    // (the sweeps move a grain by its overlaps, each less than a reach).
+    m_nearWall.resize(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrainBlock), [&](const auto& r) {
+        for (std::size_t s = r.begin(); s < r.end(); ++s) {
+            bool near = false;
+            for (const PlaneT<float>& plane : room)
+                near |= plane.distance(m_x[s]) < 4.0f * m_reach;
+            m_nearWall[s] = near ? 1 : 0;
+        }
+    });
     m_pairs.resize(m_slabStart.size() - 1);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_pairs.size(), 1), [&](const auto& r) {
         for (std::size_t k = r.begin(); k < r.end(); ++k)
