@@ -40,6 +40,7 @@ rigid cloth 1.2 0,2.6,5,0,2.2,0
 rigid cloth-on-box 4 0,2.3,3.6,0,0.15,0
 rigid trampoline 0.56 0,2.8,4.2,0,0.75,0 # the crate deepest in the cloth
 rigid hanging-crate 1.3 0.6,2.2,6.6,0.2,0.5,0
+rigid granular 4 0,0.16,0.62,0,0.04,0 # the mound at the end, from low beside it
 "$pba" render stiff-spring --size 640x360 --time 1.5 --camera=0,5.2,10.5,0,4.4,0 --out "$out/stiff-spring.png"
 # The README's first scene, from the example file it shows.
 "$pba" render docs/examples/first-scene.json --size 640x360 --time 3 --camera=0,2,6,0,1.6,0 --out "$out/first-scene.png"
