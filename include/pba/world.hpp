@@ -78,6 +78,7 @@ struct SpringSolver;
 struct SpringSolvers;
 struct BallContacts;
 class SpringNeighbours;
+class GrainContacts;
 }
 
 /// An axis-aligned box: the room.
@@ -373,6 +374,8 @@ private:
         ClonePtr<detail::BallContacts> ballContacts;
         /// Which of them one rope's or cloth's springs hold too near to collide.
         ClonePtr<detail::SpringNeighbours> neighbours;
+        /// A colliding swarm's grains against each other: their cell order, slabs and pairs.
+        ClonePtr<detail::GrainContacts> grainContacts;
         int xpbdSubsteps = kDefaultXpbdSubsteps;
     };
     /// The free step's buffers of the rigid bodies, reused from step to step.
@@ -460,9 +463,10 @@ private:
     /// other after their step are separated and exchange impulses (src/core/particle_contacts.hpp);
     /// neighbours along one rope or cloth are left to their springs (src/core/spring_neighbours.hpp).
     void collideBalls(double dt);
-    /// Phase 6, for a swarm that collides: its grains through the same contacts as collideBalls
+    /// Phase 6, for a swarm that collides: its grains against each other and `room` (its planes
+    /// moved a grain's radius inwards) by the particles' rule, in float and on all cores
     /// (`restingSpeed`: gravity's speed in one step).
-    void collideGrains(Swarm& swarm, double restingSpeed);
+    void collideGrains(Swarm& swarm, std::span<const PlaneT<float>> room, double restingSpeed, double dt);
     /// Phase 5 (RigidBodies, Bodies, Forces, Surfaces): the awake bodies' free step
     /// (integrateRigidFreely), the rigid system's findContacts, the free step of the bodies it
     /// woke, its solve, then storeRigidBodies.

@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "bench_granular.hpp"
 #include "bench_pile.hpp"
 #include "bench_scenes.hpp"
 #include "bench_swarm.hpp"
@@ -202,7 +203,7 @@ int runPhases(const BenchOptions& options)
 
 /// The rows, the cloth's, the piles' and fountain-1m's as {"results": [...]}.
 void printJson(const std::vector<Row>& rows, const std::vector<ClothRow>& cloth, const std::vector<PileRun>& piles,
-               const SceneRun& fountain, int cores)
+               const std::vector<GranularRow>& grains, const SceneRun& fountain, int cores)
 {
     nlohmann::json out;
     out["results"] = nlohmann::json::array();
@@ -240,13 +241,18 @@ void printJson(const std::vector<Row>& rows, const std::vector<ClothRow>& cloth,
                                   {"steps_per_s_overall", run.overallStepsPerSecond}, {"spans", run.spans},
                                   {"steps_per_span", run.spanSteps}, {"slowest_span_from_s", run.slowestFrom}});
     }
+    for (const GranularRow& g : grains)
+        out["results"].push_back({{"layout", "granular"}, {"scene", "granular"}, {"n", g.n}, {"threads", g.threads},
+                                  {"particle_steps_per_s", g.rate}, {"without_collisions", g.withoutCollisions},
+                                  {"particle_steps_per_s_median", g.medianRate},
+                                  {"without_collisions_median", g.medianWithout}});
     out["machine"] = {{"cores", cores}};
     fmt::print("{}\n", out.dump(2));
 }
 
 /// The same as tables, each scene row with its target.
 void printTables(const std::vector<Row>& rows, const std::vector<ClothRow>& cloth, const std::vector<PileRun>& piles,
-                 const SceneRun& fountain)
+                 const std::vector<GranularRow>& grains, const SceneRun& fountain)
 {
     fmt::print("{}{}", table(rows), spreadNotes(rows));
     fmt::print("\n{:<7} {:<20} {:>8} {:>9} {:>9} {:>7} {:>9} {:>9}  {}\n", "layout", "integrator", "dt (s)",
@@ -275,6 +281,14 @@ void printTables(const std::vector<Row>& rows, const std::vector<ClothRow>& clot
     fmt::print("(manyDice's 10 cm dice thrown into the dice scene's room, semi-implicit Euler with contacts, {} spans "
                "of {} steps from the throw: the slowest span's physics steps per second, and the whole run's)\n",
                piles.front().run.spans, piles.front().run.spanSteps);
+    fmt::print("\n{:<9} {:>8} {:>7} {:>16} {:>10} {:>18} {:>10} {:>9}\n", "layout", "N", "threads",
+               "particle-steps/s", "median", "without collisions", "median", "fraction");
+    for (const GranularRow& g : grains)
+        fmt::print("{:<9} {:>8} {:>7} {:>16.3e} {:>10.3e} {:>18.3e} {:>10.3e} {:>9.2f}\n", "granular", g.n, g.threads,
+                   g.rate, g.medianRate, g.withoutCollisions, g.medianWithout, g.rate / g.withoutCollisions);
+    fmt::print("(the granular scene's grains, 5 mm, in a sparse layer falling onto a floor sized to them, from their "
+               "10th step; windows of the swarm with its contacts and without them taken in turn; target: a fraction "
+               "of 0.2 or more)\n");
     const SpanRun& scene = fountain.run;
     fmt::print("\nfountain-1m ({} particles, {} threads, {} spans of {} steps): {:.0f} physics steps/s in its "
                "slowest span (from t = {:.3g} s), {:.0f} over the whole run (real time needs 480: 8 steps a 60 Hz "
@@ -325,13 +339,16 @@ int runBench(const BenchOptions& options)
         piles.push_back(runPile(dice, options.quick, cores));
     }
     if (!options.json)
+        fmt::print(stderr, "pouring grains\n");
+    const std::vector<GranularRow> grains = measureGranular(options.quick, minTime, repeats, cores);
+    if (!options.json)
         fmt::print(stderr, "stepping fountain-1m {}\n",
                    options.quick ? "for two spans of 4 steps" : "through its whole duration");
     const SceneRun fountain = runScene(options.quick, cores);
     if (options.json)
-        printJson(rows, cloth, piles, fountain, cores);
+        printJson(rows, cloth, piles, grains, fountain, cores);
     else
-        printTables(rows, cloth, piles, fountain);
+        printTables(rows, cloth, piles, grains, fountain);
     return kExitSuccess;
 }
 
@@ -407,6 +424,9 @@ void addBenchCommand(CLI::App& root, Action& selected)
                   "two spans of 10 steps with --quick), timed half a second at a time: physics steps per second\n"
                   "in the slowest half second and over the run. Their states are the same on any number of\n"
                   "threads. bench/peers/pile.py times the same throws beside Bullet's.\n"
+                  "Then the granular rows: the granular scene's grains (5 mm) at 1e5 and 1e6 (1e5 only with\n"
+                  "--quick), a sparse layer falling onto a floor sized to them, from its 10th step, on all cores,\n"
+                  "with their contacts and without them, windows taken in turn as above.\n"
                   "Last, the fountain-1m scene is stepped as a program would through its whole 10 s, timed a\n"
                   "simulated second at a time (two spans of 4 steps with --quick); its physics steps per second\n"
                   "are reported for its slowest second (the one a real-time program must keep up with) and for\n"

@@ -15,6 +15,7 @@
 #include "collision_rules.hpp"
 #include "rigid/joint_solver.hpp"
 #include "rigid/rigid_system.hpp"
+#include "grain_contacts.hpp"
 #include "particle_contacts.hpp"
 #include "spring_neighbours.hpp"
 #include "spring_solvers.hpp"
@@ -47,6 +48,7 @@ World::World()
     m_particleSystems.springSolvers = std::make_unique<detail::SpringSolvers>();
     m_particleSystems.ballContacts = std::make_unique<detail::BallContacts>();
     m_particleSystems.neighbours = std::make_unique<detail::SpringNeighbours>();
+    m_particleSystems.grainContacts = std::make_unique<detail::GrainContacts>();
 }
 World::World(const World&) = default;
 World& World::operator=(const World&) = default;

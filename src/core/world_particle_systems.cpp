@@ -6,6 +6,7 @@
 #include "pba/world.hpp"
 
 #include "collision_rules.hpp"
+#include "grain_contacts.hpp"
 #include "parallel.hpp"
 #include "particle_contacts.hpp"
 #include "spring_neighbours.hpp"
@@ -196,22 +197,12 @@ void World::collideBalls(double dt)
             m_bodies.objects[contacts.bodies[k]]->setState({contacts.balls[k].x, contacts.balls[k].v});
 }
 
-void World::collideGrains(Swarm& swarm, double restingSpeed)
+void World::collideGrains(Swarm& swarm, std::span<const PlaneT<float>> room, double restingSpeed, double dt)
 {
-    // The grains in double precision through the particles' own contacts: one rule for both.
-    detail::BallContacts& contacts = *m_particleSystems.ballContacts;
-    contacts.balls.resize(swarm.size());
-    const double inverseMass = 1.0 / double(swarm.mass());
-    detail::forEachIndex(swarm.size(), [&](std::size_t i) {
-        contacts.balls[i] = {dvec3(swarm.position(i)), dvec3(swarm.velocity(i)), inverseMass, double(swarm.radius()),
-                             double(swarm.restitution()), double(swarm.friction()), restingSpeed};
-    });
-    constexpr int kSweeps = 4;
-    auto always = [](std::uint32_t, std::uint32_t) { return true; };
-    detail::onCores(m_threads, [&] { contacts.solve(m_surfaces.planes, kSweeps, always); });
-    detail::forEachIndex(swarm.size(), [&](std::size_t i) {
-        swarm.set(i, Vec3<float>(contacts.balls[i].x), Vec3<float>(contacts.balls[i].v));
-    });
+    const detail::GrainRule rule{swarm.radius(), swarm.restitution(), swarm.friction(), float(restingSpeed),
+                                 float(dt)};
+    constexpr int kSweeps = 8;
+    detail::onCores(m_threads, [&] { m_particleSystems.grainContacts->solve(swarm, room, rule, kSweeps); });
 }
 
 } // namespace pba

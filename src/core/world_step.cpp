@@ -218,10 +218,10 @@ void World::stepSwarms(double dt)
         planes.push_back({Vec3<float>(p.normal), float(p.offset), float(p.holeRadius), Vec3<float>(p.holeCentre)});
     for (const auto& swarm : m_swarms.objects) {
         std::array<PlaneT<float>, kMaxBallPlanes> room;
-        swarm->step(fields, ballPlanes(std::span<const PlaneT<float>>(planes), swarm->radius(), room),
-                    m_surfaces.response, float(dt), m_threads);
+        const auto ball = ballPlanes(std::span<const PlaneT<float>>(planes), swarm->radius(), room);
+        swarm->step(fields, ball, m_surfaces.response, float(dt), m_threads);
         if (swarm->desc().collide)
-            collideGrains(*swarm, glm::length(dvec3(fields.gravity)) * dt);
+            collideGrains(*swarm, ball, glm::length(dvec3(fields.gravity)) * dt, dt);
     }
 }
 

@@ -343,7 +343,8 @@ TEST(PbaBench, QuickJsonHasEveryLayout)
     const auto json = nlohmann::json::parse(r.out);
     std::set<std::string> layouts;
     double bound = 0.0;
-    nlohmann::json scene, cloth = nlohmann::json::array(), piles = nlohmann::json::array();
+    nlohmann::json scene, cloth = nlohmann::json::array(), piles = nlohmann::json::array(),
+                          grains = nlohmann::json::array();
     std::set<std::string> swarmPhases;
     for (const auto& row : json["results"]) {
         layouts.insert(row["layout"].get<std::string>());
@@ -355,6 +356,10 @@ TEST(PbaBench, QuickJsonHasEveryLayout)
         }
         if (row["layout"] == "pile") {
             piles.push_back(row);
+            continue;
+        }
+        if (row["layout"] == "granular") {
+            grains.push_back(row);
             continue;
         }
         for (const char* key : {"integrator", "n", "threads", "particle_steps_per_s", "particle_steps_per_s_median",
@@ -373,7 +378,14 @@ TEST(PbaBench, QuickJsonHasEveryLayout)
             EXPECT_DOUBLE_EQ(row["fraction_of_bound"].get<double>(), rate / bound);
         }
     }
-    EXPECT_EQ(layouts, (std::set<std::string>{"bound", "baseline", "swarm", "scene", "cloth", "pile"}));
+    EXPECT_EQ(layouts, (std::set<std::string>{"bound", "baseline", "swarm", "scene", "cloth", "pile", "granular"}));
+    // The grains: 1e5 only with --quick, on all cores, with and without their contacts.
+    ASSERT_EQ(grains.size(), 1u);
+    EXPECT_EQ(grains[0]["n"], 100000);
+    EXPECT_EQ(grains[0]["scene"], "granular");
+    EXPECT_EQ(grains[0]["threads"], json["machine"]["cores"]);
+    for (const char* key : {"particle_steps_per_s", "without_collisions"})
+        EXPECT_GT(grains[0][key].get<double>(), 0.0) << key;
     // The piles: 1,000 and 10,000 dice on all cores, two spans of 10 steps each with --quick, the
     // slowest span's rate never above the whole run's.
     ASSERT_EQ(piles.size(), 2u);

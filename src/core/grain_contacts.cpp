@@ -1,0 +1,352 @@
+#include "grain_contacts.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include "collision_rules.hpp"
+#include "pba/swarm.hpp"
+
+namespace pba::detail {
+
+namespace {
+
+using Vec = Vec3<float>;
+
+/// Two grains touch while their centres are less than this many of their reaches apart.
+constexpr float kTouching = 1.01f;
+
+/// Grains a task in the loops over all of them.
+constexpr std::size_t kGrainBlock = 4096;
+
+/// Coulomb's law on a step's displacement: the sliding `slide` (m) of a contact pressed `depth`
+/// (m) into it is taken away up to mu times the depth.
+inline Vec heldBack(const Vec& slide, float depth, float mu)
+{
+    const float length = glm::length(slide);
+    if (!(length > 0.0f))
+        return Vec(0.0f);
+    return std::min(1.0f, mu * depth / length) * slide;
+}
+
+/// One pair's share of a sweep (the rule in grain_contacts.hpp); x0: where each grain started
+/// the step; `first`: the step's first sweep, which decides the rebound.
+inline void touch(Vec& xa, Vec& va, const Vec& xa0, Vec& xb, Vec& vb, const Vec& xb0, GrainPair& pair,
+                  const GrainRule& rule, float reach, bool first)
+{
+    // Touching within a hundredth of their reach: a pair that an earlier sweep put exactly at
+    // contact still takes away the approach that later pairs gave it (a grain pressed down from
+    // above onto one it rests on), or a heap's grains keep a speed into each other, and sink.
+    const Vec d = xb - xa;
+    const float d2 = glm::dot(d, d);
+    if (!(d2 < kTouching * kTouching * reach * reach))
+        return;
+    const float distance = std::sqrt(d2);
+    const Vec n = distance > 0.0f ? d / distance : Vec(0.0f, 1.0f, 0.0f); // two at one point: one above
+    const float half = std::max(0.0f, 0.5f * (reach - distance));
+    xa -= half * n;
+    xb += half * n;
+    if (rule.friction > 0.0f && half > 0.0f) {
+        const Vec moved = (xb - xb0) - (xa - xa0);
+        const Vec back = 0.5f * heldBack(moved - glm::dot(moved, n) * n, 2.0f * half, rule.friction);
+        xa += back;
+        xb -= back;
+    }
+    // Speeds as sequential impulses (Box2D's): the normal change accumulated over the sweeps
+    // stays a push (>= 0), and the sliding's accumulated change within mu times it.
+    const Vec relative = vb - va;
+    const float vn = glm::dot(relative, n);
+    if (first) // an approach no faster than two steps of gravity is resting contact: no rebound
+        pair.bounce = -vn > 2.0f * rule.restingSpeed ? -rule.cor * vn : 0.0f;
+    const float normal = std::max(pair.normal + pair.bounce - vn, 0.0f);
+    const float dvn = normal - pair.normal;
+    pair.normal = normal;
+    va -= (0.5f * dvn) * n;
+    vb += (0.5f * dvn) * n;
+    if (rule.friction > 0.0f) {
+        Vec tangent = pair.tangent - (relative - vn * n);
+        const float most = rule.friction * pair.normal, length = glm::length(tangent);
+        if (length > most)
+            tangent *= most / length;
+        const Vec dvt = tangent - pair.tangent;
+        pair.tangent = tangent;
+        va -= 0.5f * dvt;
+        vb += 0.5f * dvt;
+    }
+}
+
+/// A grain pushed out of the room by a sweep put back on its walls, its speed into them taken
+/// away, and its sliding along a wall it touches held back by friction, in position and speed.
+inline void keepInRoom(std::span<const PlaneT<float>> room, const GrainRule& rule, bool first, const Vec& x0, Vec& x,
+                       Vec& v, float& push, float& slowed)
+{
+    const float touching = 2.0f * rule.restingSpeed * rule.dt; // two steps' fall from rest
+    for (const PlaneT<float>& plane : room) {
+        const float depth = plane.distance(x);
+        if (depth > touching || plane.overHole(x))
+            continue;
+        // How far the wall presses: what the sweep pushed the grain into it, and once a step the
+        // weight's share (which the swarm's own collision with the room undid before the sweeps).
+        const float weight = first ? rule.restingSpeed * std::max(plane.normal.y, 0.0f) : 0.0f;
+        float pressed = weight * rule.dt;
+        if (depth < 0.0f) {
+            collision_detail::snapOnto(plane, x);
+            pressed -= depth;
+        }
+        if (rule.friction > 0.0f) {
+            const Vec moved = x - x0;
+            x -= heldBack(moved - glm::dot(moved, plane.normal) * plane.normal, pressed, rule.friction);
+        }
+        // The walls' push over the step's sweeps so far bounds what friction has taken in all.
+        const float vn = glm::dot(plane.normal, v);
+        push += weight;
+        if (vn < 0.0f) {
+            v -= vn * plane.normal;
+            push -= vn;
+        }
+        if (rule.friction > 0.0f) {
+            const Vec slide = v - glm::dot(plane.normal, v) * plane.normal;
+            const float speed = glm::length(slide), most = rule.friction * push - slowed;
+            if (speed > 0.0f && most > 0.0f) {
+                v -= (std::min(speed, most) / speed) * slide;
+                slowed += std::min(speed, most);
+            }
+        }
+    }
+}
+
+struct Box {
+    Vec lo{std::numeric_limits<float>::max()}, hi{std::numeric_limits<float>::lowest()};
+};
+
+Box boundsOf(const Swarm& swarm)
+{
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, swarm.size(), kGrainBlock), Box{},
+        [&](const tbb::blocked_range<std::size_t>& r, Box box) {
+            for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                box.lo = glm::min(box.lo, swarm.position(i));
+                box.hi = glm::max(box.hi, swarm.position(i));
+            }
+            return box;
+        },
+        [](const Box& a, const Box& b) { return Box{glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)}; });
+}
+
+} // namespace
+
+std::size_t GrainContacts::pairCount() const
+{
+    std::size_t count = 0;
+    for (const auto& slab : m_pairs)
+        count += slab.size();
+    return count;
+}
+
+Vec3<std::int64_t> GrainContacts::cellOf(const Vec& x) const
+{
+    return Vec3<std::int64_t>(glm::floor(x / m_grid.spacing));
+}
+
+std::size_t GrainContacts::keyOf(const Vec3<std::int64_t>& cell) const
+{
+    if (!m_grid.hashed) {
+        // Within the box (only a grain with a non-finite position could lie outside it).
+        const Vec3<std::int64_t> c = glm::clamp(cell - m_grid.lo, Vec3<std::int64_t>(0), m_grid.dims - std::int64_t(1));
+        return std::size_t((c.x * m_grid.dims.y + c.y) * m_grid.dims.z + c.z);
+    }
+    // Large odd multipliers spread neighbouring cells over the table; XOR mixes the three.
+    const std::uint64_t h = std::uint64_t(cell.x) * 92837111u ^ std::uint64_t(cell.y) * 689287499u ^
+                            std::uint64_t(cell.z) * 283923481u;
+    return std::size_t(h % m_grid.cells);
+}
+
+void GrainContacts::plan(float spacing)
+{
+    // Numbered cells while the box holds at most a few per grain; a hash table of twice as many
+    // buckets as grains beyond that (a swarm spread over a large space), in one slab.
+    const std::size_t n = m_x.size();
+    m_grid.spacing = spacing;
+    m_grid.slabWidth = 1;
+    const auto fits = [&](std::int64_t d) { return d > 0 && d < (std::int64_t(1) << 20); };
+    const Vec3<std::int64_t> dims = m_grid.dims;
+    if (fits(dims.x) && fits(dims.y) && fits(dims.z) &&
+        std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z) <= 4 * n + 4096) {
+        m_grid.hashed = false;
+        m_grid.cells = std::size_t(dims.x * dims.y * dims.z);
+    } else {
+        m_grid.hashed = true;
+        m_grid.cells = 2 * n;
+    }
+}
+
+void GrainContacts::sortByCell(const Swarm& swarm)
+{
+    const std::size_t n = swarm.size();
+    const Box box = boundsOf(swarm);
+    m_grid.lo = Vec3<std::int64_t>(glm::floor(box.lo / m_reach));
+    m_grid.dims = Vec3<std::int64_t>(glm::floor(box.hi / m_reach)) - m_grid.lo + std::int64_t(1);
+    m_x.resize(n);
+    m_v.resize(n);
+    plan(m_reach);
+    m_key.resize(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrainBlock), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i)
+            m_key[i] = std::uint32_t(keyOf(cellOf(swarm.position(i))));
+    });
+    // A counting sort, stable: a cell's grains in the swarm's order.
+    m_cellStart.assign(m_grid.cells + 1, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        ++m_cellStart[m_key[i] + 1];
+    for (std::size_t c = 0; c < m_grid.cells; ++c)
+        m_cellStart[c + 1] += m_cellStart[c];
+    m_order.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+        m_order[m_cellStart[m_key[i]]++] = std::uint32_t(i);
+    // Each cell's counter now stands at the next cell's start: shift them back.
+    std::copy_backward(m_cellStart.begin(), m_cellStart.end() - 1, m_cellStart.end());
+    m_cellStart[0] = 0;
+    const std::size_t slabs =
+        m_grid.hashed ? 1 : std::size_t((m_grid.dims.x + m_grid.slabWidth - 1) / m_grid.slabWidth);
+    const std::size_t slabCells = m_grid.hashed ? 0 : std::size_t(m_grid.slabWidth * m_grid.dims.y * m_grid.dims.z);
+    m_slabStart.resize(slabs + 1);
+    for (std::size_t k = 0; k < slabs; ++k)
+        m_slabStart[k] = m_cellStart[k * slabCells];
+    m_slabStart[slabs] = n;
+}
+
+void GrainContacts::gather(const Swarm& swarm, float dt)
+{
+    m_x0.resize(m_x.size());
+    m_push.resize(m_x.size());
+    m_slowed.resize(m_x.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_x.size(), kGrainBlock), [&](const auto& r) {
+        for (std::size_t s = r.begin(); s < r.end(); ++s) {
+            m_x[s] = swarm.position(m_order[s]);
+            m_v[s] = swarm.velocity(m_order[s]);
+            // Where the step started: semi-implicit Euler ends a step at x0 + v dt (the other methods
+            // near it), up to the
+            // room's push along its normals, which friction along a wall does not see.
+            m_x0[s] = m_x[s] - dt * m_v[s];
+            m_push[s] = m_slowed[s] = 0.0f;
+        }
+    });
+}
+
+void GrainContacts::findPairs(std::size_t slab)
+{
+    auto& pairs = m_pairs[slab];
+    pairs.clear();
+    const float reach2 = kTouching * kTouching * m_reach * m_reach;
+    const auto near = [&](std::size_t s, std::size_t from, std::size_t to) {
+        for (std::size_t t = std::max(from, s + 1); t < to; ++t) {
+            const Vec d = m_x[t] - m_x[s];
+            if (glm::dot(d, d) < reach2)
+                pairs.push_back({std::uint32_t(s), std::uint32_t(t)});
+        }
+    };
+    if (!m_grid.hashed) {
+        // Numbered cells: only the 14 at or after a grain's own hold grains after it, in five
+        // runs of cells adjacent along z (x-major numbering).
+        const Vec3<std::int64_t> dims = m_grid.dims;
+        for (std::size_t s = m_slabStart[slab]; s < m_slabStart[slab + 1]; ++s) {
+            const Vec3<std::int64_t> c = glm::clamp(cellOf(m_x[s]) - m_grid.lo, Vec3<std::int64_t>(0),
+                                                    dims - std::int64_t(1));
+            const auto run = [&](std::int64_t x, std::int64_t y, std::int64_t z0, std::int64_t z1) {
+                if (x >= dims.x || y < 0 || y >= dims.y)
+                    return;
+                const std::int64_t row = (x * dims.y + y) * dims.z;
+                near(s, m_cellStart[std::size_t(row + std::max<std::int64_t>(z0, 0))],
+                     m_cellStart[std::size_t(row + std::min(z1, dims.z - 1) + 1)]);
+            };
+            run(c.x, c.y, c.z, c.z + 1);
+            run(c.x, c.y + 1, c.z - 1, c.z + 1);
+            for (std::int64_t dy = -1; dy <= 1; ++dy)
+                run(c.x + 1, c.y + dy, c.z - 1, c.z + 1);
+        }
+        return;
+    }
+    std::array<std::size_t, 27> keys{};
+    for (std::size_t s = m_slabStart[slab]; s < m_slabStart[slab + 1]; ++s) {
+        const Vec3<std::int64_t> c = cellOf(m_x[s]);
+        std::size_t count = 0;
+        for (std::int64_t dx = -1; dx <= 1; ++dx)
+            for (std::int64_t dy = -1; dy <= 1; ++dy)
+                for (std::int64_t dz = -1; dz <= 1; ++dz) {
+                    const Vec3<std::int64_t> d = c + Vec3<std::int64_t>(dx, dy, dz);
+                    keys[count++] = keyOf(d);
+                }
+        // Two of the 27 cells may share a bucket: each once.
+        std::sort(keys.begin(), keys.begin() + count);
+        count = std::size_t(std::unique(keys.begin(), keys.begin() + count) - keys.begin());
+        for (std::size_t k = 0; k < count; ++k)
+            near(s, m_cellStart[keys[k]], m_cellStart[keys[k] + 1]);
+    }
+}
+
+template <class F>
+void GrainContacts::forEachPairInColours(F&& fn)
+{
+    const std::size_t slabs = m_pairs.size();
+    for (std::size_t colour = 0; colour < 2; ++colour) {
+        const std::size_t count = (slabs + 1 - colour) / 2;
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1), [&](const auto& r) {
+            for (std::size_t m = r.begin(); m < r.end(); ++m)
+                for (GrainPair& pair : m_pairs[2 * m + colour])
+                    fn(pair);
+        });
+    }
+}
+
+void GrainContacts::sweep(std::span<const PlaneT<float>> room, const GrainRule& rule, bool first)
+{
+    forEachPairInColours([&](GrainPair& p) {
+        touch(m_x[p.a], m_v[p.a], m_x0[p.a], m_x[p.b], m_v[p.b], m_x0[p.b], p, rule, m_reach, first);
+    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_x.size(), kGrainBlock), [&](const auto& r) {
+        for (std::size_t s = r.begin(); s < r.end(); ++s)
+            if (m_nearWall[s])
+                keepInRoom(room, rule, first, m_x0[s], m_x[s], m_v[s], m_push[s], m_slowed[s]);
+    });
+}
+
+void GrainContacts::solve(Swarm& swarm, std::span<const PlaneT<float>> room, const GrainRule& rule, int sweeps)
+{
+    const std::size_t n = swarm.size();
+    m_reach = 2.0f * rule.radius;
+    if (n < 2 || !(m_reach > 0.0f)) {
+        m_pairs.clear();
+        return;
+    }
+    sortByCell(swarm);
+    gather(swarm, rule.dt);
+    // The grains the room's walls may meet during the sweeps: those within a few reaches of one
+    // (the sweeps move a grain by its overlaps, each less than a reach).
+    m_nearWall.resize(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrainBlock), [&](const auto& r) {
+        for (std::size_t s = r.begin(); s < r.end(); ++s) {
+            bool near = false;
+            for (const PlaneT<float>& plane : room)
+                near |= plane.distance(m_x[s]) < 4.0f * m_reach;
+            m_nearWall[s] = near ? 1 : 0;
+        }
+    });
+    m_pairs.resize(m_slabStart.size() - 1);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_pairs.size(), 1), [&](const auto& r) {
+        for (std::size_t k = r.begin(); k < r.end(); ++k)
+            findPairs(k);
+    });
+    for (int k = 0; k < sweeps; ++k)
+        sweep(room, rule, k == 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrainBlock), [&](const auto& r) {
+        for (std::size_t s = r.begin(); s < r.end(); ++s)
+            swarm.set(m_order[s], m_x[s], m_v[s]);
+    });
+}
+
+} // namespace pba::detail
