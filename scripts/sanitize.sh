@@ -22,8 +22,11 @@ gl='^(PbaRender|PbaView|HeadlessRender|RenderClock|Security|Outputs)\.'
 # scenes' claims (and the touch scenes': particles on rigid bodies) and the thousand-dice piles,
 # whose contact code the rigid unit tests run here,
 # and the crowded-block comparison (110 s here against 12 s plain), whose crowded blocks the
-# swarm scenes' tests step here too.
-long='^(Tunnelling|Soak|Pile|ContactSceneClaims|TouchSceneClaims)\.|^RigidWorld\.ManyDice|^Swarm\.CrowdedBlocksGetTheSameRuleAsParticlesAlone$'
+# swarm scenes' tests step here too; likewise the granular scene's claims (the grains' contacts
+# run here in ParticleContacts' piles), the quick bench's every row (its bench code runs here in
+# PbaBench's other tests) and the work-precision study (38 s here; the study's code runs here in
+# PbaCompare's other tests).
+long='^(Tunnelling|Soak|Pile|ContactSceneClaims|TouchSceneClaims|GranularSceneClaims)\.|^RigidWorld\.ManyDice|^Swarm\.CrowdedBlocksGetTheSameRuleAsParticlesAlone$|^PbaBench\.QuickJsonHasEveryLayout$|^PbaCompare\.WritesWorkPrecisionWithTheMethodsOrders$'
 ctest --test-dir build-asan --output-on-failure -j "$jobs" -E "$gl|^install\.|$long"
 # The OpenGL tests (and the output tests, whose pba children render) run with address and UB
 # checks but without leak checks: llvmpipe's JIT-compiled
