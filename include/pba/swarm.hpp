@@ -61,6 +61,19 @@ struct SwarmPhaseTimes {
     std::array<std::atomic<std::uint64_t>, kCount> nanoseconds{};
 };
 
+class Swarm;
+
+/// Told of each range of a swarm's particles as soon as its step is done with them, on the
+/// thread that stepped them and while their states are still in that core's caches: a watch over
+/// a million particles reads them there rather than from memory in a pass of its own. Ranges are
+/// whole 512-particle blocks, disjoint, and come in any order, several at once (only positions
+/// and velocities are final: a colliding swarm's grain contacts come after).
+class SwarmRangeObserver {
+public:
+    virtual ~SwarmRangeObserver() = default;
+    virtual void stepped(const Swarm& swarm, std::size_t begin, std::size_t end) = 0;
+};
+
 class Swarm {
 public:
     /// Positions and velocities from a counter-based generator: particle i's values depend on
@@ -105,6 +118,10 @@ public:
         const char* quantity; ///< "position" or "velocity"
     };
     const std::optional<NonFiniteParticle>& nonFinite() const { return m_nonFinite; }
+
+    /// Tells `observer` of every range the following steps finish (nullptr: stop). Not owned; a
+    /// copy of the swarm starts without it, and one assigned to keeps its own.
+    void setRangeObserver(SwarmRangeObserver* observer) { m_observer.observer = observer; }
 
     /// Times each phase of the following steps into `times` (nullptr: stop).
     void setPhaseTimes(SwarmPhaseTimes* times) { m_phaseTimes = times; }
@@ -152,6 +169,13 @@ private:
     LargeArray<float> m_state;
     std::optional<NonFiniteParticle> m_nonFinite;
     SwarmPhaseTimes* m_phaseTimes = nullptr; ///< not owned; not copied meaningfully (a copy times into the same)
+    /// Not owned, and not carried by a copy or an assignment: it watches this object's steps.
+    struct ObserverSlot {
+        SwarmRangeObserver* observer = nullptr;
+        ObserverSlot() = default;
+        ObserverSlot(const ObserverSlot&) {}
+        ObserverSlot& operator=(const ObserverSlot&) { return *this; }
+    } m_observer;
     /// What a step keeps for the next besides the state (per-block hints, the exact response's
     /// flags, the threads' blocks): swarm.cpp's. None of it changes a result.
     struct StepMemory;

@@ -140,6 +140,7 @@ void stepToEnd(const SimOptions& options, Scene& scene, StepRecord& record, stud
     std::optional<FixedTimestepClock> clock;
     if (options.frameRate)
         clock.emplace(scene.dt);
+    const study::JetWatch::Attachment attached = jet.attach(world);
     Progress progress("simulating", static_cast<long>(total)); // a bar on a terminal, after a second
     try {
         while (world.stepCount() < total) {

@@ -225,6 +225,8 @@ void Swarm::stepRange(const SwarmKernelFields& fields, std::span<const PlaneT<fl
     const Arrays a{array(0),        array(1),        array(2),         array(3),          array(4), array(5),
                    m.clear.data(), m.finite.data(), m.crowded.data(), m.blowing.data(), m_phaseTimes};
     stepSwarmRange(m_integrator, a, begin, end, fields, m_restitution, dt, planes, response);
+    if (m_observer.observer)
+        m_observer.observer->stepped(*this, begin, end);
 }
 
 void Swarm::step(const SwarmFields& swarmFields, std::span<const PlaneT<float>> planes, CollisionResponse response,

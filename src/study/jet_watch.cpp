@@ -1,6 +1,7 @@
 #include "study/jet_watch.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -41,8 +42,33 @@ constexpr std::size_t kChunk = 64;
 
 std::size_t segmentCount(std::size_t particles) { return (particles + kSegment - 1) / kSegment; }
 
-/// Particles of a segment under the hole, each with its steps in a row there (one more than in
-/// `before`, the last step's list in index order).
+// Compiled for AVX-512, AVX2 and the baseline, the best picked when the program starts (as the
+// swarm's step is): GCC on x86-64 only.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define PBA_WIDEST_VECTORS [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]]
+#else
+#define PBA_WIDEST_VECTORS
+#endif
+
+/// For each chunk of kChunk heights from y (the last may be short), whether one may be below
+/// `level`: the sign bits of y - level ORed together (a NaN may be flagged; the exact test
+/// follows). The watch's pass costs the instructions of this loop, not memory (in the attached
+/// watch the heights are in cache): one instruction a vector where a compare and a count took
+/// three, on the widest vectors the CPU has.
+PBA_WIDEST_VECTORS
+void flagChunksBelow(const float* __restrict y, std::size_t n, float level, std::uint8_t* __restrict flags)
+{
+    for (std::size_t c = 0; c * kChunk < n; ++c) {
+        const std::size_t end = std::min(n, (c + 1) * kChunk);
+        std::uint32_t signs = 0;
+        for (std::size_t i = c * kChunk; i < end; ++i)
+            signs |= std::bit_cast<std::uint32_t>(y[i] - level);
+        flags[c] = static_cast<std::uint8_t>(signs >> 31);
+    }
+}
+
+/// Particles from begin to end under the hole, each with its steps in a row there (one more
+/// than in `before`, the last step's list in index order).
 void listInShaft(const Swarm& swarm, const BlowDryerKernelT<float>& kernel, std::size_t begin, std::size_t end,
                  const std::vector<JetWatch::ShaftStay>& before, std::vector<JetWatch::ShaftStay>& out)
 {
@@ -53,36 +79,97 @@ void listInShaft(const Swarm& swarm, const BlowDryerKernelT<float>& kernel, std:
     auto k = std::lower_bound(before.begin(), before.end(), begin,
                               [](const JetWatch::ShaftStay& stay, std::size_t i) { return stay.index < i; });
     out.clear();
-    for (std::size_t c = begin; c < end; c += kChunk) {
-        const std::size_t chunkEnd = std::min(end, c + kChunk);
-        std::uint32_t below = 0;
-        for (std::size_t i = c; i < chunkEnd; ++i)
-            below += static_cast<std::uint32_t>(py[i] - ny < 0.0f);
-        for (std::size_t i = c; below > 0 && i < chunkEnd; ++i) {
-            // x and z read only below the nozzle (their cache lines are not the pass's).
-            const float height = py[i] - ny;
-            if (!(height < 0.0f))
+    std::uint8_t below[kSegment / kChunk];
+    for (std::size_t s = begin; s < end; s += kSegment) {
+        const std::size_t segmentEnd = std::min(end, s + kSegment);
+        flagChunksBelow(py + s, segmentEnd - s, ny, below);
+        for (std::size_t c = s; c < segmentEnd; c += kChunk) {
+            if (below[(c - s) / kChunk] == 0)
                 continue;
-            const float dx = px[i] - nx, dz = pz[i] - nz;
-            if (!inBlowDryerShaft(kernel, height, dx * dx + dz * dz))
-                continue;
-            while (k != before.end() && k->index < i)
-                ++k;
-            const std::uint32_t steps = (k != before.end() && k->index == i ? k->steps : 0u) + 1u;
-            out.push_back({i, steps});
+            for (std::size_t i = c; i < std::min(segmentEnd, c + kChunk); ++i) {
+                // x and z read only below the nozzle (their cache lines are not the pass's).
+                const float height = py[i] - ny;
+                if (!(height < 0.0f))
+                    continue;
+                const float dx = px[i] - nx, dz = pz[i] - nz;
+                if (!inBlowDryerShaft(kernel, height, dx * dx + dz * dz))
+                    continue;
+                while (k != before.end() && k->index < i)
+                    ++k;
+                const std::uint32_t steps = (k != before.end() && k->index == i ? k->steps : 0u) + 1u;
+                out.push_back({i, steps});
+            }
         }
     }
 }
 
-/// Whether x may be in the cone, in floats: true wherever insideBlowDryerCone (in double) is,
-/// by a margin far above the floats' rounding, so only these particles take the exact test.
-bool mayBeInCone(const BlowDryerKernelT<float>& kernel, float margin, const Vec3<float>& x)
+} // namespace
+
+/// A swarm's particles under the hole, listed range by range as the step finishes each (any
+/// thread, any order; each range writes only its own piece), then joined in index order.
+class ShaftLister final : public SwarmRangeObserver {
+public:
+    /// Ranges are whole blocks of this many particles (SwarmRangeObserver).
+    static constexpr std::size_t kBlock = 512;
+
+    ShaftLister(const BlowDryerKernelT<float>& kernel, const std::vector<JetWatch::ShaftStay>& before, std::size_t n)
+        : m_kernel(kernel), m_before(before), m_pieces(n / kBlock + 1)
+    {
+    }
+
+    void stepped(const Swarm& swarm, std::size_t begin, std::size_t end) override
+    {
+        if (begin % kBlock != 0 || begin / kBlock >= m_pieces.size())
+            return; // not a range this lister was made for: collect finds it missing
+        Piece& piece = m_pieces[begin / kBlock];
+        listInShaft(swarm, m_kernel, begin, end, m_before, piece.list);
+        piece.end = end;
+        piece.generation = m_generation;
+    }
+
+    /// This step's list, if every range of the swarm's n particles was told of in it.
+    bool collect(std::size_t n, std::vector<JetWatch::ShaftStay>& out)
+    {
+        const std::uint64_t now = m_generation++;
+        out.clear();
+        for (std::size_t begin = 0; begin < n;) {
+            if (begin / kBlock >= m_pieces.size() || m_pieces[begin / kBlock].generation != now)
+                return false;
+            const Piece& piece = m_pieces[begin / kBlock];
+            out.insert(out.end(), piece.list.begin(), piece.list.end());
+            begin = piece.end;
+        }
+        return true;
+    }
+
+private:
+    struct Piece {
+        std::uint64_t generation = 0;
+        std::size_t end = 0;
+        std::vector<JetWatch::ShaftStay> list;
+    };
+    BlowDryerKernelT<float> m_kernel;
+    const std::vector<JetWatch::ShaftStay>& m_before; ///< the last step's list, the watch's
+    std::vector<Piece> m_pieces;                      ///< by the range's first block
+    std::uint64_t m_generation = 1;
+};
+
+namespace {
+
+/// Where x lies against the cone, in floats: kMaybe wherever insideBlowDryerCone (in double) is
+/// true, and kSurely only where it is, each by a margin far above the floats' rounding, so only
+/// the particles near the cone's surface take the exact test.
+constexpr std::uint32_t kMaybe = 1, kSurely = 2;
+std::uint32_t placeInCone(const BlowDryerKernelT<float>& kernel, float margin, const Vec3<float>& x)
 {
     const auto [d, h, rho, r2, across2] = DryerFrameT<DryerAxis::Any, float>(kernel.nozzle, kernel.axis, x);
     const float slack = margin * (1.0f + std::abs(d.x) + std::abs(d.y) + std::abs(d.z));
     const float s = std::min(std::max(h, 0.0f), kernel.height) * kernel.inverseHeight;
-    const float q = std::max(kernel.nozzleRadius + kernel.spread * s, 0.0f) + slack;
-    return (h > -slack) & (h < kernel.height + slack) & (r2 < q * q);
+    const float q = std::max(kernel.nozzleRadius + kernel.spread * s, 0.0f);
+    const float outer = q + slack, inner = q - slack;
+    const std::uint32_t maybe = (h > -slack) & (h < kernel.height + slack) & (r2 < outer * outer);
+    const std::uint32_t surely = (h > slack) & (h < kernel.height - slack) & (inner > 0.0f) & (r2 < inner * inner);
+    return maybe * kMaybe | surely * kSurely;
 }
 
 } // namespace
@@ -90,15 +177,22 @@ bool mayBeInCone(const BlowDryerKernelT<float>& kernel, float margin, const Vec3
 /// Only particles below the nozzle can be under the hole, and few are (a tenth of a percent of
 /// fountain-1m's): each chunk of the swarm is first asked, in a vectorised pass over the heights
 /// alone, whether it holds one, and the list of the particles under the hole is made again from
-/// those chunks, each carrying its count of steps from the last list (both in index order), a
-/// segment of the swarm at a time on all cores. (A counter per particle, read and written every
-/// step beside all three coordinates, made this watch 40% of `pba sim fountain-1m`'s time.)
+/// those chunks, each carrying its count of steps from the last list (both in index order): by
+/// the swarm's own step, range by range, while attached; else a segment of the swarm at a time on
+/// all cores. (A counter per particle, read and written every step beside all three
+/// coordinates, made this watch 40% of `pba sim fountain-1m`'s time.)
 void JetWatch::countStepsInShaft(const World& world)
 {
     const BlowDryerKernelT<float> kernel(m_field->as<float>());
     for (std::size_t s = 0; s < world.swarmCount(); ++s) {
         const Swarm& swarm = world.swarm(s);
         std::vector<ShaftStay>& inShaft = m_inShaft[s];
+        if (s < m_listers.size() && m_listers[s] && m_listers[s]->collect(swarm.size(), m_listed)) {
+            inShaft.swap(m_listed);
+            ++m_listedInStep;
+            noteLongest(world, s);
+            continue;
+        }
         const std::size_t segments = segmentCount(swarm.size());
         m_segmentLists.resize(std::max(m_segmentLists.size(), segments));
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, segments), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -109,15 +203,50 @@ void JetWatch::countStepsInShaft(const World& world)
         inShaft.clear(); // the last step's list, read by every segment, is done with
         for (std::size_t g = 0; g < segments; ++g)
             inShaft.insert(inShaft.end(), m_segmentLists[g].begin(), m_segmentLists[g].end());
-        for (const ShaftStay& stay : inShaft)
-            m_longestSteps[s] = std::max(m_longestSteps[s], stay.steps);
-        m_swarms[s].longestInShaft = double(m_longestSteps[s]) * (world.time() - world.previousTime());
+        noteLongest(world, s);
     }
 }
 
+void JetWatch::noteLongest(const World& world, std::size_t s)
+{
+    for (const ShaftStay& stay : m_inShaft[s])
+        m_longestSteps[s] = std::max(m_longestSteps[s], stay.steps);
+    m_swarms[s].longestInShaft = double(m_longestSteps[s]) * (world.time() - world.previousTime());
+}
+
+/// Swarms whose grains collide are moved again after their step's ranges (World's grain
+/// contacts): their lists are made afterwards, as without an attachment.
+JetWatch::Attachment JetWatch::attach(World& world)
+{
+    if (!m_field || !m_field->shaft)
+        return Attachment(nullptr);
+    const BlowDryerKernelT<float> kernel(m_field->as<float>());
+    m_listers.clear();
+    m_listers.resize(world.swarmCount());
+    for (std::size_t s = 0; s < world.swarmCount(); ++s) {
+        Swarm& swarm = world.swarm(s);
+        if (swarm.desc().collide)
+            continue;
+        m_listers[s] = std::make_unique<ShaftLister>(kernel, m_inShaft[s], swarm.size());
+        swarm.setRangeObserver(m_listers[s].get());
+    }
+    return Attachment(&world);
+}
+
+JetWatch::Attachment::~Attachment()
+{
+    if (m_world)
+        for (std::size_t s = 0; s < m_world->swarmCount(); ++s)
+            m_world->swarm(s).setRangeObserver(nullptr);
+}
+
+JetWatch::JetWatch(JetWatch&&) noexcept = default;
+JetWatch& JetWatch::operator=(JetWatch&&) noexcept = default;
+JetWatch::~JetWatch() = default;
+
 /// The cone's count, every kSwarmSample: insideBlowDryerCone in double for the particles a test
-/// in floats cannot rule out (a quarter of them while rain falls through the cone, about 1% once
-/// it has landed), a segment at a time on all cores (a sum of counts: the same in any order).
+/// in floats can neither rule in nor out (those within rounding of the cone's surface), a
+/// segment at a time on all cores (a sum of counts: the same in any order).
 void JetWatch::lookAtSwarms(const World& world)
 {
     if (world.time() < m_nextLook - 1e-9)
@@ -137,11 +266,17 @@ void JetWatch::lookAtSwarms(const World& world)
                 const std::size_t end = std::min(swarm.size(), r.end() * kSegment);
                 for (std::size_t c = r.begin() * kSegment; c < end; c += kChunk) {
                     const std::size_t n = std::min(kChunk, end - c);
-                    std::uint32_t may[kChunk]; // a vectorised pass in floats first, the few in double after
+                    std::uint32_t place[kChunk]; // a vectorised pass in floats first, the few in double after
+                    std::uint32_t surely = 0, unsure = 0;
                     for (std::size_t j = 0; j < n; ++j)
-                        may[j] = mayBeInCone(kernel, margin, Vec3<float>(px[c + j], py[c + j], pz[c + j]));
-                    for (std::size_t j = 0; j < n; ++j)
-                        if (may[j] != 0)
+                        place[j] = placeInCone(kernel, margin, Vec3<float>(px[c + j], py[c + j], pz[c + j]));
+                    for (std::size_t j = 0; j < n; ++j) {
+                        surely += place[j] / kSurely;
+                        unsure += place[j] == kMaybe;
+                    }
+                    count += surely;
+                    for (std::size_t j = 0; unsure > 0 && j < n; ++j)
+                        if (place[j] == kMaybe)
                             count += insideBlowDryerCone(*m_field, dvec3(px[c + j], py[c + j], pz[c + j])) ? 1 : 0;
                 }
                 return count;

@@ -25,9 +25,12 @@ study::JetWatch runWatched(Scene& scene, double duration = 0.0)
     World& world = scene.world;
     study::JetWatch jet(world);
     const auto steps = static_cast<long>(std::lround((duration > 0.0 ? duration : scene.duration) / scene.dt));
-    for (long n = 0; n < steps; ++n) {
-        world.step(scene.dt);
-        jet.record(world);
+    {
+        const study::JetWatch::Attachment attached = jet.attach(world); // as pba sim watches
+        for (long n = 0; n < steps; ++n) {
+            world.step(scene.dt);
+            jet.record(world);
+        }
     }
     return jet;
 }
