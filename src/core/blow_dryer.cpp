@@ -17,15 +17,15 @@ namespace {
 
 /// The field over a body's surface: at each sample's point and velocity, weighted by its share
 /// of the area, so that a body wholly in a uniform field feels what a particle at its centre
-/// would, and one across the jet's edge or off its axis feels a torque. A point (no samples)
-/// feels the field at its centre.
+/// would, and one across the jet's edge or off its axis feels a torque. A point or a ball (no
+/// samples) feels the field at its centre, a ball of `radius` by its size.
 template <class At>
-void addSpreadOverSurface(const BodyStates& in, std::size_t i, const At& at, Accumulators& out)
+void addSpreadOverSurface(const BodyStates& in, std::size_t i, double radius, const At& at, Accumulators& out)
 {
     const State& s = in.states[i];
     const Surface surface = in.bodies[i]->surface();
     if (surface.samples.empty()) {
-        out.add(i, at(s.pos, s.vel));
+        out.add(i, at(s.pos, s.vel, radius));
         return;
     }
     const Pose& pose = in.pose(i);
@@ -33,7 +33,7 @@ void addSpreadOverSurface(const BodyStates& in, std::size_t i, const At& at, Acc
     dvec3 force(0.0), torque(0.0);
     for (const SurfaceSample& sample : surface.samples) {
         const dvec3 arm = r * sample.point;
-        const dvec3 f = sample.share * at(s.pos + arm, s.vel + glm::cross(pose.angularVelocity, arm));
+        const dvec3 f = sample.share * at(s.pos + arm, s.vel + glm::cross(pose.angularVelocity, arm), 0.0);
         force += f;
         torque += glm::cross(arm, f);
     }
@@ -101,20 +101,14 @@ void BlowDryer::accumulate(const BodyStates& in, Accumulators& out) const
         const auto at = [&](const dvec3& x, const dvec3& v, double radius) {
             return blowDryerForce<decltype(axis)::value, true, double, decltype(pull)::value>(kernel, x, v, radius);
         };
-        const auto atPoint = [&](const dvec3& x, const dvec3& v) { return at(x, v, 0.0); };
         if (in.poses.empty()) // no body of the world turns: every one is a point
             detail::addToEachMoving(in, out, [&](std::size_t i) {
                 return at(in.states[i].pos, in.states[i].vel, sized ? in.radius(i) : 0.0);
             });
         else
             detail::forEachIndex(in.bodies.size(), [&](std::size_t i) {
-                if (!in.moving(i))
-                    return;
-                const double radius = sized ? in.radius(i) : 0.0;
-                if (radius > 0.0) // a ball: it has no surface samples
-                    out.add(i, at(in.states[i].pos, in.states[i].vel, radius));
-                else
-                    addSpreadOverSurface(in, i, atPoint, out);
+                if (in.moving(i))
+                    addSpreadOverSurface(in, i, sized ? in.radius(i) : 0.0, at, out);
             });
     };
     using Up = std::integral_constant<DryerAxis, DryerAxis::Up>;

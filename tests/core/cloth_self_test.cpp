@@ -57,17 +57,20 @@ std::vector<dvec3> positions(const World& world)
     return x;
 }
 
+/// closestFarPair of a scene's particles after `steps` steps from where they start.
+double closestFarPairAfter(Scene scene, int steps)
+{
+    const std::vector<dvec3> rest = positions(scene.world);
+    for (int step = 0; step < steps; ++step)
+        scene.world.step(scene.dt);
+    return closestFarPair(rest, scene.world);
+}
+
 } // namespace
 
 TEST(ClothSelf, ASheetFallingInFoldsKeepsItsFarParticlesApart)
 {
-    auto dropped = [](double radius) {
-        Scene scene = foldingSheet(radius);
-        const std::vector<dvec3> rest = positions(scene.world);
-        for (int step = 0; step < 600; ++step)
-            scene.world.step(scene.dt);
-        return closestFarPair(rest, scene.world);
-    };
+    auto dropped = [](double radius) { return closestFarPairAfter(foldingSheet(radius), 600); };
     EXPECT_GE(dropped(kRadius), 0.9);
     // Without a radius the same drop passes through itself: the check above has something to find.
     EXPECT_LT(dropped(0.0), 0.75);
@@ -209,16 +212,13 @@ TEST(ClothSelf, ARopeFallingOnItselfInCoilsDoesNotPassThroughItself)
     // in coils. The same check as the sheet's: balls far apart along it (at least 4 radii in the
     // straight rope) never come within 90% of a diameter, and without a radius they would.
     auto dropped = [](double radius) {
-        Scene scene = parseScene(R"({"dt": 0.002, "gravity": [0, -9.81, 0], "collision_response": "reflect",
+        return closestFarPairAfter(parseScene(R"({"dt": 0.002, "gravity": [0, -9.81, 0], "collision_response": "reflect",
             "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
             "ropes": [{"name": "rope", "from": [0, 0.04, 0], "to": [0.1, 2.04, 0.05], "count": 40, "mass": 0.2,
                        "stiffness": 2000, "bending_stiffness": 0.5, "damping": 0.05, "restitution": 0, "friction": 0.5,
                        "integrator": "implicit-euler", "radius": )" + std::to_string(radius) + "}]}",
-                                 "coils.json");
-        const std::vector<dvec3> rest = positions(scene.world);
-        for (int step = 0; step < 750; ++step)
-            scene.world.step(scene.dt);
-        return closestFarPair(rest, scene.world);
+                                              "coils.json"),
+                                   750);
     };
     EXPECT_GE(dropped(kRadius), 0.9);
     EXPECT_LT(dropped(0.0), 0.75);
