@@ -177,7 +177,7 @@ private:
         ObserverSlot& operator=(const ObserverSlot&) { return *this; }
     } m_observer;
     /// What a step keeps for the next besides the state (per-block hints, the exact response's
-    /// flags, the threads' blocks): swarm.cpp's. None of it changes a result.
+    /// flags): swarm.cpp's. None of it changes a result.
     struct StepMemory;
     ClonePtr<StepMemory> m_memory;
 };

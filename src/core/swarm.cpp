@@ -10,7 +10,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
 #include "phase_clock.hpp"
@@ -174,9 +173,6 @@ struct Swarm::StepMemory {
     std::vector<std::uint8_t> finite;  ///< per 512-particle block: all finite after the last step
     std::vector<std::uint8_t> crowded; ///< per block: most of it met a surface last step (see stepBlocks)
     std::vector<std::uint8_t> blowing; ///< per block: steps left with the dryer busy in it (see integrateInDryer)
-    /// Which thread stepped which blocks, so that the next step hands each thread the blocks it
-    /// had, still in its core's caches (see stepAll). A copy starts without it.
-    tbb::affinity_partitioner affinity;
 
     std::unique_ptr<StepMemory> clone() const
     {
@@ -272,9 +268,10 @@ void Swarm::findNonFinite()
     }
 }
 
-/// Each thread takes the same blocks as in the last step, so they are still in its caches,
-/// where TBB's default partitioner hands blocks to whichever thread is free. A static split
-/// (each thread a fixed half) was slower: a thread that the machine delays holds up the step.
+/// TBB's default partitioner hands blocks to whichever thread is free. A static split (each
+/// thread a fixed half) was slower: a thread that the machine delays holds up the step. Handing
+/// each thread the blocks it had last step (TBB's affinity_partitioner) gained at most 4%
+/// (docs/performance.md).
 void Swarm::stepAll(const SwarmKernelFields& fields, std::span<const PlaneT<float>> planes, CollisionResponse response,
                     float dt, int threads)
 {
@@ -288,8 +285,7 @@ void Swarm::stepAll(const SwarmKernelFields& fields, std::span<const PlaneT<floa
             tbb::blocked_range<std::size_t>(0, blocks, 16),
             [&](const tbb::blocked_range<std::size_t>& r) {
                 stepRange(fields, planes, response, dt, r.begin() * kBlock, std::min(n, r.end() * kBlock));
-            },
-            m_memory->affinity);
+            });
     };
     if (threads <= 0 || threads >= tbb::this_task_arena::max_concurrency())
         return body(); // all cores: the default arena, not a new one every step
