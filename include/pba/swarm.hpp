@@ -149,21 +149,17 @@ private:
     const float* array(int c) const { return m_state.data() + std::size_t(c) * m_stride; }
     float* array(int c) { return m_state.data() + std::size_t(c) * m_stride; }
 
-    /// Floats from one array to the next for `count` particles (see m_stride).
+    /// Floats from one array to the next for `count` particles: whole 4 KB pages, so that each
+    /// array starts on a page. Staggering them by 576 bytes more (against 4K aliasing between
+    /// element k of the six) measured no faster on a quiet machine (docs/performance.md).
     static constexpr std::size_t strideFor(std::size_t count)
     {
-        constexpr std::size_t kPage = 4096 / sizeof(float), kStagger = 576 / sizeof(float);
-        return (count + kPage - 1) / kPage * kPage + kStagger;
+        constexpr std::size_t kPage = 4096 / sizeof(float);
+        return (count + kPage - 1) / kPage * kPage;
     }
 
     std::size_t m_count = 0;
-    /// The six arrays (m_state), m_stride floats apart: a whole number of 4 KB pages plus 576 bytes, so
-    /// element k of the six lies at six different offsets within a page. Six separate vectors
-    /// start at the same offset in their pages, and the loop that reads element k of one while
-    /// it writes element k of another then waits on false store-to-load dependencies (4K
-    /// aliasing) and evicts its own lines from the L1 sets they share, which cost the
-    /// integration loop a quarter of its speed (docs/performance.md).
-    std::size_t m_stride = 0;
+    std::size_t m_stride = 0; ///< strideFor(m_count)
     /// Cache-line aligned (every 16-float vector of the loop is one line), in huge pages where the
     /// kernel has them (see LargeArrayAllocator).
     LargeArray<float> m_state;

@@ -86,7 +86,7 @@ void stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const Swarm
                          float restitution, float dt, std::span<const PlaneT<float>> planes,
                          CollisionResponse response)
 {
-    alignas(64) float start[6][kStartRow];
+    alignas(64) float start[6][kBlock];
     alignas(64) std::uint8_t hit[kBlock + 64]; // room for listHits' last word
     const std::optional<BoxWallsT<float>> box = boxWalls(planes);
     const bool coversAll = box && boxCoversAll(*box, planes);

@@ -27,12 +27,10 @@ namespace {
 #define PBA_FOR_EACH_INSTRUCTION_SET
 #endif
 
-/// Particles a block: the start states of one block stay in L1 while the block is stepped.
+/// Particles a block: the start states of one block stay in L1 while the block is stepped, in
+/// six rows of kBlock floats (rows 192 bytes longer, against 4K aliasing between them, measured
+/// no faster on a quiet machine: docs/performance.md).
 constexpr std::size_t kBlock = 512;
-/// The block's start states are six rows of this many floats: 192 bytes more than a block, so
-/// that element k of the six rows lies at six different offsets in a 4 KB page (see
-/// Swarm::m_state for why that matters).
-constexpr std::size_t kStartRow = kBlock + 48;
 /// A block with at most this many particles at a surface has them gathered, with those of other
 /// such blocks, for the collision rule (GatheredHits), padded to whole vectors of kGatherWidth
 /// floats (AVX-512's 16).

@@ -89,7 +89,7 @@ template <Integrator kIntegrator>
 [[gnu::noinline]] std::uint64_t collideExactly(const Arrays& a, std::size_t begin, std::size_t n,
                                                const SwarmKernelFields& fields, float restitution,
                                                float dt, std::span<const PlaneT<float>> planes,
-                                               const float (*start)[kStartRow], const std::uint8_t* hit)
+                                               const float (*start)[kBlock], const std::uint8_t* hit)
 {
     auto accel = [&](const Vec3<float>& x, const Vec3<float>& v) {
         return swarmAccelerationAll(fields, x, v);
@@ -277,7 +277,7 @@ public:
 
     /// Adds the particles of block b marked in `hit` (at most kGatherMax, and fewer than n), with
     /// their start positions; runs the batch first if they would not fit. Returns its bounces.
-    std::uint64_t add(std::size_t b, std::size_t n, std::uint8_t* hit, const float (*start)[kStartRow])
+    std::uint64_t add(std::size_t b, std::size_t n, std::uint8_t* hit, const float (*start)[kBlock])
     {
         std::array<std::uint16_t, kGatherMax> index;
         std::size_t spare = 0;

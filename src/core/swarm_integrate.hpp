@@ -126,7 +126,7 @@ bool integrateAwayBlock(float* __restrict px, float* __restrict py, float* __res
 
 /// Returns whether every state it wrote is finite.
 template <Integrator kIntegrator, class Accel>
-bool integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
+bool integrateBlock(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kBlock],
                     CollisionResponse response, Accel accel)
 {
     if (response == CollisionResponse::Exact)
@@ -198,7 +198,7 @@ template <Integrator kIntegrator, class Accel>
 bool integrateGathered(const Arrays& a, std::size_t b, const std::uint16_t* index, std::size_t m, float dt,
                        Accel accel)
 {
-    alignas(64) float rows[9][kStartRow]; // the six arrays' gathered states, then start positions
+    alignas(64) float rows[9][kBlock]; // the six arrays' gathered states, then start positions
     float* const arrays[6] = {a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b};
     const std::size_t padded = (m + kGatherWidth - 1) / kGatherWidth * kGatherWidth;
     for (std::size_t c = 0; c < 6; ++c) {
@@ -217,7 +217,7 @@ bool integrateGathered(const Arrays& a, std::size_t b, const std::uint16_t* inde
 
 /// integrateInDryer's split for a block (see there): the away loop unless the block is busy.
 template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag, class Whole>
-bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
+bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kBlock],
                             CollisionResponse response, const SwarmKernelFields& fields, const BlowDryerReach& reach,
                             Whole whole)
 {
@@ -261,7 +261,7 @@ bool integrateAwayFromDryer(const Arrays& a, std::size_t b, std::size_t n, float
 /// is busy for the next 64 steps: gathering more than that, as in flight, stalls on the
 /// scatter. (The measurements: docs/performance.md, the design-choice table.)
 template <Integrator kIntegrator, DryerAxis kAxis, bool kDrag>
-bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
+bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kBlock],
                       CollisionResponse response, const SwarmKernelFields& fields, const BlowDryerReach& reach)
 {
     const auto whole = oneDryer<kAxis, kDrag>(fields);
@@ -278,7 +278,7 @@ bool integrateInDryer(const Arrays& a, std::size_t b, std::size_t n, float dt, f
 /// with no dryer, an upward one or one at any angle). Returns whether the states it wrote are
 /// finite.
 template <Integrator kIntegrator>
-bool integrateFor(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kStartRow],
+bool integrateFor(const Arrays& a, std::size_t b, std::size_t n, float dt, float (*start)[kBlock],
                   CollisionResponse response, const SwarmKernelFields& fields, bool drag, const BlowDryerReach& reach)
 {
     const auto integrate = [&](auto accel) {
