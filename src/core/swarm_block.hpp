@@ -11,21 +11,13 @@
 #include <cstdint>
 #include <cstring>
 
+#include "pba/detail/instruction_sets.hpp"
 #include "pba/swarm.hpp"
 
 namespace pba {
 
 // Internal linkage, as when this lived in swarm.cpp: the one file that includes it.
 namespace {
-
-// A function compiled once for each instruction set (see stepSwarmRange). GCC on x86-64 only:
-// clang 14 does not combine target_clones with flatten, and other CPUs have other instruction
-// sets (there the loop is compiled once, for the build's target).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define PBA_FOR_EACH_INSTRUCTION_SET [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"), gnu::flatten]]
-#else
-#define PBA_FOR_EACH_INSTRUCTION_SET
-#endif
 
 /// Particles a block: the start states of one block stay in L1 while the block is stepped, in
 /// six rows of kBlock floats (rows 192 bytes longer, against 4K aliasing between them, measured

@@ -1,5 +1,7 @@
 #include "study/jet_watch.hpp"
 
+#include "pba/detail/instruction_sets.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -42,20 +44,12 @@ constexpr std::size_t kChunk = 64;
 
 std::size_t segmentCount(std::size_t particles) { return (particles + kSegment - 1) / kSegment; }
 
-// Compiled for AVX-512, AVX2 and the baseline, the best picked when the program starts (as the
-// swarm's step is): GCC on x86-64 only.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define PBA_WIDEST_VECTORS [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]]
-#else
-#define PBA_WIDEST_VECTORS
-#endif
-
 /// For each chunk of kChunk heights from y (the last may be short), whether one may be below
 /// `level`: the sign bits of y - level ORed together (a NaN may be flagged; the exact test
 /// follows). The watch's pass costs the instructions of this loop, not memory (in the attached
 /// watch the heights are in cache): one instruction a vector where a compare and a count took
 /// three, on the widest vectors the CPU has.
-PBA_WIDEST_VECTORS
+PBA_TARGET_CLONES
 void flagChunksBelow(const float* __restrict y, std::size_t n, float level, std::uint8_t* __restrict flags)
 {
     for (std::size_t c = 0; c * kChunk < n; ++c) {
