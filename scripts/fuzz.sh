@@ -8,8 +8,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 jobs=$(nproc)
+source scripts/compiler-cache.sh
 CXX=clang++-14 CC=clang-14 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPBA_FUZZ=ON \
-  -DPBA_BUILD_APP=OFF -DPBA_BUILD_TESTS=OFF -DPBA_BUILD_BENCH=OFF > /dev/null
+  -DPBA_BUILD_APP=OFF -DPBA_BUILD_TESTS=OFF -DPBA_BUILD_BENCH=OFF "${cache_flags[@]}" > /dev/null
 cmake --build build-fuzz -j "$jobs" --target scene_loader_fuzz command_line_fuzz
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"

@@ -4,7 +4,7 @@
 # Run as root (or through sudo) on Debian 12.
 set -euo pipefail
 packages=(
-  build-essential cmake ninja-build pkg-config git
+  build-essential cmake ninja-build pkg-config git ccache
   libglm-dev libglfw3-dev libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   libimgui-dev libstb-dev nlohmann-json3-dev libcli11-dev libfmt-dev libspdlog-dev libtbb-dev
   libqhull-dev

@@ -50,8 +50,8 @@ TEST(PbaBench, PileWorkerSavesTheThrowAndStepsItOnRequest)
 {
     const auto dir = pba::test::freshDir("pile_worker");
     const std::string start = (dir / "start.csv").string(), later = (dir / "later.csv").string();
-    const auto r = pba::test::runShell("printf 'save " + start + "\\nwindow 3\\nsave " + later + "\\n' | " PBA_BINARY
-                                       " bench --pile-worker --dice 50");
+    const auto r = pba::test::runShell("printf 'save " + start + "\\nwindow 3\\nsave " + later + "\\n' | " +
+                                       pba::test::pbaBinary() + " bench --pile-worker --dice 50");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     std::istringstream lines(r.out);
     std::string readyLine, saved, window, savedLater;
@@ -119,12 +119,14 @@ TEST(PbaBench, PileWorkerRefusesBadRequests)
     const auto both = pba::test::runPba("bench --pile-worker --peer-worker --sizes 1000");
     EXPECT_EQ(both.exitCode, 2);
     EXPECT_NE(both.err.find("excludes"), std::string::npos) << both.err;
-    const auto unknown = pba::test::runShell("printf 'jump 3\\n' | " PBA_BINARY " bench --pile-worker --dice 10");
+    const auto unknown =
+        pba::test::runShell("printf 'jump 3\\n' | " + pba::test::pbaBinary() + " bench --pile-worker --dice 10");
     EXPECT_EQ(unknown.exitCode, 2);
     EXPECT_NE(unknown.err.find("--pile-worker: unknown command 'jump 3' (window STEPS, save PATH)"),
               std::string::npos)
         << unknown.err;
-    const auto zero = pba::test::runShell("printf 'window 0\\n' | " PBA_BINARY " bench --pile-worker --dice 10");
+    const auto zero =
+        pba::test::runShell("printf 'window 0\\n' | " + pba::test::pbaBinary() + " bench --pile-worker --dice 10");
     EXPECT_EQ(zero.exitCode, 2);
     EXPECT_NE(zero.err.find("'window STEPS' with STEPS >= 1"), std::string::npos) << zero.err;
 }

@@ -15,7 +15,7 @@ using namespace pba::test;
 
 namespace {
 
-const std::filesystem::path kSource(PBA_SOURCE_DIR);
+const std::filesystem::path kSource = sourceDir();
 
 /// The README's section "The built-in scenes", up to the next section.
 std::string gallerySection()

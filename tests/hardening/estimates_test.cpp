@@ -105,7 +105,7 @@ constexpr bool kAddressSanitizer = false;
 /// `pba sim SCENE` with at most `kilobytes` of address space.
 CommandResult simUnderLimit(const std::filesystem::path& scene, long kilobytes)
 {
-    return runShell("ulimit -v " + std::to_string(kilobytes) + "; exec '" + std::string(PBA_BINARY) + "' sim '" +
+    return runShell("ulimit -v " + std::to_string(kilobytes) + "; exec '" + pbaBinary() + "' sim '" +
                     scene.string() + "'");
 }
 

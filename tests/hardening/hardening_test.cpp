@@ -31,7 +31,7 @@ bool insideRoom(const Aabb& room, const dvec3& x)
 TEST(FuzzRegressions, EveryKeptInputLoadsOrIsRefusedCleanly)
 {
     int replayed = 0;
-    for (const auto& entry : std::filesystem::directory_iterator(std::string(PBA_SOURCE_DIR) + "/fuzz/regressions")) {
+    for (const auto& entry : std::filesystem::directory_iterator(sourceDir() / "fuzz" / "regressions")) {
         if (entry.path().extension() != ".json")
             continue;
         ++replayed;
@@ -163,7 +163,7 @@ TEST(AtomicWrites, AFailedRunLeavesAnExistingFileUntouched)
 // and the exit codes' section points there; the README's exit code table says it in short.
 TEST(NonFinite, TheDocsStateWhatExitThreeMeans)
 {
-    const std::string readme = readFile(std::filesystem::path(PBA_SOURCE_DIR) / "docs" / "hardening.md");
+    const std::string readme = readFile(sourceDir() / "docs" / "hardening.md");
     const std::size_t hardening = readme.find("\n## Hardening\n");
     const std::size_t codes = readme.find("\n## Exit codes\n");
     ASSERT_NE(hardening, std::string::npos);
@@ -176,7 +176,7 @@ TEST(NonFinite, TheDocsStateWhatExitThreeMeans)
                                     std::string("no energy source"), std::string("blew_up_at")})
         EXPECT_NE(section.find(part), std::string::npos) << part;
     EXPECT_NE(readme.find("3 simulation failure (the run blew up", codes), std::string::npos);
-    const std::string front = readFile(std::filesystem::path(PBA_SOURCE_DIR) / "README.md");
+    const std::string front = readFile(sourceDir() / "README.md");
     EXPECT_NE(front.find("| 3 | simulation failure: the run blew up"), std::string::npos);
     EXPECT_NE(front.find("docs/hardening.md"), std::string::npos);
 }

@@ -77,7 +77,7 @@ TEST(MeshFiles, AFifoIsRefusedWithoutWaitingForAWriter)
     const auto dir = freshDir("mesh_fifo");
     ASSERT_EQ(::mkfifo((dir / "pipe.obj").c_str(), 0600), 0);
     const auto scene = meshScene(dir, "pipe.obj");
-    const CommandResult r = runShell("timeout 20 " + std::string(PBA_BINARY) + " sim " + scene.string());
+    const CommandResult r = runShell("timeout 20 " + pbaBinary() + " sim " + scene.string());
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_TRUE(contains(r.err, "rigid_bodies[0].shape.path")) << r.err;

@@ -31,7 +31,7 @@ std::vector<std::string> hostile(const fs::path& marker)
 /// The blow-dryer scene under another name, written to `dir`.
 fs::path sceneNamed(const fs::path& dir, const std::string& name, const std::string& file = "scene.json")
 {
-    nlohmann::json scene = nlohmann::json::parse(readFile(fs::path(PBA_SOURCE_DIR) / "scenes/blow-dryer.json"));
+    nlohmann::json scene = nlohmann::json::parse(readFile(sourceDir() / "scenes/blow-dryer.json"));
     scene["name"] = name;
     const fs::path path = dir / file;
     std::ofstream(path) << scene.dump();
@@ -279,7 +279,7 @@ TEST(Outputs, AFilePathEndingInASlashIsRefusedBeforeAnyWork)
 TEST(Outputs, CsvQuotesNamesHoldingCommasAndQuotes)
 {
     const fs::path dir = freshDir("csv_quotes");
-    nlohmann::json scene = nlohmann::json::parse(readFile(fs::path(PBA_SOURCE_DIR) / "scenes/integrators.json"));
+    nlohmann::json scene = nlohmann::json::parse(readFile(sourceDir() / "scenes/integrators.json"));
     scene["particles"][1]["name"] = "a,b";
     scene["particles"][2]["name"] = "say \"hi\"";
     std::ofstream(dir / "s.json") << scene.dump();

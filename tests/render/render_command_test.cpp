@@ -62,7 +62,7 @@ namespace {
 /// `pba view ARGS` in a window on a virtual X server.
 CommandResult runView(const std::string& args)
 {
-    return runShell("xvfb-run -a -s '-screen 0 1280x720x24' " + std::string(PBA_BINARY) + " view " + args);
+    return runShell("xvfb-run -a -s '-screen 0 1280x720x24' " + pbaBinary() + " view " + args);
 }
 
 std::vector<unsigned char> loadRgba(const std::filesystem::path& png, int& w, int& h)
@@ -141,7 +141,7 @@ TEST(PbaRender, MissingFfmpegNamesThePackageAndWritesNothing)
     const auto dir = freshDir("render_noffmpeg");
     const auto mp4 = dir / "x.mp4";
     const CommandResult r =
-        runShell("PATH=/nonexistent " + std::string(PBA_BINARY) + " render spring --duration 0.1 --out " + mp4.string());
+        runShell("PATH=/nonexistent " + pbaBinary() + " render spring --duration 0.1 --out " + mp4.string());
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_NE(r.err.find("install the Debian package ffmpeg"), std::string::npos) << r.err;
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0);

@@ -9,6 +9,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "support/paths.hpp"
+
 namespace pba::test {
 
 struct CommandResult {
@@ -54,7 +56,7 @@ inline CommandResult runShell(const std::string& command)
 }
 
 /// Runs the pba binary under test with the given arguments (already shell-quoted).
-inline CommandResult runPba(const std::string& args) { return runShell(std::string(PBA_BINARY) + " " + args); }
+inline CommandResult runPba(const std::string& args) { return runShell(pbaBinary() + " " + args); }
 
 } // namespace pba::test
 
@@ -81,7 +83,7 @@ inline CommandResult runPbaArgv(const std::vector<std::string>& args, const RunO
 {
     const auto base = std::filesystem::temp_directory_path() / ("pba_test_argv_" + std::to_string(::getpid()));
     const std::string outPath = base.string() + ".out", errPath = base.string() + ".err";
-    std::vector<std::string> argv{PBA_BINARY};
+    std::vector<std::string> argv{pbaBinary()};
     argv.insert(argv.end(), args.begin(), args.end());
     std::vector<char*> pointers;
     for (auto& a : argv)

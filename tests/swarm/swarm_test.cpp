@@ -503,7 +503,7 @@ TEST(PbaBench, PhasesTakeAnIntegrator)
 // --integrator with neither --phases nor --peer-worker is a usage error, not silently ignored.
 TEST(PbaBench, PeerWorkerTakesAnIntegrator)
 {
-    const auto r = pba::test::runShell("printf 'window 3\\n' | " PBA_BINARY
+    const auto r = pba::test::runShell("printf 'window 3\\n' | " + pba::test::pbaBinary() +
                                        " bench --peer-worker --sizes 3000 --phase flight --integrator rk4");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     std::istringstream lines(r.out);
