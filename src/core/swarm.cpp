@@ -83,7 +83,7 @@ constexpr std::size_t kParallelThreshold = 32768;
 /// twice is not what these loops wait on; their instructions are (docs/performance.md).
 template <Integrator kIntegrator>
 void stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const SwarmKernelFields& fields,
-                         float restitution, float dt, std::span<const PlaneT<float>> planes,
+                         float restitution, float friction, float dt, std::span<const PlaneT<float>> planes,
                          CollisionResponse response)
 {
     alignas(64) float start[6][kBlock];
@@ -114,8 +114,15 @@ void stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const Swarm
         clock.lap(SwarmPhaseTimes::SurfaceTest);
         std::size_t moved = 0;
         if (hits > 0 && exact) {
-            collideExactly<kIntegrator>(a, b, n, fields, restitution, dt, planes, start, hit);
+            collideExactly<kIntegrator>(a, b, n, fields, restitution, friction, dt, planes, start, hit);
             finite = allFinite(a, b, n);
+        } else if (hits > 0 && friction > 0.0f) {
+            // Friction rubs with the push each particle's rule gave it (afterStepWithFriction),
+            // which the vectorised pass does not keep: a frictional swarm's blocks that meet a
+            // surface take a Particle's whole rule, particle by particle.
+            wholeRule(a, b, n, restitution, planes, response, room, {start[0], start[1], start[2]}, nullptr, n,
+                      finite, friction);
+            moved = n;
         } else if (hits > 0 && hits <= kGatherMax && hits < n) {
             gathered.add(b, n, hit, start); // checked again when the batch is resolved
         } else if (hits > 0) {
@@ -140,25 +147,25 @@ void stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const Swarm
 /// to another; on one machine it is the same for every thread count.)
 PBA_FOR_EACH_INSTRUCTION_SET
 void stepSwarmRange(Integrator integrator, const Arrays& a, std::size_t begin, std::size_t end,
-                             const SwarmKernelFields& fields, float restitution, float dt,
+                             const SwarmKernelFields& fields, float restitution, float friction, float dt,
                              std::span<const PlaneT<float>> planes, CollisionResponse response)
 {
     switch (integrator) {
     case Integrator::ForwardEuler:
-        stepBlocks<Integrator::ForwardEuler>(a, begin, end, fields, restitution, dt, planes, response);
+        stepBlocks<Integrator::ForwardEuler>(a, begin, end, fields, restitution, friction, dt, planes, response);
         return;
     case Integrator::SemiImplicitEuler:
     case Integrator::ImplicitGyroscopic: // a point does not turn
     case Integrator::ImplicitEuler:      // refused by World::addSwarm: no springs to step
     case Integrator::Xpbd:
-        stepBlocks<Integrator::SemiImplicitEuler>(a, begin, end, fields, restitution, dt, planes, response);
+        stepBlocks<Integrator::SemiImplicitEuler>(a, begin, end, fields, restitution, friction, dt, planes, response);
         return;
     case Integrator::VelocityVerlet:
     case Integrator::Splitting: // a point does not turn
-        stepBlocks<Integrator::VelocityVerlet>(a, begin, end, fields, restitution, dt, planes, response);
+        stepBlocks<Integrator::VelocityVerlet>(a, begin, end, fields, restitution, friction, dt, planes, response);
         return;
     case Integrator::RK4:
-        stepBlocks<Integrator::RK4>(a, begin, end, fields, restitution, dt, planes, response);
+        stepBlocks<Integrator::RK4>(a, begin, end, fields, restitution, friction, dt, planes, response);
         return;
     }
 }
@@ -220,7 +227,9 @@ void Swarm::stepRange(const SwarmKernelFields& fields, std::span<const PlaneT<fl
     StepMemory& m = *m_memory;
     const Arrays a{array(0),        array(1),        array(2),         array(3),          array(4), array(5),
                    m.clear.data(), m.finite.data(), m.crowded.data(), m.blowing.data(), m_phaseTimes};
-    stepSwarmRange(m_integrator, a, begin, end, fields, m_restitution, dt, planes, response);
+    // A colliding swarm's grains rub against the room in their contacts' sweeps instead.
+    const float roomFriction = m_desc.collide ? 0.0f : friction();
+    stepSwarmRange(m_integrator, a, begin, end, fields, m_restitution, roomFriction, dt, planes, response);
     if (m_observer.observer)
         m_observer.observer->stepped(*this, begin, end);
 }

@@ -88,7 +88,7 @@ std::size_t classifyBlock(const Arrays& a, std::size_t begin, std::size_t n, std
 template <Integrator kIntegrator>
 [[gnu::noinline]] std::uint64_t collideExactly(const Arrays& a, std::size_t begin, std::size_t n,
                                                const SwarmKernelFields& fields, float restitution,
-                                               float dt, std::span<const PlaneT<float>> planes,
+                                               float friction, float dt, std::span<const PlaneT<float>> planes,
                                                const float (*start)[kBlock], const std::uint8_t* hit)
 {
     auto accel = [&](const Vec3<float>& x, const Vec3<float>& v) {
@@ -101,7 +101,7 @@ template <Integrator kIntegrator>
         const std::size_t i = begin + k;
         Vec3<float> x(start[0][k], start[1][k], start[2][k]);
         Vec3<float> v(start[3][k], start[4][k], start[5][k]);
-        bounces += stepExact(kIntegrator, planes, restitution, x, v, dt, accel);
+        bounces += stepExact(kIntegrator, planes, restitution, x, v, dt, accel, friction);
         a.px[i] = x.x, a.py[i] = x.y, a.pz[i] = x.z;
         a.vx[i] = v.x, a.vy[i] = v.y, a.vz[i] = v.z;
         a.clear[i] = static_cast<std::uint8_t>(clearOfAll(planes, x));
@@ -181,13 +181,14 @@ std::size_t nextMarked(const std::uint32_t* which, std::size_t k, std::size_t n)
 /// first pass is the room's (RoomSurfacesT::firstPass: the same functions over the same planes
 /// in the same order), the rest only for a particle still outside; among other planes it is the
 /// rule as a Particle runs it, which first tests whether the particle is inside every plane.
-/// Out of line and scalar, as collideExactly. Returns the bounces; clears `finite` if a state it
-/// wrote is not.
+/// With `friction`, each particle then rubs along the push its rule gave it, as a Particle's does
+/// (afterStepWithFriction). Out of line and scalar, as collideExactly. Returns the bounces; clears
+/// `finite` if a state it wrote is not.
 [[gnu::noinline]] std::uint64_t wholeRule(const Arrays& a, std::size_t b, std::size_t n, float restitution,
                                           std::span<const PlaneT<float>> planes, CollisionResponse response,
                                           const std::optional<RoomSurfacesT<float>>& room,
                                           const StartPositions& start, const std::uint32_t* which,
-                                          std::size_t marked, bool& finite)
+                                          std::size_t marked, bool& finite, float friction = 0.0f)
 {
     const bool reflect = response == CollisionResponse::Reflect;
     std::uint64_t bounces = 0;
@@ -212,6 +213,12 @@ std::size_t nextMarked(const std::uint32_t* which, std::size_t k, std::size_t n)
         }
         if (bounced == 0 && x == x0 && v == v0)
             continue;
+        if (friction > 0.0f) {
+            const Vec3<float> change = v - v0;
+            const float size = glm::length(change);
+            if (size > 0.0f)
+                rubAlong(change / size, friction, size, v);
+        }
         bounces += static_cast<std::uint64_t>(bounced);
         a.px[i] = x.x, a.py[i] = x.y, a.pz[i] = x.z;
         a.vx[i] = v.x, a.vy[i] = v.y, a.vz[i] = v.z;

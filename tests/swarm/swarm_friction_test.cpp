@@ -1,0 +1,102 @@
+// A swarm's Coulomb friction against the room: the rule its particles would have alone.
+// Oracle: a puck sliding on a level floor decelerates at mu g, so it stops after v0^2 / (2 mu g).
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "pba/forces.hpp"
+#include "pba/world.hpp"
+
+using namespace pba;
+
+namespace {
+
+constexpr double kG = 9.81;
+
+/// n pucks of radius r on the floor of a 4 m room, sliding at 1 m/s along x, under gravity.
+World slidingSwarm(std::size_t n, double mu, CollisionResponse response, double radius = 0.05)
+{
+    World world;
+    world.addForce(std::make_unique<Gravity>(dvec3(0, -kG, 0)));
+    world.setRoom({dvec3(-2, 0, -2), dvec3(2, 4, 2)});
+    world.setCollisionResponse(response);
+    SwarmDesc desc;
+    desc.name = "pucks";
+    desc.count = n;
+    desc.regionMin = dvec3(-1.9, radius, -1.9);
+    desc.regionMax = dvec3(-1.0, radius, 1.9);
+    desc.velocity = dvec3(1.0, 0.0, 0.0);
+    desc.radius = radius;
+    desc.friction = mu;
+    desc.restitution = 0.0;
+    world.addSwarm(desc);
+    return world;
+}
+
+} // namespace
+
+TEST(SwarmFriction, APuckSlidingOnTheFloorStopsAfterV0SquaredOverTwoMuG)
+{
+    const double mu = 0.5, expected = 1.0 / (2.0 * mu * kG);
+    World world = slidingSwarm(1, mu, CollisionResponse::Exact);
+    const double start = world.swarm(0).position(0).x;
+    for (int step = 0; step < 500; ++step)
+        world.step(1e-3);
+    EXPECT_NEAR(world.swarm(0).position(0).x - start, expected, 0.01 * expected);
+    EXPECT_EQ(world.swarm(0).velocity(0).x, 0.0f) << "it stopped";
+}
+
+TEST(SwarmFriction, WithoutFrictionThePucksKeepSliding)
+{
+    World world = slidingSwarm(600, 0.0, CollisionResponse::Reflect);
+    for (int step = 0; step < 200; ++step)
+        world.step(1e-3);
+    for (std::size_t i = 0; i < world.swarm(0).size(); ++i)
+        ASSERT_EQ(world.swarm(0).velocity(i).x, 1.0f) << "puck " << i;
+}
+
+// Every response: the swarm's pucks (blocks of them, all on the floor) follow double-precision
+// Particles of the same friction, and come to rest where they do. Points: Particles with a
+// radius would collide with each other, which a swarm's do only with "collide".
+TEST(SwarmFriction, PucksFollowParticlesOfTheSameFriction)
+{
+    for (CollisionResponse response : {CollisionResponse::Reflect, CollisionResponse::Clamp,
+                                       CollisionResponse::Exact}) {
+        World world = slidingSwarm(600, 0.05, response, 0.0);
+        const Swarm& swarm = world.swarm(0);
+        for (std::size_t i = 0; i < swarm.size(); ++i) {
+            Particle p;
+            p.setFriction(0.05);
+            p.setCor(0.0);
+            p.setPos(dvec3(swarm.position(i)));
+            p.setVel(dvec3(swarm.velocity(i)));
+            world.addParticle(p);
+        }
+        for (int step = 0; step < 1500; ++step)
+            world.step(2e-3);
+        double worst = 0.0, fastest = 0.0;
+        for (std::size_t i = 0; i < swarm.size(); ++i) {
+            worst = std::max(worst, glm::length(dvec3(swarm.position(i)) - world.body(i).getPos()));
+            fastest = std::max(fastest, double(glm::length(swarm.velocity(i))));
+        }
+        EXPECT_LT(worst, 1e-3) << collisionResponseName(response);
+        EXPECT_LT(fastest, 1e-3) << collisionResponseName(response) << ": friction stopped them";
+    }
+}
+
+TEST(SwarmFriction, ResultsDoNotDependOnTheThreadCount)
+{
+    for (CollisionResponse response : {CollisionResponse::Reflect, CollisionResponse::Exact}) {
+        World one = slidingSwarm(40000, 0.2, response), two = slidingSwarm(40000, 0.2, response);
+        one.setThreads(1);
+        two.setThreads(2);
+        for (int step = 0; step < 100; ++step) {
+            one.step(2e-3);
+            two.step(2e-3);
+        }
+        for (std::size_t i = 0; i < one.swarm(0).size(); ++i) {
+            ASSERT_EQ(one.swarm(0).position(i), two.swarm(0).position(i)) << "particle " << i;
+            ASSERT_EQ(one.swarm(0).velocity(i), two.swarm(0).velocity(i)) << "particle " << i;
+        }
+    }
+}
