@@ -121,8 +121,7 @@ void stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const Swarm
             // which the vectorised pass does not keep: a frictional swarm's blocks that meet a
             // surface take a Particle's whole rule, particle by particle.
             wholeRule(a, b, n, restitution, planes, response, room, {start[0], start[1], start[2]}, nullptr, n,
-                      finite, friction);
-            moved = n;
+                      finite, friction, &moved);
         } else if (hits > 0 && hits <= kGatherMax && hits < n) {
             gathered.add(b, n, hit, start); // checked again when the batch is resolved
         } else if (hits > 0) {

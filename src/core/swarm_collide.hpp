@@ -182,13 +182,14 @@ std::size_t nextMarked(const std::uint32_t* which, std::size_t k, std::size_t n)
 /// in the same order), the rest only for a particle still outside; among other planes it is the
 /// rule as a Particle runs it, which first tests whether the particle is inside every plane.
 /// With `friction`, each particle then rubs along the push its rule gave it, as a Particle's does
-/// (afterStepWithFriction). Out of line and scalar, as collideExactly. Returns the bounces; clears
-/// `finite` if a state it wrote is not.
+/// (afterStepWithFriction); `changed`, if given, counts the particles the rule moved. Out of line
+/// and scalar, as collideExactly. Returns the bounces; clears `finite` if a state it wrote is not.
 [[gnu::noinline]] std::uint64_t wholeRule(const Arrays& a, std::size_t b, std::size_t n, float restitution,
                                           std::span<const PlaneT<float>> planes, CollisionResponse response,
                                           const std::optional<RoomSurfacesT<float>>& room,
                                           const StartPositions& start, const std::uint32_t* which,
-                                          std::size_t marked, bool& finite, float friction = 0.0f)
+                                          std::size_t marked, bool& finite, float friction = 0.0f,
+                                          std::size_t* changed = nullptr)
 {
     const bool reflect = response == CollisionResponse::Reflect;
     std::uint64_t bounces = 0;
@@ -213,6 +214,8 @@ std::size_t nextMarked(const std::uint32_t* which, std::size_t k, std::size_t n)
         }
         if (bounced == 0 && x == x0 && v == v0)
             continue;
+        if (changed)
+            ++*changed;
         if (friction > 0.0f) {
             const Vec3<float> change = v - v0;
             const float size = glm::length(change);
