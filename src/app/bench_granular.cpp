@@ -26,7 +26,7 @@ World granularWorld(std::size_t n, bool collide, int threads)
     desc.radius = r;
     desc.collide = collide;
     // Without collisions the row is the plain swarm step the target is a fraction of: without the
-    // room's friction too, which a swarm that does not collide takes through the scalar whole rule.
+    // room's friction too.
     if (!collide)
         desc.friction = 0.0;
     desc.regionMin = dvec3(-side / 2, r, -side / 2);

@@ -92,7 +92,7 @@ void stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const Swarm
     const bool coversAll = box && boxCoversAll(*box, planes);
     const bool exact = response == CollisionResponse::Exact;
     const std::optional<RoomSurfacesT<float>> room = exact ? std::nullopt : roomSurfaces(planes);
-    GatheredHits gathered(a, restitution, planes, response, room);
+    GatheredHits gathered(a, restitution, friction, planes, response, room);
     const bool drag = fields.dragPerMass != 0.0f;
     const BlowDryerReach reach(fields.dryer, dt, glm::length(dvec3(fields.gravity)), fields.dragPerMass);
     PhaseClock clock(a.phases);
@@ -116,16 +116,10 @@ void stepBlocks(const Arrays& a, std::size_t begin, std::size_t end, const Swarm
         if (hits > 0 && exact) {
             collideExactly<kIntegrator>(a, b, n, fields, restitution, friction, dt, planes, start, hit);
             finite = allFinite(a, b, n);
-        } else if (hits > 0 && friction > 0.0f) {
-            // Friction rubs with the push each particle's rule gave it (afterStepWithFriction),
-            // which the vectorised pass does not keep: a frictional swarm's blocks that meet a
-            // surface take a Particle's whole rule, particle by particle.
-            wholeRule(a, b, n, restitution, planes, response, room, {start[0], start[1], start[2]}, nullptr, n,
-                      finite, friction, &moved);
         } else if (hits > 0 && hits <= kGatherMax && hits < n) {
             gathered.add(b, n, hit, start); // checked again when the batch is resolved
         } else if (hits > 0) {
-            collideHits(a, b, n, restitution, planes, response, room, {start[0], start[1], start[2]}, finite,
+            collideHits(a, b, n, restitution, friction, planes, response, room, {start[0], start[1], start[2]}, finite,
                         moved);
         }
         crowded = static_cast<std::uint8_t>(moved > kGatherMax);

@@ -117,23 +117,41 @@ struct PassResult {
     bool finite = true;
 };
 
+/// v rubbed along the push that changed it by `change` (afterStepWithFriction's rub, rubAlong),
+/// as selects: the collision pass and the whole rule both take it, so a particle rubs alike in
+/// either.
+inline Vec3<float> rubbed(Vec3<float> v, const Vec3<float>& change, float mu)
+{
+    const float size = glm::length(change);
+    const Vec3<float> n = change / size; // not finite where size is 0: not selected below
+    const Vec3<float> vt = v - glm::dot(n, v) * n;
+    const float speed = glm::length(vt);
+    const float share = std::min(1.0f, mu * size / speed);
+    const bool rub = (size > 0.0f) & (speed > 0.0f);
+    for (int c = 0; c < 3; ++c)
+        v[c] = rub ? v[c] - share * vt[c] : v[c];
+    return v;
+}
+
 /// The reflect or clamp rule over the n particles of a block, or of a batch gathered from
 /// several, that met a surface of a World's room, in one loop of selects: the floor and its
 /// hole (RoomSurfacesT::commonPass), and whether the result is finite. A particle that pass
 /// cannot finish (needsWholeRule: at the ceiling, a wall or the grille, at a corner, at the
 /// shaft's wall) is left as the integrator left it and marked in `unfinished` for a Particle's
-/// whole rule (wholeRule). A particle clear of every surface is left exactly as it was.
+/// whole rule (wholeRule). A particle clear of every surface is left exactly as it was. With
+/// `kFriction` a particle the floor pushed rubs along it (`rubbed`), which reads and writes its
+/// velocity's x and z as well.
 ///
 /// One loop where there were four (which planes were crossed, a pass a plane, which particles
 /// were still outside, the fold), faster at rest with the same states. The shaft's
 /// wall is left to the whole rule: the dryer blows particles out of the shaft within a tenth of
 /// a second, a few hundred a step of a million, and its square root and two divisions in this
 /// loop for every particle cost more than a tenth of the step (docs/performance.md).
-template <bool kHole>
+template <bool kHole, bool kFriction>
 PassResult passInRoom(const float* __restrict px, float* __restrict py, const float* __restrict pz,
-                      float* __restrict vy, const float* __restrict s0, const float* __restrict s1,
-                      const float* __restrict s2, std::uint32_t* __restrict unfinished, std::size_t n,
-                      const RoomSurfacesT<float> room, float restitution, float back)
+                      float* __restrict vx, float* __restrict vy, float* __restrict vz, const float* __restrict s0,
+                      const float* __restrict s1, const float* __restrict s2, std::uint32_t* __restrict unfinished,
+                      std::size_t n, const RoomSurfacesT<float> room, float restitution, float back, float friction)
 {
     int bounces = 0;
     std::uint32_t count = 0, exponent = 0; // 32 bits, as wide as a float: 16 particles a vector
@@ -155,6 +173,13 @@ PassResult passInRoom(const float* __restrict px, float* __restrict py, const fl
         const float y = whole ? x.y : passedX.y, velocityY = whole ? v.y : passedV.y;
         exponent = std::max(exponent, exponentField(y + velocityY));
         py[k] = y, vy[k] = velocityY;
+        if constexpr (kFriction) {
+            const Vec3<float> before(vx[k], v.y, vz[k]);
+            const Vec3<float> after = rubbed(Vec3<float>(vx[k], passedV.y, vz[k]),
+                                             Vec3<float>(0.0f, passedV.y - v.y, 0.0f), friction);
+            vx[k] = whole ? before.x : after.x, vz[k] = whole ? before.z : after.z;
+            vy[k] = whole ? before.y : after.y;
+        }
     }
     return PassResult{bounces, count, exponent != kSpecialExponent};
 }
@@ -182,14 +207,13 @@ std::size_t nextMarked(const std::uint32_t* which, std::size_t k, std::size_t n)
 /// in the same order), the rest only for a particle still outside; among other planes it is the
 /// rule as a Particle runs it, which first tests whether the particle is inside every plane.
 /// With `friction`, each particle then rubs along the push its rule gave it, as a Particle's does
-/// (afterStepWithFriction); `changed`, if given, counts the particles the rule moved. Out of line
-/// and scalar, as collideExactly. Returns the bounces; clears `finite` if a state it wrote is not.
+/// (`rubbed`). Out of line and scalar, as collideExactly. Returns the bounces; clears `finite` if a
+/// state it wrote is not.
 [[gnu::noinline]] std::uint64_t wholeRule(const Arrays& a, std::size_t b, std::size_t n, float restitution,
                                           std::span<const PlaneT<float>> planes, CollisionResponse response,
                                           const std::optional<RoomSurfacesT<float>>& room,
                                           const StartPositions& start, const std::uint32_t* which,
-                                          std::size_t marked, bool& finite, float friction = 0.0f,
-                                          std::size_t* changed = nullptr)
+                                          std::size_t marked, bool& finite, float friction)
 {
     const bool reflect = response == CollisionResponse::Reflect;
     std::uint64_t bounces = 0;
@@ -214,14 +238,8 @@ std::size_t nextMarked(const std::uint32_t* which, std::size_t k, std::size_t n)
         }
         if (bounced == 0 && x == x0 && v == v0)
             continue;
-        if (changed)
-            ++*changed;
-        if (friction > 0.0f) {
-            const Vec3<float> change = v - v0;
-            const float size = glm::length(change);
-            if (size > 0.0f)
-                rubAlong(change / size, friction, size, v);
-        }
+        if (friction > 0.0f)
+            v = rubbed(v, v - v0, friction);
         bounces += static_cast<std::uint64_t>(bounced);
         a.px[i] = x.x, a.py[i] = x.y, a.pz[i] = x.z;
         a.vx[i] = v.x, a.vy[i] = v.y, a.vz[i] = v.z;
@@ -241,27 +259,31 @@ std::size_t nextMarked(const std::uint32_t* which, std::size_t k, std::size_t n)
 /// keeps a block crowded, a hint that changes no result (from the pass's counts: counting the
 /// particles it moved, four instructions a vector more, was slower at rest).
 PBA_FOR_EACH_INSTRUCTION_SET
-std::uint64_t collideHits(const Arrays& a, std::size_t b, std::size_t n, float restitution,
+std::uint64_t collideHits(const Arrays& a, std::size_t b, std::size_t n, float restitution, float friction,
                           std::span<const PlaneT<float>> planes, CollisionResponse response,
                           const std::optional<RoomSurfacesT<float>>& room, const StartPositions& start, bool& finite,
                           std::size_t& moved)
 {
     moved = n;
     if (!room)
-        return wholeRule(a, b, n, restitution, planes, response, room, start, nullptr, n, finite);
+        return wholeRule(a, b, n, restitution, planes, response, room, start, nullptr, n, finite, friction);
     alignas(64) std::uint32_t unfinished[kBlock];
     const float back = response == CollisionResponse::Reflect ? 2.0f : 1.0f; // see pushBack
-    const auto pass = [&](auto hole) {
-        return passInRoom<decltype(hole)::value>(a.px + b, a.py + b, a.pz + b, a.vy + b, start[0], start[1],
-                                                 start[2], unfinished, n, *room, restitution, back);
+    const auto pass = [&](auto hole, auto rub) {
+        return passInRoom<decltype(hole)::value, decltype(rub)::value>(
+            a.px + b, a.py + b, a.pz + b, a.vx + b, a.vy + b, a.vz + b, start[0], start[1], start[2], unfinished, n,
+            *room, restitution, back, friction);
     };
-    const PassResult result = room->hasHole() ? pass(std::true_type{}) : pass(std::false_type{});
+    const auto withHole = [&](auto rub) {
+        return room->hasHole() ? pass(std::true_type{}, rub) : pass(std::false_type{}, rub);
+    };
+    const PassResult result = friction > 0.0f ? withHole(std::true_type{}) : withHole(std::false_type{});
     finite = finite && result.finite;
     moved = static_cast<std::size_t>(result.bounces) + result.unfinished;
     std::uint64_t bounces = static_cast<std::uint64_t>(result.bounces);
     if (result.unfinished > 0)
         bounces += wholeRule(a, b, n, restitution, planes, response, room, start, unfinished, result.unfinished,
-                             finite);
+                             finite, friction);
     return bounces;
 }
 
@@ -279,9 +301,10 @@ public:
     static constexpr std::size_t kCapacity = 2 * kGatherMax;
     static_assert(kCapacity % kGatherWidth == 0, "a full batch is whole vectors: its padding fits");
 
-    GatheredHits(const Arrays& a, float restitution, std::span<const PlaneT<float>> planes,
+    GatheredHits(const Arrays& a, float restitution, float friction, std::span<const PlaneT<float>> planes,
                  CollisionResponse response, const std::optional<RoomSurfacesT<float>>& room)
-        : m_a(a), m_restitution(restitution), m_planes(planes), m_response(response), m_room(room)
+        : m_a(a), m_restitution(restitution), m_friction(friction), m_planes(planes), m_response(response),
+          m_room(room)
     {
     }
 
@@ -330,7 +353,8 @@ public:
         // The states the rule wrote are checked by it; the others were checked with their block.
         bool finite = true;
         std::size_t moved = 0;
-        const std::uint64_t bounces = collideHits(gathered, 0, width, m_restitution, m_planes, m_response, m_room,
+        const std::uint64_t bounces = collideHits(gathered, 0, width, m_restitution, m_friction, m_planes, m_response,
+                                                  m_room,
                                                   {m_from[0], m_from[1], m_from[2]}, finite, moved);
         float* const arrays[6] = {m_a.px, m_a.py, m_a.pz, m_a.vx, m_a.vy, m_a.vz};
         for (std::size_t j = 0; j < m_count; ++j) {
@@ -345,7 +369,7 @@ public:
 
 private:
     const Arrays& m_a;
-    float m_restitution;
+    float m_restitution, m_friction;
     std::span<const PlaneT<float>> m_planes;
     CollisionResponse m_response;
     const std::optional<RoomSurfacesT<float>>& m_room;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "pba/forces.hpp"
 #include "pba/world.hpp"
@@ -99,6 +100,38 @@ TEST(SwarmFriction, ResultsDoNotDependOnTheThreadCount)
         for (std::size_t i = 0; i < one.swarm(0).size(); ++i) {
             ASSERT_EQ(one.swarm(0).position(i), two.swarm(0).position(i)) << "particle " << i;
             ASSERT_EQ(one.swarm(0).velocity(i), two.swarm(0).velocity(i)) << "particle " << i;
+        }
+    }
+}
+
+// A puck rubs the same in a crowded block (the collision pass over the whole block), among a
+// few gathered from several blocks, alone, and at a wall (the whole rule): 2048 pucks, three
+// blocks sliding on the floor (every sixty-fourth into the low x wall) and one falling onto it,
+// step for step the states of 2048 swarms of one.
+TEST(SwarmFriction, APuckRubsAlikeInABlockInABatchAndAlone)
+{
+    for (CollisionResponse response : {CollisionResponse::Reflect, CollisionResponse::Clamp}) {
+        World world = slidingSwarm(2048, 0.3, response, 0.0);
+        Swarm& swarm = world.swarm(0);
+        for (std::size_t i = 0; i < swarm.size(); ++i) {
+            const float u = float(i % 64) / 64.0f, w = float(i / 64) / 32.0f;
+            const bool resting = i < 1536, atWall = resting && i % 64 == 0;
+            const float across = atWall ? -1.998f + 0.0005f * float(i / 64) : -1.9f + 3.8f * u;
+            swarm.set(i, Vec3<float>(across, resting ? 1e-4f : 0.01f + 0.05f * w, -1.9f + 3.8f * w),
+                      Vec3<float>(atWall ? -0.5f : 0.6f * (u - 0.5f), resting ? -0.05f : -0.5f, 0.2f));
+        }
+        std::vector<World> alone;
+        for (std::size_t i = 0; i < swarm.size(); ++i) {
+            alone.push_back(slidingSwarm(1, 0.3, response, 0.0));
+            alone.back().swarm(0).set(0, swarm.position(i), swarm.velocity(i));
+        }
+        for (int step = 0; step < 60; ++step) {
+            world.step(2e-3);
+            for (std::size_t i = 0; i < swarm.size(); ++i) {
+                alone[i].step(2e-3);
+                ASSERT_EQ(swarm.position(i), alone[i].swarm(0).position(0)) << "puck " << i << " step " << step;
+                ASSERT_EQ(swarm.velocity(i), alone[i].swarm(0).velocity(0)) << "puck " << i << " step " << step;
+            }
         }
     }
 }
