@@ -19,15 +19,11 @@ gl='^(PbaRender|PbaView|HeadlessRender|RenderClock|Security|Outputs)\.'
 # The install test links an uninstrumented consumer against these instrumented libraries: it
 # tests packaging, which the plain build already does. The simulated hours (tunnelling, soak)
 # run the same code as the short tests 10^4 times over; unvectorised and checked at every load
-# they would take most of CI's half hour, so they run in the plain build only; so do the rigid
-# scenes' claims (and the touch scenes': particles on rigid bodies) and the thousand-dice piles,
-# whose contact code the rigid unit tests run here,
-# and the crowded-block comparison (110 s here against 12 s plain), whose crowded blocks the
-# swarm scenes' tests step here too; likewise the granular scene's claims (the grains' contacts
-# run here in ParticleContacts' piles), the quick bench's every row (its bench code runs here in
-# PbaBench's other tests) and the work-precision study (38 s here; the study's code runs here in
-# PbaCompare's other tests).
-long='^(Tunnelling|Soak|Pile|ContactSceneClaims|TouchSceneClaims|GranularSceneClaims)\.|^RigidWorld\.ManyDice|^Swarm\.CrowdedBlocksGetTheSameRuleAsParticlesAlone$|^PbaBench\.QuickJsonHasEveryLayout$|^PbaCompare\.WritesWorkPrecisionWithTheMethodsOrders$'
+# they would take most of CI's half hour, so they run in the plain build only; so does the
+# crowded-block comparison (110 s here against 12 s plain), whose crowded blocks the swarm
+# scenes' tests step here too. The scene claims, the thousand-dice piles, the quick bench and
+# the work-precision study run here (about a minute and a half more than without them).
+long='^(Tunnelling|Soak)\.|^Swarm\.CrowdedBlocksGetTheSameRuleAsParticlesAlone$'
 ctest --test-dir build-asan --output-on-failure -j "$jobs" -E "$gl|^install\.|$long"
 # The OpenGL tests (and the output tests, whose pba children render) run with address and UB
 # checks but without leak checks: llvmpipe's JIT-compiled
