@@ -82,11 +82,16 @@ inline void touch(Vec& xa, Vec& va, const Vec& xa0, Vec& xb, Vec& vb, const Vec&
 
 /// A grain pushed out of the room by a sweep put back on its walls, its speed into them taken
 /// away, and its sliding along a wall it touches held back by friction, in position and speed.
-inline void keepInRoom(std::span<const PlaneT<float>> room, const GrainRule& rule, bool first, const Vec& x0, Vec& x,
-                       Vec& v, float& push, float& slowed)
+/// Only the walls flagged in `near` (bit p for wall p; walls from the 33rd on always), the others
+/// being too far for the sweeps to bring the grain to them.
+inline void keepInRoom(std::span<const PlaneT<float>> room, std::uint32_t near, const GrainRule& rule, bool first,
+                       const Vec& x0, Vec& x, Vec& v, float& push, float& slowed)
 {
     const float touching = 2.0f * rule.restingSpeed * rule.dt; // two steps' fall from rest
-    for (const PlaneT<float>& plane : room) {
+    for (std::size_t p = 0; p < room.size(); ++p) {
+        if (p < 32 && !((near >> p) & 1u))
+            continue;
+        const PlaneT<float>& plane = room[p];
         const float depth = plane.distance(x);
         if (depth > touching || plane.overHole(x))
             continue;
@@ -311,7 +316,7 @@ void GrainContacts::sweep(std::span<const PlaneT<float>> room, const GrainRule& 
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_x.size(), kGrainBlock), [&](const auto& r) {
         for (std::size_t s = r.begin(); s < r.end(); ++s)
             if (m_nearWall[s])
-                keepInRoom(room, rule, first, m_x0[s], m_x[s], m_v[s], m_push[s], m_slowed[s]);
+                keepInRoom(room, m_nearWall[s], rule, first, m_x0[s], m_x[s], m_v[s], m_push[s], m_slowed[s]);
     });
 }
 
@@ -330,10 +335,11 @@ void GrainContacts::solve(Swarm& swarm, std::span<const PlaneT<float>> room, con
     m_nearWall.resize(n);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrainBlock), [&](const auto& r) {
         for (std::size_t s = r.begin(); s < r.end(); ++s) {
-            bool near = false;
-            for (const PlaneT<float>& plane : room)
-                near |= plane.distance(m_x[s]) < 4.0f * m_reach;
-            m_nearWall[s] = near ? 1 : 0;
+            std::uint32_t near = 0;
+            for (std::size_t p = 0; p < room.size(); ++p)
+                if (p >= 32 || room[p].distance(m_x[s]) < 4.0f * m_reach)
+                    near |= p < 32 ? 1u << p : 1u;
+            m_nearWall[s] = near;
         }
     });
     m_pairs.resize(m_slabStart.size() - 1);

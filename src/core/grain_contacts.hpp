@@ -89,7 +89,7 @@ private:
     Grid m_grid;
     std::vector<Vec> m_x, m_v;                ///< the grains in cell order
     std::vector<Vec> m_x0;                    ///< where each started the step
-    std::vector<std::uint8_t> m_nearWall;     ///< each within reach of the room's walls this step
+    std::vector<std::uint32_t> m_nearWall; ///< each grain's walls within its reach this step, a bit a wall
     std::vector<float> m_push, m_slowed;      ///< the room's push on each this step (m/s), and its friction's
     std::vector<std::uint32_t> m_order;       ///< cell order -> swarm index
     std::vector<std::uint32_t> m_key;         ///< swarm index -> cell (or bucket)
