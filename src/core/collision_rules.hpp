@@ -199,6 +199,23 @@ inline void rubAlong(const Vec3<T>& n, T mu, T normalChange, Vec3<T>& v)
         v -= std::min(T(1), mu * normalChange / speed) * vt;
 }
 
+/// v rubbed along a push that changed it by `change` (rubAlong along the push's direction, with its
+/// size), written as selects so that the swarm's vectorised collision pass takes the same function
+/// as a Particle's rule (afterStepWithFriction) and the swarm's whole rule.
+template <class T>
+inline Vec3<T> rubbedByPush(Vec3<T> v, const Vec3<T>& change, T mu)
+{
+    const T size = glm::length(change);
+    const Vec3<T> n = change / size; // not finite where size is 0: not selected below
+    const Vec3<T> vt = v - glm::dot(n, v) * n;
+    const T speed = glm::length(vt);
+    const T share = std::min(T(1), mu * size / speed);
+    const bool rub = (size > T(0)) & (speed > T(0));
+    for (int c = 0; c < 3; ++c)
+        v[c] = rub ? v[c] - share * vt[c] : v[c];
+    return v;
+}
+
 /// The acceleration a surface's friction adds to `a` (already rid of its part into the surface,
 /// of size `pressing` = -a.n) for a body resting on it at velocity v: what would stop it within
 /// dt if that takes no more than mu times the pressing, else that much against it. So a body
@@ -443,10 +460,9 @@ inline int afterStepWithFriction(CollisionResponse response, std::span<const Pla
     const T size = glm::length(change);
     if (!(size > T(0)))
         return bounces;
-    const Vec3<T> n = change / size;
     if (friction > T(0))
-        rubAlong(n, friction, size, v);
-    return -glm::dot(n, before) > T(2) * restingSpeed ? bounces : 0;
+        v = rubbedByPush(v, change, friction);
+    return -glm::dot(change / size, before) > T(2) * restingSpeed ? bounces : 0;
 }
 
 /// The classic response: a full step, then reflectAfterStep.

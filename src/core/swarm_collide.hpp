@@ -117,30 +117,14 @@ struct PassResult {
     bool finite = true;
 };
 
-/// v rubbed along the push that changed it by `change` (afterStepWithFriction's rub, rubAlong),
-/// as selects: the collision pass and the whole rule both take it, so a particle rubs alike in
-/// either.
-inline Vec3<float> rubbed(Vec3<float> v, const Vec3<float>& change, float mu)
-{
-    const float size = glm::length(change);
-    const Vec3<float> n = change / size; // not finite where size is 0: not selected below
-    const Vec3<float> vt = v - glm::dot(n, v) * n;
-    const float speed = glm::length(vt);
-    const float share = std::min(1.0f, mu * size / speed);
-    const bool rub = (size > 0.0f) & (speed > 0.0f);
-    for (int c = 0; c < 3; ++c)
-        v[c] = rub ? v[c] - share * vt[c] : v[c];
-    return v;
-}
-
 /// The reflect or clamp rule over the n particles of a block, or of a batch gathered from
 /// several, that met a surface of a World's room, in one loop of selects: the floor and its
 /// hole (RoomSurfacesT::commonPass), and whether the result is finite. A particle that pass
 /// cannot finish (needsWholeRule: at the ceiling, a wall or the grille, at a corner, at the
 /// shaft's wall) is left as the integrator left it and marked in `unfinished` for a Particle's
 /// whole rule (wholeRule). A particle clear of every surface is left exactly as it was. With
-/// `kFriction` a particle the floor pushed rubs along it (`rubbed`), which reads and writes its
-/// velocity's x and z as well.
+/// `kFriction` a particle the floor pushed rubs along it (rubbedByPush, as a Particle's rule
+/// and the whole rule do), which reads and writes its velocity's x and z as well.
 ///
 /// One loop where there were four (which planes were crossed, a pass a plane, which particles
 /// were still outside, the fold), faster at rest with the same states. The shaft's
@@ -173,12 +157,10 @@ PassResult passInRoom(const float* __restrict px, float* __restrict py, const fl
         const float y = whole ? x.y : passedX.y, velocityY = whole ? v.y : passedV.y;
         exponent = std::max(exponent, exponentField(y + velocityY));
         py[k] = y, vy[k] = velocityY;
-        if constexpr (kFriction) {
-            const Vec3<float> before(vx[k], v.y, vz[k]);
-            const Vec3<float> after = rubbed(Vec3<float>(vx[k], passedV.y, vz[k]),
-                                             Vec3<float>(0.0f, passedV.y - v.y, 0.0f), friction);
-            vx[k] = whole ? before.x : after.x, vz[k] = whole ? before.z : after.z;
-            vy[k] = whole ? before.y : after.y;
+        if constexpr (kFriction) { // the floor changed v.y alone; the rub leaves it as it is
+            const Vec3<float> after = rubbedByPush(Vec3<float>(vx[k], passedV.y, vz[k]),
+                                                   Vec3<float>(0.0f, passedV.y - v.y, 0.0f), friction);
+            vx[k] = whole ? vx[k] : after.x, vz[k] = whole ? vz[k] : after.z;
         }
     }
     return PassResult{bounces, count, exponent != kSpecialExponent};
@@ -207,7 +189,7 @@ std::size_t nextMarked(const std::uint32_t* which, std::size_t k, std::size_t n)
 /// in the same order), the rest only for a particle still outside; among other planes it is the
 /// rule as a Particle runs it, which first tests whether the particle is inside every plane.
 /// With `friction`, each particle then rubs along the push its rule gave it, as a Particle's does
-/// (`rubbed`). Out of line and scalar, as collideExactly. Returns the bounces; clears `finite` if a
+/// (rubbedByPush). Out of line and scalar, as collideExactly. Returns the bounces; clears `finite` if a
 /// state it wrote is not.
 [[gnu::noinline]] std::uint64_t wholeRule(const Arrays& a, std::size_t b, std::size_t n, float restitution,
                                           std::span<const PlaneT<float>> planes, CollisionResponse response,
@@ -239,7 +221,7 @@ std::size_t nextMarked(const std::uint32_t* which, std::size_t k, std::size_t n)
         if (bounced == 0 && x == x0 && v == v0)
             continue;
         if (friction > 0.0f)
-            v = rubbed(v, v - v0, friction);
+            v = rubbedByPush(v, v - v0, friction);
         bounces += static_cast<std::uint64_t>(bounced);
         a.px[i] = x.x, a.py[i] = x.y, a.pz[i] = x.z;
         a.vx[i] = v.x, a.vy[i] = v.y, a.vz[i] = v.z;
