@@ -51,17 +51,33 @@ dvec3 springSum(const SpringSystem& springs, const std::vector<dvec3>& perSpring
 } // namespace
 
 void BackwardEuler::step(const SpringSystem& springs, std::span<const double> mass, std::span<dvec3> x,
-                         std::span<dvec3> v, std::span<const dvec3> force, double dt)
+                         std::span<dvec3> v, std::span<const dvec3> force, double dt, std::span<const Hold> holds)
 {
     const std::size_t n = x.size();
     m_x0.assign(x.begin(), x.end());
     m_v0.assign(v.begin(), v.end());
-    // Baraff and Witkin's step, linearised at the start, from the last step's dv.
+    m_held = std::any_of(holds.begin(), holds.end(), [](const Hold& h) { return h.normal != dvec3(0.0); });
+    if (m_held) {
+        m_normal.resize(n);
+        m_push.assign(n, 0.0);
+        forEachIndex(n, [&](std::size_t p) { m_normal[p] = holds[p].normal; });
+    }
+    // Baraff and Witkin's step, linearised at the start, from the last step's dv, whose part
+    // along a held member's normal is what brings it to its speed there.
     linearise(springs, mass, x, dt, v, force);
     if (m_dv.size() != n)
         m_dv.assign(n, dvec3(0.0));
+    if (m_held)
+        forEachIndex(n, [&](std::size_t p) {
+            m_dv[p] = filtered(p, m_dv[p]) + (holds[p].speed - glm::dot(m_normal[p], v[p])) * m_normal[p];
+        });
     m_iterations = 0;
-    const double scale = solve(springs, mass);
+    double scale = solve(springs, mass);
+    // Each round lets go of every member its surface pulls; a few rounds settle any sheet (a
+    // member let go of in the last still ends held this step, and is free the next).
+    constexpr int kReleaseRounds = 4;
+    for (int round = 0; m_held && round < kReleaseRounds && releasePulled(springs, mass); ++round)
+        scale = solve(springs, mass);
     forEachIndex(n, [&](std::size_t p) { v[p] += m_dv[p]; });
     // Newton's corrections, each linearised where the last left the bodies, until the nonlinear
     // equations hold: the once-linearised step is only stable while the springs turn little in
@@ -80,7 +96,8 @@ bool BackwardEuler::correct(const SpringSystem& springs, std::span<const double>
     forEachIndex(n, [&](std::size_t p) { x[p] = m_x0[p] + dt * v[p]; });
     springForces(springs, x, v);
     const double remaining = sumOf(n, [&](std::size_t p) {
-        m_rhs[p] = dt * (m_otherForce[p] + springSum(springs, m_perSpring, p)) - mass[p] * (v[p] - m_v0[p]);
+        // A held member's surface takes up its residual along the normal.
+        m_rhs[p] = filtered(p, dt * (m_otherForce[p] + springSum(springs, m_perSpring, p)) - mass[p] * (v[p] - m_v0[p]));
         return glm::dot(m_rhs[p], m_inverseDiagonal[p].apply(m_rhs[p]));
     });
     if (!(remaining > kNewtonTolerance * kNewtonTolerance * scale))
@@ -217,13 +234,16 @@ double BackwardEuler::solve(const SpringSystem& springs, std::span<const double>
     m_z.resize(n);
     m_p.resize(n);
     m_ap.resize(n);
+    // A held member's residual and search directions are filtered (filtered), so its velocity
+    // along the normal stays where the step put it.
     springPass(springs, m_dv);
     const double scale = sumOf(n, [&](std::size_t p) {
-        m_r[p] = m_rhs[p] - (mass[p] * m_dv[p] + springSum(springs, m_perSpring, p));
-        return glm::dot(m_rhs[p], m_inverseDiagonal[p].apply(m_rhs[p]));
+        m_r[p] = filtered(p, m_rhs[p] - (mass[p] * m_dv[p] + springSum(springs, m_perSpring, p)));
+        const dvec3 rhs = filtered(p, m_rhs[p]);
+        return glm::dot(rhs, m_inverseDiagonal[p].apply(rhs));
     });
     double rz = sumOf(n, [&](std::size_t p) {
-        m_z[p] = m_inverseDiagonal[p].apply(m_r[p]);
+        m_z[p] = filtered(p, m_inverseDiagonal[p].apply(m_r[p]));
         return glm::dot(m_r[p], m_z[p]);
     });
     m_residual = scale > 0.0 ? std::sqrt(std::max(rz, 0.0) / scale) : 0.0;
@@ -244,8 +264,8 @@ double BackwardEuler::solve(const SpringSystem& springs, std::span<const double>
         const double alpha = rz / pap;
         const double next = sumOf(n, [&](std::size_t p) {
             m_dv[p] += alpha * m_p[p];
-            m_r[p] -= alpha * m_ap[p];
-            m_z[p] = m_inverseDiagonal[p].apply(m_r[p]);
+            m_r[p] -= alpha * filtered(p, m_ap[p]);
+            m_z[p] = filtered(p, m_inverseDiagonal[p].apply(m_r[p]));
             return glm::dot(m_r[p], m_z[p]);
         });
         ++m_iterations;
@@ -255,6 +275,27 @@ double BackwardEuler::solve(const SpringSystem& springs, std::span<const double>
     if (scale > 0.0)
         m_residual = std::sqrt(std::max(rz, 0.0) / scale);
     return scale;
+}
+
+bool BackwardEuler::releasePulled(const SpringSystem& springs, std::span<const double> mass)
+{
+    // What a held member's surface gives it is what its equation lacks: A dv - b, along the normal.
+    springPass(springs, m_dv);
+    const double released = sumOf(m_normal.size(), [&](std::size_t p) {
+        m_push[p] = 0.0;
+        const dvec3& normal = m_normal[p];
+        if (normal == dvec3(0.0))
+            return 0.0;
+        const dvec3 given = mass[p] * m_dv[p] + springSum(springs, m_perSpring, p) - m_rhs[p];
+        const double along = glm::dot(normal, given);
+        if (along < 0.0) {
+            m_normal[p] = dvec3(0.0);
+            return 1.0;
+        }
+        m_push[p] = along / mass[p];
+        return 0.0;
+    });
+    return released > 0.0;
 }
 
 } // namespace pba::detail

@@ -26,6 +26,14 @@
 // gradients fail (Choi and Ko 2002 drop it for the same reason). The matrix is then symmetric
 // positive definite for any dt, which is what makes the step stable at any dt: for one undamped
 // spring it multiplies the energy by exactly 1 / (1 + omega^2 dt^2) a step.
+//
+// A member resting on a surface is held on it for the step (Baraff and Witkin's constraints,
+// section 5.3): its velocity along the surface's normal ends at zero, and conjugate gradients
+// search only along the surface for it (each residual and direction filtered by I - n n^T), so
+// the springs pull the rest of the system knowing it cannot sink. Otherwise the solve would pull
+// it into the floor every step, and the floor rule after it push it back: a sheet lying on the
+// floor chattered, counted as thousands of bounces. A member the surface would have to pull
+// (its springs lift it off) is let go, and the step solved again without it.
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -38,6 +46,13 @@ namespace pba::detail {
 
 class BackwardEuler {
 public:
+    /// A member held on a surface for a step: it ends the step moving at `speed` along the
+    /// surface's unit `normal` (closing what gap there is). A zero normal holds nothing.
+    struct Hold {
+        dvec3 normal{0.0};
+        double speed = 0.0;
+    };
+
     /// Conjugate gradients stop when the residual's preconditioned norm falls below this fraction
     /// of the right-hand side's, or after kMaxIterations.
     static constexpr double kTolerance = 1e-5;
@@ -56,9 +71,15 @@ public:
 
     /// One step of the system: x and v (one per member, in the springs' member order) from the
     /// start to the end of the step; `force[k]`, the net force on member k at the start (every
-    /// force, springs included); `mass[k]` its mass. The springs' fixed ends must be placed.
+    /// force, springs included); `mass[k]` its mass; `holds[k]` the surface member k rests on, if
+    /// any (`holds` empty: none rests). The springs' fixed ends must be placed.
     void step(const SpringSystem& springs, std::span<const double> mass, std::span<dvec3> x, std::span<dvec3> v,
-              std::span<const dvec3> force, double dt);
+              std::span<const dvec3> force, double dt, std::span<const Hold> holds = {});
+
+    /// After a step with members held: how much member k's surface pushed it (the change of its
+    /// velocity along the normal, m/s, not negative; zero where it was not held or was let go),
+    /// for the surface's friction.
+    double push(std::size_t k) const { return m_held ? m_push[k] : 0.0; }
 
     /// The last step's conjugate-gradient iterations (over all its solves), its solves (one, and
     /// one a Newton correction), and the last solve's relative residual.
@@ -99,6 +120,14 @@ private:
     void springPass(const SpringSystem& springs, const std::vector<dvec3>& w);
     /// Solves for m_dv from its value; returns the right-hand side's squared preconditioned norm.
     double solve(const SpringSystem& springs, std::span<const double> mass);
+    /// w without its part along member p's held normal (w itself where p is free).
+    dvec3 filtered(std::size_t p, const dvec3& w) const
+    {
+        return m_held ? w - glm::dot(m_normal[p], w) * m_normal[p] : w;
+    }
+    /// Each held member's push from the solved m_dv; lets go of those their surface pulls.
+    /// Returns whether it let any go.
+    bool releasePulled(const SpringSystem& springs, std::span<const double> mass);
 
     std::vector<Block> m_blocks;     ///< one per spring
     std::vector<dvec3> m_perSpring;  ///< a pass's result per spring
@@ -107,6 +136,9 @@ private:
     std::vector<dvec3> m_x0, m_v0, m_otherForce, m_correction, m_trial;
     std::vector<dvec3> m_u0;               ///< each spring's direction at the start
     std::vector<dvec3> m_startSpringForce; ///< each spring's force on its first end at the start
+    bool m_held = false;           ///< whether any member is held on a surface this step
+    std::vector<dvec3> m_normal;   ///< per member, the normal it is held along (or zero)
+    std::vector<double> m_push;    ///< per member, its surface's push (m/s)
     int m_iterations = 0, m_newtonIterations = 0;
     double m_residual = 0.0;
 };

@@ -23,6 +23,7 @@ struct SpringSolver {
     /// Scratch of a step: where every body is (for the fixed ends), and the members' forces at the
     /// start. Members, not thread_local: a lambda run on a pool thread names that thread's copy.
     std::vector<dvec3> positions, startForces;
+    std::vector<BackwardEuler::Hold> holds; ///< backward Euler's: where each member rests
 
     /// Makes the springs (and, for XPBD, their colours) anew unless they were made for these
     /// members and forces.

@@ -15,6 +15,23 @@
 
 namespace pba {
 
+namespace {
+
+/// The surface backward Euler holds a member on for the step, stopping it there: the first of its
+/// room's planes it touches, moving along the normal no faster than `reach` (m/s) either way (the
+/// resting contact of afterStepWithFriction), and not over a hole.
+detail::BackwardEuler::Hold restingOn(std::span<const Plane> room, const dvec3& x, const dvec3& v, double reach,
+                                      double dt)
+{
+    for (const Plane& plane : room)
+        if (std::abs(plane.distance(x)) <= std::max(collision_detail::contactTolerance(plane), reach * dt) &&
+            std::abs(plane.along(v)) <= reach && !plane.overHole(x))
+            return {plane.normal, 0.0};
+    return {};
+}
+
+} // namespace
+
 void World::integrateParticleSystems(const Coupling& coupling, double dt)
 {
     for (std::size_t k = 0; k < kParticleIntegrators.size(); ++k) {
@@ -139,12 +156,26 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
     sumSystemForces(members, wanted, {}, {}, nullptr);
     std::vector<dvec3>& start = solver.startForces;
     start.resize(n);
+    // A member resting on the room is held on it (backward_euler.hpp): what arrives no faster than
+    // the rule after the step takes for resting contact, twice what its acceleration gives in a step.
+    const std::span<const Plane> planes(m_surfaces.planes);
+    solver.holds.resize(n);
     detail::forEachIndex(n, [&](std::size_t k) {
         start[k] = m_forces.sums[members[k]];
         s.acc[k] = start[k] / s.mass[k];
+        std::array<Plane, kMaxBallPlanes> room;
+        solver.holds[k] = restingOn(ballPlanes(planes, m_bodies.radii[members[k]], room), s.x[k], s.v[k],
+                                    2.0 * glm::length(s.acc[k]) * dt, dt);
     });
-    solver.backwardEuler.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n),
-                              start, dt);
+    detail::BackwardEuler& backwardEuler = solver.backwardEuler;
+    backwardEuler.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n), start, dt,
+                       solver.holds);
+    // The surface's friction, from its push, as the rule after the step gives a body it pushes.
+    detail::forEachIndex(n, [&](std::size_t k) {
+        const double push = backwardEuler.push(k);
+        if (push > 0.0)
+            s.v[k] = rubbedByPush(s.v[k], push * solver.holds[k].normal, m_bodies.frictions[members[k]]);
+    });
     collideAndStore(members, dt);
 }
 
