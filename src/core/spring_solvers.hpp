@@ -24,6 +24,7 @@ struct SpringSolver {
     /// start. Members, not thread_local: a lambda run on a pool thread names that thread's copy.
     std::vector<dvec3> positions, startForces;
     std::vector<BackwardEuler::Hold> holds; ///< backward Euler's: where each member rests
+    std::vector<double> radius, restitution, friction; ///< XPBD's: each member's, for its room
 
     /// Makes the springs (and, for XPBD, their colours) anew unless they were made for these
     /// members and forces.

@@ -190,8 +190,19 @@ void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<con
         sumSystemForces(members, wanted, x, v, &solver.springs);
         detail::forEachIndex(n, [&](std::size_t k) { accel[k] = m_forces.sums[members[k]] / s.mass[k]; });
     };
+    // The room inside every substep (xpbd.hpp), each member with its own radius, restitution and friction.
+    solver.radius.resize(n);
+    solver.restitution.resize(n);
+    solver.friction.resize(n);
+    detail::forEachIndex(n, [&](std::size_t k) {
+        solver.radius[k] = m_bodies.radii[members[k]];
+        solver.restitution[k] = m_bodies.cors[members[k]];
+        solver.friction[k] = m_bodies.frictions[members[k]];
+    });
+    const detail::Xpbd::Room room{m_surfaces.planes, solver.radius, solver.restitution, solver.friction};
     solver.xpbd.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n), dt,
-                     m_particleSystems.xpbdSubsteps, external);
+                     m_particleSystems.xpbdSubsteps, external, room);
+    detail::forEachIndex(n, [&](std::size_t k) { m_bodies.bounces[members[k]] += std::uint64_t(solver.xpbd.bounces(k)); });
     // The step's mean acceleration: XPBD has no force at the start to keep.
     detail::forEachIndex(n, [&](std::size_t k) { s.acc[k] = (s.v[k] - m_bodies.previous[members[k]].vel) / dt; });
     collideAndStore(members, dt);

@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "collision_rules.hpp"
 #include "parallel.hpp"
 
 namespace pba::detail {
@@ -51,7 +52,7 @@ Xpbd::Xpbd(const SpringSystem& springs)
 }
 
 void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::span<dvec3> x, std::span<dvec3> v,
-                double dt, int substeps, const External& external)
+                double dt, int substeps, const External& external, const Room& room)
 {
     const std::size_t n = x.size();
     const double h = dt / double(substeps);
@@ -68,6 +69,13 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
     if (changed)
         scale(h);
     m_scaledFor = h;
+    const bool inRoom = !room.planes.empty();
+    if (inRoom) {
+        m_predicted.resize(n);
+        m_bounces.assign(n, 0);
+    } else {
+        m_bounces.clear();
+    }
     for (int sub = 0; sub < substeps; ++sub) {
         external(x, v, m_accel);
         forEachIndex(n, [&](std::size_t p) {
@@ -82,8 +90,45 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
         } else {
             project<false>(springs, x);
         }
-        forEachIndex(n, [&](std::size_t p) { v[p] = (x[p] - m_start[p]) / h; });
+        if (!inRoom) {
+            forEachIndex(n, [&](std::size_t p) { v[p] = (x[p] - m_start[p]) / h; });
+            continue;
+        }
+        forEachIndex(n, [&](std::size_t p) {
+            const dvec3 arriving = v[p];
+            const int plane = keepInRoom(room, p, x[p]);
+            v[p] = (x[p] - m_start[p]) / h;
+            if (plane < 0)
+                return;
+            // Put back on the surface, it moves along it only: a fast arrival bounces.
+            const dvec3 normal = room.planes[std::size_t(plane)].normal;
+            const double arrival = -glm::dot(normal, arriving);
+            if (arrival > 2.0 * glm::length(m_accel[p]) * h) {
+                v[p] += (room.restitution[p] * arrival - glm::dot(normal, v[p])) * normal;
+                ++m_bounces[p];
+            }
+        });
     }
+}
+
+int Xpbd::keepInRoom(const Room& room, std::size_t p, dvec3& x) const
+{
+    int touched = -1;
+    for (std::size_t k = 0; k < room.planes.size(); ++k) {
+        const Plane plane = room.planes[k].inflatedBy(room.radius[p]);
+        const double depth = -plane.distance(x);
+        if (!(depth > 0.0) || plane.overHole(x) || plane.overHole(m_start[p]))
+            continue; // inside, or where a hole leaves no surface: the rule after the step sees to it
+        x += depth * plane.normal;
+        const dvec3 moved = x - m_start[p];
+        const dvec3 along = moved - glm::dot(moved, plane.normal) * plane.normal;
+        const double length = glm::length(along);
+        const double held = room.friction[p] * depth;
+        if (length > 0.0)
+            x -= (length <= held ? 1.0 : held / length) * along;
+        touched = int(k);
+    }
+    return touched;
 }
 
 void Xpbd::scale(double h)

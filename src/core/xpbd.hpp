@@ -22,6 +22,14 @@
 // -alpha~ lambda term), until every constraint's error is under kTolerance of its rest length:
 // converged, the substep is backward Euler's, which loses energy.
 //
+// The room is a constraint of every substep too (Small Steps' ground contacts): after the springs'
+// projection a member beyond one of its surfaces is put back on it, its move along the surface
+// in the substep cut by up to mu times the depth it was put back by (Coulomb friction in
+// position: static while the move is within it), and a member that arrived faster than two
+// substeps of its acceleration leaves at e times its speed of arrival (a bounce). A sheet lying
+// on the floor then rests on it within the step; with the room only after the step, the springs
+// and gravity pulled it in every step for the rule after it to push back (a bounce a step).
+//
 // The constraints are projected Gauss-Seidel, colour by colour: a greedy colouring, in the
 // springs' order, puts no two springs that share a body in one colour, so the springs of a colour
 // are projected at once on all cores and the result is the same on any number of threads.
@@ -30,6 +38,7 @@
 #include <span>
 #include <vector>
 
+#include "pba/collision.hpp"
 #include "pba/math.hpp"
 
 #include "spring_system.hpp"
@@ -40,6 +49,12 @@ class Xpbd {
 public:
     /// What moves the bodies besides the springs: fills accel[k] for member k at (x, v).
     using External = std::function<void(std::span<const dvec3> x, std::span<const dvec3> v, std::span<dvec3> accel)>;
+    /// The room each substep keeps the members in: its surfaces (met by a member's centre inflated
+    /// by its radius), and per member its radius, restitution and friction.
+    struct Room {
+        std::span<const Plane> planes;
+        std::span<const double> radius, restitution, friction;
+    };
 
     Xpbd() = default;
     /// Colours `springs` for the projections.
@@ -48,7 +63,10 @@ public:
     /// One step of dt in `substeps` substeps; x and v (one per member) from the start to the end.
     /// The springs' fixed ends must be placed.
     void step(const SpringSystem& springs, std::span<const double> mass, std::span<dvec3> x, std::span<dvec3> v,
-              double dt, int substeps, const External& external);
+              double dt, int substeps, const External& external, const Room& room = {});
+
+    /// The last step's bounces of member k off the room (arrivals faster than resting contact).
+    int bounces(std::size_t k) const { return m_bounces.empty() ? 0 : m_bounces[k]; }
 
     /// Above this (w_a + w_b) k h^2 for some constraint, a substep sweeps until every error is
     /// below kTolerance of its rest length, or kMaxSweeps times.
@@ -83,6 +101,9 @@ private:
         double compliance = 0.0, inverseDenominator = 0.0;
     };
     void scale(double h);
+    /// Member p back inside the room after a substep's projection, with friction; the plane it
+    /// was put back on (or -1).
+    int keepInRoom(const Room& room, std::size_t p, dvec3& x) const;
     /// One sweep over the constraints. kSweeps: with the multipliers of the substep's earlier
     /// sweeps, returning the largest error it met relative to the rest length (without: 0).
     template <bool kSweeps>
@@ -96,6 +117,8 @@ private:
     std::vector<double> m_inverseMass;
     std::vector<dvec3> m_start, m_accel;
     std::vector<double> m_lambda; ///< each constraint's accumulated multiplier in the substep
+    std::vector<dvec3> m_predicted; ///< each member's velocity before the substep's projections
+    std::vector<int> m_bounces;     ///< each member's bounces in the step
     double m_stiffest = 0.0; ///< the largest (w_a + w_b) k h^2 over the constraints, for the step's h
     double m_scaledFor = 0.0; ///< the h the projections were made for (0: not yet)
 };

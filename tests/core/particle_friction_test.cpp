@@ -40,14 +40,13 @@ World slidingWorld(CollisionResponse response, Integrator integrator, double mu,
 TEST(ParticleFriction, APuckSlidingOnTheFloorStopsAfterV0SquaredOverTwoMuG)
 {
     const double mu = 0.5, expected = 1.0 / (2.0 * mu * kG);
-    // The exact response rubs while the puck rests on the floor; xpbd's (a system's step) takes
-    // the reflect rule after its step and rubs with the push that rule gives.
+    // The exact response rubs while the puck rests on the floor; xpbd (a system's step) keeps it
+    // on the floor in each substep, cutting its move along it by mu times the depth it put it back.
     for (const Integrator integrator : {Integrator::SemiImplicitEuler, Integrator::Xpbd}) {
         World world = slidingWorld(CollisionResponse::Exact, integrator, mu, 0.0);
         for (int step = 0; step < 500; ++step)
             world.step(1e-3);
         const Body& puck = world.body(0);
-        // xpbd lies on the floor as the reflect rule leaves it: at most g dt^2 above, at most g dt downward.
         EXPECT_NEAR(puck.getPos().x, expected, 0.01 * expected) << integratorName(integrator);
         EXPECT_LT(std::hypot(puck.getVel().x, puck.getVel().z), 1e-12) << integratorName(integrator) << ": it stopped";
         EXPECT_NEAR(puck.getPos().y, 0.05, kG * 1e-6 * 1.01) << integratorName(integrator);
