@@ -42,12 +42,28 @@ void BallContacts::touch(Ball& a, Ball& b)
     }
 }
 
-void BallContacts::keepInRoom(std::span<const Plane> planes, Ball& ball)
+void BallContacts::findWalls(std::span<const Plane> planes, double largest)
 {
-    if (ball.inverseMass == 0.0)
-        return;
-    std::array<Plane, kMaxBallPlanes> room;
-    for (const Plane& plane : ballPlanes(planes, ball.radius, room)) {
+    nearWall.clear();
+    const std::size_t count = std::min(planes.size(), kMaxBallPlanes);
+    for (std::size_t k = 0; k < balls.size(); ++k) {
+        const Ball& ball = balls[k];
+        std::uint32_t walls = 0;
+        for (std::size_t p = 0; p < count; ++p)
+            if (planes[p].distance(ball.x) - ball.radius < 8.0 * largest)
+                walls |= 1u << p;
+        if (walls != 0 && ball.inverseMass != 0.0)
+            nearWall.emplace_back(std::uint32_t(k), walls);
+    }
+}
+
+void BallContacts::keepInRoom(std::span<const Plane> planes, std::uint32_t walls, Ball& ball)
+{
+    const std::size_t count = std::min(planes.size(), kMaxBallPlanes);
+    for (std::size_t p = 0; p < count; ++p) {
+        if (!((walls >> p) & 1u))
+            continue;
+        const Plane plane = planes[p].inflatedBy(ball.radius);
         if (plane.distance(ball.x) < 0.0 && !plane.overHole(ball.x)) {
             collision_detail::snapOnto(plane, ball.x);
             const double vn = glm::dot(plane.normal, ball.v);

@@ -50,18 +50,27 @@ struct BallContacts {
         std::erase_if(pairs, [&](const auto& p) { return !together(p.first, p.second); });
         if (pairs.empty())
             return;
+        findWalls(planes, largest);
         for (int sweep = 0; sweep < sweeps; ++sweep) {
             for (const auto& [a, b] : pairs)
                 touch(balls[a], balls[b]);
-            for (Ball& ball : balls)
-                keepInRoom(planes, ball);
+            for (const auto& [k, walls] : nearWall)
+                keepInRoom(planes, walls, balls[k]);
         }
     }
 
     /// One pair's share of a sweep.
     static void touch(Ball& a, Ball& b);
-    /// A ball pushed out of the room by a sweep back on its surfaces, its speed into them taken away.
-    static void keepInRoom(std::span<const Plane> planes, Ball& ball);
+    /// A ball pushed out of the room by a sweep back on its surfaces (those of `walls`, a bit a
+    /// plane), its speed into them taken away.
+    static void keepInRoom(std::span<const Plane> planes, std::uint32_t walls, Ball& ball);
+
+private:
+    /// Each moving ball within eight of the largest radii of a surface, with those surfaces, into
+    /// nearWall: the sweeps move a ball by its overlaps, each under a diameter, so a surface
+    /// further away is out of its reach (a sheet on the floor tests the floor, not the walls).
+    void findWalls(std::span<const Plane> planes, double largest);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> nearWall;
 };
 
 } // namespace pba::detail
