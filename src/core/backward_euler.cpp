@@ -51,25 +51,24 @@ dvec3 springSum(const SpringSystem& springs, const std::vector<dvec3>& perSpring
 } // namespace
 
 void BackwardEuler::step(const SpringSystem& springs, std::span<const double> mass, std::span<dvec3> x,
-                         std::span<dvec3> v, std::span<const dvec3> force, double dt, std::span<const Hold> holds)
+                         std::span<dvec3> v, std::span<const dvec3> force, double dt, std::span<const dvec3> heldOn)
 {
     const std::size_t n = x.size();
     m_x0.assign(x.begin(), x.end());
     m_v0.assign(v.begin(), v.end());
-    m_held = std::any_of(holds.begin(), holds.end(), [](const Hold& h) { return h.normal != dvec3(0.0); });
+    m_held = std::any_of(heldOn.begin(), heldOn.end(), [](const dvec3& normal) { return normal != dvec3(0.0); });
     if (m_held) {
-        m_normal.resize(n);
+        m_normal.assign(heldOn.begin(), heldOn.end());
         m_push.assign(n, 0.0);
-        forEachIndex(n, [&](std::size_t p) { m_normal[p] = holds[p].normal; });
     }
     // Baraff and Witkin's step, linearised at the start, from the last step's dv, whose part
-    // along a held member's normal is what brings it to its speed there.
+    // along a held member's normal is what stops it there.
     linearise(springs, mass, x, dt, v, force);
     if (m_dv.size() != n)
         m_dv.assign(n, dvec3(0.0));
     if (m_held)
         forEachIndex(n, [&](std::size_t p) {
-            m_dv[p] = filtered(p, m_dv[p]) + (holds[p].speed - glm::dot(m_normal[p], v[p])) * m_normal[p];
+            m_dv[p] = filtered(p, m_dv[p]) - glm::dot(m_normal[p], v[p]) * m_normal[p];
         });
     m_iterations = 0;
     double scale = solve(springs, mass);
@@ -97,7 +96,8 @@ bool BackwardEuler::correct(const SpringSystem& springs, std::span<const double>
     springForces(springs, x, v);
     const double remaining = sumOf(n, [&](std::size_t p) {
         // A held member's surface takes up its residual along the normal.
-        m_rhs[p] = filtered(p, dt * (m_otherForce[p] + springSum(springs, m_perSpring, p)) - mass[p] * (v[p] - m_v0[p]));
+        const dvec3 residual = dt * (m_otherForce[p] + springSum(springs, m_perSpring, p)) - mass[p] * (v[p] - m_v0[p]);
+        m_rhs[p] = filtered(p, residual);
         return glm::dot(m_rhs[p], m_inverseDiagonal[p].apply(m_rhs[p]));
     });
     if (!(remaining > kNewtonTolerance * kNewtonTolerance * scale))

@@ -46,13 +46,6 @@ namespace pba::detail {
 
 class BackwardEuler {
 public:
-    /// A member held on a surface for a step: it ends the step moving at `speed` along the
-    /// surface's unit `normal` (closing what gap there is). A zero normal holds nothing.
-    struct Hold {
-        dvec3 normal{0.0};
-        double speed = 0.0;
-    };
-
     /// Conjugate gradients stop when the residual's preconditioned norm falls below this fraction
     /// of the right-hand side's, or after kMaxIterations.
     static constexpr double kTolerance = 1e-5;
@@ -71,10 +64,11 @@ public:
 
     /// One step of the system: x and v (one per member, in the springs' member order) from the
     /// start to the end of the step; `force[k]`, the net force on member k at the start (every
-    /// force, springs included); `mass[k]` its mass; `holds[k]` the surface member k rests on, if
-    /// any (`holds` empty: none rests). The springs' fixed ends must be placed.
+    /// force, springs included); `mass[k]` its mass; `heldOn[k]` the unit normal of the surface
+    /// member k rests on, which stops it along the normal for the step, or zero (`heldOn`
+    /// empty: none rests). The springs' fixed ends must be placed.
     void step(const SpringSystem& springs, std::span<const double> mass, std::span<dvec3> x, std::span<dvec3> v,
-              std::span<const dvec3> force, double dt, std::span<const Hold> holds = {});
+              std::span<const dvec3> force, double dt, std::span<const dvec3> heldOn = {});
 
     /// After a step with members held: how much member k's surface pushed it (the change of its
     /// velocity along the normal, m/s, not negative; zero where it was not held or was let go),

@@ -23,7 +23,7 @@ struct SpringSolver {
     /// Scratch of a step: where every body is (for the fixed ends), and the members' forces at the
     /// start. Members, not thread_local: a lambda run on a pool thread names that thread's copy.
     std::vector<dvec3> positions, startForces;
-    std::vector<BackwardEuler::Hold> holds; ///< backward Euler's: where each member rests
+    std::vector<dvec3> heldOn; ///< backward Euler's: the normal of the surface each member rests on, or zero
     std::vector<double> radius, restitution, friction; ///< XPBD's: each member's, for its room
 
     /// Makes the springs (and, for XPBD, their colours) anew unless they were made for these

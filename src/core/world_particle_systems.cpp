@@ -17,17 +17,16 @@ namespace pba {
 
 namespace {
 
-/// The surface backward Euler holds a member on for the step, stopping it there: the first of its
-/// room's planes it touches, moving along the normal no faster than `reach` (m/s) either way (the
-/// resting contact of afterStepWithFriction), and not over a hole.
-detail::BackwardEuler::Hold restingOn(std::span<const Plane> room, const dvec3& x, const dvec3& v, double reach,
-                                      double dt)
+/// The normal of the surface backward Euler holds a member on for the step (or zero): the first of
+/// its room's planes it is within a step at `reach` (m/s) of, moving along the normal no faster than
+/// that either way (the resting contact of afterStepWithFriction), and not over a hole.
+dvec3 restingOn(std::span<const Plane> room, const dvec3& x, const dvec3& v, double reach, double dt)
 {
     for (const Plane& plane : room)
         if (std::abs(plane.distance(x)) <= std::max(collision_detail::contactTolerance(plane), reach * dt) &&
             std::abs(plane.along(v)) <= reach && !plane.overHole(x))
-            return {plane.normal, 0.0};
-    return {};
+            return plane.normal;
+    return dvec3(0.0);
 }
 
 } // namespace
@@ -159,22 +158,22 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
     // A member resting on the room is held on it (backward_euler.hpp): what arrives no faster than
     // the rule after the step takes for resting contact, twice what its acceleration gives in a step.
     const std::span<const Plane> planes(m_surfaces.planes);
-    solver.holds.resize(n);
+    solver.heldOn.resize(n);
     detail::forEachIndex(n, [&](std::size_t k) {
         start[k] = m_forces.sums[members[k]];
         s.acc[k] = start[k] / s.mass[k];
         std::array<Plane, kMaxBallPlanes> room;
-        solver.holds[k] = restingOn(ballPlanes(planes, m_bodies.radii[members[k]], room), s.x[k], s.v[k],
+        solver.heldOn[k] = restingOn(ballPlanes(planes, m_bodies.radii[members[k]], room), s.x[k], s.v[k],
                                     2.0 * glm::length(s.acc[k]) * dt, dt);
     });
     detail::BackwardEuler& backwardEuler = solver.backwardEuler;
     backwardEuler.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n), start, dt,
-                       solver.holds);
+                       solver.heldOn);
     // The surface's friction, from its push, as the rule after the step gives a body it pushes.
     detail::forEachIndex(n, [&](std::size_t k) {
         const double push = backwardEuler.push(k);
         if (push > 0.0)
-            s.v[k] = rubbedByPush(s.v[k], push * solver.holds[k].normal, m_bodies.frictions[members[k]]);
+            s.v[k] = rubbedByPush(s.v[k], push * solver.heldOn[k], m_bodies.frictions[members[k]]);
     });
     collideAndStore(members, dt);
 }
@@ -202,7 +201,9 @@ void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<con
     const detail::Xpbd::Room room{m_surfaces.planes, solver.radius, solver.restitution, solver.friction};
     solver.xpbd.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n), dt,
                      m_particleSystems.xpbdSubsteps, external, room);
-    detail::forEachIndex(n, [&](std::size_t k) { m_bodies.bounces[members[k]] += std::uint64_t(solver.xpbd.bounces(k)); });
+    detail::forEachIndex(n, [&](std::size_t k) {
+        m_bodies.bounces[members[k]] += std::uint64_t(solver.xpbd.bounces(k));
+    });
     // The step's mean acceleration: XPBD has no force at the start to keep.
     detail::forEachIndex(n, [&](std::size_t k) { s.acc[k] = (s.v[k] - m_bodies.previous[members[k]].vel) / dt; });
     collideAndStore(members, dt);

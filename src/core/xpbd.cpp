@@ -70,12 +70,10 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
         scale(h);
     m_scaledFor = h;
     const bool inRoom = !room.planes.empty();
-    if (inRoom) {
-        m_predicted.resize(n);
+    if (inRoom)
         m_bounces.assign(n, 0);
-    } else {
+    else
         m_bounces.clear();
-    }
     for (int sub = 0; sub < substeps; ++sub) {
         external(x, v, m_accel);
         forEachIndex(n, [&](std::size_t p) {

@@ -117,7 +117,6 @@ private:
     std::vector<double> m_inverseMass;
     std::vector<dvec3> m_start, m_accel;
     std::vector<double> m_lambda; ///< each constraint's accumulated multiplier in the substep
-    std::vector<dvec3> m_predicted; ///< each member's velocity before the substep's projections
     std::vector<int> m_bounces;     ///< each member's bounces in the step
     double m_stiffest = 0.0; ///< the largest (w_a + w_b) k h^2 over the constraints, for the step's h
     double m_scaledFor = 0.0; ///< the h the projections were made for (0: not yet)
