@@ -466,7 +466,8 @@ private:
     /// Phase 6, for a swarm that collides: its grains against each other and `room` (its planes
     /// moved a grain's radius inwards) by the particles' rule, in float and on all cores
     /// (`restingSpeed`: gravity's speed in one step).
-    void collideGrains(Swarm& swarm, std::span<const PlaneT<float>> room, double restingSpeed, double dt);
+    void collideGrains(Swarm& swarm, std::size_t slot, std::span<const PlaneT<float>> room, double restingSpeed,
+                       double dt);
     /// Phase 5 (RigidBodies, Bodies, Forces, Surfaces): the awake bodies' free step
     /// (integrateRigidFreely), the rigid system's findContacts, the free step of the bodies it
     /// woke, its solve, then storeRigidBodies.

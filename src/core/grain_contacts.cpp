@@ -190,7 +190,7 @@ void GrainContacts::plan(float spacing)
     }
 }
 
-void GrainContacts::sortByCell(const Swarm& swarm)
+void GrainContacts::sortByCell(const Swarm& swarm, const GrainMemory& memory)
 {
     const std::size_t n = swarm.size();
     const Box box = boundsOf(swarm);
@@ -199,20 +199,35 @@ void GrainContacts::sortByCell(const Swarm& swarm)
     m_x.resize(n);
     m_v.resize(n);
     plan(m_reach);
+    // The last step's order (the swarm's on a first step), sorted anew by cell: each grain's place
+    // in it, unless it moved more than a reach since (a grain that had no place has no pairs to
+    // remember either).
+    const bool known = memory.order.size() == n;
+    const auto last = [&](std::size_t j) { return known ? memory.order[j] : std::uint32_t(j); };
     m_key.resize(n);
+    m_from.resize(n);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrainBlock), [&](const auto& r) {
-        for (std::size_t i = r.begin(); i < r.end(); ++i)
-            m_key[i] = std::uint32_t(keyOf(cellOf(swarm.position(i))));
+        for (std::size_t j = r.begin(); j < r.end(); ++j) {
+            const Vec x = swarm.position(last(j));
+            m_key[j] = std::uint32_t(keyOf(cellOf(x)));
+            // (m_from is free until the sort fills it: here, whether grain j keeps its place.)
+            m_from[j] = known && glm::length(x - memory.end[j]) <= m_reach ? std::uint32_t(j) : kNew;
+        }
     });
-    // A counting sort, stable: a cell's grains in the swarm's order.
+    // A counting sort, stable: a cell's grains in the last step's order.
     m_cellStart.assign(m_grid.cells + 1, 0);
-    for (std::size_t i = 0; i < n; ++i)
-        ++m_cellStart[m_key[i] + 1];
+    for (std::size_t j = 0; j < n; ++j)
+        ++m_cellStart[m_key[j] + 1];
     for (std::size_t c = 0; c < m_grid.cells; ++c)
         m_cellStart[c + 1] += m_cellStart[c];
     m_order.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-        m_order[m_cellStart[m_key[i]]++] = std::uint32_t(i);
+    m_previous.resize(n);
+    for (std::size_t j = 0; j < n; ++j) {
+        const std::uint32_t s = m_cellStart[m_key[j]]++;
+        m_order[s] = last(j);
+        m_previous[s] = m_from[j];
+    }
+    std::swap(m_from, m_previous);
     // Each cell's counter now stands at the next cell's start: shift them back.
     std::copy_backward(m_cellStart.begin(), m_cellStart.end() - 1, m_cellStart.end());
     m_cellStart[0] = 0;
@@ -320,15 +335,74 @@ void GrainContacts::sweep(std::span<const PlaneT<float>> room, const GrainRule& 
     });
 }
 
-void GrainContacts::solve(Swarm& swarm, std::span<const PlaneT<float>> room, const GrainRule& rule, int sweeps)
+void GrainContacts::warmStart(const GrainMemory& memory)
+{
+    if (memory.row.empty())
+        return;
+    forEachPairInColours([&](GrainPair& p) {
+        const std::uint32_t ja = m_from[p.a], jb = m_from[p.b];
+        if (ja == kNew || jb == kNew)
+            return;
+        // Listed under the grain that came first in the last step's order; its sliding change
+        // turns round with the pair's order.
+        const std::uint32_t first = std::min(ja, jb), second = std::max(ja, jb);
+        for (std::uint32_t k = memory.row[first]; k < memory.row[first + 1]; ++k) {
+            const RememberedPair& old = memory.pairs[k];
+            if (old.b != second)
+                continue;
+            const Vec d = m_x[p.b] - m_x[p.a];
+            const float distance = glm::length(d);
+            if (!(distance > 0.0f))
+                return;
+            const Vec n = d / distance;
+            const Vec tangent = ja < jb ? old.tangent : -old.tangent;
+            p.normal = old.normal;
+            p.tangent = tangent - glm::dot(tangent, n) * n;
+            const Vec change = p.normal * n + p.tangent;
+            m_v[p.a] -= 0.5f * change;
+            m_v[p.b] += 0.5f * change;
+            return;
+        }
+    });
+}
+
+void GrainContacts::remember(GrainMemory& memory) const
+{
+    const std::size_t n = m_x.size();
+    memory.order = m_order;
+    memory.end = m_x;
+    std::vector<std::size_t> base(m_pairs.size() + 1, 0);
+    for (std::size_t k = 0; k < m_pairs.size(); ++k)
+        base[k + 1] = base[k] + m_pairs[k].size();
+    memory.pairs.resize(base.back());
+    memory.row.assign(n + 1, 0);
+    // A slab's pairs are listed by their first grain, and the slabs hold disjoint runs of grains.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_pairs.size(), 1), [&](const auto& r) {
+        for (std::size_t k = r.begin(); k < r.end(); ++k)
+            for (std::size_t q = 0; q < m_pairs[k].size(); ++q) {
+                const GrainPair& p = m_pairs[k][q];
+                memory.pairs[base[k] + q] = RememberedPair{p.b, p.normal, p.tangent};
+                ++memory.row[p.a + 1];
+            }
+    });
+    for (std::size_t j = 0; j < n; ++j)
+        memory.row[j + 1] += memory.row[j];
+}
+
+void GrainContacts::solve(Swarm& swarm, std::size_t slot, std::span<const PlaneT<float>> room, const GrainRule& rule,
+                          int sweeps)
 {
     const std::size_t n = swarm.size();
+    if (m_memory.size() <= slot)
+        m_memory.resize(slot + 1);
+    GrainMemory& memory = m_memory[slot];
     m_reach = 2.0f * rule.radius;
     if (n < 2 || !(m_reach > 0.0f)) {
         m_pairs.clear();
+        memory = GrainMemory{};
         return;
     }
-    sortByCell(swarm);
+    sortByCell(swarm, memory);
     gather(swarm, rule.dt);
     // The grains the room's walls may meet during the sweeps: those within a few reaches of one
     // (the sweeps move a grain by its overlaps, each less than a reach).
@@ -347,8 +421,10 @@ void GrainContacts::solve(Swarm& swarm, std::span<const PlaneT<float>> room, con
         for (std::size_t k = r.begin(); k < r.end(); ++k)
             findPairs(k);
     });
+    warmStart(memory);
     for (int k = 0; k < sweeps; ++k)
         sweep(room, rule, k == 0);
+    remember(memory);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrainBlock), [&](const auto& r) {
         for (std::size_t s = r.begin(); s < r.end(); ++s)
             swarm.set(m_order[s], m_x[s], m_v[s]);

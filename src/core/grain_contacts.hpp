@@ -21,8 +21,16 @@
 // as well, bounded by its push over the sweeps, the grain's weight counted (the swarm's own
 // collision with the room takes it away before the contacts run).
 //
-// Gauss-Seidel sweeps converge slowly through a deep heap: with 8 a step, a mound still creeps
-// outwards for seconds after it formed (docs/scenes.md, granular).
+// Each pair starts from what it did the step before (warm starting, as Box2D's contacts do): its
+// normal and sliding changes are given to the grains before the sweeps, so a heap's weight, which
+// Gauss-Seidel sweeps carry down only a few layers a step, is there from the start. A pair is
+// known again by its grains' places in the last step's cell order: this step's order is that
+// order sorted anew by cell (stably), so a resting heap's grains keep their places and the last
+// step's pairs are read nearly in order. A grain that moved more than a reach since (or a swarm
+// replaced) starts its pairs from zero.
+//
+// With 8 sweeps a step a mound still creeps outwards for seconds after it formed, slower than
+// without warm starting (docs/scenes.md, granular).
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -47,20 +55,39 @@ struct GrainRule {
 };
 
 /// Two touching grains (in cell order), and what their contact has done over the step's sweeps
-/// so far: how far it pushed them apart (m), the change of their normal and sliding speeds (m/s).
+/// so far: the change of their normal and sliding speeds (m/s), and the rebound it owes them.
 struct GrainPair {
     std::uint32_t a = 0, b = 0;
-    float pressed = 0.0f, normal = 0.0f, bounce = 0.0f;
+    float normal = 0.0f, bounce = 0.0f;
     Vec3<float> tangent{0.0f};
+};
+
+/// A pair as the next step finds it again: its second grain's place in this step's cell order
+/// (the first's is where it is listed) and its normal and sliding changes.
+struct RememberedPair {
+    std::uint32_t b = 0;
+    float normal = 0.0f;
+    Vec3<float> tangent{0.0f};
+};
+
+/// What one swarm's contacts did last step: the cell order, where each grain (in that order)
+/// ended, and the pairs by their first grain, grain j's being pairs[row[j], row[j + 1]).
+struct GrainMemory {
+    std::vector<std::uint32_t> order;
+    std::vector<Vec3<float>> end;
+    std::vector<std::uint32_t> row;
+    std::vector<RememberedPair> pairs;
 };
 
 class GrainContacts {
 public:
     std::unique_ptr<GrainContacts> clone() const { return std::make_unique<GrainContacts>(*this); }
 
-    /// `sweeps` sweeps over the touching grains of `swarm`, with `room` the room's planes
-    /// already moved a radius inwards (ballPlanes); writes the grains back.
-    void solve(Swarm& swarm, std::span<const PlaneT<float>> room, const GrainRule& rule, int sweeps);
+    /// `sweeps` sweeps over the touching grains of `swarm`, the world's swarm number `slot` (whose
+    /// last step's contacts it remembers), with `room` the room's planes already moved a radius
+    /// inwards (ballPlanes); writes the grains back.
+    void solve(Swarm& swarm, std::size_t slot, std::span<const PlaneT<float>> room, const GrainRule& rule,
+               int sweeps);
 
     /// The touching pairs the last solve found.
     std::size_t pairCount() const;
@@ -77,7 +104,10 @@ private:
 
     void gather(const Swarm& swarm, float dt);
     void plan(float spacing);
-    void sortByCell(const Swarm& swarm);
+    void sortByCell(const Swarm& swarm, const GrainMemory& memory);
+    /// Each pair's impulses of the last step, where it had one, given to its grains.
+    void warmStart(const GrainMemory& memory);
+    void remember(GrainMemory& memory) const;
     void findPairs(std::size_t slab);
     void sweep(std::span<const PlaneT<float>> room, const GrainRule& rule, bool first);
     /// fn(pair) for every pair: the even slabs' side by side, then the odd slabs'.
@@ -92,11 +122,15 @@ private:
     std::vector<std::uint32_t> m_nearWall; ///< each grain's walls within its reach this step, a bit a wall
     std::vector<float> m_push, m_slowed;      ///< the room's push on each this step (m/s), and its friction's
     std::vector<std::uint32_t> m_order;       ///< cell order -> swarm index
-    std::vector<std::uint32_t> m_key;         ///< swarm index -> cell (or bucket)
+    std::vector<std::uint32_t> m_key;         ///< the last step's cell order -> cell (or bucket)
+    static constexpr std::uint32_t kNew = 0xffffffffu;
+    std::vector<std::uint32_t> m_from;        ///< cell order -> place in the last step's (kNew: none)
+    std::vector<std::uint32_t> m_previous;    ///< the sort's scratch
     std::vector<std::uint32_t> m_cellStart;   ///< cell c's grains are [m_cellStart[c], m_cellStart[c + 1])
     std::vector<std::size_t> m_slabStart;     ///< slab k's grains are [m_slabStart[k], m_slabStart[k + 1])
     std::vector<std::vector<GrainPair>> m_pairs; ///< per slab
     float m_reach = 0.0f;                     ///< two radii
+    std::vector<GrainMemory> m_memory;        ///< per swarm slot
 };
 
 } // namespace pba::detail

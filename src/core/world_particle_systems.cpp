@@ -240,12 +240,13 @@ void World::collideBalls(double dt)
             m_bodies.objects[contacts.bodies[k]]->setState({contacts.balls[k].x, contacts.balls[k].v});
 }
 
-void World::collideGrains(Swarm& swarm, std::span<const PlaneT<float>> room, double restingSpeed, double dt)
+void World::collideGrains(Swarm& swarm, std::size_t slot, std::span<const PlaneT<float>> room, double restingSpeed,
+                          double dt)
 {
     const detail::GrainRule rule{swarm.radius(), swarm.restitution(), swarm.friction(), float(restingSpeed),
                                  float(dt)};
     constexpr int kSweeps = 8;
-    detail::onCores(m_threads, [&] { m_particleSystems.grainContacts->solve(swarm, room, rule, kSweeps); });
+    detail::onCores(m_threads, [&] { m_particleSystems.grainContacts->solve(swarm, slot, room, rule, kSweeps); });
 }
 
 } // namespace pba

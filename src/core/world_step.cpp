@@ -216,12 +216,13 @@ void World::stepSwarms(double dt)
     std::vector<PlaneT<float>> planes;
     for (const Plane& p : m_surfaces.planes)
         planes.push_back({Vec3<float>(p.normal), float(p.offset), float(p.holeRadius), Vec3<float>(p.holeCentre)});
-    for (const auto& swarm : m_swarms.objects) {
+    for (std::size_t s = 0; s < m_swarms.objects.size(); ++s) {
+        Swarm& swarm = *m_swarms.objects[s];
         std::array<PlaneT<float>, kMaxBallPlanes> room;
-        const auto ball = ballPlanes(std::span<const PlaneT<float>>(planes), swarm->radius(), room);
-        swarm->step(fields, ball, m_surfaces.response, float(dt), m_threads);
-        if (swarm->desc().collide)
-            collideGrains(*swarm, ball, glm::length(dvec3(fields.gravity)) * dt, dt);
+        const auto ball = ballPlanes(std::span<const PlaneT<float>>(planes), swarm.radius(), room);
+        swarm.step(fields, ball, m_surfaces.response, float(dt), m_threads);
+        if (swarm.desc().collide)
+            collideGrains(swarm, s, ball, glm::length(dvec3(fields.gravity)) * dt, dt);
     }
 }
 

@@ -4,7 +4,7 @@
 // flows out flat. The grains cannot roll (a swarm's particles do not turn), so friction alone
 // holds a mound: frictionless spheres on a frictionless floor have no angle at which they stay.
 // The mound is not at rest after the scene's 4 s: it still creeps outwards (near 40 degrees at
-// 0.5 s, under 20 at 4 s), so the bound is 10 degrees, not an angle of repose. The dynamics are
+// 0.5 s, about 30 at 4 s), so the bound is 20 degrees, not an angle of repose. The dynamics are
 // chaotic, so another compiler's rounding gives another mound: the bound leaves room for that.
 #include <gtest/gtest.h>
 
@@ -88,7 +88,7 @@ SCENE_CLAIM(GranularSceneClaims, GrainsDumpedOntoOneSpotMoundWithoutOverlapping,
     const World world = pour(0.6, 0);
     const Swarm& grains = world.swarm(0);
     EXPECT_LT(deepestOverlap(grains), 0.1);
-    EXPECT_GT(angleOfRepose(grains), 10.0);
+    EXPECT_GT(angleOfRepose(grains), 20.0);
 }
 
 TEST(GranularSceneClaims, WithoutFrictionTheDumpFlowsOutFlat)
