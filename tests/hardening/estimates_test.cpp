@@ -121,6 +121,22 @@ TEST(MemoryEstimates, RopesAndClothsBeyondTheMemoryAreRefusedBeforeBuilding)
     EXPECT_NE(refusedField(manyOf("ropes", rope, 2000)).find("].count"), std::string::npos);
 }
 
+// A colliding swarm's grains take their contacts' memory besides their own arrays: ten swarms of
+// 10^8 colliding grains (about 400 GB by the estimate) are refused for it, naming the first that
+// passes the memory available.
+TEST(MemoryEstimates, CollidingGrainsCountTheirContacts)
+{
+    const nlohmann::json grains = {{"count", 100000000}, {"region", {{"min", {-1, 0.1, -1}}, {"max", {1, 1, 1}}}},
+                                   {"mass", 0.001}, {"radius", 0.001}, {"collide", true}};
+    try {
+        parseScene(manyOf("swarms", grains, 10), "grains.json");
+        FAIL() << "built it";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.field().rfind("swarms[", 0), 0u) << e.what();
+        EXPECT_NE(e.reason().find("colliding swarm grains needs about 42.5 GB"), std::string::npos) << e.what();
+    }
+}
+
 // Five 1000 x 1000 cloths in a file of under a kilobyte: 5.7 GB by the estimate. Under a 4 GB limit
 // on the address space (what the process may take, whatever the machine has) they are refused:
 // exit 2, the cloth that passes the limit named with the estimate, and nothing built or written.
