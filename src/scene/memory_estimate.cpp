@@ -1,9 +1,11 @@
 #include "memory_estimate.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -62,6 +64,34 @@ bool positiveAt(const Json& object, const std::string& key)
     return object.contains(key) && object[key].is_number() && object[key].get<double>() > 0.0;
 }
 
+/// The vector at `key` if it is three numbers (else its reader refuses it), or zero.
+std::array<double, 3> vectorAt(const Json& object, const std::string& key)
+{
+    std::array<double, 3> v{0.0, 0.0, 0.0};
+    if (!object.contains(key) || !object[key].is_array() || object[key].size() != 3)
+        return v;
+    for (std::size_t k = 0; k < 3; ++k)
+        if (object[key][k].is_number())
+            v[k] = object[key][k].get<double>();
+    return v;
+}
+
+double lengthOf(const std::array<double, 3>& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+/// A rope's or cloth's neighbour lists, when its particles have a radius (spring_neighbours.hpp):
+/// each particle lists those within twice the sum of radii along the springs, about 8 r / s of
+/// them along a rope of spacing s and pi (4 r / s)^2 across a cloth, about 8 bytes each while
+/// they are made. Nothing for points, or where the spacing is not known.
+double neighbourBytes(const Json& fabric, double count, double spacing, bool sheet)
+{
+    if (!fabric.contains("radius") || !fabric["radius"].is_number() || !(spacing > 0.0))
+        return 0.0;
+    const double reach = 4.0 * fabric["radius"].get<double>() / spacing;
+    if (!(reach > 0.0))
+        return 0.0;
+    return count * (sheet ? std::numbers::pi * reach * reach : 2.0 * reach) * 8.0;
+}
+
 std::optional<Estimate> particleEstimate(const Json&, const std::string& path, const std::filesystem::path&)
 {
     return Estimate{path, "a particle", kParticleBytes};
@@ -73,8 +103,10 @@ std::optional<Estimate> ropeEstimate(const Json& rope, const std::string& path, 
     if (!count)
         return std::nullopt;
     const double springs = *count - 1 + (positiveAt(rope, "bending_stiffness") ? *count - 2 : 0);
+    const std::array<double, 3> from = vectorAt(rope, "from"), to = vectorAt(rope, "to");
+    const double spacing = lengthOf({to[0] - from[0], to[1] - from[1], to[2] - from[2]}) / (*count - 1);
     return Estimate{path + ".count", fmt::format("a rope of {:.0f} particles and {:.0f} springs", *count, springs),
-                    *count * kParticleBytes + springs * kSpringBytes};
+                    *count * kParticleBytes + springs * kSpringBytes + neighbourBytes(rope, *count, spacing, false)};
 }
 
 std::optional<Estimate> clothEstimate(const Json& cloth, const std::string& path, const std::filesystem::path&)
@@ -90,8 +122,10 @@ std::optional<Estimate> clothEstimate(const Json& cloth, const std::string& path
         springs += 2 * (*w - 1) * (*h - 1);
     if (positiveAt(k, "bending"))
         springs += (*w - 2) * *h + *w * (*h - 2);
+    const double spacing =
+        std::min(lengthOf(vectorAt(cloth, "across")) / (*w - 1), lengthOf(vectorAt(cloth, "down")) / (*h - 1));
     return Estimate{path, fmt::format("a {:.0f} x {:.0f} cloth with {:.0f} springs", *w, *h, springs),
-                    *w * *h * kParticleBytes + springs * kSpringBytes};
+                    *w * *h * kParticleBytes + springs * kSpringBytes + neighbourBytes(cloth, *w * *h, spacing, true)};
 }
 
 std::optional<Estimate> rigidBodyEstimate(const Json& body, const std::string& path,

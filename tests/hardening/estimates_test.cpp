@@ -121,6 +121,22 @@ TEST(MemoryEstimates, RopesAndClothsBeyondTheMemoryAreRefusedBeforeBuilding)
     EXPECT_NE(refusedField(manyOf("ropes", rope, 2000)).find("].count"), std::string::npos);
 }
 
+// A cloth's balls list their neighbours along the springs, as many as fit within four radii: a
+// 1000 x 1000 cloth 1 m wide whose 1 cm balls overlap ten times over (about 40 GB of lists, where
+// its particles and springs take 1.1 GB) is refused for them.
+TEST(MemoryEstimates, BallsOfAClothCountTheirNeighbourLists)
+{
+    nlohmann::json cloth = kBigCloth;
+    cloth["radius"] = 0.01;
+    try {
+        parseScene(manyOf("cloths", cloth, 3), "balls.json");
+        FAIL() << "built it";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.field().rfind("cloths[", 0), 0u) << e.what();
+        EXPECT_NE(e.reason().find("cloth with 1998000 springs needs about 41.3 GB"), std::string::npos) << e.what();
+    }
+}
+
 // A colliding swarm's grains take their contacts' memory besides their own arrays: ten swarms of
 // 10^8 colliding grains (about 400 GB by the estimate) are refused for it, naming the first that
 // passes the memory available.
