@@ -187,6 +187,24 @@ inline std::array<int, 2> wallsOnAxis(std::span<const PlaneT<T>> planes, int axi
 
 } // namespace collision_detail
 
+/// The surfaces among the first 32 of `planes` that x is nearer than `reach` to (or beyond), a bit
+/// a plane: the contact passes' sweeps move a ball less than that, so the others are out of its
+/// reach for the step (a sheet on the floor tests the floor, not the walls). `visits` reads it.
+inline constexpr std::size_t kWallBits = 32;
+template <class T>
+inline std::uint32_t wallsWithin(std::span<const PlaneT<T>> planes, const Vec3<T>& x, T reach)
+{
+    std::uint32_t walls = 0;
+    for (std::size_t p = 0; p < std::min(planes.size(), kWallBits); ++p)
+        if (planes[p].distance(x) < reach)
+            walls |= 1u << p;
+    return walls;
+}
+
+/// Whether plane p is to be visited for a ball whose walls within reach are `walls`: planes
+/// beyond the 32nd always are.
+inline bool visits(std::uint32_t walls, std::size_t p) { return p >= kWallBits || ((walls >> p) & 1u); }
+
 /// Coulomb friction of a push off a surface: a body whose velocity changed by `normalChange` (m/s,
 /// not negative) along the unit normal n loses up to mu times that of its velocity along the
 /// surface, and never more than it has (friction stops a body; it never turns it back).
@@ -445,7 +463,7 @@ inline int clampAfterStep(std::span<const PlaneT<T>> planes, T restitution, cons
 
 /// The reflect or clamp rule after a full step from `start`, with Coulomb friction from the push
 /// it gave: the body's velocity changed by dv along the push, and loses up to mu |dv| along the
-/// surface (rubAlong). A push on a body that arrived no faster than twice `restingSpeed` (what
+/// surface (rubbedByPush). A push on a body that arrived no faster than twice `restingSpeed` (what
 /// its acceleration gives in one step, |a| dt) is resting contact, not a bounce, as the exact
 /// rule's rebound too weak to leave the surface for a step: a body lying on the floor is pulled
 /// below it by every step and pushed back, and a rope's end counted a bounce nearly every step.

@@ -89,7 +89,7 @@ inline void keepInRoom(std::span<const PlaneT<float>> room, std::uint32_t near, 
 {
     const float touching = 2.0f * rule.restingSpeed * rule.dt; // two steps' fall from rest
     for (std::size_t p = 0; p < room.size(); ++p) {
-        if (p < 32 && !((near >> p) & 1u))
+        if (!visits(near, p))
             continue;
         const PlaneT<float>& plane = room[p];
         const float depth = plane.distance(x);
@@ -409,11 +409,8 @@ void GrainContacts::solve(Swarm& swarm, std::size_t slot, std::span<const PlaneT
     m_nearWall.resize(n);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrainBlock), [&](const auto& r) {
         for (std::size_t s = r.begin(); s < r.end(); ++s) {
-            std::uint32_t near = 0;
-            for (std::size_t p = 0; p < room.size(); ++p)
-                if (p >= 32 || room[p].distance(m_x[s]) < 4.0f * m_reach)
-                    near |= p < 32 ? 1u << p : 1u;
-            m_nearWall[s] = near;
+            // (A room of over 32 planes, whose further planes every grain visits: flagged as near.)
+            m_nearWall[s] = wallsWithin(room, m_x[s], 4.0f * m_reach) | (room.size() > kWallBits ? 1u : 0u);
         }
     });
     m_pairs.resize(m_slabStart.size() - 1);

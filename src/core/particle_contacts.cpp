@@ -45,13 +45,10 @@ void BallContacts::touch(Ball& a, Ball& b)
 void BallContacts::findWalls(std::span<const Plane> planes, double largest)
 {
     nearWall.clear();
-    const std::size_t count = std::min(planes.size(), kMaxBallPlanes);
     for (std::size_t k = 0; k < balls.size(); ++k) {
         const Ball& ball = balls[k];
-        std::uint32_t walls = 0;
-        for (std::size_t p = 0; p < count; ++p)
-            if (planes[p].distance(ball.x) - ball.radius < 8.0 * largest)
-                walls |= 1u << p;
+        const std::uint32_t walls = wallsWithin(planes.first(std::min(planes.size(), kMaxBallPlanes)), ball.x,
+                                                ball.radius + 8.0 * largest);
         if (walls != 0 && ball.inverseMass != 0.0)
             nearWall.emplace_back(std::uint32_t(k), walls);
     }
@@ -61,7 +58,7 @@ void BallContacts::keepInRoom(std::span<const Plane> planes, std::uint32_t walls
 {
     const std::size_t count = std::min(planes.size(), kMaxBallPlanes);
     for (std::size_t p = 0; p < count; ++p) {
-        if (!((walls >> p) & 1u))
+        if (!visits(walls, p))
             continue;
         const Plane plane = planes[p].inflatedBy(ball.radius);
         if (plane.distance(ball.x) < 0.0 && !plane.overHole(ball.x)) {

@@ -66,9 +66,8 @@ struct BallContacts {
     static void keepInRoom(std::span<const Plane> planes, std::uint32_t walls, Ball& ball);
 
 private:
-    /// Each moving ball within eight of the largest radii of a surface, with those surfaces, into
-    /// nearWall: the sweeps move a ball by its overlaps, each under a diameter, so a surface
-    /// further away is out of its reach (a sheet on the floor tests the floor, not the walls).
+    /// Each moving ball within eight of the largest radii of a surface, with those surfaces
+    /// (wallsWithin), into nearWall: the sweeps move a ball by its overlaps, each under a diameter.
     void findWalls(std::span<const Plane> planes, double largest);
     std::vector<std::pair<std::uint32_t, std::uint32_t>> nearWall;
 };
