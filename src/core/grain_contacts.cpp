@@ -21,23 +21,38 @@ using Vec = Vec3<float>;
 /// Two grains touch while their centres are less than this many of their reaches apart.
 constexpr float kTouching = 1.01f;
 
+/// The longest slip of a contact that its static friction holds, in reaches: past it the contact
+/// is sliding (kinetic friction), and its memory of where it began is dragged along at this
+/// distance (as the discrete element method caps its tangential spring at mu times the normal
+/// force), so that a grain stopping after a long slide is pulled back by at most this.
+constexpr float kMostSlip = 0.01f;
+
+/// A contact's slip as the next step remembers it: at most kMostSlip reaches.
+Vec remembered(const Vec& slip, float reach)
+{
+    const float length = glm::length(slip), most = kMostSlip * reach;
+    return length > most ? (most / length) * slip : slip;
+}
+
+/// What static friction takes back of a contact's slip `along` its surface: all of it, or `most`
+/// of it (m), the length taken added to what it has `held` this step; nothing once the slip is
+/// longer than `kinetic` (sliding).
+inline Vec takenBack(const Vec& along, float most, float& held, float kinetic)
+{
+    const float length = glm::length(along);
+    const float taken = std::min(length, most);
+    if (!(taken > 0.0f) || length > kinetic)
+        return Vec(0.0f);
+    held += taken;
+    return (taken / length) * along;
+}
+
 /// Grains a task in the loops over all of them.
 constexpr std::size_t kGrainBlock = 4096;
 
-/// Coulomb's law on a step's displacement: the sliding `slide` (m) of a contact pressed `depth`
-/// (m) into it is taken away up to mu times the depth.
-inline Vec heldBack(const Vec& slide, float depth, float mu)
-{
-    const float length = glm::length(slide);
-    if (!(length > 0.0f))
-        return Vec(0.0f);
-    return std::min(1.0f, mu * depth / length) * slide;
-}
-
-/// One pair's share of a sweep (the rule in grain_contacts.hpp); x0: where each grain started
-/// the step; `first`: the step's first sweep, which decides the rebound.
-inline void touch(Vec& xa, Vec& va, const Vec& xa0, Vec& xb, Vec& vb, const Vec& xb0, GrainPair& pair,
-                  const GrainRule& rule, float reach, bool first)
+/// One pair's share of a sweep (the rule in grain_contacts.hpp); `first`: the step's first
+/// sweep, which decides the rebound.
+inline void touch(Vec& xa, Vec& va, Vec& xb, Vec& vb, GrainPair& pair, const GrainRule& rule, float reach, bool first)
 {
     // Touching within a hundredth of their reach: a pair that an earlier sweep put exactly at
     // contact still takes away the approach that later pairs gave it (a grain pressed down from
@@ -51,9 +66,11 @@ inline void touch(Vec& xa, Vec& va, const Vec& xa0, Vec& xb, Vec& vb, const Vec&
     const float half = std::max(0.0f, 0.5f * (reach - distance));
     xa -= half * n;
     xb += half * n;
-    if (rule.friction > 0.0f && half > 0.0f) {
-        const Vec moved = (xb - xb0) - (xa - xa0);
-        const Vec back = 0.5f * heldBack(moved - glm::dot(moved, n) * n, 2.0f * half, rule.friction);
+    // Static friction: b is taken back to where it began on a, by at most what mu times the
+    // pair's normal speed change moves a grain in a step.
+    if (const float most = rule.friction * pair.normal * rule.dt - pair.held; most > 0.0f) {
+        const Vec slip = pair.anchor + (xb - xa);
+        const Vec back = 0.5f * takenBack(slip - glm::dot(slip, n) * n, most, pair.held, kMostSlip * reach);
         xa += back;
         xb -= back;
     }
@@ -85,7 +102,7 @@ inline void touch(Vec& xa, Vec& va, const Vec& xa0, Vec& xb, Vec& vb, const Vec&
 /// Only the walls flagged in `near` (bit p for wall p; walls from the 33rd on always), the others
 /// being too far for the sweeps to bring the grain to them.
 inline void keepInRoom(std::span<const PlaneT<float>> room, std::uint32_t near, const GrainRule& rule, bool first,
-                       const Vec& x0, Vec& x, Vec& v, float& push, float& slowed)
+                       Vec& x, Vec& v, GrainWall& wall)
 {
     const float touching = 2.0f * rule.restingSpeed * rule.dt; // two steps' fall from rest
     for (std::size_t p = 0; p < room.size(); ++p) {
@@ -95,32 +112,33 @@ inline void keepInRoom(std::span<const PlaneT<float>> room, std::uint32_t near, 
         const float depth = plane.distance(x);
         if (depth > touching || plane.overHole(x))
             continue;
-        // How far the wall presses: what the sweep pushed the grain into it, and once a step the
-        // weight's share (which the swarm's own collision with the room undid before the sweeps).
-        const float weight = first ? rule.restingSpeed * std::max(plane.normal.y, 0.0f) : 0.0f;
-        float pressed = weight * rule.dt;
-        if (depth < 0.0f) {
+        if (depth < 0.0f)
             collision_detail::snapOnto(plane, x);
-            pressed -= depth;
-        }
-        if (rule.friction > 0.0f) {
-            const Vec moved = x - x0;
-            x -= heldBack(moved - glm::dot(moved, plane.normal) * plane.normal, pressed, rule.friction);
-        }
-        // The walls' push over the step's sweeps so far bounds what friction has taken in all.
+        // How hard the wall presses: the speed the sweeps drove the grain into it, and once a step
+        // the weight's share where the swarm's own collision with the room took it away before the
+        // sweeps (a grain that still arrives with it is pushed for it below: not twice).
         const float vn = glm::dot(plane.normal, v);
-        push += weight;
+        if (first)
+            wall.push += std::max(rule.restingSpeed * std::max(plane.normal.y, 0.0f) + std::min(vn, 0.0f), 0.0f);
         if (vn < 0.0f) {
             v -= vn * plane.normal;
-            push -= vn;
+            wall.push -= vn;
         }
-        if (rule.friction > 0.0f) {
-            const Vec slide = v - glm::dot(plane.normal, v) * plane.normal;
-            const float speed = glm::length(slide), most = rule.friction * push - slowed;
-            if (speed > 0.0f && most > 0.0f) {
-                v -= (std::min(speed, most) / speed) * slide;
-                slowed += std::min(speed, most);
-            }
+        if (!(rule.friction > 0.0f))
+            continue;
+        // The push over the step's sweeps so far bounds what friction has taken in all, from the
+        // sliding speed and from the slip since the grain came to the wall.
+        const Vec slide = v - glm::dot(plane.normal, v) * plane.normal;
+        const float speed = glm::length(slide), most = rule.friction * wall.push - wall.slowed;
+        if (speed > 0.0f && most > 0.0f) {
+            v -= (std::min(speed, most) / speed) * slide;
+            wall.slowed += std::min(speed, most);
+        }
+        wall.touched = true;
+        if (const float hold = rule.friction * wall.push * rule.dt - wall.held; hold > 0.0f) {
+            const Vec slip = wall.anchor + x;
+            const Vec along = slip - glm::dot(slip, plane.normal) * plane.normal;
+            x -= takenBack(along, hold, wall.held, kMostSlip * 2.0f * rule.radius);
         }
     }
 }
@@ -240,20 +258,25 @@ void GrainContacts::sortByCell(const Swarm& swarm, const GrainMemory& memory)
     m_slabStart[slabs] = n;
 }
 
-void GrainContacts::gather(const Swarm& swarm, float dt)
+void GrainContacts::gather(const Swarm& swarm, std::span<const PlaneT<float>> room, const GrainMemory& memory)
 {
-    m_x0.resize(m_x.size());
-    m_push.resize(m_x.size());
-    m_slowed.resize(m_x.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_x.size(), kGrainBlock), [&](const auto& r) {
+    const std::size_t n = m_x.size();
+    m_nearWall.resize(n);
+    m_walls.resize(n);
+    const bool known = memory.wallSlip.size() == n;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrainBlock), [&](const auto& r) {
         for (std::size_t s = r.begin(); s < r.end(); ++s) {
             m_x[s] = swarm.position(m_order[s]);
             m_v[s] = swarm.velocity(m_order[s]);
-            // Where the step started: semi-implicit Euler ends a step at x0 + v dt (the other methods
-            // near it), up to the
-            // room's push along its normals, which friction along a wall does not see.
-            m_x0[s] = m_x[s] - dt * m_v[s];
-            m_push[s] = m_slowed[s] = 0.0f;
+            // The walls the sweeps may bring it to: those within a few reaches (the sweeps move a
+            // grain by its overlaps, each less than a reach); a room of over 32 planes, whose
+            // further planes every grain visits, flags every grain.
+            m_nearWall[s] = wallsWithin(room, m_x[s], 4.0f * m_reach) | (room.size() > kWallBits ? 1u : 0u);
+            if (m_nearWall[s]) {
+                const std::uint32_t j = m_from[s];
+                m_walls[s] = GrainWall{};
+                m_walls[s].anchor = known && j != kNew ? memory.wallSlip[j] - memory.end[j] : -m_x[s];
+            }
         }
     });
 }
@@ -267,7 +290,7 @@ void GrainContacts::findPairs(std::size_t slab)
         for (std::size_t t = std::max(from, s + 1); t < to; ++t) {
             const Vec d = m_x[t] - m_x[s];
             if (glm::dot(d, d) < reach2)
-                pairs.push_back({std::uint32_t(s), std::uint32_t(t)});
+                pairs.push_back({std::uint32_t(s), std::uint32_t(t), 0.0f, 0.0f, Vec(0.0f), -d});
         }
     };
     if (!m_grid.hashed) {
@@ -326,12 +349,12 @@ void GrainContacts::forEachPairInColours(F&& fn)
 void GrainContacts::sweep(std::span<const PlaneT<float>> room, const GrainRule& rule, bool first)
 {
     forEachPairInColours([&](GrainPair& p) {
-        touch(m_x[p.a], m_v[p.a], m_x0[p.a], m_x[p.b], m_v[p.b], m_x0[p.b], p, rule, m_reach, first);
+        touch(m_x[p.a], m_v[p.a], m_x[p.b], m_v[p.b], p, rule, m_reach, first);
     });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_x.size(), kGrainBlock), [&](const auto& r) {
         for (std::size_t s = r.begin(); s < r.end(); ++s)
             if (m_nearWall[s])
-                keepInRoom(room, m_nearWall[s], rule, first, m_x0[s], m_x[s], m_v[s], m_push[s], m_slowed[s]);
+                keepInRoom(room, m_nearWall[s], rule, first, m_x[s], m_v[s], m_walls[s]);
     });
 }
 
@@ -356,6 +379,7 @@ void GrainContacts::warmStart(const GrainMemory& memory)
                 return;
             const Vec n = d / distance;
             const Vec tangent = ja < jb ? old.tangent : -old.tangent;
+            p.anchor = (ja < jb ? old.slip : -old.slip) - (memory.end[jb] - memory.end[ja]);
             p.normal = old.normal;
             p.tangent = tangent - glm::dot(tangent, n) * n;
             const Vec change = p.normal * n + p.tangent;
@@ -371,6 +395,11 @@ void GrainContacts::remember(GrainMemory& memory) const
     const std::size_t n = m_x.size();
     memory.order = m_order;
     memory.end = m_x;
+    memory.wallSlip.resize(n);
+    for (std::size_t s = 0; s < n; ++s) {
+        const bool touched = m_nearWall[s] != 0 && m_walls[s].touched;
+        memory.wallSlip[s] = touched ? remembered(m_walls[s].anchor + m_x[s], m_reach) : Vec(0.0f);
+    }
     std::vector<std::size_t> base(m_pairs.size() + 1, 0);
     for (std::size_t k = 0; k < m_pairs.size(); ++k)
         base[k + 1] = base[k] + m_pairs[k].size();
@@ -381,7 +410,11 @@ void GrainContacts::remember(GrainMemory& memory) const
         for (std::size_t k = r.begin(); k < r.end(); ++k)
             for (std::size_t q = 0; q < m_pairs[k].size(); ++q) {
                 const GrainPair& p = m_pairs[k][q];
-                memory.pairs[base[k] + q] = RememberedPair{p.b, p.normal, p.tangent};
+                const Vec d = m_x[p.b] - m_x[p.a];
+                const Vec u = d / std::max(glm::length(d), std::numeric_limits<float>::min());
+                Vec slip = p.anchor + d;
+                slip = remembered(slip - glm::dot(slip, u) * u, m_reach);
+                memory.pairs[base[k] + q] = RememberedPair{p.b, p.normal, p.tangent, slip};
                 ++memory.row[p.a + 1];
             }
     });
@@ -403,16 +436,7 @@ void GrainContacts::solve(Swarm& swarm, std::size_t slot, std::span<const PlaneT
         return;
     }
     sortByCell(swarm, memory);
-    gather(swarm, rule.dt);
-    // The grains the room's walls may meet during the sweeps: those within a few reaches of one
-    // (the sweeps move a grain by its overlaps, each less than a reach).
-    m_nearWall.resize(n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrainBlock), [&](const auto& r) {
-        for (std::size_t s = r.begin(); s < r.end(); ++s) {
-            // (A room of over 32 planes, whose further planes every grain visits: flagged as near.)
-            m_nearWall[s] = wallsWithin(room, m_x[s], 4.0f * m_reach) | (room.size() > kWallBits ? 1u : 0u);
-        }
-    });
+    gather(swarm, room, memory);
     m_pairs.resize(m_slabStart.size() - 1);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_pairs.size(), 1), [&](const auto& r) {
         for (std::size_t k = r.begin(); k < r.end(); ++k)

@@ -15,11 +15,17 @@
 // A pair's rule is the particles' (BallContacts::touch) for equal masses, written as sequential
 // impulses (Box2D's): the overlap is split in half, the normal speed change accumulated over the
 // sweeps stays a push that leaves them apart at restitution times their approach (none in
-// resting contact), and the accumulated change of their sliding stays within mu times it. Friction
-// holds the step's displacement too: pushing grains apart along slanted normals alone lets a
-// heap creep outwards by g dt^2 a step while its speeds stay near zero. The room has friction
-// as well, bounded by its push over the sweeps, the grain's weight counted (the swarm's own
-// collision with the room takes it away before the contacts run).
+// resting contact), and the accumulated change of their sliding stays within mu times it.
+// Friction holds positions too (static friction with an anchor, as Cundall and Strack's
+// tangential spring in the discrete element method, and PhysX's anchored friction): a pair
+// remembers how far one grain has slid over the other since they met, and each step takes it
+// back by at most what mu times the pair's normal speed change moves a grain in a step (so
+// within Coulomb's cone, whatever the overlap). Without the memory, each step's pushes apart
+// along slanted normals, below the cone in any one step, added up: a mound crept outwards by a
+// few micrometres a step for as long as it stood, from 45 degrees as it formed to 21 at 8 s.
+// The room holds a grain on its walls the same way, bounded by the walls' push over the sweeps,
+// the grain's weight counted (the swarm's own collision with the room takes it away before the
+// contacts run). A slip longer than kMostSlip is sliding: the anchor is dragged along.
 //
 // Each pair starts from what it did the step before (warm starting, as Box2D's contacts do): its
 // normal and sliding changes are given to the grains before the sweeps, so a heap's weight, which
@@ -28,9 +34,6 @@
 // order sorted anew by cell (stably), so a resting heap's grains keep their places and the last
 // step's pairs are read nearly in order. A grain that moved more than a reach since (or a swarm
 // replaced) starts its pairs from zero.
-//
-// With 8 sweeps a step a mound still creeps outwards for seconds after it formed, slower than
-// without warm starting (docs/scenes.md, granular).
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -60,6 +63,21 @@ struct GrainPair {
     std::uint32_t a = 0, b = 0;
     float normal = 0.0f, bounce = 0.0f;
     Vec3<float> tangent{0.0f};
+    /// Where the pair's static friction holds b against a: how far b has slid over a since they
+    /// met, less where b was from a then (b - a now added, the slip now); and how far the
+    /// sweeps have taken it back this step.
+    Vec3<float> anchor{0.0f};
+    float held = 0.0f;
+};
+
+/// A grain against the room's walls over the step's sweeps: where their static friction holds it
+/// (its slip since it came to a wall, less where it was then: its position added, the slip now),
+/// the speed they pushed it out with (m/s), and how much their friction has taken from its
+/// sliding (m/s) and its slip (m); whether it touched one.
+struct GrainWall {
+    Vec3<float> anchor{0.0f};
+    float push = 0.0f, slowed = 0.0f, held = 0.0f;
+    bool touched = false;
 };
 
 /// A pair as the next step finds it again: its second grain's place in this step's cell order
@@ -68,6 +86,7 @@ struct RememberedPair {
     std::uint32_t b = 0;
     float normal = 0.0f;
     Vec3<float> tangent{0.0f};
+    Vec3<float> slip{0.0f}; ///< how far b has slid over a since they met
 };
 
 /// What one swarm's contacts did last step: the cell order, where each grain (in that order)
@@ -77,6 +96,7 @@ struct GrainMemory {
     std::vector<Vec3<float>> end;
     std::vector<std::uint32_t> row;
     std::vector<RememberedPair> pairs;
+    std::vector<Vec3<float>> wallSlip; ///< each grain's slip on the walls it touched (zero: none)
 };
 
 class GrainContacts {
@@ -102,7 +122,7 @@ private:
         std::int64_t slabWidth = 1; ///< cell columns along x per slab
     };
 
-    void gather(const Swarm& swarm, float dt);
+    void gather(const Swarm& swarm, std::span<const PlaneT<float>> room, const GrainMemory& memory);
     void plan(float spacing);
     void sortByCell(const Swarm& swarm, const GrainMemory& memory);
     /// Each pair's impulses of the last step, where it had one, given to its grains.
@@ -118,9 +138,8 @@ private:
 
     Grid m_grid;
     std::vector<Vec> m_x, m_v;                ///< the grains in cell order
-    std::vector<Vec> m_x0;                    ///< where each started the step
     std::vector<std::uint32_t> m_nearWall; ///< each grain's walls within its reach this step, a bit a wall
-    std::vector<float> m_push, m_slowed;      ///< the room's push on each this step (m/s), and its friction's
+    std::vector<GrainWall> m_walls;
     std::vector<std::uint32_t> m_order;       ///< cell order -> swarm index
     std::vector<std::uint32_t> m_key;         ///< the last step's cell order -> cell (or bucket)
     static constexpr std::uint32_t kNew = 0xffffffffu;
