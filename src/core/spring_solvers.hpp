@@ -11,6 +11,7 @@
 #include "backward_euler.hpp"
 #include "spring_system.hpp"
 #include "xpbd.hpp"
+#include "xpbd_rigid_contacts.hpp"
 
 namespace pba::detail {
 
@@ -25,6 +26,7 @@ struct SpringSolver {
     std::vector<dvec3> positions, startForces;
     std::vector<dvec3> heldOn; ///< backward Euler's: the normal of the surface each member rests on, or zero
     std::vector<double> radius, restitution, friction; ///< XPBD's: each member's, for its room
+    XpbdRigidContacts rigidContacts; ///< XPBD's: the rigid bodies its substeps meet
 
     /// Makes the springs (and, for XPBD, their colours) anew unless they were made for these
     /// members and forces.

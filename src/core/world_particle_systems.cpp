@@ -9,6 +9,7 @@
 #include "grain_contacts.hpp"
 #include "parallel.hpp"
 #include "particle_contacts.hpp"
+#include "rigid/rigid_system.hpp"
 #include "spring_neighbours.hpp"
 #include "spring_solvers.hpp"
 #include "world_checks.hpp"
@@ -198,12 +199,35 @@ void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<con
         solver.restitution[k] = m_bodies.cors[members[k]];
         solver.friction[k] = m_bodies.frictions[members[k]];
     });
-    const detail::Xpbd::Room room{m_surfaces.planes, solver.radius, solver.restitution, solver.friction};
+    detail::Xpbd::Room room{m_surfaces.planes, solver.radius, solver.restitution, solver.friction, nullptr};
+    // The rigid bodies inside every substep too (xpbd_rigid_contacts.hpp), both ways.
+    detail::XpbdRigidContacts& bodies = solver.rigidContacts;
+    std::vector<std::pair<std::size_t, const RigidBody*>> rigid;
+    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
+        if (isRigid(i))
+            rigid.emplace_back(i, static_cast<const RigidBody*>(m_bodies.objects[i].get()));
+    const auto joined = [&](std::size_t particle, std::size_t body) {
+        const std::uint32_t point = m_bodies.rigidIndex[particle];
+        return point != kNotRigid && m_rigid.system->joinsPoint(point, m_bodies.rigidIndex[body]);
+    };
+    bodies.begin(rigid,
+                 {members, std::span<const dvec3>(&s.x[0], n), std::span<const dvec3>(&s.v[0], n), solver.radius,
+                  s.mass, solver.friction},
+                 joined, dt);
+    if (!bodies.empty())
+        room.obstacles = &bodies;
     solver.xpbd.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n), dt,
                      m_particleSystems.xpbdSubsteps, external, room);
     detail::forEachIndex(n, [&](std::size_t k) {
         m_bodies.bounces[members[k]] += std::uint64_t(solver.xpbd.bounces(k));
     });
+    // What the substeps gave the bodies starts their own step.
+    for (const auto& r : bodies.reactions()) {
+        auto& b = static_cast<RigidBody&>(*m_bodies.objects[r.body]);
+        b.setVel(b.getVel() + r.impulse / b.getMass());
+        b.setAngularMomentum(b.getAngularMomentum() + r.moment);
+        m_rigid.system->keepAwake(m_bodies.rigidIndex[r.body]);
+    }
     // The step's mean acceleration: XPBD has no force at the start to keep.
     detail::forEachIndex(n, [&](std::size_t k) { s.acc[k] = (s.v[k] - m_bodies.previous[members[k]].vel) / dt; });
     collideAndStore(members, dt);

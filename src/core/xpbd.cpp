@@ -75,6 +75,8 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
     else
         m_bounces.clear();
     for (int sub = 0; sub < substeps; ++sub) {
+        if (room.obstacles)
+            room.obstacles->advance(h);
         external(x, v, m_accel);
         forEachIndex(n, [&](std::size_t p) {
             v[p] += h * m_accel[p];
@@ -87,6 +89,10 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
             }
         } else {
             project<false>(springs, x);
+        }
+        if (room.obstacles) {
+            forEachIndex(n, [&](std::size_t p) { room.obstacles->keepOut(p, m_start[p], x[p]); });
+            room.obstacles->react(h);
         }
         if (!inRoom) {
             forEachIndex(n, [&](std::size_t p) { v[p] = (x[p] - m_start[p]) / h; });

@@ -28,7 +28,9 @@
 // position: static while the move is within it), and a member that arrived faster than two
 // substeps of its acceleration leaves at e times its speed of arrival (a bounce). A sheet lying
 // on the floor then rests on it within the step; with the room only after the step, the springs
-// and gravity pulled it in every step for the rule after it to push back (a bounce a step).
+// and gravity pulled it in every step for the rule after it to push back (a bounce a step). The
+// rigid bodies are met in every substep the same way, both ways (Obstacles,
+// xpbd_rigid_contacts.hpp).
 //
 // The constraints are projected Gauss-Seidel, colour by colour: a greedy colouring, in the
 // springs' order, puts no two springs that share a body in one colour, so the springs of a colour
@@ -49,11 +51,25 @@ class Xpbd {
 public:
     /// What moves the bodies besides the springs: fills accel[k] for member k at (x, v).
     using External = std::function<void(std::span<const dvec3> x, std::span<const dvec3> v, std::span<dvec3> accel)>;
+    /// What each substep keeps the members out of besides the room, moving along (the rigid
+    /// bodies, xpbd_rigid_contacts.hpp).
+    class Obstacles {
+    public:
+        virtual ~Obstacles() = default;
+        /// Before a substep's projections: the obstacles move on by h.
+        virtual void advance(double h) = 0;
+        /// After them: member p, at x, having begun the substep at `start`, put back outside every
+        /// obstacle (on all cores, each member by itself).
+        virtual void keepOut(std::size_t p, const dvec3& start, dvec3& x) = 0;
+        /// Then what the members did to the obstacles in the substep, given to them.
+        virtual void react(double h) = 0;
+    };
     /// The room each substep keeps the members in: its surfaces (met by a member's centre inflated
-    /// by its radius), and per member its radius, restitution and friction.
+    /// by its radius), and per member its radius, restitution and friction; and what else.
     struct Room {
         std::span<const Plane> planes;
         std::span<const double> radius, restitution, friction;
+        Obstacles* obstacles; ///< none when null (as a Room made with {} has it)
     };
 
     Xpbd() = default;

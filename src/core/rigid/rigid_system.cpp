@@ -127,6 +127,7 @@ void RigidSystem::setPoint(std::size_t k, const PointBody& p)
     m.inverseMass = p.fixed ? 0.0 : 1.0 / p.mass;
     m.inverseInertiaBody = dmat3(0.0); // a point does not turn
     m.driftWeight = driftWeight(p.integrator);
+    m.metInSubsteps = p.integrator == Integrator::Xpbd;
     m_start[k] = p.start;
     m_end[k] = p.end;
     m_stillFor[k] = 0.0; // its island never sleeps: the particle moves on under its own forces
@@ -190,7 +191,7 @@ void RigidSystem::collidePairs()
         c = Contact{};
         c.a = pair.a;
         c.b = pair.b;
-        if (joinedPoint(pair.a, pair.b))
+        if (joinedPoint(pair.a, pair.b) || m_material[pair.a].metInSubsteps || m_material[pair.b].metInSubsteps)
             return; // no points
         if (const Contact* old = m_cache.previous(c.key()))
             c.sat = old->sat;
@@ -613,6 +614,13 @@ void RigidSystem::solve(const dvec3& gravity, double dt)
     finishBodies();
     updateSleep(dt);
     (void)n;
+}
+
+void RigidSystem::keepAwake(std::size_t k)
+{
+    if (m_motion[k] == Motion::Asleep)
+        wakeIsland(std::uint32_t(k));
+    m_stillFor[k] = 0.0;
 }
 
 void RigidSystem::wakeAll()

@@ -18,6 +18,8 @@
 // does not turn, its start and free end states the particle's own step's (setPoint), touching
 // rigid bodies both ways with the same contact rule and joined to them by the same joints. It
 // meets the room with the particle's own rule and other particles not here, and never sleeps.
+// A particle stepped by XPBD meets the rigid bodies inside its substeps instead
+// (xpbd_rigid_contacts.hpp): here it is only joined, and the bodies it pushed are kept awake.
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -86,6 +88,11 @@ public:
     /// A joint between two of the system's bodies, or (b == kWorldBody) between a and the world.
     void addJoint(const Joint& joint);
     const std::vector<Joint>& joints() const { return m_joints; }
+    /// Whether a joint joins point body a to body b (or b to a): the two never touch.
+    bool joinsPoint(std::size_t a, std::size_t b) const
+    {
+        return joinedPoint(BodyIndex(std::min(a, b)), BodyIndex(std::max(a, b)));
+    }
     /// The index the solver gives the world (a static body): after the bodies, before the room.
     BodyIndex worldBody() const { return BodyIndex(m_world.size()); }
 
@@ -98,6 +105,9 @@ public:
     const Islands& islands() const { return m_islands; }
     /// Wakes every body (a program changed something the contacts cannot see: a force, a pose).
     void wakeAll();
+    /// Wakes body k and keeps it awake this step: something outside the system pushed it (a
+    /// particle stepped by XPBD, as a particle's contact here keeps its island awake).
+    void keepAwake(std::size_t k);
     /// Forgets every contact (the room changed, or a body was moved by hand).
     void clearContacts() { m_cache.clear(); }
 
@@ -108,6 +118,9 @@ private:
         double inverseMass = 0.0;
         dmat3 inverseInertiaBody{0.0};
         double driftWeight = 1.0;
+        /// A particle stepped by XPBD, which meets the rigid bodies inside its substeps
+        /// (xpbd_rigid_contacts.hpp): here it is only joined.
+        bool metInSubsteps = false;
     };
     bool anythingAwake() const { return !m_awake.empty() || !m_points.empty(); }
     /// Whether a contact between a and b is left out: a particle and the body it is joined to.

@@ -1,0 +1,139 @@
+#include "xpbd_rigid_contacts.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "pba/rigid_body.hpp"
+#include "rigid/solver_body.hpp"
+
+namespace pba::detail {
+
+dvec3 XpbdRigidContacts::Body::spin() const
+{
+    const dmat3 r = glm::mat3_cast(q);
+    return r * (inverseInertiaBody * (glm::transpose(r) * momentum));
+}
+
+void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const RigidBody*>> bodies,
+                              const Members& members, const Joined& joined, double dt)
+{
+    m_bodies.clear();
+    m_joined.clear();
+    m_radius = members.radius;
+    m_mass = members.mass;
+    m_friction = members.friction;
+    // The members' box, grown by how far a member may go in the step.
+    dvec3 lo(INFINITY), hi(-INFINITY);
+    double reach = 0.0;
+    for (std::size_t p = 0; p < members.x.size(); ++p) {
+        if (!(members.radius[p] > 0.0))
+            continue;
+        lo = glm::min(lo, members.x[p]);
+        hi = glm::max(hi, members.x[p]);
+        reach = std::max(reach, members.radius[p] + glm::length(members.v[p]) * dt);
+    }
+    if (!(reach > 0.0))
+        return;
+    for (const auto& [world, b] : bodies) {
+        const bool moving = !b->isFixed();
+        Body body;
+        body.world = world;
+        body.shape = b->getCollisionShape().get();
+        body.x = b->getPos();
+        body.q = b->getOrientation();
+        if (moving) {
+            body.v = b->getVel();
+            body.accel = b->getAcc();
+            body.momentum = b->getAngularMomentum();
+            body.inverseMass = 1.0 / b->getMass();
+            body.inverseInertiaBody = b->getInverseInertiaBody();
+        }
+        body.friction = b->getFriction();
+        body.reach = b->getBoundingRadius();
+        const double travel = glm::length(body.v) * dt + glm::length(body.accel) * dt * dt;
+        const dvec3 nearest = glm::clamp(body.x, lo, hi);
+        if (glm::length(body.x - nearest) <= body.reach + travel + reach)
+            m_bodies.push_back(body);
+    }
+    m_pushes.assign(members.x.size(), {});
+    for (std::size_t p = 0; p < members.x.size(); ++p)
+        for (std::size_t k = 0; k < m_bodies.size(); ++k)
+            if (joined(members.world[p], m_bodies[k].world))
+                m_joined.emplace_back(std::uint32_t(p), std::uint32_t(k));
+}
+
+void XpbdRigidContacts::advance(double h)
+{
+    m_h = h;
+    for (Body& b : m_bodies) {
+        if (b.inverseMass == 0.0)
+            continue;
+        b.v += b.accel * h;
+        b.x += b.v * h;
+        b.q = rigid::turned(b.q, b.spin() * h);
+    }
+}
+
+void XpbdRigidContacts::keepOut(std::size_t p, const dvec3& start, dvec3& x)
+{
+    const double r = m_radius[p];
+    if (!(r > 0.0))
+        return;
+    contact::CollisionShape ball;
+    ball.radius = r;
+    for (std::size_t k = 0; k < m_bodies.size(); ++k) {
+        const Body& b = m_bodies[k];
+        if (glm::length(x - b.x) > r + b.reach ||
+            std::binary_search(m_joined.begin(), m_joined.end(), std::pair(std::uint32_t(p), std::uint32_t(k))))
+            continue;
+        const contact::Transform at{b.x, glm::mat3_cast(b.q)};
+        const contact::Manifold m = contact::collide(ball, contact::Transform{x, dmat3(1.0)}, *b.shape, at, 0.0);
+        double depth = 0.0;
+        for (int i = 0; i < m.count; ++i)
+            depth = std::max(depth, -m.points[std::size_t(i)].separation);
+        if (!(depth > 0.0))
+            continue;
+        // Back on the surface (the normal points from the ball into the body), and its move along
+        // it relative to the body's surface in the substep cut by up to mu times the depth.
+        const dvec3 before = x;
+        x -= depth * m.normal;
+        const dvec3 arm = x + r * m.normal - b.x;
+        const dvec3 moved = (x - start) - (b.v + glm::cross(b.spin(), arm)) * m_h;
+        const dvec3 along = moved - glm::dot(moved, m.normal) * m.normal;
+        const double length = glm::length(along), held = std::sqrt(m_friction[p] * b.friction) * depth;
+        if (length > 0.0)
+            x -= (length <= held ? 1.0 : held / length) * along;
+        // The body gave the member m dx / h: it takes the opposite, at the contact point.
+        const dvec3 impulse = -m_mass[p] * (x - before) / m_h;
+        m_pushes[p].push_back({std::uint32_t(k), impulse, glm::cross(arm, impulse)});
+    }
+}
+
+void XpbdRigidContacts::react(double h)
+{
+    (void)h;
+    // Member by member, in order: the same sums on any number of threads.
+    for (auto& pushes : m_pushes) {
+        for (const Push& push : pushes) {
+            Body& b = m_bodies[push.body];
+            if (b.inverseMass == 0.0)
+                continue;
+            b.v += push.impulse * b.inverseMass;
+            b.momentum += push.moment;
+            b.impulse += push.impulse;
+            b.moment += push.moment;
+        }
+        pushes.clear();
+    }
+}
+
+std::vector<XpbdRigidContacts::Reaction> XpbdRigidContacts::reactions() const
+{
+    std::vector<Reaction> out;
+    for (const Body& b : m_bodies)
+        if (b.inverseMass != 0.0 && (b.impulse != dvec3(0.0) || b.moment != dvec3(0.0)))
+            out.push_back({b.world, b.impulse, b.moment});
+    return out;
+}
+
+} // namespace pba::detail
