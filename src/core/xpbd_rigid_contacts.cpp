@@ -55,7 +55,11 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
         if (glm::length(body.x - nearest) <= body.reach + travel + reach)
             m_bodies.push_back(body);
     }
-    m_pushes.assign(members.x.size(), {});
+    if (m_bodies.empty())
+        return;
+    m_pushes.resize(members.x.size());
+    for (auto& pushes : m_pushes) // (emptied by each react, but for a step a blow-up cut short)
+        pushes.clear();
     for (std::size_t p = 0; p < members.x.size(); ++p)
         for (std::size_t k = 0; k < m_bodies.size(); ++k)
             if (joined(members.world[p], m_bodies[k].world))
