@@ -87,7 +87,7 @@ void XpbdRigidContacts::keepOut(std::size_t p, const dvec3& start, dvec3& x)
     ball.radius = r;
     for (std::size_t k = 0; k < m_bodies.size(); ++k) {
         const Body& b = m_bodies[k];
-        if (glm::length(x - b.x) > r + b.reach ||
+        if (!(glm::length(x - b.x) <= r + b.reach) || // (false for a member blown up: the step's checks name it)
             std::binary_search(m_joined.begin(), m_joined.end(), std::pair(std::uint32_t(p), std::uint32_t(k))))
             continue;
         const contact::Transform at{b.x, glm::mat3_cast(b.q)};
