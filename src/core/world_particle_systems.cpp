@@ -199,7 +199,7 @@ void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<con
         solver.restitution[k] = m_bodies.cors[members[k]];
         solver.friction[k] = m_bodies.frictions[members[k]];
     });
-    detail::Xpbd::Room room{m_surfaces.planes, solver.radius, solver.restitution, solver.friction, nullptr};
+    detail::Xpbd::Room room{m_surfaces.planes, solver.radius, solver.restitution, solver.friction};
     // The rigid bodies inside every substep too (xpbd_rigid_contacts.hpp), both ways.
     detail::XpbdRigidContacts& bodies = solver.rigidContacts;
     std::vector<std::pair<std::size_t, const RigidBody*>> rigid;

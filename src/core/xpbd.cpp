@@ -92,7 +92,7 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
         }
         if (room.obstacles) {
             forEachIndex(n, [&](std::size_t p) { room.obstacles->keepOut(p, m_start[p], x[p]); });
-            room.obstacles->react(h);
+            room.obstacles->react();
         }
         if (!inRoom) {
             forEachIndex(n, [&](std::size_t p) { v[p] = (x[p] - m_start[p]) / h; });

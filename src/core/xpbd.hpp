@@ -62,14 +62,14 @@ public:
         /// obstacle (on all cores, each member by itself).
         virtual void keepOut(std::size_t p, const dvec3& start, dvec3& x) = 0;
         /// Then what the members did to the obstacles in the substep, given to them.
-        virtual void react(double h) = 0;
+        virtual void react() = 0;
     };
     /// The room each substep keeps the members in: its surfaces (met by a member's centre inflated
     /// by its radius), and per member its radius, restitution and friction; and what else.
     struct Room {
         std::span<const Plane> planes;
         std::span<const double> radius, restitution, friction;
-        Obstacles* obstacles; ///< none when null (as a Room made with {} has it)
+        Obstacles* obstacles = nullptr; ///< none when null
     };
 
     Xpbd() = default;
@@ -79,7 +79,7 @@ public:
     /// One step of dt in `substeps` substeps; x and v (one per member) from the start to the end.
     /// The springs' fixed ends must be placed.
     void step(const SpringSystem& springs, std::span<const double> mass, std::span<dvec3> x, std::span<dvec3> v,
-              double dt, int substeps, const External& external, const Room& room = {});
+              double dt, int substeps, const External& external, const Room& room);
 
     /// The last step's bounces of member k off the room (arrivals faster than resting contact).
     int bounces(std::size_t k) const { return m_bounces.empty() ? 0 : m_bounces[k]; }

@@ -113,9 +113,8 @@ void XpbdRigidContacts::keepOut(std::size_t p, const dvec3& start, dvec3& x)
     }
 }
 
-void XpbdRigidContacts::react(double h)
+void XpbdRigidContacts::react()
 {
-    (void)h;
     // Member by member, in order: the same sums on any number of threads.
     for (auto& pushes : m_pushes) {
         for (const Push& push : pushes) {

@@ -46,7 +46,7 @@ public:
 
     void advance(double h) override;
     void keepOut(std::size_t p, const dvec3& start, dvec3& x) override;
-    void react(double h) override;
+    void react() override;
 
     /// What the step's substeps gave each body met: (world index, impulse, angular impulse about
     /// its centre).
