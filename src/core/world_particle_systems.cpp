@@ -212,7 +212,7 @@ void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<con
     };
     bodies.begin(rigid,
                  {members, std::span<const dvec3>(&s.x[0], n), std::span<const dvec3>(&s.v[0], n), solver.radius,
-                  s.mass, solver.friction},
+                  s.mass, solver.friction, solver.restitution},
                  joined, dt);
     if (!bodies.empty())
         room.obstacles = &bodies;

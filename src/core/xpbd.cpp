@@ -70,7 +70,7 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
         scale(h);
     m_scaledFor = h;
     const bool inRoom = !room.planes.empty();
-    if (inRoom)
+    if (inRoom || room.obstacles)
         m_bounces.assign(n, 0);
     else
         m_bounces.clear();
@@ -90,18 +90,18 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
         } else {
             project<false>(springs, x);
         }
-        if (room.obstacles) {
+        if (room.obstacles)
             forEachIndex(n, [&](std::size_t p) { room.obstacles->keepOut(p, m_start[p], x[p]); });
-            room.obstacles->react();
-        }
-        if (!inRoom) {
+        if (!inRoom && !room.obstacles) {
             forEachIndex(n, [&](std::size_t p) { v[p] = (x[p] - m_start[p]) / h; });
             continue;
         }
         forEachIndex(n, [&](std::size_t p) {
             const dvec3 arriving = v[p];
-            const int plane = keepInRoom(room, p, x[p]);
+            const int plane = inRoom ? keepInRoom(room, p, x[p]) : -1;
             v[p] = (x[p] - m_start[p]) / h;
+            if (room.obstacles && room.obstacles->bounce(p, arriving, 2.0 * glm::length(m_accel[p]) * h, v[p]))
+                ++m_bounces[p];
             if (plane < 0)
                 return;
             // Put back on the surface, it moves along it only: a fast arrival bounces.
@@ -112,6 +112,8 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
                 ++m_bounces[p];
             }
         });
+        if (room.obstacles)
+            room.obstacles->react();
     }
 }
 

@@ -61,6 +61,9 @@ public:
         /// After them: member p, at x, having begun the substep at `start`, put back outside every
         /// obstacle (on all cores, each member by itself).
         virtual void keepOut(std::size_t p, const dvec3& start, dvec3& x) = 0;
+        /// Then, its velocity v made from its move: whether it bounced off an obstacle it arrived
+        /// at faster than `resting` (with the velocity `arriving`), v changed if so.
+        virtual bool bounce(std::size_t p, const dvec3& arriving, double resting, dvec3& v) = 0;
         /// Then what the members did to the obstacles in the substep, given to them.
         virtual void react() = 0;
     };
@@ -81,7 +84,8 @@ public:
     void step(const SpringSystem& springs, std::span<const double> mass, std::span<dvec3> x, std::span<dvec3> v,
               double dt, int substeps, const External& external, const Room& room);
 
-    /// The last step's bounces of member k off the room (arrivals faster than resting contact).
+    /// The last step's bounces of member k off the room and the obstacles (arrivals faster than
+    /// resting contact).
     int bounces(std::size_t k) const { return m_bounces.empty() ? 0 : m_bounces[k]; }
 
     /// Above this (w_a + w_b) k h^2 for some constraint, a substep sweeps until every error is

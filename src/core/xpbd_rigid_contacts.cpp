@@ -22,6 +22,7 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
     m_radius = members.radius;
     m_mass = members.mass;
     m_friction = members.friction;
+    m_restitution = members.restitution;
     // The members' box, grown by how far a member may go in the step.
     dvec3 lo(INFINITY), hi(-INFINITY);
     double reach = 0.0;
@@ -49,6 +50,7 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
             body.inverseInertiaBody = b->getInverseInertiaBody();
         }
         body.friction = b->getFriction();
+        body.restitution = b->getCor();
         body.reach = b->getBoundingRadius();
         const double travel = glm::length(body.v) * dt + glm::length(body.accel) * dt * dt;
         const dvec3 nearest = glm::clamp(body.x, lo, hi);
@@ -58,6 +60,7 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
     if (m_bodies.empty())
         return;
     m_pushes.resize(members.x.size());
+    m_touch.assign(members.x.size(), Touch{});
     for (auto& pushes : m_pushes) // (emptied by each react, but for a step a blow-up cut short)
         pushes.clear();
     for (std::size_t p = 0; p < members.x.size(); ++p)
@@ -83,6 +86,7 @@ void XpbdRigidContacts::keepOut(std::size_t p, const dvec3& start, dvec3& x)
     const double r = m_radius[p];
     if (!(r > 0.0))
         return;
+    m_touch[p] = Touch{};
     contact::CollisionShape ball;
     ball.radius = r;
     for (std::size_t k = 0; k < m_bodies.size(); ++k) {
@@ -110,7 +114,26 @@ void XpbdRigidContacts::keepOut(std::size_t p, const dvec3& start, dvec3& x)
         // The body gave the member m dx / h: it takes the opposite, at the contact point.
         const dvec3 impulse = -m_mass[p] * (x - before) / m_h;
         m_pushes[p].push_back({std::uint32_t(k), impulse, glm::cross(arm, impulse)});
+        m_touch[p] = {std::uint32_t(k), m.normal, arm};
     }
+}
+
+bool XpbdRigidContacts::bounce(std::size_t p, const dvec3& arriving, double resting, dvec3& v)
+{
+    const Touch t = m_touch.empty() ? Touch{} : m_touch[p];
+    if (t.body == kNone)
+        return false;
+    const Body& b = m_bodies[t.body];
+    const dvec3 surface = b.v + glm::cross(b.spin(), t.arm); // the body's point, this substep
+    const double arrival = glm::dot(t.normal, arriving - surface);
+    if (!(arrival > resting))
+        return false;
+    const double e = std::max(m_restitution[p], b.restitution);
+    const dvec3 change = (-e * arrival - glm::dot(t.normal, v - surface)) * t.normal;
+    v += change;
+    const dvec3 impulse = -m_mass[p] * change;
+    m_pushes[p].push_back({t.body, impulse, glm::cross(t.arm, impulse)});
+    return true;
 }
 
 void XpbdRigidContacts::react()

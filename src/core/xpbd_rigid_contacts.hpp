@@ -4,9 +4,10 @@
 // Dynamics"): each body near a rope or cloth stepped with XPBD moves along with the substeps (its
 // acceleration of the last step, its velocity and spin), a member with a radius found inside it
 // after a substep's projections is put back on its surface, its move along it cut by up to mu
-// times the depth (Coulomb friction in position, as the room's), and the body takes the opposite
-// of what that gave the member, m dx / h, as an impulse at the contact point before the next
-// substep. The bodies' own step then starts from their velocities with the step's impulses added.
+// times the depth (Coulomb friction in position, as the room's), one that arrived faster than
+// resting contact leaves at e times its speed towards the body (e the larger restitution, as
+// between bodies), and the body takes the opposite of what that gave the member (m dx / h, and
+// m dv for a bounce) as an impulse at the contact point before the next substep. The bodies' own step then starts from their velocities with the step's impulses added.
 //
 // Met only after the step, by the rigid contact solver, the two sides were staggered: the solver
 // saw each particle as a lone ball and the springs answered a step later, which threw a 5 kg crate
@@ -34,7 +35,7 @@ public:
     struct Members {
         std::span<const std::size_t> world;
         std::span<const dvec3> x, v;
-        std::span<const double> radius, mass, friction;
+        std::span<const double> radius, mass, friction, restitution;
     };
     /// Whether a joint joins the particle (world index) to the body (world index): they never touch.
     using Joined = std::function<bool(std::size_t particle, std::size_t body)>;
@@ -46,6 +47,7 @@ public:
 
     void advance(double h) override;
     void keepOut(std::size_t p, const dvec3& start, dvec3& x) override;
+    bool bounce(std::size_t p, const dvec3& arriving, double resting, dvec3& v) override;
     void react() override;
 
     /// What the step's substeps gave each body met: (world index, impulse, angular impulse about
@@ -64,7 +66,7 @@ private:
         dquat q{1.0, 0.0, 0.0, 0.0};
         double inverseMass = 0.0;
         dmat3 inverseInertiaBody{0.0};
-        double friction = 0.0, reach = 0.0;
+        double friction = 0.0, restitution = 0.0, reach = 0.0;
         dvec3 impulse{0.0}, moment{0.0}; ///< the step's, in all
         dvec3 spin() const;
     };
@@ -73,10 +75,18 @@ private:
         std::uint32_t body = 0;
         dvec3 impulse{0.0}, moment{0.0};
     };
+    /// The body a member was last put back out of in the substep: the normal (from the member
+    /// into the body) and the arm to the contact point.
+    struct Touch {
+        std::uint32_t body = kNone;
+        dvec3 normal{0.0}, arm{0.0};
+    };
+    static constexpr std::uint32_t kNone = 0xffffffffu;
     std::vector<Body> m_bodies;
-    std::span<const double> m_radius, m_mass, m_friction;
+    std::span<const double> m_radius, m_mass, m_friction, m_restitution;
     double m_h = 0.0;
     std::vector<std::vector<Push>> m_pushes; ///< per member, this substep's
+    std::vector<Touch> m_touch;              ///< per member, this substep's
     std::vector<std::pair<std::uint32_t, std::uint32_t>> m_joined; ///< (member, body) pairs a joint joins, in order
 };
 

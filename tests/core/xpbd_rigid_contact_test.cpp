@@ -59,6 +59,33 @@ TEST(XpbdRigidContact, ASheetAndABoxExchangeMomentumAndKeepItsTotal)
     EXPECT_LT(world.body(*world.findBody("sheet[3,3]")).getVel().y, -0.1) << "the box drove the sheet on";
 }
 
+TEST(XpbdRigidContact, ABallDroppedOnAFixedBoxReboundsToESquaredTimesItsFall)
+{
+    // As off the room: it leaves at e times the speed it arrived with, so it rises to e^2 h.
+    const std::string text = R"({"dt": 0.002, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+        "particles": [{"name": "ball", "position": [0, 1.5, 0], "mass": 0.1, "radius": 0.05, "restitution": 0.5,
+                       "integrator": "xpbd"}],
+        "rigid_bodies": [{"name": "table", "shape": {"type": "box", "size": [0.5, 0.5, 0.5]}, "position": [0, 0.25, 0],
+                          "fixed": true, "restitution": 0}]})";
+    Scene scene = parseScene(text, "drop.json");
+    World& world = scene.world;
+    const std::size_t ball = *world.findBody("ball");
+    const double fall = 1.5 - 0.05 - 0.5; // to the table's top
+    double highest = 0.0;
+    bool bounced = false;
+    for (int step = 0; step < 1000; ++step) { // 2 s: one bounce and most of the next
+        world.step(scene.dt);
+        const dvec3 v = world.body(ball).getVel();
+        bounced = bounced || v.y > 0.0;
+        if (bounced && world.body(ball).getPos().y > 0.55 + highest && v.y >= 0.0)
+            highest = world.body(ball).getPos().y - 0.55;
+        if (bounced && v.y < 0.0 && highest > 0.0)
+            break;
+    }
+    EXPECT_NEAR(highest, 0.25 * fall, 0.02 * 0.25 * fall);
+    EXPECT_EQ(world.bounceCount(ball), 1u);
+}
+
 TEST(XpbdRigidContact, TheTrampolineCatchesItsCrateThrowsItBackUpAndHoldsIt)
 {
     Scene scene = xpbdTrampoline(0);
