@@ -10,6 +10,7 @@
 
 #include "backward_euler.hpp"
 #include "spring_system.hpp"
+#include "particle_grid.hpp"
 #include "xpbd.hpp"
 #include "xpbd_rigid_contacts.hpp"
 
@@ -27,6 +28,10 @@ struct SpringSolver {
     std::vector<dvec3> heldOn; ///< backward Euler's: the normal of the surface each member rests on, or zero
     std::vector<double> radius, restitution, friction; ///< XPBD's: each member's, for its room
     XpbdRigidContacts rigidContacts; ///< XPBD's: the rigid bodies its substeps meet
+    /// XPBD's: the members that may touch each other in the step, found with their grid.
+    ParticleGrid grid;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;
+    std::vector<Xpbd::Touching> touching;
 
     /// Makes the springs (and, for XPBD, their colours) anew unless they were made for these
     /// members and forces.

@@ -30,6 +30,31 @@ dvec3 restingOn(std::span<const Plane> room, const dvec3& x, const dvec3& v, dou
     return dvec3(0.0);
 }
 
+/// The members with a radius that may touch in the step, each reaching as far as it may move (its
+/// speed, and a quarter of its radius for what the step adds), but for those the springs hold near
+/// each other (`near`, by world index).
+template <class Near>
+std::span<const detail::Xpbd::Touching> touchingMembers(detail::SpringSolver& solver, std::span<const dvec3> x,
+                                                         std::span<const dvec3> v, std::span<const std::size_t> members,
+                                                         const Near& near, double dt)
+{
+    solver.touching.clear();
+    const auto reach = [&](std::size_t k) {
+        return solver.radius[k] > 0.0 ? 1.25 * solver.radius[k] + glm::length(v[k]) * dt : 0.0;
+    };
+    double largest = 0.0;
+    for (std::size_t k = 0; k < members.size(); ++k)
+        largest = std::max(largest, reach(k));
+    if (!(largest > 0.0))
+        return {};
+    solver.grid.findPairs(members.size(), [&](std::size_t k) { return x[k]; }, reach, largest, solver.candidates);
+    for (const auto& [a, b] : solver.candidates)
+        if (solver.radius[a] > 0.0 && solver.radius[b] > 0.0 && !near(members[a], members[b]))
+            solver.touching.push_back({a, b, solver.radius[a] + solver.radius[b],
+                                       std::sqrt(solver.friction[a] * solver.friction[b])});
+    return solver.touching;
+}
+
 } // namespace
 
 void World::integrateParticleSystems(const Coupling& coupling, double dt)
@@ -199,7 +224,14 @@ void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<con
         solver.restitution[k] = m_bodies.cors[members[k]];
         solver.friction[k] = m_bodies.frictions[members[k]];
     });
-    detail::Xpbd::Room room{m_surfaces.planes, solver.radius, solver.restitution, solver.friction};
+    // Its members against each other inside every substep too (but for those its springs hold
+    // near): the contacts after the step then find them apart.
+    detail::SpringNeighbours& neighbours = *m_particleSystems.neighbours;
+    neighbours.update(m_forces.objects, m_bodies.radii);
+    const auto near = [&](std::size_t a, std::size_t b) { return neighbours.near(a, b); };
+    const auto touching = touchingMembers(solver, std::span<const dvec3>(&s.x[0], n), std::span<const dvec3>(&s.v[0], n),
+                                          members, near, dt);
+    detail::Xpbd::Room room{m_surfaces.planes, solver.radius, solver.restitution, solver.friction, touching, nullptr};
     // The rigid bodies inside every substep too (xpbd_rigid_contacts.hpp), both ways.
     detail::XpbdRigidContacts& bodies = solver.rigidContacts;
     std::vector<std::pair<std::size_t, const RigidBody*>> rigid;

@@ -90,6 +90,7 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
         } else {
             project<false>(springs, x);
         }
+        keepApart(room.touching, x);
         if (room.obstacles)
             forEachIndex(n, [&](std::size_t p) { room.obstacles->keepOut(p, m_start[p], x[p]); });
         if (!inRoom && !room.obstacles) {
@@ -114,6 +115,29 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
         });
         if (room.obstacles)
             room.obstacles->react();
+    }
+}
+
+void Xpbd::keepApart(std::span<const Touching> touching, std::span<dvec3> x) const
+{
+    for (const Touching& t : touching) {
+        const double wa = m_inverseMass[t.a], wb = m_inverseMass[t.b];
+        const dvec3 d = x[t.b] - x[t.a];
+        const double distance = glm::length(d), depth = t.reach - distance;
+        if (!(depth > 0.0) || !(distance > 0.0))
+            continue;
+        const dvec3 n = d / distance;
+        x[t.a] -= (depth * wa / (wa + wb)) * n;
+        x[t.b] += (depth * wb / (wa + wb)) * n;
+        // Their sliding over each other in the substep cut by up to mu times the depth.
+        const dvec3 moved = (x[t.b] - m_start[t.b]) - (x[t.a] - m_start[t.a]);
+        const dvec3 along = moved - glm::dot(moved, n) * n;
+        const double length = glm::length(along), held = t.friction * depth;
+        if (!(length > 0.0))
+            continue;
+        const dvec3 back = (length <= held ? 1.0 : held / length) * along;
+        x[t.a] += (wa / (wa + wb)) * back;
+        x[t.b] -= (wb / (wa + wb)) * back;
     }
 }
 

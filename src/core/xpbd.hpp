@@ -30,7 +30,9 @@
 // on the floor then rests on it within the step; with the room only after the step, the springs
 // and gravity pulled it in every step for the rule after it to push back (a bounce a step). The
 // rigid bodies are met in every substep the same way, both ways (Obstacles,
-// xpbd_rigid_contacts.hpp).
+// xpbd_rigid_contacts.hpp), and so are the members with a radius, each other (Touching, found
+// once a step; the contacts after the step then find them apart): met only after the step, the
+// upper layers of a sheet lying in folds stirred on the lower ones for as long as it lay.
 //
 // The constraints are projected Gauss-Seidel, colour by colour: a greedy colouring, in the
 // springs' order, puts no two springs that share a body in one colour, so the springs of a colour
@@ -67,11 +69,19 @@ public:
         /// Then what the members did to the obstacles in the substep, given to them.
         virtual void react() = 0;
     };
+    /// Two members that may touch in the step (balls whose centres stay `reach` apart), and their
+    /// contact's friction.
+    struct Touching {
+        std::uint32_t a = 0, b = 0;
+        double reach = 0.0, friction = 0.0;
+    };
     /// The room each substep keeps the members in: its surfaces (met by a member's centre inflated
-    /// by its radius), and per member its radius, restitution and friction; and what else.
+    /// by its radius), and per member its radius, restitution and friction; and what else: the
+    /// members that may touch each other, and the obstacles.
     struct Room {
         std::span<const Plane> planes;
         std::span<const double> radius, restitution, friction;
+        std::span<const Touching> touching;
         Obstacles* obstacles = nullptr; ///< none when null
     };
 
@@ -121,6 +131,8 @@ private:
         double compliance = 0.0, inverseDenominator = 0.0;
     };
     void scale(double h);
+    /// Touching members apart after a substep's projection, with friction, pair after pair.
+    void keepApart(std::span<const Touching> touching, std::span<dvec3> x) const;
     /// Member p back inside the room after a substep's projection, with friction; the plane it
     /// was put back on (or -1).
     int keepInRoom(const Room& room, std::size_t p, dvec3& x) const;
