@@ -36,7 +36,7 @@ dvec3 restingOn(std::span<const Plane> room, const dvec3& x, const dvec3& v, dou
 template <class Near>
 std::span<const detail::Xpbd::Touching> touchingMembers(detail::SpringSolver& solver, std::span<const dvec3> x,
                                                          std::span<const dvec3> v, std::span<const std::size_t> members,
-                                                         const Near& near, double dt)
+                                                         Near&& near, double dt)
 {
     solver.touching.clear();
     const auto reach = [&](std::size_t k) {
@@ -227,8 +227,12 @@ void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<con
     // Its members against each other inside every substep too (but for those its springs hold
     // near): the contacts after the step then find them apart.
     detail::SpringNeighbours& neighbours = *m_particleSystems.neighbours;
-    neighbours.update(m_forces.objects, m_bodies.radii);
-    const auto near = [&](std::size_t a, std::size_t b) { return neighbours.near(a, b); };
+    auto near = [&, updated = false](std::size_t a, std::size_t b) mutable {
+        if (!updated) // (only for a system with balls)
+            neighbours.update(m_forces.objects, m_bodies.radii);
+        updated = true;
+        return neighbours.near(a, b);
+    };
     const auto touching = touchingMembers(solver, std::span<const dvec3>(&s.x[0], n), std::span<const dvec3>(&s.v[0], n),
                                           members, near, dt);
     detail::Xpbd::Room room{m_surfaces.planes, solver.radius, solver.restitution, solver.friction, touching, nullptr};
