@@ -447,6 +447,9 @@ private:
     void integrateBackwardEuler(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
                                 double dt);
     void integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt);
+    /// For backward Euler: each member resting on a ball below it (of the last step's contacts)
+    /// held on it as on a surface, its normal into heldOn (those held on the room keep theirs).
+    void holdOnBalls(const std::vector<std::size_t>& members, std::span<dvec3> heldOn, double dt) const;
     /// The system's start-of-step state into the particle systems' scratch (x and v).
     void startSystem(const std::vector<std::size_t>& members);
     /// Every force on the system's members at the states (x, v) (at m_bodies.trial if x is

@@ -18,6 +18,11 @@ namespace pba {
 
 namespace {
 
+/// Two balls further apart than this many of their radii's sum no longer hold one on the other,
+/// nor one whose centre is lower than this cosine from straight above the other's.
+constexpr double kBallsHeldWithin = 1.01;
+constexpr double kBallsHeldAbove = 0.7;
+
 /// The normal of the surface backward Euler holds a member on for the step (or zero): the first of
 /// its room's planes it is within a step at `reach` (m/s) of, moving along the normal no faster than
 /// that either way (the resting contact of afterStepWithFriction), and not over a hole.
@@ -192,6 +197,7 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
         solver.heldOn[k] = restingOn(ballPlanes(planes, m_bodies.radii[members[k]], room), s.x[k], s.v[k],
                                     2.0 * glm::length(s.acc[k]) * dt, dt);
     });
+    holdOnBalls(members, solver.heldOn, dt);
     detail::BackwardEuler& backwardEuler = solver.backwardEuler;
     backwardEuler.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n), start, dt,
                        solver.heldOn);
@@ -202,6 +208,40 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
             s.v[k] = rubbedByPush(s.v[k], push * solver.heldOn[k], m_bodies.frictions[members[k]]);
     });
     collideAndStore(members, dt);
+}
+
+void World::holdOnBalls(const std::vector<std::size_t>& members, std::span<dvec3> heldOn, double dt) const
+{
+    // The last step's touching balls: a member not held on the room rests on the ball of a pair
+    // that lies below it (against gravity), touching it and moving along their normal no faster
+    // than it would rest on a surface (restingOn), and is held on it likewise.
+    const detail::BallContacts& contacts = *m_particleSystems.ballContacts;
+    const dvec3 g = gravity();
+    if (contacts.pairs.empty() || !(glm::length(g) > 0.0))
+        return;
+    const dvec3 up = -g / glm::length(g);
+    const CoupledScratch& s = m_particleSystems.scratch;
+    std::vector<std::int64_t> place(m_bodies.objects.size(), -1); // each body's place among the members
+    for (std::size_t k = 0; k < members.size(); ++k)
+        place[members[k]] = std::int64_t(k);
+    const auto stateOf = [&](std::size_t i) {
+        return place[i] >= 0 ? State{s.x[std::size_t(place[i])], s.v[std::size_t(place[i])]} : m_bodies.previous[i];
+    };
+    for (const auto& [a, b] : contacts.pairs)
+        for (const auto& [upper, lower] : {std::pair(contacts.bodies[a], contacts.bodies[b]),
+                                           std::pair(contacts.bodies[b], contacts.bodies[a])}) {
+            if (place[upper] < 0 || heldOn[std::size_t(place[upper])] != dvec3(0.0))
+                continue;
+            const std::size_t k = std::size_t(place[upper]);
+            const State below = stateOf(lower);
+            const dvec3 d = s.x[k] - below.pos;
+            const double distance = glm::length(d), reach = 2.0 * glm::length(s.acc[k]) * dt;
+            if (!(distance > 0.0) || distance > kBallsHeldWithin * (m_bodies.radii[upper] + m_bodies.radii[lower]))
+                continue;
+            const dvec3 n = d / distance;
+            if (glm::dot(n, up) >= kBallsHeldAbove && std::abs(glm::dot(n, s.v[k] - below.vel)) <= reach)
+                heldOn[k] = n;
+        }
 }
 
 void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt)

@@ -2,15 +2,13 @@
 // xpbd_rigid_contacts.hpp). Oracles: the pushes between a sheet and a box are equal and opposite,
 // so with no gravity and no wall reached their total momentum stays what it was (to rounding)
 // while each changes the other's; a ball dropped on a fixed box rises to e^2 h; a ball resting on
-// a ball resting on the floor stays put; and the scenes that met each other only after the step
-// come to rest: the trampoline's crate, which XPBD's sheet threw off, is caught and held, and a
-// sheet fallen in folds stops stirring.
+// a ball resting on the floor stays put; and the trampoline's crate, which XPBD's sheet threw off
+// when the two met only after the step, is caught, thrown back up and held. (A sheet fallen in
+// folds resting on itself: tests/core/resting_cloth_test.cpp.)
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <string>
-#include <vector>
 
 #include "pba/scene/scene.hpp"
 #include "pba/world.hpp"
@@ -126,25 +124,6 @@ TEST(XpbdContact, ABallRestingOnABallRestingOnTheFloorStaysPut)
         scene.world.step(scene.dt);
     EXPECT_LT(glm::length(scene.world.body(0).getPos() - dvec3(0, 0.1, 0)), 1e-4);
     EXPECT_LT(glm::length(scene.world.body(1).getPos() - dvec3(0, 0.3, 0)), 1e-4);
-}
-
-TEST(XpbdContact, ASheetFallenInFoldsComesToRest)
-{
-    // cloth-folds under xpbd. Measured at 8 s: speeds median 5 mm/s, 95% under 7 mm/s, the fastest
-    // 1 cm/s (with its particles meeting each other only after the step: 16 mm/s, 49 mm/s and
-    // 0.15 m/s, the upper layers stirring on the lower).
-    Scene scene = loadScene("cloth-folds");
-    World& world = scene.world;
-    for (std::size_t i = 0; i < world.bodyCount(); ++i)
-        world.body(i).setIntegrator(Integrator::Xpbd);
-    for (int step = 0; step < 4000; ++step)
-        world.step(scene.dt);
-    std::vector<double> speeds;
-    for (std::size_t i = 0; i < world.bodyCount(); ++i)
-        speeds.push_back(glm::length(world.body(i).getVel()));
-    std::sort(speeds.begin(), speeds.end());
-    EXPECT_LT(speeds[speeds.size() / 2], 0.01);
-    EXPECT_LT(speeds[speeds.size() * 95 / 100], 0.02);
 }
 
 TEST(XpbdContact, TheTrampolineIsTheSameOnOneAndTwoThreads)
