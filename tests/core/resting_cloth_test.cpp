@@ -81,11 +81,14 @@ TEST_P(RestingCloth, SlidingWithFrictionItStopsAfterV0SquaredOverTwoMuGOnTheFloo
     }
 }
 
-TEST_P(RestingCloth, ASheetFallenInFoldsRestsOnTheFloorWithoutBouncing)
+TEST_P(RestingCloth, ASheetFallenInFoldsRestsOnTheFloorAndOnItself)
 {
     // cloth-folds' sheet, settled: its springs pull the particles under the folds toward the floor
     // every step, which the solve takes up (with the room only after the step: about 5,000
-    // bounces a second under either method).
+    // bounces a second under either method). Its upper layers rest on the lower: measured at 8 s,
+    // speeds median 6 mm/s, 95% under 4 cm/s (implicit Euler) and median 5 mm/s, 95% under
+    // 7 mm/s (XPBD); with its layers meeting only after the step, the upper ones stirred on the
+    // lower: medians 4 and 1.6 cm/s, 95% 12 and 5 cm/s.
     Scene scene = loadScene("cloth-folds");
     World& world = scene.world;
     for (std::size_t i = 0; i < world.bodyCount(); ++i)
@@ -100,18 +103,7 @@ TEST_P(RestingCloth, ASheetFallenInFoldsRestsOnTheFloorWithoutBouncing)
     for (std::size_t i = 0; i < world.bodyCount(); ++i)
         after += world.bounceCount(i);
     EXPECT_LE(after - before, 20u) << "bounces in a second among 400 resting particles";
-}
-
-TEST_P(RestingCloth, ASheetFallenInFoldsComesToRest)
-{
-    // cloth-folds after 8 s. Measured: speeds median 6 mm/s, 95% under 4 cm/s (implicit Euler) and
-    // median 5 mm/s, 95% under 7 mm/s (XPBD); with its layers meeting only after the step, the
-    // upper ones stirred on the lower: medians 4 and 1.6 cm/s, 95% 12 and 5 cm/s.
-    Scene scene = loadScene("cloth-folds");
-    World& world = scene.world;
-    for (std::size_t i = 0; i < world.bodyCount(); ++i)
-        world.body(i).setIntegrator(GetParam());
-    for (int n = 0; n < 4000; ++n)
+    for (int n = 0; n < 1000; ++n)
         world.step(scene.dt);
     std::vector<double> speeds;
     for (std::size_t i = 0; i < world.bodyCount(); ++i)
