@@ -79,6 +79,7 @@ struct SpringSolvers;
 struct BallContacts;
 class SpringNeighbours;
 class GrainContacts;
+class XpbdRigidContacts;
 }
 
 /// An axis-aligned box: the room.
@@ -447,6 +448,11 @@ private:
     void integrateBackwardEuler(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
                                 double dt);
     void integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt);
+    /// For xpbd: the rigid bodies its substeps meet, started for the step (null: none near), and
+    /// what they took from the members in them, given to them.
+    detail::XpbdRigidContacts* startXpbdRigidContacts(const std::vector<std::size_t>& members,
+                                                      detail::SpringSolver& solver, double dt);
+    void giveXpbdReactions(const detail::XpbdRigidContacts& bodies);
     /// For backward Euler: each member resting on a ball below it (of the last step's contacts)
     /// held on it as on a surface, its normal into heldOn (those held on the room keep theirs).
     void holdOnBalls(const std::vector<std::size_t>& members, std::span<dvec3> heldOn, double dt) const;

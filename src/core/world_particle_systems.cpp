@@ -230,8 +230,9 @@ void World::holdOnBalls(const std::vector<std::size_t>& members, std::span<dvec3
     for (const auto& [a, b] : contacts.pairs)
         for (const auto& [upper, lower] : {std::pair(contacts.bodies[a], contacts.bodies[b]),
                                            std::pair(contacts.bodies[b], contacts.bodies[a])}) {
-            if (place[upper] < 0 || heldOn[std::size_t(place[upper])] != dvec3(0.0))
-                continue;
+            if (upper >= place.size() || lower >= place.size() || place[upper] < 0 ||
+                heldOn[std::size_t(place[upper])] != dvec3(0.0))
+                continue; // (a body the world no longer has, one of another system, or one held)
             const std::size_t k = std::size_t(place[upper]);
             const State below = stateOf(lower);
             const dvec3 d = s.x[k] - below.pos;
@@ -242,6 +243,40 @@ void World::holdOnBalls(const std::vector<std::size_t>& members, std::span<dvec3
             if (glm::dot(n, up) >= kBallsHeldAbove && std::abs(glm::dot(n, s.v[k] - below.vel)) <= reach)
                 heldOn[k] = n;
         }
+}
+
+detail::XpbdRigidContacts* World::startXpbdRigidContacts(const std::vector<std::size_t>& members,
+                                                         detail::SpringSolver& solver, double dt)
+{
+    // The rigid bodies inside every substep too (xpbd_rigid_contacts.hpp), both ways, but for a
+    // particle and the body a joint joins it to.
+    std::vector<std::pair<std::size_t, const RigidBody*>> rigid;
+    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
+        if (isRigid(i))
+            rigid.emplace_back(i, static_cast<const RigidBody*>(m_bodies.objects[i].get()));
+    const auto joined = [&](std::size_t particle, std::size_t body) {
+        const std::uint32_t point = m_bodies.rigidIndex[particle];
+        return point != kNotRigid && m_rigid.system->joinsPoint(point, m_bodies.rigidIndex[body]);
+    };
+    const CoupledScratch& s = m_particleSystems.scratch;
+    const std::size_t n = members.size();
+    detail::XpbdRigidContacts& bodies = solver.rigidContacts;
+    bodies.begin(rigid,
+                 {members, std::span<const dvec3>(&s.x[0], n), std::span<const dvec3>(&s.v[0], n), solver.radius,
+                  s.mass, solver.friction, solver.restitution},
+                 joined, dt);
+    return bodies.empty() ? nullptr : &bodies;
+}
+
+void World::giveXpbdReactions(const detail::XpbdRigidContacts& bodies)
+{
+    // What the substeps gave the bodies starts their own step; pushed, they stay awake.
+    for (const auto& r : bodies.reactions()) {
+        auto& b = static_cast<RigidBody&>(*m_bodies.objects[r.body]);
+        b.setVel(b.getVel() + r.impulse / b.getMass());
+        b.setAngularMomentum(b.getAngularMomentum() + r.moment);
+        m_rigid.system->keepAwake(m_bodies.rigidIndex[r.body]);
+    }
 }
 
 void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt)
@@ -275,35 +310,15 @@ void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<con
     };
     const auto touching = touchingMembers(solver, std::span<const dvec3>(&s.x[0], n), std::span<const dvec3>(&s.v[0], n),
                                           members, near, dt);
-    detail::Xpbd::Room room{m_surfaces.planes, solver.radius, solver.restitution, solver.friction, touching, nullptr};
-    // The rigid bodies inside every substep too (xpbd_rigid_contacts.hpp), both ways.
-    detail::XpbdRigidContacts& bodies = solver.rigidContacts;
-    std::vector<std::pair<std::size_t, const RigidBody*>> rigid;
-    for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
-        if (isRigid(i))
-            rigid.emplace_back(i, static_cast<const RigidBody*>(m_bodies.objects[i].get()));
-    const auto joined = [&](std::size_t particle, std::size_t body) {
-        const std::uint32_t point = m_bodies.rigidIndex[particle];
-        return point != kNotRigid && m_rigid.system->joinsPoint(point, m_bodies.rigidIndex[body]);
-    };
-    bodies.begin(rigid,
-                 {members, std::span<const dvec3>(&s.x[0], n), std::span<const dvec3>(&s.v[0], n), solver.radius,
-                  s.mass, solver.friction, solver.restitution},
-                 joined, dt);
-    if (!bodies.empty())
-        room.obstacles = &bodies;
+    detail::Xpbd::Room room{m_surfaces.planes, solver.radius, solver.restitution, solver.friction, touching,
+                            startXpbdRigidContacts(members, solver, dt)};
     solver.xpbd.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n), dt,
                      m_particleSystems.xpbdSubsteps, external, room);
     detail::forEachIndex(n, [&](std::size_t k) {
         m_bodies.bounces[members[k]] += std::uint64_t(solver.xpbd.bounces(k));
     });
-    // What the substeps gave the bodies starts their own step.
-    for (const auto& r : bodies.reactions()) {
-        auto& b = static_cast<RigidBody&>(*m_bodies.objects[r.body]);
-        b.setVel(b.getVel() + r.impulse / b.getMass());
-        b.setAngularMomentum(b.getAngularMomentum() + r.moment);
-        m_rigid.system->keepAwake(m_bodies.rigidIndex[r.body]);
-    }
+    if (room.obstacles)
+        giveXpbdReactions(solver.rigidContacts);
     // The step's mean acceleration: XPBD has no force at the start to keep.
     detail::forEachIndex(n, [&](std::size_t k) { s.acc[k] = (s.v[k] - m_bodies.previous[members[k]].vel) / dt; });
     collideAndStore(members, dt);
@@ -314,6 +329,7 @@ void World::collideBalls(double dt)
     detail::BallContacts& contacts = *m_particleSystems.ballContacts;
     contacts.balls.clear();
     contacts.bodies.clear();
+    contacts.pairs.clear(); // (read by the next step's holdOnBalls: none if fewer than two balls)
     for (std::size_t i = 0; i < m_bodies.objects.size(); ++i) {
         if (m_bodies.radii[i] == 0.0)
             continue;
