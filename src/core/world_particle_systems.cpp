@@ -254,10 +254,13 @@ detail::XpbdRigidContacts* World::startXpbdRigidContacts(const std::vector<std::
     for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
         if (isRigid(i))
             rigid.emplace_back(i, static_cast<const RigidBody*>(m_bodies.objects[i].get()));
-    const auto joined = [&](std::size_t particle, std::size_t body) {
-        const std::uint32_t point = m_bodies.rigidIndex[particle];
-        return point != kNotRigid && m_rigid.system->joinsPoint(point, m_bodies.rigidIndex[body]);
-    };
+    std::vector<std::pair<std::size_t, std::size_t>> joined; // (particle, body)
+    const rigid::RigidSystem& system = *m_rigid.system;
+    for (const rigid::Joint& j : system.joints())
+        if (j.b != rigid::kWorldBody && system.isPoint(j.a) != system.isPoint(j.b)) {
+            const auto [point, body] = system.isPoint(j.a) ? std::pair(j.a, j.b) : std::pair(j.b, j.a);
+            joined.emplace_back(system.worldIndex(point), system.worldIndex(body));
+        }
     const CoupledScratch& s = m_particleSystems.scratch;
     const std::size_t n = members.size();
     detail::XpbdRigidContacts& bodies = solver.rigidContacts;

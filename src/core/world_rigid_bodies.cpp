@@ -83,6 +83,7 @@ void World::givePointBodies()
         point.restitution = p.getCor();
         point.integrator = p.getIntegrator();
         point.fixed = p.isFixed();
+        point.metInSubsteps = p.getIntegrator() == Integrator::Xpbd; // (integrateXpbd)
         system.setPoint(k, point);
     }
 }

@@ -130,12 +130,7 @@ void Xpbd::keepApart(std::span<const Touching> touching, std::span<dvec3> x) con
         x[t.a] -= (depth * wa / (wa + wb)) * n;
         x[t.b] += (depth * wb / (wa + wb)) * n;
         // Their sliding over each other in the substep cut by up to mu times the depth.
-        const dvec3 moved = (x[t.b] - m_start[t.b]) - (x[t.a] - m_start[t.a]);
-        const dvec3 along = moved - glm::dot(moved, n) * n;
-        const double length = glm::length(along), held = t.friction * depth;
-        if (!(length > 0.0))
-            continue;
-        const dvec3 back = (length <= held ? 1.0 : held / length) * along;
+        const dvec3 back = heldBack((x[t.b] - m_start[t.b]) - (x[t.a] - m_start[t.a]), n, t.friction, depth);
         x[t.a] += (wa / (wa + wb)) * back;
         x[t.b] -= (wb / (wa + wb)) * back;
     }
@@ -150,12 +145,7 @@ int Xpbd::keepInRoom(const Room& room, std::size_t p, dvec3& x) const
         if (!(depth > 0.0) || plane.overHole(x) || plane.overHole(m_start[p]))
             continue; // inside, or where a hole leaves no surface: the rule after the step sees to it
         x += depth * plane.normal;
-        const dvec3 moved = x - m_start[p];
-        const dvec3 along = moved - glm::dot(moved, plane.normal) * plane.normal;
-        const double length = glm::length(along);
-        const double held = room.friction[p] * depth;
-        if (length > 0.0)
-            x -= (length <= held ? 1.0 : held / length) * along;
+        x -= heldBack(x - m_start[p], plane.normal, room.friction[p], depth);
         touched = int(k);
     }
     return touched;

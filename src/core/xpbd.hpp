@@ -49,6 +49,15 @@
 
 namespace pba::detail {
 
+/// What Coulomb friction in position takes back of a move across a surface of normal n, pressed
+/// `depth` into it: the move's part along the surface, all of it or mu times the depth of it.
+inline dvec3 heldBack(const dvec3& moved, const dvec3& n, double mu, double depth)
+{
+    const dvec3 along = moved - glm::dot(moved, n) * n;
+    const double length = glm::length(along), held = mu * depth;
+    return length > 0.0 ? (length <= held ? 1.0 : held / length) * along : dvec3(0.0);
+}
+
 class Xpbd {
 public:
     /// What moves the bodies besides the springs: fills accel[k] for member k at (x, v).

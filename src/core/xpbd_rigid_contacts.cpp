@@ -15,7 +15,7 @@ dvec3 XpbdRigidContacts::Body::spin() const
 }
 
 void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const RigidBody*>> bodies,
-                              const Members& members, const Joined& joined, double dt)
+                              const Members& members, Joined joined, double dt)
 {
     m_bodies.clear();
     m_joined.clear();
@@ -63,10 +63,13 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
     m_touch.assign(members.x.size(), Touch{});
     for (auto& pushes : m_pushes) // (emptied by each react, but for a step a blow-up cut short)
         pushes.clear();
-    for (std::size_t p = 0; p < members.x.size(); ++p)
-        for (std::size_t k = 0; k < m_bodies.size(); ++k)
-            if (joined(members.world[p], m_bodies[k].world))
-                m_joined.emplace_back(std::uint32_t(p), std::uint32_t(k));
+    for (const auto& [particle, body] : joined) { // (a few joints: a line through the members each)
+        const auto p = std::find(members.world.begin(), members.world.end(), particle);
+        const auto k = std::find_if(m_bodies.begin(), m_bodies.end(), [&](const Body& b) { return b.world == body; });
+        if (p != members.world.end() && k != m_bodies.end())
+            m_joined.emplace_back(std::uint32_t(p - members.world.begin()), std::uint32_t(k - m_bodies.begin()));
+    }
+    std::sort(m_joined.begin(), m_joined.end());
 }
 
 void XpbdRigidContacts::advance(double h)
@@ -107,10 +110,7 @@ void XpbdRigidContacts::keepOut(std::size_t p, const dvec3& start, dvec3& x)
         x -= depth * m.normal;
         const dvec3 arm = x + r * m.normal - b.x;
         const dvec3 moved = (x - start) - (b.v + glm::cross(b.spin(), arm)) * m_h;
-        const dvec3 along = moved - glm::dot(moved, m.normal) * m.normal;
-        const double length = glm::length(along), held = std::sqrt(m_friction[p] * b.friction) * depth;
-        if (length > 0.0)
-            x -= (length <= held ? 1.0 : held / length) * along;
+        x -= heldBack(moved, m.normal, std::sqrt(m_friction[p] * b.friction), depth);
         // The body gave the member m dx / h: it takes the opposite, at the contact point.
         const dvec3 impulse = -m_mass[p] * (x - before) / m_h;
         m_pushes[p].push_back({std::uint32_t(k), impulse, glm::cross(arm, impulse)});

@@ -14,7 +14,6 @@
 // off an XPBD trampoline at dt = 0.002 s (and a 20 kg one at 0.001 s). Private to the core.
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <span>
 #include <vector>
 
@@ -37,12 +36,12 @@ public:
         std::span<const dvec3> x, v;
         std::span<const double> radius, mass, friction, restitution;
     };
-    /// Whether a joint joins the particle (world index) to the body (world index): they never touch.
-    using Joined = std::function<bool(std::size_t particle, std::size_t body)>;
+    /// (particle, body), world indices, that a joint joins: they never touch.
+    using Joined = std::span<const std::pair<std::size_t, std::size_t>>;
     /// The rigid bodies (world index, body) that the members may meet in a step of dt: those
     /// whose bounding spheres, moving, come near the members' box.
     void begin(std::span<const std::pair<std::size_t, const RigidBody*>> bodies, const Members& members,
-               const Joined& joined, double dt);
+               Joined joined, double dt);
     bool empty() const { return m_bodies.empty(); }
 
     void advance(double h) override;

@@ -127,7 +127,7 @@ void RigidSystem::setPoint(std::size_t k, const PointBody& p)
     m.inverseMass = p.fixed ? 0.0 : 1.0 / p.mass;
     m.inverseInertiaBody = dmat3(0.0); // a point does not turn
     m.driftWeight = driftWeight(p.integrator);
-    m.metInSubsteps = p.integrator == Integrator::Xpbd;
+    m.metInSubsteps = p.metInSubsteps;
     m_start[k] = p.start;
     m_end[k] = p.end;
     m_stillFor[k] = 0.0; // its island never sleeps: the particle moves on under its own forces

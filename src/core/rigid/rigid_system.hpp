@@ -57,6 +57,9 @@ public:
         double mass = 1.0, radius = 0.0, friction = 0.0, restitution = 1.0;
         Integrator integrator = Integrator::SemiImplicitEuler;
         bool fixed = false;
+        /// Met by the rigid bodies inside its own method's substeps (XPBD's,
+        /// xpbd_rigid_contacts.hpp): here it is only joined.
+        bool metInSubsteps = false;
     };
     std::size_t size() const { return m_world.size(); }
     std::size_t worldIndex(std::size_t k) const { return m_world[k]; }
@@ -88,11 +91,6 @@ public:
     /// A joint between two of the system's bodies, or (b == kWorldBody) between a and the world.
     void addJoint(const Joint& joint);
     const std::vector<Joint>& joints() const { return m_joints; }
-    /// Whether a joint joins point body a to body b (or b to a): the two never touch.
-    bool joinsPoint(std::size_t a, std::size_t b) const
-    {
-        return joinedPoint(BodyIndex(std::min(a, b)), BodyIndex(std::max(a, b)));
-    }
     /// The index the solver gives the world (a static body): after the bodies, before the room.
     BodyIndex worldBody() const { return BodyIndex(m_world.size()); }
 
@@ -118,9 +116,7 @@ private:
         double inverseMass = 0.0;
         dmat3 inverseInertiaBody{0.0};
         double driftWeight = 1.0;
-        /// A particle stepped by XPBD, which meets the rigid bodies inside its substeps
-        /// (xpbd_rigid_contacts.hpp): here it is only joined.
-        bool metInSubsteps = false;
+        bool metInSubsteps = false; ///< a point body's (PointBody)
     };
     bool anythingAwake() const { return !m_awake.empty() || !m_points.empty(); }
     /// Whether a contact between a and b is left out: a particle and the body it is joined to.
