@@ -63,9 +63,10 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
     m_touch.assign(members.x.size(), Touch{});
     for (auto& pushes : m_pushes) // (emptied by each react, but for a step a blow-up cut short)
         pushes.clear();
-    for (const auto& [particle, body] : joined) { // (a few joints: a line through the members each)
-        const auto p = std::find(members.world.begin(), members.world.end(), particle);
-        const auto k = std::find_if(m_bodies.begin(), m_bodies.end(), [&](const Body& b) { return b.world == body; });
+    for (const std::pair<std::size_t, std::size_t>& pair : joined) { // (a few joints: a line through the members each)
+        const auto p = std::find(members.world.begin(), members.world.end(), pair.first);
+        const auto k =
+            std::find_if(m_bodies.begin(), m_bodies.end(), [&](const Body& b) { return b.world == pair.second; });
         if (p != members.world.end() && k != m_bodies.end())
             m_joined.emplace_back(std::uint32_t(p - members.world.begin()), std::uint32_t(k - m_bodies.begin()));
     }
