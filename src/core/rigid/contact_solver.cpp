@@ -32,21 +32,17 @@ void applyPair(SolverBody& a, SolverBody& b, const PointRows& r, const dvec3& p)
 
 Jacobian jacobianOf(const SolverBody& a, const SolverBody& b, const dvec3& ra, const dvec3& rb, const dvec3& u)
 {
-    Jacobian j;
-    j.u = u;
-    j.momentA = glm::cross(ra, u);
-    j.momentB = glm::cross(rb, u);
-    j.turnA = a.inverseInertia * j.momentA;
-    j.turnB = b.inverseInertia * j.momentB;
-    const double k = a.inverseMass + b.inverseMass + glm::dot(j.momentA, j.turnA) + glm::dot(j.momentB, j.turnB);
-    j.mass = k > 0.0 ? 1.0 / k : 0.0;
-    return j;
+    const dvec3 momentA = glm::cross(ra, u), momentB = glm::cross(rb, u);
+    const dvec3 turnA = a.inverseInertia * momentA, turnB = b.inverseInertia * momentB;
+    const double k = a.inverseMass + b.inverseMass + glm::dot(momentA, turnA) + glm::dot(momentB, turnB);
+    return {glm::vec3(u), glm::vec3(momentA), glm::vec3(momentB), glm::vec3(turnA), glm::vec3(turnB),
+            float(k > 0.0 ? 1.0 / k : 0.0)};
 }
 
 /// The two points' relative speed along a row.
 double speedAlong(const Jacobian& j, const SolverBody& a, const SolverBody& b)
 {
-    return glm::dot(j.u, b.v - a.v) + glm::dot(j.momentB, b.w) - glm::dot(j.momentA, a.w);
+    return glm::dot(dvec3(j.u), b.v - a.v) + glm::dot(dvec3(j.momentB), b.w) - glm::dot(dvec3(j.momentA), a.w);
 }
 
 /// An impulse `lambda` along a row: on B, and its opposite on A (a static body untouched: the
@@ -54,12 +50,12 @@ double speedAlong(const Jacobian& j, const SolverBody& a, const SolverBody& b)
 void applyAlong(const Jacobian& j, double lambda, SolverBody& a, SolverBody& b)
 {
     if (!a.isStatic()) {
-        a.v -= (lambda * a.inverseMass) * j.u;
-        a.w -= lambda * j.turnA;
+        a.v -= (lambda * a.inverseMass) * dvec3(j.u);
+        a.w -= lambda * dvec3(j.turnA);
     }
     if (!b.isStatic()) {
-        b.v += (lambda * b.inverseMass) * j.u;
-        b.w += lambda * j.turnB;
+        b.v += (lambda * b.inverseMass) * dvec3(j.u);
+        b.w += lambda * dvec3(j.turnB);
     }
 }
 
@@ -109,6 +105,7 @@ void ContactSolver::prepare(std::span<Contact> contacts, std::span<const std::ui
     m_settings = settings;
     m_constraints.clear();
     m_rows.clear();
+    m_velocityRows.clear();
     for (const std::uint32_t index : island) {
         const Contact& contact = contacts[index];
         const SolverBody& a = bodies[contact.a];
@@ -122,12 +119,10 @@ void ContactSolver::prepare(std::span<Contact> contacts, std::span<const std::ui
             r.rB = p.point - b.position;
             r.n = p.normal;
             tangentsOf(r.n, r.t);
-            r.along = jacobianOf(a, b, r.rA, r.rB, r.n);
-            r.normalMass = r.along.mass;
-            for (int k = 0; k < 2; ++k) {
-                r.across[k] = jacobianOf(a, b, r.rA, r.rB, r.t[k]);
-                r.tangentMass[k] = r.across[k].mass;
-            }
+            VelocityRows v;
+            v.along = jacobianOf(a, b, r.rA, r.rB, r.n);
+            for (int k = 0; k < 2; ++k)
+                v.across[k] = jacobianOf(a, b, r.rA, r.rB, r.t[k]);
             r.separation = p.separation;
             const dvec3 start = b.pointStartVelocity(r.rB) - a.pointStartVelocity(r.rA);
             const dvec3 free = relativeVelocity(a, b, r);
@@ -137,10 +132,14 @@ void ContactSolver::prepare(std::span<Contact> contacts, std::span<const std::ui
                 r.vtStart[k] = glm::dot(r.t[k], start);
                 r.vtFree[k] = glm::dot(r.t[k], free);
             }
-            r.normalImpulse = p.normalImpulse;
-            r.tangentImpulse[0] = p.tangentImpulse[0];
-            r.tangentImpulse[1] = p.tangentImpulse[1];
+            v.normalImpulse = p.normalImpulse;
+            v.tangentImpulse[0] = p.tangentImpulse[0];
+            v.tangentImpulse[1] = p.tangentImpulse[1];
+            // A gap may close within the step, no more (a speculative contact): resting stays at
+            // rest, and an arrival slower than the resting speed lands without a bounce.
+            v.target = -std::max(r.separation, 0.0) / settings.dt;
             m_rows.push_back(r);
+            m_velocityRows.push_back(v);
         }
     }
 }
@@ -369,10 +368,10 @@ bool ContactSolver::collideOne(const Constraint& c)
     shift(a, va0, wa0);
     shift(b, vb0, wb0);
     for (int i = 0; i < count; ++i) {
-        PointRows& r = m_rows[c.first + rows[i].point];
-        r.bounced = true;
-        r.normalImpulse = 0.0; // its warm start was a resting push: not for a bounce
-        r.tangentImpulse[0] = r.tangentImpulse[1] = 0.0;
+        m_rows[c.first + rows[i].point].bounced = true;
+        VelocityRows& v = m_velocityRows[c.first + rows[i].point];
+        v.normalImpulse = 0.0; // its warm start was a resting push: not for a bounce
+        v.tangentImpulse[0] = v.tangentImpulse[1] = 0.0;
     }
     return true;
 }
@@ -383,7 +382,7 @@ void ContactSolver::warmStart()
         SolverBody& a = m_bodies[c.a];
         SolverBody& b = m_bodies[c.b];
         for (int i = 0; i < c.count; ++i) {
-            const PointRows& r = m_rows[c.first + i];
+            const VelocityRows& r = m_velocityRows[c.first + i];
             applyAlong(r.along, r.normalImpulse, a, b);
             applyAlong(r.across[0], r.tangentImpulse[0], a, b);
             applyAlong(r.across[1], r.tangentImpulse[1], a, b);
@@ -394,7 +393,7 @@ void ContactSolver::warmStart()
 void ContactSolver::solveFriction(const Constraint& c, SolverBody& a, SolverBody& b)
 {
     for (int i = 0; i < c.count; ++i) {
-        PointRows& r = m_rows[c.first + i];
+        VelocityRows& r = m_velocityRows[c.first + i];
         double want[2];
         for (int k = 0; k < 2; ++k)
             want[k] = r.tangentImpulse[k] - r.across[k].mass * speedAlong(r.across[k], a, b);
@@ -412,13 +411,9 @@ void ContactSolver::solveFriction(const Constraint& c, SolverBody& a, SolverBody
 
 void ContactSolver::solveNormal(const Constraint& c, SolverBody& a, SolverBody& b)
 {
-    const double dt = m_settings.dt;
     for (int i = 0; i < c.count; ++i) {
-        PointRows& r = m_rows[c.first + i];
-        // A gap may close within the step, no more (a speculative contact): resting stays at
-        // rest, and an arrival slower than the resting speed lands without a bounce.
-        const double target = -std::max(r.separation, 0.0) / dt;
-        const double next = std::max(r.normalImpulse - r.along.mass * (speedAlong(r.along, a, b) - target), 0.0);
+        VelocityRows& r = m_velocityRows[c.first + i];
+        const double next = std::max(r.normalImpulse - r.along.mass * (speedAlong(r.along, a, b) - r.target), 0.0);
         applyAlong(r.along, next - r.normalImpulse, a, b);
         m_change = std::max(m_change, std::abs(next - r.normalImpulse));
         m_largest = std::max(m_largest, next);
@@ -443,12 +438,12 @@ void ContactSolver::storeImpulses()
     for (const Constraint& c : m_constraints) {
         Contact& contact = m_contacts[c.contact];
         for (int i = 0; i < c.count; ++i) {
-            const PointRows& r = m_rows[c.first + i];
+            const VelocityRows& r = m_velocityRows[c.first + i];
             ContactPoint& p = contact.points[i];
             p.normalImpulse = r.normalImpulse;
             p.tangentImpulse[0] = r.tangentImpulse[0];
             p.tangentImpulse[1] = r.tangentImpulse[1];
-            p.bounced = r.bounced;
+            p.bounced = m_rows[c.first + i].bounced;
         }
     }
 }

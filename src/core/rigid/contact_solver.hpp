@@ -40,15 +40,26 @@ struct SolverSettings {
 
 /// What an impulse of 1 along a direction u at a point does, worked out once a step so that a
 /// sweep is dot products and additions: the arms' moments rA x u and rB x u, and what they
-/// turn each body by, IA^-1 (rA x u) and IB^-1 (rB x u).
+/// turn each body by, IA^-1 (rA x u) and IB^-1 (rB x u). In single precision: a sweep streams
+/// every row of an island, and at 64 bytes a row a heap's rows stay in the core's cache (in
+/// double they did not, and the sweeps waited on memory); the impulses themselves add up in double.
 struct Jacobian {
-    dvec3 u{0.0};
-    dvec3 momentA{0.0}, momentB{0.0};
-    dvec3 turnA{0.0}, turnB{0.0};
-    double mass = 0.0; ///< 1 / (1/mA + 1/mB + (rA x u).IA^-1(rA x u) + (rB x u).IB^-1(rB x u))
+    glm::vec3 u{0.0f};
+    glm::vec3 momentA{0.0f}, momentB{0.0f};
+    glm::vec3 turnA{0.0f}, turnB{0.0f};
+    float mass = 0.0f; ///< 1 / (1/mA + 1/mB + (rA x u).IA^-1(rA x u) + (rB x u).IB^-1(rB x u))
 };
 
-/// One contact point's rows, worked out once a step.
+/// What the velocity sweeps read and write of one contact point, and nothing else.
+struct VelocityRows {
+    Jacobian along, across[2]; ///< the normal and the two tangents
+    double normalImpulse = 0.0;
+    double tangentImpulse[2] = {0.0, 0.0};
+    double target = 0.0; ///< the normal speed that closes the start's gap within the step, no more
+};
+
+/// One contact point as the collision pass sees it, worked out once a step (its masses are an
+/// arrival's own rows', found where the point arrives).
 struct PointRows {
     dvec3 rA{0.0}, rB{0.0}; ///< arms from each body's centre to the point, world, at the start
     dvec3 n{0.0};           ///< normal, A to B
@@ -60,10 +71,7 @@ struct PointRows {
     double vnFree = 0.0;     ///< and at the end of the free step
     double vtStart[2] = {0.0, 0.0};
     double vtFree[2] = {0.0, 0.0};
-    double normalImpulse = 0.0;
-    double tangentImpulse[2] = {0.0, 0.0};
     bool bounced = false;
-    Jacobian along, across[2]; ///< the velocity pass's rows: the normal and the two tangents
 };
 
 /// Solves one island's contacts. `contacts` holds every contact of the world; `island` lists
@@ -125,6 +133,7 @@ private:
     SolverSettings m_settings;
     std::vector<Constraint> m_constraints;
     std::vector<PointRows> m_rows;
+    std::vector<VelocityRows> m_velocityRows; ///< the same points', as the sweeps see them
     std::vector<std::uint32_t> m_blows; ///< the collision pass's: per body, the blows it took
     std::vector<std::uint64_t> m_seen;  ///< per contact, its bodies' blows when last looked at
     std::vector<std::uint8_t> m_strikes; ///< per contact, the blows it gave this step
