@@ -34,12 +34,11 @@ double largestSide(const Box& b) { return std::max({b.max.x - b.min.x, b.max.y -
 
 } // namespace
 
-double BroadPhase::cellSize(std::span<const Box> boxes, std::span<const Motion> motion,
-                            std::span<const std::uint8_t> isPoint)
+double BroadPhase::cellSize(std::span<const Box> boxes, std::span<const std::uint8_t> isPoint)
 {
     m_sizes.clear();
     for (std::size_t i = 0; i < boxes.size(); ++i)
-        if (motion[i] != Motion::Static && !isPoint[i])
+        if (!isPoint[i])
             m_sizes.push_back(largestSide(boxes[i]));
     if (m_sizes.empty())
         return 1.0;
@@ -64,7 +63,7 @@ void BroadPhase::fillGrid(std::span<const Box> boxes, std::span<const Motion> mo
                 m_large[i] = 1;
                 m_largeList.push_back(std::uint32_t(i));
             }
-        } else if (motion[i] == Motion::Static || largestSide(boxes[i]) > m_cell) {
+        } else if (largestSide(boxes[i]) > m_cell) {
             m_large[i] = 1;
             m_largeList.push_back(std::uint32_t(i));
         } else {
@@ -156,7 +155,7 @@ void BroadPhase::findPairs(std::span<const Box> boxes, std::span<const Motion> m
     pairs.clear();
     if (boxes.empty())
         return;
-    m_cell = cellSize(boxes, motion, isPoint);
+    m_cell = cellSize(boxes, isPoint);
     fillGrid(boxes, motion, isPoint);
     pairsOfSmall(boxes, motion, isPoint, pairs);
     pairsOfLarge(boxes, motion, isPoint, pairs);

@@ -2,8 +2,10 @@
 // The broad phase: which bodies' boxes overlap, so that the narrow phase looks only at those
 // pairs. A hashed uniform grid (as in Müller's "Ten Minute Physics" hashing): each body of
 // ordinary size goes into the cell of its box's lowest corner, with cells twice as large as the
-// median body, and looks for partners in the cells around it; the few bodies larger than a cell, and
-// the static ones, are tested against every body. A grid suits a pile of like bodies on a floor,
+// median body, and looks for partners in the cells around it; the few bodies larger than a cell
+// (a floor slab, a ramp) are tested against every body. Fixed bodies of ordinary size are in the
+// grid too: a board of 500 pegs would otherwise test every peg against every body, every step.
+// A grid suits a pile of like bodies on a floor,
 // where a sort-and-sweep along one axis would meet every body sharing a slice of the floor.
 // Point bodies (particles: a cloth's thousands, each far smaller than a die) are not put in the
 // grid and do not size its cells: each looks for the bodies around it, never for another point.
@@ -47,7 +49,7 @@ public:
                    std::vector<BodyPair>& pairs);
 
 private:
-    double cellSize(std::span<const Box> boxes, std::span<const Motion> motion, std::span<const std::uint8_t> isPoint);
+    double cellSize(std::span<const Box> boxes, std::span<const std::uint8_t> isPoint);
     void fillGrid(std::span<const Box> boxes, std::span<const Motion> motion, std::span<const std::uint8_t> isPoint);
     void pairsOfSmall(std::span<const Box> boxes, std::span<const Motion> motion, std::span<const std::uint8_t> isPoint,
                       std::vector<BodyPair>& pairs);
