@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "pba/rigid_body.hpp"
 #include "rigid/solver_body.hpp"
@@ -59,6 +60,7 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
     }
     if (m_bodies.empty())
         return;
+    gridFixedBodies();
     m_pushes.resize(members.x.size());
     m_touch.assign(members.x.size(), Touch{});
     for (auto& pushes : m_pushes) // (emptied by each react, but for a step a blow-up cut short)
@@ -71,6 +73,105 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
             m_joined.emplace_back(std::uint32_t(p - members.world.begin()), std::uint32_t(k - m_bodies.begin()));
     }
     std::sort(m_joined.begin(), m_joined.end());
+}
+
+std::int64_t XpbdRigidContacts::cellIndex(double v) const
+{
+    // Held within 2^31 cells: a member blown up (which the step's checks name) may be anywhere.
+    constexpr double kFar = 2147483648.0;
+    const double c = std::floor(v / m_cell);
+    return std::int64_t(c > -kFar ? (c < kFar ? c : kFar) : -kFar);
+}
+
+std::uint32_t XpbdRigidContacts::bucketOf(std::int64_t x, std::int64_t y, std::int64_t z) const
+{
+    const std::uint64_t h = std::uint64_t(x * 92837111) ^ std::uint64_t(y * 689287499) ^ std::uint64_t(z * 283923481);
+    return std::uint32_t(h) & std::uint32_t(m_bucketStart.size() - 2);
+}
+
+void XpbdRigidContacts::gridFixedBodies()
+{
+    m_always.clear();
+    m_gridBodies.clear();
+    m_bucketStart.assign(2, 0);
+    double largestRadius = 0.0;
+    for (const double r : m_radius)
+        largestRadius = std::max(largestRadius, r);
+    // A member at x meets body k only if |x - k's centre| <= its radius + k's reach: a fixed
+    // body is put in every cell its sphere of that size overlaps (and a radius more, for a member
+    // that an earlier body of the same substep put back out of it), cells as wide as the median sphere's
+    // radius: finer cells hand a member fewer bodies to test, at more cells a body.
+    constexpr std::size_t kFew = 8;
+    std::vector<double> reach;
+    for (const Body& b : m_bodies)
+        if (b.inverseMass == 0.0)
+            reach.push_back(b.reach + 2.0 * largestRadius);
+    if (m_bodies.size() <= kFew || reach.empty()) {
+        for (std::size_t k = 0; k < m_bodies.size(); ++k)
+            m_always.push_back(std::uint32_t(k));
+        return;
+    }
+    std::nth_element(reach.begin(), reach.begin() + std::ptrdiff_t(reach.size() / 2), reach.end());
+    m_cell = std::max(reach[reach.size() / 2], 1e-9);
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> cells; // (cell's three indices, body)
+    struct Span {
+        std::int64_t lo[3], hi[3];
+    };
+    std::vector<std::pair<Span, std::uint32_t>> spans;
+    for (std::size_t k = 0; k < m_bodies.size(); ++k) {
+        const Body& b = m_bodies[k];
+        const double r = b.reach + 2.0 * largestRadius;
+        if (b.inverseMass != 0.0 || r > 2.0 * m_cell) { // moving, or over five cells wide
+            m_always.push_back(std::uint32_t(k));
+            continue;
+        }
+        Span s{};
+        for (int a = 0; a < 3; ++a) {
+            s.lo[a] = cellIndex(b.x[a] - r);
+            s.hi[a] = cellIndex(b.x[a] + r);
+        }
+        spans.emplace_back(s, std::uint32_t(k));
+    }
+    std::uint32_t buckets = 2;
+    while (buckets < 2 * 27 * spans.size())
+        buckets <<= 1;
+    m_bucketStart.assign(buckets + 1, 0);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> entries; // (bucket, body), unique
+    for (const auto& [s, k] : spans)
+        for (std::int64_t x = s.lo[0]; x <= s.hi[0]; ++x)
+            for (std::int64_t y = s.lo[1]; y <= s.hi[1]; ++y)
+                for (std::int64_t z = s.lo[2]; z <= s.hi[2]; ++z)
+                    entries.emplace_back(bucketOf(x, y, z), k);
+    std::sort(entries.begin(), entries.end());
+    entries.erase(std::unique(entries.begin(), entries.end()), entries.end());
+    for (const auto& e : entries)
+        ++m_bucketStart[e.first + 1];
+    for (std::uint32_t b = 0; b < buckets; ++b)
+        m_bucketStart[b + 1] += m_bucketStart[b];
+    for (const auto& e : entries)
+        m_gridBodies.push_back(e.second);
+}
+
+template <class F>
+void XpbdRigidContacts::forEachNear(const dvec3& x, F&& f) const
+{
+    // The two lists are each in increasing order: merged, the bodies come as a test of all would
+    // have them, and so do the pushes.
+    const std::uint32_t* a = m_always.data();
+    const std::uint32_t* aEnd = a + m_always.size();
+    const std::uint32_t* g = nullptr;
+    const std::uint32_t* gEnd = nullptr;
+    if (!m_gridBodies.empty()) {
+        const std::uint32_t bucket = bucketOf(cellIndex(x.x), cellIndex(x.y), cellIndex(x.z));
+        g = m_gridBodies.data() + m_bucketStart[bucket];
+        gEnd = m_gridBodies.data() + m_bucketStart[bucket + 1];
+    }
+    while (a != aEnd || g != gEnd) {
+        if (g == gEnd || (a != aEnd && *a < *g))
+            f(*a++);
+        else
+            f(*g++);
+    }
 }
 
 void XpbdRigidContacts::advance(double h)
@@ -93,18 +194,18 @@ void XpbdRigidContacts::keepOut(std::size_t p, const dvec3& start, dvec3& x)
     m_touch[p] = Touch{};
     contact::CollisionShape ball;
     ball.radius = r;
-    for (std::size_t k = 0; k < m_bodies.size(); ++k) {
+    forEachNear(x, [&](std::uint32_t k) {
         const Body& b = m_bodies[k];
         if (!(glm::length(x - b.x) <= r + b.reach) || // (false for a member blown up: the step's checks name it)
-            std::binary_search(m_joined.begin(), m_joined.end(), std::pair(std::uint32_t(p), std::uint32_t(k))))
-            continue;
+            std::binary_search(m_joined.begin(), m_joined.end(), std::pair(std::uint32_t(p), k)))
+            return;
         const contact::Transform at{b.x, glm::mat3_cast(b.q)};
         const contact::Manifold m = contact::collide(ball, contact::Transform{x, dmat3(1.0)}, *b.shape, at, 0.0);
         double depth = 0.0;
         for (int i = 0; i < m.count; ++i)
             depth = std::max(depth, -m.points[std::size_t(i)].separation);
         if (!(depth > 0.0))
-            continue;
+            return;
         // Back on the surface (the normal points from the ball into the body), and its move along
         // it relative to the body's surface in the substep cut by up to mu times the depth.
         const dvec3 before = x;
@@ -115,8 +216,8 @@ void XpbdRigidContacts::keepOut(std::size_t p, const dvec3& start, dvec3& x)
         // The body gave the member m dx / h: it takes the opposite, at the contact point.
         const dvec3 impulse = -m_mass[p] * (x - before) / m_h;
         m_pushes[p].push_back({std::uint32_t(k), impulse, glm::cross(arm, impulse)});
-        m_touch[p] = {std::uint32_t(k), m.normal, arm};
-    }
+        m_touch[p] = {k, m.normal, arm};
+    });
 }
 
 bool XpbdRigidContacts::bounce(std::size_t p, const dvec3& arriving, double resting, dvec3& v)

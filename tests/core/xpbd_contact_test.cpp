@@ -138,3 +138,41 @@ TEST(XpbdContact, TheTrampolineIsTheSameOnOneAndTwoThreads)
         ASSERT_EQ(one.world.body(i).getVel(), two.world.body(i).getVel()) << i;
     }
 }
+
+TEST(XpbdContact, ASheetOnABedOfFixedBlocksNeverEntersOne)
+{
+    // 36 fixed blocks (so XPBD's members look them up in a grid of cells rather than test each):
+    // the sheet falls onto them and drapes between them, and no ball's centre is ever inside one.
+    std::string blocks;
+    for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < 6; ++j)
+            blocks += std::string(blocks.empty() ? "" : ",") + R"({"name": "b)" + std::to_string(6 * i + j) +
+                      R"(", "shape": {"type": "box", "size": [0.1, 0.3, 0.1]}, "density": 500, "fixed": true,
+                       "position": [)" + std::to_string(-0.625 + 0.25 * i) + ", 0.15, " + std::to_string(-0.625 + 0.25 * j) + "]}";
+    const std::string text = R"({"dt": 0.005, "room": {"min": [-2, 0, -2], "max": [2, 2, 2]},
+        "cloths": [{"name": "sheet", "origin": [-0.75, 0.8, -0.75], "across": [1.5, 0, 0], "down": [0, 0, 1.5],
+                    "columns": 16, "rows": 16, "mass": 0.5, "stiffness": {"structural": 300, "shear": 30, "bending": 2},
+                    "damping": 0.05, "integrator": "xpbd", "restitution": 0, "friction": 0.5, "radius": 0.03}],
+        "rigid_bodies": [)" + blocks + "]}";
+    Scene scene = parseScene(text, "bed.json");
+    World& world = scene.world;
+    int resting = 0;
+    for (int step = 0; step < 300; ++step) {
+        world.step(scene.dt);
+        for (std::size_t p = 0; p < world.bodyCount(); ++p) {
+            if (world.isRigid(p))
+                continue;
+            const dvec3 x = world.body(p).getPos();
+            for (std::size_t b = 0; b < world.bodyCount(); ++b) {
+                if (!world.isRigid(b))
+                    continue;
+                const dvec3 d = glm::abs(x - world.body(b).getPos());
+                ASSERT_FALSE(d.x < 0.05 && d.y < 0.15 && d.z < 0.05)
+                    << world.body(p).getName() << " inside " << world.body(b).getName() << " at step " << step;
+            }
+            if (step == 299 && std::abs(x.y - 0.33) < 0.005)
+                ++resting;
+        }
+    }
+    EXPECT_GE(resting, 16) << "the sheet lies on the blocks' tops, a radius above them";
+}
