@@ -60,7 +60,7 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
     }
     if (m_bodies.empty())
         return;
-    gridFixedBodies();
+    sortBodies();
     m_pushes.resize(members.x.size());
     m_touch.assign(members.x.size(), Touch{});
     for (auto& pushes : m_pushes) // (emptied by each react, but for a step a blow-up cut short)
@@ -75,7 +75,7 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
     std::sort(m_joined.begin(), m_joined.end());
 }
 
-std::int64_t XpbdRigidContacts::cellIndex(double v) const
+std::int64_t XpbdRigidContacts::SphereGrid::cellIndex(double v) const
 {
     // Held within 2^31 cells: a member blown up (which the step's checks name) may be anywhere.
     constexpr double kFar = 2147483648.0;
@@ -83,94 +83,131 @@ std::int64_t XpbdRigidContacts::cellIndex(double v) const
     return std::int64_t(c > -kFar ? (c < kFar ? c : kFar) : -kFar);
 }
 
-std::uint32_t XpbdRigidContacts::bucketOf(std::int64_t x, std::int64_t y, std::int64_t z) const
+std::uint32_t XpbdRigidContacts::SphereGrid::bucketOf(std::int64_t x, std::int64_t y, std::int64_t z) const
 {
     const std::uint64_t h = std::uint64_t(x * 92837111) ^ std::uint64_t(y * 689287499) ^ std::uint64_t(z * 283923481);
-    return std::uint32_t(h) & std::uint32_t(m_bucketStart.size() - 2);
+    return std::uint32_t(h) & m_mask;
 }
 
-void XpbdRigidContacts::gridFixedBodies()
+void XpbdRigidContacts::SphereGrid::build(double cell, std::span<const Sphere> spheres)
+{
+    m_cell = cell;
+    std::uint32_t buckets = 2;
+    while (buckets < 2 * 8 * spheres.size())
+        buckets <<= 1;
+    m_mask = buckets - 1;
+    // A counting sort, the spheres taken in order: each bucket's list is in body order, and a
+    // body two of whose cells share a bucket is listed there once.
+    const auto forEachBucket = [&](const Sphere& s, auto&& f) {
+        std::int64_t lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = cellIndex(s.centre[a] - s.radius);
+            hi[a] = cellIndex(s.centre[a] + s.radius);
+        }
+        for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+            for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+                for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+                    f(bucketOf(x, y, z));
+    };
+    constexpr std::uint32_t kNobody = 0xffffffffu;
+    m_start.assign(buckets + 1, 0);
+    m_last.assign(buckets, kNobody);
+    for (const Sphere& s : spheres)
+        forEachBucket(s, [&](std::uint32_t b) {
+            if (m_last[b] != s.body) {
+                m_last[b] = s.body;
+                ++m_start[b + 1];
+            }
+        });
+    for (std::uint32_t b = 0; b < buckets; ++b)
+        m_start[b + 1] += m_start[b];
+    m_bodies.resize(m_start[buckets]);
+    m_last.assign(buckets, kNobody);
+    std::vector<std::uint32_t>& fill = m_fill;
+    fill.assign(m_start.begin(), m_start.end() - 1);
+    for (const Sphere& s : spheres)
+        forEachBucket(s, [&](std::uint32_t b) {
+            if (m_last[b] != s.body) {
+                m_last[b] = s.body;
+                m_bodies[fill[b]++] = s.body;
+            }
+        });
+}
+
+std::span<const std::uint32_t> XpbdRigidContacts::SphereGrid::near(const dvec3& x) const
+{
+    if (m_bodies.empty())
+        return {};
+    const std::uint32_t b = bucketOf(cellIndex(x.x), cellIndex(x.y), cellIndex(x.z));
+    return std::span(m_bodies).subspan(m_start[b], m_start[b + 1] - m_start[b]);
+}
+
+void XpbdRigidContacts::sortBodies()
 {
     m_always.clear();
-    m_gridBodies.clear();
-    m_bucketStart.assign(2, 0);
-    double largestRadius = 0.0;
-    for (const double r : m_radius)
-        largestRadius = std::max(largestRadius, r);
-    // A member at x meets body k only if |x - k's centre| <= its radius + k's reach: a fixed
-    // body is put in every cell its sphere of that size overlaps (and a radius more, for a member
-    // that an earlier body of the same substep put back out of it), cells as wide as the median sphere's
-    // radius: finer cells hand a member fewer bodies to test, at more cells a body.
+    m_moving.clear();
+    m_fixedGrid.clear();
+    m_movingGrid.clear();
+    // A member at x meets body k only if |x - k's centre| <= its radius + k's reach: a body is
+    // listed in every cell its sphere of that size overlaps (and a radius more, for a member that
+    // an earlier body of the same substep put back out of it), cells as wide as the median
+    // sphere's radius (finer cells hand a member fewer bodies to test, at more cells a body).
     constexpr std::size_t kFew = 8;
-    std::vector<double> reach;
-    for (const Body& b : m_bodies)
-        if (b.inverseMass == 0.0)
-            reach.push_back(b.reach + 2.0 * largestRadius);
-    if (m_bodies.size() <= kFew || reach.empty()) {
+    if (m_bodies.size() <= kFew) {
         for (std::size_t k = 0; k < m_bodies.size(); ++k)
             m_always.push_back(std::uint32_t(k));
         return;
     }
+    double largestRadius = 0.0;
+    for (const double r : m_radius)
+        largestRadius = std::max(largestRadius, r);
+    std::vector<double> reach;
+    for (const Body& b : m_bodies)
+        reach.push_back(b.reach + 2.0 * largestRadius);
     std::nth_element(reach.begin(), reach.begin() + std::ptrdiff_t(reach.size() / 2), reach.end());
     m_cell = std::max(reach[reach.size() / 2], 1e-9);
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> cells; // (cell's three indices, body)
-    struct Span {
-        std::int64_t lo[3], hi[3];
-    };
-    std::vector<std::pair<Span, std::uint32_t>> spans;
+    m_spheres.clear();
     for (std::size_t k = 0; k < m_bodies.size(); ++k) {
         const Body& b = m_bodies[k];
         const double r = b.reach + 2.0 * largestRadius;
-        if (b.inverseMass != 0.0 || r > 2.0 * m_cell) { // moving, or over five cells wide
+        if (r > 2.0 * m_cell) // over five cells wide
             m_always.push_back(std::uint32_t(k));
-            continue;
-        }
-        Span s{};
-        for (int a = 0; a < 3; ++a) {
-            s.lo[a] = cellIndex(b.x[a] - r);
-            s.hi[a] = cellIndex(b.x[a] + r);
-        }
-        spans.emplace_back(s, std::uint32_t(k));
+        else if (b.inverseMass != 0.0)
+            m_moving.push_back(std::uint32_t(k));
+        else
+            m_spheres.push_back({std::uint32_t(k), b.x, r});
     }
-    std::uint32_t buckets = 2;
-    while (buckets < 2 * 27 * spans.size())
-        buckets <<= 1;
-    m_bucketStart.assign(buckets + 1, 0);
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> entries; // (bucket, body), unique
-    for (const auto& [s, k] : spans)
-        for (std::int64_t x = s.lo[0]; x <= s.hi[0]; ++x)
-            for (std::int64_t y = s.lo[1]; y <= s.hi[1]; ++y)
-                for (std::int64_t z = s.lo[2]; z <= s.hi[2]; ++z)
-                    entries.emplace_back(bucketOf(x, y, z), k);
-    std::sort(entries.begin(), entries.end());
-    entries.erase(std::unique(entries.begin(), entries.end()), entries.end());
-    for (const auto& e : entries)
-        ++m_bucketStart[e.first + 1];
-    for (std::uint32_t b = 0; b < buckets; ++b)
-        m_bucketStart[b + 1] += m_bucketStart[b];
-    for (const auto& e : entries)
-        m_gridBodies.push_back(e.second);
+    m_fixedGrid.build(m_cell, m_spheres);
+    gridMovingBodies();
+}
+
+void XpbdRigidContacts::gridMovingBodies()
+{
+    if (m_moving.empty())
+        return;
+    double largestRadius = 0.0;
+    for (const double r : m_radius)
+        largestRadius = std::max(largestRadius, r);
+    m_spheres.clear();
+    for (const std::uint32_t k : m_moving)
+        m_spheres.push_back({k, m_bodies[k].x, m_bodies[k].reach + 2.0 * largestRadius});
+    m_movingGrid.build(m_cell, m_spheres);
 }
 
 template <class F>
 void XpbdRigidContacts::forEachNear(const dvec3& x, F&& f) const
 {
-    // The two lists are each in increasing order: merged, the bodies come as a test of all would
-    // have them, and so do the pushes.
-    const std::uint32_t* a = m_always.data();
-    const std::uint32_t* aEnd = a + m_always.size();
-    const std::uint32_t* g = nullptr;
-    const std::uint32_t* gEnd = nullptr;
-    if (!m_gridBodies.empty()) {
-        const std::uint32_t bucket = bucketOf(cellIndex(x.x), cellIndex(x.y), cellIndex(x.z));
-        g = m_gridBodies.data() + m_bucketStart[bucket];
-        gEnd = m_gridBodies.data() + m_bucketStart[bucket + 1];
-    }
-    while (a != aEnd || g != gEnd) {
-        if (g == gEnd || (a != aEnd && *a < *g))
-            f(*a++);
-        else
-            f(*g++);
+    // Three lists, each in increasing order, merged.
+    std::span<const std::uint32_t> lists[3] = {m_always, m_fixedGrid.near(x), m_movingGrid.near(x)};
+    std::size_t at[3] = {0, 0, 0};
+    for (;;) {
+        int next = -1;
+        for (int l = 0; l < 3; ++l)
+            if (at[l] < lists[l].size() && (next < 0 || lists[l][at[l]] < lists[next][at[next]]))
+                next = l;
+        if (next < 0)
+            return;
+        f(lists[next][at[next]++]);
     }
 }
 
@@ -184,6 +221,7 @@ void XpbdRigidContacts::advance(double h)
         b.x += b.v * h;
         b.q = rigid::turned(b.q, b.spin() * h);
     }
+    gridMovingBodies();
 }
 
 void XpbdRigidContacts::keepOut(std::size_t p, const dvec3& start, dvec3& x)
