@@ -54,13 +54,18 @@ private:
     {
         const std::uint64_t h = std::uint64_t(c.x) * 92837111u ^ std::uint64_t(c.y) * 689287499u ^
                                 std::uint64_t(c.z) * 283923481u;
-        return std::size_t(h % m_buckets);
+        return std::size_t(h & (m_buckets - 1));
     }
 
     template <class X>
     void build(std::size_t n, X& x)
     {
-        const std::size_t buckets = m_buckets = 2 * n;
+        // A power of two at least twice the balls: a bucket is a mask of the hash, where a
+        // remainder was a 64-bit division for each of a ball's 27 cells.
+        std::size_t buckets = 2;
+        while (buckets < 2 * n)
+            buckets <<= 1;
+        m_buckets = buckets;
         m_start.assign(buckets + 1, 0); // one more: bucket b's balls are m_entries[m_start[b], m_start[b + 1])
         m_bucket.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
