@@ -388,6 +388,10 @@ void ContactSolver::warmStart()
             applyAlong(r.across[1], r.tangentImpulse[1], a, b);
         }
     }
+    m_sources.clear();
+    for (const Constraint& c : m_constraints)
+        m_sources.push_back({c.a, c.b, c.friction, c.first, c.count});
+    m_wide.build(m_sources, m_velocityRows, m_bodies, m_oneAtATime);
 }
 
 void ContactSolver::solveFriction(const Constraint& c, SolverBody& a, SolverBody& b)
@@ -424,7 +428,9 @@ void ContactSolver::solveNormal(const Constraint& c, SolverBody& a, SolverBody& 
 bool ContactSolver::solveVelocities()
 {
     m_change = m_largest = 0.0;
-    for (const Constraint& c : m_constraints) {
+    m_wide.sweep(m_bodies, m_change, m_largest);
+    for (const std::uint32_t k : m_oneAtATime) {
+        const Constraint& c = m_constraints[k];
         SolverBody& a = m_bodies[c.a];
         SolverBody& b = m_bodies[c.b];
         solveFriction(c, a, b);
@@ -435,6 +441,7 @@ bool ContactSolver::solveVelocities()
 
 void ContactSolver::storeImpulses()
 {
+    m_wide.storeImpulses(m_velocityRows);
     for (const Constraint& c : m_constraints) {
         Contact& contact = m_contacts[c.contact];
         for (int i = 0; i < c.count; ++i) {

@@ -13,8 +13,9 @@
 //  3. positions: what overlap remains beyond a slop is pushed apart on the poses alone
 //     (non-linear Gauss-Seidel, as Box2D v2.4's position solver), adding no velocity and so no
 //     energy.
-// Every pass visits the island's contacts in their order (by body pair), on one thread: the
-// result depends on nothing else.
+// Every pass visits the island's contacts in their order (by body pair), on one thread, but for
+// the velocity sweeps of a large island, which visit them colour by colour, four at a time
+// (wide_contact_rows.hpp): the result depends on nothing else.
 #include <algorithm>
 #include <span>
 #include <vector>
@@ -22,6 +23,8 @@
 #include "pba/contact_settings.hpp"
 #include "rigid/contact.hpp"
 #include "rigid/solver_body.hpp"
+#include "rigid/velocity_rows.hpp"
+#include "rigid/wide_contact_rows.hpp"
 
 namespace pba::rigid {
 
@@ -36,26 +39,6 @@ struct SolverSettings {
     /// Velocity sweeps: at least contact.velocityIterations, and on while the impulses still
     /// change, up to this many in all.
     int maxVelocityIterations() const { return std::max(contact.velocityIterations, contact.maxVelocityIterations); }
-};
-
-/// What an impulse of 1 along a direction u at a point does, worked out once a step so that a
-/// sweep is dot products and additions: the arms' moments rA x u and rB x u, and what they
-/// turn each body by, IA^-1 (rA x u) and IB^-1 (rB x u). In single precision: a sweep streams
-/// every row of an island, and at 64 bytes a row a heap's rows stay in the core's cache (in
-/// double they did not, and the sweeps waited on memory); the impulses themselves add up in double.
-struct Jacobian {
-    glm::vec3 u{0.0f};
-    glm::vec3 momentA{0.0f}, momentB{0.0f};
-    glm::vec3 turnA{0.0f}, turnB{0.0f};
-    float mass = 0.0f; ///< 1 / (1/mA + 1/mB + (rA x u).IA^-1(rA x u) + (rB x u).IB^-1(rB x u))
-};
-
-/// What the velocity sweeps read and write of one contact point, and nothing else.
-struct VelocityRows {
-    Jacobian along, across[2]; ///< the normal and the two tangents
-    double normalImpulse = 0.0;
-    double tangentImpulse[2] = {0.0, 0.0};
-    double target = 0.0; ///< the normal speed that closes the start's gap within the step, no more
 };
 
 /// One contact point as the collision pass sees it, worked out once a step (its masses are an
@@ -134,6 +117,10 @@ private:
     std::vector<Constraint> m_constraints;
     std::vector<PointRows> m_rows;
     std::vector<VelocityRows> m_velocityRows; ///< the same points', as the sweeps see them
+    /// A large island's sweeps: most contacts four at a time, the rest (m_oneAtATime) after.
+    WideContactRows m_wide;
+    std::vector<WideContactRows::Source> m_sources;
+    std::vector<std::uint32_t> m_oneAtATime; ///< indices into m_constraints, in order
     std::vector<std::uint32_t> m_blows; ///< the collision pass's: per body, the blows it took
     std::vector<std::uint64_t> m_seen;  ///< per contact, its bodies' blows when last looked at
     std::vector<std::uint8_t> m_strikes; ///< per contact, the blows it gave this step

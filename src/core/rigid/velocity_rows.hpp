@@ -1,0 +1,29 @@
+#pragma once
+// One contact point as the velocity sweeps see it: its three rows (the normal and two tangents),
+// their impulses and the normal's target. Private to the core.
+#include <glm/vec3.hpp>
+
+namespace pba::rigid {
+
+/// What an impulse of 1 along a direction u at a point does, worked out once a step so that a
+/// sweep is dot products and additions: the arms' moments rA x u and rB x u, and what they
+/// turn each body by, IA^-1 (rA x u) and IB^-1 (rB x u). In single precision: a sweep streams
+/// every row of an island, and at 64 bytes a row a heap's rows stay in the core's cache (in
+/// double they did not, and the sweeps waited on memory). The impulses add up in double, but in a
+/// large island's wide sweeps, whose arithmetic is single precision throughout.
+struct Jacobian {
+    glm::vec3 u{0.0f};
+    glm::vec3 momentA{0.0f}, momentB{0.0f};
+    glm::vec3 turnA{0.0f}, turnB{0.0f};
+    float mass = 0.0f; ///< 1 / (1/mA + 1/mB + (rA x u).IA^-1(rA x u) + (rB x u).IB^-1(rB x u))
+};
+
+/// What the velocity sweeps read and write of one contact point, and nothing else.
+struct VelocityRows {
+    Jacobian along, across[2]; ///< the normal and the two tangents
+    double normalImpulse = 0.0;
+    double tangentImpulse[2] = {0.0, 0.0};
+    double target = 0.0; ///< the normal speed that closes the start's gap within the step, no more
+};
+
+} // namespace pba::rigid
