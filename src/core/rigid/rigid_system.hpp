@@ -166,7 +166,7 @@ private:
     std::vector<Joint> m_joints;
     std::vector<Link> m_links;
     std::vector<SolverBody> m_solverBodies;
-    std::vector<ContactSolver> m_solvers; ///< one per island being solved (scratch)
+    std::vector<std::uint32_t> m_islandOrder; ///< the islands, largest first
 };
 
 } // namespace pba::rigid
