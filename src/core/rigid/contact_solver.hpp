@@ -72,8 +72,9 @@ public:
     /// jammed heap of dice would pass blows back and forth through every contact until the
     /// sweeps run out (a 10,000-dice pile: 28,000 blows a step, nearly 16 sweeps).
     static constexpr int kHeapStrikes = 2;
-    /// Pass 2: the last step's impulses (of the points that did not bounce), then the sweeps are
-    /// the caller's, interleaved with the joints'.
+    /// Pass 2: the last step's impulses (of the points that did not bounce), and a large
+    /// island's rows packed four contacts to a block; then the sweeps are the caller's,
+    /// interleaved with the joints'.
     void warmStart();
     /// One sweep; true when it changed no impulse by more than a millionth of the largest.
     bool solveVelocities();

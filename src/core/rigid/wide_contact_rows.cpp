@@ -7,8 +7,6 @@ namespace pba::rigid {
 
 namespace {
 
-constexpr int kColours = 24; ///< as Box2D v3's graph: a heap of dice takes eight or nine
-
 Vec4x3 load(const float (&a)[3][4]) { return {Float4::load(a[0]), Float4::load(a[1]), Float4::load(a[2])}; }
 
 /// Lane k of a row of four from one point's row.
@@ -37,8 +35,24 @@ void WideContactRows::build(std::span<const Source> contacts, std::span<const Ve
             leftOver.push_back(c);
         return;
     }
-    // Greedy colouring in the contacts' order: a static body (the floor, a fixed ramp) is never
-    // written, so it may be in every contact of a colour.
+    std::uint32_t start[kColours + 2];
+    colour(contacts, bodies, start);
+    leftOver.assign(m_byColour.begin() + start[kColours], m_byColour.end());
+    for (int c = 0; c < kColours; ++c) {
+        m_order.assign(m_byColour.begin() + start[c], m_byColour.begin() + start[c + 1]);
+        // Like counts together: a block has as many slots as its lane with the most points.
+        std::stable_sort(m_order.begin(), m_order.end(),
+                         [&](std::uint32_t p, std::uint32_t q) { return contacts[p].count > contacts[q].count; });
+        for (std::size_t first = 0; first < m_order.size(); first += 4)
+            pack(contacts, rows, bodies, std::span(m_order).subspan(first, std::min<std::size_t>(4, m_order.size() - first)));
+    }
+}
+
+void WideContactRows::colour(std::span<const Source> contacts, std::span<const SolverBody> bodies,
+                             std::uint32_t (&start)[kColours + 2])
+{
+    // Greedy, in the contacts' order: a static body (the floor, a fixed ramp) is never written,
+    // so it may be in every contact of a colour.
     if (m_used.size() < bodies.size())
         m_used.resize(bodies.size(), 0);
     m_colour.assign(contacts.size(), kColours);
@@ -57,74 +71,69 @@ void WideContactRows::build(std::span<const Source> contacts, std::span<const Ve
     }
     for (const Source& s : contacts)
         m_used[s.a] = m_used[s.b] = 0;
-    // The contacts by colour, each colour's in order (a counting sort).
-    std::uint32_t start[kColours + 2] = {};
-    for (const std::uint8_t colour : m_colour)
-        ++start[colour + 1];
-    for (int colour = 0; colour <= kColours; ++colour)
-        start[colour + 1] += start[colour];
+    // The contacts by colour, each colour's in order (a counting sort); those no colour took last.
+    std::fill(start, start + kColours + 2, 0u);
+    for (const std::uint8_t c : m_colour)
+        ++start[c + 1];
+    for (int c = 0; c <= kColours; ++c)
+        start[c + 1] += start[c];
     m_byColour.resize(contacts.size());
     std::uint32_t fill[kColours + 1];
     std::copy(start, start + kColours + 1, fill);
     for (std::uint32_t c = 0; c < contacts.size(); ++c)
         m_byColour[fill[m_colour[c]]++] = c;
-    leftOver.assign(m_byColour.begin() + start[kColours], m_byColour.end());
-    for (int colour = 0; colour < kColours; ++colour) {
-        m_order.assign(m_byColour.begin() + start[colour], m_byColour.begin() + start[colour + 1]);
-        // Like counts together: a block has as many slots as its lane with the most points.
-        std::stable_sort(m_order.begin(), m_order.end(),
-                         [&](std::uint32_t p, std::uint32_t q) { return contacts[p].count > contacts[q].count; });
-        for (std::size_t first = 0; first < m_order.size(); first += 4) {
-            Block block;
-            block.firstSlot = std::uint32_t(m_slots.size());
-            const std::size_t lanes = std::min<std::size_t>(4, m_order.size() - first);
-            for (std::size_t k = 0; k < lanes; ++k)
-                block.slots = std::max<std::uint32_t>(block.slots, std::uint32_t(contacts[m_order[first + k]].count));
-            m_slots.resize(m_slots.size() + block.slots);
-            alignas(16) float friction[4] = {}, inverseMass[2][4] = {};
-            for (int k = 0; k < 4; ++k) {
-                const Source& s = contacts[m_order[first + (std::size_t(k) < lanes ? std::size_t(k) : 0)]];
-                const bool real = std::size_t(k) < lanes;
-                block.contact[k] = real ? m_order[first + std::size_t(k)] : kNoRow;
-                block.body[0][k] = s.a;
-                block.body[1][k] = s.b;
-                block.moves[0][k] = real && !bodies[s.a].isStatic();
-                block.moves[1][k] = real && !bodies[s.b].isStatic();
-                friction[k] = real ? float(s.friction) : 0.0f;
-                inverseMass[0][k] = real ? float(bodies[s.a].inverseMass) : 0.0f;
-                inverseMass[1][k] = real ? float(bodies[s.b].inverseMass) : 0.0f;
+}
+
+void WideContactRows::pack(std::span<const Source> contacts, std::span<const VelocityRows> rows,
+                           std::span<const SolverBody> bodies, std::span<const std::uint32_t> lanes)
+{
+    Block block;
+    block.firstSlot = std::uint32_t(m_slots.size());
+    for (const std::uint32_t c : lanes)
+        block.slots = std::max(block.slots, std::uint32_t(contacts[c].count));
+    m_slots.resize(m_slots.size() + block.slots);
+    alignas(16) float friction[4] = {}, inverseMass[2][4] = {};
+    for (std::size_t k = 0; k < 4; ++k) {
+        const bool real = k < lanes.size();
+        const Source& s = contacts[lanes[real ? k : 0]]; // an empty lane reads its first lane's bodies
+        block.contact[k] = real ? lanes[k] : kNoRow;
+        block.body[0][k] = s.a;
+        block.body[1][k] = s.b;
+        block.moves[0][k] = real && !bodies[s.a].isStatic();
+        block.moves[1][k] = real && !bodies[s.b].isStatic();
+        friction[k] = real ? float(s.friction) : 0.0f;
+        inverseMass[0][k] = real ? float(bodies[s.a].inverseMass) : 0.0f;
+        inverseMass[1][k] = real ? float(bodies[s.b].inverseMass) : 0.0f;
+    }
+    block.friction = Float4::load(friction);
+    block.inverseMass[0] = Float4::load(inverseMass[0]);
+    block.inverseMass[1] = Float4::load(inverseMass[1]);
+    // An empty lane (or a point a lane's contact lacks) has no mass and no impulse: its rows
+    // change nothing.
+    static const VelocityRows kNone{};
+    for (std::uint32_t i = 0; i < block.slots; ++i) {
+        Slot& slot = m_slots[block.firstSlot + i];
+        for (std::size_t k = 0; k < 4; ++k) {
+            const bool real = k < lanes.size() && int(i) < contacts[lanes[k]].count;
+            const std::uint32_t r = real ? contacts[lanes[k]].first + i : kNoRow;
+            slot.source[k] = r;
+            const VelocityRows& v = real ? rows[r] : kNone;
+            const Jacobian* j[3] = {&v.along, &v.across[0], &v.across[1]};
+            const double impulse[3] = {v.normalImpulse, v.tangentImpulse[0], v.tangentImpulse[1]};
+            for (int row = 0; row < 3; ++row) {
+                WideRow& w = slot.row[row];
+                put(w.u, int(k), j[row]->u);
+                put(w.momentA, int(k), j[row]->momentA);
+                put(w.momentB, int(k), j[row]->momentB);
+                put(w.turnA, int(k), j[row]->turnA);
+                put(w.turnB, int(k), j[row]->turnB);
+                w.mass[k] = j[row]->mass;
+                w.impulse[k] = float(impulse[row]);
             }
-            block.friction = Float4::load(friction);
-            block.inverseMass[0] = Float4::load(inverseMass[0]);
-            block.inverseMass[1] = Float4::load(inverseMass[1]);
-            // An empty lane (or a point a lane's contact lacks) has no mass and no impulse: its
-            // rows change nothing.
-            static const VelocityRows kNone{};
-            for (std::uint32_t i = 0; i < block.slots; ++i) {
-                Slot& slot = m_slots[block.firstSlot + i];
-                for (int k = 0; k < 4; ++k) {
-                    const bool real = std::size_t(k) < lanes && int(i) < contacts[m_order[first + std::size_t(k)]].count;
-                    const std::uint32_t r = real ? contacts[m_order[first + std::size_t(k)]].first + i : kNoRow;
-                    slot.source[k] = r;
-                    const VelocityRows& v = real ? rows[r] : kNone;
-                    const Jacobian* j[3] = {&v.along, &v.across[0], &v.across[1]};
-                    const double impulse[3] = {v.normalImpulse, v.tangentImpulse[0], v.tangentImpulse[1]};
-                    for (int row = 0; row < 3; ++row) {
-                        WideRow& w = slot.row[row];
-                        put(w.u, k, j[row]->u);
-                        put(w.momentA, k, j[row]->momentA);
-                        put(w.momentB, k, j[row]->momentB);
-                        put(w.turnA, k, j[row]->turnA);
-                        put(w.turnB, k, j[row]->turnB);
-                        w.mass[k] = j[row]->mass;
-                        w.impulse[k] = float(impulse[row]);
-                    }
-                    slot.target[k] = float(v.target);
-                }
-            }
-            m_blocks.push_back(block);
+            slot.target[k] = float(v.target);
         }
     }
+    m_blocks.push_back(block);
 }
 
 void WideContactRows::solveFriction(Slot& slot, const Block& block, Vec4x3 (&v)[2], Vec4x3 (&w)[2], Float4& change)

@@ -72,6 +72,14 @@ private:
         Float4 friction, inverseMass[2];
         std::uint32_t firstSlot = 0, slots = 0;
     };
+    static constexpr int kColours = 24; ///< as Box2D v3's graph: a heap of dice takes eight or nine
+    /// Colours the contacts, and lists them colour by colour in m_byColour, colour c's from
+    /// start[c] (kColours: those no colour took).
+    void colour(std::span<const Source> contacts, std::span<const SolverBody> bodies,
+                std::uint32_t (&start)[kColours + 2]);
+    /// One block of up to four contacts of one colour (indices into contacts).
+    void pack(std::span<const Source> contacts, std::span<const VelocityRows> rows, std::span<const SolverBody> bodies,
+              std::span<const std::uint32_t> lanes);
     void solveFriction(Slot& slot, const Block& block, Vec4x3 (&v)[2], Vec4x3 (&w)[2], Float4& change);
     void solveNormal(Slot& slot, const Block& block, Vec4x3 (&v)[2], Vec4x3 (&w)[2], Float4& change,
                      Float4& largest);
