@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <bit>
 
+#include <tbb/parallel_for.h>
+
 namespace pba::rigid {
 
 namespace {
@@ -38,6 +40,7 @@ void WideContactRows::build(std::span<const Source> contacts, std::span<const Ve
     std::uint32_t start[kColours + 2];
     colour(contacts, bodies, start);
     leftOver.assign(m_byColour.begin() + start[kColours], m_byColour.end());
+    m_colourStart.assign(1, 0);
     for (int c = 0; c < kColours; ++c) {
         m_order.assign(m_byColour.begin() + start[c], m_byColour.begin() + start[c + 1]);
         // Like counts together: a block has as many slots as its lane with the most points.
@@ -45,6 +48,7 @@ void WideContactRows::build(std::span<const Source> contacts, std::span<const Ve
                          [&](std::uint32_t p, std::uint32_t q) { return contacts[p].count > contacts[q].count; });
         for (std::size_t first = 0; first < m_order.size(); first += 4)
             pack(contacts, rows, bodies, std::span(m_order).subspan(first, std::min<std::size_t>(4, m_order.size() - first)));
+        m_colourStart.push_back(std::uint32_t(m_blocks.size()));
     }
 }
 
@@ -180,49 +184,76 @@ void WideContactRows::solveNormal(Slot& slot, const Block& block, Vec4x3 (&v)[2]
     next.store(r.impulse);
 }
 
+void WideContactRows::sweepBlock(const Block& block, std::span<SolverBody> bodies, Float4& changed, Float4& most)
+{
+    // The four lanes' bodies, read into floats; only the changes go back, in double.
+    alignas(16) float in[2][6][4];
+    for (int side = 0; side < 2; ++side)
+        for (int k = 0; k < 4; ++k) {
+            const SolverBody& b = bodies[block.body[side][k]];
+            for (int c = 0; c < 3; ++c) {
+                in[side][c][k] = float(b.v[c]);
+                in[side][3 + c][k] = float(b.w[c]);
+            }
+        }
+    Vec4x3 v[2], w[2];
+    for (int side = 0; side < 2; ++side) {
+        v[side] = {Float4::load(in[side][0]), Float4::load(in[side][1]), Float4::load(in[side][2])};
+        w[side] = {Float4::load(in[side][3]), Float4::load(in[side][4]), Float4::load(in[side][5])};
+    }
+    // As one contact at a time: its points' friction, then their normals.
+    for (std::uint32_t i = 0; i < block.slots; ++i)
+        solveFriction(m_slots[block.firstSlot + i], block, v, w, changed);
+    for (std::uint32_t i = 0; i < block.slots; ++i)
+        solveNormal(m_slots[block.firstSlot + i], block, v, w, changed, most);
+    alignas(16) float out[2][6][4];
+    for (int side = 0; side < 2; ++side) {
+        v[side].x.store(out[side][0]);
+        v[side].y.store(out[side][1]);
+        v[side].z.store(out[side][2]);
+        w[side].x.store(out[side][3]);
+        w[side].y.store(out[side][4]);
+        w[side].z.store(out[side][5]);
+    }
+    for (int side = 0; side < 2; ++side)
+        for (int k = 0; k < 4; ++k) {
+            if (!block.moves[side][k])
+                continue;
+            SolverBody& b = bodies[block.body[side][k]];
+            for (int c = 0; c < 3; ++c) {
+                b.v[c] += double(out[side][c][k] - in[side][c][k]);
+                b.w[c] += double(out[side][3 + c][k] - in[side][3 + c][k]);
+            }
+        }
+}
+
 void WideContactRows::sweep(std::span<SolverBody> bodies, double& change, double& largest)
 {
     Float4 changed = Float4::zero(), most = Float4::zero();
-    for (const Block& block : m_blocks) {
-        // The four lanes' bodies, read into floats; only the changes go back, in double.
-        alignas(16) float in[2][6][4];
-        for (int side = 0; side < 2; ++side)
-            for (int k = 0; k < 4; ++k) {
-                const SolverBody& b = bodies[block.body[side][k]];
-                for (int c = 0; c < 3; ++c) {
-                    in[side][c][k] = float(b.v[c]);
-                    in[side][3 + c][k] = float(b.w[c]);
-                }
+    if (m_blocks.size() < kSharedBlocks) {
+        for (const Block& block : m_blocks)
+            sweepBlock(block, bodies, changed, most);
+    } else {
+        // A huge island's colours each on every core, in fixed chunks: a colour's blocks share no
+        // moving body, so the result is the one sweep's on any number of threads.
+        constexpr std::size_t kChunk = 32;
+        for (std::size_t c = 0; c + 1 < m_colourStart.size(); ++c) {
+            const std::size_t first = m_colourStart[c], end = m_colourStart[c + 1];
+            const std::size_t chunks = (end - first + kChunk - 1) / kChunk;
+            m_chunkChange.resize(2 * chunks);
+            tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t chunk) {
+                Float4 chunkChanged = Float4::zero(), chunkMost = Float4::zero();
+                const std::size_t stop = std::min(end, first + (chunk + 1) * kChunk);
+                for (std::size_t b = first + chunk * kChunk; b < stop; ++b)
+                    sweepBlock(m_blocks[b], bodies, chunkChanged, chunkMost);
+                m_chunkChange[2 * chunk] = chunkChanged;
+                m_chunkChange[2 * chunk + 1] = chunkMost;
+            });
+            for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
+                changed = max(changed, m_chunkChange[2 * chunk]);
+                most = max(most, m_chunkChange[2 * chunk + 1]);
             }
-        Vec4x3 v[2], w[2];
-        for (int side = 0; side < 2; ++side) {
-            v[side] = {Float4::load(in[side][0]), Float4::load(in[side][1]), Float4::load(in[side][2])};
-            w[side] = {Float4::load(in[side][3]), Float4::load(in[side][4]), Float4::load(in[side][5])};
         }
-        // As one contact at a time: its points' friction, then their normals.
-        for (std::uint32_t i = 0; i < block.slots; ++i)
-            solveFriction(m_slots[block.firstSlot + i], block, v, w, changed);
-        for (std::uint32_t i = 0; i < block.slots; ++i)
-            solveNormal(m_slots[block.firstSlot + i], block, v, w, changed, most);
-        alignas(16) float out[2][6][4];
-        for (int side = 0; side < 2; ++side) {
-            v[side].x.store(out[side][0]);
-            v[side].y.store(out[side][1]);
-            v[side].z.store(out[side][2]);
-            w[side].x.store(out[side][3]);
-            w[side].y.store(out[side][4]);
-            w[side].z.store(out[side][5]);
-        }
-        for (int side = 0; side < 2; ++side)
-            for (int k = 0; k < 4; ++k) {
-                if (!block.moves[side][k])
-                    continue;
-                SolverBody& b = bodies[block.body[side][k]];
-                for (int c = 0; c < 3; ++c) {
-                    b.v[c] += double(out[side][c][k] - in[side][c][k]);
-                    b.w[c] += double(out[side][3 + c][k] - in[side][3 + c][k]);
-                }
-            }
     }
     alignas(16) float c[4], l[4];
     changed.store(c);

@@ -32,6 +32,9 @@ public:
     };
     /// Islands with fewer contacts are swept one contact at a time: too few for full blocks.
     static constexpr std::size_t kFewest = 64;
+    /// Islands of more blocks sweep each colour on every core (a 10,000-dice heap's: the sync a
+    /// colour costs is small beside its work there, not in a 1,000-dice heap).
+    static constexpr std::size_t kSharedBlocks = 1024;
 
     /// Colours and packs `contacts` (their rows' impulses as they are now, after the warm start);
     /// lists in `leftOver` the indices of those no colour took, in order.
@@ -80,6 +83,7 @@ private:
     /// One block of up to four contacts of one colour (indices into contacts).
     void pack(std::span<const Source> contacts, std::span<const VelocityRows> rows, std::span<const SolverBody> bodies,
               std::span<const std::uint32_t> lanes);
+    void sweepBlock(const Block& block, std::span<SolverBody> bodies, Float4& changed, Float4& most);
     void solveFriction(Slot& slot, const Block& block, Vec4x3 (&v)[2], Vec4x3 (&w)[2], Float4& change);
     void solveNormal(Slot& slot, const Block& block, Vec4x3 (&v)[2], Vec4x3 (&w)[2], Float4& change,
                      Float4& largest);
@@ -89,6 +93,8 @@ private:
     std::vector<std::uint32_t> m_used;   ///< per body, the colours its contacts have taken
     std::vector<std::uint8_t> m_colour;  ///< per contact
     std::vector<std::uint32_t> m_byColour; ///< the contacts, colour by colour
+    std::vector<std::uint32_t> m_colourStart; ///< colour c's blocks: [start[c], start[c + 1])
+    std::vector<Float4> m_chunkChange;        ///< a shared sweep's chunks' largest changes and impulses
     std::vector<std::uint32_t> m_order;    ///< scratch: one colour's contacts
 };
 
