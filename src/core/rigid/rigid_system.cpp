@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
 #include "rigid/room_contacts.hpp"
@@ -611,10 +610,10 @@ void RigidSystem::solve(const dvec3& gravity, double dt)
     settings.dt = dt;
     settings.restingSpeed = 2.0 * glm::length(gravity) * dt;
     settings.contact = m_settings;
-    // The largest island first, each island a task of its own: it starts at once on one core
-    // while the others take the rest (a heap's one island of 800 dice and its few loose dice:
-    // split in index order, a core could solve the heap after a run of small ones while the
-    // other had nothing left). Islands share no moving body: the order changes no result.
+    // The largest island a task of its own, started at once, while the other cores take the rest
+    // (a heap's one island of 800 dice and its few loose dice: in index order a core could solve
+    // the heap after a run of small ones while the other had nothing left). Islands share no
+    // moving body: the order changes no result.
     m_islandOrder.resize(m_islands.count());
     for (std::size_t k = 0; k < m_islandOrder.size(); ++k)
         m_islandOrder[k] = std::uint32_t(k);
@@ -622,13 +621,12 @@ void RigidSystem::solve(const dvec3& gravity, double dt)
         return m_islands.contacts(p).size() + m_islands.links(p).size() >
                m_islands.contacts(q).size() + m_islands.links(q).size();
     });
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, m_islandOrder.size(), 1),
-        [&](const tbb::blocked_range<std::size_t>& r) {
-            for (std::size_t k = r.begin(); k < r.end(); ++k)
-                solveIsland(m_islandOrder[k], settings);
-        },
-        tbb::simple_partitioner());
+    if (!m_islandOrder.empty())
+        tbb::parallel_invoke([&] { solveIsland(m_islandOrder[0], settings); },
+                             [&] {
+                                 tbb::parallel_for(std::size_t(1), m_islandOrder.size(),
+                                                   [&](std::size_t k) { solveIsland(m_islandOrder[k], settings); });
+                             });
     finishBodies();
     updateSleep(dt);
 }

@@ -4,6 +4,7 @@
 #include <bit>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 namespace pba::rigid {
 
@@ -241,13 +242,16 @@ void WideContactRows::sweep(std::span<SolverBody> bodies, double& change, double
             const std::size_t first = m_colourStart[c], end = m_colourStart[c + 1];
             const std::size_t chunks = (end - first + kChunk - 1) / kChunk;
             m_chunkChange.resize(2 * chunks);
-            tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t chunk) {
-                Float4 chunkChanged = Float4::zero(), chunkMost = Float4::zero();
-                const std::size_t stop = std::min(end, first + (chunk + 1) * kChunk);
-                for (std::size_t b = first + chunk * kChunk; b < stop; ++b)
-                    sweepBlock(m_blocks[b], bodies, chunkChanged, chunkMost);
-                m_chunkChange[2 * chunk] = chunkChanged;
-                m_chunkChange[2 * chunk + 1] = chunkMost;
+            // Isolated: a thread waiting here takes no other island's work, whose scratch it holds.
+            tbb::this_task_arena::isolate([&] {
+                tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t chunk) {
+                    Float4 chunkChanged = Float4::zero(), chunkMost = Float4::zero();
+                    const std::size_t stop = std::min(end, first + (chunk + 1) * kChunk);
+                    for (std::size_t b = first + chunk * kChunk; b < stop; ++b)
+                        sweepBlock(m_blocks[b], bodies, chunkChanged, chunkMost);
+                    m_chunkChange[2 * chunk] = chunkChanged;
+                    m_chunkChange[2 * chunk + 1] = chunkMost;
+                });
             });
             for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
                 changed = max(changed, m_chunkChange[2 * chunk]);
