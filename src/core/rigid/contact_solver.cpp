@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 namespace pba::rigid {
 
 namespace {
@@ -155,27 +158,69 @@ bool ContactSolver::collide(int maxStrikes)
         m_blows[c.a] = m_blows[c.b] = 0;
     m_seen.assign(m_constraints.size(), ~std::uint64_t(0));
     m_strikes.assign(m_constraints.size(), 0);
+    // A contact looked at: whether it gave a blow.
+    const auto look = [&](std::size_t k) {
+        const Constraint& c = m_constraints[k];
+        const std::uint64_t blows = (std::uint64_t(m_blows[c.a]) << 32) | m_blows[c.b];
+        if (blows == m_seen[k] || m_strikes[k] >= maxStrikes)
+            return false;
+        m_seen[k] = blows;
+        if (!collideOne(c))
+            return false;
+        ++m_strikes[k];
+        for (const BodyIndex body : {c.a, c.b})
+            if (!m_bodies[body].isStatic()) // a static body never changes (and is shared)
+                ++m_blows[body];
+        return true;
+    };
+    const bool shared = m_constraints.size() >= kSharedCollisions;
+    if (shared) {
+        m_sources.clear();
+        for (const Constraint& c : m_constraints)
+            m_sources.push_back({c.a, c.b, c.friction, c.first, c.count});
+        m_wide.colour(m_sources, m_bodies);
+    }
     bool any = false;
     for (int sweep = 0; sweep < kMaxCollisionSweeps; ++sweep) {
         bool changed = false;
-        for (std::size_t k = 0; k < m_constraints.size(); ++k) {
-            const Constraint& c = m_constraints[k];
-            const std::uint64_t blows = (std::uint64_t(m_blows[c.a]) << 32) | m_blows[c.b];
-            if (blows == m_seen[k] || m_strikes[k] >= maxStrikes)
-                continue;
-            m_seen[k] = blows;
-            if (collideOne(c)) {
-                ++m_strikes[k];
-                m_blows[c.a] += m_bodies[c.a].isStatic() ? 0 : 1; // a static body never changes
-                m_blows[c.b] += m_bodies[c.b].isStatic() ? 0 : 1;
-                changed = true;
-            }
-        }
+        if (shared)
+            changed = collideByColour(look);
+        else
+            for (std::size_t k = 0; k < m_constraints.size(); ++k)
+                changed = look(k) || changed;
         if (!changed)
             break;
         any = true;
     }
     return any;
+}
+
+template <class Look>
+bool ContactSolver::collideByColour(Look& look)
+{
+    // A huge island's sweep colour by colour, each colour's contacts on every core in fixed
+    // chunks: they share no moving body, so the blows are the same on any number of threads.
+    constexpr std::size_t kChunk = 64;
+    bool changed = false;
+    for (int colour = 0; colour < WideContactRows::kColours; ++colour) {
+        const std::span<const std::uint32_t> contacts = m_wide.colourOf(colour);
+        const std::size_t chunks = (contacts.size() + kChunk - 1) / kChunk;
+        m_chunkStruck.assign(chunks, 0);
+        // Isolated: a thread waiting here takes no other island's work, whose scratch it holds.
+        tbb::this_task_arena::isolate([&] {
+            tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t chunk) {
+                const std::size_t end = std::min(contacts.size(), (chunk + 1) * kChunk);
+                for (std::size_t i = chunk * kChunk; i < end; ++i)
+                    if (look(contacts[i]))
+                        m_chunkStruck[chunk] = 1;
+            });
+        });
+        for (const std::uint8_t struck : m_chunkStruck)
+            changed = changed || struck != 0;
+    }
+    for (const std::uint32_t k : m_wide.colourOf(WideContactRows::kColours))
+        changed = look(k) || changed;
+    return changed;
 }
 
 ContactSolver::SurfacePoints ContactSolver::surfacePoints(double radiusA, double radiusB, const ContactPoint& p,

@@ -38,8 +38,8 @@ void WideContactRows::build(std::span<const Source> contacts, std::span<const Ve
             leftOver.push_back(c);
         return;
     }
-    std::uint32_t start[kColours + 2];
-    colour(contacts, bodies, start);
+    colour(contacts, bodies);
+    const std::vector<std::uint32_t>& start = m_colourContacts;
     leftOver.assign(m_byColour.begin() + start[kColours], m_byColour.end());
     m_colourStart.assign(1, 0);
     for (int c = 0; c < kColours; ++c) {
@@ -53,8 +53,7 @@ void WideContactRows::build(std::span<const Source> contacts, std::span<const Ve
     }
 }
 
-void WideContactRows::colour(std::span<const Source> contacts, std::span<const SolverBody> bodies,
-                             std::uint32_t (&start)[kColours + 2])
+void WideContactRows::colour(std::span<const Source> contacts, std::span<const SolverBody> bodies)
 {
     // Greedy, in the contacts' order: a static body (the floor, a fixed ramp) is never written,
     // so it may be in every contact of a colour.
@@ -77,14 +76,15 @@ void WideContactRows::colour(std::span<const Source> contacts, std::span<const S
     for (const Source& s : contacts)
         m_used[s.a] = m_used[s.b] = 0;
     // The contacts by colour, each colour's in order (a counting sort); those no colour took last.
-    std::fill(start, start + kColours + 2, 0u);
+    std::vector<std::uint32_t>& start = m_colourContacts;
+    std::fill(start.begin(), start.end(), 0u);
     for (const std::uint8_t c : m_colour)
         ++start[c + 1];
     for (int c = 0; c <= kColours; ++c)
         start[c + 1] += start[c];
     m_byColour.resize(contacts.size());
     std::uint32_t fill[kColours + 1];
-    std::copy(start, start + kColours + 1, fill);
+    std::copy(start.begin(), start.begin() + kColours + 1, fill);
     for (std::uint32_t c = 0; c < contacts.size(); ++c)
         m_byColour[fill[m_colour[c]]++] = c;
 }

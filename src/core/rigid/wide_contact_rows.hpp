@@ -45,6 +45,15 @@ public:
     /// One sweep over the blocks; the largest change of an impulse and the largest normal
     /// impulse into `change` and `largest`.
     void sweep(std::span<SolverBody> bodies, double& change, double& largest);
+    static constexpr int kColours = 24; ///< as Box2D v3's graph: a heap of dice takes eight or nine
+    /// Colours the contacts so that no moving body is in two of one colour (build does it too);
+    /// colourOf(c) then lists colour c's contacts in order, colourOf(kColours) those no colour took.
+    void colour(std::span<const Source> contacts, std::span<const SolverBody> bodies);
+    std::span<const std::uint32_t> colourOf(int c) const
+    {
+        return std::span(m_byColour).subspan(m_colourContacts[std::size_t(c)],
+                                             m_colourContacts[std::size_t(c) + 1] - m_colourContacts[std::size_t(c)]);
+    }
     /// The impulses back into the rows they came from.
     void storeImpulses(std::span<VelocityRows> rows) const;
     /// The contacts (indices into build's) in the order a sweep visits them, four lanes a block
@@ -75,11 +84,6 @@ private:
         Float4 friction, inverseMass[2];
         std::uint32_t firstSlot = 0, slots = 0;
     };
-    static constexpr int kColours = 24; ///< as Box2D v3's graph: a heap of dice takes eight or nine
-    /// Colours the contacts, and lists them colour by colour in m_byColour, colour c's from
-    /// start[c] (kColours: those no colour took).
-    void colour(std::span<const Source> contacts, std::span<const SolverBody> bodies,
-                std::uint32_t (&start)[kColours + 2]);
     /// One block of up to four contacts of one colour (indices into contacts).
     void pack(std::span<const Source> contacts, std::span<const VelocityRows> rows, std::span<const SolverBody> bodies,
               std::span<const std::uint32_t> lanes);
@@ -93,6 +97,7 @@ private:
     std::vector<std::uint32_t> m_used;   ///< per body, the colours its contacts have taken
     std::vector<std::uint8_t> m_colour;  ///< per contact
     std::vector<std::uint32_t> m_byColour; ///< the contacts, colour by colour
+    std::vector<std::uint32_t> m_colourContacts = std::vector<std::uint32_t>(kColours + 2, 0); ///< colour c's in m_byColour: [c], [c + 1]
     std::vector<std::uint32_t> m_colourStart; ///< colour c's blocks: [start[c], start[c + 1])
     std::vector<Float4> m_chunkChange;        ///< a shared sweep's chunks' largest changes and impulses
     std::vector<std::uint32_t> m_order;    ///< scratch: one colour's contacts
