@@ -161,15 +161,16 @@ void XpbdRigidContacts::sortBodies()
     double largestRadius = 0.0;
     for (const double r : m_radius)
         largestRadius = std::max(largestRadius, r);
+    m_margin = 2.0 * largestRadius;
     std::vector<double> reach;
     for (const Body& b : m_bodies)
-        reach.push_back(b.reach + 2.0 * largestRadius);
+        reach.push_back(b.reach + m_margin);
     std::nth_element(reach.begin(), reach.begin() + std::ptrdiff_t(reach.size() / 2), reach.end());
     m_cell = std::max(reach[reach.size() / 2], 1e-9);
     m_spheres.clear();
     for (std::size_t k = 0; k < m_bodies.size(); ++k) {
         const Body& b = m_bodies[k];
-        const double r = b.reach + 2.0 * largestRadius;
+        const double r = b.reach + m_margin;
         if (r > 2.0 * m_cell) // over five cells wide
             m_always.push_back(std::uint32_t(k));
         else if (b.inverseMass != 0.0)
@@ -177,20 +178,16 @@ void XpbdRigidContacts::sortBodies()
         else
             m_spheres.push_back({std::uint32_t(k), b.x, r});
     }
-    m_fixedGrid.build(m_cell, m_spheres);
-    gridMovingBodies();
+    m_fixedGrid.build(m_cell, m_spheres); // (the moving ones: in each substep's advance)
 }
 
 void XpbdRigidContacts::gridMovingBodies()
 {
     if (m_moving.empty())
         return;
-    double largestRadius = 0.0;
-    for (const double r : m_radius)
-        largestRadius = std::max(largestRadius, r);
     m_spheres.clear();
     for (const std::uint32_t k : m_moving)
-        m_spheres.push_back({k, m_bodies[k].x, m_bodies[k].reach + 2.0 * largestRadius});
+        m_spheres.push_back({k, m_bodies[k].x, m_bodies[k].reach + m_margin});
     m_movingGrid.build(m_cell, m_spheres);
 }
 

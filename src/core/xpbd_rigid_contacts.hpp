@@ -119,6 +119,7 @@ private:
     void forEachNear(const dvec3& x, F&& f) const;
     std::vector<Body> m_bodies;
     double m_cell = 1.0;
+    double m_margin = 0.0; ///< what a body's sphere is grown by: two of the largest member radii
     std::vector<std::uint32_t> m_always;  ///< bodies every member looks at, in order
     std::vector<std::uint32_t> m_moving;  ///< the gridded moving bodies, in order
     SphereGrid m_fixedGrid, m_movingGrid;

@@ -124,6 +124,7 @@ TEST(WideContactRows, SweepAsOneContactAtATimeInTheSameOrderToSinglePrecision)
         Island wide = randomIsland(seed), one = wide;
         WideContactRows rows;
         std::vector<std::uint32_t> leftOver;
+        rows.colour(wide.contacts, wide.bodies);
         rows.build(wide.contacts, wide.rows, wide.bodies, leftOver);
         ASSERT_FALSE(rows.empty());
         std::vector<std::uint32_t> order = rows.order();
@@ -175,6 +176,7 @@ TEST(WideContactRows, AHugeIslandsColoursSweptOnEveryCoreGiveTheSameBitsAsOnOne)
         Island& island = runs[threads - 1];
         WideContactRows rows;
         std::vector<std::uint32_t> leftOver;
+        rows.colour(island.contacts, island.bodies);
         rows.build(island.contacts, island.rows, island.bodies, leftOver);
         ASSERT_GT(rows.order().size(), 4 * WideContactRows::kSharedBlocks);
         std::vector<std::uint32_t> order = rows.order();

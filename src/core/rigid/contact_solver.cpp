@@ -145,6 +145,11 @@ void ContactSolver::prepare(std::span<Contact> contacts, std::span<const std::ui
             m_velocityRows.push_back(v);
         }
     }
+    // The colours a large island's passes go by, once a step.
+    m_sources.clear();
+    for (const Constraint& c : m_constraints)
+        m_sources.push_back({c.a, c.b, c.friction, c.first, c.count});
+    m_wide.colour(m_sources, m_bodies);
 }
 
 bool ContactSolver::collide(int maxStrikes)
@@ -174,12 +179,6 @@ bool ContactSolver::collide(int maxStrikes)
         return true;
     };
     const bool shared = m_constraints.size() >= kSharedCollisions;
-    if (shared) {
-        m_sources.clear();
-        for (const Constraint& c : m_constraints)
-            m_sources.push_back({c.a, c.b, c.friction, c.first, c.count});
-        m_wide.colour(m_sources, m_bodies);
-    }
     bool any = false;
     for (int sweep = 0; sweep < kMaxCollisionSweeps; ++sweep) {
         bool changed = false;
@@ -433,9 +432,6 @@ void ContactSolver::warmStart()
             applyAlong(r.across[1], r.tangentImpulse[1], a, b);
         }
     }
-    m_sources.clear();
-    for (const Constraint& c : m_constraints)
-        m_sources.push_back({c.a, c.b, c.friction, c.first, c.count});
     m_wide.build(m_sources, m_velocityRows, m_bodies, m_oneAtATime);
 }
 

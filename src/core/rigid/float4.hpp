@@ -20,13 +20,6 @@ struct Float4 {
     /// From and to four floats aligned to 16 bytes.
     static Float4 load(const float* p) { return {_mm_load_ps(p)}; }
     void store(float* p) const { _mm_store_ps(p, v); }
-    Float4 with(int lane, float x) const
-    {
-        alignas(16) float t[4];
-        store(t);
-        t[lane] = x;
-        return load(t);
-    }
 };
 inline Float4 operator+(Float4 a, Float4 b) { return {_mm_add_ps(a.v, b.v)}; }
 inline Float4 operator-(Float4 a, Float4 b) { return {_mm_sub_ps(a.v, b.v)}; }
@@ -50,12 +43,6 @@ struct Float4 {
     static Float4 zero() { return all(0.0f); }
     static Float4 load(const float* p) { return {{p[0], p[1], p[2], p[3]}}; }
     void store(float* p) const { std::copy(v, v + 4, p); }
-    Float4 with(int lane, float x) const
-    {
-        Float4 r = *this;
-        r.v[lane] = x;
-        return r;
-    }
 };
 template <class F>
 Float4 eachLane(Float4 a, Float4 b, F f)

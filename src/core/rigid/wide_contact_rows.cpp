@@ -32,13 +32,6 @@ void WideContactRows::build(std::span<const Source> contacts, std::span<const Ve
                             std::span<const SolverBody> bodies, std::vector<std::uint32_t>& leftOver)
 {
     clear();
-    leftOver.clear();
-    if (contacts.size() < kFewest) {
-        for (std::uint32_t c = 0; c < contacts.size(); ++c)
-            leftOver.push_back(c);
-        return;
-    }
-    colour(contacts, bodies);
     const std::vector<std::uint32_t>& start = m_colourContacts;
     leftOver.assign(m_byColour.begin() + start[kColours], m_byColour.end());
     m_colourStart.assign(1, 0);
@@ -55,6 +48,14 @@ void WideContactRows::build(std::span<const Source> contacts, std::span<const Ve
 
 void WideContactRows::colour(std::span<const Source> contacts, std::span<const SolverBody> bodies)
 {
+    if (contacts.size() < kFewest) { // all of them one at a time, in order
+        m_byColour.resize(contacts.size());
+        for (std::uint32_t c = 0; c < contacts.size(); ++c)
+            m_byColour[c] = c;
+        std::fill(m_colourContacts.begin(), m_colourContacts.end() - 1, 0u);
+        m_colourContacts.back() = std::uint32_t(contacts.size());
+        return;
+    }
     // Greedy, in the contacts' order: a static body (the floor, a fixed ramp) is never written,
     // so it may be in every contact of a colour.
     if (m_used.size() < bodies.size())
@@ -101,7 +102,7 @@ void WideContactRows::pack(std::span<const Source> contacts, std::span<const Vel
     for (std::size_t k = 0; k < 4; ++k) {
         const bool real = k < lanes.size();
         const Source& s = contacts[lanes[real ? k : 0]]; // an empty lane reads its first lane's bodies
-        block.contact[k] = real ? lanes[k] : kNoRow;
+        block.contact[k] = real ? lanes[k] : kEmptyLane;
         block.body[0][k] = s.a;
         block.body[1][k] = s.b;
         block.moves[0][k] = real && !bodies[s.a].isStatic();
@@ -120,7 +121,7 @@ void WideContactRows::pack(std::span<const Source> contacts, std::span<const Vel
         Slot& slot = m_slots[block.firstSlot + i];
         for (std::size_t k = 0; k < 4; ++k) {
             const bool real = k < lanes.size() && int(i) < contacts[lanes[k]].count;
-            const std::uint32_t r = real ? contacts[lanes[k]].first + i : kNoRow;
+            const std::uint32_t r = real ? contacts[lanes[k]].first + i : kEmptyLane;
             slot.source[k] = r;
             const VelocityRows& v = real ? rows[r] : kNone;
             const Jacobian* j[3] = {&v.along, &v.across[0], &v.across[1]};
@@ -280,7 +281,7 @@ void WideContactRows::storeImpulses(std::span<VelocityRows> rows) const
 {
     for (const Slot& slot : m_slots) {
         for (int k = 0; k < 4; ++k) {
-            if (slot.source[k] == kNoRow)
+            if (slot.source[k] == kEmptyLane)
                 continue;
             VelocityRows& r = rows[slot.source[k]];
             r.normalImpulse = slot.row[0].impulse[k];

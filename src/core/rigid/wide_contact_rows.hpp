@@ -36,8 +36,8 @@ public:
     /// colour costs is small beside its work there, not in a 1,000-dice heap).
     static constexpr std::size_t kSharedBlocks = 1024;
 
-    /// Colours and packs `contacts` (their rows' impulses as they are now, after the warm start);
-    /// lists in `leftOver` the indices of those no colour took, in order.
+    /// Packs `contacts`, as colour() last coloured them, with their rows' impulses as they are now
+    /// (after the warm start); lists in `leftOver` the indices of those no colour took, in order.
     void build(std::span<const Source> contacts, std::span<const VelocityRows> rows, std::span<const SolverBody> bodies,
                std::vector<std::uint32_t>& leftOver);
     void clear();
@@ -46,8 +46,9 @@ public:
     /// impulse into `change` and `largest`.
     void sweep(std::span<SolverBody> bodies, double& change, double& largest);
     static constexpr int kColours = 24; ///< as Box2D v3's graph: a heap of dice takes eight or nine
-    /// Colours the contacts so that no moving body is in two of one colour (build does it too);
-    /// colourOf(c) then lists colour c's contacts in order, colourOf(kColours) those no colour took.
+    /// Colours the contacts so that no moving body is in two of one colour (fewer than kFewest:
+    /// none, all left over); colourOf(c) then lists colour c's contacts in order, colourOf(kColours)
+    /// those no colour took. Once a step, before the collision pass and build.
     void colour(std::span<const Source> contacts, std::span<const SolverBody> bodies);
     std::span<const std::uint32_t> colourOf(int c) const
     {
@@ -62,7 +63,6 @@ public:
     static constexpr std::uint32_t kEmptyLane = 0xffffffffu;
 
 private:
-    static constexpr std::uint32_t kNoRow = kEmptyLane;
     /// One row of four points (the normal, or a tangent), one a lane: each vector's x, y and z
     /// of the four, as the sweep loads them.
     struct WideRow {
@@ -75,11 +75,11 @@ private:
         Slot() {} // left unset: build writes every lane (zeroing each step's 800 bytes a slot cost more)
         WideRow row[3]; ///< the normal, then the two tangents
         alignas(16) float target[4];
-        std::uint32_t source[4]; ///< each lane's index into the rows, or kNoRow
+        std::uint32_t source[4]; ///< each lane's index into the rows, or kEmptyLane
     };
     struct Block {
         BodyIndex body[2][4]; ///< A's and B's, by lane (an empty lane's: its first lane's)
-        std::uint32_t contact[4]; ///< each lane's index into build's contacts, or kNoRow
+        std::uint32_t contact[4]; ///< each lane's index into build's contacts, or kEmptyLane
         bool moves[2][4];
         Float4 friction, inverseMass[2];
         std::uint32_t firstSlot = 0, slots = 0;
