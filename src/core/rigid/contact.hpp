@@ -27,6 +27,15 @@ struct ContactPoint {
     bool bounced = false; ///< took a restitution impulse this step (not warm-started next)
 };
 
+/// Where B was in A's frame when the narrow phase last ran on a pair of polyhedra, with what it
+/// found: a pair that has hardly moved since carries its points over (carried_manifold.hpp).
+struct PairPose {
+    dvec3 offset{0.0};              ///< B's centre, A's frame
+    dquat turn{1.0, 0.0, 0.0, 0.0}; ///< B's orientation, A's frame
+    dvec3 normal{0.0};              ///< the manifold's normal, A's frame
+    double margin = -1.0;           ///< the margin it looked within; negative: nothing to carry
+};
+
 struct Contact {
     BodyIndex a = 0, b = 0; ///< a < b; b may be a room surface
     double friction = 0.0;
@@ -37,6 +46,7 @@ struct Contact {
     int count = 0;
     std::array<ContactPoint, contact::Manifold::kMaxPoints> points{};
     contact::SatCache sat; ///< the narrow phase's memory of the pair's separating axis
+    PairPose found;
 
     std::uint64_t key() const { return (std::uint64_t(a) << 32) | b; }
 };

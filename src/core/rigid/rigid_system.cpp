@@ -7,6 +7,7 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
+#include "rigid/carried_manifold.hpp"
 #include "rigid/room_contacts.hpp"
 
 namespace pba::rigid {
@@ -194,24 +195,33 @@ void RigidSystem::collidePairs()
         c.b = pair.b;
         if (joinedPoint(pair.a, pair.b) || m_material[pair.a].metInSubsteps || m_material[pair.b].metInSubsteps)
             return; // no points
-        if (const Contact* old = m_cache.previous(c.key()))
+        const Contact* old = m_cache.previous(c.key());
+        if (old)
             c.sat = old->sat;
         const RigidState& a = m_start[pair.a];
         const RigidState& b = m_start[pair.b];
-        const Transform ta{a.x, glm::mat3_cast(a.rotation.orientation)};
-        const Transform tb{b.x, glm::mat3_cast(b.rotation.orientation)};
+        const dquat& qa = a.rotation.orientation;
+        const dquat& qb = b.rotation.orientation;
+        const Transform ta{a.x, glm::mat3_cast(qa)};
+        const Transform tb{b.x, glm::mat3_cast(qb)};
         const double margin = m_reach[pair.a] + m_reach[pair.b] + m_settings.contactMargin;
-        const contact::Manifold m = contact::collide(*m_material[pair.a].shape, ta, *m_material[pair.b].shape, tb,
-                                                     margin, &c.sat);
-        c.count = m.count;
-        for (int i = 0; i < m.count; ++i) {
-            ContactPoint& q = c.points[i];
-            q.normal = m.normal;
-            q.anchorA = m.points[i].anchorA;
-            q.anchorB = m.points[i].anchorB;
-            q.point = m.points[i].point;
-            q.separation = m.points[i].separation;
-            q.id = m.points[i].id;
+        const CollisionShape& shapeB = *m_material[pair.b].shape;
+        if (!old || !carryManifold(*old, ta, qa, tb, qb, shapeB.boundingRadius(), margin, c)) {
+            const CollisionShape& shapeA = *m_material[pair.a].shape;
+            const contact::Manifold m = contact::collide(shapeA, ta, shapeB, tb, margin, &c.sat);
+            c.count = m.count;
+            for (int i = 0; i < m.count; ++i) {
+                ContactPoint& q = c.points[i];
+                q.normal = m.normal;
+                q.anchorA = m.points[i].anchorA;
+                q.anchorB = m.points[i].anchorB;
+                q.point = m.points[i].point;
+                q.separation = m.points[i].separation;
+                q.id = m.points[i].id;
+            }
+            if (m.count > 0 && shapeA.kind == CollisionShape::Kind::Polyhedron &&
+                shapeB.kind == CollisionShape::Kind::Polyhedron)
+                c.found = pairPose(ta, qa, b.x, qb, m.normal, margin);
         }
         c.radiusA = sphereRadius(*m_material[pair.a].shape);
         c.radiusB = sphereRadius(*m_material[pair.b].shape);
@@ -469,25 +479,28 @@ void RigidSystem::pairsAtEnd(std::span<const std::uint32_t> contacts, std::vecto
             continue;
         const SolverBody& a = m_solverBodies[c.a];
         const SolverBody& b = m_solverBodies[c.b];
-        contact::SatCache sat = c.sat;
-        const contact::Manifold m =
-            contact::collide(*m_material[c.a].shape, Transform{a.endPosition, glm::mat3_cast(a.endOrientation)},
-                             *m_material[c.b].shape, Transform{b.endPosition, glm::mat3_cast(b.endOrientation)},
-                             kPositionMargin, &sat);
-        if (m.count == 0)
-            continue;
+        const Transform ta{a.endPosition, glm::mat3_cast(a.endOrientation)};
+        const Transform tb{b.endPosition, glm::mat3_cast(b.endOrientation)};
         Contact& e = out.emplace_back();
         e.a = c.a;
         e.b = c.b;
         e.radiusA = c.radiusA;
         e.radiusB = c.radiusB;
-        e.count = m.count;
-        for (int i = 0; i < m.count; ++i) {
-            e.points[i].normal = m.normal;
-            e.points[i].anchorA = m.points[i].anchorA;
-            e.points[i].anchorB = m.points[i].anchorB;
-            e.points[i].separation = m.points[i].separation;
+        const CollisionShape& shapeB = *m_material[c.b].shape;
+        if (!carryManifold(c, ta, a.endOrientation, tb, b.endOrientation, shapeB.boundingRadius(), kPositionMargin,
+                           e)) {
+            contact::SatCache sat = c.sat;
+            const contact::Manifold m = contact::collide(*m_material[c.a].shape, ta, shapeB, tb, kPositionMargin, &sat);
+            e.count = m.count;
+            for (int i = 0; i < m.count; ++i) {
+                e.points[i].normal = m.normal;
+                e.points[i].anchorA = m.points[i].anchorA;
+                e.points[i].anchorB = m.points[i].anchorB;
+                e.points[i].separation = m.points[i].separation;
+            }
         }
+        if (e.count == 0)
+            out.pop_back();
     }
 }
 
