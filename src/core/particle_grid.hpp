@@ -17,6 +17,7 @@
 
 #include "parallel.hpp"
 #include "pba/math.hpp"
+#include "spatial_hash.hpp"
 
 namespace pba::detail {
 
@@ -41,38 +42,20 @@ public:
     }
 
 private:
-    struct Cell {
-        std::int64_t x, y, z;
-    };
-    Cell cellOf(const dvec3& p) const
-    {
-        return {std::int64_t(std::floor(p.x / m_spacing)), std::int64_t(std::floor(p.y / m_spacing)),
-                std::int64_t(std::floor(p.z / m_spacing))};
-    }
-    /// Large odd multipliers spread neighbouring cells over the table; XOR mixes the three.
-    std::size_t bucketOf(const Cell& c) const
-    {
-        const std::uint64_t h = std::uint64_t(c.x) * 92837111u ^ std::uint64_t(c.y) * 689287499u ^
-                                std::uint64_t(c.z) * 283923481u;
-        return std::size_t(h & (m_buckets - 1));
-    }
-
     template <class X>
     void build(std::size_t n, X& x)
     {
         // A power of two at least twice the balls: a bucket is a mask of the hash, where a
         // remainder was a 64-bit division for each of a ball's 27 cells.
-        std::size_t buckets = 2;
-        while (buckets < 2 * n)
-            buckets <<= 1;
-        m_buckets = buckets;
+        const std::uint32_t buckets = bucketsFor(2 * n);
+        m_mask = buckets - 1;
         m_start.assign(buckets + 1, 0); // one more: bucket b's balls are m_entries[m_start[b], m_start[b + 1])
         m_bucket.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
-            m_bucket[i] = std::uint32_t(bucketOf(cellOf(x(i))));
+            m_bucket[i] = bucketOf(cellOf(x(i), m_spacing), m_mask);
             ++m_start[m_bucket[i] + 1];
         }
-        for (std::size_t b = 0; b < buckets; ++b)
+        for (std::uint32_t b = 0; b < buckets; ++b)
             m_start[b + 1] += m_start[b];
         m_entries.resize(n);
         std::vector<std::uint32_t> fill(m_start.begin(), m_start.end() - 1);
@@ -86,11 +69,11 @@ private:
         std::vector<std::uint32_t>& near = m_near[i];
         near.clear();
         const dvec3 p = x(i);
-        const Cell c = cellOf(p);
+        const GridCell c = cellOf(p, m_spacing);
         for (std::int64_t dx = -1; dx <= 1; ++dx)
             for (std::int64_t dy = -1; dy <= 1; ++dy)
                 for (std::int64_t dz = -1; dz <= 1; ++dz) {
-                    const std::size_t b = bucketOf({c.x + dx, c.y + dy, c.z + dz});
+                    const std::uint32_t b = bucketOf({c.x + dx, c.y + dy, c.z + dz}, m_mask);
                     for (std::size_t e = m_start[b]; e < m_start[b + 1]; ++e) {
                         const std::uint32_t j = m_entries[e];
                         const double reach = radius(i) + radius(j);
@@ -105,7 +88,7 @@ private:
     }
 
     double m_spacing = 1.0;
-    std::size_t m_buckets = 1;
+    std::uint32_t m_mask = 0;
     std::vector<std::size_t> m_start;
     std::vector<std::uint32_t> m_bucket, m_entries;
     std::vector<std::vector<std::uint32_t>> m_near;

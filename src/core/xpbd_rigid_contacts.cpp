@@ -6,6 +6,7 @@
 
 #include "pba/rigid_body.hpp"
 #include "rigid/solver_body.hpp"
+#include "spatial_hash.hpp"
 
 namespace pba::detail {
 
@@ -75,39 +76,23 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
     std::sort(m_joined.begin(), m_joined.end());
 }
 
-std::int64_t XpbdRigidContacts::SphereGrid::cellIndex(double v) const
-{
-    // Held within 2^31 cells: a member blown up (which the step's checks name) may be anywhere.
-    constexpr double kFar = 2147483648.0;
-    const double c = std::floor(v / m_cell);
-    return std::int64_t(c > -kFar ? (c < kFar ? c : kFar) : -kFar);
-}
-
-std::uint32_t XpbdRigidContacts::SphereGrid::bucketOf(std::int64_t x, std::int64_t y, std::int64_t z) const
-{
-    const std::uint64_t h = std::uint64_t(x * 92837111) ^ std::uint64_t(y * 689287499) ^ std::uint64_t(z * 283923481);
-    return std::uint32_t(h) & m_mask;
-}
-
 void XpbdRigidContacts::SphereGrid::build(double cell, std::span<const Sphere> spheres)
 {
     m_cell = cell;
-    std::uint32_t buckets = 2;
-    while (buckets < 2 * 8 * spheres.size())
-        buckets <<= 1;
+    const std::uint32_t buckets = detail::bucketsFor(2 * 8 * spheres.size());
     m_mask = buckets - 1;
     // A counting sort, the spheres taken in order: each bucket's list is in body order, and a
     // body two of whose cells share a bucket is listed there once.
     const auto forEachBucket = [&](const Sphere& s, auto&& f) {
         std::int64_t lo[3], hi[3];
         for (int a = 0; a < 3; ++a) {
-            lo[a] = cellIndex(s.centre[a] - s.radius);
-            hi[a] = cellIndex(s.centre[a] + s.radius);
+            lo[a] = detail::cellIndex(s.centre[a] - s.radius, m_cell);
+            hi[a] = detail::cellIndex(s.centre[a] + s.radius, m_cell);
         }
         for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
             for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
                 for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
-                    f(bucketOf(x, y, z));
+                    f(detail::bucketOf({x, y, z}, m_mask));
     };
     constexpr std::uint32_t kNobody = 0xffffffffu;
     m_start.assign(buckets + 1, 0);
@@ -138,7 +123,7 @@ std::span<const std::uint32_t> XpbdRigidContacts::SphereGrid::near(const dvec3& 
 {
     if (m_bodies.empty())
         return {};
-    const std::uint32_t b = bucketOf(cellIndex(x.x), cellIndex(x.y), cellIndex(x.z));
+    const std::uint32_t b = detail::bucketOf(detail::cellOf(x, m_cell), m_mask);
     return std::span(m_bodies).subspan(m_start[b], m_start[b + 1] - m_start[b]);
 }
 

@@ -99,8 +99,6 @@ private:
         std::span<const std::uint32_t> near(const dvec3& x) const;
 
     private:
-        std::int64_t cellIndex(double v) const;
-        std::uint32_t bucketOf(std::int64_t x, std::int64_t y, std::int64_t z) const;
         double m_cell = 1.0;
         std::uint32_t m_mask = 0;
         std::vector<std::uint32_t> m_start;  ///< bucket b's bodies: m_bodies[start[b], start[b + 1])

@@ -11,25 +11,6 @@ namespace {
 
 using Cell = BroadPhase::Cell;
 
-/// A coordinate's cell, held within 2^31 cells of the origin: a body blowing up (which the
-/// step's own checks report) may reach 1e19 m or NaN, which no integer holds, and the hash's
-/// products of a held index cannot overflow.
-std::int64_t cellIndex(double v, double size)
-{
-    constexpr double kFar = 2147483648.0;
-    const double c = std::floor(v / size);
-    return std::int64_t(c > -kFar ? (c < kFar ? c : kFar) : -kFar); // NaN too goes to -kFar
-}
-
-Cell cellOf(const dvec3& p, double size) { return {cellIndex(p.x, size), cellIndex(p.y, size), cellIndex(p.z, size)}; }
-
-std::uint32_t hashOf(const Cell& c, std::uint32_t mask)
-{
-    // Teschner et al.'s spatial hash (the primes Ten Minute Physics uses).
-    const std::uint64_t h = std::uint64_t(c.x * 92837111) ^ std::uint64_t(c.y * 689287499) ^ std::uint64_t(c.z * 283923481);
-    return std::uint32_t(h) & mask;
-}
-
 double largestSide(const Box& b) { return std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z}); }
 
 } // namespace
@@ -72,23 +53,21 @@ void BroadPhase::fillGrid(std::span<const Box> boxes, std::span<const Motion> mo
     }
     m_cells.resize(n);
     for (std::size_t i = 0; i < n; ++i)
-        m_cells[i] = cellOf(boxes[i].min, m_cell);
-    std::uint32_t buckets = 1;
-    while (buckets < 2 * small)
-        buckets <<= 1;
+        m_cells[i] = detail::cellOf(boxes[i].min, m_cell);
+    const std::uint32_t buckets = detail::bucketsFor(2 * small);
     const std::uint32_t mask = buckets - 1;
     // A counting sort into buckets: the bodies of a bucket stay in index order.
     m_bucketStart.assign(buckets + 1, 0);
     for (std::size_t i = 0; i < n; ++i)
         if (!m_large[i] && !isPoint[i])
-            ++m_bucketStart[hashOf(m_cells[i], mask) + 1];
+            ++m_bucketStart[detail::bucketOf(m_cells[i], mask) + 1];
     for (std::uint32_t k = 0; k < buckets; ++k)
         m_bucketStart[k + 1] += m_bucketStart[k];
     m_entries.resize(small);
     std::vector<std::uint32_t> next(m_bucketStart.begin(), m_bucketStart.end() - 1);
     for (std::size_t i = 0; i < n; ++i)
         if (!m_large[i] && !isPoint[i])
-            m_entries[next[hashOf(m_cells[i], mask)]++] = std::uint32_t(i);
+            m_entries[next[detail::bucketOf(m_cells[i], mask)]++] = std::uint32_t(i);
 }
 
 void BroadPhase::pairsOfSmall(std::span<const Box> boxes, std::span<const Motion> motion,
@@ -110,12 +89,12 @@ void BroadPhase::pairsOfSmall(std::span<const Box> boxes, std::span<const Motion
                 continue;
             // A partner no larger than a cell has its lowest corner within a cell below this
             // box's lowest corner and no further than its highest.
-            const Cell lo = cellOf(boxes[i].min - m_cell, m_cell), hi = cellOf(boxes[i].max, m_cell);
+            const Cell lo = detail::cellOf(boxes[i].min - m_cell, m_cell), hi = detail::cellOf(boxes[i].max, m_cell);
             for (std::int64_t x = lo.x; x <= hi.x; ++x)
                 for (std::int64_t y = lo.y; y <= hi.y; ++y)
                     for (std::int64_t z = lo.z; z <= hi.z; ++z) {
                         const Cell cell{x, y, z};
-                        const std::uint32_t h = hashOf(cell, mask);
+                        const std::uint32_t h = detail::bucketOf(cell, mask);
                         for (std::uint32_t e = m_bucketStart[h]; e < m_bucketStart[h + 1]; ++e) {
                             const std::uint32_t j = m_entries[e];
                             // Two awake bodies: once, from the first (a point is never in the

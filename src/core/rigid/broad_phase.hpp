@@ -15,6 +15,7 @@
 
 #include "pba/math.hpp"
 #include "rigid/contact.hpp"
+#include "spatial_hash.hpp"
 
 namespace pba::rigid {
 
@@ -38,10 +39,7 @@ struct BodyPair {
 
 class BroadPhase {
 public:
-    struct Cell {
-        std::int64_t x = 0, y = 0, z = 0;
-        friend bool operator==(const Cell&, const Cell&) = default;
-    };
+    using Cell = detail::GridCell;
 
     /// The pairs whose boxes overlap and of which at least one body is awake, in increasing
     /// order (the same whatever the thread count); no pair of two points (isPoint, per body).
