@@ -5,6 +5,8 @@
 // hands the end states to collideAndStore.
 #include "pba/world.hpp"
 
+#include <algorithm>
+
 #include "collision_rules.hpp"
 #include "grain_contacts.hpp"
 #include "parallel.hpp"
@@ -221,20 +223,19 @@ void World::holdOnBalls(const std::vector<std::size_t>& members, std::span<dvec3
         return;
     const dvec3 up = -g / glm::length(g);
     const CoupledScratch& s = m_particleSystems.scratch;
-    std::vector<std::int64_t> place(m_bodies.objects.size(), -1); // each body's place among the members
-    for (std::size_t k = 0; k < members.size(); ++k)
-        place[members[k]] = std::int64_t(k);
-    const auto stateOf = [&](std::size_t i) {
-        return place[i] >= 0 ? State{s.x[std::size_t(place[i])], s.v[std::size_t(place[i])]} : m_bodies.previous[i];
+    // A body's place among the members (listed in increasing order), or members.size().
+    const auto placeOf = [&](std::size_t i) {
+        const auto it = std::lower_bound(members.begin(), members.end(), i);
+        return it != members.end() && *it == i ? std::size_t(it - members.begin()) : members.size();
     };
     for (const auto& [a, b] : contacts.pairs)
         for (const auto& [upper, lower] : {std::pair(contacts.bodies[a], contacts.bodies[b]),
                                            std::pair(contacts.bodies[b], contacts.bodies[a])}) {
-            if (upper >= place.size() || lower >= place.size() || place[upper] < 0 ||
-                heldOn[std::size_t(place[upper])] != dvec3(0.0))
-                continue; // (a body the world no longer has, one of another system, or one held)
-            const std::size_t k = std::size_t(place[upper]);
-            const State below = stateOf(lower);
+            const std::size_t k = placeOf(upper);
+            if (k == members.size() || lower >= m_bodies.objects.size() || heldOn[k] != dvec3(0.0))
+                continue; // (one of another system, a body the world no longer has, or one held)
+            const std::size_t j = placeOf(lower);
+            const State below = j < members.size() ? State{s.x[j], s.v[j]} : m_bodies.previous[lower];
             const dvec3 d = s.x[k] - below.pos;
             const double distance = glm::length(d), reach = 2.0 * glm::length(s.acc[k]) * dt;
             if (!(distance > 0.0) || distance > kBallsHeldWithin * (m_bodies.radii[upper] + m_bodies.radii[lower]))
