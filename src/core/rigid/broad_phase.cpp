@@ -67,7 +67,8 @@ void BroadPhase::fillGrid(std::span<const Box> boxes, std::span<const Motion> mo
     std::vector<std::uint32_t> next(m_bucketStart.begin(), m_bucketStart.end() - 1);
     for (std::size_t i = 0; i < n; ++i)
         if (!m_large[i] && !isPoint[i])
-            m_entries[next[detail::bucketOf(m_cells[i], mask)]++] = std::uint32_t(i);
+            m_entries[next[detail::bucketOf(m_cells[i], mask)]++] =
+                Entry{boxes[i], m_cells[i], std::uint32_t(i), motion[i] == Motion::Awake};
 }
 
 void BroadPhase::pairsOfSmall(std::span<const Box> boxes, std::span<const Motion> motion,
@@ -96,13 +97,14 @@ void BroadPhase::pairsOfSmall(std::span<const Box> boxes, std::span<const Motion
                         const Cell cell{x, y, z};
                         const std::uint32_t h = detail::bucketOf(cell, mask);
                         for (std::uint32_t e = m_bucketStart[h]; e < m_bucketStart[h + 1]; ++e) {
-                            const std::uint32_t j = m_entries[e];
+                            const Entry& entry = m_entries[e];
+                            const std::uint32_t j = entry.body;
                             // Two awake bodies: once, from the first (a point is never in the
                             // grid, so it finds every partner itself).
-                            if (j == i || (j < i && motion[j] == Motion::Awake && !isPoint[i]))
+                            if (j == i || (j < i && entry.awake && !isPoint[i]))
                                 continue;
                             // Another cell of the same bucket would find j twice.
-                            if (m_cells[j] == cell && boxes[i].overlaps(boxes[j]))
+                            if (entry.cell == cell && boxes[i].overlaps(entry.box))
                                 out.push_back({BodyIndex(std::min<std::size_t>(i, j)), BodyIndex(std::max<std::size_t>(i, j))});
                         }
                     }

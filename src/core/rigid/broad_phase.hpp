@@ -58,7 +58,15 @@ private:
     std::vector<std::uint8_t> m_large;        ///< per body: tested against every body
     std::vector<std::uint32_t> m_largeList;
     std::vector<std::uint32_t> m_bucketStart; ///< the hash table: bucket k holds m_entries[start[k], start[k+1])
-    std::vector<std::uint32_t> m_entries;
+    /// A body in the grid, with what a partner's test reads of it: a bucket's bodies are read in
+    /// a row instead of each through three lists.
+    struct Entry {
+        Box box;
+        Cell cell;
+        std::uint32_t body = 0;
+        bool awake = false;
+    };
+    std::vector<Entry> m_entries;
     std::vector<double> m_sizes;
     std::vector<Cell> m_cells; ///< each body's: the cell of its box's lowest corner
     std::vector<std::vector<BodyPair>> m_chunks;

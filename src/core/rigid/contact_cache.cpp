@@ -11,7 +11,22 @@ void ContactCache::beginStep()
     m_previousKeys.resize(m_previous.size());
     for (std::size_t k = 0; k < m_previous.size(); ++k)
         m_previousKeys[k] = {m_previous[k].key(), std::uint32_t(k)};
-    std::sort(m_previousKeys.begin(), m_previousKeys.end());
+    // The list is a few sorted runs (the pairs, the room's contacts, a sleeping pile's carried
+    // over): merged run by run rather than sorted anew, unless there are many.
+    constexpr int kMostRuns = 8;
+    int runs = 0;
+    const auto begin = m_previousKeys.begin(), end = m_previousKeys.end();
+    for (auto it = begin; it != end && runs <= kMostRuns; ++runs)
+        it = std::is_sorted_until(it, end);
+    if (runs > kMostRuns) {
+        std::sort(begin, end);
+        return;
+    }
+    for (auto it = std::is_sorted_until(begin, end); it != end;) {
+        const auto next = std::is_sorted_until(it, end);
+        std::inplace_merge(begin, it, next);
+        it = next;
+    }
 }
 
 const Contact* ContactCache::previous(std::uint64_t key) const
@@ -20,9 +35,10 @@ const Contact* ContactCache::previous(std::uint64_t key) const
     return it != m_previousKeys.end() && it->first == key ? &m_previous[it->second] : nullptr;
 }
 
-void ContactCache::warmStart(Contact& c) const
+void ContactCache::warmStart(Contact& c) const { warmStart(c, previous(c.key())); }
+
+void ContactCache::warmStart(Contact& c, const Contact* old) const
 {
-    const Contact* old = previous(c.key());
     if (!old)
         return;
     // By feature id first; a point whose features changed (a clipped corner of a box resting

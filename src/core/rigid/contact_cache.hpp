@@ -23,6 +23,8 @@ public:
     /// Hands each point of `c` the impulses of the last step's point with the same feature id
     /// (none for a new point), and the pair's separating axis.
     void warmStart(Contact& c) const;
+    /// The same, with the last step's contact between the two bodies (previous(c.key())) known.
+    void warmStart(Contact& c, const Contact* old) const;
     void clear();
 
 private:

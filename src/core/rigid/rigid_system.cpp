@@ -186,11 +186,11 @@ void RigidSystem::collidePairs()
     auto& out = m_cache.contacts();
     // Room for the room's contacts too: growing the list under them would copy every pair's.
     out.reserve(m_pairs.size() + 2 * m_awake.size());
-    out.resize(m_pairs.size());
+    out.clear();
+    out.resize(m_pairs.size()); // every contact a new one
     tbb::parallel_for(std::size_t(0), m_pairs.size(), [&](std::size_t p) {
         const BodyPair pair = m_pairs[p];
         Contact& c = out[p];
-        c = Contact{};
         c.a = pair.a;
         c.b = pair.b;
         if (joinedPoint(pair.a, pair.b) || m_material[pair.a].metInSubsteps || m_material[pair.b].metInSubsteps)
@@ -227,7 +227,7 @@ void RigidSystem::collidePairs()
         c.radiusB = sphereRadius(*m_material[pair.b].shape);
         c.friction = combinedFriction(m_material[pair.a].friction, m_material[pair.b].friction);
         c.restitution = combinedRestitution(m_material[pair.a].restitution, m_material[pair.b].restitution);
-        m_cache.warmStart(c);
+        m_cache.warmStart(c, old);
     });
     // Pairs whose boxes overlap but whose shapes do not touch stay, with no points: they keep
     // their separating axis for the next step.
