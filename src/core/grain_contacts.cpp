@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include "ball_rule.hpp"
 #include "collision_rules.hpp"
 #include "pba/swarm.hpp"
 
@@ -18,84 +19,8 @@ namespace {
 
 using Vec = Vec3<float>;
 
-/// Two grains touch while their centres are less than this many of their reaches apart.
-constexpr float kTouching = 1.01f;
-
-/// The longest slip of a contact that its static friction holds, in reaches: past it the contact
-/// is sliding (kinetic friction), and its memory of where it began is dragged along at this
-/// distance (as the discrete element method caps its tangential spring at mu times the normal
-/// force), so that a grain stopping after a long slide is pulled back by at most this.
-constexpr float kMostSlip = 0.01f;
-
-/// A contact's slip as the next step remembers it: at most kMostSlip reaches.
-Vec remembered(const Vec& slip, float reach)
-{
-    const float length = glm::length(slip), most = kMostSlip * reach;
-    return length > most ? (most / length) * slip : slip;
-}
-
-/// What static friction takes back of a contact's slip `along` its surface: all of it, or `most`
-/// of it (m), the length taken added to what it has `held` this step; nothing once the slip is
-/// longer than `kinetic` (sliding).
-inline Vec takenBack(const Vec& along, float most, float& held, float kinetic)
-{
-    const float length = glm::length(along);
-    const float taken = std::min(length, most);
-    if (!(taken > 0.0f) || length > kinetic)
-        return Vec(0.0f);
-    held += taken;
-    return (taken / length) * along;
-}
-
 /// Grains a task in the loops over all of them.
 constexpr std::size_t kGrainBlock = 4096;
-
-/// One pair's share of a sweep (the rule in grain_contacts.hpp); `first`: the step's first
-/// sweep, which decides the rebound.
-inline void touch(Vec& xa, Vec& va, Vec& xb, Vec& vb, GrainPair& pair, const GrainRule& rule, float reach, bool first)
-{
-    // Touching within a hundredth of their reach: a pair that an earlier sweep put exactly at
-    // contact still takes away the approach that later pairs gave it (a grain pressed down from
-    // above onto one it rests on), or a heap's grains keep a speed into each other, and sink.
-    const Vec d = xb - xa;
-    const float d2 = glm::dot(d, d);
-    if (!(d2 < kTouching * kTouching * reach * reach))
-        return;
-    const float distance = std::sqrt(d2);
-    const Vec n = distance > 0.0f ? d / distance : Vec(0.0f, 1.0f, 0.0f); // two at one point: one above
-    const float half = std::max(0.0f, 0.5f * (reach - distance));
-    xa -= half * n;
-    xb += half * n;
-    // Static friction: b is taken back to where it began on a, by at most what mu times the
-    // pair's normal speed change moves a grain in a step.
-    if (const float most = rule.friction * pair.normal * rule.dt - pair.held; most > 0.0f) {
-        const Vec slip = pair.anchor + (xb - xa);
-        const Vec back = 0.5f * takenBack(slip - glm::dot(slip, n) * n, most, pair.held, kMostSlip * reach);
-        xa += back;
-        xb -= back;
-    }
-    // Speeds as sequential impulses (Box2D's): the normal change accumulated over the sweeps
-    // stays a push (>= 0), and the sliding's accumulated change within mu times it.
-    const Vec relative = vb - va;
-    const float vn = glm::dot(relative, n);
-    if (first) // an approach no faster than two steps of gravity is resting contact: no rebound
-        pair.bounce = -vn > 2.0f * rule.restingSpeed ? -rule.cor * vn : 0.0f;
-    const float normal = std::max(pair.normal + pair.bounce - vn, 0.0f);
-    const float dvn = normal - pair.normal;
-    pair.normal = normal;
-    va -= (0.5f * dvn) * n;
-    vb += (0.5f * dvn) * n;
-    if (rule.friction > 0.0f) {
-        Vec tangent = pair.tangent - (relative - vn * n);
-        const float most = rule.friction * pair.normal, length = glm::length(tangent);
-        if (length > most)
-            tangent *= most / length;
-        const Vec dvt = tangent - pair.tangent;
-        pair.tangent = tangent;
-        va -= 0.5f * dvt;
-        vb += 0.5f * dvt;
-    }
-}
 
 /// A grain pushed out of the room by a sweep put back on its walls, its speed into them taken
 /// away, and its sliding along a wall it touches held back by friction, in position and speed.
@@ -138,7 +63,7 @@ inline void keepInRoom(std::span<const PlaneT<float>> room, std::uint32_t near, 
         if (const float hold = rule.friction * wall.push * rule.dt - wall.held; hold > 0.0f) {
             const Vec slip = wall.anchor + x;
             const Vec along = slip - glm::dot(slip, plane.normal) * plane.normal;
-            x -= takenBack(along, hold, wall.held, kMostSlip * 2.0f * rule.radius);
+            x -= takenBack(along, hold, wall.held, float(kMostSlip) * 2.0f * rule.radius);
         }
     }
 }
@@ -285,12 +210,12 @@ void GrainContacts::findPairs(std::size_t slab)
 {
     auto& pairs = m_pairs[slab];
     pairs.clear();
-    const float reach2 = kTouching * kTouching * m_reach * m_reach;
+    const float reach2 = float(kBallsTouching) * float(kBallsTouching) * m_reach * m_reach;
     const auto near = [&](std::size_t s, std::size_t from, std::size_t to) {
         for (std::size_t t = std::max(from, s + 1); t < to; ++t) {
             const Vec d = m_x[t] - m_x[s];
             if (glm::dot(d, d) < reach2)
-                pairs.push_back({std::uint32_t(s), std::uint32_t(t), 0.0f, 0.0f, Vec(0.0f), -d});
+                pairs.push_back({std::uint32_t(s), std::uint32_t(t), {0.0f, 0.0f, Vec(0.0f), -d}});
         }
     };
     if (!m_grid.hashed) {
@@ -348,8 +273,10 @@ void GrainContacts::forEachPairInColours(F&& fn)
 
 void GrainContacts::sweep(std::span<const PlaneT<float>> room, const GrainRule& rule, bool first)
 {
+    // Equal grains: each takes half of a pair's relative move and speed change.
+    const BallPairRule<float> pairRule{m_reach, 0.5f, 0.5f, rule.cor, rule.friction, rule.restingSpeed, rule.dt};
     forEachPairInColours([&](GrainPair& p) {
-        touch(m_x[p.a], m_v[p.a], m_x[p.b], m_v[p.b], p, rule, m_reach, first);
+        touchBalls(m_x[p.a], m_v[p.a], m_x[p.b], m_v[p.b], p.contact, pairRule, first);
     });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_x.size(), kGrainBlock), [&](const auto& r) {
         for (std::size_t s = r.begin(); s < r.end(); ++s)
@@ -379,10 +306,10 @@ void GrainContacts::warmStart(const GrainMemory& memory)
                 return;
             const Vec n = d / distance;
             const Vec tangent = ja < jb ? old.tangent : -old.tangent;
-            p.anchor = (ja < jb ? old.slip : -old.slip) - (memory.end[jb] - memory.end[ja]);
-            p.normal = old.normal;
-            p.tangent = tangent - glm::dot(tangent, n) * n;
-            const Vec change = p.normal * n + p.tangent;
+            p.contact.anchor = (ja < jb ? old.slip : -old.slip) - (memory.end[jb] - memory.end[ja]);
+            p.contact.normal = old.normal;
+            p.contact.tangent = tangent - glm::dot(tangent, n) * n;
+            const Vec change = p.contact.normal * n + p.contact.tangent;
             m_v[p.a] -= 0.5f * change;
             m_v[p.b] += 0.5f * change;
             return;
@@ -398,7 +325,7 @@ void GrainContacts::remember(GrainMemory& memory) const
     memory.wallSlip.resize(n);
     for (std::size_t s = 0; s < n; ++s) {
         const bool touched = m_nearWall[s] != 0 && m_walls[s].touched;
-        memory.wallSlip[s] = touched ? remembered(m_walls[s].anchor + m_x[s], m_reach) : Vec(0.0f);
+        memory.wallSlip[s] = touched ? rememberedSlip(m_walls[s].anchor + m_x[s], m_reach) : Vec(0.0f);
     }
     std::vector<std::size_t> base(m_pairs.size() + 1, 0);
     for (std::size_t k = 0; k < m_pairs.size(); ++k)
@@ -412,9 +339,9 @@ void GrainContacts::remember(GrainMemory& memory) const
                 const GrainPair& p = m_pairs[k][q];
                 const Vec d = m_x[p.b] - m_x[p.a];
                 const Vec u = d / std::max(glm::length(d), std::numeric_limits<float>::min());
-                Vec slip = p.anchor + d;
-                slip = remembered(slip - glm::dot(slip, u) * u, m_reach);
-                memory.pairs[base[k] + q] = RememberedPair{p.b, p.normal, p.tangent, slip};
+                Vec slip = p.contact.anchor + d;
+                slip = rememberedSlip(Vec(slip - glm::dot(slip, u) * u), m_reach);
+                memory.pairs[base[k] + q] = RememberedPair{p.b, p.contact.normal, p.contact.tangent, slip};
                 ++memory.row[p.a + 1];
             }
     });

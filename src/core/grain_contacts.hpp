@@ -12,20 +12,11 @@
 // within a slab). The slabs come from the grains' positions alone, so every result is the same
 // on any thread count.
 //
-// A pair's rule is the particles' (BallContacts::touch) for equal masses, written as sequential
-// impulses (Box2D's): the overlap is split in half, the normal speed change accumulated over the
-// sweeps stays a push that leaves them apart at restitution times their approach (none in
-// resting contact), and the accumulated change of their sliding stays within mu times it.
-// Friction holds positions too (static friction with an anchor, as Cundall and Strack's
-// tangential spring in the discrete element method, and PhysX's anchored friction): a pair
-// remembers how far one grain has slid over the other since they met, and each step takes it
-// back by at most what mu times the pair's normal speed change moves a grain in a step (so
-// within Coulomb's cone, whatever the overlap). Without the memory, each step's pushes apart
-// along slanted normals, below the cone in any one step, added up: a mound crept outwards by a
-// few micrometres a step for as long as it stood, from 45 degrees as it formed to 21 at 8 s.
-// The room holds a grain on its walls the same way, bounded by the walls' push over the sweeps,
-// the grain's weight counted (the swarm's own collision with the room takes it away before the
-// contacts run). A slip longer than kMostSlip is sliding: the anchor is dragged along.
+// A pair's rule is every ball's (ball_rule.hpp), for equal masses: sequential impulses with
+// static friction held by an anchor. The room holds a grain on its walls the same way, bounded by
+// the walls' push over the sweeps, the grain's weight counted (the swarm's own collision with the
+// room takes it away before the contacts run): without it, a mound crept outwards by a few
+// micrometres a step for as long as it stood, from 45 degrees as it formed to 21 at 8 s.
 //
 // Each pair starts from what it did the step before (warm starting, as Box2D's contacts do): its
 // normal and sliding changes are given to the grains before the sweeps, so a heap's weight, which
@@ -41,6 +32,7 @@
 #include <utility>
 #include <vector>
 
+#include "ball_rule.hpp"
 #include "pba/collision.hpp"
 
 namespace pba {
@@ -58,16 +50,10 @@ struct GrainRule {
 };
 
 /// Two touching grains (in cell order), and what their contact has done over the step's sweeps
-/// so far: the change of their normal and sliding speeds (m/s), and the rebound it owes them.
+/// so far (ball_rule.hpp).
 struct GrainPair {
     std::uint32_t a = 0, b = 0;
-    float normal = 0.0f, bounce = 0.0f;
-    Vec3<float> tangent{0.0f};
-    /// Where the pair's static friction holds b against a: how far b has slid over a since they
-    /// met, less where b was from a then (b - a now added, the slip now); and how far the
-    /// sweeps have taken it back this step.
-    Vec3<float> anchor{0.0f};
-    float held = 0.0f;
+    BallContact<float> contact;
 };
 
 /// A grain against the room's walls over the step's sweeps: where their static friction holds it

@@ -8,38 +8,46 @@
 
 namespace pba::detail {
 
-void BallContacts::touch(Ball& a, Ball& b)
+void BallContacts::startContacts(double dt)
 {
-    const dvec3 d = b.x - a.x;
-    const double distance = glm::length(d);
-    const double overlap = a.radius + b.radius - distance;
-    const double w = a.inverseMass + b.inverseMass;
-    if (!(overlap > 0.0) || w == 0.0)
-        return;
-    const dvec3 n = distance > 0.0 ? d / distance : dvec3(0.0, 1.0, 0.0); // two at one point: one above
-    a.x -= (overlap * a.inverseMass / w) * n;
-    b.x += (overlap * b.inverseMass / w) * n;
-    const dvec3 relative = b.v - a.v;
-    const double vn = glm::dot(relative, n);
-    if (!(vn < 0.0))
-        return;
-    // An approach no faster than two steps of their acceleration is resting contact: no rebound
-    // (as the room's rules decide it), or a stack would hop.
-    const bool resting = -vn <= 2.0 * std::max(a.restingSpeed, b.restingSpeed);
-    const double e = resting ? 0.0 : std::sqrt(a.cor * b.cor);
-    const double jn = -(1.0 + e) * vn / w; // the normal impulse, N s
-    a.v -= (jn * a.inverseMass) * n;
-    b.v += (jn * b.inverseMass) * n;
-    // Coulomb: the sliding of b over a loses up to mu jn of momentum, and never turns back.
-    const double mu = std::sqrt(a.friction * b.friction);
-    const dvec3 slide = relative - vn * n;
-    const double speed = glm::length(slide);
-    if (mu > 0.0 && speed > 0.0) {
-        const double jt = std::min(mu * jn, speed / w);
-        const dvec3 t = slide / speed;
-        a.v += (jt * a.inverseMass) * t;
-        b.v -= (jt * b.inverseMass) * t;
+    m_rules.resize(pairs.size());
+    m_contacts.assign(pairs.size(), BallContact<double>{});
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        Ball& a = balls[pairs[k].first];
+        Ball& b = balls[pairs[k].second];
+        const double w = a.inverseMass + b.inverseMass;
+        BallPairRule<double>& rule = m_rules[k];
+        rule = {a.radius + b.radius, a.inverseMass / w, b.inverseMass / w, std::sqrt(a.cor * b.cor),
+                std::sqrt(a.friction * b.friction), std::max(a.restingSpeed, b.restingSpeed), dt};
+        const std::pair<std::size_t, std::size_t> key(bodies[pairs[k].first], bodies[pairs[k].second]);
+        const auto old = std::lower_bound(m_remembered.begin(), m_remembered.end(), key,
+                                          [](const auto& entry, const auto& k2) { return entry.first < k2; });
+        if (old == m_remembered.end() || old->first != key || a.metInSubsteps || b.metInSubsteps)
+            continue;
+        const dvec3 d = b.x - a.x;
+        const double distance = glm::length(d);
+        if (!(distance > 0.0))
+            continue;
+        const dvec3 n = d / distance;
+        BallContact<double>& c = m_contacts[k];
+        c = old->second;
+        c.tangent -= glm::dot(c.tangent, n) * n;
+        const dvec3 change = c.normal * n + c.tangent;
+        a.v -= rule.shareA * change;
+        b.v += rule.shareB * change;
     }
+}
+
+void BallContacts::remember()
+{
+    m_remembered.clear();
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const Ball& a = balls[pairs[k].first];
+        const Ball& b = balls[pairs[k].second];
+        m_remembered.emplace_back(std::pair(bodies[pairs[k].first], bodies[pairs[k].second]),
+                                  carriedOver(m_contacts[k], dvec3(b.x - a.x), m_rules[k].reach));
+    }
+    // (The balls are listed in the world's order and the pairs in theirs: the keys are in order.)
 }
 
 void BallContacts::findWalls(std::span<const Plane> planes, double largest)

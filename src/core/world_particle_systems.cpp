@@ -341,7 +341,7 @@ void World::collideBalls(double dt)
         contacts.bodies.push_back(i);
         contacts.balls.push_back({b.getPos(), b.getVel(), b.isFixed() ? 0.0 : 1.0 / m_bodies.masses[i],
                                   m_bodies.radii[i], m_bodies.cors[i], m_bodies.frictions[i],
-                                  glm::length(b.getAcc()) * dt});
+                                  glm::length(b.getAcc()) * dt, b.getIntegrator() == Integrator::Xpbd});
     }
     if (contacts.balls.size() < 2)
         return;
@@ -350,7 +350,7 @@ void World::collideBalls(double dt)
     detail::SpringNeighbours& neighbours = *m_particleSystems.neighbours;
     neighbours.update(m_forces.objects, m_bodies.radii);
     constexpr int kSweeps = 8;
-    contacts.solve(m_surfaces.planes, kSweeps, [&](std::uint32_t a, std::uint32_t b) {
+    contacts.solve(m_surfaces.planes, kSweeps, dt, [&](std::uint32_t a, std::uint32_t b) {
         return !neighbours.near(contacts.bodies[a], contacts.bodies[b]);
     });
     if (contacts.pairs.empty())
