@@ -65,6 +65,27 @@ TEST(ParticleContacts, ABallRestingOnABallRestingOnTheFloorStaysPut)
     EXPECT_LT(glm::length(world.body(1).getPos() - dvec3(0, 0.3, 0)), 1e-4);
 }
 
+TEST(ParticleContacts, ABallOnAFixedBallStaysBelowTheFrictionAngleAndSlidesAbove)
+{
+    // A ball that cannot roll, on a fixed ball with the normal at theta from straight up: static
+    // friction holds it while tan theta < mu (0.6: 31 degrees), and it slides off above.
+    auto drift = [](double degrees, double seconds) {
+        World world;
+        world.addForce(std::make_unique<Gravity>(dvec3(0, -9.81, 0)));
+        Particle below = ball(dvec3(0, 1, 0), dvec3(0.0), 1.0, 0.1, 0.0, 0.6);
+        below.setFixed(true);
+        world.addParticle(below);
+        const double theta = degrees * 3.14159265358979323846 / 180.0;
+        const dvec3 start = dvec3(0, 1, 0) + 0.2 * dvec3(std::sin(theta), std::cos(theta), 0);
+        world.addParticle(ball(start, dvec3(0.0), 1.0, 0.1, 0.0, 0.6));
+        for (int step = 0; step < int(seconds * 1000); ++step)
+            world.step(1e-3);
+        return glm::length(world.body(1).getPos() - start);
+    };
+    EXPECT_LT(drift(20.0, 5.0), 1e-4);
+    EXPECT_GT(drift(45.0, 1.0), 0.05);
+}
+
 TEST(ParticleContacts, ResultsAreTheSameOnOneAndTwoThreads)
 {
     // More balls than a task's grain, so two threads do split the grid's search.
