@@ -33,14 +33,7 @@ Contact found(const CollisionShape& sa, const Pose& a, const CollisionShape& sb,
 {
     const pba::contact::Manifold m = pba::contact::collide(sa, a.transform(), sb, b.transform(), margin);
     Contact c;
-    c.count = m.count;
-    for (int i = 0; i < m.count; ++i) {
-        c.points[i].normal = m.normal;
-        c.points[i].anchorA = m.points[i].anchorA;
-        c.points[i].anchorB = m.points[i].anchorB;
-        c.points[i].separation = m.points[i].separation;
-        c.points[i].id = m.points[i].id;
-    }
+    c.takePoints(m);
     c.found = pairPose(a.transform(), a.q, b.x, b.q, m.normal, margin);
     return c;
 }

@@ -49,6 +49,21 @@ struct Contact {
     PairPose found;
 
     std::uint64_t key() const { return (std::uint64_t(a) << 32) | b; }
+    /// The narrow phase's points, with no impulses yet.
+    void takePoints(const contact::Manifold& m)
+    {
+        count = m.count;
+        for (int i = 0; i < m.count; ++i) {
+            ContactPoint& q = points[i];
+            q = ContactPoint{};
+            q.normal = m.normal;
+            q.anchorA = m.points[i].anchorA;
+            q.anchorB = m.points[i].anchorB;
+            q.point = m.points[i].point;
+            q.separation = m.points[i].separation;
+            q.id = m.points[i].id;
+        }
+    }
 };
 
 } // namespace pba::rigid

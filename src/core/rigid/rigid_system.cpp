@@ -209,16 +209,7 @@ void RigidSystem::collidePairs()
         if (!old || !carryManifold(*old, ta, qa, tb, qb, shapeB.boundingRadius(), margin, c)) {
             const CollisionShape& shapeA = *m_material[pair.a].shape;
             const contact::Manifold m = contact::collide(shapeA, ta, shapeB, tb, margin, &c.sat);
-            c.count = m.count;
-            for (int i = 0; i < m.count; ++i) {
-                ContactPoint& q = c.points[i];
-                q.normal = m.normal;
-                q.anchorA = m.points[i].anchorA;
-                q.anchorB = m.points[i].anchorB;
-                q.point = m.points[i].point;
-                q.separation = m.points[i].separation;
-                q.id = m.points[i].id;
-            }
+            c.takePoints(m);
             if (m.count > 0 && shapeA.kind == CollisionShape::Kind::Polyhedron &&
                 shapeB.kind == CollisionShape::Kind::Polyhedron)
                 c.found = pairPose(ta, qa, b.x, qb, m.normal, margin);
@@ -490,14 +481,7 @@ void RigidSystem::pairsAtEnd(std::span<const std::uint32_t> contacts, std::vecto
         if (!carryManifold(c, ta, a.endOrientation, tb, b.endOrientation, shapeB.boundingRadius(), kPositionMargin,
                            e)) {
             contact::SatCache sat = c.sat;
-            const contact::Manifold m = contact::collide(*m_material[c.a].shape, ta, shapeB, tb, kPositionMargin, &sat);
-            e.count = m.count;
-            for (int i = 0; i < m.count; ++i) {
-                e.points[i].normal = m.normal;
-                e.points[i].anchorA = m.points[i].anchorA;
-                e.points[i].anchorB = m.points[i].anchorB;
-                e.points[i].separation = m.points[i].separation;
-            }
+            e.takePoints(contact::collide(*m_material[c.a].shape, ta, shapeB, tb, kPositionMargin, &sat));
         }
         if (e.count == 0)
             out.pop_back();
