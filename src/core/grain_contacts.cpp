@@ -275,7 +275,7 @@ void GrainContacts::sweep(std::span<const PlaneT<float>> room, const GrainRule& 
 {
     // Equal grains: each takes half of a pair's relative move and speed change.
     const BallPairRule<float> pairRule{m_reach, 0.5f, 0.5f, rule.cor, rule.friction, rule.restingSpeed, rule.dt};
-    forEachPairInColours([&](GrainPair& p) {
+    forEachPairInColours([&](GrainPair& p) __attribute__((always_inline)) {
         touchBalls(m_x[p.a], m_v[p.a], m_x[p.b], m_v[p.b], p.contact, pairRule, first);
     });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_x.size(), kGrainBlock), [&](const auto& r) {
