@@ -21,7 +21,7 @@ using namespace pba::rigid;
 
 struct Island {
     std::vector<SolverBody> bodies;
-    std::vector<WideContactRows::Source> contacts;
+    std::vector<IslandContact> contacts;
     std::vector<VelocityRows> rows;
 };
 
@@ -58,8 +58,12 @@ Island randomIsland(unsigned seed, int moving = 60, int count = 300)
             continue;
         if (a > b)
             std::swap(a, b);
-        WideContactRows::Source s{BodyIndex(a), BodyIndex(b), 0.3 + 0.4 * (unit(random) + 1.0) / 2.0,
-                                  std::uint32_t(island.rows.size()), points(random)};
+        IslandContact s;
+        s.a = BodyIndex(a);
+        s.b = BodyIndex(b);
+        s.friction = 0.3 + 0.4 * (unit(random) + 1.0) / 2.0;
+        s.first = std::uint32_t(island.rows.size());
+        s.count = points(random);
         const dvec3 n = glm::normalize(dvec3(unit(random), unit(random), unit(random)));
         const dvec3 t0 = glm::normalize(glm::cross(n, dvec3(0.3, 1.0, 0.2))), t1 = glm::cross(n, t0);
         for (int i = 0; i < s.count; ++i) {
@@ -95,7 +99,7 @@ void apply(const Jacobian& j, double lambda, SolverBody& a, SolverBody& b)
 }
 
 /// One contact, as the one-at-a-time sweep solves it: its points' friction, then their normals.
-void solveOne(const WideContactRows::Source& s, std::vector<VelocityRows>& rows, std::vector<SolverBody>& bodies)
+void solveOne(const IslandContact& s, std::vector<VelocityRows>& rows, std::vector<SolverBody>& bodies)
 {
     SolverBody &a = bodies[s.a], &b = bodies[s.b];
     for (int i = 0; i < s.count; ++i) {

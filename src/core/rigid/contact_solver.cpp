@@ -146,10 +146,7 @@ void ContactSolver::prepare(std::span<Contact> contacts, std::span<const std::ui
         }
     }
     // The colours a large island's passes go by, once a step.
-    m_sources.clear();
-    for (const Constraint& c : m_constraints)
-        m_sources.push_back({c.a, c.b, c.friction, c.first, c.count});
-    m_wide.colour(m_sources, m_bodies);
+    m_wide.colour(m_constraints, m_bodies);
 }
 
 bool ContactSolver::collide(int maxStrikes)
@@ -159,13 +156,13 @@ bool ContactSolver::collide(int maxStrikes)
     // have changed (the sweeps' results are those of looking at every contact every sweep).
     if (m_blows.size() < m_bodies.size())
         m_blows.resize(m_bodies.size());
-    for (const Constraint& c : m_constraints)
+    for (const IslandContact& c : m_constraints)
         m_blows[c.a] = m_blows[c.b] = 0;
     m_seen.assign(m_constraints.size(), ~std::uint64_t(0));
     m_strikes.assign(m_constraints.size(), 0);
     // A contact looked at: whether it gave a blow.
     const auto look = [&](std::size_t k) {
-        const Constraint& c = m_constraints[k];
+        const IslandContact& c = m_constraints[k];
         const std::uint64_t blows = (std::uint64_t(m_blows[c.a]) << 32) | m_blows[c.b];
         if (blows == m_seen[k] || m_strikes[k] >= maxStrikes)
             return false;
@@ -239,7 +236,7 @@ ContactSolver::SurfacePoints ContactSolver::surfacePoints(double radiusA, double
     return s;
 }
 
-double ContactSolver::restitutionOf(const Constraint& c, const PointRows& r) const
+double ContactSolver::restitutionOf(const IslandContact& c, const PointRows& r) const
 {
     // A method of order one does not keep the energy of a fall, but a modified one: along the
     // normal, with gap s, speed u and constant acceleration a, forward Euler keeps exactly
@@ -267,7 +264,7 @@ double ContactSolver::restitutionOf(const Constraint& c, const PointRows& r) con
     return std::clamp((-k + std::sqrt(k * k + 2.0 * e2q)) / std::sqrt(exact2), 0.0, 1.0);
 }
 
-double ContactSolver::refineArrival(const Constraint& c, int point, double tPrev, double tau) const
+double ContactSolver::refineArrival(const IslandContact& c, int point, double tPrev, double tau) const
 {
     // The estimate took the gap along the start's normal as changing at a constant rate; along
     // the free paths themselves (turning, and off-centre for two spheres) it closes a little
@@ -295,7 +292,7 @@ double ContactSolver::refineArrival(const Constraint& c, int point, double tPrev
     return tau;
 }
 
-bool ContactSolver::collideOne(const Constraint& c)
+bool ContactSolver::collideOne(const IslandContact& c)
 {
     SolverBody& a = m_bodies[c.a];
     SolverBody& b = m_bodies[c.b];
@@ -422,7 +419,7 @@ bool ContactSolver::collideOne(const Constraint& c)
 
 void ContactSolver::warmStart()
 {
-    for (const Constraint& c : m_constraints) {
+    for (const IslandContact& c : m_constraints) {
         SolverBody& a = m_bodies[c.a];
         SolverBody& b = m_bodies[c.b];
         for (int i = 0; i < c.count; ++i) {
@@ -432,10 +429,10 @@ void ContactSolver::warmStart()
             applyAlong(r.across[1], r.tangentImpulse[1], a, b);
         }
     }
-    m_wide.build(m_sources, m_velocityRows, m_bodies, m_oneAtATime);
+    m_wide.build(m_constraints, m_velocityRows, m_bodies, m_oneAtATime);
 }
 
-void ContactSolver::solveFriction(const Constraint& c, SolverBody& a, SolverBody& b)
+void ContactSolver::solveFriction(const IslandContact& c, SolverBody& a, SolverBody& b)
 {
     for (int i = 0; i < c.count; ++i) {
         VelocityRows& r = m_velocityRows[c.first + i];
@@ -454,7 +451,7 @@ void ContactSolver::solveFriction(const Constraint& c, SolverBody& a, SolverBody
     }
 }
 
-void ContactSolver::solveNormal(const Constraint& c, SolverBody& a, SolverBody& b)
+void ContactSolver::solveNormal(const IslandContact& c, SolverBody& a, SolverBody& b)
 {
     for (int i = 0; i < c.count; ++i) {
         VelocityRows& r = m_velocityRows[c.first + i];
@@ -471,7 +468,7 @@ bool ContactSolver::solveVelocities()
     m_change = m_largest = 0.0;
     m_wide.sweep(m_bodies, m_change, m_largest);
     for (const std::uint32_t k : m_oneAtATime) {
-        const Constraint& c = m_constraints[k];
+        const IslandContact& c = m_constraints[k];
         SolverBody& a = m_bodies[c.a];
         SolverBody& b = m_bodies[c.b];
         solveFriction(c, a, b);
@@ -483,7 +480,7 @@ bool ContactSolver::solveVelocities()
 void ContactSolver::storeImpulses()
 {
     m_wide.storeImpulses(m_velocityRows);
-    for (const Constraint& c : m_constraints) {
+    for (const IslandContact& c : m_constraints) {
         Contact& contact = m_contacts[c.contact];
         for (int i = 0; i < c.count; ++i) {
             const VelocityRows& r = m_velocityRows[c.first + i];

@@ -85,14 +85,6 @@ public:
     void solvePositions(std::span<const Contact> contacts);
 
 private:
-    struct Constraint {
-        std::uint32_t contact = 0;
-        BodyIndex a = 0, b = 0;
-        double friction = 0.0, restitution = 0.0;
-        double radiusA = 0.0, radiusB = 0.0;
-        std::uint32_t first = 0;
-        int count = 0;
-    };
     /// A point's two surface points and normal with the bodies at the given poses.
     struct SurfacePoints {
         dvec3 a{0.0}, b{0.0}, n{0.0};
@@ -106,26 +98,25 @@ private:
         double targetN = 0.0, targetT[2] = {0.0, 0.0};
         double pushN = 0.0, pushT[2] = {0.0, 0.0};
     };
-    void solveFriction(const Constraint& c, SolverBody& a, SolverBody& b);
-    void solveNormal(const Constraint& c, SolverBody& a, SolverBody& b);
-    bool collideOne(const Constraint& c);
+    void solveFriction(const IslandContact& c, SolverBody& a, SolverBody& b);
+    void solveNormal(const IslandContact& c, SolverBody& a, SolverBody& b);
+    bool collideOne(const IslandContact& c);
     /// A huge island's collision passes look at its contacts colour by colour, each colour's on
     /// every core (the 10,000-dice heap's pass was a quarter of its step, on one core).
     static constexpr std::size_t kSharedCollisions = 4096;
     template <class Look>
     bool collideByColour(Look& look);
-    double refineArrival(const Constraint& c, int point, double tPrev, double tau) const;
-    double restitutionOf(const Constraint& c, const PointRows& r) const;
+    double refineArrival(const IslandContact& c, int point, double tPrev, double tau) const;
+    double restitutionOf(const IslandContact& c, const PointRows& r) const;
 
     std::span<Contact> m_contacts;
     std::span<SolverBody> m_bodies;
     SolverSettings m_settings;
-    std::vector<Constraint> m_constraints;
+    std::vector<IslandContact> m_constraints;
     std::vector<PointRows> m_rows;
     std::vector<VelocityRows> m_velocityRows; ///< the same points', as the sweeps see them
     /// A large island's sweeps: most contacts four at a time, the rest (m_oneAtATime) after.
     WideContactRows m_wide;
-    std::vector<WideContactRows::Source> m_sources;
     std::vector<std::uint32_t> m_oneAtATime; ///< indices into m_constraints, in order
     std::vector<std::uint32_t> m_blows; ///< the collision pass's: per body, the blows it took
     std::vector<std::uint64_t> m_seen;  ///< per contact, its bodies' blows when last looked at

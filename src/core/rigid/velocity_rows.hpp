@@ -1,7 +1,12 @@
 #pragma once
 // One contact point as the velocity sweeps see it: its three rows (the normal and two tangents),
-// their impulses and the normal's target. Private to the core.
+// their impulses and the normal's target; and one contact of an island, as every pass of the
+// solver finds its rows. Private to the core.
+#include <cstdint>
+
 #include <glm/vec3.hpp>
+
+#include "rigid/contact.hpp"
 
 namespace pba::rigid {
 
@@ -24,6 +29,17 @@ struct VelocityRows {
     double normalImpulse = 0.0;
     double tangentImpulse[2] = {0.0, 0.0};
     double target = 0.0; ///< the normal speed that closes the start's gap within the step, no more
+};
+
+/// One contact of an island as the solver's passes work on it: which of the world's contacts,
+/// its two bodies, what it is made of, and where its points' rows are: rows[first, first + count).
+struct IslandContact {
+    std::uint32_t contact = 0;
+    BodyIndex a = 0, b = 0;
+    double friction = 0.0, restitution = 0.0;
+    double radiusA = 0.0, radiusB = 0.0; ///< a sphere's radius, 0 for any other shape
+    std::uint32_t first = 0;
+    int count = 0;
 };
 
 } // namespace pba::rigid

@@ -28,7 +28,7 @@ void WideContactRows::clear()
     m_slots.clear();
 }
 
-void WideContactRows::build(std::span<const Source> contacts, std::span<const VelocityRows> rows,
+void WideContactRows::build(std::span<const IslandContact> contacts, std::span<const VelocityRows> rows,
                             std::span<const SolverBody> bodies, std::vector<std::uint32_t>& leftOver)
 {
     clear();
@@ -46,7 +46,7 @@ void WideContactRows::build(std::span<const Source> contacts, std::span<const Ve
     }
 }
 
-void WideContactRows::colour(std::span<const Source> contacts, std::span<const SolverBody> bodies)
+void WideContactRows::colour(std::span<const IslandContact> contacts, std::span<const SolverBody> bodies)
 {
     if (contacts.size() < kFewest) { // all of them one at a time, in order
         m_byColour.resize(contacts.size());
@@ -62,7 +62,7 @@ void WideContactRows::colour(std::span<const Source> contacts, std::span<const S
         m_used.resize(bodies.size(), 0);
     m_colour.assign(contacts.size(), kColours);
     for (std::size_t c = 0; c < contacts.size(); ++c) {
-        const Source& s = contacts[c];
+        const IslandContact& s = contacts[c];
         const bool movesA = !bodies[s.a].isStatic(), movesB = !bodies[s.b].isStatic();
         const std::uint32_t taken = (movesA ? m_used[s.a] : 0u) | (movesB ? m_used[s.b] : 0u);
         const int colour = std::countr_one(taken);
@@ -74,7 +74,7 @@ void WideContactRows::colour(std::span<const Source> contacts, std::span<const S
         if (movesB)
             m_used[s.b] |= 1u << colour;
     }
-    for (const Source& s : contacts)
+    for (const IslandContact& s : contacts)
         m_used[s.a] = m_used[s.b] = 0;
     // The contacts by colour, each colour's in order (a counting sort); those no colour took last.
     std::vector<std::uint32_t>& start = m_colourContacts;
@@ -90,7 +90,7 @@ void WideContactRows::colour(std::span<const Source> contacts, std::span<const S
         m_byColour[fill[m_colour[c]]++] = c;
 }
 
-void WideContactRows::pack(std::span<const Source> contacts, std::span<const VelocityRows> rows,
+void WideContactRows::pack(std::span<const IslandContact> contacts, std::span<const VelocityRows> rows,
                            std::span<const SolverBody> bodies, std::span<const std::uint32_t> lanes)
 {
     Block block;
@@ -101,7 +101,7 @@ void WideContactRows::pack(std::span<const Source> contacts, std::span<const Vel
     alignas(16) float friction[4] = {}, inverseMass[2][4] = {};
     for (std::size_t k = 0; k < 4; ++k) {
         const bool real = k < lanes.size();
-        const Source& s = contacts[lanes[real ? k : 0]]; // an empty lane reads its first lane's bodies
+        const IslandContact& s = contacts[lanes[real ? k : 0]]; // an empty lane reads its first lane's bodies
         block.contact[k] = real ? lanes[k] : kEmptyLane;
         block.body[0][k] = s.a;
         block.body[1][k] = s.b;

@@ -23,13 +23,6 @@ namespace pba::rigid {
 
 class WideContactRows {
 public:
-    /// One contact's place in the rows: its bodies, friction and its points' rows[first, first + count).
-    struct Source {
-        BodyIndex a = 0, b = 0;
-        double friction = 0.0;
-        std::uint32_t first = 0;
-        int count = 0;
-    };
     /// Islands with fewer contacts are swept one contact at a time: too few for full blocks.
     static constexpr std::size_t kFewest = 64;
     /// Islands of more blocks sweep each colour on every core (a 10,000-dice heap's: the sync a
@@ -38,7 +31,7 @@ public:
 
     /// Packs `contacts`, as colour() last coloured them, with their rows' impulses as they are now
     /// (after the warm start); lists in `leftOver` the indices of those no colour took, in order.
-    void build(std::span<const Source> contacts, std::span<const VelocityRows> rows, std::span<const SolverBody> bodies,
+    void build(std::span<const IslandContact> contacts, std::span<const VelocityRows> rows, std::span<const SolverBody> bodies,
                std::vector<std::uint32_t>& leftOver);
     void clear();
     bool empty() const { return m_blocks.empty(); }
@@ -49,7 +42,7 @@ public:
     /// Colours the contacts so that no moving body is in two of one colour (fewer than kFewest:
     /// none, all left over); colourOf(c) then lists colour c's contacts in order, colourOf(kColours)
     /// those no colour took. Once a step, before the collision pass and build.
-    void colour(std::span<const Source> contacts, std::span<const SolverBody> bodies);
+    void colour(std::span<const IslandContact> contacts, std::span<const SolverBody> bodies);
     std::span<const std::uint32_t> colourOf(int c) const
     {
         return std::span(m_byColour).subspan(m_colourContacts[std::size_t(c)],
@@ -85,7 +78,7 @@ private:
         std::uint32_t firstSlot = 0, slots = 0;
     };
     /// One block of up to four contacts of one colour (indices into contacts).
-    void pack(std::span<const Source> contacts, std::span<const VelocityRows> rows, std::span<const SolverBody> bodies,
+    void pack(std::span<const IslandContact> contacts, std::span<const VelocityRows> rows, std::span<const SolverBody> bodies,
               std::span<const std::uint32_t> lanes);
     void sweepBlock(const Block& block, std::span<SolverBody> bodies, Float4& changed, Float4& most);
     void solveFriction(Slot& slot, const Block& block, Vec4x3 (&v)[2], Vec4x3 (&w)[2], Float4& change);
