@@ -8,6 +8,8 @@
 
 #include "core/contact/narrow_phase.hpp"
 #include "core/rigid/carried_manifold.hpp"
+#include "pba/forces.hpp"
+#include "pba/world.hpp"
 
 namespace {
 
@@ -104,6 +106,30 @@ TEST(CarriedManifold, IsNotCarriedFurtherThanItsDistanceOrBeyondItsMargin)
     moved.x.y += 0.0015;
     ASSERT_TRUE(carryManifold(before, a.transform(), a.q, moved.transform(), moved.q, die.boundingRadius(), 0.001, carried));
     EXPECT_EQ(carried.count, 0);
+}
+
+TEST(CarriedManifold, IsNotCarriedOverForABodyGivenANewShape)
+{
+    // A die resting on a fixed slab grows twice as tall where it stands: its pair has not moved,
+    // but the old manifold (its old bottom face) must not be carried: the die is pushed up out
+    // of the slab by the half height it gained, in the step (with the old one carried, it stays sunk
+    // 5 cm).
+    pba::World world;
+    world.addForce(std::make_unique<pba::Gravity>(dvec3(0, -9.81, 0)));
+    world.contactSettings().sleeping = false; // resting, awake, its pair carried step after step
+    auto slab = std::make_unique<pba::RigidBody>(pba::Shape::box({2.0, 0.2, 2.0}), 1000.0);
+    slab->setPos(dvec3(0, 1.0, 0));
+    slab->setFixed(true);
+    world.addBody(std::move(slab));
+    auto die = std::make_unique<pba::RigidBody>(pba::Shape::box({0.1, 0.1, 0.1}), 600.0);
+    die->setPos(dvec3(0, 1.15, 0));
+    auto& body = static_cast<pba::RigidBody&>(world.addBody(std::move(die)));
+    for (int step = 0; step < 200; ++step)
+        world.step(0.005);
+    ASSERT_NEAR(body.getPos().y, 1.15, 1e-3);
+    body.setShape(pba::Shape::box({0.1, 0.2, 0.1}), 600.0);
+    world.step(0.005);
+    EXPECT_NEAR(body.getPos().y, 1.2, 1e-3) << "pushed out in the step";
 }
 
 } // namespace

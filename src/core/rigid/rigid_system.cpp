@@ -99,6 +99,8 @@ void RigidSystem::begin(std::span<const RigidBody* const> bodies)
             continue;
         const RigidBody& b = *bodies[k];
         Material& m = m_material[k];
+        if (m.shape && m.shape != b.getCollisionShape())
+            m_cache.clear(); // a body given a new shape: no contact of its old one is carried over
         m.shape = b.getCollisionShape();
         m.friction = b.getFriction();
         m.restitution = b.getCor();
