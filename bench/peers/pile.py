@@ -217,8 +217,8 @@ def print_checks(n, checks, args, t):
               f"{c['deepest_wall'] * 1000:.3g} | {'yes' if c['passes'] else 'NO'} |")
 
 
-def run(args, n, tmp):
-    """One n: returns whether every check passed."""
+def run(args, n, tmp, failed):
+    """One n: returns whether every check passed, and adds to `failed` the piles whose final check did not."""
     pba, bullet, start, ok = start_workers(args, n, tmp)
     r = pba.ready
     dt = r["dt"]
@@ -240,6 +240,8 @@ def run(args, n, tmp):
     if not args.validate_only:
         print_rates(n, rates, threads, args, dt)
         ok = ok and all(c["passes"] for c in checks.values())
+        failed += [f"{'Bullet' if name == 'bullet' else name}'s {n} dice" for name, c in checks.items()
+                   if not c["passes"]]
     print_checks(n, checks, args, t)
     return ok
 
@@ -277,14 +279,16 @@ def main():
         return SKIP
     args.pba, args.bullet = os.path.abspath(args.pba), os.path.abspath(args.bullet)
     with tempfile.TemporaryDirectory(prefix="pba-pile-") as tmp:
-        ok = all([run(args, n, tmp) for n in args.n])
+        failed = []
+        ok = all([run(args, n, tmp, failed) for n in args.n])
         if args.keep:
             os.makedirs(args.keep, exist_ok=True)
             for name in sorted(os.listdir(tmp)):
                 shutil.copy(os.path.join(tmp, name), args.keep)
             print(f"pile.py: the states are in {args.keep}")
     if not ok:
-        print("pile.py: FAILED: a check did not pass (see above)", file=sys.stderr)
+        which = f": the final state of {', '.join(failed)}" if failed else ""
+        print(f"pile.py: FAILED: a check did not pass{which} (see above)", file=sys.stderr)
         return 1
     print("pile.py: every check passed")
     return 0
