@@ -14,6 +14,7 @@ namespace pba::rigid {
 /// this within the carried one's: the speculative margin's warning shrinks by this at most.
 constexpr double kCarryDistance = 0.002;
 
+/// The pair's pose where the narrow phase found a manifold of normal `worldNormal` within `margin`.
 PairPose pairPose(const contact::Transform& ta, const dquat& qa, const dvec3& xb, const dquat& qb,
                   const dvec3& worldNormal, double margin);
 
