@@ -22,16 +22,11 @@ void put(float (&into)[3][4], int k, const glm::vec3& v)
 
 } // namespace
 
-void WideContactRows::clear()
-{
-    m_blocks.clear();
-    m_slots.clear();
-}
-
 void WideContactRows::build(std::span<const IslandContact> contacts, std::span<const VelocityRows> rows,
                             std::span<const SolverBody> bodies, std::vector<std::uint32_t>& leftOver)
 {
-    clear();
+    m_blocks.clear();
+    m_slots.clear();
     const std::vector<std::uint32_t>& start = m_colourContacts;
     leftOver.assign(m_byColour.begin() + start[kColours], m_byColour.end());
     m_colourStart.assign(1, 0);

@@ -33,7 +33,6 @@ public:
     /// (after the warm start); lists in `leftOver` the indices of those no colour took, in order.
     void build(std::span<const IslandContact> contacts, std::span<const VelocityRows> rows, std::span<const SolverBody> bodies,
                std::vector<std::uint32_t>& leftOver);
-    void clear();
     bool empty() const { return m_blocks.empty(); }
     /// One sweep over the blocks; the largest change of an impulse and the largest normal
     /// impulse into `change` and `largest`.
