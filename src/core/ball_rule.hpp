@@ -120,6 +120,16 @@ template <class T>
     }
 }
 
+/// A contact the balls make now, `d` their b - a: no impulses yet, and no slip (its anchor
+/// where b is from a).
+template <class T>
+BallContact<T> newContact(const Vec3<T>& d)
+{
+    BallContact<T> c;
+    c.anchor = -d;
+    return c;
+}
+
 /// A contact's state as the next step starts it: its impulses, and its anchor from the slip it
 /// ended with (`d` the pair's b - a at the end).
 template <class T>

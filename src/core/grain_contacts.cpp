@@ -215,7 +215,7 @@ void GrainContacts::findPairs(std::size_t slab)
         for (std::size_t t = std::max(from, s + 1); t < to; ++t) {
             const Vec d = m_x[t] - m_x[s];
             if (glm::dot(d, d) < reach2)
-                pairs.push_back({std::uint32_t(s), std::uint32_t(t), {0.0f, 0.0f, Vec(0.0f), -d}});
+                pairs.push_back({std::uint32_t(s), std::uint32_t(t), newContact(d)});
         }
     };
     if (!m_grid.hashed) {

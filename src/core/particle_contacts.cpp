@@ -11,10 +11,11 @@ namespace pba::detail {
 void BallContacts::startContacts(double dt)
 {
     m_rules.resize(pairs.size());
-    m_contacts.assign(pairs.size(), BallContact<double>{});
+    m_contacts.resize(pairs.size());
     for (std::size_t k = 0; k < pairs.size(); ++k) {
         Ball& a = balls[pairs[k].first];
         Ball& b = balls[pairs[k].second];
+        m_contacts[k] = newContact(dvec3(b.x - a.x));
         const double w = a.inverseMass + b.inverseMass;
         BallPairRule<double>& rule = m_rules[k];
         rule = {a.radius + b.radius, a.inverseMass / w, b.inverseMass / w, std::sqrt(a.cor * b.cor),
