@@ -86,8 +86,8 @@ TEST_P(RestingCloth, ASheetFallenInFoldsRestsOnTheFloorAndOnItself)
     // cloth-folds' sheet, settled: its springs pull the particles under the folds toward the floor
     // every step, which the solve takes up (with the room only after the step: about 5,000
     // bounces a second under either method). Its upper layers rest on the lower: measured at 8 s,
-    // speeds median 6 mm/s, 95% under 4 cm/s (implicit Euler) and median 5 mm/s, 95% under
-    // 7 mm/s (XPBD); with its layers meeting only after the step, the upper ones stirred on the
+    // speeds median 8 mm/s, 95% under 3.4 cm/s (implicit Euler) and median 0.4 mm/s, 95% under
+    // 1.2 mm/s (XPBD); with its layers meeting only after the step, the upper ones stirred on the
     // lower: medians 4 and 1.6 cm/s, 95% 12 and 5 cm/s.
     Scene scene = loadScene("cloth-folds");
     World& world = scene.world;
