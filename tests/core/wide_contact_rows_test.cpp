@@ -10,8 +10,6 @@
 #include <random>
 #include <vector>
 
-#include <tbb/global_control.h>
-
 #include "core/rigid/wide_contact_rows.hpp"
 
 namespace {
@@ -166,47 +164,6 @@ TEST(WideContactRows, SweepAsOneContactAtATimeInTheSameOrderToSinglePrecision)
         for (std::size_t r = 0; r < wide.rows.size(); ++r)
             EXPECT_NEAR(wide.rows[r].normalImpulse, one.rows[r].normalImpulse, 1e-5) << "seed " << seed << ", row " << r;
     }
-}
-
-TEST(WideContactRows, AHugeIslandsColoursSweptOnEveryCoreGiveTheSameBitsAsOnOne)
-{
-    // Over kSharedBlocks blocks, each colour's blocks are shared among the cores: the same bits on
-    // one thread and on two, and the one-at-a-time sweep's velocities to single precision.
-    const Island start = randomIsland(11, 3000, 8000);
-    Island one = start;
-    Island runs[2] = {start, start};
-    for (int threads = 1; threads <= 2; ++threads) {
-        const tbb::global_control cores(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-        Island& island = runs[threads - 1];
-        WideContactRows rows;
-        std::vector<std::uint32_t> leftOver;
-        rows.colour(island.contacts, island.bodies);
-        rows.build(island.contacts, island.rows, island.bodies, leftOver);
-        ASSERT_GT(rows.order().size(), 4 * WideContactRows::kSharedBlocks);
-        std::vector<std::uint32_t> order = rows.order();
-        std::erase(order, WideContactRows::kEmptyLane);
-        for (int sweep = 0; sweep < 10; ++sweep) {
-            double change = 0.0, largest = 0.0;
-            rows.sweep(island.bodies, change, largest);
-            for (const std::uint32_t c : leftOver)
-                solveOne(island.contacts[c], island.rows, island.bodies);
-            if (threads == 1) {
-                for (const std::uint32_t c : order)
-                    solveOne(one.contacts[c], one.rows, one.bodies);
-                for (const std::uint32_t c : leftOver)
-                    solveOne(one.contacts[c], one.rows, one.bodies);
-            }
-        }
-        rows.storeImpulses(island.rows);
-    }
-    for (std::size_t k = 0; k < start.bodies.size(); ++k)
-        EXPECT_LT(glm::length(runs[0].bodies[k].v - one.bodies[k].v), 1e-4) << "body " << k;
-    for (std::size_t k = 0; k < start.bodies.size(); ++k) {
-        ASSERT_EQ(runs[0].bodies[k].v, runs[1].bodies[k].v) << "body " << k;
-        ASSERT_EQ(runs[0].bodies[k].w, runs[1].bodies[k].w) << "body " << k;
-    }
-    for (std::size_t r = 0; r < start.rows.size(); ++r)
-        ASSERT_EQ(runs[0].rows[r].normalImpulse, runs[1].rows[r].normalImpulse) << "row " << r;
 }
 
 } // namespace

@@ -101,8 +101,10 @@ void tangentsOf(const dvec3& n, dvec3 (&t)[2])
 }
 
 void ContactSolver::prepare(std::span<Contact> contacts, std::span<const std::uint32_t> island,
-                            std::span<SolverBody> bodies, const SolverSettings& settings)
+                            std::span<const std::uint32_t> moving, std::span<SolverBody> bodies,
+                            const SolverSettings& settings, bool withJoints)
 {
+    m_moving = moving;
     m_contacts = contacts;
     m_bodies = bodies;
     m_settings = settings;
@@ -145,11 +147,54 @@ void ContactSolver::prepare(std::span<Contact> contacts, std::span<const std::ui
             m_velocityRows.push_back(v);
         }
     }
-    // The colours a large island's passes go by, once a step.
-    m_wide.colour(m_constraints, m_bodies);
+
+    m_halved = !withJoints && m_constraints.size() >= kHalvedContacts;
+    if (m_halved)
+        halve();
+    if (m_marks.size() < 2 * bodies.size())
+        m_marks.resize(2 * bodies.size());
 }
 
-bool ContactSolver::collide(int maxStrikes)
+void ContactSolver::halve()
+{
+    for (const std::uint32_t k : m_sided)
+        m_side[k] = -1;
+    m_sided.assign(m_moving.begin(), m_moving.end());
+    if (m_side.size() < m_bodies.size())
+        m_side.resize(m_bodies.size(), -1);
+    dvec3 lo(INFINITY), hi(-INFINITY);
+    for (const std::uint32_t k : m_moving) {
+        lo = glm::min(lo, m_bodies[k].position);
+        hi = glm::max(hi, m_bodies[k].position);
+    }
+    // At the median along the longest side of the island's box: two halves of as many bodies,
+    // and the fewest contacts across the cut a plane gives (the body's index breaks a tie).
+    const dvec3 extent = hi - lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    m_along.clear();
+    for (const std::uint32_t k : m_sided)
+        m_along.emplace_back(m_bodies[k].position[axis], k);
+    const auto middle = m_along.begin() + std::ptrdiff_t(m_along.size() / 2);
+    std::nth_element(m_along.begin(), middle, m_along.end());
+    for (Part& p : m_parts) {
+        p.index.clear();
+        p.constraints.clear();
+        p.bodies.clear();
+    }
+    for (auto it = m_along.begin(); it != m_along.end(); ++it) {
+        const bool second = it >= middle;
+        m_side[it->second] = second ? 1 : 0;
+        part(second ? Half::Second : Half::First).bodies.push_back(it->second);
+    }
+    for (std::uint32_t k = 0; k < m_constraints.size(); ++k) {
+        const IslandContact& c = m_constraints[k];
+        Part& p = part(halfOf(m_side[c.a], m_side[c.b]));
+        p.index.push_back(k);
+        p.constraints.push_back(c);
+    }
+}
+
+void ContactSolver::startCollisions()
 {
     // A contact that found no arrival finds none again until one of its bodies is struck: each
     // body counts its blows, and a contact is looked at again only when the counts it last saw
@@ -160,63 +205,46 @@ bool ContactSolver::collide(int maxStrikes)
         m_blows[c.a] = m_blows[c.b] = 0;
     m_seen.assign(m_constraints.size(), ~std::uint64_t(0));
     m_strikes.assign(m_constraints.size(), 0);
-    // A contact looked at: whether it gave a blow.
-    const auto look = [&](std::size_t k) {
-        const IslandContact& c = m_constraints[k];
-        const std::uint64_t blows = (std::uint64_t(m_blows[c.a]) << 32) | m_blows[c.b];
-        if (blows == m_seen[k] || m_strikes[k] >= maxStrikes)
-            return false;
-        m_seen[k] = blows;
-        if (!collideOne(c))
-            return false;
-        ++m_strikes[k];
-        for (const BodyIndex body : {c.a, c.b})
-            if (!m_bodies[body].isStatic()) // a static body never changes (and is shared)
-                ++m_blows[body];
-        return true;
-    };
-    const bool shared = m_constraints.size() >= kSharedCollisions;
+}
+
+bool ContactSolver::collide(int maxStrikes)
+{
+    startCollisions();
     bool any = false;
     for (int sweep = 0; sweep < kMaxCollisionSweeps; ++sweep) {
         bool changed = false;
-        if (shared)
-            changed = collideByColour(look);
-        else
-            for (std::size_t k = 0; k < m_constraints.size(); ++k)
-                changed = look(k) || changed;
+        for (std::size_t k = 0; k < m_constraints.size(); ++k)
+            changed = lookForBlow(k, maxStrikes) || changed;
         if (!changed)
             break;
         any = true;
     }
+    markVelocities(m_moving);
     return any;
 }
 
-template <class Look>
-bool ContactSolver::collideByColour(Look& look)
+void ContactSolver::markVelocities(std::span<const std::uint32_t> bodies)
 {
-    // A huge island's sweep colour by colour, each colour's contacts on every core in fixed
-    // chunks: they share no moving body, so the blows are the same on any number of threads.
-    constexpr std::size_t kChunk = 64;
-    bool changed = false;
-    for (int colour = 0; colour < WideContactRows::kColours; ++colour) {
-        const std::span<const std::uint32_t> contacts = m_wide.colourOf(colour);
-        const std::size_t chunks = (contacts.size() + kChunk - 1) / kChunk;
-        m_chunkStruck.assign(chunks, 0);
-        // Isolated: a thread waiting here takes no other island's work, whose scratch it holds.
-        tbb::this_task_arena::isolate([&] {
-            tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t chunk) {
-                const std::size_t end = std::min(contacts.size(), (chunk + 1) * kChunk);
-                for (std::size_t i = chunk * kChunk; i < end; ++i)
-                    if (look(contacts[i]))
-                        m_chunkStruck[chunk] = 1;
-            });
-        });
-        for (const std::uint8_t struck : m_chunkStruck)
-            changed = changed || struck != 0;
+    for (const std::uint32_t k : bodies) {
+        m_marks[2 * k] = m_bodies[k].v;
+        m_marks[2 * k + 1] = m_bodies[k].w;
     }
-    for (const std::uint32_t k : m_wide.colourOf(WideContactRows::kColours))
-        changed = look(k) || changed;
-    return changed;
+}
+
+bool ContactSolver::lookForBlow(std::size_t k, int maxStrikes)
+{
+    const IslandContact& c = m_constraints[k];
+    const std::uint64_t blows = (std::uint64_t(m_blows[c.a]) << 32) | m_blows[c.b];
+    if (blows == m_seen[k] || m_strikes[k] >= maxStrikes)
+        return false;
+    m_seen[k] = blows;
+    if (!collideOne(c))
+        return false;
+    ++m_strikes[k];
+    for (const BodyIndex body : {c.a, c.b})
+        if (!m_bodies[body].isStatic()) // a static body never changes (and is shared)
+            ++m_blows[body];
+    return true;
 }
 
 ContactSolver::SurfacePoints ContactSolver::surfacePoints(double radiusA, double radiusB, const ContactPoint& p,
@@ -417,9 +445,9 @@ bool ContactSolver::collideOne(const IslandContact& c)
     return true;
 }
 
-void ContactSolver::warmStart()
+void ContactSolver::warmStart(std::span<const IslandContact> constraints)
 {
-    for (const IslandContact& c : m_constraints) {
+    for (const IslandContact& c : constraints) {
         SolverBody& a = m_bodies[c.a];
         SolverBody& b = m_bodies[c.b];
         for (int i = 0; i < c.count; ++i) {
@@ -429,10 +457,16 @@ void ContactSolver::warmStart()
             applyAlong(r.across[1], r.tangentImpulse[1], a, b);
         }
     }
+}
+
+void ContactSolver::warmStart()
+{
+    warmStart(m_constraints);
+    m_wide.colour(m_constraints, m_bodies);
     m_wide.build(m_constraints, m_velocityRows, m_bodies, m_oneAtATime);
 }
 
-void ContactSolver::solveFriction(const IslandContact& c, SolverBody& a, SolverBody& b)
+void ContactSolver::solveFriction(const IslandContact& c, SolverBody& a, SolverBody& b, double& change)
 {
     for (int i = 0; i < c.count; ++i) {
         VelocityRows& r = m_velocityRows[c.first + i];
@@ -445,20 +479,20 @@ void ContactSolver::solveFriction(const IslandContact& c, SolverBody& a, SolverB
         for (int k = 0; k < 2; ++k) {
             const double next = want[k] * scale;
             applyAlong(r.across[k], next - r.tangentImpulse[k], a, b);
-            m_change = std::max(m_change, std::abs(next - r.tangentImpulse[k]));
+            change = std::max(change, std::abs(next - r.tangentImpulse[k]));
             r.tangentImpulse[k] = next;
         }
     }
 }
 
-void ContactSolver::solveNormal(const IslandContact& c, SolverBody& a, SolverBody& b)
+void ContactSolver::solveNormal(const IslandContact& c, SolverBody& a, SolverBody& b, double& change, double& largest)
 {
     for (int i = 0; i < c.count; ++i) {
         VelocityRows& r = m_velocityRows[c.first + i];
         const double next = std::max(r.normalImpulse - r.along.mass * (speedAlong(r.along, a, b) - r.target), 0.0);
         applyAlong(r.along, next - r.normalImpulse, a, b);
-        m_change = std::max(m_change, std::abs(next - r.normalImpulse));
-        m_largest = std::max(m_largest, next);
+        change = std::max(change, std::abs(next - r.normalImpulse));
+        largest = std::max(largest, next);
         r.normalImpulse = next;
     }
 }
@@ -469,17 +503,86 @@ bool ContactSolver::solveVelocities()
     m_wide.sweep(m_bodies, m_change, m_largest);
     for (const std::uint32_t k : m_oneAtATime) {
         const IslandContact& c = m_constraints[k];
-        SolverBody& a = m_bodies[c.a];
-        SolverBody& b = m_bodies[c.b];
-        solveFriction(c, a, b);
-        solveNormal(c, a, b);
+        solveFriction(c, m_bodies[c.a], m_bodies[c.b], m_change);
+        solveNormal(c, m_bodies[c.a], m_bodies[c.b], m_change, m_largest);
     }
     return m_change <= kConverged * m_largest;
 }
 
+void ContactSolver::sweep(Part& p)
+{
+    p.change = p.largest = 0.0;
+    p.wide.sweep(m_bodies, p.change, p.largest);
+    for (const std::uint32_t k : p.oneAtATime) {
+        const IslandContact& c = p.constraints[k];
+        solveFriction(c, m_bodies[c.a], m_bodies[c.b], p.change);
+        solveNormal(c, m_bodies[c.a], m_bodies[c.b], p.change, p.largest);
+    }
+}
+
+void ContactSolver::solveVelocities(int maxStrikes, int least, int most)
+{
+    if (!m_halved) {
+        collide(maxStrikes);
+        warmStart();
+        for (int it = 0; it < most; ++it)
+            if (solveVelocities() && it + 1 >= least)
+                break;
+        return;
+    }
+    // The three passes in one run of rounds: the other core, once it has joined, stays (waking
+    // it for each pass took longer than the warm start).
+    startCollisions();
+    enum class Pass { Collisions, WarmStart, Sweeps };
+    Pass pass = Pass::Collisions;
+    int first = 0; // the round the pass began in: the pass's variables are the Across job's
+    runHalves(kMaxCollisionSweeps + 1 + most, [&](int round, Half half) {
+        Part& p = part(half);
+        const bool across = half == Half::Across;
+        switch (pass) {
+        case Pass::Collisions:
+            p.struck = false;
+            for (const std::uint32_t k : p.index)
+                p.struck = lookForBlow(k, maxStrikes) || p.struck;
+            if (across && (!(m_parts[0].struck || m_parts[1].struck || p.struck) ||
+                           round + 1 - first == kMaxCollisionSweeps)) {
+                pass = Pass::WarmStart;
+                first = round + 1;
+            }
+            return true;
+        case Pass::WarmStart:
+            markVelocities(p.bodies);
+            warmStart(p.constraints);
+            p.wide.colour(p.constraints, m_bodies);
+            p.wide.build(p.constraints, m_velocityRows, m_bodies, p.oneAtATime);
+            if (across) {
+                pass = Pass::Sweeps;
+                first = round + 1;
+            }
+            return true;
+        case Pass::Sweeps:
+            break;
+        }
+        sweep(p);
+        if (!across)
+            return true;
+        m_change = m_largest = 0.0;
+        for (const Part& q : m_parts) {
+            m_change = std::max(m_change, q.change);
+            m_largest = std::max(m_largest, q.largest);
+        }
+        const int sweeps = round + 1 - first;
+        return !(m_change <= kConverged * m_largest && sweeps >= least) && sweeps < most;
+    });
+}
+
 void ContactSolver::storeImpulses()
 {
-    m_wide.storeImpulses(m_velocityRows);
+    if (m_halved)
+        for (const Part& p : m_parts)
+            p.wide.storeImpulses(m_velocityRows);
+    else
+        m_wide.storeImpulses(m_velocityRows);
     for (const IslandContact& c : m_constraints) {
         Contact& contact = m_contacts[c.contact];
         for (int i = 0; i < c.count; ++i) {

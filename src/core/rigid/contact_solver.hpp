@@ -15,13 +15,15 @@
 //     energy.
 // Every pass visits the island's contacts in their order (by body pair), on one thread, but for
 // the velocity sweeps of a large island, which visit them colour by colour, four at a time
-// (wide_contact_rows.hpp): the result depends on nothing else.
+// (wide_contact_rows.hpp), and a huge island's passes, which visit the contacts within each half
+// of it at once and then those across the cut (halves.hpp): the result depends on nothing else.
 #include <algorithm>
 #include <span>
 #include <vector>
 
 #include "pba/contact_settings.hpp"
 #include "rigid/contact.hpp"
+#include "rigid/halves.hpp"
 #include "rigid/solver_body.hpp"
 #include "rigid/velocity_rows.hpp"
 #include "rigid/wide_contact_rows.hpp"
@@ -62,8 +64,16 @@ struct PointRows {
 /// island's and the static ones) and writes the impulses back into the contacts.
 class ContactSolver {
 public:
-    void prepare(std::span<Contact> contacts, std::span<const std::uint32_t> island, std::span<SolverBody> bodies,
-                 const SolverSettings& settings);
+    /// `moving`: the island's moving bodies; `withJoints`: the caller interleaves a joint
+    /// solver's sweeps with these (never halved).
+    void prepare(std::span<Contact> contacts, std::span<const std::uint32_t> island,
+                 std::span<const std::uint32_t> moving, std::span<SolverBody> bodies, const SolverSettings& settings,
+                 bool withJoints = false);
+    /// Islands of this many contacts and no joints are halved (a heap of thousands of dice: in a
+    /// heap of a thousand, 2,500 contacts, the halves' order left the landing dice deeper in
+    /// each other in two throws of three where the pile differed, for an eighth of the step).
+    static constexpr std::size_t kHalvedContacts = 4096;
+    bool halved() const { return m_halved; }
     /// Pass 1: restitution at the time of arrival, each contact giving at most `maxStrikes` blows
     /// (kEveryStrike: as many as the sweeps find). Returns whether any point bounced.
     bool collide(int maxStrikes = kEveryStrike);
@@ -78,6 +88,12 @@ public:
     void warmStart();
     /// One sweep; true when it changed no impulse by more than a millionth of the largest.
     bool solveVelocities();
+    /// Passes 1 and 2 for an island without joints: the collisions, the warm start and at least
+    /// `least` sweeps, on until one converges, `most` in all; a halved island's on two cores.
+    void solveVelocities(int maxStrikes, int least, int most);
+    /// Body k's velocity and spin as the collision pass left them: the velocity pass's
+    /// impulses, which act from the start of the step, are what it changed since.
+    std::pair<dvec3, dvec3> afterCollisions(BodyIndex k) const { return {m_marks[2 * k], m_marks[2 * k + 1]}; }
     /// Each point's impulses back into its contact, for the next step's warm start.
     void storeImpulses();
     /// Pass 3, on the bodies' end poses; one sweep over `contacts`, found at those poses (what
@@ -98,14 +114,35 @@ private:
         double targetN = 0.0, targetT[2] = {0.0, 0.0};
         double pushN = 0.0, pushT[2] = {0.0, 0.0};
     };
-    void solveFriction(const IslandContact& c, SolverBody& a, SolverBody& b);
-    void solveNormal(const IslandContact& c, SolverBody& a, SolverBody& b);
+    void solveFriction(const IslandContact& c, SolverBody& a, SolverBody& b, double& change);
+    void solveNormal(const IslandContact& c, SolverBody& a, SolverBody& b, double& change, double& largest);
     bool collideOne(const IslandContact& c);
-    /// A huge island's collision passes look at its contacts colour by colour, each colour's on
-    /// every core (the 10,000-dice heap's pass was a quarter of its step, on one core).
-    static constexpr std::size_t kSharedCollisions = 4096;
-    template <class Look>
-    bool collideByColour(Look& look);
+    /// Whether contact k gives a blow now (collide's look at it).
+    bool lookForBlow(std::size_t k, int maxStrikes);
+    void startCollisions();
+    void warmStart(std::span<const IslandContact> constraints);
+    void markVelocities(std::span<const std::uint32_t> bodies);
+    /// A halved island's contacts of one part: within one half of its moving bodies, or across.
+    struct Part {
+        std::vector<std::uint32_t> index;         ///< into m_constraints, in order
+        std::vector<IslandContact> constraints;   ///< the same contacts, as the wide rows take them
+        std::vector<std::uint32_t> bodies;        ///< the half's moving bodies (none across)
+        WideContactRows wide;
+        std::vector<std::uint32_t> oneAtATime;    ///< indices into constraints
+        double change = 0.0, largest = 0.0;       ///< its last sweep's
+        bool struck = false;                      ///< its last collision sweep's
+    };
+    /// Cuts the island's moving bodies in two at the median along its longest extent.
+    void halve();
+    void sweep(Part& part);
+    Part& part(Half half) { return m_parts[std::size_t(half)]; }
+    bool m_halved = false;
+    Part m_parts[3];
+    std::vector<std::int8_t> m_side;           ///< per body: its half, or -1 (static, or not this island's)
+    std::vector<std::uint32_t> m_sided;        ///< the bodies m_side holds a half for
+    std::vector<std::pair<double, std::uint32_t>> m_along; ///< scratch: the bodies along the cut's axis
+    std::span<const std::uint32_t> m_moving;   ///< the island's moving bodies
+    std::vector<dvec3> m_marks;                ///< per body: v and w after the collision pass
     double refineArrival(const IslandContact& c, int point, double tPrev, double tau) const;
     double restitutionOf(const IslandContact& c, const PointRows& r) const;
 
@@ -121,7 +158,6 @@ private:
     std::vector<std::uint32_t> m_blows; ///< the collision pass's: per body, the blows it took
     std::vector<std::uint64_t> m_seen;  ///< per contact, its bodies' blows when last looked at
     std::vector<std::uint8_t> m_strikes; ///< per contact, the blows it gave this step
-    std::vector<std::uint8_t> m_chunkStruck; ///< a shared collision sweep's: per chunk, whether it struck
     double m_change = 0.0, m_largest = 0.0; ///< the last sweep's largest change and impulse
 };
 

@@ -353,34 +353,37 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
 {
     thread_local ContactSolver solver;
     thread_local JointSolver joints;
-    solver.prepare(m_cache.contacts(), m_islands.contacts(island), m_solverBodies, settings);
+    const bool withJoints = !m_islands.links(island).empty();
+    solver.prepare(m_cache.contacts(), m_islands.contacts(island), m_islands.bodies(island), m_solverBodies, settings,
+                   withJoints);
     joints.prepare(m_joints, m_islands.links(island), m_solverBodies, settings, worldBody());
-    // A jointed island is a mechanism (a chain, a cradle on its threads): its blows pass in full.
-    solver.collide(m_islands.links(island).empty() ? ContactSolver::kHeapStrikes : ContactSolver::kEveryStrike);
-    const auto bodies = m_islands.bodies(island);
-    thread_local std::vector<dvec3> marks;
-    marks.resize(2 * bodies.size());
-    for (std::size_t k = 0; k < bodies.size(); ++k) {
-        marks[2 * k] = m_solverBodies[bodies[k]].v;
-        marks[2 * k + 1] = m_solverBodies[bodies[k]].w;
-    }
-    joints.warmStart();
-    solver.warmStart();
-    for (int it = 0; it < settings.maxVelocityIterations(); ++it) {
-        joints.solveVelocities();
-        const bool converged = solver.solveVelocities();
-        if (converged && it + 1 >= settings.contact.velocityIterations)
-            break;
+    if (withJoints) {
+        // A mechanism (a chain, a cradle on its threads): its blows pass in full, and the joints'
+        // sweeps take turns with the contacts'.
+        solver.collide(ContactSolver::kEveryStrike);
+        joints.warmStart();
+        solver.warmStart();
+        for (int it = 0; it < settings.maxVelocityIterations(); ++it) {
+            joints.solveVelocities();
+            const bool converged = solver.solveVelocities();
+            if (converged && it + 1 >= settings.contact.velocityIterations)
+                break;
+        }
+    } else { // a heap's, or a few bodies' (kHeapStrikes)
+        solver.solveVelocities(ContactSolver::kHeapStrikes, settings.contact.velocityIterations,
+                               settings.maxVelocityIterations());
     }
     joints.storeImpulses();
     solver.storeImpulses();
     // The velocity pass's impulses act from the start of the step: the end pose moves by the
     // part of the drift the end velocity drives.
-    for (std::size_t k = 0; k < bodies.size(); ++k) {
-        SolverBody& b = m_solverBodies[bodies[k]];
+    const auto bodies = m_islands.bodies(island);
+    for (const std::uint32_t k : bodies) {
+        SolverBody& b = m_solverBodies[k];
         const double drift = b.driftWeight * settings.dt;
-        b.shift += (b.v - marks[2 * k]) * drift;
-        b.turn += (b.w - marks[2 * k + 1]) * drift;
+        const auto [v, w] = solver.afterCollisions(k);
+        b.shift += (b.v - v) * drift;
+        b.turn += (b.w - w) * drift;
         b.endPosition += b.shift;
         b.endOrientation = turned(b.endOrientation, b.turn);
     }

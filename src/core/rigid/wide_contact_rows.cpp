@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <bit>
 
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 namespace pba::rigid {
 
@@ -227,34 +225,8 @@ void WideContactRows::sweepBlock(const Block& block, std::span<SolverBody> bodie
 void WideContactRows::sweep(std::span<SolverBody> bodies, double& change, double& largest)
 {
     Float4 changed = Float4::zero(), most = Float4::zero();
-    if (m_blocks.size() < kSharedBlocks) {
-        for (const Block& block : m_blocks)
-            sweepBlock(block, bodies, changed, most);
-    } else {
-        // A huge island's colours each on every core, in fixed chunks: a colour's blocks share no
-        // moving body, so the result is the one sweep's on any number of threads.
-        constexpr std::size_t kChunk = 32;
-        for (std::size_t c = 0; c + 1 < m_colourStart.size(); ++c) {
-            const std::size_t first = m_colourStart[c], end = m_colourStart[c + 1];
-            const std::size_t chunks = (end - first + kChunk - 1) / kChunk;
-            m_chunkChange.resize(2 * chunks);
-            // Isolated: a thread waiting here takes no other island's work, whose scratch it holds.
-            tbb::this_task_arena::isolate([&] {
-                tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t chunk) {
-                    Float4 chunkChanged = Float4::zero(), chunkMost = Float4::zero();
-                    const std::size_t stop = std::min(end, first + (chunk + 1) * kChunk);
-                    for (std::size_t b = first + chunk * kChunk; b < stop; ++b)
-                        sweepBlock(m_blocks[b], bodies, chunkChanged, chunkMost);
-                    m_chunkChange[2 * chunk] = chunkChanged;
-                    m_chunkChange[2 * chunk + 1] = chunkMost;
-                });
-            });
-            for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
-                changed = max(changed, m_chunkChange[2 * chunk]);
-                most = max(most, m_chunkChange[2 * chunk + 1]);
-            }
-        }
-    }
+    for (const Block& block : m_blocks)
+        sweepBlock(block, bodies, changed, most);
     alignas(16) float c[4], l[4];
     changed.store(c);
     most.store(l);

@@ -25,9 +25,6 @@ class WideContactRows {
 public:
     /// Islands with fewer contacts are swept one contact at a time: too few for full blocks.
     static constexpr std::size_t kFewest = 64;
-    /// Islands of more blocks sweep each colour on every core (a 10,000-dice heap's: the sync a
-    /// colour costs is small beside its work there, not in a 1,000-dice heap).
-    static constexpr std::size_t kSharedBlocks = 1024;
 
     /// Packs `contacts`, as colour() last coloured them, with their rows' impulses as they are now
     /// (after the warm start); lists in `leftOver` the indices of those no colour took, in order.
@@ -91,7 +88,6 @@ private:
     std::vector<std::uint32_t> m_byColour; ///< the contacts, colour by colour
     std::vector<std::uint32_t> m_colourContacts = std::vector<std::uint32_t>(kColours + 2, 0); ///< colour c's in m_byColour: [c], [c + 1]
     std::vector<std::uint32_t> m_colourStart; ///< colour c's blocks: [start[c], start[c + 1])
-    std::vector<Float4> m_chunkChange;        ///< a shared sweep's chunks' largest changes and impulses
     std::vector<std::uint32_t> m_order;    ///< scratch: one colour's contacts
 };
 
