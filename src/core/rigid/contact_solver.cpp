@@ -109,22 +109,44 @@ void ContactSolver::prepare(std::span<Contact> contacts, std::span<const std::ui
     m_bodies = bodies;
     m_settings = settings;
     m_constraints.clear();
-    m_rows.clear();
-    m_velocityRows.clear();
+    std::uint32_t rows = 0;
     for (const std::uint32_t index : island) {
         const Contact& contact = contacts[index];
-        const SolverBody& a = bodies[contact.a];
-        const SolverBody& b = bodies[contact.b];
         m_constraints.push_back({index, contact.a, contact.b, contact.friction, contact.restitution, contact.radiusA,
-                                 contact.radiusB, std::uint32_t(m_rows.size()), contact.count});
-        for (int i = 0; i < contact.count; ++i) {
+                                 contact.radiusB, rows, contact.count});
+        rows += std::uint32_t(contact.count);
+    }
+    m_rows.resize(rows);
+    m_velocityRows.resize(rows);
+    if (m_marks.size() < 2 * bodies.size())
+        m_marks.resize(2 * bodies.size());
+    m_halved = !withJoints && m_constraints.size() >= kHalvedContacts;
+    if (!m_halved) {
+        prepareRows(m_constraints);
+        return;
+    }
+    halve();
+    runHalves(1, [&](int, Half half) {
+        prepareRows(part(half).constraints);
+        return true;
+    });
+}
+
+void ContactSolver::prepareRows(std::span<const IslandContact> constraints)
+{
+    for (const IslandContact& c : constraints) {
+        const Contact& contact = m_contacts[c.contact];
+        const SolverBody& a = m_bodies[c.a];
+        const SolverBody& b = m_bodies[c.b];
+        for (int i = 0; i < c.count; ++i) {
             const ContactPoint& p = contact.points[i];
-            PointRows r;
+            PointRows& r = m_rows[c.first + i];
+            r = PointRows{};
             r.rA = p.point - a.position;
             r.rB = p.point - b.position;
             r.n = p.normal;
             tangentsOf(r.n, r.t);
-            VelocityRows v;
+            VelocityRows& v = m_velocityRows[c.first + i];
             v.along = jacobianOf(a, b, r.rA, r.rB, r.n);
             for (int k = 0; k < 2; ++k)
                 v.across[k] = jacobianOf(a, b, r.rA, r.rB, r.t[k]);
@@ -142,17 +164,9 @@ void ContactSolver::prepare(std::span<Contact> contacts, std::span<const std::ui
             v.tangentImpulse[1] = p.tangentImpulse[1];
             // A gap may close within the step, no more (a speculative contact): resting stays at
             // rest, and an arrival slower than the resting speed lands without a bounce.
-            v.target = -std::max(r.separation, 0.0) / settings.dt;
-            m_rows.push_back(r);
-            m_velocityRows.push_back(v);
+            v.target = -std::max(r.separation, 0.0) / m_settings.dt;
         }
     }
-
-    m_halved = !withJoints && m_constraints.size() >= kHalvedContacts;
-    if (m_halved)
-        halve();
-    if (m_marks.size() < 2 * bodies.size())
-        m_marks.resize(2 * bodies.size());
 }
 
 void ContactSolver::halve()
@@ -627,6 +641,34 @@ void ContactSolver::solvePositions(std::span<const Contact> contacts)
                 b.endPosition += push * b.inverseMass;
         }
     }
+}
+
+void ContactSolver::solvePositions(std::span<const Contact> contacts, int sweeps)
+{
+    if (!m_halved) {
+        for (int it = 0; it < sweeps; ++it)
+            solvePositions(contacts);
+        return;
+    }
+    // The end contacts part by part, each part's in its order (a counting sort).
+    const auto halfOfContact = [&](const Contact& c) {
+        const auto side = [&](BodyIndex k) { return k < m_side.size() ? int(m_side[k]) : -1; };
+        return std::size_t(halfOf(side(c.a), side(c.b)));
+    };
+    std::size_t start[4] = {0, 0, 0, 0};
+    for (const Contact& c : contacts)
+        ++start[halfOfContact(c) + 1];
+    for (std::size_t h = 0; h < 3; ++h)
+        start[h + 1] += start[h];
+    m_atEnd.resize(contacts.size());
+    std::size_t fill[3] = {start[0], start[1], start[2]};
+    for (const Contact& c : contacts)
+        m_atEnd[fill[halfOfContact(c)]++] = c;
+    runHalves(sweeps, [&](int, Half half) {
+        const std::size_t h = std::size_t(half);
+        solvePositions(std::span<const Contact>(m_atEnd).subspan(start[h], start[h + 1] - start[h]));
+        return true;
+    });
 }
 
 } // namespace pba::rigid

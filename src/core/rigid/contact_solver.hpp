@@ -99,6 +99,8 @@ public:
     /// Pass 3, on the bodies' end poses; one sweep over `contacts`, found at those poses (what
     /// the step's turning brought into contact is there, which the start's manifolds missed).
     void solvePositions(std::span<const Contact> contacts);
+    /// `sweeps` of them (without joints; a halved island's on two cores).
+    void solvePositions(std::span<const Contact> contacts, int sweeps);
 
 private:
     /// A point's two surface points and normal with the bodies at the given poses.
@@ -120,6 +122,8 @@ private:
     /// Whether contact k gives a blow now (collide's look at it).
     bool lookForBlow(std::size_t k, int maxStrikes);
     void startCollisions();
+    /// The rows of these contacts' points, where their `first` says.
+    void prepareRows(std::span<const IslandContact> constraints);
     void warmStart(std::span<const IslandContact> constraints);
     void markVelocities(std::span<const std::uint32_t> bodies);
     /// A halved island's contacts of one part: within one half of its moving bodies, or across.
@@ -141,6 +145,7 @@ private:
     std::vector<std::int8_t> m_side;           ///< per body: its half, or -1 (static, or not this island's)
     std::vector<std::uint32_t> m_sided;        ///< the bodies m_side holds a half for
     std::vector<std::pair<double, std::uint32_t>> m_along; ///< scratch: the bodies along the cut's axis
+    std::vector<Contact> m_atEnd;              ///< scratch: the end contacts, part by part
     std::span<const std::uint32_t> m_moving;   ///< the island's moving bodies
     std::vector<dvec3> m_marks;                ///< per body: v and w after the collision pass
     double refineArrival(const IslandContact& c, int point, double tPrev, double tau) const;

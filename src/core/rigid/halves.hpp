@@ -15,9 +15,6 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
-#include "pba/math.hpp"
-#include "rigid/contact.hpp"
-
 namespace pba::rigid {
 
 /// Which part of a halved island a contact belongs to.

@@ -395,7 +395,9 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     pushOutOfRoom(bodies);
     thread_local std::vector<Contact> atEnd;
     contactsAtEnd(island, atEnd);
-    for (int it = 0; it < settings.contact.positionIterations; ++it) {
+    if (!withJoints)
+        solver.solvePositions(atEnd, settings.contact.positionIterations);
+    for (int it = 0; withJoints && it < settings.contact.positionIterations; ++it) {
         joints.solvePositions();
         solver.solvePositions(atEnd);
     }
