@@ -145,7 +145,19 @@ private:
     std::vector<std::int8_t> m_side;           ///< per body: its half, or -1 (static, or not this island's)
     std::vector<std::uint32_t> m_sided;        ///< the bodies m_side holds a half for
     std::vector<std::pair<double, std::uint32_t>> m_along; ///< scratch: the bodies along the cut's axis
-    std::vector<Contact> m_atEnd;              ///< scratch: the end contacts, part by part
+    /// One point of the position pass without joints: its arms turned once for all the sweeps.
+    struct PositionRow {
+        BodyIndex a = 0, b = 0;
+        double k = 0.0; ///< 1/mA + 1/mB: 0 between two static bodies
+        dvec3 n{0.0};
+        double radiusA = 0.0, radiusB = 0.0;
+        dvec3 armA{0.0}, armB{0.0}; ///< from each centre to the point's anchor on it, world
+    };
+    /// The points of `contacts` as rows, at the bodies' end orientations, part by part.
+    void positionRows(std::span<const Contact> contacts);
+    void solvePosition(const PositionRow& row);
+    std::vector<PositionRow> m_positionRows;
+    std::size_t m_partRows[4] = {0, 0, 0, 0}; ///< part h's rows: [m_partRows[h], m_partRows[h + 1])
     std::span<const std::uint32_t> m_moving;   ///< the island's moving bodies
     std::vector<dvec3> m_marks;                ///< per body: v and w after the collision pass
     double refineArrival(const IslandContact& c, int point, double tPrev, double tau) const;
