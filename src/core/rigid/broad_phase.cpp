@@ -36,6 +36,7 @@ void BroadPhase::fillGrid(std::span<const Box> boxes, std::span<const Motion> mo
     const std::size_t n = boxes.size();
     m_large.assign(n, 0);
     m_largeList.clear();
+    m_widest = 0.0;
     std::size_t small = 0;
     for (std::size_t i = 0; i < n; ++i) {
         if (isPoint[i]) {
@@ -44,11 +45,12 @@ void BroadPhase::fillGrid(std::span<const Box> boxes, std::span<const Motion> mo
                 m_large[i] = 1;
                 m_largeList.push_back(std::uint32_t(i));
             }
-        } else if (largestSide(boxes[i]) > m_cell) {
+        } else if (const double side = largestSide(boxes[i]); side > m_cell) {
             m_large[i] = 1;
             m_largeList.push_back(std::uint32_t(i));
         } else {
             ++small;
+            m_widest = std::max(m_widest, side);
         }
     }
     m_cells.resize(n);
@@ -88,9 +90,9 @@ void BroadPhase::pairsOfSmall(std::span<const Box> boxes, std::span<const Motion
             // over by the contact cache, and its bodies are only looked up as partners.
             if (m_large[i] || motion[i] != Motion::Awake)
                 continue;
-            // A partner no larger than a cell has its lowest corner within a cell below this
-            // box's lowest corner and no further than its highest.
-            const Cell lo = detail::cellOf(boxes[i].min - m_cell, m_cell), hi = detail::cellOf(boxes[i].max, m_cell);
+            // A partner in the grid has its lowest corner no further below this box's lowest
+            // corner than the widest of them is wide, and no further than its highest.
+            const Cell lo = detail::cellOf(boxes[i].min - m_widest, m_cell), hi = detail::cellOf(boxes[i].max, m_cell);
             for (std::int64_t x = lo.x; x <= hi.x; ++x)
                 for (std::int64_t y = lo.y; y <= hi.y; ++y)
                     for (std::int64_t z = lo.z; z <= hi.z; ++z) {

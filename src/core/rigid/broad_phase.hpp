@@ -54,7 +54,8 @@ private:
     void pairsOfLarge(std::span<const Box> boxes, std::span<const Motion> motion, std::span<const std::uint8_t> isPoint,
                       std::vector<BodyPair>& pairs);
 
-    double m_cell = 1.0;
+    double m_cell = 1.0;   ///< the grid's cells' side: a body with a longer one is large
+    double m_widest = 0.0; ///< the longest side of a body in the grid
     std::vector<std::uint8_t> m_large;        ///< per body: tested against every body
     std::vector<std::uint32_t> m_largeList;
     std::vector<std::uint32_t> m_bucketStart; ///< the hash table: bucket k holds m_entries[start[k], start[k+1])
