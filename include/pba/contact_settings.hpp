@@ -11,8 +11,10 @@ struct ContactSettings {
     /// velocityIterations for a fixed count (as an engine compared sweep for sweep).
     int maxVelocityIterations = 64;
     /// Sweeps of the position pass, which pushes apart what overlaps beyond linearSlop (m) by
-    /// baumgarte of the overlap a sweep, on the poses alone.
-    int positionIterations = 8;
+    /// baumgarte of the overlap a sweep, on the poses alone. Over throws of 700 to 1,300 dice the
+    /// landing's deepest overlap, looked at every 4 steps, was 3.6-17.8 mm with 8 sweeps and
+    /// 1.3-2.6 mm with 16 in six throws of seven (12.7 in one).
+    int positionIterations = 16;
     double linearSlop = 0.0005;
     double baumgarte = 0.8;
     /// Contacts are kept while the shapes are this much (m) further apart than their free motion
