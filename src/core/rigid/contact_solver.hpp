@@ -69,11 +69,10 @@ public:
     void prepare(std::span<Contact> contacts, std::span<const std::uint32_t> island,
                  std::span<const std::uint32_t> moving, std::span<SolverBody> bodies, const SolverSettings& settings,
                  bool withJoints = false);
-    /// Islands of this many contacts and no joints are halved: a heap of thousands of dice. A
-    /// thousand dice's heap (2,500 contacts) in halves stepped 1.08 times as fast, but in both
-    /// throws of five whose piles the halves' order changed, the landing dice went deeper into
-    /// each other (5.4 mm against 1.9, 3.9 against 2.5).
-    static constexpr std::size_t kHalvedContacts = 4096;
+    /// Islands of this many contacts and no joints are halved: a heap of a few hundred dice. A
+    /// thousand dice's heap (2,500 contacts) steps 1.06 times as fast in halves; with 8 position
+    /// sweeps its landing went deeper than the whole island's, with 16 it does not (7 throws).
+    static constexpr std::size_t kHalvedContacts = 512;
     /// Pass 1: restitution at the time of arrival, each contact giving at most `maxStrikes` blows
     /// (kEveryStrike: as many as the sweeps find). Returns whether any point bounced.
     bool collide(int maxStrikes = kEveryStrike);
