@@ -334,17 +334,16 @@ double ContactSolver::refineArrival(const IslandContact& c, int point, double tP
     return tau;
 }
 
-bool ContactSolver::collideOne(const IslandContact& c)
+bool ContactSolver::firstArrival(const IslandContact& c, double& tau, bool (&arrives)[kMaxPoints]) const
 {
-    SolverBody& a = m_bodies[c.a];
-    SolverBody& b = m_bodies[c.b];
-    const double dt = m_settings.dt;
     // When each point arrives: its gap moves with the start's velocities up to the last impulse
     // either body took this step (tPrev), and from then with the present ones, the free step's
     // acceleration taken as constant throughout.
+    const SolverBody& a = m_bodies[c.a];
+    const SolverBody& b = m_bodies[c.b];
+    const double dt = m_settings.dt;
     const double tPrev = std::max(a.lastImpact, b.lastImpact);
-    double tau = dt;
-    bool arrives[kMaxPoints] = {};
+    tau = dt;
     bool any = false;
     int first = 0;
     for (int i = 0; i < c.count; ++i) {
@@ -363,17 +362,23 @@ bool ContactSolver::collideOne(const IslandContact& c)
         }
         any = true;
     }
-    if (!any)
-        return false;
-    tau = refineArrival(c, first, tPrev, tau);
+    if (any)
+        tau = refineArrival(c, first, tPrev, tau);
+    return any;
+}
+
+int ContactSolver::impactRows(const IslandContact& c, double tau, const bool (&arrives)[kMaxPoints],
+                              ImpactRow (&rows)[kMaxPoints]) const
+{
     // The impulses act at tau, at the points where the bodies' free paths had them then, both
     // bodies' arms reaching one point: so they change the total momentum and angular momentum by
     // nothing, and the energy by exactly what restitution and friction take.
-    const double f = tau / dt;
-    const dvec3 xa = a.freePosition(f, dt), xb = b.freePosition(f, dt);
+    const SolverBody& a = m_bodies[c.a];
+    const SolverBody& b = m_bodies[c.b];
+    const double f = tau / m_settings.dt;
+    const dvec3 xa = a.freePosition(f, m_settings.dt), xb = b.freePosition(f, m_settings.dt);
     const dmat3 qa = glm::mat3_cast(a.freeOrientation(f)), qb = glm::mat3_cast(b.freeOrientation(f));
     const dvec3 va = a.velocityAt(f), wa = a.spinAt(f), vb = b.velocityAt(f), wb = b.spinAt(f);
-    ImpactRow rows[kMaxPoints];
     int count = 0;
     for (int i = 0; i < c.count; ++i) {
         if (!arrives[i])
@@ -407,15 +412,18 @@ bool ContactSolver::collideOne(const IslandContact& c)
         }
         ++count;
     }
-    if (count == 0)
-        return false;
+    return count;
+}
+
+void ContactSolver::solveImpact(const IslandContact& c, std::span<ImpactRow> rows)
+{
     // The arriving points' impulses together, to convergence: each leaves at e times its
     // arriving speed, and slides no faster than friction lets it.
-    const dvec3 va0 = a.v, wa0 = a.w, vb0 = b.v, wb0 = b.w;
+    SolverBody& a = m_bodies[c.a];
+    SolverBody& b = m_bodies[c.b];
     for (int sweep = 0; sweep < kMaxImpactSweeps; ++sweep) {
         double change = 0.0, largest = 0.0;
-        for (int i = 0; i < count; ++i) {
-            ImpactRow& row = rows[i];
+        for (ImpactRow& row : rows) {
             const PointRows& r = row.rows;
             double want[2];
             for (int k = 0; k < 2; ++k)
@@ -439,12 +447,29 @@ bool ContactSolver::collideOne(const IslandContact& c)
         if (change <= 1e-12 * largest)
             break;
     }
+}
+
+bool ContactSolver::collideOne(const IslandContact& c)
+{
+    double tau = 0.0;
+    bool arrives[kMaxPoints] = {};
+    if (!firstArrival(c, tau, arrives))
+        return false;
+    ImpactRow rows[kMaxPoints];
+    const int count = impactRows(c, tau, arrives, rows);
+    if (count == 0)
+        return false;
+    SolverBody& a = m_bodies[c.a];
+    SolverBody& b = m_bodies[c.b];
+    const dvec3 va0 = a.v, wa0 = a.w, vb0 = b.v, wb0 = b.w;
+    solveImpact(c, std::span(rows, std::size_t(count)));
     // The end poses move by the velocity change over what is left of the step.
+    const double left = m_settings.dt - tau;
     const auto shift = [&](SolverBody& body, const dvec3& v0, const dvec3& w0) {
         if (body.isStatic())
             return;
-        body.shift += (body.v - v0) * (dt - tau);
-        body.turn += (body.w - w0) * (dt - tau);
+        body.shift += (body.v - v0) * left;
+        body.turn += (body.w - w0) * left;
         body.lastImpact = tau;
         body.struck = true;
     };

@@ -117,7 +117,13 @@ private:
     };
     void solveFriction(const IslandContact& c, SolverBody& a, SolverBody& b, double& change);
     void solveNormal(const IslandContact& c, SolverBody& a, SolverBody& b, double& change, double& largest);
+    /// A contact's blow in the collision pass: when its first point arrives (false: none
+    /// does), the rows of the points arriving then, their impulses together.
     bool collideOne(const IslandContact& c);
+    bool firstArrival(const IslandContact& c, double& tau, bool (&arrives)[contact::Manifold::kMaxPoints]) const;
+    int impactRows(const IslandContact& c, double tau, const bool (&arrives)[contact::Manifold::kMaxPoints],
+                   ImpactRow (&rows)[contact::Manifold::kMaxPoints]) const;
+    void solveImpact(const IslandContact& c, std::span<ImpactRow> rows);
     /// Whether contact k gives a blow now (collide's look at it).
     bool lookForBlow(std::size_t k, int maxStrikes);
     void startCollisions();

@@ -357,40 +357,19 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     solver.prepare(m_cache.contacts(), m_islands.contacts(island), m_islands.bodies(island), m_solverBodies, settings,
                    withJoints);
     joints.prepare(m_joints, m_islands.links(island), m_solverBodies, settings, worldBody());
-    if (withJoints) {
-        // A mechanism (a chain, a cradle on its threads): its blows pass in full, and the joints'
-        // sweeps take turns with the contacts'.
-        solver.collide(ContactSolver::kEveryStrike);
-        joints.warmStart();
-        solver.warmStart();
-        for (int it = 0; it < settings.maxVelocityIterations(); ++it) {
-            joints.solveVelocities();
-            const bool converged = solver.solveVelocities();
-            if (converged && it + 1 >= settings.contact.velocityIterations)
-                break;
-        }
-    } else { // a heap's, or a few bodies' (kHeapStrikes)
+    if (withJoints)
+        solveMechanismVelocities(solver, joints, settings);
+    else // a heap's, or a few bodies'
         solver.solveVelocities(ContactSolver::kHeapStrikes, settings.contact.velocityIterations,
                                settings.maxVelocityIterations());
-    }
     joints.storeImpulses();
     solver.storeImpulses();
-    // The velocity pass's impulses act from the start of the step: the end pose moves by the
-    // part of the drift the end velocity drives.
-    const auto bodies = m_islands.bodies(island);
-    for (const std::uint32_t k : bodies) {
-        SolverBody& b = m_solverBodies[k];
-        const double drift = b.driftWeight * settings.dt;
-        const auto [v, w] = solver.afterCollisions(k);
-        b.shift += (b.v - v) * drift;
-        b.turn += (b.w - w) * drift;
-        b.endPosition += b.shift;
-        b.endOrientation = turned(b.endOrientation, b.turn);
-    }
+    moveEndPoses(island, solver, settings.dt);
     // The velocities are final: no contact may have added to the island's energy (capEnergy).
     // The position pass then moves the poses alone, adding no motion. The room is the boundary
     // nothing may leave: what is beyond it is taken back before the pass (so that the pass's
     // contacts are found where the bodies are) and after it.
+    const auto bodies = m_islands.bodies(island);
     capEnergy(island);
     pushOutOfRoom(bodies);
     thread_local std::vector<Contact> atEnd;
@@ -405,8 +384,38 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     // A joint does no work: what its position pass adds to the island's height is taken from its
     // motion (a chain's energy never grows). Not for contacts alone, whose pass only undoes an
     // overlap the step made, and whose resting bodies have no motion to take it from.
-    if (!m_islands.links(island).empty())
+    if (withJoints)
         capEnergy(island);
+}
+
+void RigidSystem::solveMechanismVelocities(ContactSolver& solver, JointSolver& joints, const SolverSettings& settings)
+{
+    // A mechanism (a chain, a cradle on its threads): its blows pass in full, and the joints'
+    // sweeps take turns with the contacts'.
+    solver.collide(ContactSolver::kEveryStrike);
+    joints.warmStart();
+    solver.warmStart();
+    for (int it = 0; it < settings.maxVelocityIterations(); ++it) {
+        joints.solveVelocities();
+        const bool converged = solver.solveVelocities();
+        if (converged && it + 1 >= settings.contact.velocityIterations)
+            break;
+    }
+}
+
+void RigidSystem::moveEndPoses(std::size_t island, const ContactSolver& solver, double dt)
+{
+    // The velocity pass's impulses act from the start of the step: the end pose moves by the
+    // part of the drift the end velocity drives.
+    for (const std::uint32_t k : m_islands.bodies(island)) {
+        SolverBody& b = m_solverBodies[k];
+        const double drift = b.driftWeight * dt;
+        const auto [v, w] = solver.afterCollisions(k);
+        b.shift += (b.v - v) * drift;
+        b.turn += (b.w - w) * drift;
+        b.endPosition += b.shift;
+        b.endOrientation = turned(b.endOrientation, b.turn);
+    }
 }
 
 void RigidSystem::pushOutOfRoom(std::span<const std::uint32_t> bodies)
@@ -515,6 +524,24 @@ void RigidSystem::capEnergy(std::size_t island)
         kinetic += e + glm::dot(m_gravity, s.x) / m.inverseMass;
     }
     // A spring joint's energy is the island's too: what it stores is not a gain.
+    const Energies springs = springEnergy(island);
+    start += springs.start;
+    free += springs.free;
+    end += springs.end;
+    const double excess = end - std::max(start, free);
+    if (!(excess > 0.0)) // a NaN too: the finite check names the body
+        return;
+    const double keep = kinetic > excess ? std::sqrt(1.0 - excess / kinetic) : 0.0;
+    for (const std::uint32_t k : bodies) {
+        SolverBody& b = m_solverBodies[k];
+        b.v *= keep;
+        b.w *= keep; // L = I w: scaled alike
+    }
+}
+
+RigidSystem::Energies RigidSystem::springEnergy(std::size_t island) const
+{
+    Energies e;
     enum class When { Start, Free, End };
     auto pose = [&](BodyIndex k, When when) -> std::pair<dvec3, dquat> {
         if (k == kWorldBody)
@@ -534,19 +561,11 @@ void RigidSystem::capEnergy(std::size_t island)
             const double stretch = glm::length((xb + qb * j.localB) - (xa + qa * j.localA)) - j.length;
             return 0.5 * j.stiffness * stretch * stretch;
         };
-        start += energy(When::Start);
-        free += energy(When::Free);
-        end += energy(When::End);
+        e.start += energy(When::Start);
+        e.free += energy(When::Free);
+        e.end += energy(When::End);
     }
-    const double excess = end - std::max(start, free);
-    if (!(excess > 0.0)) // a NaN too: the finite check names the body
-        return;
-    const double keep = kinetic > excess ? std::sqrt(1.0 - excess / kinetic) : 0.0;
-    for (const std::uint32_t k : bodies) {
-        SolverBody& b = m_solverBodies[k];
-        b.v *= keep;
-        b.w *= keep; // L = I w: scaled alike
-    }
+    return e;
 }
 
 void RigidSystem::finishBodies()

@@ -128,8 +128,16 @@ private:
     void wakeTouched();
     void wakeIsland(std::uint32_t body);
     void prepareBodies(double dt, std::size_t surfaces);
+    /// An island's three passes (contact_solver.hpp), with its joints' sweeps among them.
     void solveIsland(std::size_t island, const SolverSettings& settings);
+    static void solveMechanismVelocities(ContactSolver& solver, JointSolver& joints, const SolverSettings& settings);
+    void moveEndPoses(std::size_t island, const ContactSolver& solver, double dt);
     void capEnergy(std::size_t island);
+    /// What the island's spring joints store at the start, at the free step's end and now.
+    struct Energies {
+        double start = 0.0, free = 0.0, end = 0.0;
+    };
+    Energies springEnergy(std::size_t island) const;
     void pushOutOfRoom(std::span<const std::uint32_t> bodies);
     void contactsAtEnd(std::size_t island, std::vector<Contact>& out) const;
     void roomAtEnd(std::span<const std::uint32_t> bodies, std::vector<Contact>& out) const;
