@@ -103,6 +103,64 @@ dvec3 across(const dvec3& axis)
     return glm::normalize(glm::cross(axis, other));
 }
 
+/// A particle has no orientation for a hinge or a weld to hold, and two particles (or a particle
+/// and the world) are joined by a spring or a pin.
+void checkParticleJoint(const JointDesc& desc, const Body& particle, const Body* b, bool bothParticles)
+{
+    if (desc.type == JointType::Hinge || desc.type == JointType::Fixed)
+        throw std::invalid_argument(fmt::format("a {} joint needs two rigid bodies, and '{}' is a particle (join "
+                                                "a particle with a ball or distance joint)",
+                                                jointTypeName(desc.type), particle.getName()));
+    if (!b || bothParticles)
+        throw std::invalid_argument(fmt::format("a joint joins a particle to a rigid body, and '{}' is joined to "
+                                                "{}",
+                                                particle.getName(), b ? "a particle" : "the world"));
+}
+
+/// A body's pose at the joint's start, taking world points into its frame (the world's own frame
+/// for the world).
+struct StartPose {
+    dvec3 x{0.0};
+    dquat q{1.0, 0.0, 0.0, 0.0};
+    dvec3 local(const dvec3& p) const { return glm::conjugate(q) * (p - x); }
+};
+
+void setHinge(const JointDesc& desc, const StartPose& a, const StartPose& b, rigid::Joint& j)
+{
+    const double len = glm::length(desc.axis);
+    if (!(len > 0.0) || !finite(desc.axis))
+        throw std::invalid_argument("a hinge's axis must be a non-zero finite vector");
+    const dvec3 axis = desc.axis / len, ref = across(axis);
+    j.axisA = a.local(a.x + axis);
+    j.axisB = b.local(b.x + axis);
+    j.refA = a.local(a.x + ref);
+    j.refB = b.local(b.x + ref);
+    if (!desc.limits)
+        return;
+    const auto [lower, upper] = *desc.limits;
+    if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= 0.0 && 0.0 <= upper && lower >= -std::numbers::pi &&
+          upper <= std::numbers::pi))
+        throw std::invalid_argument(fmt::format("a hinge's limits must hold its start angle, 0, within "
+                                                "[-pi, pi]: got [{}, {}]", lower, upper));
+    j.limited = true;
+    j.lower = lower;
+    j.upper = upper;
+}
+
+void setDistance(const JointDesc& desc, const dvec3& onA, const dvec3& onB, rigid::Joint& j)
+{
+    j.length = desc.length.value_or(glm::length(onB - onA));
+    if (!(j.length >= 0.0 && std::isfinite(j.length)))
+        throw std::invalid_argument(fmt::format("a distance joint's length must be finite and >= 0, got {}", j.length));
+    if (desc.stiffness && !(*desc.stiffness > 0.0 && std::isfinite(*desc.stiffness)))
+        throw std::invalid_argument(fmt::format("a spring's stiffness must be finite and positive, got {}",
+                                                *desc.stiffness));
+    if (!(desc.damping >= 0.0 && std::isfinite(desc.damping)))
+        throw std::invalid_argument(fmt::format("a spring's damping must be finite and >= 0, got {}", desc.damping));
+    j.stiffness = desc.stiffness.value_or(0.0);
+    j.damping = desc.damping;
+}
+
 } // namespace
 
 std::size_t World::addJoint(const JointDesc& desc)
@@ -112,76 +170,36 @@ std::size_t World::addJoint(const JointDesc& desc)
     if (b == &a)
         throw std::invalid_argument(fmt::format("a joint joins two bodies, and both are '{}'", a.getName()));
     const bool particleA = !isRigid(desc.bodyA), particleB = b && !isRigid(*desc.bodyB);
-    if (particleA || particleB) {
-        // A particle has no orientation for a hinge or a weld to hold, and two particles (or a
-        // particle and the world) are joined by a spring or a pin.
-        const Body& particle = particleA ? a : *b;
-        if (desc.type == JointType::Hinge || desc.type == JointType::Fixed)
-            throw std::invalid_argument(fmt::format("a {} joint needs two rigid bodies, and '{}' is a particle (join "
-                                                    "a particle with a ball or distance joint)",
-                                                    jointTypeName(desc.type), particle.getName()));
-        if (!b || (particleA && particleB))
-            throw std::invalid_argument(fmt::format("a joint joins a particle to a rigid body, and '{}' is joined to "
-                                                    "{}",
-                                                    particle.getName(), b ? "a particle" : "the world"));
-    }
+    if (particleA || particleB)
+        checkParticleJoint(desc, particleA ? a : *b, b, particleA && particleB);
+    const dvec3 onA = desc.type == JointType::Distance ? desc.anchors[0] : desc.anchor;
+    const dvec3 onB = desc.type == JointType::Distance ? desc.anchors[1] : desc.anchor;
+    if (!finite(onA) || !finite(onB))
+        throw std::invalid_argument("a joint's anchor must be finite");
+    const auto [xa, qa] = jointPose(a);
+    const StartPose frameA{xa, qa};
+    StartPose frameB;
+    if (b)
+        std::tie(frameB.x, frameB.q) = jointPose(*b);
+    rigid::Joint j;
+    j.type = desc.type;
+    j.localA = frameA.local(onA);
+    j.localB = frameB.local(onB);
+    if (desc.type == JointType::Hinge)
+        setHinge(desc, frameA, frameB, j);
+    if (desc.type == JointType::Fixed)
+        j.rest = glm::conjugate(frameA.q) * frameB.q;
+    if (desc.type == JointType::Distance)
+        setDistance(desc, onA, onB, j);
+    // Checked: the world changes from here on. A particle joined to a body takes part in the
+    // rigid system as a point body.
     for (const std::size_t i : {desc.bodyA, desc.bodyB.value_or(desc.bodyA)})
         if (m_bodies.rigidIndex[i] == kNotRigid) {
             m_bodies.rigidIndex[i] = std::uint32_t(m_rigid.system->size());
             m_rigid.system->addPoint(i);
         }
-    // Plain variables, not structured bindings: Clang 14 (the sanitizer build's) cannot capture those.
-    const std::pair<dvec3, dquat> poseA = jointPose(a);
-    const std::pair<dvec3, dquat> poseB = b ? jointPose(*b) : std::pair{dvec3(0.0), dquat(1.0, 0.0, 0.0, 0.0)};
-    const dvec3 xa = poseA.first, xb = poseB.first;
-    const dquat qa = poseA.second, qb = poseB.second;
-    // World to each body's frame (the world's own frame for the world).
-    auto inA = [&](const dvec3& p) { return glm::conjugate(qa) * (p - xa); };
-    auto inB = [&](const dvec3& p) { return glm::conjugate(qb) * (p - xb); };
-    rigid::Joint j;
-    j.type = desc.type;
     j.a = m_bodies.rigidIndex[desc.bodyA];
     j.b = b ? m_bodies.rigidIndex[*desc.bodyB] : rigid::kWorldBody;
-    const dvec3 onA = desc.type == JointType::Distance ? desc.anchors[0] : desc.anchor;
-    const dvec3 onB = desc.type == JointType::Distance ? desc.anchors[1] : desc.anchor;
-    if (!finite(onA) || !finite(onB))
-        throw std::invalid_argument("a joint's anchor must be finite");
-    j.localA = inA(onA);
-    j.localB = inB(onB);
-    if (desc.type == JointType::Hinge) {
-        const double len = glm::length(desc.axis);
-        if (!(len > 0.0) || !finite(desc.axis))
-            throw std::invalid_argument("a hinge's axis must be a non-zero finite vector");
-        const dvec3 axis = desc.axis / len, ref = across(axis);
-        j.axisA = inA(xa + axis);
-        j.axisB = inB(xb + axis);
-        j.refA = inA(xa + ref);
-        j.refB = inB(xb + ref);
-        if (desc.limits) {
-            const auto [lower, upper] = *desc.limits;
-            if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= 0.0 && 0.0 <= upper &&
-                  lower >= -std::numbers::pi && upper <= std::numbers::pi))
-                throw std::invalid_argument(fmt::format("a hinge's limits must hold its start angle, 0, within "
-                                                        "[-pi, pi]: got [{}, {}]", lower, upper));
-            j.limited = true;
-            j.lower = lower;
-            j.upper = upper;
-        }
-    }
-    if (desc.type == JointType::Fixed)
-        j.rest = glm::conjugate(qa) * qb;
-    if (desc.type == JointType::Distance) {
-        j.length = desc.length.value_or(glm::length(onB - onA));
-        if (!(j.length >= 0.0 && std::isfinite(j.length)))
-            throw std::invalid_argument(fmt::format("a distance joint's length must be finite and >= 0, got {}", j.length));
-        if (desc.stiffness && !(*desc.stiffness > 0.0 && std::isfinite(*desc.stiffness)))
-            throw std::invalid_argument(fmt::format("a spring's stiffness must be finite and positive, got {}",
-                                                    *desc.stiffness));
-        if (!(desc.damping >= 0.0 && std::isfinite(desc.damping)))
-            throw std::invalid_argument(fmt::format("a spring's damping must be finite and >= 0, got {}", desc.damping));
-        j.stiffness = desc.stiffness.value_or(0.0);
-        j.damping = desc.damping;
-    }
     m_rigid.system->addJoint(j);
     return m_rigid.system->joints().size() - 1;
 }

@@ -162,6 +162,30 @@ TEST(PointBody, AJointWithAParticleIsABallOrADistanceToARigidBody)
     EXPECT_THROW(world.addJoint(pair), std::invalid_argument); // two particles: a spring
 }
 
+TEST(PointBody, ARefusedJointLeavesTheWorldAsItWas)
+{
+    auto run = [](bool refused) {
+        World world;
+        world.setRoom(Aabb{dvec3(-2.0, 0.0, -2.0), dvec3(2.0, 4.0, 2.0)});
+        world.addForce(std::make_unique<Gravity>(dvec3(0.0, -kG, 0.0)));
+        addBox(world, dvec3(0.4), 2.0, dvec3(0.0, 0.2, 0.0), false);
+        addBall(world, 0.05, 0.5, dvec3(0.1, 1.0, 0.0), dvec3(0.0));
+        if (refused) {
+            JointDesc rope;
+            rope.type = JointType::Distance;
+            rope.bodyA = 1;
+            rope.bodyB = 0;
+            rope.anchors = {dvec3(0.1, 1.0, 0.0), dvec3(0.0, 0.4, 0.0)};
+            rope.length = -1.0;
+            EXPECT_THROW(world.addJoint(rope), std::invalid_argument);
+        }
+        for (int n = 0; n < 200; ++n)
+            world.step(0.005);
+        return std::pair{world.body(1).getPos(), world.jointCount()};
+    };
+    EXPECT_EQ(run(true), run(false));
+}
+
 TEST(PointBody, TheSameOnOneAndTwoThreads)
 {
     auto run = [](int threads) {
