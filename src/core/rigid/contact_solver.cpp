@@ -190,22 +190,29 @@ void ContactSolver::halve()
         m_along.emplace_back(m_bodies[k].position[axis], k);
     const auto middle = m_along.begin() + std::ptrdiff_t(m_along.size() / 2);
     std::nth_element(m_along.begin(), middle, m_along.end());
-    for (Part& p : m_parts) {
-        p.index.clear();
-        p.constraints.clear();
+    for (Part& p : m_parts)
         p.bodies.clear();
-    }
     for (auto it = m_along.begin(); it != m_along.end(); ++it) {
         const bool second = it >= middle;
         m_side[it->second] = second ? 1 : 0;
         part(second ? Half::Second : Half::First).bodies.push_back(it->second);
     }
-    for (std::uint32_t k = 0; k < m_constraints.size(); ++k) {
-        const IslandContact& c = m_constraints[k];
-        Part& p = part(halfOf(m_side[c.a], m_side[c.b]));
-        p.index.push_back(k);
-        p.constraints.push_back(c);
-    }
+    // The contacts in three runs, one a part, each in the island's order: a part's are a span.
+    std::size_t at[3] = {0, 0, 0};
+    for (const IslandContact& c : m_constraints)
+        ++at[std::size_t(halfOf(m_side[c.a], m_side[c.b]))];
+    at[2] = at[0] + at[1];
+    at[1] = at[0];
+    at[0] = 0;
+    for (std::size_t h = 0; h < 3; ++h)
+        m_parts[h].first = std::uint32_t(at[h]);
+    m_byPart.resize(m_constraints.size());
+    for (const IslandContact& c : m_constraints)
+        m_byPart[at[std::size_t(halfOf(m_side[c.a], m_side[c.b]))]++] = c;
+    m_constraints.swap(m_byPart);
+    for (std::size_t h = 0; h < 3; ++h)
+        m_parts[h].constraints = std::span<const IslandContact>(m_constraints).subspan(m_parts[h].first,
+                                                                                        at[h] - m_parts[h].first);
 }
 
 void ContactSolver::startCollisions()
@@ -581,7 +588,7 @@ void ContactSolver::solveVelocities(int maxStrikes, int least, int most)
         switch (pass) {
         case Pass::Collisions:
             p.struck = false;
-            for (const std::uint32_t k : p.index)
+            for (std::size_t k = p.first; k < p.first + p.constraints.size(); ++k)
                 p.struck = lookForBlow(k, maxStrikes) || p.struck;
             if (across && (!(m_parts[0].struck || m_parts[1].struck || p.struck) ||
                            round + 1 - first == kMaxCollisionSweeps)) {

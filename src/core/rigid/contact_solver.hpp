@@ -133,8 +133,8 @@ private:
     void markVelocities(std::span<const std::uint32_t> bodies);
     /// A halved island's contacts of one part: within one half of its moving bodies, or across.
     struct Part {
-        std::vector<std::uint32_t> index;         ///< into m_constraints, in order
-        std::vector<IslandContact> constraints;   ///< the same contacts, as the wide rows take them
+        std::span<const IslandContact> constraints; ///< a run of m_constraints, in the island's order
+        std::uint32_t first = 0;                  ///< where the run starts in m_constraints
         std::vector<std::uint32_t> bodies;        ///< the half's moving bodies (none across)
         WideContactRows wide;
         std::vector<std::uint32_t> oneAtATime;    ///< indices into constraints
@@ -150,6 +150,7 @@ private:
     std::vector<std::int8_t> m_side;           ///< per body: its half, or -1 (static, or not this island's)
     std::vector<std::uint32_t> m_sided;        ///< the bodies m_side holds a half for
     std::vector<std::pair<double, std::uint32_t>> m_along; ///< scratch: the bodies along the cut's axis
+    std::vector<IslandContact> m_byPart;       ///< scratch: the contacts put in their parts' runs
     /// One point of the position pass without joints: its arms turned once for all the sweeps.
     struct PositionRow {
         BodyIndex a = 0, b = 0;
