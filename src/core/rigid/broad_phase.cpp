@@ -53,24 +53,33 @@ void BroadPhase::fillGrid(std::span<const Box> boxes, std::span<const Motion> mo
             m_widest = std::max(m_widest, side);
         }
     }
-    m_cells.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-        m_cells[i] = detail::cellOf(boxes[i].min, m_cell);
+    sortIntoBuckets(boxes, motion, isPoint, small);
+}
+
+void BroadPhase::sortIntoBuckets(std::span<const Box> boxes, std::span<const Motion> motion,
+                                 std::span<const std::uint8_t> isPoint, std::size_t small)
+{
+    // A counting sort: the bodies of a bucket stay in index order.
+    const std::size_t n = boxes.size();
     const std::uint32_t buckets = detail::bucketsFor(2 * small);
     const std::uint32_t mask = buckets - 1;
-    // A counting sort into buckets: the bodies of a bucket stay in index order.
+    m_cells.resize(n);
+    m_bucket.resize(n);
     m_bucketStart.assign(buckets + 1, 0);
-    for (std::size_t i = 0; i < n; ++i)
-        if (!m_large[i] && !isPoint[i])
-            ++m_bucketStart[detail::bucketOf(m_cells[i], mask) + 1];
+    for (std::size_t i = 0; i < n; ++i) {
+        m_cells[i] = detail::cellOf(boxes[i].min, m_cell);
+        if (!m_large[i] && !isPoint[i]) {
+            m_bucket[i] = detail::bucketOf(m_cells[i], mask);
+            ++m_bucketStart[m_bucket[i] + 1];
+        }
+    }
     for (std::uint32_t k = 0; k < buckets; ++k)
         m_bucketStart[k + 1] += m_bucketStart[k];
     m_entries.resize(small);
-    std::vector<std::uint32_t> next(m_bucketStart.begin(), m_bucketStart.end() - 1);
+    m_next.assign(m_bucketStart.begin(), m_bucketStart.end() - 1);
     for (std::size_t i = 0; i < n; ++i)
         if (!m_large[i] && !isPoint[i])
-            m_entries[next[detail::bucketOf(m_cells[i], mask)]++] =
-                Entry{boxes[i], m_cells[i], std::uint32_t(i), motion[i] == Motion::Awake};
+            m_entries[m_next[m_bucket[i]]++] = Entry{boxes[i], m_cells[i], std::uint32_t(i), motion[i] == Motion::Awake};
 }
 
 void BroadPhase::pairsOfSmall(std::span<const Box> boxes, std::span<const Motion> motion,

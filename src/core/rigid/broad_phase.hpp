@@ -49,6 +49,9 @@ public:
 private:
     double cellSize(std::span<const Box> boxes, std::span<const std::uint8_t> isPoint);
     void fillGrid(std::span<const Box> boxes, std::span<const Motion> motion, std::span<const std::uint8_t> isPoint);
+    /// The `small` bodies in the grid into the hash table's buckets.
+    void sortIntoBuckets(std::span<const Box> boxes, std::span<const Motion> motion,
+                         std::span<const std::uint8_t> isPoint, std::size_t small);
     void pairsOfSmall(std::span<const Box> boxes, std::span<const Motion> motion, std::span<const std::uint8_t> isPoint,
                       std::vector<BodyPair>& pairs);
     void pairsOfLarge(std::span<const Box> boxes, std::span<const Motion> motion, std::span<const std::uint8_t> isPoint,
@@ -70,6 +73,8 @@ private:
     std::vector<Entry> m_entries;
     std::vector<double> m_sizes;
     std::vector<Cell> m_cells; ///< each body's: the cell of its box's lowest corner
+    std::vector<std::uint32_t> m_bucket; ///< each grid body's: its cell's bucket
+    std::vector<std::uint32_t> m_next;   ///< scratch: each bucket's next free entry
     std::vector<std::vector<BodyPair>> m_chunks;
 };
 
