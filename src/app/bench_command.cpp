@@ -22,6 +22,7 @@
 #include "bench_scenes.hpp"
 #include "bench_swarm.hpp"
 #include "bench_timing.hpp"
+#include "bench_worker.hpp"
 #include "command.hpp"
 #include "scene_options.hpp"
 #include "pba/blow_dryer.hpp"
@@ -101,39 +102,25 @@ int runPeerWorker(const BenchOptions& options)
     first.swarm(0).setIntegrator(integrator); // the start states are semi-implicit Euler's, whatever it is
     World world = first;
     double t = startTime;
-    const int cores = machineCores();
-    fmt::print("{}\n", nlohmann::json{{"ready", true}, {"n", n}, {"phase", options.phase}, {"t", t},
-                                      {"integrator", std::string(integratorName(first.swarm(0).integrator()))},
-                                      {"threads", cores}}.dump());
-    std::fflush(stdout);
-    for (std::string line; std::getline(std::cin, line);) {
-        std::istringstream words(line);
-        std::string command;
-        words >> command;
-        nlohmann::json answer;
-        if (command == "window") {
-            long steps = 0;
-            if (!(words >> steps) || steps < 1)
-                throw UsageError(fmt::format("--peer-worker: 'window STEPS' with STEPS >= 1, got '{}'", line));
-            world = first;
-            const auto start = Clock::now();
-            for (long k = 0; k < steps; ++k)
-                world.step(0.002);
-            const double elapsed = seconds(start);
-            t = startTime + 0.002 * double(steps);
-            answer = {{"seconds", elapsed}, {"steps", steps}, {"t", t},
-                      {"particle_steps_per_s", double(n) * double(steps) / elapsed}};
-        } else if (command == "stats") {
-            answer = swarmStatistics(world, t);
-        } else if (command.empty()) {
-            continue;
-        } else {
-            throw UsageError(fmt::format("--peer-worker: unknown command '{}' (window STEPS, stats)", line));
-        }
-        fmt::print("{}\n", answer.dump());
-        std::fflush(stdout);
-    }
-    return kExitSuccess;
+    const nlohmann::json ready{{"ready", true},
+                               {"n", n},
+                               {"phase", options.phase},
+                               {"t", t},
+                               {"integrator", std::string(integratorName(first.swarm(0).integrator()))},
+                               {"threads", machineCores()}};
+    const auto window = [&](std::istringstream& args, const std::string& line) -> nlohmann::json {
+        const long steps = windowSteps("--peer-worker", args, line);
+        world = first;
+        const auto start = Clock::now();
+        for (long k = 0; k < steps; ++k)
+            world.step(0.002);
+        const double elapsed = seconds(start);
+        t = startTime + 0.002 * double(steps);
+        return {{"seconds", elapsed}, {"steps", steps}, {"t", t},
+                {"particle_steps_per_s", double(n) * double(steps) / elapsed}};
+    };
+    const auto stats = [&](std::istringstream&, const std::string&) { return swarmStatistics(world, t); };
+    return serveWorker("--peer-worker", ready, {{"window", "window STEPS", window}, {"stats", "stats", stats}});
 }
 
 /// --phases: the swarm on all cores with --integrator (semi-implicit Euler unless told), in each

@@ -13,6 +13,7 @@
 
 #include "atomic_file.hpp"
 #include "bench_timing.hpp"
+#include "bench_worker.hpp"
 #include "command.hpp"
 #include "csv.hpp"
 #include "pba/rigid_body.hpp"
@@ -107,39 +108,23 @@ int runPileWorker(std::size_t dice, int iterations)
     World& world = scene.world;
     world.setThreads(0);
     usePileSolver(world, iterations);
-    fmt::print("{}\n", readyLine(scene, machineCores()).dump());
-    std::fflush(stdout);
-    for (std::string line; std::getline(std::cin, line);) {
-        std::istringstream words(line);
-        std::string command;
-        words >> command;
-        nlohmann::json answer;
-        if (command == "window") {
-            long steps = 0;
-            if (!(words >> steps) || steps < 1)
-                throw UsageError(fmt::format("--pile-worker: 'window STEPS' with STEPS >= 1, got '{}'", line));
-            const auto start = Clock::now();
-            for (long k = 0; k < steps; ++k)
-                world.step(scene.dt);
-            const double elapsed = seconds(start);
-            answer = {{"seconds", elapsed}, {"steps", steps}, {"t", world.time()},
-                      {"steps_per_s", double(steps) / elapsed}};
-        } else if (command == "save") {
-            std::string path;
-            std::getline(words >> std::ws, path);
-            if (path.empty())
-                throw UsageError(fmt::format("--pile-worker: 'save PATH', got '{}'", line));
-            writePileState(world, path);
-            answer = {{"saved", path}, {"t", world.time()}};
-        } else if (command.empty()) {
-            continue;
-        } else {
-            throw UsageError(fmt::format("--pile-worker: unknown command '{}' (window STEPS, save PATH)", line));
-        }
-        fmt::print("{}\n", answer.dump());
-        std::fflush(stdout);
-    }
-    return kExitSuccess;
+    const auto window = [&](std::istringstream& args, const std::string& line) -> nlohmann::json {
+        const long steps = windowSteps("--pile-worker", args, line);
+        const auto start = Clock::now();
+        for (long k = 0; k < steps; ++k)
+            world.step(scene.dt);
+        const double elapsed = seconds(start);
+        return {{"seconds", elapsed}, {"steps", steps}, {"t", world.time()}, {"steps_per_s", double(steps) / elapsed}};
+    };
+    const auto save = [&](std::istringstream& args, const std::string& line) -> nlohmann::json {
+        std::string path;
+        std::getline(args >> std::ws, path);
+        if (path.empty())
+            throw UsageError(fmt::format("--pile-worker: 'save PATH', got '{}'", line));
+        writePileState(world, path);
+        return {{"saved", path}, {"t", world.time()}};
+    };
+    return serveWorker("--pile-worker", readyLine(scene, machineCores()), {{"window", "window STEPS", window}, {"save", "save PATH", save}});
 }
 
 } // namespace pba::app::bench
