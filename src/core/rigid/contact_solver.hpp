@@ -59,6 +59,12 @@ struct PointRows {
     bool bounced = false;
 };
 
+/// Body B's point's velocity less body A's, at the bodies' present velocities.
+inline dvec3 relativeVelocity(const SolverBody& a, const SolverBody& b, const PointRows& r)
+{
+    return b.pointVelocity(r.rB) - a.pointVelocity(r.rA);
+}
+
 /// Solves one island's contacts. `contacts` holds every contact of the world; `island` lists
 /// the indices of this island's, in order. Works on `bodies` (the world's solver bodies: the
 /// island's and the static ones) and writes the impulses back into the contacts.
@@ -81,6 +87,8 @@ public:
     /// jammed heap of dice would pass blows back and forth through every contact until the
     /// sweeps run out (a 10,000-dice pile: 28,000 blows a step, nearly 16 sweeps).
     static constexpr int kHeapStrikes = 2;
+    /// The collision pass's sweeps at most.
+    static constexpr int kMaxCollisionSweeps = 16;
     /// Pass 2: the last step's impulses (of the points that did not bounce), and a large
     /// island's rows packed four contacts to a block; then the sweeps are the caller's,
     /// interleaved with the joints'.
