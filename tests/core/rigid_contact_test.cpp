@@ -1,7 +1,8 @@
 // Rigid bodies against each other, held to closed forms: two spheres head-on exchange their
 // velocities (e = 1) or leave as the textbook's e says, an off-centre hit keeps linear and angular
 // momentum and loses exactly what restitution and friction take, a row of touching balls passes a
-// blow along as Newton's cradle does, and a box dropped flat rebounds to e^2 h at every dt.
+// blow along as Newton's cradle does, a box dropped flat rebounds to e^2 h at every dt, and a box
+// struck within a step into one it had no contact with stops at it.
 #include "pba/world.hpp"
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "pba/forces.hpp"
+#include "support/box_overlap.hpp"
 
 using namespace pba;
 
@@ -200,6 +202,37 @@ TEST(RigidContact, ABoxDroppedFlatReboundsToESquaredHAtEveryDtForEveryIntegrator
 // Each body keeps its own integrator, and a contact between two bodies stepped by different ones
 // is the same exchange: equal spheres head-on with e = 1 swap their velocities to 1e-9 for every
 // pair of methods (no gravity, so every method's free step is the exact straight line).
+// Three dice in a column, no gravity: the top one arrives at 12 m/s at the middle one, 5 mm
+// below it, and (e = 0) drives it on at 6 m/s into the bottom one, 18 mm further down: 28 mm in
+// the rest of the step. At the step's start the middle and bottom dice were further apart than
+// the contact margin and still: without the blow's reach the middle die would end the step 1 cm
+// inside the bottom one.
+TEST(RigidContact, ABoxStruckWithinTheStepStopsAtTheBoxItHadNotTouched)
+{
+    World world;
+    std::vector<RigidBody*> dice;
+    for (const double y : {0.0, 0.118, 0.223}) {
+        auto die = std::make_unique<RigidBody>();
+        die->setShapeWithMass(Shape::box(dvec3(0.1)), 0.6);
+        die->setPos(dvec3(0.0, y, 0.0));
+        die->setCor(0.0);
+        dice.push_back(&static_cast<RigidBody&>(world.addBody(std::move(die))));
+    }
+    dice[2]->setVel(dvec3(0.0, -12.0, 0.0));
+    const auto box = [](const RigidBody& b) {
+        return test::OrientedBox{b.getPos(), glm::mat3_cast(b.getOrientation()), dvec3(0.05)};
+    };
+    double deepest = 0.0;
+    for (int step = 0; step < 20; ++step) {
+        world.step(0.005);
+        for (int i = 0; i < 3; ++i)
+            for (int j = i + 1; j < 3; ++j)
+                deepest = std::max(deepest, test::overlapDepth(box(*dice[i]), box(*dice[j])));
+    }
+    EXPECT_LT(deepest, 1e-3);
+    EXPECT_NEAR(totalMomentum(world).y, -0.6 * 12.0, 1e-9); // no wall, no gravity: the blows keep it
+}
+
 TEST(RigidContact, BodiesWithDifferentIntegratorsCollideWithEachOther)
 {
     for (const Integrator left : kRigidIntegrators)

@@ -82,11 +82,52 @@ void BroadPhase::sortIntoBuckets(std::span<const Box> boxes, std::span<const Mot
             m_entries[m_next[m_bucket[i]]++] = Entry{boxes[i], m_cells[i], std::uint32_t(i), motion[i] == Motion::Awake};
 }
 
+template <class F>
+void BroadPhase::forEachInGrid(const Box& box, F&& f) const
+{
+    const std::uint32_t mask = std::uint32_t(m_bucketStart.size() - 2);
+    // A body in the grid overlapping the box has its lowest corner no further below the box's
+    // lowest corner than the widest of them is wide, and no further than its highest.
+    const Cell lo = detail::cellOf(box.min - m_widest, m_cell), hi = detail::cellOf(box.max, m_cell);
+    for (std::int64_t x = lo.x; x <= hi.x; ++x)
+        for (std::int64_t y = lo.y; y <= hi.y; ++y)
+            for (std::int64_t z = lo.z; z <= hi.z; ++z) {
+                const Cell cell{x, y, z};
+                const std::uint32_t h = detail::bucketOf(cell, mask);
+                for (std::uint32_t e = m_bucketStart[h]; e < m_bucketStart[h + 1]; ++e) {
+                    const Entry& entry = m_entries[e];
+                    // Another cell of the same bucket would find it twice.
+                    if (entry.cell == cell && box.overlaps(entry.box))
+                        f(entry);
+                }
+            }
+}
+
+void BroadPhase::partnersOf(std::uint32_t k, const Box& box, std::span<const Box> boxes,
+                            std::span<const std::uint8_t> isPoint, std::vector<BodyPair>& pairs) const
+{
+    const auto add = [&](std::uint32_t j) {
+        if (j != k && !(isPoint[j] && isPoint[k]))
+            pairs.push_back({BodyIndex(std::min(j, k)), BodyIndex(std::max(j, k))});
+    };
+    // A box of more cells than the grid has bodies (a body flung far in one step) reads them all.
+    const dvec3 cells = (box.max - box.min) / m_cell + 2.0;
+    if (!(cells.x * cells.y * cells.z <= double(m_entries.size()))) {
+        for (const Entry& entry : m_entries)
+            if (box.overlaps(entry.box))
+                add(entry.body);
+    } else {
+        forEachInGrid(box, [&](const Entry& entry) { add(entry.body); });
+    }
+    for (const std::uint32_t l : m_largeList)
+        if (box.overlaps(boxes[l]))
+            add(l);
+}
+
 void BroadPhase::pairsOfSmall(std::span<const Box> boxes, std::span<const Motion> motion,
                               std::span<const std::uint8_t> isPoint, std::vector<BodyPair>& pairs)
 {
     const std::size_t n = boxes.size();
-    const std::uint32_t mask = std::uint32_t(m_bucketStart.size() - 2);
     // Fixed chunks, whatever the thread count: each chunk's pairs are its own.
     constexpr std::size_t kChunk = 512;
     m_chunks.resize((n + kChunk - 1) / kChunk);
@@ -99,26 +140,13 @@ void BroadPhase::pairsOfSmall(std::span<const Box> boxes, std::span<const Motion
             // over by the contact cache, and its bodies are only looked up as partners.
             if (m_large[i] || motion[i] != Motion::Awake)
                 continue;
-            // A partner in the grid has its lowest corner no further below this box's lowest
-            // corner than the widest of them is wide, and no further than its highest.
-            const Cell lo = detail::cellOf(boxes[i].min - m_widest, m_cell), hi = detail::cellOf(boxes[i].max, m_cell);
-            for (std::int64_t x = lo.x; x <= hi.x; ++x)
-                for (std::int64_t y = lo.y; y <= hi.y; ++y)
-                    for (std::int64_t z = lo.z; z <= hi.z; ++z) {
-                        const Cell cell{x, y, z};
-                        const std::uint32_t h = detail::bucketOf(cell, mask);
-                        for (std::uint32_t e = m_bucketStart[h]; e < m_bucketStart[h + 1]; ++e) {
-                            const Entry& entry = m_entries[e];
-                            const std::uint32_t j = entry.body;
-                            // Two awake bodies: once, from the first (a point is never in the
-                            // grid, so it finds every partner itself).
-                            if (j == i || (j < i && entry.awake && !isPoint[i]))
-                                continue;
-                            // Another cell of the same bucket would find j twice.
-                            if (entry.cell == cell && boxes[i].overlaps(entry.box))
-                                out.push_back({BodyIndex(std::min<std::size_t>(i, j)), BodyIndex(std::max<std::size_t>(i, j))});
-                        }
-                    }
+            forEachInGrid(boxes[i], [&](const Entry& entry) {
+                // Two awake bodies: once, from the first (a point is never in the grid, so it
+                // finds every partner itself).
+                const std::uint32_t j = entry.body;
+                if (j != i && !(j < i && entry.awake && !isPoint[i]))
+                    out.push_back({BodyIndex(std::min<std::size_t>(i, j)), BodyIndex(std::max<std::size_t>(i, j))});
+            });
         }
     });
     for (const auto& chunk : m_chunks)

@@ -46,7 +46,15 @@ public:
     void findPairs(std::span<const Box> boxes, std::span<const Motion> motion, std::span<const std::uint8_t> isPoint,
                    std::vector<BodyPair>& pairs);
 
+    /// Appends a pair of body k with each body whose box overlaps `box` (k's own, widened), as
+    /// findPairs would have paired them (points and sleeping bodies too; some it has already).
+    void partnersOf(std::uint32_t k, const Box& box, std::span<const Box> boxes, std::span<const std::uint8_t> isPoint,
+                    std::vector<BodyPair>& pairs) const;
+
 private:
+    /// Calls f(entry) for each body in the grid whose box overlaps `box`, once.
+    template <class F>
+    void forEachInGrid(const Box& box, F&& f) const;
     double cellSize(std::span<const Box> boxes, std::span<const std::uint8_t> isPoint);
     void fillGrid(std::span<const Box> boxes, std::span<const Motion> motion, std::span<const std::uint8_t> isPoint);
     /// The `small` bodies in the grid into the hash table's buckets.

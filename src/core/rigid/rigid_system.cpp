@@ -55,11 +55,6 @@ double sphereRadius(const CollisionShape& shape)
     return shape.kind == CollisionShape::Kind::Sphere ? shape.radius : 0.0;
 }
 
-/// The end poses' contacts reach this far apart, not only what overlaps: what the sweeps may
-/// push together (a die pushed up out of the floor into the one above it) must be there for
-/// them to push apart again.
-constexpr double kPositionMargin = 0.01;
-
 double combinedFriction(double a, double b) { return std::sqrt(a * b); }
 double combinedRestitution(double a, double b) { return std::max(a, b); }
 
@@ -180,6 +175,53 @@ void RigidSystem::boundingBoxes(double dt)
         const double pad = 0.5 * m_settings.contactMargin;
         m_boxes[k] = {box.min - pad, box.max + pad};
     });
+}
+
+void RigidSystem::widenForPushes()
+{
+    // A body struck within the step by a partner moves further than its own free motion: up to
+    // as far as the partner comes towards it. Its contacts with everything else must reach that
+    // far too, or a die knocked down by one landing on it is driven into the die under it with
+    // no contact between them to stop it (an overlap of a centimetre or more at a heap's landing).
+    const std::size_t n = m_world.size();
+    m_push.assign(n, 0.0);
+    m_pushLow.assign(n, dvec3(0.0));
+    m_pushHigh.assign(n, dvec3(0.0));
+    const auto ownMotion = [&](std::uint32_t k) { return m_end[k].x - m_start[k].x; };
+    const auto pushed = [&](std::uint32_t k, const dvec3& by) {
+        m_push[k] = std::max(m_push[k], glm::length(by));
+        m_pushLow[k] = glm::max(m_pushLow[k], -by);
+        m_pushHigh[k] = glm::max(m_pushHigh[k], by);
+    };
+    for (const BodyPair& p : m_pairs) {
+        if (m_motion[p.a] != Motion::Awake || m_motion[p.b] != Motion::Awake)
+            continue;
+        // How far their centres come towards each other in the free step (a pair falling side by
+        // side strikes nothing), and so may push each other on, along the line between them.
+        const dvec3 apart = m_start[p.b].x - m_start[p.a].x;
+        const double distance = glm::length(apart);
+        if (!(distance > 0.0))
+            continue;
+        const dvec3 u = apart / distance;
+        const double closing = -glm::dot(ownMotion(p.b) - ownMotion(p.a), u);
+        if (!(closing > 0.0))
+            continue;
+        pushed(p.a, -closing * u);
+        pushed(p.b, closing * u);
+    }
+    // What the contact margin already covers is no news: only a harder blow widens a body's reach.
+    const std::size_t found = m_pairs.size();
+    for (std::uint32_t k = 0; k < n; ++k) {
+        if (!(m_push[k] > m_settings.contactMargin) || m_isPoint[k])
+            continue;
+        m_reach[k] += m_push[k];
+        const Box& b = m_boxes[k];
+        m_broadPhase.partnersOf(k, {b.min - m_pushLow[k], b.max + m_pushHigh[k]}, m_boxes, m_isPoint, m_pairs);
+    }
+    if (m_pairs.size() == found)
+        return;
+    std::sort(m_pairs.begin(), m_pairs.end());
+    m_pairs.erase(std::unique(m_pairs.begin(), m_pairs.end()), m_pairs.end());
 }
 
 void RigidSystem::collidePairs()
@@ -309,6 +351,7 @@ void RigidSystem::findContacts(std::span<const Plane> planes, double dt)
     m_cache.beginStep();
     boundingBoxes(dt);
     m_broadPhase.findPairs(m_boxes, m_motion, m_isPoint, m_pairs);
+    widenForPushes();
     collidePairs();
     collideRoom(planes);
     carrySleepingContacts();
@@ -462,6 +505,15 @@ void RigidSystem::contactsAtEnd(std::size_t island, std::vector<Contact>& out) c
         out.insert(out.end(), part.begin(), part.end());
 }
 
+double RigidSystem::positionMargin(BodyIndex a, BodyIndex b) const
+{
+    // Not only what overlaps: what the sweeps push together (a die pushed up out of the floor
+    // into the one above it) must be there for them to push apart again, and a body struck in
+    // the step may have come as far again as its partners could push it (widenForPushes).
+    const auto push = [&](BodyIndex k) { return k < m_push.size() ? m_push[k] : 0.0; };
+    return m_settings.contactMargin + push(a) + push(b);
+}
+
 void RigidSystem::roomAtEnd(std::span<const std::uint32_t> bodies, std::vector<Contact>& out) const
 {
     const std::size_t n = m_world.size();
@@ -471,7 +523,7 @@ void RigidSystem::roomAtEnd(std::span<const std::uint32_t> bodies, std::vector<C
         const SolverBody& b = m_solverBodies[k];
         const std::size_t first = out.size();
         collideWithRoom(*m_material[k].shape, Transform{b.endPosition, glm::mat3_cast(b.endOrientation)}, m_planes,
-                        kPositionMargin, BodyIndex(k), BodyIndex(n + 1), out);
+                        positionMargin(k, BodyIndex(n + 1)), BodyIndex(k), BodyIndex(n + 1), out);
         for (std::size_t e = first; e < out.size(); ++e)
             out[e].radiusA = sphereRadius(*m_material[k].shape);
     }
@@ -494,10 +546,11 @@ void RigidSystem::pairsAtEnd(std::span<const std::uint32_t> contacts, std::vecto
         e.radiusA = c.radiusA;
         e.radiusB = c.radiusB;
         const CollisionShape& shapeB = *m_material[c.b].shape;
-        if (!carryManifold(c, ta, a.endOrientation, tb, b.endOrientation, shapeB.boundingRadius(), kPositionMargin,
+        const double margin = positionMargin(c.a, c.b);
+        if (!carryManifold(c, ta, a.endOrientation, tb, b.endOrientation, shapeB.boundingRadius(), margin,
                            e)) {
             contact::SatCache sat = c.sat;
-            e.takePoints(contact::collide(*m_material[c.a].shape, ta, shapeB, tb, kPositionMargin, &sat));
+            e.takePoints(contact::collide(*m_material[c.a].shape, ta, shapeB, tb, margin, &sat));
         }
         if (e.count == 0)
             out.pop_back();

@@ -122,6 +122,9 @@ private:
     /// Whether a contact between a and b is left out: a particle and the body it is joined to.
     bool joinedPoint(BodyIndex a, BodyIndex b) const;
     void boundingBoxes(double dt);
+    /// A body that its partners may strike harder than the contact margin covers reaches as far
+    /// as they may push it: wider partners and contacts (m_reach).
+    void widenForPushes();
     void collidePairs();
     void collideRoom(std::span<const Plane> planes);
     void carrySleepingContacts();
@@ -140,6 +143,8 @@ private:
     Energies springEnergy(std::size_t island) const;
     void pushOutOfRoom(std::span<const std::uint32_t> bodies);
     void contactsAtEnd(std::size_t island, std::vector<Contact>& out) const;
+    /// How far apart the end poses' contacts of a and b reach (b may be a surface of the room).
+    double positionMargin(BodyIndex a, BodyIndex b) const;
     void roomAtEnd(std::span<const std::uint32_t> bodies, std::vector<Contact>& out) const;
     void pairsAtEnd(std::span<const std::uint32_t> contacts, std::vector<Contact>& out) const;
     void finishBodies();
@@ -154,7 +159,9 @@ private:
     std::vector<std::uint64_t> m_joinedPoints; ///< sorted keys of point-body pairs a joint joins
     std::vector<double> m_stillFor; ///< seconds below the sleep speed
     std::vector<RigidState> m_start, m_end;
-    std::vector<double> m_reach; ///< how far any point of the body moves in the step
+    std::vector<double> m_reach; ///< how far any point of the body moves in the step, or is pushed
+    std::vector<double> m_push;  ///< how far a partner may push the body in the step
+    std::vector<dvec3> m_pushLow, m_pushHigh; ///< and which way: along -x, -y, -z and +x, +y, +z
     std::vector<Box> m_boxes;
     std::vector<Plane> m_planes;
     dvec3 m_gravity{0.0};
