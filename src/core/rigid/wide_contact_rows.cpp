@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <bit>
 
-
 namespace pba::rigid {
 
 namespace {
@@ -27,7 +26,6 @@ void WideContactRows::build(std::span<const IslandContact> contacts, std::span<c
     m_slots.clear();
     const std::vector<std::uint32_t>& start = m_colourContacts;
     leftOver.assign(m_byColour.begin() + start[kColours], m_byColour.end());
-    m_colourStart.assign(1, 0);
     for (int c = 0; c < kColours; ++c) {
         m_order.assign(m_byColour.begin() + start[c], m_byColour.begin() + start[c + 1]);
         // Like counts together: a block has as many slots as its lane with the most points.
@@ -35,7 +33,6 @@ void WideContactRows::build(std::span<const IslandContact> contacts, std::span<c
                          [&](std::uint32_t p, std::uint32_t q) { return contacts[p].count > contacts[q].count; });
         for (std::size_t first = 0; first < m_order.size(); first += 4)
             pack(contacts, rows, bodies, std::span(m_order).subspan(first, std::min<std::size_t>(4, m_order.size() - first)));
-        m_colourStart.push_back(std::uint32_t(m_blocks.size()));
     }
 }
 

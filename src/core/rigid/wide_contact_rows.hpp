@@ -36,14 +36,8 @@ public:
     void sweep(std::span<SolverBody> bodies, double& change, double& largest);
     static constexpr int kColours = 24; ///< as Box2D v3's graph: a heap of dice takes eight or nine
     /// Colours the contacts so that no moving body is in two of one colour (fewer than kFewest:
-    /// none, all left over); colourOf(c) then lists colour c's contacts in order, colourOf(kColours)
-    /// those no colour took. Once a step, before the collision pass and build.
+    /// none, all left over). Once a step, before the collision pass and build.
     void colour(std::span<const IslandContact> contacts, std::span<const SolverBody> bodies);
-    std::span<const std::uint32_t> colourOf(int c) const
-    {
-        return std::span(m_byColour).subspan(m_colourContacts[std::size_t(c)],
-                                             m_colourContacts[std::size_t(c) + 1] - m_colourContacts[std::size_t(c)]);
-    }
     /// The impulses back into the rows they came from.
     void storeImpulses(std::span<VelocityRows> rows) const;
     /// The contacts (indices into build's) in the order a sweep visits them, four lanes a block
@@ -87,7 +81,6 @@ private:
     std::vector<std::uint8_t> m_colour;  ///< per contact
     std::vector<std::uint32_t> m_byColour; ///< the contacts, colour by colour
     std::vector<std::uint32_t> m_colourContacts = std::vector<std::uint32_t>(kColours + 2, 0); ///< colour c's in m_byColour: [c], [c + 1]
-    std::vector<std::uint32_t> m_colourStart; ///< colour c's blocks: [start[c], start[c + 1])
     std::vector<std::uint32_t> m_order;    ///< scratch: one colour's contacts
 };
 
