@@ -32,6 +32,10 @@ struct JointDesc {
     /// distance: a spring of this stiffness (N/m) and damping (N s/m) instead of a rigid rod.
     std::optional<double> stiffness;
     double damping = 0.0;
+    /// Two bodies: whether they still collide with each other. Off, as in Box2D and Jolt: joined
+    /// bodies usually touch or overlap at the joint (a hinge's links, a body welded into another),
+    /// and a contact there would fight the joint.
+    bool collide = false;
 };
 
 /// Where a joint is now, for drawing it: its point on each body (the same point while the joint

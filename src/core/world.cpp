@@ -183,6 +183,7 @@ std::size_t World::addJoint(const JointDesc& desc)
         std::tie(frameB.x, frameB.q) = jointPose(*b);
     rigid::Joint j;
     j.type = desc.type;
+    j.collide = desc.collide;
     j.localA = frameA.local(onA);
     j.localB = frameB.local(onB);
     if (desc.type == JointType::Hinge)

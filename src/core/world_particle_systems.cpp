@@ -250,7 +250,7 @@ detail::XpbdRigidContacts* World::startXpbdRigidContacts(const std::vector<std::
                                                          detail::SpringSolver& solver, double dt)
 {
     // The rigid bodies inside every substep too (xpbd_rigid_contacts.hpp), both ways, but for a
-    // particle and the body a joint joins it to.
+    // particle and the body a joint joins it to (unless the joint says they collide).
     std::vector<std::pair<std::size_t, const RigidBody*>> rigid;
     for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
         if (isRigid(i))
@@ -258,7 +258,7 @@ detail::XpbdRigidContacts* World::startXpbdRigidContacts(const std::vector<std::
     std::vector<std::pair<std::size_t, std::size_t>> joined; // (particle, body)
     const rigid::RigidSystem& system = *m_rigid.system;
     for (const rigid::Joint& j : system.joints())
-        if (j.b != rigid::kWorldBody && system.isPoint(j.a) != system.isPoint(j.b)) {
+        if (j.b != rigid::kWorldBody && !j.collide && system.isPoint(j.a) != system.isPoint(j.b)) {
             const auto [point, body] = system.isPoint(j.a) ? std::pair(j.a, j.b) : std::pair(j.b, j.a);
             joined.emplace_back(system.worldIndex(point), system.worldIndex(body));
         }

@@ -79,7 +79,8 @@ std::array<double, 2> readLimits(ObjectReader& reader)
 void readJoint(const Json& value, const std::string& path, const std::string& file, World& world)
 {
     ObjectReader reader(value, path, file);
-    reader.expectKeys({"type", "bodies", "anchor", "anchors", "axis", "limits", "length", "stiffness", "damping"});
+    reader.expectKeys(
+        {"type", "bodies", "anchor", "anchors", "axis", "limits", "length", "stiffness", "damping", "collide"});
     JointDesc joint;
     joint.type = readType(reader);
     const Json& bodies = reader.raw("bodies");
@@ -125,6 +126,10 @@ void readJoint(const Json& value, const std::string& path, const std::string& fi
         if (reader.has("limits"))
             joint.limits = readLimits(reader);
     }
+    if (reader.has("collide") && !joint.bodyB)
+        reader.fail("collide", "belongs to a joint of two bodies (one joined to the world still collides with "
+                               "everything)");
+    joint.collide = reader.boolean("collide", false);
     reader.finish();
     try {
         world.addJoint(joint);

@@ -1,11 +1,13 @@
 // Joints against closed forms: a pendulum on a ball joint swings with the physical pendulum's
 // period (small amplitude) and the elliptic integral's (90 degrees) and its rod does not stretch,
 // a chain's energy never grows, a hinge keeps its axis and its limits, a distance joint keeps its
-// length or springs with sqrt(k/m), and a fixed joint makes two bodies one.
+// length or springs with sqrt(k/m), a fixed joint makes two bodies one, and joined bodies do not
+// collide with each other unless the joint says so.
 #include "pba/world.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -227,5 +229,57 @@ TEST(Joints, AFixedJointMakesTwoBodiesOne)
         const dquat now = glm::conjugate(a.getOrientation()) * b.getOrientation();
         ASSERT_NEAR(std::abs(glm::dot(now, rest)), 1.0, 1e-6) << n;
         ASSERT_LT(glm::length(glm::conjugate(a.getOrientation()) * (b.getPos() - a.getPos()) - offset), 1e-4) << n;
+    }
+}
+
+namespace {
+
+/// Two boxes welded 4 cm into each other, tumbling without gravity: a body made of two.
+World weldedIntoEachOther(bool collide)
+{
+    World world;
+    RigidBody& a = addBody(world, Shape::box(dvec3(0.4, 0.2, 0.2)), 2.0, dvec3(0.0));
+    addBody(world, Shape::box(dvec3(0.2, 0.4, 0.2)), 1.0, dvec3(0.26, 0.1, 0.0));
+    JointDesc weld;
+    weld.type = JointType::Fixed;
+    weld.bodyA = 0;
+    weld.bodyB = 1;
+    weld.anchor = dvec3(0.2, 0.0, 0.0);
+    weld.collide = collide;
+    world.addJoint(weld);
+    a.setAngularVelocity(dvec3(0.0, 0.0, 2.0));
+    return world;
+}
+
+bool touchEachOther(const World& world)
+{
+    for (const World::ContactPointView& p : world.contactPoints())
+        if (p.bodyB && std::min(p.bodyA, *p.bodyB) == 0u && std::max(p.bodyA, *p.bodyB) == 1u)
+            return true;
+    return false;
+}
+
+} // namespace
+
+TEST(Joints, JoinedBodiesOverlapFreelyUnlessTheJointSaysTheyCollide)
+{
+    {
+        World world = weldedIntoEachOther(false);
+        const RigidBody& a = static_cast<const RigidBody&>(world.body(0));
+        const RigidBody& b = static_cast<const RigidBody&>(world.body(1));
+        const dvec3 offset = b.getPos() - a.getPos();
+        const double e0 = world.totalEnergy();
+        for (int n = 0; n < 1000; ++n) {
+            world.step(0.002);
+            ASSERT_FALSE(touchEachOther(world)) << n;
+            ASSERT_LE(world.totalEnergy(), e0 * (1.0 + 1e-9)) << n;
+            const dvec3 now = glm::conjugate(a.getOrientation()) * (b.getPos() - a.getPos());
+            ASSERT_LT(glm::length(now - offset), 1e-4) << n;
+        }
+    }
+    {
+        World world = weldedIntoEachOther(true);
+        world.step(0.002);
+        EXPECT_TRUE(touchEachOther(world));
     }
 }

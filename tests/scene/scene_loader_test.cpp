@@ -5,6 +5,7 @@
 #include <fstream>
 #include <string>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "pba/scene/scene.hpp"
@@ -256,6 +257,10 @@ INSTANTIATE_TEST_SUITE_P(
                              "a joint joins a particle to a rigid body, and 'rope[2]' is joined to the world"},
                     BadScene{J(R"({"type": "distance", "bodies": ["rope[1]", "rope[2]"], "anchors": [[0, 1, 0], [0, 2, 0]]})"),
                              "joints[0]", "and 'rope[1]' is joined to a particle"},
+                    BadScene{J(R"({"type": "ball", "bodies": ["r"], "anchor": [0, 1, 0], "collide": true})"),
+                             "joints[0].collide", "belongs to a joint of two bodies"},
+                    BadScene{J(R"({"type": "ball", "bodies": ["r", "rope[2]"], "anchor": [0, 1, 0], "collide": 1})"),
+                             "joints[0].collide", "expected a boolean, got a number"},
                     BadScene{R(R"(, "shape": {"typ": "sphere", "radius": 0.1})"), "rigid_bodies[0].shape.typ",
                              "unknown key (did you mean \"type\"?)"},
                     BadScene{R"({"particles": [{"name": "a", "position": [0, 1, 0]}], "forces": [{"type": "spring", "particle": "a", "anchor": [0,2,0], "stiffness": 1, "attachment": [0.1, 0, 0]}]})",
@@ -282,6 +287,23 @@ TEST(SceneLoader, AJointNamesARopesParticleByItsColumnName)
     const JointFrame frame = scene.world.jointFrame(0);
     EXPECT_EQ(frame.bodyB, scene.world.findBody("rope[4]"));
     EXPECT_EQ(frame.onA, frame.onB);
+}
+
+TEST(SceneLoader, AJointsCollideKeyLetsItsBodiesCollide)
+{
+    for (const bool collide : {false, true}) {
+        Scene scene = parseScene(fmt::format(R"({{"room": {{"min": [-2, 0, -2], "max": [2, 4, 2]}}, "rigid_bodies": [
+            {{"name": "a", "shape": {{"type": "box", "size": [0.4, 0.2, 0.2]}}, "position": [0, 2, 0]}},
+            {{"name": "b", "shape": {{"type": "box", "size": [0.2, 0.4, 0.2]}}, "position": [0.26, 2, 0]}}],
+            "joints": [{{"type": "fixed", "bodies": ["a", "b"]{}}}]}})",
+                                             collide ? R"(, "collide": true)" : ""),
+                                 "weld.json");
+        scene.world.step(0.002);
+        bool touch = false;
+        for (const World::ContactPointView& p : scene.world.contactPoints())
+            touch = touch || (p.bodyB && p.bodyA + *p.bodyB == 1u);
+        EXPECT_EQ(touch, collide);
+    }
 }
 
 TEST(SceneLoader, RigidBodiesOfEveryShapeLoadWithTheirKeys)

@@ -32,6 +32,7 @@ struct Joint {
     double damping = 0.0;
     bool limited = false;
     double lower = 0.0, upper = 0.0;
+    bool collide = false; ///< two bodies: they collide with each other too
     // What the last step's solve ended with (warm start).
     dvec3 linearImpulse{0.0};
     dvec3 angularImpulse{0.0};

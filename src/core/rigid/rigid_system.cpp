@@ -135,22 +135,20 @@ void RigidSystem::setPoint(std::size_t k, const PointBody& p)
         m_points.push_back(std::uint32_t(k));
 }
 
-bool RigidSystem::joinedPoint(BodyIndex a, BodyIndex b) const
+bool RigidSystem::joinedApart(BodyIndex a, BodyIndex b) const
 {
-    if (m_joinedPoints.empty() || (!m_isPoint[a] && !m_isPoint[b]))
-        return false;
-    return std::binary_search(m_joinedPoints.begin(), m_joinedPoints.end(), (std::uint64_t(a) << 32) | b);
+    const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+    return !m_joinedApart.empty() && std::binary_search(m_joinedApart.begin(), m_joinedApart.end(), key);
 }
 
 void RigidSystem::addJoint(const Joint& joint)
 {
     m_joints.push_back(joint);
-    // A particle joined to a body hangs at a point of its surface (a rope's end on a crate):
-    // their contact would push it off what holds it.
-    if (joint.b != kWorldBody && (m_isPoint[joint.a] || m_isPoint[joint.b])) {
-        const BodyIndex a = std::min(joint.a, joint.b), b = std::max(joint.a, joint.b);
-        m_joinedPoints.insert(std::upper_bound(m_joinedPoints.begin(), m_joinedPoints.end(), (std::uint64_t(a) << 32) | b),
-                              (std::uint64_t(a) << 32) | b);
+    // Joined bodies meet at the joint (a hinge's links, a rope's end on a crate's surface): a
+    // contact there would push them off what holds them.
+    if (joint.b != kWorldBody && !joint.collide) {
+        const std::uint64_t key = (std::uint64_t(std::min(joint.a, joint.b)) << 32) | std::max(joint.a, joint.b);
+        m_joinedApart.insert(std::upper_bound(m_joinedApart.begin(), m_joinedApart.end(), key), key);
     }
 }
 
@@ -237,7 +235,7 @@ void RigidSystem::collidePairs()
         Contact& c = out[p];
         c.a = pair.a;
         c.b = pair.b;
-        if (joinedPoint(pair.a, pair.b) || m_material[pair.a].metInSubsteps || m_material[pair.b].metInSubsteps)
+        if (joinedApart(pair.a, pair.b) || m_material[pair.a].metInSubsteps || m_material[pair.b].metInSubsteps)
             return; // no points
         const Contact* old = m_cache.previous(c.key());
         if (old)

@@ -119,8 +119,9 @@ private:
         bool metInSubsteps = false; ///< a point body's (PointBody)
     };
     bool anythingAwake() const { return !m_awake.empty() || !m_points.empty(); }
-    /// Whether a contact between a and b is left out: a particle and the body it is joined to.
-    bool joinedPoint(BodyIndex a, BodyIndex b) const;
+    /// Whether a contact between a and b is left out: two bodies a joint joins (unless it says
+    /// they collide).
+    bool joinedApart(BodyIndex a, BodyIndex b) const;
     void boundingBoxes(double dt);
     /// A body that its partners may strike harder than the contact margin covers reaches as far
     /// as they may push it: wider partners and contacts (m_reach).
@@ -156,7 +157,7 @@ private:
     std::vector<Motion> m_motion;
     std::vector<std::uint8_t> m_isPoint;
     std::vector<std::uint32_t> m_points; ///< the moving point bodies of this step
-    std::vector<std::uint64_t> m_joinedPoints; ///< sorted keys of point-body pairs a joint joins
+    std::vector<std::uint64_t> m_joinedApart; ///< sorted keys of the pairs joined and not colliding
     std::vector<double> m_stillFor; ///< seconds below the sleep speed
     std::vector<RigidState> m_start, m_end;
     std::vector<double> m_reach; ///< how far any point of the body moves in the step, or is pushed
