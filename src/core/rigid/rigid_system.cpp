@@ -416,7 +416,7 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     thread_local std::vector<Contact> atEnd;
     contactsAtEnd(island, atEnd);
     if (!withJoints)
-        solver.solvePositions(atEnd, settings.contact.positionIterations);
+        pushApart(island, solver, atEnd, settings.contact.positionIterations);
     for (int it = 0; withJoints && it < settings.contact.positionIterations; ++it) {
         joints.solvePositions();
         solver.solvePositions(atEnd);
@@ -427,6 +427,48 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     // overlap the step made, and whose resting bodies have no motion to take it from.
     if (withJoints)
         capEnergy(island);
+}
+
+void RigidSystem::pushApart(std::size_t island, ContactSolver& solver, std::vector<Contact>& atEnd, int sweeps)
+{
+    // The end poses' contacts reach contactMargin beyond each pair (and a struck body's pushes):
+    // a body the sweeps moved further than half of that may have met one they did not hold (a
+    // spinning die pushed out of its overlaps into a neighbour it had not reached), so its
+    // contacts are found again and the island swept once more.
+    const auto bodies = m_islands.bodies(island);
+    thread_local std::vector<dvec3> before;
+    before.clear();
+    for (const std::uint32_t k : bodies)
+        before.push_back(m_solverBodies[k].endPosition);
+    solver.solvePositions(atEnd, sweeps);
+    const std::size_t n = m_world.size();
+    thread_local std::vector<std::uint8_t> moved; // by body, the room's two indices never
+    if (moved.size() < n + 2)
+        moved.resize(n + 2, 0);
+    const double reach = 0.5 * m_settings.contactMargin;
+    bool any = false;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const dvec3 d = m_solverBodies[bodies[i]].endPosition - before[i];
+        moved[bodies[i]] = glm::dot(d, d) > reach * reach;
+        any = any || moved[bodies[i]];
+    }
+    const auto forget = [&] { // all clear again for the next island's
+        for (const std::uint32_t k : bodies)
+            moved[k] = 0;
+    };
+    if (!any)
+        return forget();
+    thread_local std::vector<std::uint32_t> again;
+    again.clear();
+    for (const std::uint32_t index : m_islands.contacts(island)) {
+        const Contact& c = m_cache.contacts()[index];
+        if (c.b < n && (moved[c.a] || moved[c.b]))
+            again.push_back(index);
+    }
+    std::erase_if(atEnd, [&](const Contact& c) { return c.b < n && (moved[c.a] || moved[c.b]); });
+    pairsAtEnd(again, atEnd);
+    forget();
+    solver.solvePositions(atEnd, sweeps);
 }
 
 void RigidSystem::solveMechanismVelocities(ContactSolver& solver, JointSolver& joints, const SolverSettings& settings)

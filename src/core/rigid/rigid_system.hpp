@@ -143,6 +143,9 @@ private:
     };
     Energies springEnergy(std::size_t island) const;
     void pushOutOfRoom(std::span<const std::uint32_t> bodies);
+    /// The position pass's sweeps over an island without joints, found again where they moved
+    /// a body beyond its contacts' reach.
+    void pushApart(std::size_t island, ContactSolver& solver, std::vector<Contact>& atEnd, int sweeps);
     void contactsAtEnd(std::size_t island, std::vector<Contact>& out) const;
     /// How far apart the end poses' contacts of a and b reach (b may be a surface of the room).
     double positionMargin(BodyIndex a, BodyIndex b) const;
