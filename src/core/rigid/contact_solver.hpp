@@ -108,6 +108,10 @@ public:
     void solvePositions(std::span<const Contact> contacts);
     /// `sweeps` of them (without joints; a halved island's on two cores).
     void solvePositions(std::span<const Contact> contacts, int sweeps);
+    /// After the room's push-out has moved the bodies `held`: `sweeps` more over `contacts`,
+    /// with those bodies as fixed as the room, so that what the push-out lifted them into moves
+    /// away from them and not back into the room.
+    void settleOn(std::span<const Contact> contacts, std::span<const std::uint32_t> held, int sweeps);
 
 private:
     /// A point's two surface points and normal with the bodies at the given poses.
@@ -162,15 +166,20 @@ private:
     /// One point of the position pass without joints: its arms turned once for all the sweeps.
     struct PositionRow {
         BodyIndex a = 0, b = 0;
-        double k = 0.0; ///< 1/mA + 1/mB: 0 between two static bodies
         dvec3 n{0.0};
         double radiusA = 0.0, radiusB = 0.0;
         dvec3 armA{0.0}, armB{0.0}; ///< from each centre to the point's anchor on it, world
     };
     /// The points of `contacts` as rows, at the bodies' end orientations, part by part.
     void positionRows(std::span<const Contact> contacts);
-    void solvePosition(const PositionRow& row);
+    void solvePosition(const PositionRow& row)
+    {
+        pushApart(row, m_bodies[row.a].inverseMass, m_bodies[row.b].inverseMass);
+    }
+    /// One row's push, each body moved by its share `wa`, `wb` (its inverse mass, or 0 where held).
+    void pushApart(const PositionRow& row, double wa, double wb);
     std::vector<PositionRow> m_positionRows;
+    std::vector<std::uint8_t> m_held; ///< settleOn's bodies, by index
     std::size_t m_partRows[4] = {0, 0, 0, 0}; ///< part h's rows: [m_partRows[h], m_partRows[h + 1])
     std::span<const std::uint32_t> m_moving;   ///< the island's moving bodies
     std::vector<dvec3> m_marks;                ///< per body: v and w after the collision pass

@@ -29,8 +29,7 @@ void ContactSolver::positionRows(std::span<const Contact> contacts)
         std::size_t& next = fill[halfOfContact(c)];
         for (int i = 0; i < c.count; ++i) {
             const ContactPoint& p = c.points[i];
-            m_positionRows[next++] = {c.a, c.b, a.inverseMass + b.inverseMass, p.normal, c.radiusA, c.radiusB,
-                                      ra * p.anchorA, rb * p.anchorB};
+            m_positionRows[next++] = {c.a, c.b, p.normal, c.radiusA, c.radiusB, ra * p.anchorA, rb * p.anchorB};
         }
     }
 }
@@ -62,9 +61,29 @@ void ContactSolver::solvePositions(std::span<const Contact> contacts, int sweeps
     });
 }
 
-void ContactSolver::solvePosition(const PositionRow& row)
+void ContactSolver::settleOn(std::span<const Contact> contacts, std::span<const std::uint32_t> held, int sweeps)
 {
-    if (row.k == 0.0)
+    // A die on the floor pressed into the one above it: the sweeps share each push between the
+    // two, and the floor pushes the lower one back up, so some overlap is left; the push-out then
+    // lifts it the rest of the way into the die above. Held as the room is, it stays, and the die
+    // above takes the whole push (shock propagation, one layer).
+    positionRows(contacts);
+    if (m_held.size() < m_bodies.size())
+        m_held.resize(m_bodies.size(), 0);
+    for (const std::uint32_t k : held)
+        m_held[k] = 1;
+    for (int it = 0; it < sweeps; ++it)
+        for (const PositionRow& row : m_positionRows)
+            pushApart(row, m_held[row.a] ? 0.0 : m_bodies[row.a].inverseMass,
+                      m_held[row.b] ? 0.0 : m_bodies[row.b].inverseMass);
+    for (const std::uint32_t k : held) // left all clear for the next island's
+        m_held[k] = 0;
+}
+
+void ContactSolver::pushApart(const PositionRow& row, double wa, double wb)
+{
+    const double k = wa + wb;
+    if (k == 0.0)
         return;
     SolverBody& a = m_bodies[row.a];
     SolverBody& b = m_bodies[row.b];
@@ -86,11 +105,11 @@ void ContactSolver::solvePosition(const PositionRow& row)
     // Apart along the normal, without turning: a turn about one point of a manifold (an edge
     // crossing an edge has only one) digs another corner in, which this manifold, found before
     // the sweeps, does not hold.
-    const dvec3 push = (-correction / row.k) * n;
-    if (!a.isStatic())
-        a.endPosition -= push * a.inverseMass;
-    if (!b.isStatic())
-        b.endPosition += push * b.inverseMass;
+    const dvec3 push = (-correction / k) * n;
+    if (wa != 0.0)
+        a.endPosition -= push * wa;
+    if (wb != 0.0)
+        b.endPosition += push * wb;
 }
 
 } // namespace pba::rigid

@@ -409,7 +409,8 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     // The velocities are final: no contact may have added to the island's energy (capEnergy).
     // The position pass then moves the poses alone, adding no motion. The room is the boundary
     // nothing may leave: what is beyond it is taken back before the pass (so that the pass's
-    // contacts are found where the bodies are) and after it.
+    // contacts are found where the bodies are) and after it, when what a body was lifted into
+    // is pushed away from it.
     const auto bodies = m_islands.bodies(island);
     capEnergy(island);
     pushOutOfRoom(bodies);
@@ -421,7 +422,10 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
         joints.solvePositions();
         solver.solvePositions(atEnd);
     }
-    pushOutOfRoom(bodies);
+    thread_local std::vector<std::uint32_t> lifted;
+    pushOutOfRoom(bodies, &lifted);
+    if (!lifted.empty())
+        solver.settleOn(atEnd, lifted, kSettleSweeps);
     // A joint does no work: what its position pass adds to the island's height is taken from its
     // motion (a chain's energy never grows). Not for contacts alone, whose pass only undoes an
     // overlap the step made, and whose resting bodies have no motion to take it from.
@@ -501,13 +505,20 @@ void RigidSystem::moveEndPoses(std::size_t island, const ContactSolver& solver, 
     }
 }
 
-void RigidSystem::pushOutOfRoom(std::span<const std::uint32_t> bodies)
+void RigidSystem::pushOutOfRoom(std::span<const std::uint32_t> bodies, std::vector<std::uint32_t>* moved)
 {
+    if (moved)
+        moved->clear();
+    const double slop = m_settings.linearSlop;
     for (const std::uint32_t k : bodies) {
         if (m_isPoint[k])
             continue;
         SolverBody& b = m_solverBodies[k];
+        const dvec3 before = b.endPosition;
         rigid::pushOutOfRoom(*m_material[k].shape, b.endPosition, b.endOrientation, m_planes);
+        const dvec3 d = b.endPosition - before;
+        if (moved && glm::dot(d, d) > slop * slop) // more than what the position pass leaves
+            moved->push_back(k);
     }
 }
 

@@ -142,10 +142,14 @@ private:
         double start = 0.0, free = 0.0, end = 0.0;
     };
     Energies springEnergy(std::size_t island) const;
-    void pushOutOfRoom(std::span<const std::uint32_t> bodies);
+    /// Each of `bodies` out of the room, if it is beyond a surface; those it moved further than
+    /// the slop into `moved`.
+    void pushOutOfRoom(std::span<const std::uint32_t> bodies, std::vector<std::uint32_t>* moved = nullptr);
     /// The position pass's sweeps over an island without joints, found again where they moved
     /// a body beyond its contacts' reach.
     void pushApart(std::size_t island, ContactSolver& solver, std::vector<Contact>& atEnd, int sweeps);
+    /// Sweeps over the end poses' points after the last push-out (ContactSolver::settleOn).
+    static constexpr int kSettleSweeps = 2;
     void contactsAtEnd(std::size_t island, std::vector<Contact>& out) const;
     /// How far apart the end poses' contacts of a and b reach (b may be a surface of the room).
     double positionMargin(BodyIndex a, BodyIndex b) const;
