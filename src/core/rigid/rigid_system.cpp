@@ -470,7 +470,7 @@ void RigidSystem::pushApart(std::size_t island, ContactSolver& solver, std::vect
             again.push_back(index);
     }
     std::erase_if(atEnd, [&](const Contact& c) { return c.b < n && (moved[c.a] || moved[c.b]); });
-    pairsAtEnd(again, atEnd);
+    contactsAtEnd({}, again, atEnd);
     forget();
     solver.solvePositions(atEnd, sweeps);
 }
@@ -528,13 +528,17 @@ void RigidSystem::contactsAtEnd(std::size_t island, std::vector<Contact>& out) c
     // the island's bodies against the room: the position pass works on what overlaps now, the
     // room's surfaces in the same sweeps as the bodies (a die pushed down into the floor by the
     // one landing on it is pushed back up within the sweep, and the other one further away).
+    out.clear();
+    contactsAtEnd(m_islands.bodies(island), m_islands.contacts(island), out);
+}
+
+void RigidSystem::contactsAtEnd(std::span<const std::uint32_t> bodies, std::span<const std::uint32_t> contacts,
+                                std::vector<Contact>& out) const
+{
     // A large island's in fixed chunks on every core, joined in order: the same list on any.
-    const auto bodies = m_islands.bodies(island);
-    const auto contacts = m_islands.contacts(island);
     constexpr std::size_t kChunk = 128;
     const std::size_t bodyChunks = (bodies.size() + kChunk - 1) / kChunk;
     const std::size_t chunks = bodyChunks + (contacts.size() + kChunk - 1) / kChunk;
-    out.clear();
     if (chunks <= 2) {
         roomAtEnd(bodies, out);
         pairsAtEnd(contacts, out);

@@ -151,6 +151,9 @@ private:
     /// Sweeps over the end poses' points after the last push-out (ContactSolver::settleOn).
     static constexpr int kSettleSweeps = 2;
     void contactsAtEnd(std::size_t island, std::vector<Contact>& out) const;
+    /// Appends the end poses' contacts of `bodies` with the room and of the cache's `contacts`.
+    void contactsAtEnd(std::span<const std::uint32_t> bodies, std::span<const std::uint32_t> contacts,
+                       std::vector<Contact>& out) const;
     /// How far apart the end poses' contacts of a and b reach (b may be a surface of the room).
     double positionMargin(BodyIndex a, BodyIndex b) const;
     void roomAtEnd(std::span<const std::uint32_t> bodies, std::vector<Contact>& out) const;
