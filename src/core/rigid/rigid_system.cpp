@@ -417,7 +417,7 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     thread_local std::vector<Contact> atEnd;
     contactsAtEnd(island, atEnd);
     if (!withJoints)
-        pushApart(island, solver, atEnd, settings.contact.positionIterations);
+        sweepPositions(island, solver, atEnd, settings.contact.positionIterations);
     for (int it = 0; withJoints && it < settings.contact.positionIterations; ++it) {
         joints.solvePositions();
         solver.solvePositions(atEnd);
@@ -433,7 +433,7 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
         capEnergy(island);
 }
 
-void RigidSystem::pushApart(std::size_t island, ContactSolver& solver, std::vector<Contact>& atEnd, int sweeps)
+void RigidSystem::sweepPositions(std::size_t island, ContactSolver& solver, std::vector<Contact>& atEnd, int sweeps)
 {
     // The end poses' contacts reach contactMargin beyond each pair (and a struck body's pushes):
     // a body the sweeps moved further than half of that may have met one they did not hold (a

@@ -147,7 +147,7 @@ private:
     void pushOutOfRoom(std::span<const std::uint32_t> bodies, std::vector<std::uint32_t>* moved = nullptr);
     /// The position pass's sweeps over an island without joints, found again where they moved
     /// a body beyond its contacts' reach.
-    void pushApart(std::size_t island, ContactSolver& solver, std::vector<Contact>& atEnd, int sweeps);
+    void sweepPositions(std::size_t island, ContactSolver& solver, std::vector<Contact>& atEnd, int sweeps);
     /// Sweeps over the end poses' points after the last push-out (ContactSolver::settleOn).
     static constexpr int kSettleSweeps = 2;
     void contactsAtEnd(std::size_t island, std::vector<Contact>& out) const;
