@@ -233,6 +233,30 @@ TEST(RigidContact, ABoxStruckWithinTheStepStopsAtTheBoxItHadNotTouched)
     EXPECT_NEAR(totalMomentum(world).y, -0.6 * 12.0, 1e-9); // no wall, no gravity: the blows keep it
 }
 
+// A die pressed 4 mm into the floor and 4 mm into the die above it (no gravity, at rest): the
+// sweeps leave each contact at the slop (0.5 mm), and the room's push-out after them lifts the die
+// by the floor's, into the die above (1 mm); held there, the die above is pushed off it. One step
+// leaves no overlap deeper than the slop.
+TEST(RigidContact, ADieSandwichedBetweenTheFloorAndAnotherIsPushedOutOfBoth)
+{
+    World world;
+    world.setRoom(Aabb{dvec3(-2.0, 0.0, -2.0), dvec3(2.0, 4.0, 2.0)});
+    std::vector<RigidBody*> dice;
+    for (const double y : {0.046, 0.142}) {
+        auto die = std::make_unique<RigidBody>();
+        die->setShapeWithMass(Shape::box(dvec3(0.1)), 0.6);
+        die->setPos(dvec3(0.0, y, 0.0));
+        die->setCor(0.0);
+        dice.push_back(&static_cast<RigidBody&>(world.addBody(std::move(die))));
+    }
+    world.step(0.005);
+    const auto box = [](const RigidBody& b) {
+        return test::OrientedBox{b.getPos(), glm::mat3_cast(b.getOrientation()), dvec3(0.05)};
+    };
+    EXPECT_GE(dice[0]->getPos().y, 0.05 - 1e-9) << "out of the floor";
+    EXPECT_LT(test::overlapDepth(box(*dice[0]), box(*dice[1])), 0.6e-3) << "and out of the die above";
+}
+
 TEST(RigidContact, BodiesWithDifferentIntegratorsCollideWithEachOther)
 {
     for (const Integrator left : kRigidIntegrators)
