@@ -55,6 +55,7 @@ void ContactSolver::prepare(std::span<Contact> contacts, std::span<const std::ui
                             const SolverSettings& settings, bool withJoints)
 {
     m_moving = moving;
+    m_positionRowsBuilt = false; // the last island's
     m_contacts = contacts;
     m_bodies = bodies;
     m_settings = settings;

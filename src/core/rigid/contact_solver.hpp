@@ -108,9 +108,9 @@ public:
     void solvePositions(std::span<const Contact> contacts);
     /// `sweeps` of them (without joints; a halved island's on two cores).
     void solvePositions(std::span<const Contact> contacts, int sweeps);
-    /// After the room's push-out has moved the bodies `held`: `sweeps` more over `contacts`,
-    /// with those bodies as fixed as the room, so that what the push-out lifted them into moves
-    /// away from them and not back into the room.
+    /// After the room's push-out has moved the bodies `held`: `sweeps` more over `contacts` (the
+    /// last position sweeps' rows, if there were any), with those bodies as fixed as the room, so
+    /// that what the push-out lifted them into moves away from them and not back into the room.
     void settleOn(std::span<const Contact> contacts, std::span<const std::uint32_t> held, int sweeps);
 
 private:
@@ -179,6 +179,7 @@ private:
     /// One row's push, each body moved by its share `wa`, `wb` (its inverse mass, or 0 where held).
     void pushApart(const PositionRow& row, double wa, double wb);
     std::vector<PositionRow> m_positionRows;
+    bool m_positionRowsBuilt = false; ///< for this island, since the last turn of its bodies
     std::vector<std::uint8_t> m_held; ///< settleOn's bodies, by index
     std::size_t m_partRows[4] = {0, 0, 0, 0}; ///< part h's rows: [m_partRows[h], m_partRows[h + 1])
     std::span<const std::uint32_t> m_moving;   ///< the island's moving bodies

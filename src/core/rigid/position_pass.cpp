@@ -21,6 +21,7 @@ void ContactSolver::positionRows(std::span<const Contact> contacts)
     for (std::size_t h = 0; h < 3; ++h)
         m_partRows[h + 1] += m_partRows[h];
     m_positionRows.resize(m_partRows[3]);
+    m_positionRowsBuilt = true;
     std::size_t fill[3] = {m_partRows[0], m_partRows[1], m_partRows[2]};
     for (const Contact& c : contacts) {
         const SolverBody& a = m_bodies[c.a];
@@ -66,8 +67,10 @@ void ContactSolver::settleOn(std::span<const Contact> contacts, std::span<const 
     // A die on the floor pressed into the one above it: the sweeps share each push between the
     // two, and the floor pushes the lower one back up, so some overlap is left; the push-out then
     // lifts it the rest of the way into the die above. Held as the room is, it stays, and the die
-    // above takes the whole push (shock propagation, one layer).
-    positionRows(contacts);
+    // above takes the whole push (shock propagation, one layer). The push-out turned nothing, so
+    // the last sweeps' rows still hold.
+    if (!m_positionRowsBuilt)
+        positionRows(contacts);
     if (m_held.size() < m_bodies.size())
         m_held.resize(m_bodies.size(), 0);
     for (const std::uint32_t k : held)

@@ -182,14 +182,13 @@ void RigidSystem::widenForPushes()
     // far too, or a die knocked down by one landing on it is driven into the die under it with
     // no contact between them to stop it (an overlap of a centimetre or more at a heap's landing).
     const std::size_t n = m_world.size();
-    m_push.assign(n, 0.0);
-    m_pushLow.assign(n, dvec3(0.0));
-    m_pushHigh.assign(n, dvec3(0.0));
+    m_push.assign(n, Push{});
     const auto ownMotion = [&](std::uint32_t k) { return m_end[k].x - m_start[k].x; };
     const auto pushed = [&](std::uint32_t k, const dvec3& by) {
-        m_push[k] = std::max(m_push[k], glm::length(by));
-        m_pushLow[k] = glm::max(m_pushLow[k], -by);
-        m_pushHigh[k] = glm::max(m_pushHigh[k], by);
+        Push& push = m_push[k];
+        push.length = std::max(push.length, glm::length(by));
+        push.low = glm::max(push.low, -by);
+        push.high = glm::max(push.high, by);
     };
     for (const BodyPair& p : m_pairs) {
         if (m_motion[p.a] != Motion::Awake || m_motion[p.b] != Motion::Awake)
@@ -210,11 +209,12 @@ void RigidSystem::widenForPushes()
     // What the contact margin already covers is no news: only a harder blow widens a body's reach.
     const std::size_t found = m_pairs.size();
     for (std::uint32_t k = 0; k < n; ++k) {
-        if (!(m_push[k] > m_settings.contactMargin) || m_isPoint[k])
+        const Push& push = m_push[k];
+        if (!(push.length > m_settings.contactMargin) || m_isPoint[k])
             continue;
-        m_reach[k] += m_push[k];
+        m_reach[k] += push.length;
         const Box& b = m_boxes[k];
-        m_broadPhase.partnersOf(k, {b.min - m_pushLow[k], b.max + m_pushHigh[k]}, m_boxes, m_isPoint, m_pairs);
+        m_broadPhase.partnersOf(k, {b.min - push.low, b.max + push.high}, m_boxes, m_isPoint, m_pairs);
     }
     if (m_pairs.size() == found)
         return;
@@ -565,7 +565,7 @@ double RigidSystem::positionMargin(BodyIndex a, BodyIndex b) const
     // Not only what overlaps: what the sweeps push together (a die pushed up out of the floor
     // into the one above it) must be there for them to push apart again, and a body struck in
     // the step may have come as far again as its partners could push it (widenForPushes).
-    const auto push = [&](BodyIndex k) { return k < m_push.size() ? m_push[k] : 0.0; };
+    const auto push = [&](BodyIndex k) { return k < m_push.size() ? m_push[k].length : 0.0; };
     return m_settings.contactMargin + push(a) + push(b);
 }
 

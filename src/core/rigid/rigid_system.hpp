@@ -171,8 +171,12 @@ private:
     std::vector<double> m_stillFor; ///< seconds below the sleep speed
     std::vector<RigidState> m_start, m_end;
     std::vector<double> m_reach; ///< how far any point of the body moves in the step, or is pushed
-    std::vector<double> m_push;  ///< how far a partner may push the body in the step
-    std::vector<dvec3> m_pushLow, m_pushHigh; ///< and which way: along -x, -y, -z and +x, +y, +z
+    /// How far a partner may push a body in the step, and which way.
+    struct Push {
+        double length = 0.0;
+        dvec3 low{0.0}, high{0.0}; ///< along -x, -y, -z and along +x, +y, +z
+    };
+    std::vector<Push> m_push;
     std::vector<Box> m_boxes;
     std::vector<Plane> m_planes;
     dvec3 m_gravity{0.0};
