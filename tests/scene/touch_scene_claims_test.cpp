@@ -117,7 +117,7 @@ SCENE_CLAIM(TouchSceneClaims, HangingCrateKnocksTheWallDownOnARopeWhoseJointHold
     const auto moved = std::count_if(wall.begin(), wall.end(), [&](const auto& box) {
         return glm::length(world.body(box.first).getPos() - box.second) > 0.3;
     });
-    EXPECT_EQ(moved, 5);
+    EXPECT_EQ(moved, 6);
     EXPECT_EQ(world.body(bodyNamed(world, "rope[0]")).getPos(), pin);
 }
 
