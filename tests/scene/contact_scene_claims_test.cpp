@@ -96,24 +96,33 @@ SCENE_CLAIM(ContactSceneClaims, TheTowerOfTenStandsAMinuteItsTopSlabStill, "box-
     EXPECT_LT(glm::length(scene.world.body(top).getPos() - start), 1e-3);
 }
 
-// Whatever the slabs' integrator, the tower settles and sleeps: forward Euler's end velocity moves
-// a slab only in the next step, and a contact that let it close the start's gap again there left
-// the tower trembling for ever (its top slab 3 cm from its place after the minute).
+// Whatever the slabs' integrator, the tower settles and sleeps, at the scene's dt and at a game's
+// 1/60 s: an integrator that moves a body by its start velocity (forward Euler wholly, velocity
+// Verlet, RK4 and the splitting by half) moves it by the end velocity the solver leaves in the next
+// step too, and a contact that let that velocity close the start's gap again left the tower
+// trembling for ever (forward Euler's top slab 3 cm from its place after the minute; at 1/60 s
+// the splitting's 13 cm after 20 s). Forward Euler at 1/60 s is left out: a whole step's lag there
+// still shakes the tower down within the minute.
 SCENE_CLAIM(ContactSceneClaims, TheTowerStandsAndSleepsWhateverItsIntegrator, "box-stack")
 {
-    for (const Integrator integrator : kRigidIntegrators) {
-        Scene scene = loadScene("box-stack");
-        World& world = scene.world;
-        for (std::size_t i = 0; i < world.bodyCount(); ++i)
-            world.body(i).setIntegrator(integrator);
-        const std::size_t top = bodyNamed(world, "slab9");
-        const dvec3 start = world.body(top).getPos();
-        run(scene, 5.0);
-        const std::string name(integratorName(integrator));
-        EXPECT_LT(glm::length(world.body(top).getPos() - start), 1e-3) << name;
-        for (std::size_t i = 0; i < world.bodyCount(); ++i)
-            EXPECT_TRUE(world.isAsleep(i)) << world.body(i).getName() << " still moving at 5 s, " << name;
-    }
+    for (const double dt : {0.005, 1.0 / 60.0})
+        for (const Integrator integrator : kRigidIntegrators) {
+            if (dt > 0.01 && integrator == Integrator::ForwardEuler)
+                continue;
+            Scene scene = loadScene("box-stack");
+            scene.dt = dt;
+            World& world = scene.world;
+            for (std::size_t i = 0; i < world.bodyCount(); ++i)
+                world.body(i).setIntegrator(integrator);
+            const std::size_t top = bodyNamed(world, "slab9");
+            const dvec3 start = world.body(top).getPos();
+            run(scene, 5.0);
+            const std::string name = std::string(integratorName(integrator)) + " at dt " + std::to_string(dt);
+            // (At 1/60 s the first steps' unconverged sweeps settle it by up to 6 mm, then it sleeps.)
+            EXPECT_LT(glm::length(world.body(top).getPos() - start), dt > 0.01 ? 1e-2 : 1e-3) << name;
+            for (std::size_t i = 0; i < world.bodyCount(); ++i)
+                EXPECT_TRUE(world.isAsleep(i)) << world.body(i).getName() << " still moving at 5 s, " << name;
+        }
 }
 
 SCENE_CLAIM(ContactSceneClaims, ThePyramidOf210StandsEveryBoxWithinFiveMillimetres, "pyramid")
