@@ -114,15 +114,17 @@ void ContactSolver::prepareRows(std::span<const IslandContact> constraints)
             v.tangentImpulse[0] = p.tangentImpulse[0];
             v.tangentImpulse[1] = p.tangentImpulse[1];
             // A gap may close, no more (a speculative contact): resting stays at rest, and an
-            // arrival slower than the resting speed lands without a bounce. Resting, the end
-            // velocity moves a body by one step's drift in all (its integrator's share of this
-            // step's and the rest of the next's), after the start velocity's share of this one
-            // (none for semi-implicit Euler, all for forward Euler): that is the gap it may
-            // close. A faster arrival is the collision pass's, now or at the next step.
+            // arrival slower than the resting speed lands without a bounce. The end velocity
+            // moves a body by one step's drift in all (its integrator's share of this step's and
+            // the rest of the next's), after the start velocity's share of this one (none for
+            // semi-implicit Euler, all for forward Euler): a body settling onto a contact may
+            // close only the gap that share leaves. (A faster arrival is the collision pass's; a
+            // contact opening keeps the start's gap, so that closing again is no faster.)
             const dvec3 lagged = b.pointStartVelocity(r.rB) * (1.0 - b.driftWeight) -
                                  a.pointStartVelocity(r.rA) * (1.0 - a.driftWeight);
             const double lag = glm::dot(r.n, lagged);
-            const double gap = r.separation + (lag >= -m_settings.restingSpeed ? lag * m_settings.dt : 0.0);
+            const bool settling = lag <= 0.0 && lag >= -m_settings.restingSpeed;
+            const double gap = r.separation + (settling ? lag * m_settings.dt : 0.0);
             v.target = -std::max(gap, 0.0) / m_settings.dt;
         }
     }
