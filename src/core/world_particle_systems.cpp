@@ -26,12 +26,12 @@ constexpr double kBallsHeldWithin = 1.01;
 constexpr double kBallsHeldAbove = 0.7;
 
 /// The normal of the surface backward Euler holds a member on for the step (or zero): the first of
-/// its room's planes it is within a step at `reach` (m/s) of, moving along the normal no faster than
-/// that either way (the resting contact of afterStepWithFriction), and not over a hole.
-dvec3 restingOn(std::span<const Plane> room, const dvec3& x, const dvec3& v, double reach, double dt)
+/// its room's planes it is within `depth` of, moving along the normal no faster than `reach` (m/s)
+/// either way (the resting contact of afterStepWithFriction), and not over a hole.
+dvec3 restingOn(std::span<const Plane> room, const dvec3& x, const dvec3& v, double reach, double depth)
 {
     for (const Plane& plane : room)
-        if (std::abs(plane.distance(x)) <= std::max(collision_detail::contactTolerance(plane), reach * dt) &&
+        if (std::abs(plane.distance(x)) <= std::max(collision_detail::contactTolerance(plane), depth) &&
             std::abs(plane.along(v)) <= reach && !plane.overHole(x))
             return plane.normal;
     return dvec3(0.0);
@@ -189,15 +189,21 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
     std::vector<dvec3>& start = solver.startForces;
     start.resize(n);
     // A member resting on the room is held on it (backward_euler.hpp): what arrives no faster than
-    // the rule after the step takes for resting contact, twice what its acceleration gives in a step.
+    // the rule after the step takes for resting contact, twice what its acceleration gives in a
+    // step, and lies no farther from it than that speed takes it in a step, nor than its own
+    // radius (a point: than gravity's resting speed does). A member of a sheet stretched under a
+    // crate is pulled at some 10^5 m/s^2, whose step reaches the floor a metre below: it was held
+    // there in the air, still, while its springs stretched a quarter of a metre and more.
     const std::span<const Plane> planes(m_surfaces.planes);
+    const double fall = 2.0 * glm::length(gravity()) * dt * dt;
     solver.heldOn.resize(n);
     detail::forEachIndex(n, [&](std::size_t k) {
         start[k] = m_forces.sums[members[k]];
         s.acc[k] = start[k] / s.mass[k];
         std::array<Plane, kMaxBallPlanes> room;
-        solver.heldOn[k] = restingOn(ballPlanes(planes, m_bodies.radii[members[k]], room), s.x[k], s.v[k],
-                                    2.0 * glm::length(s.acc[k]) * dt, dt);
+        const double radius = m_bodies.radii[members[k]], reach = 2.0 * glm::length(s.acc[k]) * dt;
+        solver.heldOn[k] = restingOn(ballPlanes(planes, radius, room), s.x[k], s.v[k], reach,
+                                    std::min(reach * dt, radius > 0.0 ? radius : fall));
     });
     holdOnBalls(members, solver.heldOn, dt);
     detail::BackwardEuler& backwardEuler = solver.backwardEuler;
