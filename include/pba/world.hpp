@@ -456,6 +456,8 @@ private:
     /// For backward Euler: each member resting on a ball below it (of the last step's contacts)
     /// held on it as on a surface, its normal into heldOn (those held on the room keep theirs).
     void holdOnBalls(const std::vector<std::size_t>& members, std::span<dvec3> heldOn, double dt) const;
+    void carryJoinedBodies(const std::vector<std::size_t>& members, detail::SpringSolver& solver) const;
+    void pushCarriedBodies(detail::SpringSolver& solver, double dt);
     /// The system's start-of-step state into the particle systems' scratch (x and v).
     void startSystem(const std::vector<std::size_t>& members);
     /// Every force on the system's members at the states (x, v) (at m_bodies.trial if x is

@@ -26,6 +26,16 @@ struct SpringSolver {
     /// start. Members, not thread_local: a lambda run on a pool thread names that thread's copy.
     std::vector<dvec3> positions, startForces;
     std::vector<dvec3> heldOn; ///< backward Euler's: the normal of the surface each member rests on, or zero
+    /// Backward Euler's: each member's mass in the solve, with a rigid body it is joined to, and
+    /// those bodies: the member, the body (a world index), its mass carried, the arm, and the
+    /// member's velocity before the solve.
+    std::vector<double> solveMass;
+    struct Carried {
+        std::size_t member, body;
+        double mass;
+        dvec3 arm, before;
+    };
+    std::vector<Carried> carried;
     std::vector<double> radius, restitution, friction; ///< XPBD's: each member's, for its room
     XpbdRigidContacts rigidContacts; ///< XPBD's: the rigid bodies its substeps meet
     /// XPBD's: the members that may touch each other in the step, found with their grid.

@@ -206,16 +206,67 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
                                     std::min(reach * dt, radius > 0.0 ? radius : fall));
     });
     holdOnBalls(members, solver.heldOn, dt);
+    carryJoinedBodies(members, solver);
     detail::BackwardEuler& backwardEuler = solver.backwardEuler;
-    backwardEuler.step(solver.springs, s.mass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n), start, dt,
-                       solver.heldOn);
+    backwardEuler.step(solver.springs, solver.solveMass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n),
+                       start, dt, solver.heldOn);
     // The surface's friction, from its push, as the rule after the step gives a body it pushes.
     detail::forEachIndex(n, [&](std::size_t k) {
         const double push = backwardEuler.push(k);
         if (push > 0.0)
             s.v[k] = rubbedByPush(s.v[k], push * solver.heldOn[k], m_bodies.frictions[members[k]]);
     });
+    pushCarriedBodies(solver, dt);
     collideAndStore(members, dt);
+}
+
+void World::carryJoinedBodies(const std::vector<std::size_t>& members, detail::SpringSolver& solver) const
+{
+    // A member joined at a point to a rigid body carries the body's mass at that point into the
+    // solve, and its weight: the implicit springs then move the two as one, as the joint after the
+    // step will. Alone, the member answered its springs as if free, and the joint then dragged it
+    // back to a body a hundred times heavier: the springs felt at most the member's mass over dt
+    // squared of the body, and a crate on a rope gained energy at 1/60 s.
+    const CoupledScratch& s = m_particleSystems.scratch;
+    solver.solveMass.assign(s.mass.begin(), s.mass.end());
+    solver.carried.clear();
+    if (!m_rigid.system)
+        return;
+    const rigid::RigidSystem& system = *m_rigid.system;
+    for (const rigid::Joint& j : system.joints()) {
+        if ((j.type != JointType::Ball && j.type != JointType::Fixed) || j.b == rigid::kWorldBody ||
+            system.isPoint(j.a) == system.isPoint(j.b))
+            continue;
+        const bool pointIsA = system.isPoint(j.a);
+        const std::size_t particle = system.worldIndex(pointIsA ? j.a : j.b);
+        const auto it = std::lower_bound(members.begin(), members.end(), particle);
+        if (it == members.end() || *it != particle)
+            continue;
+        const std::size_t k = std::size_t(it - members.begin());
+        const auto& body = static_cast<const RigidBody&>(*m_bodies.objects[system.worldIndex(pointIsA ? j.b : j.a)]);
+        const dvec3 arm = body.getOrientation() * (pointIsA ? j.localB : j.localA);
+        // The least the body's point weighs in any direction (the trace bounds the largest
+        // inverse inertia from above): the member never answers as heavier than the pair is.
+        const dmat3 inverseInertia = body.getInverseInertiaBody();
+        const double turn = inverseInertia[0][0] + inverseInertia[1][1] + inverseInertia[2][2];
+        const double carried = 1.0 / (1.0 / body.getMass() + glm::dot(arm, arm) * turn);
+        solver.solveMass[k] += carried;
+        solver.startForces[k] += carried * gravity();
+        solver.carried.push_back({k, system.worldIndex(pointIsA ? j.b : j.a), carried, arm, s.v[k]});
+    }
+}
+
+void World::pushCarriedBodies(detail::SpringSolver& solver, double dt)
+{
+    // What the springs gave the carried mass beyond its weight's fall is the body's, at the joint,
+    // before its own step.
+    const CoupledScratch& s = m_particleSystems.scratch;
+    for (const auto& c : solver.carried) {
+        auto& body = static_cast<RigidBody&>(*m_bodies.objects[c.body]);
+        const dvec3 impulse = c.mass * (s.v[c.member] - c.before - gravity() * dt);
+        body.setVel(body.getVel() + impulse / body.getMass());
+        body.setAngularMomentum(body.getAngularMomentum() + glm::cross(c.arm, impulse));
+    }
 }
 
 void World::holdOnBalls(const std::vector<std::size_t>& members, std::span<dvec3> heldOn, double dt) const
