@@ -96,8 +96,9 @@ Scene loadSceneWithOverrides(const SceneOptions& options)
             for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
                 if (scene.world.isRigid(i) && !scene.world.body(i).isFixed())
                     throw UsageError(fmt::format("--integrator: {} steps particles joined by springs, and {} has "
-                                                 "rigid body '{}'", *options.integrator, scene.source,
-                                                 scene.world.body(i).getName()));
+                                                 "rigid body '{}' (a rope's or cloth's own \"integrator\" key "
+                                                 "sets it for that one)",
+                                                 *options.integrator, scene.source, scene.world.body(i).getName()));
         if (isSpringSystemMethod(integrator) && scene.world.swarmCount() > 0)
             throw UsageError(fmt::format("--integrator: {} steps particles joined by springs, and {} has swarm "
                                          "'{}', which has none", *options.integrator, scene.source,

@@ -110,7 +110,10 @@ INSTANTIATE_TEST_SUITE_P(
                     BadRun{"integrators --frame-rate 0", "--frame-rate"},
                     BadRun{"integrators --no-such-option", "no-such-option"},
                     BadRun{"integrators --dt abc", "--dt: cannot read 'abc' as a number"},
-                    BadRun{"integrators --duration 1,5", "--duration: cannot read '1,5' as a number"}));
+                    BadRun{"integrators --duration 1,5", "--duration: cannot read '1,5' as a number"},
+                    BadRun{"trampoline --integrator xpbd",
+                           "has rigid body 'crate' (a rope's or cloth's own \"integrator\" key sets it"},
+                    BadRun{"granular --integrator implicit-euler", "has swarm 'grains', which has none"}));
 
 // A mistyped command is named, with the command it is close to, in the order it was typed.
 TEST(PbaCommands, AMistypedCommandIsNamedWithTheOneItIsCloseTo)
