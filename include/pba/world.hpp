@@ -456,7 +456,10 @@ private:
     /// For backward Euler: each member resting on a ball below it (of the last step's contacts)
     /// held on it as on a surface, its normal into heldOn (those held on the room keep theirs).
     void holdOnBalls(const std::vector<std::size_t>& members, std::span<dvec3> heldOn, double dt) const;
+    /// For backward Euler: each member's mass in the solve (solver.solveMass), with the mass and
+    /// weight of a rigid body a ball joint joins it to (solver.carried), added to its start force.
     void carryJoinedBodies(const std::vector<std::size_t>& members, detail::SpringSolver& solver) const;
+    /// After the solve: what the springs did to each carried mass, as an impulse on its body.
     void pushCarriedBodies(detail::SpringSolver& solver, double dt);
     /// The system's start-of-step state into the particle systems' scratch (x and v).
     void startSystem(const std::vector<std::size_t>& members);

@@ -25,6 +25,13 @@ namespace {
 constexpr double kBallsHeldWithin = 1.01;
 constexpr double kBallsHeldAbove = 0.7;
 
+/// Body i's place among a system's members (listed in increasing order), or members.size().
+std::size_t placeAmong(const std::vector<std::size_t>& members, std::size_t i)
+{
+    const auto it = std::lower_bound(members.begin(), members.end(), i);
+    return it != members.end() && *it == i ? std::size_t(it - members.begin()) : members.size();
+}
+
 /// The normal of the surface backward Euler holds a member on for the step (or zero): the first of
 /// its room's planes it is within `depth` of, moving along the normal no faster than `reach` (m/s)
 /// either way (the resting contact of afterStepWithFriction), and not over a hole.
@@ -234,15 +241,13 @@ void World::carryJoinedBodies(const std::vector<std::size_t>& members, detail::S
         return;
     const rigid::RigidSystem& system = *m_rigid.system;
     for (const rigid::Joint& j : system.joints()) {
-        if ((j.type != JointType::Ball && j.type != JointType::Fixed) || j.b == rigid::kWorldBody ||
-            system.isPoint(j.a) == system.isPoint(j.b))
+        // (A particle's joint to a body is a ball or a distance; only the ball holds it at a point.)
+        if (j.type != JointType::Ball || j.b == rigid::kWorldBody || system.isPoint(j.a) == system.isPoint(j.b))
             continue;
         const bool pointIsA = system.isPoint(j.a);
-        const std::size_t particle = system.worldIndex(pointIsA ? j.a : j.b);
-        const auto it = std::lower_bound(members.begin(), members.end(), particle);
-        if (it == members.end() || *it != particle)
+        const std::size_t k = placeAmong(members, system.worldIndex(pointIsA ? j.a : j.b));
+        if (k == members.size())
             continue;
-        const std::size_t k = std::size_t(it - members.begin());
         const auto& body = static_cast<const RigidBody&>(*m_bodies.objects[system.worldIndex(pointIsA ? j.b : j.a)]);
         const dvec3 arm = body.getOrientation() * (pointIsA ? j.localB : j.localA);
         // The least the body's point weighs in any direction (the trace bounds the largest
@@ -280,18 +285,13 @@ void World::holdOnBalls(const std::vector<std::size_t>& members, std::span<dvec3
         return;
     const dvec3 up = -g / glm::length(g);
     const CoupledScratch& s = m_particleSystems.scratch;
-    // A body's place among the members (listed in increasing order), or members.size().
-    const auto placeOf = [&](std::size_t i) {
-        const auto it = std::lower_bound(members.begin(), members.end(), i);
-        return it != members.end() && *it == i ? std::size_t(it - members.begin()) : members.size();
-    };
     for (const auto& [a, b] : contacts.pairs)
         for (const auto& [upper, lower] : {std::pair(contacts.bodies[a], contacts.bodies[b]),
                                            std::pair(contacts.bodies[b], contacts.bodies[a])}) {
-            const std::size_t k = placeOf(upper);
+            const std::size_t k = placeAmong(members, upper);
             if (k == members.size() || lower >= m_bodies.objects.size() || heldOn[k] != dvec3(0.0))
                 continue; // (one of another system, a body the world no longer has, or one held)
-            const std::size_t j = placeOf(lower);
+            const std::size_t j = placeAmong(members, lower);
             const State below = j < members.size() ? State{s.x[j], s.v[j]} : m_bodies.previous[lower];
             const dvec3 d = s.x[k] - below.pos;
             const double distance = glm::length(d), reach = 2.0 * glm::length(s.acc[k]) * dt;
