@@ -394,6 +394,13 @@ private:
         ClonePtr<rigid::RigidSystem> system;
         RigidScratch scratch;
         std::size_t bodiesSeen = 0; ///< the bodies looked at for particles with a radius
+        /// Impulses on bodies at the end of their free step this step (what an implicit-Euler
+        /// sheet's held members did to them): world index, impulse, angular impulse.
+        struct EndPush {
+            std::size_t body = 0;
+            dvec3 impulse{0.0}, angular{0.0};
+        };
+        std::vector<EndPush> endPushes;
     };
     /// The swarms, and their copies for a rollback.
     struct Swarms {
@@ -456,6 +463,13 @@ private:
     /// For backward Euler: each member resting on a ball below it (of the last step's contacts)
     /// held on it as on a surface, its normal into heldOn (those held on the room keep theirs).
     void holdOnBalls(const std::vector<std::size_t>& members, std::span<dvec3> heldOn, double dt) const;
+    /// For backward Euler: each member resting on a rigid body (of the last step's contacts, at
+    /// the poses now) held on it, its normal into solver.heldOn (those held on the room or a ball
+    /// keep theirs); a moving body is one of the solve's bearers (backward_euler.hpp).
+    void holdOnBodies(const std::vector<std::size_t>& members, detail::SpringSolver& solver, double dt) const;
+    /// After the solve: friction on the members held on rigid bodies or the room, and what the
+    /// held members did to their bearers, as impulses at the end of those bodies' free steps.
+    void rubAndPushBearers(const std::vector<std::size_t>& members, detail::SpringSolver& solver);
     /// For backward Euler: each member's mass in the solve (solver.solveMass), with the mass and
     /// weight of a rigid body a ball joint joins it to (solver.carried), added to its start force.
     void carryJoinedBodies(const std::vector<std::size_t>& members, detail::SpringSolver& solver) const;
@@ -487,6 +501,8 @@ private:
     /// woke, its solve, then storeRigidBodies.
     void stepRigidBodies(double dt);
     void integrateRigidFreely(std::span<const std::uint32_t> bodies, double dt);
+    /// The free step's end states of `members` (all of `integrator`) given this step's end pushes.
+    void pushAtFreeEnd(Integrator integrator, const std::vector<std::size_t>& members, double dt);
     void stepRigid(Integrator integrator, const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
                    double dt);
     void storeRigidBodies();

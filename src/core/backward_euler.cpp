@@ -48,10 +48,40 @@ dvec3 springSum(const SpringSystem& springs, const std::vector<dvec3>& perSpring
     return sum;
 }
 
+/// Solves the dense system a x = r (a row-major, r.size() rows) by Gaussian elimination with
+/// partial pivoting; r becomes x. A few bodies' six velocities: a handful of rows.
+void solveDense(std::vector<double>& a, std::vector<double>& r)
+{
+    const std::size_t n = r.size();
+    for (std::size_t c = 0; c < n; ++c) {
+        std::size_t pivot = c;
+        for (std::size_t i = c + 1; i < n; ++i)
+            if (std::abs(a[i * n + c]) > std::abs(a[pivot * n + c]))
+                pivot = i;
+        if (pivot != c) {
+            for (std::size_t j = 0; j < n; ++j)
+                std::swap(a[c * n + j], a[pivot * n + j]);
+            std::swap(r[c], r[pivot]);
+        }
+        for (std::size_t i = c + 1; i < n; ++i) {
+            const double f = a[i * n + c] / a[c * n + c];
+            for (std::size_t j = c; j < n; ++j)
+                a[i * n + j] -= f * a[c * n + j];
+            r[i] -= f * r[c];
+        }
+    }
+    for (std::size_t c = n; c-- > 0;) {
+        for (std::size_t j = c + 1; j < n; ++j)
+            r[c] -= a[c * n + j] * r[j];
+        r[c] /= a[c * n + c];
+    }
+}
+
 } // namespace
 
 void BackwardEuler::step(const SpringSystem& springs, std::span<const double> mass, std::span<dvec3> x,
-                         std::span<dvec3> v, std::span<const dvec3> force, double dt, std::span<const dvec3> heldOn)
+                         std::span<dvec3> v, std::span<const dvec3> force, double dt, std::span<const dvec3> heldOn,
+                         const Bearers& bearers)
 {
     const std::size_t n = x.size();
     m_x0.assign(x.begin(), x.end());
@@ -66,10 +96,13 @@ void BackwardEuler::step(const SpringSystem& springs, std::span<const double> ma
     linearise(springs, mass, x, dt, v, force);
     if (m_dv.size() != n)
         m_dv.assign(n, dvec3(0.0));
-    if (m_held)
-        forEachIndex(n, [&](std::size_t p) {
-            m_dv[p] = filtered(p, m_dv[p]) - glm::dot(m_normal[p], v[p]) * m_normal[p];
-        });
+    const auto startHeld = [&] {
+        if (m_held)
+            forEachIndex(n, [&](std::size_t p) {
+                m_dv[p] = filtered(p, m_dv[p]) + (heldSpeed(p, bearers) - glm::dot(m_normal[p], v[p])) * m_normal[p];
+            });
+    };
+    startHeld();
     m_iterations = 0;
     double scale = solve(springs, mass);
     // Each round lets go of every member its surface pulls; a few rounds settle any sheet (a
@@ -77,6 +110,15 @@ void BackwardEuler::step(const SpringSystem& springs, std::span<const double> ma
     constexpr int kReleaseRounds = 4;
     for (int round = 0; m_held && round < kReleaseRounds && releasePulled(springs, mass); ++round)
         scale = solve(springs, mass);
+    // The bearers with the sheet, from the guess, again without any member they pull.
+    if (m_held && !bearers.bodies.empty()) {
+        m_guess.assign(bearers.bodies.begin(), bearers.bodies.end());
+        for (int round = 0; round < kReleaseRounds && solveBearers(springs, mass, bearers); ++round) {
+            std::copy(m_guess.begin(), m_guess.end(), bearers.bodies.begin());
+            startHeld();
+            scale = solve(springs, mass);
+        }
+    }
     forEachIndex(n, [&](std::size_t p) { v[p] += m_dv[p]; });
     // Newton's corrections, each linearised where the last left the bodies, until the nonlinear
     // equations hold: the once-linearised step is only stable while the springs turn little in
@@ -222,7 +264,16 @@ void BackwardEuler::springPass(const SpringSystem& springs, const std::vector<dv
     forEachIndex(springs.size(), [&](std::size_t s) { m_perSpring[s] = m_blocks[s].apply(w[springs.a(s)] - atB(springs, s, w)); });
 }
 
-double BackwardEuler::solve(const SpringSystem& springs, std::span<const double> mass)
+double BackwardEuler::residualNorm(const SpringSystem& springs, std::span<const double> mass)
+{
+    springPass(springs, m_dv);
+    return sumOf(m_dv.size(), [&](std::size_t p) {
+        const dvec3 r = filtered(p, m_rhs[p] - (mass[p] * m_dv[p] + springSum(springs, m_perSpring, p)));
+        return glm::dot(r, m_inverseDiagonal[p].apply(r));
+    });
+}
+
+double BackwardEuler::solve(const SpringSystem& springs, std::span<const double> mass, double scaleOf)
 {
     // Preconditioned conjugate gradients from the last step's dv: a motion that changes smoothly
     // changes its velocities by nearly as much from one step to the next, and the solve then starts
@@ -247,9 +298,10 @@ double BackwardEuler::solve(const SpringSystem& springs, std::span<const double>
         return glm::dot(m_r[p], m_z[p]);
     });
     m_residual = scale > 0.0 ? std::sqrt(std::max(rz, 0.0) / scale) : 0.0;
-    // Done when the residual's preconditioned norm is kTolerance of the right-hand side's. (A
-    // right-hand side that is not finite stops it at once: the step's check says so.)
-    const double target = kTolerance * kTolerance * scale;
+    // Done when the residual's preconditioned norm is kTolerance of the right-hand side's, or (a
+    // bearer's probe, whose right-hand side is zero) of `scaleOf`. (A right-hand side that is
+    // not finite stops it at once: the step's check says so.)
+    const double target = kTolerance * kTolerance * (scaleOf > 0.0 ? scaleOf : scale);
     double beta = 0.0;
     for (int iteration = 0; iteration < kMaxIterations && rz > target; ++iteration) {
         springPass(springs, m_z);
@@ -279,23 +331,120 @@ double BackwardEuler::solve(const SpringSystem& springs, std::span<const double>
 
 bool BackwardEuler::releasePulled(const SpringSystem& springs, std::span<const double> mass)
 {
-    // What a held member's surface gives it is what its equation lacks: A dv - b, along the normal.
-    springPass(springs, m_dv);
+    heldImpulses(springs, mass, true, m_baseImpulse);
     const double released = sumOf(m_normal.size(), [&](std::size_t p) {
         m_push[p] = 0.0;
-        const dvec3& normal = m_normal[p];
-        if (normal == dvec3(0.0))
+        if (m_normal[p] == dvec3(0.0))
             return 0.0;
-        const dvec3 given = mass[p] * m_dv[p] + springSum(springs, m_perSpring, p) - m_rhs[p];
-        const double along = glm::dot(normal, given);
-        if (along < 0.0) {
+        if (m_baseImpulse[p] < 0.0) {
             m_normal[p] = dvec3(0.0);
             return 1.0;
         }
-        m_push[p] = along / mass[p];
+        m_push[p] = m_baseImpulse[p] / mass[p];
         return 0.0;
     });
     return released > 0.0;
+}
+
+void BackwardEuler::heldImpulses(const SpringSystem& springs, std::span<const double> mass, bool withRhs,
+                                 std::vector<double>& out)
+{
+    // What a held member's surface gives it is what its equation lacks: A dv - b, along the normal.
+    springPass(springs, m_dv);
+    out.resize(m_normal.size());
+    forEachIndex(m_normal.size(), [&](std::size_t p) {
+        const dvec3& normal = m_normal[p];
+        const dvec3 given = mass[p] * m_dv[p] + springSum(springs, m_perSpring, p) - (withRhs ? m_rhs[p] : dvec3(0.0));
+        out[p] = normal == dvec3(0.0) ? 0.0 : glm::dot(normal, given);
+    });
+}
+
+double BackwardEuler::heldSpeed(std::size_t p, const Bearers& bearers) const
+{
+    if (bearers.of.empty() || bearers.of[p] == kNoBearer)
+        return 0.0;
+    const Bearer& b = bearers.bodies[bearers.of[p]];
+    return glm::dot(m_normal[p], b.velocity + glm::cross(b.spin, bearers.arm[p]));
+}
+
+bool BackwardEuler::solveBearers(const SpringSystem& springs, std::span<const double> mass, const Bearers& bearers)
+{
+    const std::size_t n = m_dv.size(), dims = 6 * bearers.bodies.size();
+    // Held member p's speed along its normal for a unit of bearer velocity q (three of the
+    // bearer's velocity, then three of its spin): n . e, or n . (e x arm).
+    const auto unitSpeed = [&](std::size_t p, std::size_t q) {
+        if (m_normal[p] == dvec3(0.0) || bearers.of[p] != q / 6 || !bearers.bodies[q / 6].moves)
+            return 0.0;
+        dvec3 e(0.0);
+        e[int(q % 3)] = 1.0;
+        return glm::dot(m_normal[p], q % 6 < 3 ? e : glm::cross(e, bearers.arm[p]));
+    };
+    // The step with the bearers at the guess (solved already), then each of their velocities
+    // alone: the pushes are linear in them.
+    heldImpulses(springs, mass, true, m_baseImpulse);
+    m_baseDv = m_dv;
+    m_probeDv.resize(dims);
+    m_probeImpulse.resize(dims);
+    const double residual = m_residual;
+    std::swap(m_rhs, m_savedRhs);
+    m_rhs.assign(n, dvec3(0.0));
+    for (std::size_t q = 0; q < dims; ++q) {
+        // From the last step's answer for the same velocity: a resting body's changes little.
+        // Its tolerance is kProbeTolerance of the cold start's residual (a warm start's own would
+        // ask for more).
+        forEachIndex(n, [&](std::size_t p) { m_dv[p] = unitSpeed(p, q) * m_normal[p]; });
+        const double cold = residualNorm(springs, mass) * (kProbeTolerance / kTolerance) * (kProbeTolerance / kTolerance);
+        if (m_probeDv[q].size() == n)
+            forEachIndex(n, [&](std::size_t p) { m_dv[p] += filtered(p, m_probeDv[q][p]); });
+        solve(springs, mass, cold);
+        m_probeDv[q] = m_dv;
+        heldImpulses(springs, mass, false, m_probeImpulse[q]);
+    }
+    std::swap(m_rhs, m_savedRhs);
+    m_residual = residual;
+    // Each bearer's momentum: M (U - U_alone) = -(what its members' pushes give it), the pushes
+    // base + sum_q dU_q probe_q with U = U_guess + dU; so
+    // (M + C) dU = M (U_alone - U_guess) - sum_p base_p s(p), C the sheet's apparent mass.
+    std::vector<double> a(dims * dims, 0.0), change(dims, 0.0);
+    for (std::size_t b = 0; b < bearers.bodies.size(); ++b) {
+        const Bearer& body = bearers.bodies[b];
+        const dvec3 spin = body.inertia * (body.aloneSpin - body.spin);
+        for (std::size_t i = 0; i < 3; ++i) {
+            a[(6 * b + i) * dims + 6 * b + i] = body.mass;
+            change[6 * b + i] = body.moves ? body.mass * (body.aloneVelocity - body.velocity)[int(i)] : 0.0;
+            change[6 * b + 3 + i] = body.moves ? spin[int(i)] : 0.0;
+            for (std::size_t j = 0; j < 3; ++j)
+                a[(6 * b + 3 + i) * dims + 6 * b + 3 + j] = body.inertia[int(j)][int(i)];
+        }
+    }
+    for (std::size_t p = 0; p < n; ++p)
+        for (std::size_t i = 0; i < dims; ++i)
+            if (const double s = unitSpeed(p, i); s != 0.0) {
+                change[i] -= s * m_baseImpulse[p];
+                for (std::size_t q = 0; q < dims; ++q)
+                    a[i * dims + q] += s * m_probeImpulse[q][p];
+            }
+    solveDense(a, change);
+    for (std::size_t b = 0; b < bearers.bodies.size(); ++b)
+        for (int i = 0; i < 3; ++i) {
+            bearers.bodies[b].velocity[i] += change[6 * b + std::size_t(i)];
+            bearers.bodies[b].spin[i] += change[6 * b + 3 + std::size_t(i)];
+        }
+    const double pulled = sumOf(n, [&](std::size_t p) {
+        dvec3 dv = m_baseDv[p];
+        double impulse = m_baseImpulse[p];
+        for (std::size_t q = 0; q < dims; ++q) {
+            dv += change[q] * m_probeDv[q][p];
+            impulse += change[q] * m_probeImpulse[q][p];
+        }
+        m_dv[p] = dv;
+        m_push[p] = std::max(impulse, 0.0) / mass[p];
+        if (m_normal[p] == dvec3(0.0) || !(impulse < 0.0))
+            return 0.0;
+        m_normal[p] = dvec3(0.0);
+        return 1.0;
+    });
+    return pulled > 0.0;
 }
 
 } // namespace pba::detail

@@ -35,6 +35,7 @@
 // floor chattered, counted as thousands of bounces. A member the surface would have to pull
 // (its springs lift it off) is let go, and the step solved again without it.
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -50,6 +51,9 @@ public:
     /// of the right-hand side's, or after kMaxIterations.
     static constexpr double kTolerance = 1e-5;
     static constexpr int kMaxIterations = 500;
+    /// A bearer's probes (see above) stop at this fraction of their start's residual: they give
+    /// the sheet's apparent mass at the body, which the step needs to a few digits only.
+    static constexpr double kProbeTolerance = 1e-3;
     /// Newton's corrections stop when the nonlinear equations' residual, in the same norm, is
     /// below this fraction of the first right-hand side's, or after kMaxNewtonIterations solves.
     /// Loose on purpose: a crumpled cloth's compressed springs, whose geometric term the matrix
@@ -62,13 +66,32 @@ public:
     /// The shortest fraction of a Newton correction the line search tries.
     static constexpr double kSmallestStep = 1.0 / 1024.0;
 
+    /// A moving body that held members rest on (see above), in the world's frame.
+    struct Bearer {
+        double mass = 0.0;
+        dmat3 inertia{0.0};
+        /// The body's velocity and spin over the step without the members.
+        dvec3 aloneVelocity{0.0}, aloneSpin{0.0};
+        /// In: a guess of them with the members (the solve starts from it: its start's); out: them.
+        dvec3 velocity{0.0}, spin{0.0};
+        bool moves = true; ///< false: the members do not move it within the step (it is a moving surface)
+    };
+    static constexpr std::uint32_t kNoBearer = 0xffffffffu;
+    struct Bearers {
+        std::span<const std::uint32_t> of; ///< per member, the bearer it is held on, or kNoBearer
+        std::span<const dvec3> arm;        ///< per member held on a bearer: its contact point from the bearer's centre
+        std::span<Bearer> bodies;
+    };
+
     /// One step of the system: x and v (one per member, in the springs' member order) from the
     /// start to the end of the step; `force[k]`, the net force on member k at the start (every
     /// force, springs included); `mass[k]` its mass; `heldOn[k]` the unit normal of the surface
     /// member k rests on, which stops it along the normal for the step, or zero (`heldOn`
-    /// empty: none rests). The springs' fixed ends must be placed.
+    /// empty: none rests), or, for a member held on one of `bearers`, moves it along the normal
+    /// with that body. The springs' fixed ends must be placed.
     void step(const SpringSystem& springs, std::span<const double> mass, std::span<dvec3> x, std::span<dvec3> v,
-              std::span<const dvec3> force, double dt, std::span<const dvec3> heldOn = {});
+              std::span<const dvec3> force, double dt, std::span<const dvec3> heldOn = {},
+              const Bearers& bearers = {});
 
     /// After a step with members held: how much member k's surface pushed it (the change of its
     /// velocity along the normal, m/s, not negative; zero where it was not held or was let go),
@@ -112,8 +135,11 @@ private:
                    std::span<const dvec3> v0 = {}, std::span<const dvec3> f0 = {});
     /// Each spring's B (w_a - w_b), into m_perSpring.
     void springPass(const SpringSystem& springs, const std::vector<dvec3>& w);
-    /// Solves for m_dv from its value; returns the right-hand side's squared preconditioned norm.
-    double solve(const SpringSystem& springs, std::span<const double> mass);
+    /// Solves for m_dv from its value, to kTolerance of the right-hand side's squared
+    /// preconditioned norm (or of `scaleOf`, if given), which it returns.
+    double solve(const SpringSystem& springs, std::span<const double> mass, double scaleOf = 0.0);
+    /// The squared preconditioned norm of m_dv's residual.
+    double residualNorm(const SpringSystem& springs, std::span<const double> mass);
     /// w without its part along member p's held normal (w itself where p is free).
     dvec3 filtered(std::size_t p, const dvec3& w) const
     {
@@ -122,6 +148,14 @@ private:
     /// Each held member's push from the solved m_dv; lets go of those their surface pulls.
     /// Returns whether it let any go.
     bool releasePulled(const SpringSystem& springs, std::span<const double> mass);
+    /// What each held member's surface gives it along its normal (an impulse, N s) for m_dv, with
+    /// the right-hand side or (a bearer's probe) without it.
+    void heldImpulses(const SpringSystem& springs, std::span<const double> mass, bool withRhs, std::vector<double>& out);
+    /// Held member p's velocity along its normal at the end of the step: its bearer's point's, or zero.
+    double heldSpeed(std::size_t p, const Bearers& bearers) const;
+    /// The held members and their bearers solved together (see above), into m_dv, m_push and
+    /// the bearers' velocities; returns whether a member's surface pulls it.
+    bool solveBearers(const SpringSystem& springs, std::span<const double> mass, const Bearers& bearers);
 
     std::vector<Block> m_blocks;     ///< one per spring
     std::vector<dvec3> m_perSpring;  ///< a pass's result per spring
@@ -133,6 +167,13 @@ private:
     bool m_held = false;           ///< whether any member is held on a surface this step
     std::vector<dvec3> m_normal;   ///< per member, the normal it is held along (or zero)
     std::vector<double> m_push;    ///< per member, its surface's push (m/s)
+    /// solveBearers' scratch: the step's dv and pushes with the bearers alone, and each of their
+    /// six velocities' (per bearer) dv and pushes.
+    std::vector<dvec3> m_baseDv, m_savedRhs;
+    std::vector<double> m_baseImpulse;
+    std::vector<Bearer> m_guess;
+    std::vector<std::vector<dvec3>> m_probeDv;
+    std::vector<std::vector<double>> m_probeImpulse;
     int m_iterations = 0, m_newtonIterations = 0;
     double m_residual = 0.0;
 };

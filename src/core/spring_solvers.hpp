@@ -36,6 +36,14 @@ struct SpringSolver {
         dvec3 arm, before;
     };
     std::vector<Carried> carried;
+    /// Backward Euler's: the moving bodies members rest on (world indices, and as the solve's
+    /// bearers), each member's bearer and arm, and the friction of what it is held on (the
+    /// pair's, or below zero: the room's, the member's own).
+    std::vector<std::size_t> bearerBodies;
+    std::vector<BackwardEuler::Bearer> bearers;
+    std::vector<std::uint32_t> bearerOf;
+    std::vector<dvec3> bearerArm;
+    std::vector<double> heldFriction;
     std::vector<double> radius, restitution, friction; ///< XPBD's: each member's, for its room
     XpbdRigidContacts rigidContacts; ///< XPBD's: the rigid bodies its substeps meet
     /// XPBD's: the members that may touch each other in the step, found with their grid.

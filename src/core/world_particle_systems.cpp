@@ -213,18 +213,100 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
                                     std::min(reach * dt, radius > 0.0 ? radius : fall));
     });
     holdOnBalls(members, solver.heldOn, dt);
+    holdOnBodies(members, solver, dt);
     carryJoinedBodies(members, solver);
-    detail::BackwardEuler& backwardEuler = solver.backwardEuler;
-    backwardEuler.step(solver.springs, solver.solveMass, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n),
-                       start, dt, solver.heldOn);
-    // The surface's friction, from its push, as the rule after the step gives a body it pushes.
-    detail::forEachIndex(n, [&](std::size_t k) {
-        const double push = backwardEuler.push(k);
-        if (push > 0.0)
-            s.v[k] = rubbedByPush(s.v[k], push * solver.heldOn[k], m_bodies.frictions[members[k]]);
-    });
+    solver.backwardEuler.step(solver.springs, solver.solveMass, std::span<dvec3>(&s.x[0], n),
+                              std::span<dvec3>(&s.v[0], n), start, dt, solver.heldOn,
+                              {solver.bearerOf, solver.bearerArm, solver.bearers});
+    rubAndPushBearers(members, solver);
     pushCarriedBodies(solver, dt);
     collideAndStore(members, dt);
+}
+
+void World::holdOnBodies(const std::vector<std::size_t>& members, detail::SpringSolver& solver, double dt) const
+{
+    // A member whose last contact with a rigid body lies within its radius of the body's surface
+    // now, moving along its normal no faster than the room's resting contact allows, rests on it.
+    const std::size_t n = members.size();
+    solver.bearerOf.assign(n, detail::BackwardEuler::kNoBearer);
+    solver.bearerArm.assign(n, dvec3(0.0));
+    solver.heldFriction.assign(n, -1.0);
+    solver.bearerBodies.clear();
+    solver.bearers.clear();
+    if (!m_rigid.system)
+        return;
+    const rigid::RigidSystem& system = *m_rigid.system;
+    const CoupledScratch& s = m_particleSystems.scratch;
+    for (const rigid::Contact& c : system.contacts()) {
+        if (c.count == 0 || c.b >= system.size() || system.isPoint(c.a) == system.isPoint(c.b))
+            continue;
+        const bool pointIsA = system.isPoint(c.a);
+        const std::size_t k = placeAmong(members, system.worldIndex(pointIsA ? c.a : c.b));
+        if (k == members.size() || solver.heldOn[k] != dvec3(0.0))
+            continue;
+        const std::size_t world = system.worldIndex(pointIsA ? c.b : c.a);
+        const auto& body = static_cast<const RigidBody&>(*m_bodies.objects[world]);
+        const auto deepest = std::min_element(c.points.begin(), c.points.begin() + c.count,
+                                              [](const auto& p, const auto& q) { return p.separation < q.separation; });
+        const dvec3 normal = pointIsA ? -deepest->normal : deepest->normal; // from the body to the member
+        const dvec3 surface = body.getPos() + body.getOrientation() * (pointIsA ? deepest->anchorB : deepest->anchorA);
+        const double radius = m_bodies.radii[members[k]], reach = 2.0 * glm::length(s.acc[k]) * dt;
+        const dvec3 arm = s.x[k] - radius * normal - body.getPos();
+        const dvec3 point = body.isFixed() ? dvec3(0.0) : body.getVel() + glm::cross(body.getAngularVelocity(), arm);
+        if (glm::dot(normal, s.x[k] - surface) - radius > radius || std::abs(glm::dot(normal, s.v[k] - point)) > reach)
+            continue;
+        solver.heldOn[k] = normal;
+        solver.heldFriction[k] = std::sqrt(m_bodies.frictions[members[k]] * body.getFriction());
+        if (body.isFixed())
+            continue;
+        auto b = std::find(solver.bearerBodies.begin(), solver.bearerBodies.end(), world);
+        if (b == solver.bearerBodies.end()) {
+            // Its pushes come at the end of its free step, where they move it by its integrator's
+            // drift of them (rigid::driftWeight): its point moves over the step as a body of its
+            // mass over that share would (forward Euler's not at all, in this step).
+            const double drift = rigid::driftWeight(body.getIntegrator());
+            const dmat3 turn = glm::mat3_cast(body.getOrientation());
+            const dmat3 inertia = turn * glm::inverse(body.getInverseInertiaBody()) * glm::transpose(turn);
+            const dvec3 alone = body.getVel() + drift * gravity() * dt, spin = body.getAngularVelocity();
+            // The solve starts from the body's velocity now (a resting body's answer), the
+            // sheet's from its last step's.
+            solver.bearers.push_back({drift > 0.0 ? body.getMass() / drift : 1.0, drift > 0.0 ? inertia / drift : dmat3(1.0),
+                                      alone, spin, drift > 0.0 ? body.getVel() : alone, spin, drift > 0.0});
+            b = solver.bearerBodies.insert(b, world);
+        }
+        solver.bearerOf[k] = std::uint32_t(b - solver.bearerBodies.begin());
+        solver.bearerArm[k] = arm;
+    }
+}
+
+void World::rubAndPushBearers(const std::vector<std::size_t>& members, detail::SpringSolver& solver)
+{
+    // The surface's friction, from its push, as the rule after the step gives a body it pushes:
+    // on a body, against the member's slip over the body's point. A bearer takes the opposite
+    // of what its members' pushes and friction gave them.
+    CoupledScratch& s = m_particleSystems.scratch;
+    std::vector<std::pair<dvec3, dvec3>> given(solver.bearers.size(), {dvec3(0.0), dvec3(0.0)});
+    for (std::size_t k = 0; k < members.size(); ++k) {
+        const double push = solver.backwardEuler.push(k);
+        if (!(push > 0.0))
+            continue;
+        const std::uint32_t b = solver.bearerOf[k];
+        const bool onBearer = b != detail::BackwardEuler::kNoBearer;
+        const dvec3 surface = onBearer ? solver.bearers[b].velocity + glm::cross(solver.bearers[b].spin, solver.bearerArm[k])
+                                       : dvec3(0.0);
+        const double mu = solver.heldFriction[k] >= 0.0 ? solver.heldFriction[k] : m_bodies.frictions[members[k]];
+        const dvec3 before = s.v[k];
+        s.v[k] = surface + rubbedByPush(s.v[k] - surface, push * solver.heldOn[k], mu);
+        if (!onBearer)
+            continue;
+        const dvec3 impulse = -solver.solveMass[k] * (s.v[k] - before + push * solver.heldOn[k]);
+        given[b].first += impulse;
+        given[b].second += glm::cross(solver.bearerArm[k], impulse);
+    }
+    for (std::size_t b = 0; b < given.size(); ++b) {
+        m_rigid.endPushes.push_back({solver.bearerBodies[b], given[b].first, given[b].second});
+        m_rigid.system->keepAwake(m_bodies.rigidIndex[solver.bearerBodies[b]]);
+    }
 }
 
 void World::carryJoinedBodies(const std::vector<std::size_t>& members, detail::SpringSolver& solver) const

@@ -38,6 +38,7 @@ void World::stepRigidBodies(double dt)
     system.begin(bodies);
     givePointBodies();
     integrateRigidFreely(system.awake(), dt);
+    m_rigid.endPushes.clear();
     system.findContacts(m_surfaces.planes, dt);
     integrateRigidFreely(system.woken(), dt); // touched by an awake body: they move this step too
     system.solve(gravity(), dt);
@@ -136,10 +137,32 @@ void World::integrateRigidFreely(std::span<const std::uint32_t> bodies, double d
             r.inertia[k] = RigidInertia{1.0 / b.getMass(), b.getInertiaBody(), b.getInverseInertiaBody()};
         });
         stepRigid(kEveryIntegrator[m], members, r.wanted, dt);
+        pushAtFreeEnd(kEveryIntegrator[m], members, dt);
         detail::forEachIndex(n, [&](std::size_t k) {
             system.setFreeEnd(m_bodies.rigidIndex[members[k]], r.states[k]);
             m_bodies.rigidAcc[members[k]] = r.startAcc[k];
         });
+    }
+}
+
+void World::pushAtFreeEnd(Integrator integrator, const std::vector<std::size_t>& members, double dt)
+{
+    // An impulse at the end of the free step changes the end velocity and moves the end pose by
+    // the integrator's drift of that change, as the contact solver's impulses do.
+    const double drift = rigid::driftWeight(integrator) * dt;
+    RigidScratch& r = m_rigid.scratch;
+    for (const auto& push : m_rigid.endPushes) {
+        const auto at = std::find(members.begin(), members.end(), push.body);
+        if (at == members.end())
+            continue;
+        RigidState& s = r.states[std::size_t(at - members.begin())];
+        const RigidInertia& inertia = r.inertia[std::size_t(at - members.begin())];
+        const dvec3 dv = push.impulse * inertia.inverseMass;
+        const dvec3 dw = angularVelocity(s.rotation.orientation, inertia.inverseInertiaBody, push.angular);
+        s.v += dv;
+        s.x += drift * dv;
+        s.rotation.momentum += push.angular;
+        s.rotation.orientation = rigid::turned(s.rotation.orientation, drift * dw);
     }
 }
 
