@@ -34,6 +34,16 @@
 // it into the floor every step, and the floor rule after it push it back: a sheet lying on the
 // floor chattered, counted as thousands of bounces. A member the surface would have to pull
 // (its springs lift it off) is let go, and the step solved again without it.
+//
+// A surface may be a moving body's that the members' pushes move in turn (a crate resting on a
+// cloth: Bearers). A member held on it moves along the normal with the body's point, and the
+// body's velocity and spin are solved with the sheet's: the held members' pushes depend linearly
+// on the body's six velocities, so six solves without the right-hand side (each from its last step's answer) give that
+// dependence, the sheet's apparent mass at the body, and the body's momentum equation,
+// M (U - U_alone) = -(what the pushes give it), is six equations a body. Met only after the
+// step, the body saw each member as a lone ball and the stiff springs a step later: a crate on an
+// implicit cloth stretched it to five times the scene's energy for a moment at dt 0.002 s, and
+// gained energy beyond 0.003 s.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -167,8 +177,8 @@ private:
     bool m_held = false;           ///< whether any member is held on a surface this step
     std::vector<dvec3> m_normal;   ///< per member, the normal it is held along (or zero)
     std::vector<double> m_push;    ///< per member, its surface's push (m/s)
-    /// solveBearers' scratch: the step's dv and pushes with the bearers alone, and each of their
-    /// six velocities' (per bearer) dv and pushes.
+    /// solveBearers' scratch: the step's dv and pushes with the bearers at their guess, the
+    /// guess, and the dv and pushes of each of their six velocities (per bearer).
     std::vector<dvec3> m_baseDv, m_savedRhs;
     std::vector<double> m_baseImpulse;
     std::vector<Bearer> m_guess;

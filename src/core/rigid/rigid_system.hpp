@@ -19,7 +19,10 @@
 // rigid bodies both ways with the same contact rule and joined to them by the same joints. It
 // meets the room with the particle's own rule and other particles not here, and never sleeps.
 // A particle stepped by XPBD meets the rigid bodies inside its substeps instead
-// (xpbd_rigid_contacts.hpp): here it is only joined, and the bodies it pushed are kept awake.
+// (xpbd_rigid_contacts.hpp): here it is only joined, and the bodies it pushed are kept awake. One
+// stepped by implicit Euler that rests on a body (its contact here of the last step) is held on
+// it within its own solve (backward_euler.hpp's bearers), whose pushes the World gives the body
+// at the end of its free step.
 #include <cstdint>
 #include <memory>
 #include <span>
