@@ -49,7 +49,7 @@ dvec3 springSum(const SpringSystem& springs, const std::vector<dvec3>& perSpring
 }
 
 /// Solves the dense system a x = r (a row-major, r.size() rows) by Gaussian elimination with
-/// partial pivoting; r becomes x. A few bodies' six velocities: a handful of rows.
+/// partial pivoting; r becomes x (a bearer's 6 x 6 preconditioner, a column at a time).
 void solveDense(std::vector<double>& a, std::vector<double>& r)
 {
     const std::size_t n = r.size();
@@ -79,6 +79,19 @@ void solveDense(std::vector<double>& a, std::vector<double>& r)
 
 } // namespace
 
+Mat6 Mat6::inverse() const
+{
+    Mat6 result;
+    for (std::size_t c = 0; c < 6; ++c) {
+        std::vector<double> a(m.begin(), m.end()), r(6, 0.0);
+        r[c] = 1.0;
+        solveDense(a, r);
+        for (std::size_t i = 0; i < 6; ++i)
+            result.m[i * 6 + c] = r[i];
+    }
+    return result;
+}
+
 void BackwardEuler::step(const SpringSystem& springs, std::span<const double> mass, std::span<dvec3> x,
                          std::span<dvec3> v, std::span<const dvec3> force, double dt, std::span<const dvec3> heldOn,
                          const Bearers& bearers)
@@ -96,13 +109,14 @@ void BackwardEuler::step(const SpringSystem& springs, std::span<const double> ma
     linearise(springs, mass, x, dt, v, force);
     if (m_dv.size() != n)
         m_dv.assign(n, dvec3(0.0));
-    const auto startHeld = [&] {
-        if (m_held)
-            forEachIndex(n, [&](std::size_t p) {
-                m_dv[p] = filtered(p, m_dv[p]) + (heldSpeed(p, bearers) - glm::dot(m_normal[p], v[p])) * m_normal[p];
-            });
-    };
-    startHeld();
+    // The bearers' velocities start from their guess, and their members' along the normal with them.
+    m_bearers = m_held && !bearers.bodies.empty() ? &bearers : nullptr;
+    if (m_bearers)
+        startBearers();
+    if (m_held)
+        forEachIndex(n, [&](std::size_t p) {
+            m_dv[p] = filtered(p, m_dv[p]) + (heldSpeed(p) - glm::dot(m_normal[p], v[p])) * m_normal[p];
+        });
     m_iterations = 0;
     double scale = solve(springs, mass);
     // Each round lets go of every member its surface pulls; a few rounds settle any sheet (a
@@ -110,15 +124,9 @@ void BackwardEuler::step(const SpringSystem& springs, std::span<const double> ma
     constexpr int kReleaseRounds = 4;
     for (int round = 0; m_held && round < kReleaseRounds && releasePulled(springs, mass); ++round)
         scale = solve(springs, mass);
-    // The bearers with the sheet, from the guess, again without any member they pull.
-    if (m_held && !bearers.bodies.empty()) {
-        m_guess.assign(bearers.bodies.begin(), bearers.bodies.end());
-        for (int round = 0; round < kReleaseRounds && solveBearers(springs, mass, bearers); ++round) {
-            std::copy(m_guess.begin(), m_guess.end(), bearers.bodies.begin());
-            startHeld();
-            scale = solve(springs, mass);
-        }
-    }
+    if (m_bearers)
+        finishBearers();
+    m_bearers = nullptr; // Newton's corrections keep the bearers' velocities
     forEachIndex(n, [&](std::size_t p) { v[p] += m_dv[p]; });
     // Newton's corrections, each linearised where the last left the bodies, until the nonlinear
     // equations hold: the once-linearised step is only stable while the springs turn little in
@@ -264,60 +272,59 @@ void BackwardEuler::springPass(const SpringSystem& springs, const std::vector<dv
     forEachIndex(springs.size(), [&](std::size_t s) { m_perSpring[s] = m_blocks[s].apply(w[springs.a(s)] - atB(springs, s, w)); });
 }
 
-double BackwardEuler::residualNorm(const SpringSystem& springs, std::span<const double> mass)
-{
-    springPass(springs, m_dv);
-    return sumOf(m_dv.size(), [&](std::size_t p) {
-        const dvec3 r = filtered(p, m_rhs[p] - (mass[p] * m_dv[p] + springSum(springs, m_perSpring, p)));
-        return glm::dot(r, m_inverseDiagonal[p].apply(r));
-    });
-}
-
-double BackwardEuler::solve(const SpringSystem& springs, std::span<const double> mass, double scaleOf)
+double BackwardEuler::solve(const SpringSystem& springs, std::span<const double> mass)
 {
     // Preconditioned conjugate gradients from the last step's dv: a motion that changes smoothly
     // changes its velocities by nearly as much from one step to the next, and the solve then starts
     // close to its answer. A p is kept by its own recurrence, A p = A z + beta A p_old, so that an
     // iteration is three passes (the springs on z, then two over the bodies) rather than four:
-    // each pass on all cores waits for the slowest core at its end.
+    // each pass on all cores waits for the slowest core at its end. With bearers, their six
+    // velocities each are unknowns beside the members' (the bearer's part of each vector, m_u*).
     const std::size_t n = m_rhs.size();
     m_r.resize(n);
     m_z.resize(n);
     m_p.resize(n);
     m_ap.resize(n);
     // A held member's residual and search directions are filtered (filtered), so its velocity
-    // along the normal stays where the step put it.
+    // along the normal stays where the step put it, or moves with its bearer's.
     springPass(springs, m_dv);
-    const double scale = sumOf(n, [&](std::size_t p) {
-        m_r[p] = filtered(p, m_rhs[p] - (mass[p] * m_dv[p] + springSum(springs, m_perSpring, p)));
+    double scale = sumOf(n, [&](std::size_t p) {
+        m_r[p] = m_rhs[p] - (mass[p] * m_dv[p] + springSum(springs, m_perSpring, p)); // whole, for the bearers
         const dvec3 rhs = filtered(p, m_rhs[p]);
         return glm::dot(rhs, m_inverseDiagonal[p].apply(rhs));
     });
-    double rz = sumOf(n, [&](std::size_t p) {
-        m_z[p] = filtered(p, m_inverseDiagonal[p].apply(m_r[p]));
+    if (m_bearers) {
+        bearerResidual(m_r);
+        scale += bearerScale();
+    }
+    forEachIndex(n, [&](std::size_t p) { m_r[p] = filtered(p, m_r[p]); });
+    double rz = (m_bearers ? preconditionBearers() : 0.0) + sumOf(n, [&](std::size_t p) {
+        m_z[p] = preconditioned(p);
         return glm::dot(m_r[p], m_z[p]);
     });
     m_residual = scale > 0.0 ? std::sqrt(std::max(rz, 0.0) / scale) : 0.0;
-    // Done when the residual's preconditioned norm is kTolerance of the right-hand side's, or (a
-    // bearer's probe, whose right-hand side is zero) of `scaleOf`. (A right-hand side that is
-    // not finite stops it at once: the step's check says so.)
-    const double target = kTolerance * kTolerance * (scaleOf > 0.0 ? scaleOf : scale);
+    // Done when the residual's preconditioned norm is kTolerance of the right-hand side's. (A
+    // right-hand side that is not finite stops it at once: the step's check says so.)
+    const double target = kTolerance * kTolerance * scale;
     double beta = 0.0;
     for (int iteration = 0; iteration < kMaxIterations && rz > target; ++iteration) {
         springPass(springs, m_z);
-        const double pap = sumOf(n, [&](std::size_t p) {
+        double pap = sumOf(n, [&](std::size_t p) {
             const dvec3 az = mass[p] * m_z[p] + springSum(springs, m_perSpring, p);
             m_p[p] = m_z[p] + beta * m_p[p];
             m_ap[p] = az + beta * m_ap[p];
             return glm::dot(m_p[p], m_ap[p]);
         });
+        if (m_bearers)
+            pap += bearerDirection(beta);
         if (!(pap > 0.0))
             break;
         const double alpha = rz / pap;
-        const double next = sumOf(n, [&](std::size_t p) {
+        const double bearers = m_bearers ? stepBearers(alpha) : 0.0;
+        const double next = bearers + sumOf(n, [&](std::size_t p) {
             m_dv[p] += alpha * m_p[p];
             m_r[p] -= alpha * filtered(p, m_ap[p]);
-            m_z[p] = filtered(p, m_inverseDiagonal[p].apply(m_r[p]));
+            m_z[p] = preconditioned(p);
             return glm::dot(m_r[p], m_z[p]);
         });
         ++m_iterations;
@@ -331,120 +338,166 @@ double BackwardEuler::solve(const SpringSystem& springs, std::span<const double>
 
 bool BackwardEuler::releasePulled(const SpringSystem& springs, std::span<const double> mass)
 {
-    heldImpulses(springs, mass, true, m_baseImpulse);
+    heldImpulses(springs, mass, m_impulse);
     const double released = sumOf(m_normal.size(), [&](std::size_t p) {
         m_push[p] = 0.0;
         if (m_normal[p] == dvec3(0.0))
             return 0.0;
-        if (m_baseImpulse[p] < 0.0) {
+        if (m_impulse[p] < 0.0) {
             m_normal[p] = dvec3(0.0);
             return 1.0;
         }
-        m_push[p] = m_baseImpulse[p] / mass[p];
+        m_push[p] = m_impulse[p] / mass[p];
         return 0.0;
     });
     return released > 0.0;
 }
 
-void BackwardEuler::heldImpulses(const SpringSystem& springs, std::span<const double> mass, bool withRhs,
-                                 std::vector<double>& out)
+void BackwardEuler::heldImpulses(const SpringSystem& springs, std::span<const double> mass, std::vector<double>& out)
 {
     // What a held member's surface gives it is what its equation lacks: A dv - b, along the normal.
     springPass(springs, m_dv);
     out.resize(m_normal.size());
     forEachIndex(m_normal.size(), [&](std::size_t p) {
         const dvec3& normal = m_normal[p];
-        const dvec3 given = mass[p] * m_dv[p] + springSum(springs, m_perSpring, p) - (withRhs ? m_rhs[p] : dvec3(0.0));
+        const dvec3 given = mass[p] * m_dv[p] + springSum(springs, m_perSpring, p) - m_rhs[p];
         out[p] = normal == dvec3(0.0) ? 0.0 : glm::dot(normal, given);
     });
 }
 
-double BackwardEuler::heldSpeed(std::size_t p, const Bearers& bearers) const
+// ---- the bearers' part of the solve (see the header): a bearer's six velocities U are unknowns,
+// and a member held on it moves along its normal n at s . U, s = (n, arm x n). ----
+
+Twist BackwardEuler::along(std::size_t p) const
 {
-    if (bearers.of.empty() || bearers.of[p] == kNoBearer)
-        return 0.0;
-    const Bearer& b = bearers.bodies[bearers.of[p]];
-    return glm::dot(m_normal[p], b.velocity + glm::cross(b.spin, bearers.arm[p]));
+    const dvec3& n = m_normal[p];
+    const dvec3 arm = m_bearers->arm[p];
+    return {n, glm::cross(arm, n)};
 }
 
-bool BackwardEuler::solveBearers(const SpringSystem& springs, std::span<const double> mass, const Bearers& bearers)
+double BackwardEuler::heldSpeed(std::size_t p) const
 {
-    const std::size_t n = m_dv.size(), dims = 6 * bearers.bodies.size();
-    // Held member p's speed along its normal for a unit of bearer velocity q (three of the
-    // bearer's velocity, then three of its spin): n . e, or n . (e x arm).
-    const auto unitSpeed = [&](std::size_t p, std::size_t q) {
-        if (m_normal[p] == dvec3(0.0) || bearers.of[p] != q / 6 || !bearers.bodies[q / 6].moves)
-            return 0.0;
-        dvec3 e(0.0);
-        e[int(q % 3)] = 1.0;
-        return glm::dot(m_normal[p], q % 6 < 3 ? e : glm::cross(e, bearers.arm[p]));
-    };
-    // The step with the bearers at the guess (solved already), then each of their velocities
-    // alone: the pushes are linear in them.
-    heldImpulses(springs, mass, true, m_baseImpulse);
-    m_baseDv = m_dv;
-    m_probeDv.resize(dims);
-    m_probeImpulse.resize(dims);
-    const double residual = m_residual;
-    std::swap(m_rhs, m_savedRhs);
-    m_rhs.assign(n, dvec3(0.0));
-    for (std::size_t q = 0; q < dims; ++q) {
-        // From the last step's answer for the same velocity: a resting body's changes little.
-        // Its tolerance is kProbeTolerance of the cold start's residual (a warm start's own would
-        // ask for more).
-        forEachIndex(n, [&](std::size_t p) { m_dv[p] = unitSpeed(p, q) * m_normal[p]; });
-        const double cold = residualNorm(springs, mass) * (kProbeTolerance / kTolerance) * (kProbeTolerance / kTolerance);
-        if (m_probeDv[q].size() == n)
-            forEachIndex(n, [&](std::size_t p) { m_dv[p] += filtered(p, m_probeDv[q][p]); });
-        solve(springs, mass, cold);
-        m_probeDv[q] = m_dv;
-        heldImpulses(springs, mass, false, m_probeImpulse[q]);
+    if (!m_bearers || m_normal[p] == dvec3(0.0) || m_bearers->of[p] == kNoBearer)
+        return 0.0;
+    return dot(along(p), m_u[m_bearers->of[p]]);
+}
+
+void BackwardEuler::startBearers()
+{
+    const std::size_t count = m_bearers->bodies.size();
+    m_u.resize(count);
+    m_uAlone.resize(count);
+    m_uMass.resize(count);
+    for (std::size_t b = 0; b < count; ++b) {
+        const Bearer& body = m_bearers->bodies[b];
+        m_u[b] = body.moves ? Twist{body.velocity, body.spin} : Twist{body.aloneVelocity, body.aloneSpin};
+        m_uAlone[b] = {body.aloneVelocity, body.aloneSpin};
+        m_uMass[b] = {body.mass, body.inertia};
     }
-    std::swap(m_rhs, m_savedRhs);
-    m_residual = residual;
-    // Each bearer's momentum: M (U - U_alone) = -(what its members' pushes give it), the pushes
-    // base + sum_q dU_q probe_q with U = U_guess + dU; so
-    // (M + C) dU = M (U_alone - U_guess) - sum_p base_p s(p), C the sheet's apparent mass.
-    std::vector<double> a(dims * dims, 0.0), change(dims, 0.0);
-    for (std::size_t b = 0; b < bearers.bodies.size(); ++b) {
-        const Bearer& body = bearers.bodies[b];
-        const dvec3 spin = body.inertia * (body.aloneSpin - body.spin);
-        for (std::size_t i = 0; i < 3; ++i) {
-            a[(6 * b + i) * dims + 6 * b + i] = body.mass;
-            change[6 * b + i] = body.moves ? body.mass * (body.aloneVelocity - body.velocity)[int(i)] : 0.0;
-            change[6 * b + 3 + i] = body.moves ? spin[int(i)] : 0.0;
-            for (std::size_t j = 0; j < 3; ++j)
-                a[(6 * b + 3 + i) * dims + 6 * b + 3 + j] = body.inertia[int(j)][int(i)];
-        }
+    m_bearerMembers.clear();
+    for (std::size_t p = 0; p < m_normal.size(); ++p)
+        if (m_normal[p] != dvec3(0.0) && m_bearers->of[p] != kNoBearer && m_bearers->bodies[m_bearers->of[p]].moves)
+            m_bearerMembers.push_back(std::uint32_t(p));
+}
+
+void BackwardEuler::finishBearers()
+{
+    for (std::size_t b = 0; b < m_u.size(); ++b) {
+        m_bearers->bodies[b].velocity = m_u[b].linear;
+        m_bearers->bodies[b].spin = m_u[b].angular;
     }
-    for (std::size_t p = 0; p < n; ++p)
-        for (std::size_t i = 0; i < dims; ++i)
-            if (const double s = unitSpeed(p, i); s != 0.0) {
-                change[i] -= s * m_baseImpulse[p];
-                for (std::size_t q = 0; q < dims; ++q)
-                    a[i * dims + q] += s * m_probeImpulse[q][p];
-            }
-    solveDense(a, change);
-    for (std::size_t b = 0; b < bearers.bodies.size(); ++b)
-        for (int i = 0; i < 3; ++i) {
-            bearers.bodies[b].velocity[i] += change[6 * b + std::size_t(i)];
-            bearers.bodies[b].spin[i] += change[6 * b + 3 + std::size_t(i)];
+}
+
+bool BackwardEuler::stillHeld(std::uint32_t p) const
+{
+    return m_normal[p] != dvec3(0.0);
+}
+
+void BackwardEuler::bearerResidual(const std::vector<dvec3>& residual)
+{
+    // -grad Phi along U: M (U_alone - U) less what the held members' pushes give the body, the
+    // pushes lambda = n . (A dv - b) = -n . residual. Also each bearer's preconditioner: its mass
+    // with each held member's diagonal along the normal.
+    m_ru.assign(m_u.size(), Twist{});
+    m_uDiagonal.resize(m_u.size());
+    for (std::size_t b = 0; b < m_u.size(); ++b) {
+        m_ru[b] = m_uMass[b].times(m_uAlone[b] - m_u[b]);
+        m_uDiagonal[b] = Mat6(m_uMass[b]);
+    }
+    for (const std::uint32_t p : m_bearerMembers)
+        if (stillHeld(p)) {
+            const std::uint32_t b = m_bearers->of[p];
+            const Twist s = along(p);
+            m_ru[b] += s * glm::dot(m_normal[p], residual[p]);
+            m_uDiagonal[b].addOuter(s, 1.0 / glm::dot(m_normal[p], m_inverseDiagonal[p].apply(m_normal[p])));
         }
-    const double pulled = sumOf(n, [&](std::size_t p) {
-        dvec3 dv = m_baseDv[p];
-        double impulse = m_baseImpulse[p];
-        for (std::size_t q = 0; q < dims; ++q) {
-            dv += change[q] * m_probeDv[q][p];
-            impulse += change[q] * m_probeImpulse[q][p];
-        }
-        m_dv[p] = dv;
-        m_push[p] = std::max(impulse, 0.0) / mass[p];
-        if (m_normal[p] == dvec3(0.0) || !(impulse < 0.0))
-            return 0.0;
-        m_normal[p] = dvec3(0.0);
-        return 1.0;
-    });
-    return pulled > 0.0;
+    m_uInverse.resize(m_u.size());
+    for (std::size_t b = 0; b < m_u.size(); ++b)
+        m_uInverse[b] = m_uDiagonal[b].inverse();
+}
+
+double BackwardEuler::bearerScale() const
+{
+    // Each bearer's right-hand side, M U_alone and the held members' b along the normal, in the
+    // preconditioner's norm.
+    std::vector<Twist> rhs(m_u.size());
+    for (std::size_t b = 0; b < m_u.size(); ++b)
+        rhs[b] = m_uMass[b].times(m_uAlone[b]);
+    for (const std::uint32_t p : m_bearerMembers)
+        if (stillHeld(p))
+            rhs[m_bearers->of[p]] += along(p) * glm::dot(m_normal[p], m_rhs[p]);
+    double sum = 0.0;
+    for (std::size_t b = 0; b < m_u.size(); ++b)
+        sum += dot(rhs[b], m_uInverse[b].times(rhs[b]));
+    return sum;
+}
+
+double BackwardEuler::preconditionBearers()
+{
+    m_zu.resize(m_u.size());
+    double rz = 0.0;
+    for (std::size_t b = 0; b < m_u.size(); ++b) {
+        m_zu[b] = m_uInverse[b].times(m_ru[b]);
+        rz += dot(m_ru[b], m_zu[b]);
+    }
+    return rz;
+}
+
+dvec3 BackwardEuler::preconditioned(std::size_t p) const
+{
+    // The member's own block, filtered; on a bearer, its normal part the bearer's direction's.
+    const dvec3 own = filtered(p, m_inverseDiagonal[p].apply(m_r[p]));
+    if (!m_bearers || m_normal[p] == dvec3(0.0) || m_bearers->of[p] == kNoBearer ||
+        !m_bearers->bodies[m_bearers->of[p]].moves)
+        return own;
+    return own + dot(along(p), m_zu[m_bearers->of[p]]) * m_normal[p];
+}
+
+double BackwardEuler::bearerDirection(double beta)
+{
+    // The bearers' part of p and of H p: M p_U plus the held members' (A p) along the normal.
+    // Their part of p^T H p is p_U^T M p_U: the members' pass counted p^T A p with the normal parts.
+    m_pu.resize(m_u.size());
+    m_apu.resize(m_u.size());
+    double pap = 0.0;
+    for (std::size_t b = 0; b < m_u.size(); ++b) {
+        m_pu[b] = m_zu[b] + m_pu[b] * beta;
+        m_apu[b] = m_uMass[b].times(m_pu[b]);
+        pap += dot(m_pu[b], m_apu[b]);
+    }
+    for (const std::uint32_t p : m_bearerMembers)
+        if (stillHeld(p))
+            m_apu[m_bearers->of[p]] += along(p) * glm::dot(m_normal[p], m_ap[p]);
+    return pap;
+}
+
+double BackwardEuler::stepBearers(double alpha)
+{
+    for (std::size_t b = 0; b < m_u.size(); ++b) {
+        m_u[b] += m_pu[b] * alpha;
+        m_ru[b] += m_apu[b] * -alpha;
+    }
+    return preconditionBearers();
 }
 
 } // namespace pba::detail

@@ -38,12 +38,13 @@
 // A surface may be a moving body's that the members' pushes move in turn (a crate resting on a
 // cloth: Bearers). A member held on it moves along the normal with the body's point, and the
 // body's velocity and spin are solved with the sheet's: the held members' pushes depend linearly
-// on the body's six velocities, so six solves without the right-hand side (each from its last step's answer) give that
-// dependence, the sheet's apparent mass at the body, and the body's momentum equation,
-// M (U - U_alone) = -(what the pushes give it), is six equations a body. Met only after the
+// on the body's six velocities, so the body's six velocities U are unknowns of the same conjugate gradients beside the
+// members' (the step's incremental potential gains 1/2 (U - U_alone)^T M (U - U_alone), whose
+// least is the body's momentum equation, M (U - U_alone) = -(what the pushes give it)). Met only after the
 // step, the body saw each member as a lone ball and the stiff springs a step later: a crate on an
 // implicit cloth stretched it to five times the scene's energy for a moment at dt 0.002 s, and
 // gained energy beyond 0.003 s.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -55,15 +56,61 @@
 
 namespace pba::detail {
 
+/// A rigid body's six velocities, linear then angular (or the impulse and moment that pair with them).
+struct Twist {
+    dvec3 linear{0.0}, angular{0.0};
+    Twist operator+(const Twist& o) const { return {linear + o.linear, angular + o.angular}; }
+    Twist operator-(const Twist& o) const { return {linear - o.linear, angular - o.angular}; }
+    Twist operator*(double k) const { return {linear * k, angular * k}; }
+    Twist& operator+=(const Twist& o) { return *this = *this + o; }
+};
+inline double dot(const Twist& a, const Twist& b) { return glm::dot(a.linear, b.linear) + glm::dot(a.angular, b.angular); }
+
+/// A rigid body's mass and (world) inertia, as the 6 x 6 matrix they make.
+struct BodyMass {
+    double mass = 0.0;
+    dmat3 inertia{0.0};
+    Twist times(const Twist& t) const { return {mass * t.linear, inertia * t.angular}; }
+};
+
+/// A symmetric 6 x 6 matrix, row-major.
+struct Mat6 {
+    std::array<double, 36> m{};
+    Mat6() = default;
+    explicit Mat6(const BodyMass& b)
+    {
+        for (int i = 0; i < 3; ++i) {
+            m[std::size_t(i * 7)] = b.mass;
+            for (int j = 0; j < 3; ++j)
+                m[std::size_t((3 + i) * 6 + 3 + j)] = b.inertia[j][i];
+        }
+    }
+    /// Adds w s s^T.
+    void addOuter(const Twist& s, double w)
+    {
+        const double v[6] = {s.linear.x, s.linear.y, s.linear.z, s.angular.x, s.angular.y, s.angular.z};
+        for (std::size_t i = 0; i < 6; ++i)
+            for (std::size_t j = 0; j < 6; ++j)
+                m[i * 6 + j] += w * v[i] * v[j];
+    }
+    Twist times(const Twist& t) const
+    {
+        const double v[6] = {t.linear.x, t.linear.y, t.linear.z, t.angular.x, t.angular.y, t.angular.z};
+        double r[6] = {};
+        for (std::size_t i = 0; i < 6; ++i)
+            for (std::size_t j = 0; j < 6; ++j)
+                r[i] += m[i * 6 + j] * v[j];
+        return {{r[0], r[1], r[2]}, {r[3], r[4], r[5]}};
+    }
+    Mat6 inverse() const;
+};
+
 class BackwardEuler {
 public:
     /// Conjugate gradients stop when the residual's preconditioned norm falls below this fraction
     /// of the right-hand side's, or after kMaxIterations.
     static constexpr double kTolerance = 1e-5;
     static constexpr int kMaxIterations = 500;
-    /// A bearer's probes (see above) stop at this fraction of their start's residual: they give
-    /// the sheet's apparent mass at the body, which the step needs to a few digits only.
-    static constexpr double kProbeTolerance = 1e-3;
     /// Newton's corrections stop when the nonlinear equations' residual, in the same norm, is
     /// below this fraction of the first right-hand side's, or after kMaxNewtonIterations solves.
     /// Loose on purpose: a crumpled cloth's compressed springs, whose geometric term the matrix
@@ -145,11 +192,9 @@ private:
                    std::span<const dvec3> v0 = {}, std::span<const dvec3> f0 = {});
     /// Each spring's B (w_a - w_b), into m_perSpring.
     void springPass(const SpringSystem& springs, const std::vector<dvec3>& w);
-    /// Solves for m_dv from its value, to kTolerance of the right-hand side's squared
-    /// preconditioned norm (or of `scaleOf`, if given), which it returns.
-    double solve(const SpringSystem& springs, std::span<const double> mass, double scaleOf = 0.0);
-    /// The squared preconditioned norm of m_dv's residual.
-    double residualNorm(const SpringSystem& springs, std::span<const double> mass);
+    /// Solves for m_dv (and the bearers' velocities) from its value; returns the right-hand
+    /// side's squared preconditioned norm.
+    double solve(const SpringSystem& springs, std::span<const double> mass);
     /// w without its part along member p's held normal (w itself where p is free).
     dvec3 filtered(std::size_t p, const dvec3& w) const
     {
@@ -158,14 +203,28 @@ private:
     /// Each held member's push from the solved m_dv; lets go of those their surface pulls.
     /// Returns whether it let any go.
     bool releasePulled(const SpringSystem& springs, std::span<const double> mass);
-    /// What each held member's surface gives it along its normal (an impulse, N s) for m_dv, with
-    /// the right-hand side or (a bearer's probe) without it.
-    void heldImpulses(const SpringSystem& springs, std::span<const double> mass, bool withRhs, std::vector<double>& out);
+    /// What each held member's surface gives it along its normal (an impulse, N s) for m_dv.
+    void heldImpulses(const SpringSystem& springs, std::span<const double> mass, std::vector<double>& out);
+    // The bearers' part of the solve (m_bearers set): their velocities m_u as unknowns beside m_dv.
     /// Held member p's velocity along its normal at the end of the step: its bearer's point's, or zero.
-    double heldSpeed(std::size_t p, const Bearers& bearers) const;
-    /// The held members and their bearers solved together (see above), into m_dv, m_push and
-    /// the bearers' velocities; returns whether a member's surface pulls it.
-    bool solveBearers(const SpringSystem& springs, std::span<const double> mass, const Bearers& bearers);
+    double heldSpeed(std::size_t p) const;
+    /// s = (n, arm x n) of held member p: its speed along n is s . U of its bearer's U.
+    Twist along(std::size_t p) const;
+    /// Whether member p of m_bearerMembers is still held (not let go of since startBearers).
+    bool stillHeld(std::uint32_t p) const;
+    void startBearers();
+    void finishBearers();
+    /// The bearers' residual from the members' whole residual, and their preconditioners.
+    void bearerResidual(const std::vector<dvec3>& residual);
+    double bearerScale() const;
+    /// z_U from r_U; returns r_U . z_U.
+    double preconditionBearers();
+    /// Member p's preconditioned residual (z), with its bearer's part along its normal.
+    dvec3 preconditioned(std::size_t p) const;
+    /// The bearers' part of the direction and of H times it; returns its part of p^T H p.
+    double bearerDirection(double beta);
+    /// Moves the bearers' velocities by alpha along the direction; returns their part of r . z.
+    double stepBearers(double alpha);
 
     std::vector<Block> m_blocks;     ///< one per spring
     std::vector<dvec3> m_perSpring;  ///< a pass's result per spring
@@ -177,13 +236,15 @@ private:
     bool m_held = false;           ///< whether any member is held on a surface this step
     std::vector<dvec3> m_normal;   ///< per member, the normal it is held along (or zero)
     std::vector<double> m_push;    ///< per member, its surface's push (m/s)
-    /// solveBearers' scratch: the step's dv and pushes with the bearers at their guess, the
-    /// guess, and the dv and pushes of each of their six velocities (per bearer).
-    std::vector<dvec3> m_baseDv, m_savedRhs;
-    std::vector<double> m_baseImpulse;
-    std::vector<Bearer> m_guess;
-    std::vector<std::vector<dvec3>> m_probeDv;
-    std::vector<std::vector<double>> m_probeImpulse;
+    std::vector<double> m_impulse; ///< per member, heldImpulses' scratch
+    /// The bearers of the step's first solves (null in Newton's corrections and without any):
+    /// their velocities, those alone, masses, the members held on them, and the conjugate
+    /// gradients' vectors and preconditioners for them.
+    const Bearers* m_bearers = nullptr;
+    std::vector<Twist> m_u, m_uAlone, m_ru, m_zu, m_pu, m_apu;
+    std::vector<BodyMass> m_uMass;
+    std::vector<Mat6> m_uDiagonal, m_uInverse;
+    std::vector<std::uint32_t> m_bearerMembers;
     int m_iterations = 0, m_newtonIterations = 0;
     double m_residual = 0.0;
 };
