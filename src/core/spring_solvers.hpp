@@ -44,6 +44,7 @@ struct SpringSolver {
     std::vector<std::uint32_t> bearerOf;
     std::vector<dvec3> bearerArm;
     std::vector<double> heldFriction;
+    std::vector<dvec3> bearerImpulse; ///< per member, what it gives its bearer this step
     std::vector<double> radius, restitution, friction; ///< XPBD's: each member's, for its room
     XpbdRigidContacts rigidContacts; ///< XPBD's: the rigid bodies its substeps meet
     /// XPBD's: the members that may touch each other in the step, found with their grid.

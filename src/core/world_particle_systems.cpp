@@ -25,6 +25,13 @@ namespace {
 constexpr double kBallsHeldWithin = 1.01;
 constexpr double kBallsHeldAbove = 0.7;
 
+/// A contact's deepest point.
+const rigid::ContactPoint& deepestPoint(const rigid::Contact& c)
+{
+    return *std::min_element(c.points.begin(), c.points.begin() + c.count,
+                             [](const auto& p, const auto& q) { return p.separation < q.separation; });
+}
+
 /// Body i's place among a system's members (listed in increasing order), or members.size().
 std::size_t placeAmong(const std::vector<std::size_t>& members, std::size_t i)
 {
@@ -237,88 +244,104 @@ void World::holdOnBodies(const std::vector<std::size_t>& members, detail::Spring
         return;
     const rigid::RigidSystem& system = *m_rigid.system;
     const CoupledScratch& s = m_particleSystems.scratch;
-    // A body resting on the room or a fixed body is held up by them too, which the sheet's solve
-    // does not see: its members are left to the contacts after the step, as before the hold. (Held
-    // on it, a cloth over a box on the floor still moved at 1 to 8 cm/s after 6 s, against 0.4 mm/s.)
-    thread_local std::vector<std::size_t> supported;
-    supported.clear();
-    for (const rigid::Contact& c : system.contacts()) {
-        if (c.count == 0 || system.isPoint(c.a) || (c.b < system.size() && system.isPoint(c.b)))
-            continue;
-        const bool staticB = c.b >= system.size() || m_bodies.objects[system.worldIndex(c.b)]->isFixed();
-        const auto closest = std::min_element(c.points.begin(), c.points.begin() + c.count,
-                                              [](const auto& p, const auto& q) { return p.separation < q.separation; });
-        if (staticB && closest->separation <= system.settings().linearSlop)
-            supported.push_back(system.worldIndex(c.a));
-    }
+    const std::vector<std::size_t>& supported = supportedBodies();
     for (const rigid::Contact& c : system.contacts()) {
         if (c.count == 0 || c.b >= system.size() || system.isPoint(c.a) == system.isPoint(c.b))
             continue;
         const bool pointIsA = system.isPoint(c.a);
         const std::size_t k = placeAmong(members, system.worldIndex(pointIsA ? c.a : c.b));
-        if (k == members.size() || solver.heldOn[k] != dvec3(0.0))
-            continue;
         const std::size_t world = system.worldIndex(pointIsA ? c.b : c.a);
+        if (k == members.size() || solver.heldOn[k] != dvec3(0.0) ||
+            std::binary_search(supported.begin(), supported.end(), world))
+            continue;
         const auto& body = static_cast<const RigidBody&>(*m_bodies.objects[world]);
-        const auto deepest = std::min_element(c.points.begin(), c.points.begin() + c.count,
-                                              [](const auto& p, const auto& q) { return p.separation < q.separation; });
-        const dvec3 normal = pointIsA ? -deepest->normal : deepest->normal; // from the body to the member
-        const dvec3 surface = body.getPos() + body.getOrientation() * (pointIsA ? deepest->anchorB : deepest->anchorA);
+        const rigid::ContactPoint& deepest = deepestPoint(c);
+        const dvec3 normal = pointIsA ? -deepest.normal : deepest.normal; // from the body to the member
+        const dvec3 surface = body.getPos() + body.getOrientation() * (pointIsA ? deepest.anchorB : deepest.anchorA);
         const double radius = m_bodies.radii[members[k]], reach = 2.0 * glm::length(s.acc[k]) * dt;
         const dvec3 arm = s.x[k] - radius * normal - body.getPos();
         const dvec3 point = body.isFixed() ? dvec3(0.0) : body.getVel() + glm::cross(body.getAngularVelocity(), arm);
         if (glm::dot(normal, s.x[k] - surface) - radius > radius || std::abs(glm::dot(normal, s.v[k] - point)) > reach)
             continue;
-        if (std::find(supported.begin(), supported.end(), world) != supported.end())
-            continue; // (a fixed body is never in the list)
         solver.heldOn[k] = normal;
         solver.heldFriction[k] = std::sqrt(m_bodies.frictions[members[k]] * body.getFriction());
-        if (body.isFixed())
-            continue;
-        auto b = std::find(solver.bearerBodies.begin(), solver.bearerBodies.end(), world);
-        if (b == solver.bearerBodies.end()) {
-            // Its pushes come at the end of its free step, where they move it by its integrator's
-            // drift of them (rigid::driftWeight): its point moves over the step as a body of its
-            // mass over that share would (forward Euler's not at all, in this step).
-            const double drift = rigid::driftWeight(body.getIntegrator());
-            const dmat3 turn = glm::mat3_cast(body.getOrientation());
-            const dmat3 inertia = turn * glm::inverse(body.getInverseInertiaBody()) * glm::transpose(turn);
-            const dvec3 alone = body.getVel() + drift * gravity() * dt, spin = body.getAngularVelocity();
-            // The solve starts from the body's velocity now (a resting body's answer), the
-            // sheet's from its last step's.
-            solver.bearers.push_back({drift > 0.0 ? body.getMass() / drift : 1.0, drift > 0.0 ? inertia / drift : dmat3(1.0),
-                                      alone, spin, drift > 0.0 ? body.getVel() : alone, spin, drift > 0.0});
-            b = solver.bearerBodies.insert(b, world);
+        if (!body.isFixed()) {
+            solver.bearerOf[k] = bearerFor(solver, world, dt);
+            solver.bearerArm[k] = arm;
         }
-        solver.bearerOf[k] = std::uint32_t(b - solver.bearerBodies.begin());
-        solver.bearerArm[k] = arm;
     }
+}
+
+const std::vector<std::size_t>& World::supportedBodies() const
+{
+    // A body resting on the room or a fixed body is held up by them too, which the sheet's solve
+    // does not see: its members are left to the contacts after the step, as before the hold. (Held
+    // on it, a cloth over a box on the floor still moved at 1 to 8 cm/s after 6 s, against 0.4 mm/s.)
+    thread_local std::vector<std::size_t> supported;
+    supported.clear();
+    const rigid::RigidSystem& system = *m_rigid.system;
+    for (const rigid::Contact& c : system.contacts()) {
+        if (c.count == 0 || system.isPoint(c.a) || (c.b < system.size() && system.isPoint(c.b)))
+            continue;
+        const bool onStatic = c.b >= system.size() || m_bodies.objects[system.worldIndex(c.b)]->isFixed();
+        if (onStatic && deepestPoint(c).separation <= system.settings().linearSlop)
+            supported.push_back(system.worldIndex(c.a));
+    }
+    std::sort(supported.begin(), supported.end());
+    return supported;
+}
+
+std::uint32_t World::bearerFor(detail::SpringSolver& solver, std::size_t world, double dt) const
+{
+    const auto found = std::find(solver.bearerBodies.begin(), solver.bearerBodies.end(), world);
+    if (found != solver.bearerBodies.end())
+        return std::uint32_t(found - solver.bearerBodies.begin());
+    // Its pushes come at the end of its free step, where they move it by its integrator's drift
+    // of them (rigid::driftWeight): its point moves over the step as a body of its mass over that
+    // share would (forward Euler's not at all, in this step). The solve starts from its velocity
+    // now (a resting body's answer).
+    const auto& body = static_cast<const RigidBody&>(*m_bodies.objects[world]);
+    const double drift = rigid::driftWeight(body.getIntegrator());
+    const dmat3 turn = glm::mat3_cast(body.getOrientation());
+    const dmat3 inertia = turn * glm::inverse(body.getInverseInertiaBody()) * glm::transpose(turn);
+    const dvec3 alone = body.getVel() + drift * gravity() * dt, spin = body.getAngularVelocity();
+    const bool moves = drift > 0.0;
+    solver.bearers.push_back({moves ? body.getMass() / drift : 1.0, moves ? inertia / drift : dmat3(1.0), alone, spin,
+                              moves ? body.getVel() : alone, spin, moves});
+    solver.bearerBodies.push_back(world);
+    return std::uint32_t(solver.bearers.size() - 1);
 }
 
 void World::rubAndPushBearers(const std::vector<std::size_t>& members, detail::SpringSolver& solver)
 {
     // The surface's friction, from its push, as the rule after the step gives a body it pushes:
     // on a body, against the member's slip over the body's point. A bearer takes the opposite
-    // of what its members' pushes and friction gave them.
+    // of what its members' pushes and friction gave them (summed in the members' order).
     CoupledScratch& s = m_particleSystems.scratch;
-    std::vector<std::pair<dvec3, dvec3>> given(solver.bearers.size(), {dvec3(0.0), dvec3(0.0)});
-    for (std::size_t k = 0; k < members.size(); ++k) {
+    solver.bearerImpulse.resize(members.size());
+    detail::forEachIndex(members.size(), [&](std::size_t k) {
         const double push = solver.backwardEuler.push(k);
-        if (!(push > 0.0))
-            continue;
         const std::uint32_t b = solver.bearerOf[k];
-        const bool onBearer = b != detail::BackwardEuler::kNoBearer;
-        const dvec3 surface = onBearer ? solver.bearers[b].velocity + glm::cross(solver.bearers[b].spin, solver.bearerArm[k])
-                                       : dvec3(0.0);
+        solver.bearerImpulse[k] = dvec3(0.0);
+        if (!(push > 0.0))
+            return;
+        const dvec3 surface = b != detail::BackwardEuler::kNoBearer
+                                  ? solver.bearers[b].velocity + glm::cross(solver.bearers[b].spin, solver.bearerArm[k])
+                                  : dvec3(0.0);
         const double mu = solver.heldFriction[k] >= 0.0 ? solver.heldFriction[k] : m_bodies.frictions[members[k]];
         const dvec3 before = s.v[k];
         s.v[k] = surface + rubbedByPush(s.v[k] - surface, push * solver.heldOn[k], mu);
-        if (!onBearer)
-            continue;
-        const dvec3 impulse = -solver.solveMass[k] * (s.v[k] - before + push * solver.heldOn[k]);
-        given[b].first += impulse;
-        given[b].second += glm::cross(solver.bearerArm[k], impulse);
-    }
+        if (b != detail::BackwardEuler::kNoBearer)
+            solver.bearerImpulse[k] = -solver.solveMass[k] * (s.v[k] - before + push * solver.heldOn[k]);
+    });
+    if (solver.bearers.empty())
+        return;
+    std::vector<std::pair<dvec3, dvec3>> given(solver.bearers.size(), {dvec3(0.0), dvec3(0.0)});
+    for (std::size_t k = 0; k < members.size(); ++k)
+        if (const std::uint32_t b = solver.bearerOf[k]; b != detail::BackwardEuler::kNoBearer) {
+            given[b].first += solver.bearerImpulse[k];
+            given[b].second += glm::cross(solver.bearerArm[k], solver.bearerImpulse[k]);
+        }
     for (std::size_t b = 0; b < given.size(); ++b) {
         m_rigid.endPushes.push_back({solver.bearerBodies[b], given[b].first, given[b].second});
         m_rigid.system->keepAwake(m_bodies.rigidIndex[solver.bearerBodies[b]]);
