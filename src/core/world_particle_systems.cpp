@@ -25,6 +25,13 @@ namespace {
 constexpr double kBallsHeldWithin = 1.01;
 constexpr double kBallsHeldAbove = 0.7;
 
+/// How fast a member may move along a surface's normal and still rest on it (the rule after the
+/// step's resting contact): twice what its acceleration gives it in a step.
+double restingReach(const dvec3& acceleration, double dt)
+{
+    return 2.0 * glm::length(acceleration) * dt;
+}
+
 /// A contact's deepest point.
 const rigid::ContactPoint& deepestPoint(const rigid::Contact& c)
 {
@@ -215,7 +222,7 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
         start[k] = m_forces.sums[members[k]];
         s.acc[k] = start[k] / s.mass[k];
         std::array<Plane, kMaxBallPlanes> room;
-        const double radius = m_bodies.radii[members[k]], reach = 2.0 * glm::length(s.acc[k]) * dt;
+        const double radius = m_bodies.radii[members[k]], reach = restingReach(s.acc[k], dt);
         solver.heldOn[k] = restingOn(ballPlanes(planes, radius, room), s.x[k], s.v[k], reach,
                                     std::min(reach * dt, radius > 0.0 ? radius : fall));
     });
@@ -258,7 +265,7 @@ void World::holdOnBodies(const std::vector<std::size_t>& members, detail::Spring
         const rigid::ContactPoint& deepest = deepestPoint(c);
         const dvec3 normal = pointIsA ? -deepest.normal : deepest.normal; // from the body to the member
         const dvec3 surface = body.getPos() + body.getOrientation() * (pointIsA ? deepest.anchorB : deepest.anchorA);
-        const double radius = m_bodies.radii[members[k]], reach = 2.0 * glm::length(s.acc[k]) * dt;
+        const double radius = m_bodies.radii[members[k]], reach = restingReach(s.acc[k], dt);
         const dvec3 arm = s.x[k] - radius * normal - body.getPos();
         const dvec3 point = body.isFixed() ? dvec3(0.0) : body.getVel() + glm::cross(body.getAngularVelocity(), arm);
         if (glm::dot(normal, s.x[k] - surface) - radius > radius || std::abs(glm::dot(normal, s.v[k] - point)) > reach)
@@ -415,7 +422,7 @@ void World::holdOnBalls(const std::vector<std::size_t>& members, std::span<dvec3
             const std::size_t j = placeAmong(members, lower);
             const State below = j < members.size() ? State{s.x[j], s.v[j]} : m_bodies.previous[lower];
             const dvec3 d = s.x[k] - below.pos;
-            const double distance = glm::length(d), reach = 2.0 * glm::length(s.acc[k]) * dt;
+            const double distance = glm::length(d), reach = restingReach(s.acc[k], dt);
             if (!(distance > 0.0) || distance > kBallsHeldWithin * (m_bodies.radii[upper] + m_bodies.radii[lower]))
                 continue;
             const dvec3 n = d / distance;
