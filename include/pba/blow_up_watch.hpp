@@ -16,19 +16,24 @@ namespace pba {
 /// Watches a run for the blow-ups a single step cannot see.
 ///  - An energy that is not finite while the states are (1/2 k x^2 with x ~ 1e155): a
 ///    NonFiniteStateError naming the first such body, quantity "energy".
-///  - Energy gained with nothing to feed it. Without an energy source (no force that addsEnergy,
-///    such as the blow dryer, and no fixed body that the program has moved), the bodies' total
-///    energy can only fall, but for its integrator's error: forward Euler gains half as much
-///    again on the integrators scene, and a stable method near its stability limit swings
-///    further. One that rises more than kEnergyGrowthLimit times the energy scale above its start
-///    has left the physics behind: a BlowUpError naming the body that gained the most.
+///  - Energy gained with nothing to feed it. The bodies' total energy can rise only by the work
+///    of the energy sources (the forces that addsEnergy, such as the blow dryer), but for its
+///    integrator's error: forward Euler gains half as much again on the integrators scene, and a
+///    stable method near its stability limit swings further. One that rises more than
+///    kEnergyGrowthLimit times the energy scale above its start and that work has left the
+///    physics behind: a BlowUpError naming the body that gained the most. The sources' work over
+///    a step is their wrench at its start (World::sourceWrenches) against the mean of the
+///    step's start and end velocities (for semi-implicit Euler, whose forces are the start's,
+///    the kinetic energy they give the bodies, to rounding), so check after every step. A fixed body
+///    that the program has moved drives the system with work no force accounts for: then
+///    energy growth is not checked.
 /// The energy scale is the moving bodies' kinetic energy at the start plus the size of each one's
 /// potential energy, plus what lifting each by kLiftHeight in the world's gravity takes (so that
 /// a world starting at rest where its potential energy is zero, or with a start energy near zero
 /// or negative, still has a scale). Swarms are not counted (their states are checked by the step).
 class BlowUpWatch {
 public:
-    /// How many energy scales above its start the energy of a system with no energy source may
+    /// How many energy scales above its start and its sources' work the energy of a system may
     /// rise. Ordinary scenes at their own dt rise less than two (the largest: forward Euler on
     /// the spring, 1.7); a rope whose spring dampers are 1e300 peaks at 380 before its particles
     /// fold into a heap, and a spring above its stability limit passes 100 within a few steps.
@@ -43,26 +48,40 @@ public:
     /// later are not seen: watch the world as it will run).
     explicit BlowUpWatch(const World& world);
 
-    /// After a step of the world: throws NonFiniteStateError or BlowUpError (see the class), at
-    /// the world's step count and time, if the run has blown up.
-    void check(const World& world) const;
+    /// After each step of the world: adds the sources' work over the step, then throws
+    /// NonFiniteStateError or BlowUpError (see the class), at the world's step count and time,
+    /// if the run has blown up.
+    void check(const World& world);
 
-    /// Whether the energy-growth rule applies: no force of the world adds energy.
+    /// Whether the energy-growth rule applies: the start's energy is finite.
     bool watchesGrowth() const { return m_growth; }
+    /// Whether a force of the world may add energy, so that its work is summed.
+    bool hasSources() const { return m_sources; }
     double startEnergy() const { return m_start; }
     double energyScale() const { return m_scale; }
-    /// The total energy above which the run has blown up: start + kEnergyGrowthLimit * scale.
-    double energyBound() const { return m_start + kEnergyGrowthLimit * m_scale; }
+    /// The work the energy sources have done on the bodies since the start, as of the last check.
+    double sourceWork() const { return m_work; }
+    /// The total energy above which the run has blown up: start + sources' work +
+    /// kEnergyGrowthLimit * scale.
+    double energyBound() const { return m_start + m_work + kEnergyGrowthLimit * m_scale; }
 
 private:
     bool driven(const World& world) const;
+    void addSourceWork(const World& world);
     [[noreturn]] void throwNonFinite(const World& world) const;
     [[noreturn]] void throwGrowth(const World& world, double energy) const;
 
     bool m_active = false;
     bool m_growth = false;
+    bool m_sources = false;
     double m_start = 0.0;
     double m_scale = 0.0;
+    double m_work = 0.0;
+    /// At the last check (or the start): the sources' wrench on each body, each body's
+    /// velocity and angular velocity, and the world's time.
+    std::vector<Wrench> m_wrenches;
+    std::vector<std::pair<dvec3, dvec3>> m_velocities;
+    double m_time = 0.0;
     std::vector<double> m_startEnergies; ///< each body's, to name the one that gained the most
     /// The fixed bodies and their start states: one the program has moved drives the system.
     std::vector<std::pair<std::size_t, State>> m_fixed;

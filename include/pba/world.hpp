@@ -290,6 +290,10 @@ public:
     double totalPotentialEnergy() const;
     /// Kinetic plus potential energy of all bodies (swarms not included).
     double totalEnergy() const;
+    /// What the forces that may add energy (Force::addsEnergy: the blow dryer, a program's own
+    /// force) exert on each body now, a wrench per body: zero on a fixed one, and on every body
+    /// when no force may add energy (swarms not included, as in totalEnergy).
+    std::vector<Wrench> sourceWrenches() const;
     /// Whether body i is integrated in a coupled group: it moves, and a force couples it to a
     /// body, or it takes implicit-euler or xpbd (whose step is a system's, joined by springs or not).
     bool isCoupled(std::size_t i) const;

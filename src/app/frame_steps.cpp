@@ -23,7 +23,7 @@ double alphaAt(const World& world, double t)
     return span > 0.0 ? std::clamp((t - world.previousTime()) / span, 0.0, 1.0) : 1.0;
 }
 
-double stepToFrame(Scene& scene, double t, const BlowUpWatch& watch)
+double stepToFrame(Scene& scene, double t, BlowUpWatch& watch)
 {
     for (std::uint64_t n = stepsToReach(scene.world, t, scene.dt); n > 0; --n) {
         scene.world.step(scene.dt);
@@ -32,7 +32,7 @@ double stepToFrame(Scene& scene, double t, const BlowUpWatch& watch)
     return alphaAt(scene.world, t);
 }
 
-double stepFrameWith(ClockKind clock, Scene& scene, double frameTime, const BlowUpWatch& watch)
+double stepFrameWith(ClockKind clock, Scene& scene, double frameTime, BlowUpWatch& watch)
 {
     if (frameTime <= 0.0)
         return 1.0;

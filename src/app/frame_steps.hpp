@@ -24,12 +24,12 @@ double alphaAt(const World& world, double t);
 /// bring its current state to t or just past it, and the drawn state is interpolated back to t,
 /// as the window's clock interpolates between the last two states. Returns that alpha. Throws
 /// BlowUpError at a step that blows up (the world's checks, then `watch`'s).
-double stepToFrame(Scene& scene, double t, const BlowUpWatch& watch);
+double stepToFrame(Scene& scene, double t, BlowUpWatch& watch);
 
 /// A synthetic frame of frameTime with the semi-fixed or variable clock (frameSteps, with the
 /// scene's dt): the steps it takes, with nothing left over, so the state drawn is the last one
 /// (alpha 1). A frame time of zero takes no step. Throws BlowUpError as stepToFrame does.
-double stepFrameWith(ClockKind clock, Scene& scene, double frameTime, const BlowUpWatch& watch);
+double stepFrameWith(ClockKind clock, Scene& scene, double frameTime, BlowUpWatch& watch);
 
 /// `--clock NAME`: the clock, or UsageError naming the option, the value and the names it takes.
 ClockKind parseClockOption(const std::string& name);

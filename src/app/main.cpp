@@ -69,8 +69,8 @@ int main(int argc, char** argv)
     app.footer(fmt::format("\nWithout a COMMAND, pba shows the {0} scene in a window; with no display it renders it\n"
                            "instead, which takes about 20 s, to pba-out/{0}.mp4 and pba-out/{0}.png.\n\n"
                            "Exit status: 0 success, 1 other failure, 2 bad input or usage, 3 simulation failure:\n"
-                           "the run blew up (a state not finite, a rigid body's centre inside a wall, or, with\n"
-                           "no energy source, the energy {1:g} times its scale above its start).\nRun `pba help COMMAND` or `pba COMMAND --help` for the options of a "
+                           "the run blew up (a state not finite, a rigid body's centre inside a wall, or the\n"
+                           "energy {1:g} times its scale above its start and its sources' work).\nRun `pba help COMMAND` or `pba COMMAND --help` for the options of a "
                            "command.",
                            kDefaultScene, pba::BlowUpWatch::kEnergyGrowthLimit));
     listScenesInHelp(app);

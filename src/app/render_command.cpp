@@ -97,7 +97,7 @@ int runRender(const RenderOptions& options)
     Progress progress("rendering", frames);
     double alpha = 0.0;
     double shownTime = 0.0; // the last frame's time: the semi-fixed and variable clocks step the frame between
-    const BlowUpWatch watch(scene.world);
+    BlowUpWatch watch(scene.world);
     try {
         for (long frame = 0; frame < frames; ++frame) {
             // A PNG's last frame is at exactly --time, not at the last frame of 1/fps before it

@@ -131,11 +131,10 @@ private:
 /// viewer would: same steps, same bytes. Throws BlowUpError at the first step that blows up,
 /// before its rows are written (the world's own checks, then the BlowUpWatch's: an energy that
 /// is not finite is no more a valid row than an infinite position).
-void stepToEnd(const SimOptions& options, Scene& scene, StepRecord& record, study::JetWatch& jet,
+void stepToEnd(const SimOptions& options, Scene& scene, StepRecord& record, BlowUpWatch& watch, study::JetWatch& jet,
                study::RigidWatch& rigid)
 {
     World& world = scene.world;
-    const BlowUpWatch watch(world);
     const std::uint64_t total = stepCount(scene.duration, scene.dt, "--duration");
     std::optional<FixedTimestepClock> clock;
     if (options.frameRate)
@@ -190,11 +189,12 @@ int runSim(const SimOptions& options)
     }
     World& world = scene.world;
     StepRecord record(world, csv.get(), options.swarmParticles);
+    BlowUpWatch watch(world);
     study::JetWatch jet(world);
     study::RigidWatch rigid(world);
     record();
     try {
-        stepToEnd(options, scene, record, jet, rigid);
+        stepToEnd(options, scene, record, watch, jet, rigid);
     } catch (const BlowUpError& error) {
         if (csv)
             csv->commit(); // the rows so far are valid, up to the last finite step
@@ -203,7 +203,7 @@ int runSim(const SimOptions& options)
     }
     if (csv)
         csv->commit();
-    printSummary(scene, world, record.summary(), jet, rigid, options.everyParticle);
+    printSummary(scene, world, record.summary(), jet, rigid, watch.sourceWork(), options.everyParticle);
     if (options.out)
         fmt::print("wrote {} to {}\n", options.swarmParticles ? "every body and swarm particle at every step"
                                                               : fmt::format("{} rows", (world.stepCount() + 1) * world.bodyCount()),
@@ -219,9 +219,9 @@ void addSimCommand(CLI::App& root, Action& selected)
     CLI::App* sim = root.add_subcommand("sim", "Run a scene without drawing it and print a per-body summary");
     sim->footer(fmt::format(
         "\nExit status 3: the run blew up, and the message names the body, the step, the time and the\n"
-        "reason: a state not finite, a rigid body's centre inside a wall, or, with no energy source (no\n"
-        "blow dryer), the energy {:g} times its scale above its start. --out keeps the rows up to the\n"
-        "step before.\n\nExamples:\n  pba sim integrators --dt 0.05 --integrator rk4\n"
+        "reason: a state not finite, a rigid body's centre inside a wall, or the energy\n"
+        "{:g} times its scale above its start and the work of its energy sources (the blow dryer).\n"
+        "--out keeps the rows up to the step before.\n\nExamples:\n  pba sim integrators --dt 0.05 --integrator rk4\n"
         "  pba sim bouncing-cube --out pba-out/run.csv --frame-rate 30\n",
         BlowUpWatch::kEnergyGrowthLimit));
     addSceneOptions(*sim, options->scene, kDefaultScene);

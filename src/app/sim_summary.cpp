@@ -243,7 +243,7 @@ void printSystemRows(const World& world, const render::BodyGroups& groups, const
 
 /// The whole scene's energy and momentum, now and at the start (swarms not included).
 void printSceneTotals(const World& world, const std::vector<BodySummary>& summary, const std::vector<double>& energies,
-                      const study::JetWatch& jet)
+                      const study::JetWatch& jet, double sourceWork)
 {
     double energy = 0.0, start = 0.0;
     dvec3 momentum(0.0), startMomentum(0.0);
@@ -260,15 +260,16 @@ void printSceneTotals(const World& world, const std::vector<BodySummary>& summar
                "the start\n", energy, start, energyRatioText(start != 0.0 ? energy / start : 1.0),
                dryerWorked(jet, all) ? kDryerNote : "", vectorText(momentum), vectorText(startMomentum));
     if (dryerWorked(jet, all))
-        fmt::print("(+ the dryer's work): the blow dryer does work on what is in its cone, so that energy is not kept: "
-                   "the ratio includes its work (a ball hovering in the jet has gained it), not an error of the "
-                   "integration\n");
+        fmt::print("(+ the dryer's work): the blow dryer did {:.6g} J of work on the bodies in its cone (its force "
+                   "at each step's start against the step's mean velocity), so their energy is not kept; without "
+                   "that work, E now/E start is {} (what bounces, contacts and the integration took or gave)\n",
+                   sourceWork, energyRatioText(start != 0.0 ? (energy - sourceWork) / start : 1.0));
 }
 
 } // namespace
 
 void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary,
-                  const study::JetWatch& jet, const study::RigidWatch& rigid, bool everyParticle)
+                  const study::JetWatch& jet, const study::RigidWatch& rigid, double sourceWork, bool everyParticle)
 {
     fmt::print("scene {}: {} steps of dt = {:.6g} s, t = {:.6g} s, collision response {}{}\n", scene.name, world.stepCount(),
                scene.dt, world.time(), collisionResponseName(world.collisionResponse()),
@@ -282,7 +283,7 @@ void printSummary(const Scene& scene, const World& world, const std::vector<Body
     const std::vector<double> energies = world.energies();
     printBodyRows(world, groups, summary, energies, jet, everyParticle);
     printSystemRows(world, groups, summary, energies, jet);
-    printSceneTotals(world, summary, energies, jet);
+    printSceneTotals(world, summary, energies, jet, sourceWork);
     printRigidSummary(world, rigid);
     printSwarmSummary(world);
     printJetSummary(world, jet, groups, everyParticle);

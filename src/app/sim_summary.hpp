@@ -20,9 +20,11 @@ struct BodySummary {
 /// (its final position and speed, highest point, bounces and energy ratio), a row per rope and
 /// cloth (its totals), the whole scene's energy and momentum, then the rigid bodies', the swarms'
 /// and the jet's figures where the scene has them. Where the blow dryer pushed a body, its energy
-/// ratio says so: the dryer's work, not an error. `everyParticle` adds a row per particle of each
-/// rope and cloth.
+/// ratio says so: the dryer's work, not an error; the scene's line gives that work
+/// (`sourceWork`, BlowUpWatch's sum of its power) and the ratio without it. `everyParticle` adds
+/// a row per particle of each rope and cloth.
 void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary,
-                  const study::JetWatch& jet, const study::RigidWatch& rigid, bool everyParticle = false);
+                  const study::JetWatch& jet, const study::RigidWatch& rigid, double sourceWork,
+                  bool everyParticle = false);
 
 } // namespace pba::app

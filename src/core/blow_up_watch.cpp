@@ -7,12 +7,12 @@
 
 namespace pba {
 
-BlowUpWatch::BlowUpWatch(const World& world) : m_active(true), m_start(world.totalEnergy())
+BlowUpWatch::BlowUpWatch(const World& world) : m_active(true), m_start(world.totalEnergy()), m_time(world.time())
 {
-    bool source = false;
     for (std::size_t f = 0; f < world.forceCount(); ++f)
-        source = source || world.force(f).addsEnergy();
-    m_growth = !source && std::isfinite(m_start);
+        m_sources = m_sources || world.force(f).addsEnergy();
+    m_growth = std::isfinite(m_start);
+    addSourceWork(world);
     m_startEnergies = world.energies();
     const double g = glm::length(world.gravity());
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
@@ -26,10 +26,11 @@ BlowUpWatch::BlowUpWatch(const World& world) : m_active(true), m_start(world.tot
     }
 }
 
-void BlowUpWatch::check(const World& world) const
+void BlowUpWatch::check(const World& world)
 {
     if (!m_active)
         return;
+    addSourceWork(world);
     // The total is finite when every body's energy is, and cheaper (each interaction once): only
     // when it is not is the culprit looked for.
     const double energy = world.totalEnergy();
@@ -37,6 +38,27 @@ void BlowUpWatch::check(const World& world) const
         throwNonFinite(world);
     if (m_growth && energy > energyBound() && !driven(world))
         throwGrowth(world, energy);
+}
+
+void BlowUpWatch::addSourceWork(const World& world)
+{
+    if (!m_sources)
+        return;
+    const std::size_t n = world.bodyCount();
+    std::vector<std::pair<dvec3, dvec3>> velocities(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Body& b = world.body(i);
+        velocities[i] = {b.getVel(),
+                         world.isRigid(i) ? static_cast<const RigidBody&>(b).getAngularVelocity() : dvec3(0.0)};
+    }
+    const double dt = world.time() - m_time;
+    for (std::size_t i = 0; i < n && i < m_wrenches.size(); ++i)
+        m_work += 0.5 * dt *
+                  (glm::dot(m_wrenches[i].force, m_velocities[i].first + velocities[i].first) +
+                   glm::dot(m_wrenches[i].torque, m_velocities[i].second + velocities[i].second));
+    m_wrenches = world.sourceWrenches();
+    m_velocities = std::move(velocities);
+    m_time = world.time();
 }
 
 bool BlowUpWatch::driven(const World& world) const
@@ -71,11 +93,14 @@ void BlowUpWatch::throwGrowth(const World& world, double energy) const
         if (energies[i] - m_startEnergies[i] > energies[most] - m_startEnergies[most])
             most = i;
     const std::string name = world.bodyCount() > 0 ? world.body(most).getName() : "";
-    throw BlowUpError(name, world.stepCount(), world.time(),
-                      fmt::format("the energy of a system with no energy source rose from {:.4g} J to {:.4g} J, more "
-                                  "than {:g} times its energy scale ({:.4g} J) above its start, body '{}' gaining the "
-                                  "most",
-                                  m_start, energy, kEnergyGrowthLimit, m_scale, name));
+    const std::string reason =
+        m_sources ? fmt::format("the energy rose from {:.4g} J to {:.4g} J, more than {:g} times its energy scale "
+                                "({:.4g} J) above its start and the {:.4g} J of work its energy sources did",
+                                m_start, energy, kEnergyGrowthLimit, m_scale, m_work)
+                  : fmt::format("the energy of a system with no energy source rose from {:.4g} J to {:.4g} J, more "
+                                "than {:g} times its energy scale ({:.4g} J) above its start",
+                                m_start, energy, kEnergyGrowthLimit, m_scale);
+    throw BlowUpError(name, world.stepCount(), world.time(), fmt::format("{}, body '{}' gaining the most", reason, name));
 }
 
 } // namespace pba

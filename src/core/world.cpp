@@ -501,4 +501,22 @@ double World::totalEnergy() const
     return e;
 }
 
+std::vector<Wrench> World::sourceWrenches() const
+{
+    const std::size_t n = m_bodies.objects.size();
+    std::vector<State> states;
+    std::vector<Pose> poses;
+    const BodyStates in = currentStates(states, poses);
+    std::vector<dvec3> forces(n, dvec3(0.0)), torques(poses.empty() ? 0 : n, dvec3(0.0));
+    Accumulators out{forces, torques};
+    for (const auto& force : m_forces.objects)
+        if (force->addsEnergy())
+            force->accumulate(in, out);
+    std::vector<Wrench> wrenches(n);
+    for (std::size_t i = 0; i < n; ++i)
+        if (!in.isFixed(i))
+            wrenches[i] = Wrench{forces[i], torques.empty() ? dvec3(0.0) : torques[i]};
+    return wrenches;
+}
+
 } // namespace pba

@@ -59,7 +59,7 @@ ClockRun runOne(const ClockConfig& config, ClockKind clock, int rate, bool hitch
 {
     ClockRun run{clock, rate, hitch, 0, config.dt, config.dt, {}, {}, std::numeric_limits<double>::quiet_NaN(), {}};
     World world = config.scene.world;
-    const BlowUpWatch watch(world);
+    BlowUpWatch watch(world);
     FixedTimestepClock fixed(config.dt);
     double last = 0.0;
     run.shortestStep = std::numeric_limits<double>::infinity();

@@ -55,7 +55,7 @@ RotationRun runOne(const Scene& scene, std::size_t body, int axis, Integrator in
     };
     double previous = omegaAbout();
     std::vector<double> flips;
-    const BlowUpWatch watch(world);
+    BlowUpWatch watch(world);
     for (std::uint64_t n = 1; n <= steps; ++n) {
         try {
             world.step(dt);

@@ -197,7 +197,7 @@ std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator
     // the study: it stops where it blew up (a state not finite, or energy gained with no source
     // to feed it: BlowUpWatch) and says when.
     double blewUpAt = kNaN;
-    const BlowUpWatch watch(world);
+    BlowUpWatch watch(world);
     try {
         for (std::uint64_t n = 0; n < steps; ++n) {
             for (std::size_t k = 0; k < trackers.size(); ++k) {

@@ -39,7 +39,7 @@ End run(const Scene& scene, Integrator integrator, double dt)
     for (std::size_t i = 0; i < world.bodyCount(); ++i)
         if (!world.body(i).isFixed())
             world.body(i).setIntegrator(integrator);
-    const BlowUpWatch watch(world);
+    BlowUpWatch watch(world);
     const auto steps = static_cast<long>(std::lround(workPrecisionSeconds(scene.name) / dt));
     for (long k = 0; k < steps; ++k) {
         world.step(dt);

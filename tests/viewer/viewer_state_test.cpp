@@ -131,7 +131,8 @@ TEST(ViewerState, SyntheticFramesReachExactlyTheTimeAsRenderDoes)
             state.advanceTo(double(frame) / 60);
         state.advanceTo(t);
         Scene rendered = loadScene("blow-dryer");
-        const double alpha = stepToFrame(rendered, t, BlowUpWatch(rendered.world));
+        BlowUpWatch watch(rendered.world);
+        const double alpha = stepToFrame(rendered, t, watch);
         EXPECT_EQ(state.scene.world.stepCount(), rendered.world.stepCount()) << t;
         EXPECT_EQ(state.scene.world.body(0).getPos(), rendered.world.body(0).getPos()) << t;
         EXPECT_EQ(state.alpha(), alpha) << t;
