@@ -22,9 +22,9 @@ namespace pba {
 ///    stable method near its stability limit swings further. One that rises more than
 ///    kEnergyGrowthLimit times the energy scale above its start and that work has left the
 ///    physics behind: a BlowUpError naming the body that gained the most. The sources' work over
-///    a step is their wrench at its start (World::sourceWrenches) against the mean of the
-///    step's start and end velocities (for semi-implicit Euler, whose forces are the start's,
-///    the kinetic energy they give the bodies, to rounding), so check after every step. A fixed body
+///    a step is their wrench (World::sourceWrenches) as the body's integrator weighs the step's
+///    start and end, against the mean of the step's start and end velocities (for semi-implicit
+///    Euler, the kinetic energy they give the bodies, to rounding), so check after every step. A fixed body
 ///    that the program has moved drives the system with work no force accounts for: then
 ///    energy growth is not checked.
 /// The energy scale is the moving bodies' kinetic energy at the start plus the size of each one's
@@ -61,6 +61,11 @@ public:
     double energyScale() const { return m_scale; }
     /// The work the energy sources have done on the bodies since the start, as of the last check.
     double sourceWork() const { return m_work; }
+    /// The part of it done on body i (0 for a world with no source).
+    double sourceWork(std::size_t i) const { return i < m_bodyWork.size() ? m_bodyWork[i] : 0.0; }
+    /// Every body's energy (World::energies) less the work the sources did on it: what the
+    /// integration, the contacts and the forces that keep energy made of the start's.
+    std::vector<double> energiesWithoutSourceWork(const World& world) const;
     /// The total energy above which the run has blown up: start + sources' work +
     /// kEnergyGrowthLimit * scale.
     double energyBound() const { return m_start + m_work + kEnergyGrowthLimit * m_scale; }
@@ -77,6 +82,7 @@ private:
     double m_start = 0.0;
     double m_scale = 0.0;
     double m_work = 0.0;
+    std::vector<double> m_bodyWork; ///< m_work body by body
     /// At the last check (or the start): the sources' wrench on each body, each body's
     /// velocity and angular velocity, and the world's time.
     std::vector<Wrench> m_wrenches;

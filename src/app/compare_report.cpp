@@ -59,8 +59,9 @@ std::string energyTable(const study::StudyConfig& config, const study::StudyResu
 std::string energyTableHeading(const study::StudyConfig& config, const study::StudyResult& result,
                                CollisionResponse collision)
 {
-    const std::string what = result.followsSystem ? "Total energy (every body) at the end over at the start"
-                                                  : "Energy at the end over energy at the start";
+    const std::string what = std::string(result.followsSystem ? "Total energy (every body) at the end over at the start"
+                                                              : "Energy at the end over energy at the start") +
+                             (result.lessSourceWork ? " (less the dryer's work)" : "");
     if (!study::anyCollision(result) && config.collisions.size() > 1)
         return fmt::format("## {} (nothing collides: every collision response alike)", what);
     const bool withExact = collision == CollisionResponse::Reflect && study::exactShownAsReflect(config, result);

@@ -7,6 +7,29 @@
 
 namespace pba {
 
+namespace {
+
+/// The share of the step's end force in a method's change of velocity over the step: none for
+/// forward and semi-implicit Euler (v1 = v0 + a0 dt, the implicit gyroscopic step's translation
+/// too), half for velocity Verlet, the splitting (whose translation is velocity Verlet), RK4 (its
+/// stages weighed as the trapezoid would) and XPBD (its substeps'), all for backward Euler.
+double endForceWeight(Integrator integrator)
+{
+    switch (integrator) {
+    case Integrator::ForwardEuler:
+    case Integrator::SemiImplicitEuler:
+    case Integrator::ImplicitGyroscopic: return 0.0;
+    case Integrator::VelocityVerlet:
+    case Integrator::Splitting:
+    case Integrator::RK4:
+    case Integrator::Xpbd: return 0.5;
+    case Integrator::ImplicitEuler: return 1.0;
+    }
+    return 0.0;
+}
+
+} // namespace
+
 BlowUpWatch::BlowUpWatch(const World& world) : m_active(true), m_start(world.totalEnergy()), m_time(world.time())
 {
     for (std::size_t f = 0; f < world.forceCount(); ++f)
@@ -51,14 +74,31 @@ void BlowUpWatch::addSourceWork(const World& world)
         velocities[i] = {b.getVel(),
                          world.isRigid(i) ? static_cast<const RigidBody&>(b).getAngularVelocity() : dvec3(0.0)};
     }
+    std::vector<Wrench> wrenches = world.sourceWrenches();
     const double dt = world.time() - m_time;
-    for (std::size_t i = 0; i < n && i < m_wrenches.size(); ++i)
-        m_work += 0.5 * dt *
-                  (glm::dot(m_wrenches[i].force, m_velocities[i].first + velocities[i].first) +
-                   glm::dot(m_wrenches[i].torque, m_velocities[i].second + velocities[i].second));
-    m_wrenches = world.sourceWrenches();
+    m_bodyWork.resize(n, 0.0);
+    for (std::size_t i = 0; i < n && i < m_wrenches.size(); ++i) {
+        // The force the body's method moved it with over the step, against its mean velocity.
+        const double w = endForceWeight(world.body(i).getIntegrator());
+        const Wrench& a = m_wrenches[i];
+        const Wrench& b = wrenches[i];
+        const double work = 0.5 * dt *
+                            (glm::dot((1.0 - w) * a.force + w * b.force, m_velocities[i].first + velocities[i].first) +
+                             glm::dot((1.0 - w) * a.torque + w * b.torque, m_velocities[i].second + velocities[i].second));
+        m_bodyWork[i] += work;
+        m_work += work;
+    }
+    m_wrenches = std::move(wrenches);
     m_velocities = std::move(velocities);
     m_time = world.time();
+}
+
+std::vector<double> BlowUpWatch::energiesWithoutSourceWork(const World& world) const
+{
+    std::vector<double> energies = world.energies();
+    for (std::size_t i = 0; i < energies.size() && i < m_bodyWork.size(); ++i)
+        energies[i] -= m_bodyWork[i];
+    return energies;
 }
 
 bool BlowUpWatch::driven(const World& world) const

@@ -171,7 +171,8 @@ std::string energyPlot(const std::filesystem::path& dir, const StudyConfig& conf
     const double dt = energyPlotDt(config, result);
     const auto responses = distinctResponses(config, result);
     const bool collides = anyCollision(result);
-    const std::string what = result.followsSystem ? "total energy (every body)" : "energy";
+    const std::string what = std::string(result.followsSystem ? "total energy (every body)" : "energy") +
+                             (result.lessSourceWork ? " less the work of the dryer" : "");
     std::string script = fmt::format("set terminal pngcairo size {},500 font 'sans,10'\nset output 'energy.png'\n"
                                      "set multiplot layout 1,{} title '{} over its start value, dt = {} s'\n"
                                      "set xlabel 't (s)'\nset ylabel 'E / E0'\nset key inside top left\n",

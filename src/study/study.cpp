@@ -206,7 +206,7 @@ std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator
             }
             world.step(dt);
             watch.check(world);
-            const std::vector<double> energies = world.energies();
+            const std::vector<double> energies = watch.energiesWithoutSourceWork(world);
             for (std::size_t k = 0; k < trackers.size(); ++k) {
                 trackers[k].afterStep(world, before[k]);
                 trackers[k].sample(world, energies);
@@ -218,7 +218,7 @@ std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator
         blewUpAt = error.time();
     }
     std::vector<ParticleResult> results;
-    const std::vector<double> endEnergies = world.energies();
+    const std::vector<double> endEnergies = watch.energiesWithoutSourceWork(world);
     if (system) {
         ParticleResult& r = whole.result;
         r.blewUpAt = blewUpAt;
@@ -336,6 +336,7 @@ StudyResult runStudy(const StudyConfig& config, const std::function<void(long, l
     result.omegaMax = highestFrequency(config.scene.world);
     result.followsSystem = followsSystem(config.scene.world);
     result.exactActsAsReflect = allMovingCoupled(config.scene.world);
+    result.lessSourceWork = BlowUpWatch(config.scene.world).hasSources();
     std::vector<Task> referenceTasks;
     if (result.followsSystem) {
         // A quarter of the smallest dt: the reference's own error is then a quarter (order 1) or

@@ -88,6 +88,10 @@ struct StudyResult {
     /// Whether every moving body is coupled: then `exact` acts as `reflect` (a coupled body has
     /// no path of its own to find a time of impact on) and the two responses give the same runs.
     bool exactActsAsReflect = false;
+    /// Whether a force of the scene may add energy (the blow dryer): then every energy of the
+    /// runs is the bodies' less the work those sources did on them (BlowUpWatch), so that its
+    /// ratios show what the integration and the contacts made of the energy, not the push.
+    bool lessSourceWork = false;
     std::vector<OrderResult> orders;
     double orderWindow = 2.0;         ///< s, the time window of the order study
     /// The scene's highest natural frequency, rad/s; empty without springs on moving bodies,
