@@ -156,86 +156,103 @@ bool followsSystem(const World& world)
     return moving > 1 && !ExactSolution::find(world, first);
 }
 
-std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator, CollisionResponse collision,
-                                       double dt, double duration, bool system, std::size_t seriesPoints)
-{
-    World world = scene.world;
-    world.setCollisionResponse(collision);
-    std::vector<Tracker> trackers;
-    const std::vector<double> startEnergies = world.energies();
+namespace {
+
+/// A run's trackers: one per moving particle, and the whole system's when the run follows it.
+struct RunTrackers {
+    std::vector<Tracker> particles;
     SystemTracker whole;
-    whole.e0 = sum(startEnergies);
+    bool system = false;
+};
+
+/// Gives every moving body the method, and starts a tracker on each (and the system's), sampled
+/// at the start.
+RunTrackers startRun(World& world, Integrator integrator, CollisionResponse collision, double dt, std::uint64_t steps,
+                     bool system, std::size_t seriesPoints)
+{
+    RunTrackers run;
+    run.system = system;
+    const std::vector<double> startEnergies = world.energies();
+    const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(steps / std::max<std::size_t>(1, seriesPoints)));
+    const auto label = [&](ParticleResult& r) {
+        r.integrator = integrator;
+        r.collision = collision;
+        r.dt = dt;
+        r.steps = steps;
+    };
+    run.whole.e0 = sum(startEnergies);
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
         if (world.body(i).isFixed())
             continue;
         world.body(i).setIntegrator(integrator);
         Tracker t{i, ExactSolution::find(world, i), startEnergies[i], {}};
         t.result.particle = world.body(i).getName();
-        trackers.push_back(std::move(t));
-        whole.moving.push_back(i);
+        label(t.result);
+        t.stride = stride;
+        t.keepSeries = !system && run.particles.empty();
+        run.particles.push_back(std::move(t));
+        run.whole.moving.push_back(i);
     }
-    const auto steps = static_cast<std::uint64_t>(std::max(1.0, std::round(duration / dt)));
-    whole.result.particle = kSystemRow;
-    whole.result.integrator = integrator;
-    whole.result.collision = collision;
-    whole.result.dt = dt;
-    whole.result.steps = steps;
-    whole.stride = std::max<std::size_t>(1, static_cast<std::size_t>(steps / std::max<std::size_t>(1, seriesPoints)));
+    run.whole.result.particle = kSystemRow;
+    label(run.whole.result);
+    run.whole.stride = stride;
     if (system)
-        whole.sample(world, startEnergies);
-    for (auto& t : trackers) {
-        t.result.integrator = integrator;
-        t.result.collision = collision;
-        t.result.dt = dt;
-        t.result.steps = steps;
-        t.stride = std::max<std::size_t>(1, static_cast<std::size_t>(steps / std::max<std::size_t>(1, seriesPoints)));
-        t.keepSeries = !system && &t == &trackers.front();
+        run.whole.sample(world, startEnergies);
+    for (auto& t : run.particles)
         t.sample(world, startEnergies);
-    }
-    std::vector<State> before(trackers.size());
-    // An unstable run (forward Euler on a cloth at a large dt) is a result, not a failure of
-    // the study: it stops where it blew up (a state not finite, or energy gained with no source
-    // to feed it: BlowUpWatch) and says when.
-    double blewUpAt = kNaN;
-    BlowUpWatch watch(world);
+    return run;
+}
+
+/// Steps the run to its end, sampling after each step. An unstable run (forward Euler on a
+/// cloth at a large dt) is a result, not a failure of the study: it stops where it blew up (a
+/// state not finite, or energy gained beyond its sources' work: BlowUpWatch) and returns when
+/// (NaN when it did not). The energies sampled are less the sources' work.
+double stepRun(World& world, RunTrackers& run, BlowUpWatch& watch, double dt, std::uint64_t steps)
+{
+    std::vector<State> before(run.particles.size());
     try {
         for (std::uint64_t n = 0; n < steps; ++n) {
-            for (std::size_t k = 0; k < trackers.size(); ++k) {
-                trackers[k].beforeStep(world);
-                before[k] = world.body(trackers[k].index).getState();
+            for (std::size_t k = 0; k < run.particles.size(); ++k) {
+                run.particles[k].beforeStep(world);
+                before[k] = world.body(run.particles[k].index).getState();
             }
             world.step(dt);
             watch.check(world);
             const std::vector<double> energies = watch.energiesWithoutSourceWork(world);
-            for (std::size_t k = 0; k < trackers.size(); ++k) {
-                trackers[k].afterStep(world, before[k]);
-                trackers[k].sample(world, energies);
+            for (std::size_t k = 0; k < run.particles.size(); ++k) {
+                run.particles[k].afterStep(world, before[k]);
+                run.particles[k].sample(world, energies);
             }
-            if (system)
-                whole.sample(world, energies);
+            if (run.system)
+                run.whole.sample(world, energies);
         }
     } catch (const BlowUpError& error) {
-        blewUpAt = error.time();
+        return error.time();
     }
+    return kNaN;
+}
+
+/// The run's rows: the system's first (when followed), then each particle's.
+std::vector<ParticleResult> finishRun(const World& world, RunTrackers& run, double blewUpAt,
+                                      const std::vector<double>& endEnergies)
+{
+    const auto endRatio = [&](double energy, double e0) {
+        return !std::isnan(blewUpAt) ? std::numeric_limits<double>::infinity() : e0 != 0.0 ? energy / e0 : 1.0;
+    };
     std::vector<ParticleResult> results;
-    const std::vector<double> endEnergies = watch.energiesWithoutSourceWork(world);
-    if (system) {
-        ParticleResult& r = whole.result;
+    if (run.system) {
+        ParticleResult& r = run.whole.result;
         r.blewUpAt = blewUpAt;
-        r.energyRatioEnd = !std::isnan(blewUpAt) ? std::numeric_limits<double>::infinity()
-                           : whole.e0 != 0.0     ? sum(endEnergies) / whole.e0
-                                                 : 1.0;
-        for (std::size_t i : whole.moving)
+        r.energyRatioEnd = endRatio(sum(endEnergies), run.whole.e0);
+        for (std::size_t i : run.whole.moving)
             r.bounces += world.bounceCount(i);
         r.apexRatioLast = r.periodError = r.maxPositionError = kNaN; // the error is set against the reference
         results.push_back(std::move(r));
     }
-    for (auto& t : trackers) {
+    for (auto& t : run.particles) {
         ParticleResult& r = t.result;
         r.blewUpAt = blewUpAt;
-        r.energyRatioEnd = !std::isnan(blewUpAt) ? std::numeric_limits<double>::infinity()
-                           : t.e0 != 0.0       ? endEnergies[t.index] / t.e0
-                                               : 1.0;
+        r.energyRatioEnd = endRatio(endEnergies[t.index], t.e0);
         r.bounces = world.bounceCount(t.index);
         const bool bounce = t.exact && t.exact->kind() == ExactSolution::Kind::Bounce;
         r.apexRatioLast = bounce && !std::isnan(t.lastApex) ? t.lastApex / t.exact->height() : kNaN;
@@ -250,6 +267,20 @@ std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator
         results.push_back(std::move(r));
     }
     return results;
+}
+
+} // namespace
+
+std::vector<ParticleResult> measureRun(const Scene& scene, Integrator integrator, CollisionResponse collision,
+                                       double dt, double duration, bool system, std::size_t seriesPoints)
+{
+    World world = scene.world;
+    world.setCollisionResponse(collision);
+    const auto steps = static_cast<std::uint64_t>(std::max(1.0, std::round(duration / dt)));
+    RunTrackers run = startRun(world, integrator, collision, dt, steps, system, seriesPoints);
+    BlowUpWatch watch(world);
+    const double blewUpAt = stepRun(world, run, watch, dt, steps);
+    return finishRun(world, run, blewUpAt, watch.energiesWithoutSourceWork(world));
 }
 
 OrderResult measureOrder(const Scene& spring, Integrator integrator, const std::vector<double>& dts, double window)
