@@ -23,8 +23,10 @@ namespace pba {
 ///    kEnergyGrowthLimit times the energy scale above its start and that work has left the
 ///    physics behind: a BlowUpError naming the body that gained the most. The sources' work over
 ///    a step is their wrench (World::sourceWrenches) as the body's integrator weighs the step's
-///    start and end, against the mean of the step's start and end velocities (for semi-implicit
-///    Euler, the kinetic energy they give the bodies, to rounding), so check after every step. A fixed body
+///    start, middle and end, against the mean of the step's start and end velocities (for
+///    forward and semi-implicit Euler and velocity Verlet, the kinetic energy they give the
+///    bodies, to rounding; for RK4, whose stages are its own, the middle is the mean of the start
+///    and end states), so check after every step. A fixed body
 ///    that the program has moved drives the system with work no force accounts for: then
 ///    energy growth is not checked.
 /// The energy scale is the moving bodies' kinetic energy at the start plus the size of each one's
@@ -86,7 +88,8 @@ private:
     /// At the last check (or the start): the sources' wrench on each body, each body's
     /// velocity and angular velocity, and the world's time.
     std::vector<Wrench> m_wrenches;
-    std::vector<std::pair<dvec3, dvec3>> m_velocities;
+    std::vector<State> m_states;
+    std::vector<dvec3> m_spins;
     double m_time = 0.0;
     std::vector<double> m_startEnergies; ///< each body's, to name the one that gained the most
     /// The fixed bodies and their start states: one the program has moved drives the system.

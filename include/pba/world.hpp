@@ -292,8 +292,9 @@ public:
     double totalEnergy() const;
     /// What the forces that may add energy (Force::addsEnergy: the blow dryer, a program's own
     /// force) exert on each body now, a wrench per body: zero on a fixed one, and on every body
-    /// when no force may add energy (swarms not included, as in totalEnergy).
-    std::vector<Wrench> sourceWrenches() const;
+    /// when no force may add energy (swarms not included, as in totalEnergy). Given `states` (one
+    /// per body), at those positions and velocities instead, each body turned as it is now.
+    std::vector<Wrench> sourceWrenches(std::span<const State> states = {}) const;
     /// Whether body i is integrated in a coupled group: it moves, and a force couples it to a
     /// body, or it takes implicit-euler or xpbd (whose step is a system's, joined by springs or not).
     bool isCoupled(std::size_t i) const;
