@@ -530,7 +530,9 @@ private:
     void rollBack();
 
     /// Every body's state (and, in a world with rigid bodies, its pose) as the read-outs see it.
-    BodyStates currentStates(std::vector<State>& storage, std::vector<Pose>& poses) const;
+    /// The bodies now, for a force evaluation; without `withStates`, their poses only (the
+    /// caller gives the states).
+    BodyStates currentStates(std::vector<State>& storage, std::vector<Pose>& poses, bool withStates = true) const;
 
     Bodies m_bodies;
     Forces m_forces;

@@ -74,23 +74,23 @@ void BlowUpWatch::addSourceWork(const World& world)
 {
     if (!m_sources)
         return;
+    // Each body read once, on all cores (a cloth of 16,384 members is watched after every step).
     const std::size_t n = world.bodyCount();
     std::vector<State> states(n);
     std::vector<dvec3> spins(n, dvec3(0.0));
-    bool middle = false;
+    std::vector<StepWeights> weights(n);
     detail::forEachIndex(n, [&](std::size_t i) {
         const Body& body = world.body(i);
         states[i] = body.getState();
+        weights[i] = stepWeights(body.getIntegrator());
         if (world.isRigid(i))
             spins[i] = static_cast<const RigidBody&>(body).getAngularVelocity();
     });
-    for (std::size_t i = 0; i < n && !middle; ++i)
-        middle = stepWeights(world.body(i).getIntegrator()).middle != 0.0;
-    std::vector<Wrench> wrenches = world.sourceWrenches();
+    std::vector<Wrench> wrenches = world.sourceWrenches(states);
     const bool started = m_wrenches.size() == n;
     // The middle of the step, where a method's stages look (RK4's), as the mean of its ends.
     std::vector<Wrench> halfway;
-    if (started && middle) {
+    if (started && std::any_of(weights.begin(), weights.end(), [](const StepWeights& w) { return w.middle != 0.0; })) {
         std::vector<State> mean(n);
         for (std::size_t i = 0; i < n; ++i)
             mean[i] = State{0.5 * (m_states[i].pos + states[i].pos), 0.5 * (m_states[i].vel + states[i].vel)};
@@ -98,18 +98,16 @@ void BlowUpWatch::addSourceWork(const World& world)
     }
     const double dt = world.time() - m_time;
     std::vector<double> work(n, 0.0);
-    // Each body's on all cores (a cloth of 16,384 members is watched after every step), summed
-    // in the bodies' order.
     detail::forEachIndex(started ? n : 0, [&](std::size_t i) {
         // The force the body's method moved it with over the step, against its mean velocity.
-        const StepWeights w = stepWeights(world.body(i).getIntegrator());
+        const StepWeights w = weights[i];
         const Wrench mid = halfway.empty() ? Wrench{} : halfway[i];
         const dvec3 force = w.start * m_wrenches[i].force + w.middle * mid.force + w.end * wrenches[i].force;
         const dvec3 torque = w.start * m_wrenches[i].torque + w.middle * mid.torque + w.end * wrenches[i].torque;
         work[i] = 0.5 * dt * (glm::dot(force, m_states[i].vel + states[i].vel) + glm::dot(torque, m_spins[i] + spins[i]));
     });
     m_bodyWork.resize(n, 0.0);
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < n; ++i) { // (in the bodies' order: the same sum on any number of threads)
         m_bodyWork[i] += work[i];
         m_work += work[i];
     }

@@ -380,11 +380,11 @@ void World::Surfaces::rebuildPlanes()
     }
 }
 
-BodyStates World::currentStates(std::vector<State>& storage, std::vector<Pose>& poses) const
+BodyStates World::currentStates(std::vector<State>& storage, std::vector<Pose>& poses, bool withStates) const
 {
     // Every read-out and the blow-up watch after every step gather the states: a 16,384-member
     // cloth's on all cores.
-    storage.resize(m_bodies.objects.size());
+    storage.resize(withStates ? m_bodies.objects.size() : 0);
     detail::forEachIndex(storage.size(), [&](std::size_t i) { storage[i] = m_bodies.objects[i]->getState(); });
     poses.clear();
     if (hasRigidBodies()) {
@@ -506,20 +506,22 @@ double World::totalEnergy() const
 std::vector<Wrench> World::sourceWrenches(std::span<const State> at) const
 {
     const std::size_t n = m_bodies.objects.size();
-    std::vector<State> states;
+    std::vector<State> gathered;
     std::vector<Pose> poses;
-    const BodyStates in = currentStates(states, poses);
-    if (at.size() == n)
-        std::copy(at.begin(), at.end(), states.begin());
+    const bool given = at.size() == n;
+    BodyStates in = currentStates(gathered, poses, !given);
+    if (given)
+        in.states = at;
     std::vector<dvec3> forces(n, dvec3(0.0)), torques(poses.empty() ? 0 : n, dvec3(0.0));
     Accumulators out{forces, torques};
     for (const auto& force : m_forces.objects)
         if (force->addsEnergy())
             force->accumulate(in, out);
+    // (a fixed body's entries are never added to: forces act on moving bodies)
     std::vector<Wrench> wrenches(n);
-    for (std::size_t i = 0; i < n; ++i)
-        if (!in.isFixed(i))
-            wrenches[i] = Wrench{forces[i], torques.empty() ? dvec3(0.0) : torques[i]};
+    detail::forEachIndex(n, [&](std::size_t i) {
+        wrenches[i] = Wrench{forces[i], torques.empty() ? dvec3(0.0) : torques[i]};
+    });
     return wrenches;
 }
 
