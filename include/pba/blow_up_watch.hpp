@@ -26,9 +26,8 @@ namespace pba {
 ///    start, middle and end, against the mean of the step's start and end velocities (for
 ///    forward and semi-implicit Euler and velocity Verlet, the kinetic energy they give the
 ///    bodies, to rounding; for RK4, whose stages are its own, the middle is the mean of the start
-///    and end states), so check after every step. A fixed body
-///    that the program has moved drives the system with work no force accounts for: then
-///    energy growth is not checked.
+///    and end states), so check after every step. A fixed body that the program has moved drives
+///    the system with work no force accounts for: then energy growth is not checked.
 /// The energy scale is the moving bodies' kinetic energy at the start plus the size of each one's
 /// potential energy, plus what lifting each by kLiftHeight in the world's gravity takes (so that
 /// a world starting at rest where its potential energy is zero, or with a start energy near zero
@@ -85,8 +84,8 @@ private:
     double m_scale = 0.0;
     double m_work = 0.0;
     std::vector<double> m_bodyWork; ///< m_work body by body
-    /// At the last check (or the start): the sources' wrench on each body, each body's
-    /// velocity and angular velocity, and the world's time.
+    /// At the last check (or the start): the sources' wrench on each body, each body's state
+    /// and angular velocity, and the world's time.
     std::vector<Wrench> m_wrenches;
     std::vector<State> m_states;
     std::vector<dvec3> m_spins;

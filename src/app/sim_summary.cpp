@@ -261,8 +261,9 @@ void printSceneTotals(const World& world, const std::vector<BodySummary>& summar
                dryerWorked(jet, all) ? kDryerNote : "", vectorText(momentum), vectorText(startMomentum));
     if (dryerWorked(jet, all))
         fmt::print("(+ the dryer's work): the blow dryer did {:.6g} J of work on the bodies in its cone (its force "
-                   "as each body's integrator applies it, against each step's mean velocity), so their energy is not kept; without "
-                   "that work, E now/E start is {} (what bounces, contacts and the integration took or gave)\n",
+                   "as each body's integrator applies it, against each step's mean velocity), so their energy is "
+                   "not kept; without that work, E now/E start is {} (what bounces, contacts and the integration "
+                   "took or gave)\n",
                    sourceWork, energyRatioText(start != 0.0 ? (energy - sourceWork) / start : 1.0));
 }
 

@@ -517,7 +517,7 @@ std::vector<Wrench> World::sourceWrenches(std::span<const State> at) const
     for (const auto& force : m_forces.objects)
         if (force->addsEnergy())
             force->accumulate(in, out);
-    // (a fixed body's entries are never added to: forces act on moving bodies)
+    // (whatever a force gives a fixed body does no work: it does not move)
     std::vector<Wrench> wrenches(n);
     detail::forEachIndex(n, [&](std::size_t i) {
         wrenches[i] = Wrench{forces[i], torques.empty() ? dvec3(0.0) : torques[i]};
