@@ -183,8 +183,14 @@ study::RotationConfig makeRotationConfig(const CompareOptions& options, Scene sc
                                      "to compare", scene.source));
     study::RotationConfig config;
     config.duration = readDuration(options, scene);
-    config.scene = std::move(scene);
     readIntegrators(options, config.integrators);
+    for (const Integrator integrator : config.integrators)
+        if (std::find(kRigidIntegrators.begin(), kRigidIntegrators.end(), integrator) == kRigidIntegrators.end())
+            throw UsageError(fmt::format("--integrators: {} is a scene with rigid bodies, and {} steps particles "
+                                         "joined by springs: the rotation study takes forward-euler, "
+                                         "semi-implicit-euler, velocity-verlet, rk4, implicit-gyroscopic or splitting",
+                                         scene.source, integratorName(integrator)));
+    config.scene = std::move(scene);
     readDts(options, config.duration, config.dts);
     config.jobs = readJobs(options);
     return config;

@@ -207,6 +207,13 @@ TEST(PbaCompare, BadOptionsAreBadInput)
     EXPECT_EQ(runPba("compare --integrators leapfrog --out /tmp/x").exitCode, 2);
     EXPECT_EQ(runPba("compare --collisions bounce --out /tmp/x").exitCode, 2);
     EXPECT_EQ(runPba("compare --dt 0.01,-1 --out /tmp/x").exitCode, 2);
+    // A rigid scene's study takes the rigid bodies' methods: a springs' method is refused up
+    // front, naming the flag, and nothing is written.
+    const auto dir = freshDir("compare-rigid-method");
+    const CommandResult rigid = runPba("compare dice --integrators rk4,implicit-euler --out " + (dir / "study").string());
+    EXPECT_EQ(rigid.exitCode, 2) << rigid.err;
+    EXPECT_EQ(rigid.err.rfind("pba: error: --integrators: builtin:dice is a scene with rigid bodies", 0), 0u) << rigid.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "study"));
 }
 
 TEST(IntegratorFindings, OneDtGivesNoRangeNoComparisonAndNoOrder)
