@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "collision_rules.hpp"
+#include "material_rule.hpp"
 
 namespace pba::detail {
 
@@ -19,7 +20,7 @@ void BallContacts::startContacts(double dt)
         const double w = a.inverseMass + b.inverseMass;
         BallPairRule<double>& rule = m_rules[k];
         rule = {a.radius + b.radius, a.inverseMass / w, b.inverseMass / w, std::sqrt(a.cor * b.cor),
-                std::sqrt(a.friction * b.friction), std::max(a.restingSpeed, b.restingSpeed), dt};
+                combinedFriction(a.friction, b.friction), std::max(a.restingSpeed, b.restingSpeed), dt};
         const std::pair<std::size_t, std::size_t> key(bodies[pairs[k].first], bodies[pairs[k].second]);
         const auto old = std::lower_bound(m_remembered.begin(), m_remembered.end(), key,
                                           [](const auto& entry, const auto& k2) { return entry.first < k2; });

@@ -9,6 +9,7 @@
 
 #include "collision_rules.hpp"
 #include "grain_contacts.hpp"
+#include "material_rule.hpp"
 #include "parallel.hpp"
 #include "particle_contacts.hpp"
 #include "rigid/rigid_system.hpp"
@@ -79,7 +80,7 @@ std::span<const detail::Xpbd::Touching> touchingMembers(detail::SpringSolver& so
     for (const auto& [a, b] : solver.candidates)
         if (solver.radius[a] > 0.0 && solver.radius[b] > 0.0 && !near(members[a], members[b]))
             solver.touching.push_back({a, b, solver.radius[a] + solver.radius[b],
-                                       std::sqrt(solver.friction[a] * solver.friction[b])});
+                                       detail::combinedFriction(solver.friction[a], solver.friction[b])});
     return solver.touching;
 }
 
@@ -271,7 +272,7 @@ void World::holdOnBodies(const std::vector<std::size_t>& members, detail::Spring
         if (glm::dot(normal, s.x[k] - surface) - radius > radius || std::abs(glm::dot(normal, s.v[k] - point)) > reach)
             continue;
         solver.heldOn[k] = normal;
-        solver.heldFriction[k] = std::sqrt(m_bodies.frictions[members[k]] * body.getFriction());
+        solver.heldFriction[k] = detail::combinedFriction(m_bodies.frictions[members[k]], body.getFriction());
         if (!body.isFixed()) {
             solver.bearerOf[k] = bearerFor(solver, world, dt);
             solver.bearerArm[k] = arm;

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "pba/rigid_body.hpp"
+#include "material_rule.hpp"
 #include "rigid/solver_body.hpp"
 #include "spatial_hash.hpp"
 
@@ -232,7 +233,7 @@ void XpbdRigidContacts::keepOut(std::size_t p, const dvec3& start, dvec3& x)
         x -= depth * m.normal;
         const dvec3 arm = x + r * m.normal - b.x;
         const dvec3 moved = (x - start) - (b.v + glm::cross(b.spin(), arm)) * m_h;
-        x -= heldBack(moved, m.normal, std::sqrt(m_friction[p] * b.friction), depth);
+        x -= heldBack(moved, m.normal, detail::combinedFriction(m_friction[p], b.friction), depth);
         // The body gave the member m dx / h: it takes the opposite, at the contact point.
         const dvec3 impulse = -m_mass[p] * (x - before) / m_h;
         m_pushes[p].push_back({std::uint32_t(k), impulse, glm::cross(arm, impulse)});
@@ -250,7 +251,7 @@ bool XpbdRigidContacts::bounce(std::size_t p, const dvec3& arriving, double rest
     const double arrival = glm::dot(t.normal, arriving - surface);
     if (!(arrival > resting))
         return false;
-    const double e = std::max(m_restitution[p], b.restitution);
+    const double e = detail::combinedRestitution(m_restitution[p], b.restitution);
     const dvec3 change = (-e * arrival - glm::dot(t.normal, v - surface)) * t.normal;
     v += change;
     const dvec3 impulse = -m_mass[p] * change;

@@ -7,6 +7,7 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
+#include "material_rule.hpp"
 #include "rigid/carried_manifold.hpp"
 #include "rigid/room_contacts.hpp"
 
@@ -54,9 +55,6 @@ double sphereRadius(const CollisionShape& shape)
 {
     return shape.kind == CollisionShape::Kind::Sphere ? shape.radius : 0.0;
 }
-
-double combinedFriction(double a, double b) { return std::sqrt(a * b); }
-double combinedRestitution(double a, double b) { return std::max(a, b); }
 
 } // namespace
 
@@ -258,8 +256,8 @@ void RigidSystem::collidePairs()
         }
         c.radiusA = sphereRadius(*m_material[pair.a].shape);
         c.radiusB = sphereRadius(*m_material[pair.b].shape);
-        c.friction = combinedFriction(m_material[pair.a].friction, m_material[pair.b].friction);
-        c.restitution = combinedRestitution(m_material[pair.a].restitution, m_material[pair.b].restitution);
+        c.friction = detail::combinedFriction(m_material[pair.a].friction, m_material[pair.b].friction);
+        c.restitution = detail::combinedRestitution(m_material[pair.a].restitution, m_material[pair.b].restitution);
         m_cache.warmStart(c, old);
     });
     // Pairs whose boxes overlap but whose shapes do not touch stay, with no points: they keep
