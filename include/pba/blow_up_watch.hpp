@@ -62,8 +62,6 @@ public:
     double energyScale() const { return m_scale; }
     /// The work the energy sources have done on the bodies since the start, as of the last check.
     double sourceWork() const { return m_work; }
-    /// The part of it done on body i (0 for a world with no source).
-    double sourceWork(std::size_t i) const { return i < m_bodyWork.size() ? m_bodyWork[i] : 0.0; }
     /// Every body's energy (World::energies) less the work the sources did on it: what the
     /// integration, the contacts and the forces that keep energy made of the start's.
     std::vector<double> energiesWithoutSourceWork(const World& world) const;

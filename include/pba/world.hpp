@@ -290,6 +290,8 @@ public:
     double totalPotentialEnergy() const;
     /// Kinetic plus potential energy of all bodies (swarms not included).
     double totalEnergy() const;
+    /// Whether any force may add energy (Force::addsEnergy: the blow dryer, a program's own force).
+    bool hasEnergySources() const;
     /// What the forces that may add energy (Force::addsEnergy: the blow dryer, a program's own
     /// force) exert on each body now, a wrench per body: zero on a fixed one, and on every body
     /// when no force may add energy (swarms not included, as in totalEnergy). Given `states` (one

@@ -39,8 +39,7 @@ StepWeights stepWeights(Integrator integrator)
 
 BlowUpWatch::BlowUpWatch(const World& world) : m_active(true), m_start(world.totalEnergy()), m_time(world.time())
 {
-    for (std::size_t f = 0; f < world.forceCount(); ++f)
-        m_sources = m_sources || world.force(f).addsEnergy();
+    m_sources = world.hasEnergySources();
     m_growth = std::isfinite(m_start);
     addSourceWork(world);
     m_startEnergies = world.energies();

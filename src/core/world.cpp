@@ -503,6 +503,12 @@ double World::totalEnergy() const
     return e;
 }
 
+bool World::hasEnergySources() const
+{
+    return std::any_of(m_forces.objects.begin(), m_forces.objects.end(),
+                       [](const auto& force) { return force->addsEnergy(); });
+}
+
 std::vector<Wrench> World::sourceWrenches(std::span<const State> at) const
 {
     const std::size_t n = m_bodies.objects.size();

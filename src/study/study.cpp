@@ -367,7 +367,7 @@ StudyResult runStudy(const StudyConfig& config, const std::function<void(long, l
     result.omegaMax = highestFrequency(config.scene.world);
     result.followsSystem = followsSystem(config.scene.world);
     result.exactActsAsReflect = allMovingCoupled(config.scene.world);
-    result.lessSourceWork = BlowUpWatch(config.scene.world).hasSources();
+    result.lessSourceWork = config.scene.world.hasEnergySources();
     std::vector<Task> referenceTasks;
     if (result.followsSystem) {
         // A quarter of the smallest dt: the reference's own error is then a quarter (order 1) or
