@@ -10,7 +10,7 @@ namespace pba::detail {
 /// side makes the contact frictionless.
 inline double combinedFriction(double a, double b) { return std::sqrt(a * b); }
 
-/// A rigid body's contact (with another body or a ball): the larger restitution.
+/// Box2D's: the larger restitution, so that a bouncy ball bounces off a dead box.
 inline double combinedRestitution(double a, double b) { return std::max(a, b); }
 
 } // namespace pba::detail

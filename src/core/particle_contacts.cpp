@@ -19,7 +19,7 @@ void BallContacts::startContacts(double dt)
         m_contacts[k] = newContact(dvec3(b.x - a.x));
         const double w = a.inverseMass + b.inverseMass;
         BallPairRule<double>& rule = m_rules[k];
-        rule = {a.radius + b.radius, a.inverseMass / w, b.inverseMass / w, std::sqrt(a.cor * b.cor),
+        rule = {a.radius + b.radius, a.inverseMass / w, b.inverseMass / w, combinedRestitution(a.cor, b.cor),
                 combinedFriction(a.friction, b.friction), std::max(a.restingSpeed, b.restingSpeed), dt};
         const std::pair<std::size_t, std::size_t> key(bodies[pairs[k].first], bodies[pairs[k].second]);
         const auto old = std::lower_bound(m_remembered.begin(), m_remembered.end(), key,

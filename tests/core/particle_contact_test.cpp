@@ -52,6 +52,19 @@ TEST(ParticleContacts, UnequalBallsHeadOnKeepMomentumAndEnergy)
     EXPECT_NEAR(world.body(1).getVel().x, ((m2 - m1) * v2 + 2 * m1 * v1) / (m1 + m2), 1e-9);
 }
 
+TEST(ParticleContacts, UnequalRestitutionsCombineAsTwoBodiesDo)
+{
+    // The larger restitution, as between rigid bodies (docs/scenes.md): a bouncy ball (e = 1)
+    // meeting a dead one (e = 0) head-on rebounds elastically, and so would a bouncy die.
+    World world;
+    world.addParticle(ball(dvec3(-1, 1, 0), dvec3(1, 0, 0), 0.5, 0.1, 1.0));
+    world.addParticle(ball(dvec3(1, 1, 0), dvec3(-1.5, 0, 0), 0.5, 0.1, 0.0));
+    for (int step = 0; step < 1000; ++step)
+        world.step(1e-3);
+    EXPECT_NEAR(world.body(0).getVel().x, -1.5, 1e-9);
+    EXPECT_NEAR(world.body(1).getVel().x, 1.0, 1e-9);
+}
+
 TEST(ParticleContacts, ABallRestingOnABallRestingOnTheFloorStaysPut)
 {
     World world;
