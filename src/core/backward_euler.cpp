@@ -48,46 +48,41 @@ dvec3 springSum(const SpringSystem& springs, const std::vector<dvec3>& perSpring
     return sum;
 }
 
-/// Solves the dense system a x = r (a row-major, r.size() rows) by Gaussian elimination with
-/// partial pivoting; r becomes x (a bearer's 6 x 6 preconditioner, a column at a time).
-void solveDense(std::vector<double>& a, std::vector<double>& r)
-{
-    const std::size_t n = r.size();
-    for (std::size_t c = 0; c < n; ++c) {
-        std::size_t pivot = c;
-        for (std::size_t i = c + 1; i < n; ++i)
-            if (std::abs(a[i * n + c]) > std::abs(a[pivot * n + c]))
-                pivot = i;
-        if (pivot != c) {
-            for (std::size_t j = 0; j < n; ++j)
-                std::swap(a[c * n + j], a[pivot * n + j]);
-            std::swap(r[c], r[pivot]);
-        }
-        for (std::size_t i = c + 1; i < n; ++i) {
-            const double f = a[i * n + c] / a[c * n + c];
-            for (std::size_t j = c; j < n; ++j)
-                a[i * n + j] -= f * a[c * n + j];
-            r[i] -= f * r[c];
-        }
-    }
-    for (std::size_t c = n; c-- > 0;) {
-        for (std::size_t j = c + 1; j < n; ++j)
-            r[c] -= a[c * n + j] * r[j];
-        r[c] /= a[c * n + c];
-    }
-}
-
 } // namespace
 
 Mat6 Mat6::inverse() const
 {
+    // Gauss-Jordan elimination with partial pivoting on [A | I], factored once for all six
+    // columns (a bearer's 6 x 6 preconditioner).
+    std::array<double, 36> a = m;
     Mat6 result;
+    for (std::size_t i = 0; i < 6; ++i)
+        result.m[i * 7] = 1.0;
+    double* r = result.m.data();
     for (std::size_t c = 0; c < 6; ++c) {
-        std::vector<double> a(m.begin(), m.end()), r(6, 0.0);
-        r[c] = 1.0;
-        solveDense(a, r);
-        for (std::size_t i = 0; i < 6; ++i)
-            result.m[i * 6 + c] = r[i];
+        std::size_t pivot = c;
+        for (std::size_t i = c + 1; i < 6; ++i)
+            if (std::abs(a[i * 6 + c]) > std::abs(a[pivot * 6 + c]))
+                pivot = i;
+        if (pivot != c)
+            for (std::size_t j = 0; j < 6; ++j) {
+                std::swap(a[c * 6 + j], a[pivot * 6 + j]);
+                std::swap(r[c * 6 + j], r[pivot * 6 + j]);
+            }
+        const double inv = 1.0 / a[c * 6 + c];
+        for (std::size_t j = 0; j < 6; ++j) {
+            a[c * 6 + j] *= inv;
+            r[c * 6 + j] *= inv;
+        }
+        for (std::size_t i = 0; i < 6; ++i) {
+            const double f = a[i * 6 + c];
+            if (i == c || f == 0.0)
+                continue;
+            for (std::size_t j = 0; j < 6; ++j) {
+                a[i * 6 + j] -= f * a[c * 6 + j];
+                r[i * 6 + j] -= f * r[c * 6 + j];
+            }
+        }
     }
     return result;
 }

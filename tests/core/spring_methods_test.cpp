@@ -17,6 +17,8 @@
 #include "pba/swarm.hpp"
 #include "pba/world.hpp"
 
+#include "backward_euler.hpp"
+
 using namespace pba;
 
 namespace {
@@ -78,6 +80,23 @@ bool sameBits(const std::vector<State>& a, const std::vector<State>& b)
 //     (s1, v1) = (s0 + dt v0, v0 - dt omega^2 s0) / (1 + omega^2 dt^2),
 // a rotation in (omega s, v) scaled by 1 / sqrt(1 + omega^2 dt^2): the energy falls by exactly
 // 1 / (1 + omega^2 dt^2) every step. Along its own axis the linearised spring is exact.
+TEST(BackwardEuler, ABearersPreconditionerInvertsToRounding)
+{
+    // A body's mass and inertia with two held members' outer products: symmetric positive
+    // definite, as every bearer's matrix is; its inverse times it is the identity.
+    detail::BodyMass body{20.0, dmat3(dvec3(0.7, 0.1, -0.05), dvec3(0.1, 0.9, 0.2), dvec3(-0.05, 0.2, 1.3))};
+    detail::Mat6 a(body);
+    a.addOuter({dvec3(0, 1, 0), dvec3(0.3, 0, -0.4)}, 5e3);
+    a.addOuter({dvec3(0.2, 1, 0), dvec3(-0.3, 0.1, 0.4)}, 2e3);
+    const detail::Mat6 inverse = a.inverse();
+    for (int c = 0; c < 6; ++c) {
+        detail::Twist e;
+        (c < 3 ? e.linear : e.angular)[c % 3] = 1.0;
+        const detail::Twist back = a.times(inverse.times(e));
+        EXPECT_NEAR(glm::length(back.linear - e.linear) + glm::length(back.angular - e.angular), 0.0, 1e-12) << c;
+    }
+}
+
 TEST(BackwardEuler, FollowsItsDiscreteRecurrenceAndDampsByOnePlusOmegaDtSquared)
 {
     const double omega = 30.0, dt = 0.01, s0 = 0.1;
