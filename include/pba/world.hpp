@@ -486,6 +486,10 @@ private:
     void carryJoinedBodies(const std::vector<std::size_t>& members, detail::SpringSolver& solver) const;
     /// After the solve: what the springs did to each carried mass, as an impulse on its body.
     void pushCarriedBodies(detail::SpringSolver& solver, double dt);
+    /// A rope's or cloth's impulse and moment on rigid body `body` (a world index) before the
+    /// body's own step, which then starts from the changed velocities, awake. (A bearer's pushes
+    /// come at the end of its free step instead: rubAndPushBearers.)
+    void pushBeforeItsStep(std::size_t body, const dvec3& impulse, const dvec3& moment);
     /// The system's start-of-step state into the particle systems' scratch (x and v).
     void startSystem(const std::vector<std::size_t>& members);
     /// Every force on the system's members at the states (x, v) (at m_bodies.trial if x is

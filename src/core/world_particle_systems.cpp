@@ -396,11 +396,17 @@ void World::pushCarriedBodies(detail::SpringSolver& solver, double dt)
     // before its own step.
     const CoupledScratch& s = m_particleSystems.scratch;
     for (const auto& c : solver.carried) {
-        auto& body = static_cast<RigidBody&>(*m_bodies.objects[c.body]);
         const dvec3 impulse = c.mass * (s.v[c.member] - c.before - gravity() * dt);
-        body.setVel(body.getVel() + impulse / body.getMass());
-        body.setAngularMomentum(body.getAngularMomentum() + glm::cross(c.arm, impulse));
+        pushBeforeItsStep(c.body, impulse, glm::cross(c.arm, impulse));
     }
+}
+
+void World::pushBeforeItsStep(std::size_t body, const dvec3& impulse, const dvec3& moment)
+{
+    auto& b = static_cast<RigidBody&>(*m_bodies.objects[body]);
+    b.setVel(b.getVel() + impulse / b.getMass());
+    b.setAngularMomentum(b.getAngularMomentum() + moment);
+    m_rigid.system->keepAwake(m_bodies.rigidIndex[body]);
 }
 
 void World::holdOnBalls(const std::vector<std::size_t>& members, std::span<dvec3> heldOn, double dt) const
@@ -461,12 +467,8 @@ detail::XpbdRigidContacts* World::startXpbdRigidContacts(const std::vector<std::
 void World::giveXpbdReactions(const detail::XpbdRigidContacts& bodies)
 {
     // What the substeps gave the bodies starts their own step; pushed, they stay awake.
-    for (const auto& r : bodies.reactions()) {
-        auto& b = static_cast<RigidBody&>(*m_bodies.objects[r.body]);
-        b.setVel(b.getVel() + r.impulse / b.getMass());
-        b.setAngularMomentum(b.getAngularMomentum() + r.moment);
-        m_rigid.system->keepAwake(m_bodies.rigidIndex[r.body]);
-    }
+    for (const auto& r : bodies.reactions())
+        pushBeforeItsStep(r.body, r.impulse, r.moment);
 }
 
 void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted, double dt)
