@@ -22,11 +22,13 @@ namespace pba {
 ///    stable method near its stability limit swings further. One that rises more than
 ///    kEnergyGrowthLimit times the energy scale above its start and that work has left the
 ///    physics behind: a BlowUpError naming the body that gained the most. The sources' work over
-///    a step is their wrench (World::sourceWrenches) as the body's integrator weighs the step's
-///    start, middle and end, against the mean of the step's start and end velocities (for
-///    forward and semi-implicit Euler and velocity Verlet, the kinetic energy they give the
-///    bodies, to rounding; for RK4, whose stages are its own, the middle is the mean of the start
-///    and end states), so check after every step. A fixed body that the program has moved drives
+///    a step, on a particle that moves alone, is exact: each stretch of its flight was booked as
+///    its method took it (World::lastStepSourceWork), so bounces within the step and a force
+///    that jumps within it are counted as they happened. On any other body it is their wrench
+///    (World::sourceWrenches) as the body's integrator weighs the step's start, middle and end,
+///    against the mean of the step's start and end velocities (exact for forward and
+///    semi-implicit Euler; for RK4, whose stages are its own, the middle is the mean of the start
+///    and end states). Check after every step. A fixed body that the program has moved drives
 ///    the system with work no force accounts for: then energy growth is not checked.
 /// The energy scale is the moving bodies' kinetic energy at the start plus the size of each one's
 /// potential energy, plus what lifting each by kLiftHeight in the world's gravity takes (so that

@@ -10,6 +10,7 @@
 // would silently lower their order.
 #include <array>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -126,6 +127,22 @@ inline void rk4(X& x, X& v, T dt, Accel&& accel)
     const X k4v = accel(x + k3x * dt, k4x);
     x += (k1x + T(2) * (k2x + k3x) + k4x) * sixth;
     v += (k1v + T(2) * (k2v + k3v) + k4v) * sixth;
+}
+
+/// The weight of each of the method's evaluations of accel, in the order integrate() makes them,
+/// in its change of velocity: v(t+dt) - v(t) = dt sum_k w_k a_k, exactly. So a force's share of
+/// the step's kinetic energy change is dt sum_k w_k F_k . (v(t) + v(t+dt)) / 2 (the blow-up
+/// watch's work of an energy source).
+inline std::span<const double> stageWeights(Integrator integrator)
+{
+    static constexpr std::array<double, 1> one{1.0};
+    static constexpr std::array<double, 2> verlet{0.5, 0.5};
+    static constexpr std::array<double, 4> rk{1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
+    switch (translationalMethod(integrator)) {
+    case Integrator::VelocityVerlet: return verlet;
+    case Integrator::RK4: return rk;
+    default: return one; // (forward and semi-implicit Euler, and a point with no spring on a spring method)
+    }
 }
 
 /// One step of the named integrator.

@@ -297,6 +297,12 @@ public:
     /// when no force may add energy (swarms not included, as in totalEnergy). Given `states` (one
     /// per body), at those positions and velocities instead, each body turned as it is now.
     std::vector<Wrench> sourceWrenches(std::span<const State> states = {}) const;
+    /// The work the energy sources did over the last step on each particle that moves alone (no
+    /// spring joins it), exact: each stretch of its free flight booked as its integrator took it,
+    /// every stage weighing the sources' force as it weighs the whole force (stageWeights), so
+    /// that this is their share of the kinetic energy the flight gave. NaN for every other body
+    /// (rigid, fixed, a member of a system); empty in a world without an energy source.
+    std::span<const double> lastStepSourceWork() const { return m_bodies.sourceWork; }
     /// Whether body i is integrated in a coupled group: it moves, and a force couples it to a
     /// body, or it takes implicit-euler or xpbd (whose step is a system's, joined by springs or not).
     bool isCoupled(std::size_t i) const;
@@ -332,6 +338,8 @@ private:
         /// Each rigid body's acceleration at the start of its last free step.
         std::vector<dvec3> rigidAcc;
         std::vector<std::uint64_t> bounces;
+        /// The energy sources' work over the last step (lastStepSourceWork).
+        std::vector<double> sourceWork;
         /// The lowest index of a body whose state the step made not finite; bodyCount() if none.
         std::size_t firstNonFinite = 0;
         /// The lowest index of a rigid body the step left with its centre inside a surface;
@@ -454,6 +462,8 @@ private:
     /// along its own path.
     void integrateIndependent(const std::vector<std::size_t>& bodies, double dt);
     dvec3 aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const;
+    /// The force of the energy sources (Force::addsEnergy) on body i at state (x, v).
+    dvec3 sourceForce(std::size_t i, const dvec3& x, const dvec3& v) const;
     /// Phase 4 (ParticleSystems, Bodies, Forces, Surfaces): each particle system with its
     /// method, then collideAndStore.
     void integrateParticleSystems(const Coupling& coupling, double dt);

@@ -96,8 +96,14 @@ void BlowUpWatch::addSourceWork(const World& world)
         halfway = world.sourceWrenches(mean);
     }
     const double dt = world.time() - m_time;
+    // A particle moving alone: as its flight was booked, exact. Any other body: the rule below.
+    const std::span<const double> booked = world.lastStepSourceWork();
     std::vector<double> work(n, 0.0);
     detail::forEachIndex(started ? n : 0, [&](std::size_t i) {
+        if (i < booked.size() && !std::isnan(booked[i])) {
+            work[i] = booked[i];
+            return;
+        }
         // The force the body's method moved it with over the step, against its mean velocity.
         const StepWeights w = weights[i];
         const Wrench mid = halfway.empty() ? Wrench{} : halfway[i];

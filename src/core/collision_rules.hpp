@@ -272,9 +272,29 @@ inline std::span<const PlaneT<T>> ballPlanes(std::span<const PlaneT<T>> planes, 
 /// zero-length times. With e < 1 a rebound too weak to leave the surface for one full
 /// step (slower than |a.n| dt) becomes such a contact; with e = 1 no energy may be
 /// lost, so every rebound is kept.
-template <class T, class Accel>
+/// What a step's caller may learn of each stretch of free flight along the body's actual path:
+/// wrap(accel) is the acceleration the integrator then takes (so the caller sees its stages), and
+/// close(dt, v0, v1) ends the stretch. The World's book of the energy sources' work is one; by
+/// default nothing is kept, at no cost.
+struct NoFlightBook {
+    template <class Accel>
+    Accel& wrap(Accel& accel) const { return accel; }
+    template <class T>
+    void close(T, const Vec3<T>&, const Vec3<T>&) const {}
+};
+
+/// One stretch of free flight of the actual path, told to the book.
+template <class T, class Accel, class Book>
+inline void flyBooked(Integrator integrator, Vec3<T>& x, Vec3<T>& v, T dt, Accel& accel, Book& book)
+{
+    const Vec3<T> v0 = v;
+    integrate(integrator, x, v, dt, book.wrap(accel));
+    book.close(dt, v0, v);
+}
+
+template <class T, class Accel, class Book = NoFlightBook>
 inline int stepExact(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
-                     Vec3<T>& v, T dt, Accel&& accel, T friction = T(0))
+                     Vec3<T>& v, T dt, Accel&& accel, T friction = T(0), Book&& book = Book{})
 {
     using namespace collision_detail;
     constexpr std::size_t kMaxPlanes = 8;
@@ -315,12 +335,12 @@ inline int stepExact(Integrator integrator, std::span<const PlaneT<T>> planes, T
             }
         }
         if (!tau) {
-            integrate(integrator, x, v, remaining, constrained);
+            flyBooked(integrator, x, v, remaining, constrained, book);
             remaining = T(0);
             break;
         }
         if (*tau > T(0))
-            integrate(integrator, x, v, *tau, constrained);
+            flyBooked(integrator, x, v, *tau, constrained, book);
         const PlaneT<T>& plane = planes[hit];
         snapOnto(plane, x);
         const T vn = glm::dot(plane.normal, v);
@@ -507,18 +527,19 @@ inline int stepClamp(Integrator integrator, std::span<const PlaneT<T>> planes, T
 /// `friction` is the Coulomb mu against the planes (0: none, and the step is exactly the
 /// frictionless one). The exact response rubs while the body rests on a plane and at each bounce;
 /// reflect and clamp rub with their push's impulse (afterStepWithFriction).
-template <class T, class Accel>
+template <class T, class Accel, class Book = NoFlightBook>
 inline int stepWithCollisions(CollisionResponse response, Integrator integrator, std::span<const PlaneT<T>> planes,
-                              T restitution, Vec3<T>& x, Vec3<T>& v, T dt, Accel&& accel, T friction = T(0))
+                              T restitution, Vec3<T>& x, Vec3<T>& v, T dt, Accel&& accel, T friction = T(0),
+                              Book&& book = Book{})
 {
     if (planes.empty()) {
-        integrate(integrator, x, v, dt, accel);
+        flyBooked(integrator, x, v, dt, accel, book);
         return 0;
     }
     if (response == CollisionResponse::Exact)
-        return stepExact(integrator, planes, restitution, x, v, dt, accel, friction);
+        return stepExact(integrator, planes, restitution, x, v, dt, accel, friction, book);
     const Vec3<T> start = x, startVel = v;
-    integrate(integrator, x, v, dt, accel);
+    flyBooked(integrator, x, v, dt, accel, book);
     // The acceleration at the start again only when the rule pushed: most steps it does not.
     const bool pushed = !collision_detail::insideAll(planes, x);
     const T restingSpeed = pushed ? glm::length(accel(start, startVel)) * dt : T(0);

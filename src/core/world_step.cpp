@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <span>
 
 #include <fmt/format.h>
 
@@ -170,8 +172,52 @@ dvec3 World::aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) co
     return f / b.getMass();
 }
 
+dvec3 World::sourceForce(std::size_t i, const dvec3& x, const dvec3& v) const
+{
+    const Body& b = *m_bodies.objects[i];
+    dvec3 f(0.0);
+    for (const auto& force : m_forces.objects)
+        if (force->addsEnergy())
+            f += force->force(i, b, x, v);
+    return f;
+}
+
+namespace {
+
+/// The energy sources' work on a body moving alone, stretch by stretch of its actual free
+/// flight (stepWithCollisions' book): each stage of its integrator weighs the sources' force
+/// as it weighs the whole force, so the work is their exact share of the kinetic energy
+/// m (v1 - v0) . (v0 + v1) / 2 = dt sum_k w_k F_k . (v0 + v1) / 2 that the stretch gave.
+template <class Source>
+struct SourceWorkBook {
+    const Source& source;
+    std::span<const double> weights;
+    std::size_t stage = 0;
+    dvec3 impulse{0.0};
+    double work = 0.0;
+
+    template <class Accel>
+    auto wrap(Accel& accel)
+    {
+        stage = 0;
+        impulse = dvec3(0.0);
+        return [this, &accel](const dvec3& x, const dvec3& v) {
+            impulse += weights[std::min(stage++, weights.size() - 1)] * source(x, v);
+            return accel(x, v);
+        };
+    }
+    void close(double dt, const dvec3& v0, const dvec3& v1) { work += dt * glm::dot(impulse, 0.5 * (v0 + v1)); }
+};
+
+} // namespace
+
 void World::integrateIndependent(const std::vector<std::size_t>& bodies, double dt)
 {
+    const bool book = hasEnergySources();
+    if (book)
+        m_bodies.sourceWork.assign(m_bodies.objects.size(), std::numeric_limits<double>::quiet_NaN());
+    else
+        m_bodies.sourceWork.clear();
     for (const std::size_t i : bodies) {
         Body& b = *m_bodies.objects[i];
         if (b.isFixed()) {
@@ -193,8 +239,17 @@ void World::integrateIndependent(const std::vector<std::size_t>& bodies, double 
         State s = b.getState();
         std::array<Plane, kMaxBallPlanes> room;
         const auto planes = ballPlanes(std::span<const Plane>(m_surfaces.planes), m_bodies.radii[i], room);
-        const int bounces = stepWithCollisions(m_surfaces.response, b.getIntegrator(), planes, b.getCor(), s.pos,
-                                               s.vel, dt, accel, m_bodies.frictions[i]);
+        int bounces = 0;
+        if (book) {
+            const auto source = [this, i](const dvec3& x, const dvec3& v) { return sourceForce(i, x, v); };
+            SourceWorkBook<decltype(source)> work{source, stageWeights(b.getIntegrator())};
+            bounces = stepWithCollisions(m_surfaces.response, b.getIntegrator(), planes, b.getCor(), s.pos, s.vel, dt,
+                                         accel, m_bodies.frictions[i], work);
+            m_bodies.sourceWork[i] = work.work;
+        } else {
+            bounces = stepWithCollisions(m_surfaces.response, b.getIntegrator(), planes, b.getCor(), s.pos, s.vel, dt,
+                                         accel, m_bodies.frictions[i]);
+        }
         m_bodies.bounces[i] += static_cast<std::uint64_t>(bounces);
         b.setState(s);
         b.setAcc(startAcc);

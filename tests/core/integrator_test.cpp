@@ -3,7 +3,9 @@
 // orders of convergence.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <span>
 #include <vector>
 
 #include "pba/forces.hpp"
@@ -63,6 +65,27 @@ TEST(Integrators, NamesRoundTrip)
 // differ in which velocity moves the position: forward Euler uses v_{k}, so
 // y_n = y0 - g dt^2 (0 + 1 + ... + n-1) = y0 - g dt^2 n(n-1)/2; semi-implicit uses
 // v_{k+1}, so y_n = y0 - g dt^2 n(n+1)/2.
+TEST(Integrators, StageWeightsAreEachMethodsOwn)
+{
+    // v(t+dt) - v(t) = dt sum_k w_k a_k over the method's own evaluations, for a force that
+    // depends on position and velocity (what the blow-up watch books a source's work by).
+    for (const Integrator method : kEveryIntegrator) {
+        dvec3 x(0.3, -0.2, 1.0), v(1.0, 0.5, -2.0);
+        const dvec3 v0 = v;
+        const std::span<const double> w = stageWeights(method);
+        dvec3 weighted(0.0);
+        std::size_t calls = 0;
+        integrate(method, x, v, 0.05, [&](const dvec3& px, const dvec3& pv) {
+            const dvec3 a = dvec3(std::sin(3.0 * px.y), px.x * pv.z, -pv.x * pv.x) - 4.0 * px;
+            EXPECT_LT(calls, w.size()) << integratorName(method);
+            weighted += w[std::min(calls++, w.size() - 1)] * a;
+            return a;
+        });
+        EXPECT_EQ(calls, w.size()) << integratorName(method);
+        EXPECT_NEAR(glm::length(v - v0 - 0.05 * weighted), 0.0, 1e-15) << integratorName(method);
+    }
+}
+
 TEST(Integrators, EulerVariantsFollowTheirDiscreteFreeFallRecurrences)
 {
     for (double dt : {0.0005, 0.01, 0.1}) {
