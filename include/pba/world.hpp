@@ -363,6 +363,7 @@ private:
         /// Every body's force and torque at the current stage (Accumulators), and the forces'
         /// working memory (Accumulators::scratch).
         std::vector<dvec3> sums, torques, scratch;
+        std::vector<dvec3> sourceSums; ///< the energy sources' share of sums, when booked
     };
     /// The bodies integrated together: the moving bodies some force couples, by integrator (one
     /// system each), and the others. Kept from step to step (a cloth's 97,000
@@ -380,6 +381,9 @@ private:
     struct CoupledScratch {
         Vec3Array x, v, acc; ///< the system's state, and its acceleration at the start
         std::vector<double> mass; ///< the spring systems': each member's
+        /// Each member's impulse of the energy sources over the step, its stages weighed as the
+        /// method weighs them (lastStepSourceWork).
+        std::vector<dvec3> sourceImpulse;
     };
     /// The particles integrated as systems: the coupling, and what each method keeps.
     struct ParticleSystems {
@@ -464,6 +468,9 @@ private:
     dvec3 aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const;
     /// The force of the energy sources (Force::addsEnergy) on body i at state (x, v).
     dvec3 sourceForce(std::size_t i, const dvec3& x, const dvec3& v) const;
+    /// Phase 2b: the book of the sources' work over this step opened (every body NaN until its
+    /// integration books it), in a world with an energy source; closed (empty) in one without.
+    void openSourceBook();
     /// Phase 4 (ParticleSystems, Bodies, Forces, Surfaces): each particle system with its
     /// method, then collideAndStore.
     void integrateParticleSystems(const Coupling& coupling, double dt);
@@ -505,6 +512,10 @@ private:
     /// Every force on the system's members at the states (x, v) (at m_bodies.trial if x is
     /// empty), every other body at its start-of-step state: the members' sums in m_forces.sums.
     /// A spring of `constraints`, if given, is left out (xpbd's constraints).
+    /// The sources' forces on the system's members at the stage sumSystemForces just summed,
+    /// times `weight`, added to their impulses (CoupledScratch::sourceImpulse).
+    void bookSourceStage(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                         double weight);
     void sumSystemForces(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
                          std::span<const dvec3> x, std::span<const dvec3> v, const detail::SpringSystem* constraints);
     /// The spring solver of implicit-euler (or xpbd) made for the system, the system started

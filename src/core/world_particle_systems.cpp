@@ -140,10 +140,17 @@ void World::integrateCoupled(Integrator integrator, const std::vector<std::size_
     const std::size_t n = members.size();
     CoupledScratch& s = m_particleSystems.scratch;
     startSystem(members);
+    const bool book = !m_bodies.sourceWork.empty();
+    if (book)
+        s.sourceImpulse.assign(n, dvec3(0.0));
+    const std::span<const double> weights = stageWeights(integrator);
+    std::size_t stage = 0;
     bool first = true;
     auto accel = [&](const Vec3Array& xs, const Vec3Array& vs) {
         sumSystemForces(members, wanted, std::span<const dvec3>(xs.begin(), n), std::span<const dvec3>(vs.begin(), n),
                         nullptr);
+        if (book)
+            bookSourceStage(members, wanted, weights[std::min(stage++, weights.size() - 1)]);
         Vec3Array a(n);
         // The first stage is at the start state: the bodies' acceleration, kept in s.acc.
         detail::forEachIndex(n, [&](std::size_t k) {
@@ -155,7 +162,30 @@ void World::integrateCoupled(Integrator integrator, const std::vector<std::size_
         return a;
     };
     integrate(integrator, s.x, s.v, dt, accel);
+    if (book) // (the free flight's end: the contacts after it are not the sources')
+        detail::forEachIndex(n, [&](std::size_t k) {
+            const dvec3 mean = 0.5 * (m_bodies.previous[members[k]].vel + s.v[k]);
+            m_bodies.sourceWork[members[k]] = dt * glm::dot(s.sourceImpulse[k], mean);
+        });
     collideAndStore(members, dt);
+}
+
+void World::bookSourceStage(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                            double weight)
+{
+    // The sources once more, alone, where sumSystemForces left the members (m_bodies.trial): the
+    // sums themselves keep their order, so a world's results do not depend on the book.
+    m_forces.sourceSums.resize(m_bodies.objects.size());
+    detail::forEachIndex(members.size(), [&](std::size_t k) { m_forces.sourceSums[members[k]] = dvec3(0.0); });
+    const BodyStates in{m_bodies.objects, m_bodies.trial, wanted, m_bodies.masses, {}, m_bodies.radii};
+    Accumulators out{m_forces.sourceSums, {}, &m_forces.scratch};
+    for (const auto& force : m_forces.objects)
+        if (force->addsEnergy())
+            force->accumulate(in, out);
+    CoupledScratch& s = m_particleSystems.scratch;
+    detail::forEachIndex(members.size(), [&](std::size_t k) {
+        s.sourceImpulse[k] += weight * m_forces.sourceSums[members[k]];
+    });
 }
 
 void World::collideAndStore(const std::vector<std::size_t>& members, double dt)

@@ -35,6 +35,7 @@ void World::step(double dt)
         m_bodies.storePreviousStates();
         m_swarms.keepForRollback();
         const Coupling& coupling = couple(); // a mixed coupled group throws before anything moves
+        openSourceBook();
         integrateIndependent(coupling.independent, dt);
         integrateParticleSystems(coupling, dt);
         collideBalls(dt);
@@ -211,13 +212,17 @@ struct SourceWorkBook {
 
 } // namespace
 
-void World::integrateIndependent(const std::vector<std::size_t>& bodies, double dt)
+void World::openSourceBook()
 {
-    const bool book = hasEnergySources();
-    if (book)
+    if (hasEnergySources())
         m_bodies.sourceWork.assign(m_bodies.objects.size(), std::numeric_limits<double>::quiet_NaN());
     else
         m_bodies.sourceWork.clear();
+}
+
+void World::integrateIndependent(const std::vector<std::size_t>& bodies, double dt)
+{
+    const bool book = !m_bodies.sourceWork.empty();
     for (const std::size_t i : bodies) {
         Body& b = *m_bodies.objects[i];
         if (b.isFixed()) {
