@@ -22,9 +22,10 @@ namespace pba {
 ///    stable method near its stability limit swings further. One that rises more than
 ///    kEnergyGrowthLimit times the energy scale above its start and that work has left the
 ///    physics behind: a BlowUpError naming the body that gained the most. The sources' work over
-///    a step, on a particle that moves alone, is exact: each stretch of its flight was booked as
-///    its method took it (World::lastStepSourceWork), so bounces within the step and a force
-///    that jumps within it are counted as they happened. On any other body it is their wrench
+///    a step, on a particle that moves alone or in a system of an explicit method, is exact:
+///    each stretch of its flight was booked as its method took it (World::lastStepSourceWork),
+///    so bounces within the step and a force that jumps within it are counted as they happened.
+///    On any other body (rigid, of an implicit-euler or xpbd system) it is their wrench
 ///    (World::sourceWrenches) as the body's integrator weighs the step's start, middle and end,
 ///    against the mean of the step's start and end velocities (exact for forward and
 ///    semi-implicit Euler; for RK4, whose stages are its own, the middle is the mean of the start
