@@ -85,25 +85,37 @@ void BlowUpWatch::addSourceWork(const World& world)
         if (world.isRigid(i))
             spins[i] = static_cast<const RigidBody&>(body).getAngularVelocity();
     });
-    std::vector<Wrench> wrenches = world.sourceWrenches(states);
-    const bool started = m_wrenches.size() == n;
-    // The middle of the step, where a method's stages look (RK4's), as the mean of its ends.
-    std::vector<Wrench> halfway;
-    if (started && std::any_of(weights.begin(), weights.end(), [](const StepWeights& w) { return w.middle != 0.0; })) {
-        std::vector<State> mean(n);
-        for (std::size_t i = 0; i < n; ++i)
-            mean[i] = State{0.5 * (m_states[i].pos + states[i].pos), 0.5 * (m_states[i].vel + states[i].vel)};
-        halfway = world.sourceWrenches(mean);
+    const bool started = m_states.size() == n;
+    // A body whose flight its integration booked (World::lastStepSourceWork) is exact. The rule
+    // below weighs the sources' wrenches for every other moving body, evaluated only if there is
+    // one (and at the start, for a first step that does not book them all).
+    const std::span<const double> booked = world.lastStepSourceWork();
+    const auto isBooked = [&](std::size_t i) { return started && i < booked.size() && !std::isnan(booked[i]); };
+    bool weigh = !started;
+    for (std::size_t i = 0; i < n && !weigh; ++i)
+        weigh = !world.body(i).isFixed() && !isBooked(i);
+    std::vector<Wrench> wrenches, halfway;
+    if (weigh) {
+        wrenches = world.sourceWrenches(states);
+        if (started && m_wrenches.size() != n) // (the last step's were all booked)
+            m_wrenches = world.sourceWrenches(m_states);
+        // The middle of the step, where a method's stages look (RK4's), as the mean of its ends.
+        if (started && std::any_of(weights.begin(), weights.end(), [](const StepWeights& w) { return w.middle != 0.0; })) {
+            std::vector<State> mean(n);
+            for (std::size_t i = 0; i < n; ++i)
+                mean[i] = State{0.5 * (m_states[i].pos + states[i].pos), 0.5 * (m_states[i].vel + states[i].vel)};
+            halfway = world.sourceWrenches(mean);
+        }
     }
     const double dt = world.time() - m_time;
-    // A particle moving alone: as its flight was booked, exact. Any other body: the rule below.
-    const std::span<const double> booked = world.lastStepSourceWork();
     std::vector<double> work(n, 0.0);
     detail::forEachIndex(started ? n : 0, [&](std::size_t i) {
-        if (i < booked.size() && !std::isnan(booked[i])) {
+        if (isBooked(i)) {
             work[i] = booked[i];
             return;
         }
+        if (!weigh) // (a fixed body: it does not move)
+            return;
         // The force the body's method moved it with over the step, against its mean velocity.
         const StepWeights w = weights[i];
         const Wrench mid = halfway.empty() ? Wrench{} : halfway[i];
