@@ -297,11 +297,12 @@ public:
     /// when no force may add energy (swarms not included, as in totalEnergy). Given `states` (one
     /// per body), at those positions and velocities instead, each body turned as it is now.
     std::vector<Wrench> sourceWrenches(std::span<const State> states = {}) const;
-    /// The work the energy sources did over the last step on each particle that moves alone (no
-    /// spring joins it), exact: each stretch of its free flight booked as its integrator took it,
-    /// every stage weighing the sources' force as it weighs the whole force (stageWeights), so
-    /// that this is their share of the kinetic energy the flight gave. NaN for every other body
-    /// (rigid, fixed, a member of a system); empty in a world without an energy source.
+    /// The work the energy sources did over the last step on each particle that moves alone or in
+    /// a system of an explicit method (forward or semi-implicit Euler, velocity Verlet, RK4),
+    /// exact: each stretch of its free flight booked as its integrator took it, every stage
+    /// weighing the sources' force as it weighs the whole force (stageWeights), so that this is
+    /// their share of the kinetic energy the flight gave. NaN for every other body (rigid, fixed,
+    /// of an implicit-euler or xpbd system); empty in a world without an energy source.
     std::span<const double> lastStepSourceWork() const { return m_bodies.sourceWork; }
     /// Whether body i is integrated in a coupled group: it moves, and a force couples it to a
     /// body, or it takes implicit-euler or xpbd (whose step is a system's, joined by springs or not).
@@ -462,15 +463,16 @@ private:
     /// key changed. Throws for a coupled pair that cannot share an integrator.
     const Coupling& couple();
     Coupling makeCoupling() const;
+    /// Phase 2b (Bodies, from Forces): the book of the energy sources' work over this step
+    /// (lastStepSourceWork) opened, every body NaN until its integration books it, in a world
+    /// with an energy source; closed (empty) in one without.
+    void openSourceBook();
     /// Phase 3 (Bodies, Forces, Surfaces): each body alone with its integrator, colliding
     /// along its own path.
     void integrateIndependent(const std::vector<std::size_t>& bodies, double dt);
     dvec3 aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const;
     /// The force of the energy sources (Force::addsEnergy) on body i at state (x, v).
     dvec3 sourceForce(std::size_t i, const dvec3& x, const dvec3& v) const;
-    /// Phase 2b: the book of the sources' work over this step opened (every body NaN until its
-    /// integration books it), in a world with an energy source; closed (empty) in one without.
-    void openSourceBook();
     /// Phase 4 (ParticleSystems, Bodies, Forces, Surfaces): each particle system with its
     /// method, then collideAndStore.
     void integrateParticleSystems(const Coupling& coupling, double dt);
@@ -509,13 +511,13 @@ private:
     void pushBeforeItsStep(std::size_t body, const dvec3& impulse, const dvec3& moment);
     /// The system's start-of-step state into the particle systems' scratch (x and v).
     void startSystem(const std::vector<std::size_t>& members);
-    /// Every force on the system's members at the states (x, v) (at m_bodies.trial if x is
-    /// empty), every other body at its start-of-step state: the members' sums in m_forces.sums.
-    /// A spring of `constraints`, if given, is left out (xpbd's constraints).
     /// The sources' forces on the system's members at the stage sumSystemForces just summed,
     /// times `weight`, added to their impulses (CoupledScratch::sourceImpulse).
     void bookSourceStage(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
                          double weight);
+    /// Every force on the system's members at the states (x, v) (at m_bodies.trial if x is
+    /// empty), every other body at its start-of-step state: the members' sums in m_forces.sums.
+    /// A spring of `constraints`, if given, is left out (xpbd's constraints).
     void sumSystemForces(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
                          std::span<const dvec3> x, std::span<const dvec3> v, const detail::SpringSystem* constraints);
     /// The spring solver of implicit-euler (or xpbd) made for the system, the system started

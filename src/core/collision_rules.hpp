@@ -264,14 +264,6 @@ inline std::span<const PlaneT<T>> ballPlanes(std::span<const PlaneT<T>> planes, 
     return {room.data(), n};
 }
 
-/// The exact response. Returns the number of bounces during the step.
-///
-/// Resting contact: a body on a surface whose net acceleration pushes into it is held
-/// there by removing the normal components of its velocity and acceleration (the
-/// surface's normal force), so it neither sinks nor bounces an endless number of
-/// zero-length times. With e < 1 a rebound too weak to leave the surface for one full
-/// step (slower than |a.n| dt) becomes such a contact; with e = 1 no energy may be
-/// lost, so every rebound is kept.
 /// What a step's caller may learn of each stretch of free flight along the body's actual path:
 /// wrap(accel) is the acceleration the integrator then takes (so the caller sees its stages), and
 /// close(dt, v0, v1) ends the stretch. The World's book of the energy sources' work is one; by
@@ -292,6 +284,14 @@ inline void flyBooked(Integrator integrator, Vec3<T>& x, Vec3<T>& v, T dt, Accel
     book.close(dt, v0, v);
 }
 
+/// The exact response. Returns the number of bounces during the step.
+///
+/// Resting contact: a body on a surface whose net acceleration pushes into it is held
+/// there by removing the normal components of its velocity and acceleration (the
+/// surface's normal force), so it neither sinks nor bounces an endless number of
+/// zero-length times. With e < 1 a rebound too weak to leave the surface for one full
+/// step (slower than |a.n| dt) becomes such a contact; with e = 1 no energy may be
+/// lost, so every rebound is kept.
 template <class T, class Accel, class Book = NoFlightBook>
 inline int stepExact(Integrator integrator, std::span<const PlaneT<T>> planes, T restitution, Vec3<T>& x,
                      Vec3<T>& v, T dt, Accel&& accel, T friction = T(0), Book&& book = Book{})
@@ -526,7 +526,8 @@ inline int stepClamp(Integrator integrator, std::span<const PlaneT<T>> planes, T
 /// One step of a body with the chosen response; returns the number of bounces.
 /// `friction` is the Coulomb mu against the planes (0: none, and the step is exactly the
 /// frictionless one). The exact response rubs while the body rests on a plane and at each bounce;
-/// reflect and clamp rub with their push's impulse (afterStepWithFriction).
+/// reflect and clamp rub with their push's impulse (afterStepWithFriction). `book` is told each
+/// stretch of free flight the step takes (NoFlightBook).
 template <class T, class Accel, class Book = NoFlightBook>
 inline int stepWithCollisions(CollisionResponse response, Integrator integrator, std::span<const PlaneT<T>> planes,
                               T restitution, Vec3<T>& x, Vec3<T>& v, T dt, Accel&& accel, T friction = T(0),
