@@ -470,9 +470,13 @@ private:
     /// Phase 3 (Bodies, Forces, Surfaces): each body alone with its integrator, colliding
     /// along its own path.
     void integrateIndependent(const std::vector<std::size_t>& bodies, double dt);
-    dvec3 aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const;
-    /// The force of the energy sources (Force::addsEnergy) on body i at state (x, v).
-    dvec3 sourceForce(std::size_t i, const dvec3& x, const dvec3& v) const;
+    /// The force on body i at state (x, v), and the energy sources' (Force::addsEnergy) share
+    /// of it, summed in one pass over the forces.
+    struct ForceOnBody {
+        dvec3 total{0.0};
+        dvec3 sources{0.0};
+    };
+    ForceOnBody forceOn(std::size_t i, const dvec3& x, const dvec3& v) const;
     /// Phase 4 (ParticleSystems, Bodies, Forces, Surfaces): each particle system with its
     /// method, then collideAndStore.
     void integrateParticleSystems(const Coupling& coupling, double dt);

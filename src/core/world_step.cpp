@@ -164,22 +164,16 @@ void World::Swarms::rollBack()
             objects[s]->restoreState(before[s]);
 }
 
-dvec3 World::aloneAcceleration(std::size_t i, const dvec3& x, const dvec3& v) const
+World::ForceOnBody World::forceOn(std::size_t i, const dvec3& x, const dvec3& v) const
 {
     const Body& b = *m_bodies.objects[i];
-    dvec3 f(0.0);
-    for (const auto& force : m_forces.objects)
-        f += force->force(i, b, x, v);
-    return f / b.getMass();
-}
-
-dvec3 World::sourceForce(std::size_t i, const dvec3& x, const dvec3& v) const
-{
-    const Body& b = *m_bodies.objects[i];
-    dvec3 f(0.0);
-    for (const auto& force : m_forces.objects)
+    ForceOnBody f;
+    for (const auto& force : m_forces.objects) {
+        const dvec3 fk = force->force(i, b, x, v);
+        f.total += fk;
         if (force->addsEnergy())
-            f += force->force(i, b, x, v);
+            f.sources += fk;
+    }
     return f;
 }
 
@@ -189,9 +183,9 @@ namespace {
 /// flight (stepWithCollisions' book): each stage of its integrator weighs the sources' force
 /// as it weighs the whole force, so the work is their exact share of the kinetic energy
 /// m (v1 - v0) . (v0 + v1) / 2 = dt sum_k w_k F_k . (v0 + v1) / 2 that the stretch gave.
-template <class Source>
+/// `source` is the sources' force of the stage the acceleration was last evaluated at.
 struct SourceWorkBook {
-    const Source& source;
+    const dvec3& source;
     std::span<const double> weights;
     std::size_t stage = 0;
     dvec3 impulse{0.0};
@@ -203,8 +197,9 @@ struct SourceWorkBook {
         stage = 0;
         impulse = dvec3(0.0);
         return [this, &accel](const dvec3& x, const dvec3& v) {
-            impulse += weights[std::min(stage++, weights.size() - 1)] * source(x, v);
-            return accel(x, v);
+            const dvec3 a = accel(x, v);
+            impulse += weights[std::min(stage++, weights.size() - 1)] * source;
+            return a;
         };
     }
     void close(double dt, const dvec3& v0, const dvec3& v1) { work += dt * glm::dot(impulse, 0.5 * (v0 + v1)); }
@@ -233,8 +228,12 @@ void World::integrateIndependent(const std::vector<std::size_t>& bodies, double 
         // body's acceleration, rather than evaluating all the forces once more after the step.
         bool first = true;
         dvec3 startAcc(0.0);
-        auto accel = [this, i, &first, &startAcc](const dvec3& x, const dvec3& v) {
-            const dvec3 a = aloneAcceleration(i, x, v);
+        dvec3 source(0.0); // the last evaluation's, for the book
+        const double mass = b.getMass();
+        auto accel = [this, i, mass, &first, &startAcc, &source](const dvec3& x, const dvec3& v) {
+            const ForceOnBody f = forceOn(i, x, v);
+            source = f.sources;
+            const dvec3 a = f.total / mass;
             if (first) {
                 startAcc = a;
                 first = false;
@@ -246,8 +245,7 @@ void World::integrateIndependent(const std::vector<std::size_t>& bodies, double 
         const auto planes = ballPlanes(std::span<const Plane>(m_surfaces.planes), m_bodies.radii[i], room);
         int bounces = 0;
         if (book) {
-            const auto source = [this, i](const dvec3& x, const dvec3& v) { return sourceForce(i, x, v); };
-            SourceWorkBook<decltype(source)> work{source, stageWeights(b.getIntegrator())};
+            SourceWorkBook work{source, stageWeights(b.getIntegrator())};
             bounces = stepWithCollisions(m_surfaces.response, b.getIntegrator(), planes, b.getCor(), s.pos, s.vel, dt,
                                          accel, m_bodies.frictions[i], work);
             m_bodies.sourceWork[i] = work.work;

@@ -170,9 +170,10 @@ TEST(TouchScenes, BoxesRestingOnAnImplicitSheetGainNoEnergy)
         most = std::max(most, world.totalEnergy());
     }
     EXPECT_LE(most, start * (1.0 + 1e-9));
-    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+    for (std::size_t i = 0; i < world.bodyCount(); ++i) {
         if (world.isRigid(i))
             EXPECT_GT(world.body(i).getPos().y, 1.0) << world.body(i).getName() << " went through the sheet";
+    }
 }
 
 // A box resting on the floor is held up by it, which a sheet's solve does not see: an
