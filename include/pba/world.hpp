@@ -46,6 +46,7 @@
 // It knows no window, no file format and no clock: frame time never reaches it.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -524,6 +525,10 @@ private:
     /// A spring of `constraints`, if given, is left out (xpbd's constraints).
     void sumSystemForces(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
                          std::span<const dvec3> x, std::span<const dvec3> v, const detail::SpringSystem* constraints);
+    /// The forces whose index `keep` takes, on the system's members at m_bodies.trial, summed
+    /// into `sums` (the members' entries zeroed first).
+    void sumForcesOnMembers(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                            std::vector<dvec3>& sums, const std::function<bool(std::size_t)>& keep);
     /// The spring solver of implicit-euler (or xpbd) made for the system, the system started
     /// with its masses, and the springs' fixed ends placed.
     detail::SpringSolver& startSpringSystem(const std::vector<std::size_t>& members, bool xpbd);

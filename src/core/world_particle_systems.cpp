@@ -121,16 +121,21 @@ void World::sumSystemForces(const std::vector<std::size_t>& members, std::span<c
     // Every body of the world sits at its start-of-step state (storePreviousStates put it in
     // m_bodies.trial) except the system's, which take each stage's trial state. (A system integrated
     // before this one leaves its bodies at its last stage: no force couples two systems.)
-    m_forces.sums.resize(m_bodies.objects.size());
-    detail::forEachIndex(members.size(), [&](std::size_t k) {
-        if (!x.empty())
-            m_bodies.trial[members[k]] = State{x[k], v[k]};
-        m_forces.sums[members[k]] = dvec3(0.0);
-    });
+    if (!x.empty())
+        detail::forEachIndex(members.size(), [&](std::size_t k) { m_bodies.trial[members[k]] = State{x[k], v[k]}; });
+    sumForcesOnMembers(members, wanted, m_forces.sums,
+                       [constraints](std::size_t f) { return !constraints || !constraints->isSpring(f); });
+}
+
+void World::sumForcesOnMembers(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
+                               std::vector<dvec3>& sums, const std::function<bool(std::size_t)>& keep)
+{
+    sums.resize(m_bodies.objects.size());
+    detail::forEachIndex(members.size(), [&](std::size_t k) { sums[members[k]] = dvec3(0.0); });
     const BodyStates in{m_bodies.objects, m_bodies.trial, wanted, m_bodies.masses, {}, m_bodies.radii};
-    Accumulators out{m_forces.sums, {}, &m_forces.scratch};
+    Accumulators out{sums, {}, &m_forces.scratch};
     for (std::size_t f = 0; f < m_forces.objects.size(); ++f)
-        if (!constraints || !constraints->isSpring(f))
+        if (keep(f))
             m_forces.objects[f]->accumulate(in, out);
 }
 
@@ -175,13 +180,8 @@ void World::bookSourceStage(const std::vector<std::size_t>& members, std::span<c
 {
     // The sources once more, alone, where sumSystemForces left the members (m_bodies.trial): the
     // sums themselves keep their order, so a world's results do not depend on the book.
-    m_forces.sourceSums.resize(m_bodies.objects.size());
-    detail::forEachIndex(members.size(), [&](std::size_t k) { m_forces.sourceSums[members[k]] = dvec3(0.0); });
-    const BodyStates in{m_bodies.objects, m_bodies.trial, wanted, m_bodies.masses, {}, m_bodies.radii};
-    Accumulators out{m_forces.sourceSums, {}, &m_forces.scratch};
-    for (const auto& force : m_forces.objects)
-        if (force->addsEnergy())
-            force->accumulate(in, out);
+    sumForcesOnMembers(members, wanted, m_forces.sourceSums,
+                       [this](std::size_t f) { return m_forces.objects[f]->addsEnergy(); });
     CoupledScratch& s = m_particleSystems.scratch;
     detail::forEachIndex(members.size(), [&](std::size_t k) {
         s.sourceImpulse[k] += weight * m_forces.sourceSums[members[k]];
