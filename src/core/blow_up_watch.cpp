@@ -15,7 +15,9 @@ namespace {
 /// over the step: forward and semi-implicit Euler (the implicit gyroscopic step's translation
 /// too) take the start's, velocity Verlet, the splitting (whose translation is velocity Verlet)
 /// and XPBD (its substeps') the mean of the start's and the end's, RK4 Simpson's rule, backward
-/// Euler the end's.
+/// Euler the end's. An approximation of stageWeights (integrator.hpp), which weighs the stages
+/// where the method took them: it serves only the bodies whose flight is not booked (rigid
+/// bodies, implicit Euler and XPBD systems).
 struct StepWeights {
     double start, middle, end;
 };
