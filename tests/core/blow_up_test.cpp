@@ -77,14 +77,7 @@ public:
 /// for a body that crosses it.
 BlowDryerField firstScenesJet()
 {
-    BlowDryerField jet;
-    jet.height = 3.5;
-    jet.nozzleRadius = 0.2;
-    jet.topRadius = 1.2;
-    jet.strength = 30.0;
-    jet.airSpeed = 15.0;
-    jet.axisPull = 1.0;
-    return jet;
+    return {.height = 3.5, .nozzleRadius = 0.2, .topRadius = 1.2, .strength = 30.0, .airSpeed = 15.0, .axisPull = 1.0};
 }
 
 } // namespace

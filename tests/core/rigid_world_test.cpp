@@ -274,13 +274,7 @@ Wrench dryerWrench(const RigidBody& body, const BlowDryerField& field)
 
 BlowDryerField testJet()
 {
-    BlowDryerField f;
-    f.height = 3.0;
-    f.nozzleRadius = 0.2;
-    f.topRadius = 1.2;
-    f.strength = 50.0;
-    f.direction = FlowDirection::ConeFlow;
-    return f;
+    return {.height = 3.0, .nozzleRadius = 0.2, .topRadius = 1.2, .strength = 50.0, .direction = FlowDirection::ConeFlow};
 }
 
 } // namespace
