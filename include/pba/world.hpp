@@ -407,6 +407,7 @@ private:
         std::vector<dvec3> startAcc;
         std::array<std::vector<std::size_t>, kEveryIntegrator.size()> members; ///< awake, by integrator
         std::vector<std::uint8_t> wanted;
+        std::vector<std::size_t> place; ///< by world index: its place among the members (pushAtFreeEnd)
         RigidStepBuffers buffers;
     };
     /// The rigid bodies: their contact pipeline (src/core/rigid/: broad phase, narrow phase,

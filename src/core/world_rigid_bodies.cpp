@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "parallel.hpp"
 #include "rigid/rigid_system.hpp"
@@ -149,14 +150,21 @@ void World::pushAtFreeEnd(Integrator integrator, const std::vector<std::size_t>&
 {
     // An impulse at the end of the free step changes the end velocity and moves the end pose by
     // the integrator's drift of that change, as the contact solver's impulses do.
+    if (m_rigid.endPushes.empty())
+        return;
     const double drift = rigid::driftWeight(integrator) * dt;
     RigidScratch& r = m_rigid.scratch;
+    // Each body's place among the members, looked up once a push (a sheet may bear many bodies).
+    constexpr std::size_t kNotMember = std::numeric_limits<std::size_t>::max();
+    r.place.assign(m_bodies.objects.size(), kNotMember);
+    for (std::size_t k = 0; k < members.size(); ++k)
+        r.place[members[k]] = k;
     for (const auto& push : m_rigid.endPushes) {
-        const auto at = std::find(members.begin(), members.end(), push.body);
-        if (at == members.end())
+        const std::size_t k = r.place[push.body];
+        if (k == kNotMember)
             continue;
-        RigidState& s = r.states[std::size_t(at - members.begin())];
-        const RigidInertia& inertia = r.inertia[std::size_t(at - members.begin())];
+        RigidState& s = r.states[k];
+        const RigidInertia& inertia = r.inertia[k];
         const dvec3 dv = push.impulse * inertia.inverseMass;
         const dvec3 dw = angularVelocity(s.rotation.orientation, inertia.inverseInertiaBody, push.angular);
         s.v += dv;
