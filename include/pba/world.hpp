@@ -500,7 +500,7 @@ private:
     /// keep theirs); a moving body is one of the solve's bearers (backward_euler.hpp).
     void holdOnBodies(const std::vector<std::size_t>& members, detail::SpringSolver& solver, double dt) const;
     /// The moving rigid bodies (world indices, sorted) resting on the room or a fixed body now.
-    const std::vector<std::size_t>& supportedBodies() const;
+    std::vector<std::size_t> supportedBodies() const;
     /// The bearer of the solve for body `world` (added if new).
     std::uint32_t bearerFor(detail::SpringSolver& solver, std::size_t world, double dt) const;
     /// After the solve: friction on the members held on rigid bodies or the room, and what the
