@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <csignal>
 #include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 #include <iostream>
@@ -18,6 +19,28 @@
 #include "scene_options.hpp"
 
 namespace {
+
+/// The first option the command did not know, with the one it is close to: CLI11 lists what it
+/// could not place in reverse order ("not expected: 1 --time").
+std::optional<std::string> unknownOptionText(const CLI::App& app)
+{
+    const auto parsed = app.get_subcommands();
+    const CLI::App& command = parsed.empty() ? app : *parsed.front();
+    const std::string name = parsed.empty() ? "pba" : "pba " + command.get_name();
+    std::vector<std::string> known;
+    for (const CLI::Option* option : command.get_options())
+        for (const std::string& longName : option->get_lnames())
+            known.push_back("--" + longName);
+    for (const std::string& extra : command.remaining()) {
+        if (extra.size() < 2 || extra[0] != '-')
+            continue;
+        const std::string flag = extra.substr(0, extra.find('='));
+        const auto close = pba::scene_detail::closestName(flag, known);
+        return fmt::format("unknown option '{}' of `{}`{} (`{} --help` lists its options)", flag, name,
+                           close ? fmt::format(": did you mean '{}'?", *close) : "", name);
+    }
+    return std::nullopt;
+}
 
 /// CLI11's words for a few errors, in pba's: the option and the reason, and the command a
 /// mistyped one was meant to be. `args` are the arguments as typed.
@@ -42,6 +65,9 @@ std::string parseErrorText(const CLI::ParseError& e, const CLI::App& app, const 
                                close ? fmt::format(": did you mean '{}'?", *close) : "", fmt::join(commands, ", "));
         }
     }
+    if (dynamic_cast<const CLI::ExtrasError*>(&e))
+        if (const auto option = unknownOptionText(app))
+            return *option;
     return what;
 }
 

@@ -130,6 +130,19 @@ TEST(PbaCommands, AMistypedCommandIsNamedWithTheOneItIsCloseTo)
     EXPECT_NE(r.err.find("unknown command 'frobnicate' (the commands: sim,"), std::string::npos) << r.err;
 }
 
+// A mistyped option is named, with its command and the option it is close to; an option of
+// another command (render's --time) is named alone, not with the arguments reversed after it.
+TEST(PbaCommands, AMistypedOptionIsNamedWithTheOneItIsCloseTo)
+{
+    CommandResult r = runPba("sim integrators --dtt 0.1");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err, "pba: error: unknown option '--dtt' of `pba sim`: did you mean '--dt'? (`pba sim --help` lists "
+                     "its options)\n");
+    r = runPba("sim integrators --time 1");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err, "pba: error: unknown option '--time' of `pba sim` (`pba sim --help` lists its options)\n");
+}
+
 // The two typos, as a student meets them: one line on stderr naming the file, the key
 // and the key it is close to, exit 2.
 TEST(PbaSim, AMisspeltSceneKeyIsNamedWithTheKeyItIsCloseTo)
