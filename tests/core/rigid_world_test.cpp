@@ -274,7 +274,8 @@ Wrench dryerWrench(const RigidBody& body, const BlowDryerField& field)
 
 BlowDryerField testJet()
 {
-    return {.height = 3.0, .nozzleRadius = 0.2, .topRadius = 1.2, .strength = 50.0, .direction = FlowDirection::ConeFlow};
+    return {.height = 3.0, .nozzleRadius = 0.2, .topRadius = 1.2, .strength = 50.0,
+            .direction = FlowDirection::ConeFlow};
 }
 
 } // namespace
