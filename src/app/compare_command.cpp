@@ -18,6 +18,7 @@
 #include "study/clock_plots.hpp"
 #include "study/plots.hpp"
 #include "study/rotation_plots.hpp"
+#include "scene/closest_name.hpp"
 #include "scene_options.hpp"
 
 namespace pba::app {
@@ -31,6 +32,7 @@ struct CompareOptions {
     std::vector<std::string> collisions;
     std::vector<double> dts;
     std::optional<double> duration;
+    std::optional<std::string> body; ///< --body: the rigid body the rotation study measures
     int jobs = 0;
     bool clocks = false;
     bool workPrecision = false; ///< --work-precision: also the four scenes' work against precision
@@ -172,7 +174,27 @@ study::StudyConfig makeConfig(const CompareOptions& options)
     return config;
 }
 
-/// The rotation study's settings: the same options, with its own defaults (all five integrators,
+/// --body NAME's index in the scene: a moving rigid body, or bad input naming what it is.
+std::size_t readStudiedBody(const std::string& name, const Scene& scene)
+{
+    const World& world = scene.world;
+    const std::optional<std::size_t> found = world.findBody(name);
+    if (!found) {
+        std::vector<std::string> moving;
+        for (std::size_t i = 0; i < world.bodyCount(); ++i)
+            if (world.isRigid(i) && !world.body(i).isFixed())
+                moving.push_back(world.body(i).getName());
+        const auto close = scene_detail::closestName(name, moving);
+        throw UsageError(fmt::format("--body: {} has no body named '{}'{}", scene.source, name,
+                                     close ? fmt::format(": did you mean '{}'?", *close) : ""));
+    }
+    if (!world.isRigid(*found) || world.body(*found).isFixed())
+        throw UsageError(fmt::format("--body: '{}' in {} is {}: the rotation study measures a moving rigid body", name,
+                                     scene.source, world.isRigid(*found) ? "fixed" : "not a rigid body"));
+    return *found;
+}
+
+/// The rotation study's settings: the same options, with its own defaults (all six integrators,
 /// dt up to 0.05 s). Collision responses are the particles' rules: a rigid body meets the room
 /// with contact impulses, so --collisions is refused rather than ignored.
 study::RotationConfig makeRotationConfig(const CompareOptions& options, Scene scene)
@@ -182,6 +204,8 @@ study::RotationConfig makeRotationConfig(const CompareOptions& options, Scene sc
                                      "impulses whatever the collision response: the rotation study has no responses "
                                      "to compare", scene.source));
     study::RotationConfig config;
+    if (options.body)
+        config.body = readStudiedBody(*options.body, scene);
     config.duration = readDuration(options, scene);
     readIntegrators(options, config.integrators);
     for (const Integrator integrator : config.integrators)
@@ -268,6 +292,10 @@ int runCompare(const CompareOptions& options)
         Scene scene = loadScene(options.scene);
         if (study::studiedRigidBody(scene.world))
             return runRotationCompare(options, std::move(scene));
+        if (options.body)
+            throw UsageError(fmt::format("--body: chooses the rigid body the rotation study measures, and {} has no "
+                                         "moving rigid body",
+                                         scene.source));
     }
     const study::StudyConfig config = makeConfig(options);
     io::FolderOutput folder(options.out, isStudyFile);
@@ -335,7 +363,7 @@ void addCompareCommand(CLI::App& root, Action& selected)
                                                "(default pba-compare)")
         ->type_name("DIR");
     compare->add_option("--integrators", options->integrators,
-                        "Comma-separated integrators (default all four; with rigid bodies all five)")
+                        "Comma-separated integrators (default all four; with rigid bodies all six)")
         ->delimiter(',')
         ->option_text("NAME,...");
     compare->add_option("--collisions", options->collisions, "Comma-separated collision responses (default all three)")
@@ -347,6 +375,9 @@ void addCompareCommand(CLI::App& root, Action& selected)
         ->option_text("DT,...");
     compare->add_option("--duration", options->duration, "Simulated time of each run (default the scene's)")
         ->type_name("SECONDS");
+    compare->add_option("--body", options->body,
+                        "With rigid bodies: the one the rotation study measures (default the first moving one)")
+        ->type_name("NAME");
     compare->add_flag("--clocks", options->clocks,
                       "Instead of the integrators: the scene with each clock (fixed, semi-fixed, variable) at 30, 60 "
                       "and 144 frames a second, steady and with a 0.25 s frame, and how far the runs drift apart");
@@ -357,10 +388,12 @@ void addCompareCommand(CLI::App& root, Action& selected)
     compare->add_option("--jobs", options->jobs, "Runs in parallel (default all cores); results do not depend on it")
         ->type_name("N");
     compare->footer("\nOn a scene with rigid bodies (dice, tennis-racket, rolling, blow-dryer-boxes) it studies rotation\n"
-                    "instead: every integrator (all five) and dt (default up to 0.05) on the first moving rigid body,\n"
-                    "its drift of energy and of |L|, and its flip period against the elliptic integral's.\n"
+                    "instead: every integrator (all six) and dt (default up to 0.05) on the first moving rigid body\n"
+                    "(or --body NAME): its drift of energy and of |L|, and its flip period against the elliptic\n"
+                    "integral's.\n"
                     "\nExample: pba compare --out pba-out/study    (then read pba-out/study/report.md)\n"
-                    "         pba compare tennis-racket --out pba-out/racket\n");
+                    "         pba compare tennis-racket --out pba-out/racket\n"
+                    "         pba compare incline --body steep-box --out pba-out/incline\n");
     compare->callback([options, &selected] { selected = [options] { return runCompare(*options); }; });
 }
 

@@ -1,5 +1,6 @@
 #include "rotation_report.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -56,6 +57,24 @@ bool sameEulers(const study::RotationResult& result, double dt)
     return forward && semi && forward->maxEnergyDrift == semi->maxEnergyDrift;
 }
 
+/// Why the body is no free body, for the measure, or nothing if it is one: the contacts it met in
+/// some run, the joint that holds it. Then its drifts are not its method's alone.
+std::string notFreeBecause(const study::RotationResult& result, bool momentum)
+{
+    const bool touched =
+        std::any_of(result.runs.begin(), result.runs.end(), [](const study::RotationRun& r) { return r.touched; });
+    if (!touched && !result.joined)
+        return {};
+    const std::string what = touched && result.joined ? "it touches other bodies or the room, and a joint holds it"
+                             : touched                ? "it touches other bodies or the room"
+                                                      : "a joint holds it";
+    const std::string how =
+        momentum ? (touched && result.joined ? "their pushes turn L" : touched ? "the contacts turn L" : "the joint turns L")
+                 : (touched ? "contacts take energy by friction and inelastic impacts" : "a joint's corrections move it");
+    return fmt::format(" `{}` is no free body here ({}): {}, so the drift is theirs as well as the method's.\n\n",
+                       result.body, what, how);
+}
+
 /// A measure's findings in a sentence per method at the largest dt: how far it drifted, or that
 /// it blew up, and (for |L|) which methods keep it to rounding.
 std::string driftFindings(const study::RotationConfig& config, const study::RotationResult& result, bool momentum)
@@ -73,6 +92,8 @@ std::string driftFindings(const study::RotationConfig& config, const study::Rota
                                  momentum ? "" : (r.energyRatioEnd > 1.0 ? " (gaining)" : " (losing)"));
     }
     out.back() = '.';
+    if (const std::string notFree = notFreeBecause(result, momentum); !notFree.empty())
+        return out + notFree;
     out += momentum ? " A free body's torque-free step must keep L; a method that integrates omega rather than "
                       "turning L with the body changes |L|, and the implicit gyroscopic step damps it.\n\n"
                     : " Losing energy is the implicit gyroscopic step's dissipation; a bounded drift that does not "

@@ -36,6 +36,14 @@ bool finite(const RigidBody& b)
     return std::isfinite(x.x + x.y + x.z + v.x + v.y + v.z + l.x + l.y + l.z + q.w + q.x + q.y + q.z);
 }
 
+/// Whether body `body` touches another body or the room after the last step.
+bool touches(const World& world, std::size_t body)
+{
+    const std::vector<World::ContactPointView> points = world.contactPoints();
+    return std::any_of(points.begin(), points.end(),
+                       [body](const World::ContactPointView& c) { return c.bodyA == body || c.bodyB == body; });
+}
+
 RotationRun runOne(const Scene& scene, std::size_t body, int axis, Integrator integrator, double dt, double duration)
 {
     Scene copy = scene;
@@ -71,6 +79,7 @@ RotationRun runOne(const Scene& scene, std::size_t body, int axis, Integrator in
             run.blewUpAt = world.time();
             break;
         }
+        run.touched = run.touched || touches(world, body);
         const double e = world.energy(body) / e0;
         run.maxEnergyDrift = std::max(run.maxEnergyDrift, std::abs(e - 1.0));
         if (l0 > 0.0)
@@ -123,11 +132,15 @@ RotationResult runRotationStudy(const RotationConfig& config, const std::functio
 {
     RotationResult result;
     const World& world = config.scene.world;
-    const std::optional<std::size_t> body = studiedRigidBody(world);
+    const std::optional<std::size_t> body = config.body ? config.body : studiedRigidBody(world);
     if (!body)
         return result;
     const auto& b = static_cast<const RigidBody&>(world.body(*body));
     result.body = b.getName();
+    for (std::size_t j = 0; j < world.jointCount(); ++j) {
+        const JointFrame frame = world.jointFrame(j);
+        result.joined = result.joined || frame.bodyA == *body || frame.bodyB == *body;
+    }
     result.intermediateAxis = intermediateAxisOf(b.getInertiaBody());
     result.exactPeriod = torqueFreeFlipPeriod(b);
     const std::size_t dts = config.dts.size();

@@ -17,6 +17,7 @@ namespace pba::study {
 
 struct RotationConfig {
     Scene scene;
+    std::optional<std::size_t> body; ///< the body measured; the first moving rigid body if none
     std::vector<Integrator> integrators{kRigidIntegrators.begin(), kRigidIntegrators.end()};
     std::vector<double> dts{0.0005, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05};
     double duration = 10.0;
@@ -35,6 +36,7 @@ struct RotationRun {
     double energyRatioEnd = 0.0;   ///< E(end) / E(0)
     double flipPeriod = kNaN;      ///< mean time between two flips of the same sense, s (NaN: fewer than 3 flips)
     std::uint64_t flips = 0;
+    bool touched = false;          ///< whether the body touched another body or the room in the run
     double blewUpAt = kNaN;        ///< the time the state stopped being finite, if it did
     /// Sampled series: t, E/E0, and the body-frame angular velocity about the intermediate axis.
     std::vector<double> t, energyRatio, intermediateOmega;
@@ -42,6 +44,7 @@ struct RotationRun {
 
 struct RotationResult {
     std::string body;           ///< the studied body's name
+    bool joined = false;        ///< whether a joint holds it (then no run of it is a free body's)
     int intermediateAxis = -1;  ///< the body axis of intermediate inertia (-1: two moments equal)
     double exactPeriod = kNaN;  ///< torque-free flip period, s (NaN where the formula does not apply)
     std::vector<RotationRun> runs; ///< in (integrator, dt) order

@@ -422,6 +422,35 @@ TEST(PbaCompare, RigidSceneGetsTheRotationStudy)
     EXPECT_FALSE(std::filesystem::exists(dir / "dice"));
 }
 
+// --body picks the rigid body the rotation study measures. One that touches the room or a ramp
+// is said to be no free body, so its drift is not read as its method's; a name that is no moving
+// rigid body is bad input, and nothing is written.
+TEST(PbaCompare, TheRotationStudyMeasuresTheBodyNamedAndSaysWhenItIsNoFreeBody)
+{
+    const auto dir = freshDir("compare-body");
+    const CommandResult r = runPba("compare incline --body steep-box --duration 1 --dt 0.01 --out " +
+                                   (dir / "incline").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string report = readFile(dir / "incline/report.md");
+    EXPECT_NE(report.find("following the rigid body `steep-box`"), std::string::npos) << report;
+    EXPECT_NE(report.find("`steep-box` is no free body here (it touches other bodies or the room)"), std::string::npos)
+        << report;
+    const CommandResult racket = runPba("compare tennis-racket --duration 1 --dt 0.01 --out " + (dir / "racket").string());
+    ASSERT_EQ(racket.exitCode, 0) << racket.err;
+    EXPECT_EQ(readFile(dir / "racket/report.md").find("no free body"), std::string::npos);
+    const std::pair<const char*, const char*> bad[] = {
+        {"incline --body steepbox", "--body: builtin:incline has no body named 'steepbox': did you mean 'steep-box'?"},
+        {"incline --body steep-ramp", "--body: 'steep-ramp' in builtin:incline is fixed"},
+        {"spring --body bob", "--body: chooses the rigid body the rotation study measures, and builtin:spring has no "
+                              "moving rigid body"}};
+    for (const auto& [args, message] : bad) {
+        const CommandResult e = runPba(std::string("compare ") + args + " --out " + (dir / "bad").string());
+        EXPECT_EQ(e.exitCode, 2) << args;
+        EXPECT_NE(e.err.find(message), std::string::npos) << e.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "bad")) << args;
+    }
+}
+
 // A run that blows up is a result of the study, not its end. The rope with springs of stiffness
 // 1e300 stays finite in the closed room, but its energy leaps in the first step: every particle's
 // row says it blew up then (BlowUpWatch), and no energy ratio is read from a blown-up run.
