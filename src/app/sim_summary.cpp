@@ -159,6 +159,10 @@ void printRigidSummary(const World& world, const study::RigidWatch& rigid)
             parts.push_back(fmt::format("turns over {} times, every {:.3f} s on average (its spin about its middle axis "
                                         "changes sign)", f.flips.size(),
                                         (f.flips.back() - f.flips.front()) / double(f.flips.size() - 1)));
+        if (f.slide)
+            parts.push_back(fmt::format("slides on {} without turning from t = {:.3f} to {:.3f} s, its speed changing "
+                                        "at {:.3f} m/s^2", f.slide->on, f.slide->from, f.slide->to,
+                                        f.slide->acceleration));
         parts.push_back(fmt::format("spins at {:.3g} rad/s on average", f.meanSpin));
         fmt::print("  {}: {}\n", f.name, fmt::join(parts, "; "));
     }

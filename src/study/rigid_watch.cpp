@@ -74,27 +74,71 @@ RigidWatch::RigidWatch(const World& world)
         t.momentum0 = glm::length(body.getAngularMomentum());
         if (!(t.energy0 > 0.0 && t.momentum0 > 0.0))
             t.figures.energyDrift = t.figures.momentumDrift = std::numeric_limits<double>::quiet_NaN();
-        look(world, t);
+        look(world, t, kNone);
         m_tracks.push_back(t);
     }
 }
 
+std::vector<std::size_t> RigidWatch::touching(const World& world)
+{
+    std::vector<std::size_t> on(world.bodyCount(), kNone);
+    const auto add = [&](std::size_t body, std::size_t other) {
+        on[body] = on[body] == kNone || on[body] == other ? other : kMany;
+    };
+    for (const World::ContactPointView& c : world.contactPoints()) {
+        add(c.bodyA, c.bodyB.value_or(kRoom));
+        if (c.bodyB)
+            add(*c.bodyB, c.bodyA);
+    }
+    return on;
+}
+
 void RigidWatch::record(const World& world)
 {
+    const std::vector<std::size_t> on = touching(world);
     for (Track& t : m_tracks) {
-        look(world, t);
+        look(world, t, on[t.body]);
         t.spinSum += glm::length(rigid(world, t.body).getAngularVelocity());
         ++t.steps;
     }
 }
 
-void RigidWatch::look(const World& world, Track& t) const
+void RigidWatch::endSlide(const World& world, Track& t)
+{
+    if (!t.sliding)
+        return;
+    const Track::Sliding& s = *t.sliding;
+    RigidFigures& f = t.figures;
+    const double denominator = s.n * s.stt - s.st * s.st;
+    if (s.to - s.from >= RigidFigures::kLeastSlide && denominator > 0.0 &&
+        (!f.slide || s.to - s.from > f.slide->to - f.slide->from))
+        f.slide = RigidFigures::Slide{s.on == kRoom ? "the room" : world.body(s.on).getName(), s.from, s.to,
+                                      (s.n * s.stv - s.st * s.sv) / denominator};
+    t.sliding.reset();
+}
+
+void RigidWatch::look(const World& world, Track& t, std::size_t touches) const
 {
     const RigidBody& body = rigid(world, t.body);
     RigidFigures& f = t.figures;
     const double now = world.time();
     const dvec3 w = body.getAngularVelocity();
-    const bool still = glm::length(body.getVel()) < kStill && glm::length(w) < kStill;
+    const double speed = glm::length(body.getVel());
+    const bool still = speed < kStill && glm::length(w) < kStill;
+    // Sliding: on one surface that does not move, moving without turning (a box down a ramp).
+    constexpr double kNoTurn = 1e-3; // rad/s
+    const bool onFixed = touches == kRoom || (touches < world.bodyCount() && world.body(touches).isFixed());
+    const bool slides = onFixed && speed >= kStill && glm::length(w) < kNoTurn;
+    if (t.sliding && (!slides || t.sliding->on != touches))
+        endSlide(world, t);
+    if (slides) {
+        if (!t.sliding)
+            t.sliding = Track::Sliding{touches, now, now};
+        Track::Sliding& s = *t.sliding;
+        const double at = now - s.from;
+        s.to = now;
+        s.n += 1.0, s.st += at, s.sv += speed, s.stt += at * at, s.stv += at * speed;
+    }
     if (!still)
         f.stillFrom.reset();
     else if (!f.stillFrom)
@@ -122,7 +166,8 @@ void RigidWatch::look(const World& world, Track& t) const
 std::vector<RigidFigures> RigidWatch::bodies(const World& world) const
 {
     std::vector<RigidFigures> out;
-    for (const Track& t : m_tracks) {
+    for (Track t : m_tracks) {
+        endSlide(world, t); // a slide that lasts to the end of the run
         RigidFigures f = t.figures;
         f.meanSpin = t.steps > 0 ? t.spinSum / double(t.steps) : 0.0;
         const RigidBody& body = rigid(world, t.body);

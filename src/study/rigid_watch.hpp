@@ -30,6 +30,15 @@ struct RigidFigures {
     /// each between the two steps that saw the sign change, where the straight line through
     /// their values crosses zero.
     std::vector<double> flips;
+    /// The longest stretch (kLeastSlide or more) in which the body slid on one fixed body or the
+    /// room alone without turning: what it slid on, when, and its acceleration (the slope of its
+    /// speed against time, least squares): the incline's g (sin a - mu cos a).
+    struct Slide {
+        std::string on;
+        double from = 0.0, to = 0.0, acceleration = 0.0;
+    };
+    std::optional<Slide> slide;
+    static constexpr double kLeastSlide = 0.1; ///< s
     double meanSpin = 0.0;             ///< |w| over the run, rad/s
     double energyDrift = 0.0;          ///< the largest |E_rot / E_rot(0) - 1| over the run; NaN without a spin at 0
     double momentumDrift = 0.0;        ///< the largest ||L| / |L(0)| - 1| over the run; NaN as energyDrift
@@ -59,8 +68,20 @@ private:
         double lastMiddleAt = 0.0; ///< the time it was seen
         double energy0 = 0.0, momentum0 = 0.0, spinSum = 0.0;
         long steps = 0;
+        /// The slide going on: its surface (a world index, or kRoom) and its speed's sums for
+        /// the least-squares slope, times from its start.
+        struct Sliding {
+            std::size_t on = 0;
+            double from = 0.0, to = 0.0;
+            double n = 0.0, st = 0.0, sv = 0.0, stt = 0.0, stv = 0.0;
+        };
+        std::optional<Sliding> sliding;
     };
-    void look(const World& world, Track& t) const;
+    /// Each body's one surface it touches: a world index, kRoom, kNone or kMany.
+    static constexpr std::size_t kRoom = std::size_t(-1), kNone = std::size_t(-2), kMany = std::size_t(-3);
+    static std::vector<std::size_t> touching(const World& world);
+    void look(const World& world, Track& t, std::size_t touches) const;
+    static void endSlide(const World& world, Track& t);
     std::vector<Track> m_tracks;
 };
 

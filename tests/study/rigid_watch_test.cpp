@@ -36,6 +36,27 @@ TEST(RigidWatch, TheRollingBallRollsWhenTheClosedFormSays)
     EXPECT_FALSE(figures[0].free()); // it started without a spin: nothing to keep
 }
 
+// The incline's lesson as `pba sim` measures it: the box on the 35-degree ramp slides down it
+// without turning, its speed growing at g (sin 35 - mu cos 35) with mu = 0.5; the one on the
+// 20-degree ramp, below the friction angle, does not slide.
+TEST(RigidWatch, TheSteepRampsBoxSlidesAtTheTextbookAcceleration)
+{
+    Scene scene = loadScene("incline");
+    const std::vector<RigidFigures> figures = watched(scene);
+    const double pi = std::acos(-1.0), a = 35.0 * pi / 180.0;
+    const double expected = 9.81 * (std::sin(a) - 0.5 * std::cos(a));
+    for (const RigidFigures& f : figures) {
+        if (f.name != "steep-box") {
+            EXPECT_FALSE(f.slide.has_value()) << f.name;
+            continue;
+        }
+        ASSERT_TRUE(f.slide.has_value());
+        EXPECT_EQ(f.slide->on, "steep-ramp");
+        EXPECT_NEAR(f.slide->acceleration, expected, 0.01 * expected);
+        EXPECT_GT(f.slide->to - f.slide->from, 1.0);
+    }
+}
+
 // The scene's "By t = 2.3 s every die lies still on one of its faces".
 TEST(RigidWatch, EveryDieIsStillByTheDescriptionsTime)
 {
