@@ -130,6 +130,17 @@ TEST(PbaCommands, AMistypedCommandIsNamedWithTheOneItIsCloseTo)
     EXPECT_NE(r.err.find("unknown command 'frobnicate' (the commands: sim,"), std::string::npos) << r.err;
 }
 
+// The incline's lesson in pba sim's words: the steep ramp's box slides at g (sin 35 - 0.5 cos 35).
+TEST(PbaSim, SaysHowFastTheInclinesBoxSlides)
+{
+    const CommandResult r = runPba("sim incline");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("slides on steep-ramp without turning from t = 0.005 to"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("its speed changing at 1.609 m/s^2"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("gentle-box: still from t = 0.010 s on its -y face (tilted 20.00 degrees); slides"),
+              std::string::npos) << r.out;
+}
+
 // A mistyped option is named, with its command and the option it is close to; an option of
 // another command (render's --time) is named alone, not with the arguments reversed after it.
 TEST(PbaCommands, AMistypedOptionIsNamedWithTheOneItIsCloseTo)
