@@ -33,7 +33,8 @@ std::string cell(const study::RotationRun* r, RotationMeasure measure, double ex
         return "blew up";
     switch (measure) {
     case RotationMeasure::EnergyDrift: return fmt::format("{:.2e}", r->maxEnergyDrift);
-    case RotationMeasure::MomentumDrift: return fmt::format("{:.2e}", r->maxMomentumDrift);
+    case RotationMeasure::MomentumDrift:
+        return std::isnan(r->maxMomentumDrift) ? "no spin" : fmt::format("{:.2e}", r->maxMomentumDrift);
     case RotationMeasure::PeriodError:
         return std::isnan(r->flipPeriod) ? "no flips" : fmt::format("{:+.2e}", r->flipPeriod / exactPeriod - 1.0);
     }
@@ -80,6 +81,10 @@ std::string notFreeBecause(const study::RotationResult& result, bool momentum)
 std::string driftFindings(const study::RotationConfig& config, const study::RotationResult& result, bool momentum)
 {
     const double dt = largestDt(config);
+    if (momentum && std::all_of(result.runs.begin(), result.runs.end(),
+                                [](const study::RotationRun& r) { return std::isnan(r.maxMomentumDrift); }))
+        return fmt::format("`{}` starts without spin: it has no |L| to keep, so this measure says nothing of the "
+                           "methods here.\n\n", result.body);
     std::string out = fmt::format("At the largest dt, {:g} s:", dt);
     for (const study::RotationRun& r : result.runs) {
         if (r.dt != dt)

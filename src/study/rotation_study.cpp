@@ -59,6 +59,8 @@ RotationRun runOne(const Scene& scene, std::size_t body, int axis, Integrator in
     run.integrator = integrator;
     run.dt = dt;
     const double e0 = world.energy(body), l0 = glm::length(b.getAngularMomentum());
+    if (!(l0 > 0.0)) // no spin at the start: no |L| to keep
+        run.maxMomentumDrift = kNaN;
     const auto steps = static_cast<std::uint64_t>(std::llround(duration / dt));
     const std::uint64_t every = std::max<std::uint64_t>(1, steps / 2000); // about 2000 samples a series
     const auto omegaAbout = [&] {

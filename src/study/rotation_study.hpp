@@ -32,7 +32,7 @@ struct RotationRun {
     double dt = 0.0;
     std::uint64_t steps = 0;
     double maxEnergyDrift = 0.0;   ///< max |E(t)/E(0) - 1| (E with its rotational term)
-    double maxMomentumDrift = 0.0; ///< max ||L(t)| / |L(0)| - 1|, L about the centre of mass
+    double maxMomentumDrift = 0.0; ///< max ||L(t)| / |L(0)| - 1|, L about the centre of mass; NaN if L(0) = 0
     double energyRatioEnd = 0.0;   ///< E(end) / E(0)
     double flipPeriod = kNaN;      ///< mean time between two flips of the same sense, s (NaN: fewer than 3 flips)
     std::uint64_t flips = 0;

@@ -435,6 +435,8 @@ TEST(PbaCompare, TheRotationStudyMeasuresTheBodyNamedAndSaysWhenItIsNoFreeBody)
     EXPECT_NE(report.find("following the rigid body `steep-box`"), std::string::npos) << report;
     EXPECT_NE(report.find("`steep-box` is no free body here (it touches other bodies or the room)"), std::string::npos)
         << report;
+    EXPECT_NE(report.find("`steep-box` starts without spin: it has no |L| to keep"), std::string::npos) << report;
+    EXPECT_NE(report.find("| forward-euler | no spin |"), std::string::npos) << report;
     const CommandResult racket = runPba("compare tennis-racket --duration 1 --dt 0.01 --out " + (dir / "racket").string());
     ASSERT_EQ(racket.exitCode, 0) << racket.err;
     EXPECT_EQ(readFile(dir / "racket/report.md").find("no free body"), std::string::npos);
