@@ -117,14 +117,23 @@ INSTANTIATE_TEST_SUITE_P(
                            "has rigid body 'crate' (a rope's or cloth's own \"integrator\" key sets it"},
                     BadRun{"granular --integrator implicit-euler", "has swarm 'grains', which has none"}));
 
-// A mistyped command is named, with the command it is close to, in the order it was typed.
-TEST(PbaCommands, AMistypedCommandIsNamedWithTheOneItIsCloseTo)
+// A mistyped command or option is named, with the one it is close to, in the order it was typed;
+// an option of another command (render's --time) is named alone, not with the arguments
+// reversed after it.
+TEST(PbaCommands, AMistypedCommandOrOptionIsNamedWithTheOneItIsCloseTo)
 {
-    CommandResult r = runPba("simm integrators");
-    EXPECT_EQ(r.exitCode, 2);
-    EXPECT_EQ(r.err, "pba: error: unknown command 'simm': did you mean 'sim'? (the commands: sim, field, render, view, "
-                     "compare, bench, scenes, help)\n");
-    r = runPba("frobnicate");
+    const std::pair<const char*, const char*> cases[] = {
+        {"simm integrators", "unknown command 'simm': did you mean 'sim'? (the commands: sim, field, render, view, "
+                             "compare, bench, scenes, help)"},
+        {"sim integrators --dtt 0.1",
+         "unknown option '--dtt' of `pba sim`: did you mean '--dt'? (`pba sim --help` lists its options)"},
+        {"sim integrators --time 1", "unknown option '--time' of `pba sim` (`pba sim --help` lists its options)"}};
+    for (const auto& [args, message] : cases) {
+        const CommandResult r = runPba(args);
+        EXPECT_EQ(r.exitCode, 2) << args;
+        EXPECT_EQ(r.err, std::string("pba: error: ") + message + "\n");
+    }
+    const CommandResult r = runPba("frobnicate");
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_EQ(r.err.find("did you mean"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("unknown command 'frobnicate' (the commands: sim,"), std::string::npos) << r.err;
@@ -139,19 +148,6 @@ TEST(PbaSim, SaysHowFastTheInclinesBoxSlides)
     EXPECT_NE(r.out.find("its speed changing at 1.609 m/s^2"), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("gentle-box: still from t = 0.010 s on its -y face (tilted 20.00 degrees); slides"),
               std::string::npos) << r.out;
-}
-
-// A mistyped option is named, with its command and the option it is close to; an option of
-// another command (render's --time) is named alone, not with the arguments reversed after it.
-TEST(PbaCommands, AMistypedOptionIsNamedWithTheOneItIsCloseTo)
-{
-    CommandResult r = runPba("sim integrators --dtt 0.1");
-    EXPECT_EQ(r.exitCode, 2);
-    EXPECT_EQ(r.err, "pba: error: unknown option '--dtt' of `pba sim`: did you mean '--dt'? (`pba sim --help` lists "
-                     "its options)\n");
-    r = runPba("sim integrators --time 1");
-    EXPECT_EQ(r.exitCode, 2);
-    EXPECT_EQ(r.err, "pba: error: unknown option '--time' of `pba sim` (`pba sim --help` lists its options)\n");
 }
 
 // The two typos, as a student meets them: one line on stderr naming the file, the key
