@@ -79,7 +79,7 @@ RigidWatch::RigidWatch(const World& world)
     }
 }
 
-std::vector<std::size_t> RigidWatch::touching(const World& world)
+std::vector<std::size_t> touchedSurfaces(const World& world)
 {
     std::vector<std::size_t> on(world.bodyCount(), kNone);
     const auto add = [&](std::size_t body, std::size_t other) {
@@ -95,7 +95,7 @@ std::vector<std::size_t> RigidWatch::touching(const World& world)
 
 void RigidWatch::record(const World& world)
 {
-    const std::vector<std::size_t> on = touching(world);
+    const std::vector<std::size_t> on = touchedSurfaces(world);
     for (Track& t : m_tracks) {
         look(world, t, on[t.body]);
         t.spinSum += glm::length(rigid(world, t.body).getAngularVelocity());

@@ -49,6 +49,11 @@ struct RigidFigures {
     static constexpr double kFree = 1e-3;
 };
 
+/// What each body touches after the last step: the one body (a world index) or the room it
+/// touches, or kNone, or kMany when it touches more than one.
+inline constexpr std::size_t kRoom = std::size_t(-1), kNone = std::size_t(-2), kMany = std::size_t(-3);
+std::vector<std::size_t> touchedSurfaces(const World& world);
+
 class RigidWatch {
 public:
     explicit RigidWatch(const World& world);
@@ -77,9 +82,6 @@ private:
         };
         std::optional<Sliding> sliding;
     };
-    /// Each body's one surface it touches: a world index, kRoom, kNone or kMany.
-    static constexpr std::size_t kRoom = std::size_t(-1), kNone = std::size_t(-2), kMany = std::size_t(-3);
-    static std::vector<std::size_t> touching(const World& world);
     void look(const World& world, Track& t, std::size_t touches) const;
     static void endSlide(const World& world, Track& t);
     std::vector<Track> m_tracks;

@@ -5,6 +5,7 @@
 
 #include "parallel_runs.hpp"
 #include "pba/blow_up_watch.hpp"
+#include "study/rigid_watch.hpp"
 
 namespace pba::study {
 
@@ -34,14 +35,6 @@ bool finite(const RigidBody& b)
     const dvec3 x = b.getPos(), v = b.getVel(), l = b.getAngularMomentum();
     const dquat q = b.getOrientation();
     return std::isfinite(x.x + x.y + x.z + v.x + v.y + v.z + l.x + l.y + l.z + q.w + q.x + q.y + q.z);
-}
-
-/// Whether body `body` touches another body or the room after the last step.
-bool touches(const World& world, std::size_t body)
-{
-    const std::vector<World::ContactPointView> points = world.contactPoints();
-    return std::any_of(points.begin(), points.end(),
-                       [body](const World::ContactPointView& c) { return c.bodyA == body || c.bodyB == body; });
 }
 
 RotationRun runOne(const Scene& scene, std::size_t body, int axis, Integrator integrator, double dt, double duration)
@@ -81,7 +74,7 @@ RotationRun runOne(const Scene& scene, std::size_t body, int axis, Integrator in
             run.blewUpAt = world.time();
             break;
         }
-        run.touched = run.touched || touches(world, body);
+        run.touched = run.touched || touchedSurfaces(world)[body] != kNone;
         const double e = world.energy(body) / e0;
         run.maxEnergyDrift = std::max(run.maxEnergyDrift, std::abs(e - 1.0));
         if (l0 > 0.0)
