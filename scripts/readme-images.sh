@@ -4,9 +4,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 pba=${1:-build}/pba
-out=docs/images
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+# pba replaces only files it wrote itself (the folder's .pba-output lists them), and git's
+# checkout wrote these: render into the scratch folder, then copy over the pictures in git.
+out=$work/images
+mkdir "$out"
 
 still() { # SCENE TIME [SIZE]
   "$pba" render "$1" --size "${3:-640x360}" --time "$2" --out "$out/$1.png"
@@ -72,4 +75,5 @@ gif() { # SCENE SECONDS SIZE: the first SECONDS at 12 frames a second, a palette
 }
 gif blow-dryer 8 480x270
 gif blow-dryer-flow 8 480x360
-ls -l "$out"
+cp "$out"/* docs/images/
+ls -l docs/images

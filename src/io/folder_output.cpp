@@ -116,25 +116,13 @@ void FolderOutput::recheckFolder() const
     }
 }
 
-void FolderOutput::writeManifest(const OutputManifest& manifest) const
-{
-    const fs::path made = path() / kManifestName;
-    writeFile(made, manifest.text());
-    std::error_code ec;
-    if (!syncToDisk(made, false))
-        throw WriteError(fmt::format("{}: write failed: {}", (m_folder / kManifestName).string(), std::strerror(errno)));
-    fs::rename(made, m_folder / kManifestName, ec);
-    if (ec)
-        throw WriteError(fmt::format("{}: cannot be replaced: {}", (m_folder / kManifestName).string(), ec.message()));
-}
-
 /// The renames, between two manifests: the first lists the old and the new bytes of every name
 /// (so a crash half way leaves only files pba knows as its own), the second only what is there
 /// at the end.
 void FolderOutput::publish(const std::vector<ManifestEntry>& written)
 {
     OutputManifest kept; // other outputs' files in the same folder, still there
-    for (const ManifestEntry& e : m_manifest.entries) {
+    for (const ManifestEntry& e : readManifest(m_folder).entries) { // as another run may have left it
         std::error_code ec;
         if (!m_owns(e.name) && fs::exists(fs::symlink_status(m_folder / e.name, ec)))
             kept.entries.push_back(e);
@@ -147,7 +135,7 @@ void FolderOutput::publish(const std::vector<ManifestEntry>& written)
         during.entries.push_back(e);
         after.entries.push_back(e);
     }
-    writeManifest(during);
+    writeManifest(m_folder, during);
     for (const ManifestEntry& e : written) {
         std::error_code ec;
         fs::rename(path() / e.name, m_folder / e.name, ec);
@@ -162,7 +150,7 @@ void FolderOutput::publish(const std::vector<ManifestEntry>& written)
     if (m_owned.empty())
         return; // `during` is `after`
     try {
-        writeManifest(after);
+        writeManifest(m_folder, after);
     } catch (const WriteError&) {
         // The outputs are in place and `during` still lists each of them (and names that are
         // gone, which a check passes over): true, only longer.
@@ -175,6 +163,7 @@ void FolderOutput::commit()
         throw WriteError(fmt::format("{}: write failed: {}", m_folder.string(), std::strerror(errno)));
     const std::vector<ManifestEntry> written = newFiles();
     const auto signalsWait = deferSignals();
+    const ManifestLock lock(m_folder);
     recheckFolder();
     publish(written);
     syncToDisk(m_folder, true); // the renames themselves, on the disk

@@ -67,7 +67,6 @@ private:
     std::vector<ManifestEntry> newFiles() const;
     void recheckFolder() const;
     void publish(const std::vector<ManifestEntry>& written);
-    void writeManifest(const OutputManifest& manifest) const;
 
     std::filesystem::path m_folder;
     NamePredicate m_owns;

@@ -14,6 +14,8 @@
 
 #include <fmt/format.h>
 
+#include "io/output_manifest.hpp"
+
 namespace pba::io {
 
 namespace {
@@ -122,6 +124,7 @@ fs::path resolveOutputFile(const fs::path& requested)
         throw BadOutput(fmt::format("{}: is not a regular file (a device, FIFO or socket): give a file path",
                                     describe(requested)));
     requireParentFolder(requested, target);
+    requireReplaceable(target, requested);
     return target;
 }
 
@@ -145,9 +148,12 @@ Temporary::Temporary(fs::path target, Kind kind) : m_target(std::move(target)), 
 {
     std::error_code made;
     if (const fs::path parent = parentOf(m_target); !fs::is_directory(parent, made)) {
-        // The one missing folder requireParentFolder let through; kept even if the write fails
-        // (an empty folder, not a partial output).
-        fs::create_directory(parent, made);
+        // The one missing folder requireParentFolder let through, removed again with the
+        // temporary if nothing else went into it.
+        if (fs::create_directory(parent, made)) {
+            m_madeFolder = parent;
+            registerMadeFolder(parent);
+        }
         if (!fs::is_directory(parent, made))
             throw BadOutput(fmt::format("{}: cannot be written: the folder {} cannot be made: {}", describe(m_target),
                                         parent.string(), made ? made.message() : "it is not a folder"));
@@ -167,10 +173,28 @@ Temporary::Temporary(fs::path target, Kind kind) : m_target(std::move(target)), 
 Temporary::~Temporary()
 {
     std::error_code ignored;
-    if (!m_committed)
+    if (!m_committed) {
         fs::remove_all(m_temporary, ignored);
+        if (m_madeFolder)
+            fs::remove(*m_madeFolder, ignored); // only if empty: nothing of anyone's goes
+    }
+    if (m_madeFolder)
+        unregisterMadeFolder(*m_madeFolder);
     std::lock_guard lock(registry().mutex);
     forget(registry().temporaries, m_temporary);
+}
+
+/// A finished file is one the user named, to be listed in its folder's manifest, unless it is
+/// the manifest itself or goes into a folder that is itself a temporary (a folder output's
+/// staging folder, published as a whole; a scratch folder).
+bool Temporary::listedWhenCommitted() const
+{
+    if (m_kind != Kind::File || m_target.filename() == kManifestName)
+        return false;
+    const fs::path folder = parentOf(m_target).lexically_normal();
+    std::lock_guard lock(registry().mutex);
+    return std::none_of(registry().temporaries.begin(), registry().temporaries.end(),
+                        [&](const fs::path& p) { return p.lexically_normal() == folder; });
 }
 
 void Temporary::commit()
@@ -178,12 +202,17 @@ void Temporary::commit()
     const bool synced = m_kind == Kind::File ? syncToDisk(m_temporary, false) : syncTree(m_temporary);
     if (!synced)
         throw WriteError(fmt::format("{}: write failed: {}", describe(m_target), std::strerror(errno)));
-    // A folder is never swapped for an existing one, which would delete whatever the user kept
-    // in it: rename() refuses a target folder that holds anything.
-    std::error_code ec;
-    fs::rename(m_temporary, m_target, ec);
-    if (ec)
-        throw WriteError(fmt::format("{}: cannot be replaced: {}", describe(m_target), ec.message()));
+    if (listedWhenCommitted()) {
+        const auto signalsWait = deferSignals(); // the manifests and the rename, all or none
+        publishListed(m_temporary, m_target, m_target);
+    } else {
+        // A folder is never swapped for an existing one, which would delete whatever the user
+        // kept in it: rename() refuses a target folder that holds anything.
+        std::error_code ec;
+        fs::rename(m_temporary, m_target, ec);
+        if (ec)
+            throw WriteError(fmt::format("{}: cannot be replaced: {}", describe(m_target), ec.message()));
+    }
     m_committed = true;
     syncToDisk(parentOf(m_target), true); // the rename itself, on the disk
 }

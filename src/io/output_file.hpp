@@ -5,6 +5,7 @@
 // (folder_output.hpp).
 #include <filesystem>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -26,8 +27,9 @@ public:
 /// The file an output path names. A symbolic link is followed to its target, which is the file
 /// replaced (the link stays a link). Throws BadOutput for an empty path, a path ending in '/'
 /// (a folder's), a directory, anything that is not a regular file (a device such as /dev/null, a
-/// FIFO, a socket) or a folder that does not exist, unless it is the last one of the path (its
-/// parent exists): Temporary makes it.
+/// FIFO, a socket), a file that pba did not write or that changed since (its folder's manifest,
+/// output_manifest.hpp, says) or a folder that does not exist, unless it is the last one of the
+/// path (its parent exists): Temporary makes it.
 std::filesystem::path resolveOutputFile(const std::filesystem::path& requested);
 
 /// The same for a folder output: an existing folder or a new one in an existing folder, or in a
@@ -36,7 +38,8 @@ std::filesystem::path resolveOutputFolder(const std::filesystem::path& requested
 
 /// A temporary file or folder beside its target (`TARGET.tmp-PID`), removed when this object
 /// dies uncommitted and when the program is stopped by SIGINT, SIGTERM or SIGHUP. Makes the
-/// target's folder if it is missing (the one folder resolveOutputFile lets through).
+/// target's folder if it is missing (the one folder resolveOutputFile lets through), and removes
+/// it again with the temporary while it is empty.
 class Temporary {
 public:
     enum class Kind { File, Folder };
@@ -48,14 +51,18 @@ public:
     const std::filesystem::path& path() const { return m_temporary; }
     const std::filesystem::path& target() const { return m_target; }
     /// Syncs the temporary's data to the disk and renames it onto the target, which for a folder
-    /// must be missing or empty (folder outputs are FolderOutput's). Throws WriteError, leaving
-    /// the target as it was.
+    /// must be missing or empty (folder outputs are FolderOutput's). A file the user named is
+    /// listed in its folder's manifest (publishListed). Throws WriteError, or BadOutput if the
+    /// target became the user's meanwhile, leaving the target as it was.
     void commit();
 
 private:
+    bool listedWhenCommitted() const;
+
     std::filesystem::path m_target;
     std::filesystem::path m_temporary;
     Kind m_kind;
+    std::optional<std::filesystem::path> m_madeFolder;
     bool m_committed = false;
 };
 

@@ -1,12 +1,14 @@
 #include "io/output_manifest.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -24,8 +26,41 @@ constexpr std::string_view kHeader = "# pba-output 1";
 
 bool plainName(std::string_view name)
 {
-    return !name.empty() && name != "." && name != ".." &&
-           std::none_of(name.begin(), name.end(), [](char c) { return c == '/' || static_cast<unsigned char>(c) < 0x20; });
+    return !name.empty() && name != "." && name != ".." && name.find('/') == std::string_view::npos;
+}
+
+/// A name on one line: '%', the control characters and DEL as %XX (a user may name an output
+/// "new\nline.png").
+std::string escapeName(std::string_view name)
+{
+    std::string out;
+    for (const char c : name) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte < 0x20 || byte == 0x7f || c == '%')
+            out += fmt::format("%{:02X}", byte);
+        else
+            out += c;
+    }
+    return out;
+}
+
+/// escapeName's inverse; nothing for a '%' that is not followed by two hex digits.
+std::optional<std::string> unescapeName(std::string_view text)
+{
+    std::string out;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (text[i] != '%') {
+            out += text[i];
+            continue;
+        }
+        unsigned byte = 0;
+        const char* digits = text.data() + i + 1;
+        if (i + 3 > text.size() || std::from_chars(digits, digits + 2, byte, 16).ptr != digits + 2)
+            return std::nullopt;
+        out += static_cast<char>(byte);
+        i += 2;
+    }
+    return out;
 }
 
 /// "SIZE HASH NAME", HASH 16 hex digits; nothing if the line is not one.
@@ -40,9 +75,10 @@ std::optional<ManifestEntry> parseEntry(std::string_view line)
     if (std::from_chars(line.data(), sizeEnd, entry.fingerprint.size).ptr != sizeEnd ||
         std::from_chars(sizeEnd + 1, hashEnd, entry.fingerprint.hash, 16).ptr != hashEnd)
         return std::nullopt;
-    entry.name = std::string(line.substr(space + 18));
-    if (!plainName(entry.name))
+    const auto name = unescapeName(line.substr(space + 18));
+    if (!name || !plainName(*name))
         return std::nullopt;
+    entry.name = *name;
     return entry;
 }
 
@@ -90,7 +126,7 @@ std::string OutputManifest::text() const
     std::vector<ManifestEntry> sorted = entries;
     std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
     for (const ManifestEntry& e : sorted)
-        out += fmt::format("{} {:016x} {}\n", e.fingerprint.size, e.fingerprint.hash, e.name);
+        out += fmt::format("{} {:016x} {}\n", e.fingerprint.size, e.fingerprint.hash, escapeName(e.name));
     return out;
 }
 
@@ -115,6 +151,96 @@ OutputManifest readManifest(const fs::path& folder)
         manifest.entries.push_back(std::move(*entry));
     }
     return manifest;
+}
+
+void writeManifest(const fs::path& folder, const OutputManifest& manifest)
+{
+    Temporary temporary(folder / kManifestName, Temporary::Kind::File); // its commit lists nothing
+    writeFile(temporary.path(), manifest.text());
+    temporary.commit();
+}
+
+ManifestLock::ManifestLock(const fs::path& folder) : m_fd(::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC))
+{
+    // Without the lock (a folder that cannot be opened, a file system without flock) only two pba
+    // runs into one folder at once could lose an entry: the file is then refused later, not lost.
+    while (m_fd >= 0 && ::flock(m_fd, LOCK_EX) != 0 && errno == EINTR) {
+    }
+}
+
+ManifestLock::~ManifestLock()
+{
+    if (m_fd >= 0)
+        ::close(m_fd); // releases the lock
+}
+
+namespace {
+
+enum class Owner { Pba, ChangedSince, User };
+
+/// Whose the existing file `target` is: pba's while it holds the bytes the manifest lists.
+Owner ownerOf(const fs::path& target, const OutputManifest& manifest, std::optional<Fingerprint>* bytes = nullptr)
+{
+    const std::string name = target.filename().string();
+    std::error_code ec;
+    const bool regular = fs::is_regular_file(fs::symlink_status(target, ec));
+    const auto fingerprint = regular ? fingerprintOf(target) : std::nullopt;
+    if (bytes)
+        *bytes = fingerprint;
+    if (fingerprint && manifest.lists(name, *fingerprint))
+        return Owner::Pba;
+    return manifest.listsName(name) ? Owner::ChangedSince : Owner::User;
+}
+
+fs::path folderOf(const fs::path& file) { return file.parent_path().empty() ? fs::path(".") : file.parent_path(); }
+
+} // namespace
+
+void requireReplaceable(const fs::path& target, const fs::path& shown)
+{
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(target, ec)))
+        return;
+    const Owner owner = ownerOf(target, readManifest(folderOf(target)));
+    if (owner != Owner::Pba)
+        throw BadOutput(fmt::format("{}: {} (pba replaces only its own files, as it wrote them): move it away, or "
+                                    "write to another path", shown.string(),
+                                    owner == Owner::User ? "a file pba did not write" : "changed since pba wrote it"));
+}
+
+void publishListed(const fs::path& made, const fs::path& target, const fs::path& shown)
+{
+    const fs::path folder = folderOf(target);
+    const std::string name = target.filename().string();
+    const ManifestLock lock(folder);
+    const OutputManifest manifest = readManifest(folder);
+    std::error_code ec;
+    std::optional<Fingerprint> old;
+    if (fs::exists(fs::symlink_status(target, ec)))
+        if (const Owner owner = ownerOf(target, manifest, &old); owner != Owner::Pba)
+            throw BadOutput(fmt::format("{}: {} while pba worked: nothing was written; move it away, or write to "
+                                        "another path", shown.string(), owner == Owner::User ? "appeared" : "changed"));
+    const auto written = fingerprintOf(made);
+    if (!written)
+        throw WriteError(fmt::format("{}: cannot be read back: {}", made.string(), std::strerror(errno)));
+    OutputManifest after; // the folder's other files pba wrote, still there
+    for (const ManifestEntry& e : manifest.entries)
+        if (e.name != name && fs::exists(fs::symlink_status(folder / e.name, ec)))
+            after.entries.push_back(e);
+    OutputManifest during = after;
+    if (old)
+        during.entries.push_back({name, *old});
+    during.entries.push_back({name, *written});
+    after.entries.push_back({name, *written});
+    writeManifest(folder, during);
+    fs::rename(made, target, ec);
+    if (ec)
+        throw WriteError(fmt::format("{}: cannot be replaced: {}", shown.string(), ec.message()));
+    try {
+        writeManifest(folder, after);
+    } catch (const WriteError&) {
+        // The file is in place and `during` lists it (and its old bytes): true, only longer.
+    }
 }
 
 } // namespace pba::io

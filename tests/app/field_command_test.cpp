@@ -44,7 +44,9 @@ TEST(PbaField, DrawsTheSliceAsAPng)
     const std::string bytes = readFile(png);
     ASSERT_GT(bytes.size(), 10000u);
     EXPECT_EQ(bytes.substr(1, 3), "PNG");
-    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1) << "no temporary files left";
+    // Beside it only pba's list of the files it wrote there (.pba-output): no temporary left.
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 2);
+    EXPECT_TRUE(std::filesystem::exists(dir / ".pba-output"));
 }
 
 TEST(PbaField, TheLegendIsDarkSoTheWhiteDirectionArrowShowsInIt)

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "io/output_file.hpp"
 #include "support/run_command.hpp"
 
 namespace pba::test {
@@ -29,6 +30,13 @@ inline std::vector<std::string> temporaries(const std::filesystem::path& dir)
 }
 
 inline void writeText(const std::filesystem::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+/// `text` in a file as an earlier run of pba leaves it: listed in its folder's manifest, so a
+/// later output may replace it.
+inline void writeAsPba(const std::filesystem::path& path, const std::string& text)
+{
+    pba::io::writeFileAtomically(path, text);
+}
 
 /// A folder `bin` in `dir` holding an executable shell script `name`; returns the folder.
 inline std::filesystem::path fakeProgram(const std::filesystem::path& dir, const std::string& name,

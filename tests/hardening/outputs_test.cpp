@@ -137,7 +137,7 @@ TEST(Outputs, AFailedWriteLeavesThePreviousFileAndNoTemporary)
                                  {.workDir = dir}).exitCode, 0);
             writeText(target / "keep.txt", "previous");
         } else {
-            writeText(target, "previous");
+            writeAsPba(target, "previous");
         }
         const auto before = args.back() == "frames/" ? contents(target) : std::map<std::string, std::string>{};
         const CommandResult r = runPbaArgv(args, {.fileSizeLimit = 2000, .workDir = dir});
@@ -154,7 +154,7 @@ TEST(Outputs, AFailedWriteLeavesThePreviousFileAndNoTemporary)
 TEST(Outputs, AFailingHelperProgramIsReportedInOneLineAndChangesNothing)
 {
     const fs::path dir = freshDir("failing_helpers");
-    writeText(dir / "out.mp4", "previous");
+    writeAsPba(dir / "out.mp4", "previous");
     const fs::path bin = failingProgram(dir, "ffmpeg");
     failingProgram(dir, "gnuplot");
     const CommandResult video = runPbaArgv({"render", "integrators", "--size", "64x48", "--duration", "0.5", "--out",
@@ -205,7 +205,7 @@ TEST(Outputs, AVideoIsCheckedBeforeItReplacesThePreviousOne)
                           Case{kFtyp + kMoov + kMdatOf4096, "", "'mdat' box at byte 16 claims 4096 bytes, 8 are left"},
                           Case{kFtyp + kMoov + kMdat, "Error writing trailer of out.mp4: No space left on device",
                                "ffmpeg reported an error (exit status 0): Error writing trailer of out.mp4: No space"}}) {
-        writeText(dir / "out.mp4", "previous");
+        writeAsPba(dir / "out.mp4", "previous");
         const fs::path bin = ffmpegExitingZero(dir, c.boxes, c.message);
         const CommandResult r = runPbaArgv({"render", "integrators", "--size", "64x48", "--duration", "0.1", "--out",
                                             (dir / "out.mp4").string()},
@@ -235,7 +235,7 @@ TEST(Outputs, AVideoOnAFullDiskKeepsThePreviousOne)
     if (!disk.mounted())
         GTEST_SKIP() << disk.why();
     writeText(dir / "disk/filler", std::string(52000, 'x'));
-    writeText(dir / "disk/out.mp4", "previous");
+    writeAsPba(dir / "disk/out.mp4", "previous");
     const CommandResult r = runPbaArgv(
         {"render", "integrators", "--size", "320x240", "--duration", "2", "--out", (dir / "disk/out.mp4").string()});
     EXPECT_EQ(r.exitCode, 1) << r.err;
@@ -257,7 +257,69 @@ TEST(Outputs, AnInterruptedRunLeavesNoTemporary)
         EXPECT_EQ(r.exitCode, 128 + signal);
         EXPECT_FALSE(fs::exists(dir / "run.csv"));
         EXPECT_TRUE(temporaries(dir).empty());
+        // The folder made for an output goes with it while nothing else is in it.
+        const CommandResult made =
+            runPbaArgv({"render", "integrators", "--size", "64x48", "--duration", "1000", "--out", "made/run.mp4"},
+                       {.stopAfterMs = 700, .stopSignal = signal, .workDir = dir});
+        EXPECT_EQ(made.exitCode, 128 + signal);
+        EXPECT_FALSE(fs::exists(dir / "made"));
     }
+}
+
+// pba replaces a file only while its folder's manifest lists it with the bytes it holds: a file of
+// the user's, the scene being run, or one of pba's edited since is refused before any work.
+TEST(Outputs, AFileThatPbaDidNotWriteIsNeverReplaced)
+{
+    const fs::path dir = freshDir("users_files");
+    std::ofstream(dir / "scene.json") << readFile(sourceDir() / "scenes/integrators.json");
+    const std::string scene = readFile(dir / "scene.json");
+    for (const char* name : {"notes.csv", "mine.png", "mine.mp4", "slice.png"})
+        writeText(dir / name, "the user's");
+    fs::create_symlink("notes.csv", dir / "link.csv");
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"sim", "scene.json", "--dt", "1e-5", "--duration", "1000", "--out", "scene.json"},
+          std::vector<std::string>{"sim", "integrators", "--dt", "1e-5", "--duration", "1000", "--out", "notes.csv"},
+          std::vector<std::string>{"sim", "integrators", "--dt", "1e-5", "--duration", "1000", "--out", "link.csv"},
+          std::vector<std::string>{"render", "integrators", "--size", "64x48", "--time", "0.1", "--out", "mine.png"},
+          std::vector<std::string>{"render", "integrators", "--size", "64x48", "--duration", "100", "--out", "mine.mp4"},
+          std::vector<std::string>{"field", "blow-dryer", "--slice", "--out", "slice.png"}}) {
+        const CommandResult r = runPbaArgv(args, {.workDir = dir});
+        EXPECT_EQ(r.exitCode, 2) << args.back() << "\n" << r.err;
+        EXPECT_NE(r.err.find(args.back() + ": a file pba did not write"), std::string::npos) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    }
+    EXPECT_EQ(readFile(dir / "scene.json"), scene);
+    for (const char* name : {"notes.csv", "mine.png", "mine.mp4", "slice.png"})
+        EXPECT_EQ(readFile(dir / name), "the user's") << name;
+    EXPECT_FALSE(fs::exists(dir / ".pba-output"));
+
+    // pba's own file is replaced, again and again, under any name; once edited it is the user's.
+    for (const std::string name : {"run.csv", "new\nline 100%.csv"}) {
+        for (int run = 0; run < 2; ++run) {
+            const CommandResult r = runPbaArgv({"sim", "integrators", "--duration", "0.01", "--out", name}, {.workDir = dir});
+            EXPECT_EQ(r.exitCode, 0) << name << " run " << run << "\n" << r.err;
+        }
+    }
+    std::ofstream(dir / "run.csv", std::ios::app) << "an edit\n";
+    const CommandResult edited =
+        runPbaArgv({"sim", "integrators", "--duration", "0.01", "--out", "run.csv"}, {.workDir = dir});
+    EXPECT_EQ(edited.exitCode, 2);
+    EXPECT_NE(edited.err.find("run.csv: changed since pba wrote it"), std::string::npos) << edited.err;
+
+    // A study's folder output and a file output in one folder keep each other's entries.
+    ASSERT_EQ(runPbaArgv({"compare", "spring", "--duration", "1", "--dt", "0.01,0.02", "--out", "."}, {.workDir = dir})
+                  .exitCode,
+              0);
+    EXPECT_EQ(runPbaArgv({"sim", "integrators", "--duration", "0.01", "--out", "new\nline 100%.csv"}, {.workDir = dir})
+                  .exitCode,
+              0);
+    const CommandResult again =
+        runPbaArgv({"compare", "spring", "--duration", "1", "--dt", "0.01,0.02", "--out", "."}, {.workDir = dir});
+    EXPECT_EQ(again.exitCode, 0) << again.err;
+    const std::string manifest = readFile(dir / ".pba-output");
+    EXPECT_NE(manifest.find(" report.md\n"), std::string::npos) << manifest;
+    EXPECT_NE(manifest.find(" new%0Aline 100%25.csv\n"), std::string::npos) << manifest;
+    EXPECT_TRUE(temporaries(dir).empty());
 }
 
 // A run of 10^8 steps that is refused at once shows the path is checked before simulating.

@@ -21,7 +21,9 @@ TEST(PbaRender, WritesAnH264Mp4WithOneFramePerTick)
                                          mp4.string());
     ASSERT_EQ(probe.exitCode, 0) << probe.err;
     EXPECT_EQ(probe.out, "h264,320,240,yuv420p,31\n"); // frames at t = 0, 1/30, ..., 1
-    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1) << "no temporary files left";
+    // Beside it only pba's list of the files it wrote there (.pba-output): no temporary left.
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 2);
+    EXPECT_TRUE(std::filesystem::exists(dir / ".pba-output"));
 }
 
 TEST(PbaRender, WritesNumberedFramesAndOnePng)
