@@ -279,15 +279,16 @@ public:
     /// Translational kinetic energy, and a rigid body's rotational 1/2 omega . L.
     double kineticEnergy(std::size_t i) const;
     /// Body i's potential energy: its share of each force's (a force between bodies splits its
-    /// energy among them, a two-body spring half to each end), so the shares add up to
-    /// totalPotentialEnergy.
+    /// energy among them, a two-body spring half to each end) and of each spring joint's, so the
+    /// shares add up to totalPotentialEnergy.
     double potentialEnergy(std::size_t i) const;
     double energy(std::size_t i) const { return kineticEnergy(i) + potentialEnergy(i); }
     /// Every body's energy(i) at once. One body's potential energy reads every body's state, so
     /// asking for each of a cloth's 16,384 bodies in turn would cost bodies squared; this
     /// gathers the states once.
     std::vector<double> energies() const;
-    /// Every force's potential energy, each interaction counted once.
+    /// Every force's potential energy, each interaction counted once, and what the spring
+    /// joints store.
     double totalPotentialEnergy() const;
     /// Kinetic plus potential energy of all bodies (swarms not included).
     double totalEnergy() const;
@@ -572,6 +573,9 @@ private:
     /// The bodies now, for a force evaluation; without `withStates`, their poses only (the
     /// caller gives the states).
     BodyStates currentStates(std::vector<State>& storage, std::vector<Pose>& poses, bool withStates = true) const;
+    /// Adds each spring joint's stored energy, 1/2 k (stretch)^2, to its bodies' entries of
+    /// `perBody` (half to each; all to a body joined to the world), and returns their sum.
+    double addSpringJointEnergies(std::span<double> perBody) const;
 
     Bodies m_bodies;
     Forces m_forces;

@@ -459,6 +459,26 @@ double World::kineticEnergy(std::size_t i) const
     return isRigid(i) ? translation + static_cast<const RigidBody&>(b).getRotationalKineticEnergy() : translation;
 }
 
+double World::addSpringJointEnergies(std::span<double> perBody) const
+{
+    double total = 0.0;
+    for (std::size_t i = 0; i < jointCount(); ++i) {
+        const rigid::Joint& j = m_rigid.system->joints()[i];
+        if (j.type != JointType::Distance || !(j.stiffness > 0.0))
+            continue;
+        const JointFrame frame = jointFrame(i);
+        const double stretch = glm::length(frame.onB - frame.onA) - j.length;
+        const double e = 0.5 * j.stiffness * stretch * stretch;
+        total += e;
+        if (perBody.empty())
+            continue;
+        perBody[frame.bodyA] += frame.bodyB ? 0.5 * e : e;
+        if (frame.bodyB)
+            perBody[*frame.bodyB] += 0.5 * e;
+    }
+    return total;
+}
+
 double World::potentialEnergy(std::size_t i) const
 {
     std::vector<State> states;
@@ -467,6 +487,11 @@ double World::potentialEnergy(std::size_t i) const
     double e = 0.0;
     for (const auto& force : m_forces.objects)
         e += force->potentialEnergyShare(i, in);
+    if (jointCount() > 0) {
+        std::vector<double> joints(m_bodies.objects.size(), 0.0);
+        addSpringJointEnergies(joints);
+        e += joints[i];
+    }
     return e;
 }
 
@@ -481,6 +506,7 @@ std::vector<double> World::energies() const
         for (const auto& force : m_forces.objects)
             e[i] += force->potentialEnergyShare(i, in);
     }
+    addSpringJointEnergies(e);
     return e;
 }
 
@@ -489,7 +515,7 @@ double World::totalPotentialEnergy() const
     std::vector<State> states;
     std::vector<Pose> poses;
     const BodyStates in = currentStates(states, poses);
-    double e = 0.0;
+    double e = addSpringJointEnergies({});
     for (const auto& force : m_forces.objects)
         e += force->totalPotentialEnergy(in);
     return e;

@@ -12,6 +12,7 @@
 #include <numbers>
 #include <vector>
 
+#include "pba/blow_up_watch.hpp"
 #include "pba/forces.hpp"
 
 using namespace pba;
@@ -206,6 +207,31 @@ TEST(Joints, ADistanceJointKeepsItsLengthOrSpringsWithSqrtKOverM)
         world.addJoint(spring);
         const double period = measuredPeriod(world, bob, 1.0, 0.0005, 3);
         EXPECT_NEAR(period, 2.0 * kPi / std::sqrt(k / m), 0.01 * 2.0 * kPi / std::sqrt(k / m));
+    }
+}
+
+// A spring joint's stretch is energy the world holds: released, it is no gain that the blow-up
+// watch should stop, and the world never holds more than the spring stored at the start.
+TEST(Joints, ASpringJointsStoredEnergyIsTheWorlds)
+{
+    World world; // no gravity: the spring's energy is all there is
+    const double k = 100.0;
+    addBody(world, Shape::box(dvec3(0.1)), 1.0, dvec3(-1.0, 2.0, 0.0));
+    JointDesc spring;
+    spring.type = JointType::Distance;
+    spring.bodyA = 0;
+    spring.anchors = {dvec3(-1.0, 2.0, 0.0), dvec3(1.0, 2.0, 0.0)}; // 2 m apart, 1 m long: 1 m stretched
+    spring.length = 1.0;
+    spring.stiffness = k;
+    world.addJoint(spring);
+    EXPECT_DOUBLE_EQ(world.totalEnergy(), 0.5 * k);
+    EXPECT_DOUBLE_EQ(world.energies()[0], 0.5 * k);
+    EXPECT_DOUBLE_EQ(world.potentialEnergy(0), 0.5 * k);
+    BlowUpWatch watch(world);
+    for (int n = 0; n < 1000; ++n) {
+        world.step(0.002);
+        ASSERT_NO_THROW(watch.check(world)) << n;
+        ASSERT_LE(world.totalEnergy(), 0.5 * k * (1.0 + 1e-9)) << n;
     }
 }
 
