@@ -127,10 +127,10 @@ struct StartPose {
 
 void setHinge(const JointDesc& desc, const StartPose& a, const StartPose& b, rigid::Joint& j)
 {
-    const double len = glm::length(desc.axis);
-    if (!(len > 0.0) || !finite(desc.axis))
+    const dvec3 axis = unitOrZero(desc.axis);
+    if (axis == dvec3(0.0) || !finite(desc.axis))
         throw std::invalid_argument("a hinge's axis must be a non-zero finite vector");
-    const dvec3 axis = desc.axis / len, ref = across(axis);
+    const dvec3 ref = across(axis);
     j.axisA = a.local(a.x + axis);
     j.axisB = b.local(b.x + axis);
     j.refA = a.local(a.x + ref);

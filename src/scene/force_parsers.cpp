@@ -102,12 +102,9 @@ BlowDryerField readBlowDryerField(ObjectReader& reader)
 {
     BlowDryerField f;
     f.nozzle = reader.vec3("nozzle");
-    const dvec3 axis = reader.vec3("axis", dvec3(0, 1, 0));
-    if (glm::length(axis) == 0.0)
+    f.axis = unitOrZero(reader.vec3("axis", dvec3(0, 1, 0)));
+    if (f.axis == dvec3(0.0))
         reader.fail("axis", "must not be the zero vector");
-    f.axis = glm::normalize(axis);
-    if (!(std::abs(glm::length(f.axis) - 1.0) < 1e-9)) // its length overflowed or underflowed
-        reader.fail("axis", "is too large or too small to normalise: give a direction of moderate length");
     f.height = reader.positive("height");
     f.nozzleRadius = reader.nonNegative("nozzle_radius", 0.0);
     f.topRadius = reader.nonNegative("top_radius");

@@ -120,8 +120,8 @@ void readJoint(const Json& value, const std::string& path, const std::string& fi
         joint.anchor = reader.vec3("anchor");
     }
     if (hinge) {
-        joint.axis = reader.vec3("axis");
-        if (!(glm::length(joint.axis) > 0.0))
+        joint.axis = unitOrZero(reader.vec3("axis"));
+        if (joint.axis == dvec3(0.0))
             reader.fail("axis", "must not be zero");
         if (reader.has("limits"))
             joint.limits = readLimits(reader);

@@ -129,10 +129,11 @@ dquat readOrientation(ObjectReader& reader)
             return x.is_number() && std::isfinite(x.get<double>());
         }))
         reader.fail("orientation", "must be a quaternion [w, x, y, z] of four finite numbers");
-    const dquat q(value[0].get<double>(), value[1].get<double>(), value[2].get<double>(), value[3].get<double>());
-    if (!(glm::length(q) > 0.0) || !std::isfinite(glm::length(q)))
+    const dquat q = unitOrZero(
+        dquat(value[0].get<double>(), value[1].get<double>(), value[2].get<double>(), value[3].get<double>()));
+    if (q == dquat(0.0, 0.0, 0.0, 0.0))
         reader.fail("orientation", "must not be zero (it is normalised, and a zero quaternion has no direction)");
-    return glm::normalize(q);
+    return q;
 }
 
 } // namespace

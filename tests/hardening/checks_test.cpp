@@ -70,9 +70,6 @@ INSTANTIATE_TEST_SUITE_P(
         BadNumber{R"({"forces": [{"type": "blow-dryer", "nozzle": [0, 0, 0], "height": 1, "top_radius": 1,
                       "strength": 1e308}]})",
                   "forces[0].strength"},
-        BadNumber{R"({"forces": [{"type": "blow-dryer", "nozzle": [0, 0, 0], "axis": [0, 1e200, 0], "height": 1,
-                      "top_radius": 1, "strength": 1}]})",
-                  "forces[0].axis"},
         BadNumber{R"({"forces": [{"type": "blow-dryer", "nozzle": [0, 0, 0], "height": 1e200, "top_radius": 1e200,
                       "strength": 1}]})",
                   "forces[0].strength"}));

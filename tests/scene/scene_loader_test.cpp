@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "pba/blow_dryer.hpp"
+#include "pba/rigid_body.hpp"
 #include "pba/scene/scene.hpp"
 
 using namespace pba;
@@ -303,6 +305,29 @@ TEST(SceneLoader, AJointsCollideKeyLetsItsBodiesCollide)
         for (const World::ContactPointView& p : scene.world.contactPoints())
             touch = touch || (p.bodyB && p.bodyA + *p.bodyB == 1u);
         EXPECT_EQ(touch, collide);
+    }
+}
+
+// A direction is a direction at any length: scaled before it is normalised, an axis of 1e200 or
+// 1e-200 (whose square overflows or vanishes) is the unit axis, as is such an orientation.
+TEST(SceneLoader, DirectionsOfAnyFiniteLengthAreNormalised)
+{
+    for (const char* length : {"1e200", "1e-200", "3"}) {
+        Scene scene = parseScene(fmt::format(R"({{"room": {{"min": [-2, 0, -2], "max": [2, 4, 2]}},
+            "forces": [{{"type": "blow-dryer", "nozzle": [0, 0, 0], "axis": [0, {0}, 0], "height": 1, "top_radius": 1,
+                         "strength": 1}}],
+            "rigid_bodies": [{{"name": "a", "position": [0, 2, 0], "orientation": [{0}, 0, 0, 0],
+                               "shape": {{"type": "box", "size": [0.2, 0.2, 0.2]}}}}],
+            "joints": [{{"type": "hinge", "bodies": ["a"], "anchor": [0.5, 2, 0], "axis": [{0}, 0, 0]}}]}})",
+                                             length),
+                                 "s.json");
+        const auto& box = static_cast<const RigidBody&>(scene.world.body(0));
+        EXPECT_EQ(box.getOrientation(), dquat(1.0, 0.0, 0.0, 0.0)) << length;
+        EXPECT_EQ(scene.world.jointFrame(0).axis, dvec3(1.0, 0.0, 0.0)) << length;
+        ASSERT_EQ(blowDryers(scene.world).size(), 1u);
+        EXPECT_EQ(blowDryers(scene.world).front().field.axis, dvec3(0.0, 1.0, 0.0)) << length;
+        scene.world.step(0.002);
+        EXPECT_TRUE(std::isfinite(box.getPos().x)) << length;
     }
 }
 
