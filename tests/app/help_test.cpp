@@ -78,6 +78,17 @@ TEST(PbaHelp, HelpCommandPrintsWhatHelpFlagPrints)
     EXPECT_EQ(unknown.out, "");
 }
 
+// docs/commands.md promises every command's help ends in examples (`scenes` and `help` take
+// nothing worth one).
+TEST(PbaHelp, EveryCommandsHelpEndsInExamples)
+{
+    for (const char* command : {"sim", "field", "render", "view", "compare", "bench"}) {
+        const std::string help = helpOf(command);
+        const auto at = help.find("\nExamples:\n  pba " + std::string(command) + " ");
+        EXPECT_NE(at, std::string::npos) << "pba " << command << " --help\n" << help;
+    }
+}
+
 TEST(PbaHelp, VersionIsOneLine)
 {
     const CommandResult r = runPba("--version");
