@@ -279,7 +279,7 @@ int runClockCompare(const CompareOptions& options)
     const bool plot = publishStudy(folder, config, result, "clocks.csv", writeClockCsv, writeClockPlot, writeClockReport);
     fmt::print("largest distance of a body from the 60 Hz run, {} at dt = {:g} s:\n{}\n{}", config.scene.name,
                config.dt, clockTable(config, result, false), clockFindings(config, result));
-    fmt::print(stderr, "pba: wrote {}/report.md, clocks.csv{}\n", options.out, plot ? " and clocks.png" : "");
+    fmt::print("wrote {}/report.md, clocks.csv{}\n", options.out, plot ? " and clocks.png" : "");
     return kExitSuccess;
 }
 

@@ -74,7 +74,7 @@ TEST(PbaHelp, HelpCommandPrintsWhatHelpFlagPrints)
     }
     const CommandResult unknown = runPba("help simulate");
     EXPECT_EQ(unknown.exitCode, 2);
-    EXPECT_NE(unknown.err.find("help: no command 'simulate'"), std::string::npos) << unknown.err;
+    EXPECT_NE(unknown.err.find("help: unknown command 'simulate'"), std::string::npos) << unknown.err;
     EXPECT_EQ(unknown.out, "");
 }
 

@@ -119,15 +119,21 @@ INSTANTIATE_TEST_SUITE_P(
 
 // A mistyped command or option is named, with the one it is close to, in the order it was typed;
 // an option of another command (render's --time) is named alone, not with the arguments
-// reversed after it.
+// reversed after it. A word past the command's arguments is named with the command, and
+// `pba help` names a mistyped command as `pba` does.
 TEST(PbaCommands, AMistypedCommandOrOptionIsNamedWithTheOneItIsCloseTo)
 {
     const std::pair<const char*, const char*> cases[] = {
         {"simm integrators", "unknown command 'simm': did you mean 'sim'? (the commands: sim, field, render, view, "
                              "compare, bench, scenes, help)"},
+        {"help simm", "help: unknown command 'simm': did you mean 'sim'? (the commands: sim, field, render, view, "
+                      "compare, bench, scenes, help)"},
         {"sim integrators --dtt 0.1",
          "unknown option '--dtt' of `pba sim`: did you mean '--dt'? (`pba sim --help` lists its options)"},
-        {"sim integrators --time 1", "unknown option '--time' of `pba sim` (`pba sim --help` lists its options)"}};
+        {"sim integrators --time 1", "unknown option '--time' of `pba sim` (`pba sim --help` lists its options)"},
+        {"sim integrators extra more",
+         "unexpected argument 'extra' of `pba sim` (`pba sim --help` lists its arguments)"},
+        {"scenes extra", "unexpected argument 'extra' of `pba scenes` (`pba scenes --help` lists its arguments)"}};
     for (const auto& [args, message] : cases) {
         const CommandResult r = runPba(args);
         EXPECT_EQ(r.exitCode, 2) << args;
