@@ -287,8 +287,15 @@ void printSceneTotals(const World& world, const std::vector<BodySummary>& summar
 void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary,
                   const study::JetWatch& jet, const study::RigidWatch& rigid, double sourceWork, bool everyParticle)
 {
-    fmt::print("scene {}: {} steps of dt = {:.6g} s, t = {:.6g} s, collision response {}{}\n", scene.name, world.stepCount(),
-               scene.dt, world.time(), collisionResponseName(world.collisionResponse()),
+    // A run takes round(duration / dt) steps, at least one: where that is not the duration, the
+    // line says so rather than let t = 20 s on a 10 s scene look like a bug.
+    const bool rounded = std::abs(world.time() - scene.duration) > 1e-9 * scene.duration;
+    fmt::print("scene {}: {} step{} of dt = {:.6g} s, t = {:.6g} s{}, collision response {}{}\n", scene.name,
+               world.stepCount(), world.stepCount() == 1 ? "" : "s", scene.dt, world.time(),
+               rounded ? fmt::format(" (the duration, {:.6g} s, is {:.6g} steps: a run takes the nearest whole number, "
+                                     "at least one)", scene.duration, scene.duration / scene.dt)
+                       : "",
+               collisionResponseName(world.collisionResponse()),
                world.coupledBodiesReflect() ? " (reflect for bodies joined by springs)" : "");
     if (world.bodyCount() == 0) {
         printSwarmSummary(world);

@@ -117,6 +117,35 @@ INSTANTIATE_TEST_SUITE_P(
                            "has rigid body 'crate' (a rope's or cloth's own \"integrator\" key sets it"},
                     BadRun{"granular --integrator implicit-euler", "has swarm 'grains', which has none"}));
 
+// --swarm-particles writes to --out's CSV: alone it would do nothing, so it is refused.
+TEST(PbaSim, SwarmParticlesWithoutOutIsRefused)
+{
+    const CommandResult r = runPba("sim blow-dryer-swarm --swarm-particles --duration 0.01");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err, "pba: error: --swarm-particles: writes the swarms' particles to --out's CSV, and there is no "
+                     "--out\n");
+    EXPECT_EQ(r.out, "");
+}
+
+// A run takes round(duration / dt) steps, at least one (docs/scenes.md): where that is not the
+// duration, the first line says so, and only there.
+TEST(PbaSim, SaysWhenTheDurationIsNotAWholeNumberOfSteps)
+{
+    CommandResult r = runPba("sim integrators --dt 0.3 --duration 1");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out.rfind("scene integrators: 3 steps of dt = 0.3 s, t = 0.9 s (the duration, 1 s, is 3.33333 steps: "
+                          "a run takes the nearest whole number, at least one), collision response reflect\n", 0),
+              0u)
+        << r.out;
+    r = runPba("sim integrators --dt 0.5 --duration 0.2");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out.rfind("scene integrators: 1 step of dt = 0.5 s, t = 0.5 s (the duration, 0.2 s, is 0.4 steps", 0),
+              0u)
+        << r.out;
+    r = runPba("sim integrators --duration 1");
+    EXPECT_EQ(r.out.rfind("scene integrators: 100 steps of dt = 0.01 s, t = 1 s, collision", 0), 0u) << r.out;
+}
+
 // A mistyped command or option is named, with the one it is close to, in the order it was typed;
 // an option of another command (render's --time) is named alone, not with the arguments
 // reversed after it. A word past the command's arguments is named with the command, and
