@@ -219,7 +219,9 @@ void checkFieldOptions(const FieldOptions& options)
         throw UsageError("--json: prints --at's forces as JSON; --slice draws a picture: give --at, or drop --json");
     if (!options.slice && options.out)
         throw UsageError("--out: names --slice's picture, and there is no --slice (--at prints to the terminal)");
-    if (options.out && std::filesystem::path(*options.out).extension() != ".png")
+    // (A path ending in '/' has no file name to check: the output's own check names it a folder.)
+    const std::filesystem::path out = options.out.value_or("");
+    if (options.out && out.has_filename() && out.extension() != ".png")
         throw UsageError(fmt::format("--out: --slice writes a PNG, so the file must end in .png, got '{}'", *options.out));
 }
 
