@@ -424,7 +424,9 @@ void addBenchCommand(CLI::App& root, Action& selected)
                   "200 steps each (10 with --quick), in milliseconds of thread time a step for each phase\n"
                   "(integrate, surface test, collide, check; timing them slows a step a little). The clock\n"
                   "is read without waiting for a phase to finish, so some of the integration's time shows\n"
-                  "up in the phase after it: the surface test's, or at rest the collision's (see docs/swarms.md).\n");
+                  "up in the phase after it: the surface test's, or at rest the collision's (see docs/swarms.md).\n"
+                  "\nExamples:\n  pba bench --quick\n  pba bench --quick --json\n"
+                  "  pba bench --phases --sizes 1e5 --quick\n");
     bench->callback([options, integrator, &selected] {
         options->integratorGiven = integrator->count() > 0;
         selected = [options] { return runBench(*options); };

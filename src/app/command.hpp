@@ -45,6 +45,10 @@ void addBenchCommand(CLI::App& root, Action& selected);
 void addScenesCommand(CLI::App& root, Action& selected);
 void addHelpCommand(CLI::App& root, Action& selected);
 
+/// "unknown command 'simm': did you mean 'sim'? (the commands: sim, ...)": how `pba simm` and
+/// `pba help simm` both name a command that is not one of root's.
+std::string unknownCommandText(const CLI::App& root, const std::string& name);
+
 /// `pba` with no arguments: the default scene in a window when there is a display,
 /// otherwise rendered to an MP4 and a PNG in `directory`.
 int runDefault(const std::string& directory);

@@ -279,7 +279,7 @@ int runClockCompare(const CompareOptions& options)
     const bool plot = publishStudy(folder, config, result, "clocks.csv", writeClockCsv, writeClockPlot, writeClockReport);
     fmt::print("largest distance of a body from the 60 Hz run, {} at dt = {:g} s:\n{}\n{}", config.scene.name,
                config.dt, clockTable(config, result, false), clockFindings(config, result));
-    fmt::print(stderr, "pba: wrote {}/report.md, clocks.csv{}\n", options.out, plot ? " and clocks.png" : "");
+    fmt::print("wrote {}/report.md, clocks.csv{}\n", options.out, plot ? " and clocks.png" : "");
     return kExitSuccess;
 }
 
@@ -301,7 +301,7 @@ int runCompare(const CompareOptions& options)
     io::FolderOutput folder(options.out, isStudyFile);
     Progress progress("comparing", study::studyTaskCount(config));
     const study::StudyResult result = study::runStudy(config, [&](long done, long) { progress.update(done); });
-    // About a minute of runs (the references at dt 1e-4 s): on request only.
+    // Its references at dt 1e-4 s cost several times the study itself: on request only.
     const std::vector<study::WorkPrecisionPoint> points =
         options.workPrecision ? study::runWorkPrecision() : std::vector<study::WorkPrecisionPoint>{};
     const bool plots = publishStudy(
@@ -370,7 +370,7 @@ void addCompareCommand(CLI::App& root, Action& selected)
         ->delimiter(',')
         ->option_text("MODE,...");
     compare->add_option("--dt", options->dts, "Comma-separated timesteps (default 0.0005,0.001,0.002,0.005,0.01,0.02,"
-                                              "0.05,0.1)")
+                                              "0.05,0.1; with rigid bodies the first seven, up to 0.05)")
         ->delimiter(',')
         ->option_text("DT,...");
     compare->add_option("--duration", options->duration, "Simulated time of each run (default the scene's)")
@@ -384,16 +384,18 @@ void addCompareCommand(CLI::App& root, Action& selected)
     compare->add_flag("--work-precision", options->workPrecision,
                       "Also run the spring, chain, cloth and tennis racket with every method they take at six dt and "
                       "write work_precision.csv and .png: error against CPU time, the cheapest method for an accuracy "
-                      "(about a minute)");
+                      "(seconds more than the study alone)");
     compare->add_option("--jobs", options->jobs, "Runs in parallel (default all cores); results do not depend on it")
         ->type_name("N");
     compare->footer("\nOn a scene with rigid bodies (dice, tennis-racket, rolling, blow-dryer-boxes) it studies rotation\n"
                     "instead: every integrator (all six) and dt (default up to 0.05) on the first moving rigid body\n"
                     "(or --body NAME): its drift of energy and of |L|, and its flip period against the elliptic\n"
                     "integral's.\n"
-                    "\nExample: pba compare --out pba-out/study    (then read pba-out/study/report.md)\n"
-                    "         pba compare tennis-racket --out pba-out/racket\n"
-                    "         pba compare incline --body steep-box --out pba-out/incline\n");
+                    "\nExamples:\n  pba compare --out pba-out/study    (then read pba-out/study/report.md)\n"
+                    "  pba compare stiff-spring --out pba-out/stiff    (each integrator's stability limit in dt)\n"
+                    "  pba compare tennis-racket --out pba-out/racket\n"
+                    "  pba compare incline --body steep-box --out pba-out/incline\n"
+                    "  pba compare --clocks blow-dryer --out pba-out/clocks\n");
     compare->callback([options, &selected] { selected = [options] { return runCompare(*options); }; });
 }
 

@@ -2,6 +2,7 @@
 // the blow dryer's field in the vertical plane through its axis.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -209,8 +210,24 @@ int drawSlice(const Scene& scene, const FieldOptions& options)
     return kExitSuccess;
 }
 
+/// The options of --at and of --slice do not mix: one that the chosen one would ignore is refused.
+void checkFieldOptions(const FieldOptions& options)
+{
+    if (options.slice && !options.at.empty())
+        throw UsageError("--at: prints the force at a point, and --slice draws a picture instead: give one of them");
+    if (options.slice && options.json)
+        throw UsageError("--json: prints --at's forces as JSON; --slice draws a picture: give --at, or drop --json");
+    if (!options.slice && options.out)
+        throw UsageError("--out: names --slice's picture, and there is no --slice (--at prints to the terminal)");
+    // (A path ending in '/' has no file name to check: the output's own check names it a folder.)
+    const std::filesystem::path out = options.out.value_or("");
+    if (options.out && out.has_filename() && out.extension() != ".png")
+        throw UsageError(fmt::format("--out: --slice writes a PNG, so the file must end in .png, got '{}'", *options.out));
+}
+
 int runField(const FieldOptions& options)
 {
+    checkFieldOptions(options);
     const Scene scene = loadScene(options.scene);
     if (options.slice)
         return drawSlice(scene, options);

@@ -7,8 +7,19 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "scene/closest_name.hpp"
 
 namespace pba::app {
+
+std::string unknownCommandText(const CLI::App& root, const std::string& name)
+{
+    std::vector<std::string> commands;
+    for (const CLI::App* command : root.get_subcommands({}))
+        commands.push_back(command->get_name());
+    const auto close = scene_detail::closestName(name, commands);
+    return fmt::format("unknown command '{}'{} (the commands: {})", name,
+                       close ? fmt::format(": did you mean '{}'?", *close) : "", fmt::join(commands, ", "));
+}
 
 namespace {
 
@@ -24,10 +35,7 @@ int printHelp(const CLI::App& root, const std::string& name)
             fmt::print("{}", command->help(root.get_name()));
             return kExitSuccess;
         }
-    std::vector<std::string> names;
-    for (const CLI::App* command : root.get_subcommands({}))
-        names.push_back(command->get_name());
-    throw UsageError(fmt::format("help: no command '{}' (the commands are {})", name, fmt::join(names, ", ")));
+    throw UsageError("help: " + unknownCommandText(root, name));
 }
 
 } // namespace

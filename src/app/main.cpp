@@ -20,9 +20,10 @@
 
 namespace {
 
-/// The first option the command did not know, with the one it is close to: CLI11 lists what it
-/// could not place in reverse order ("not expected: 1 --time").
-std::optional<std::string> unknownOptionText(const CLI::App& app)
+/// What the command could not place: the first option it did not know, with the one it is close
+/// to, or else the first word past its positionals. An unknown option's value is among them too
+/// (CLI11 lists "1 --time" for `--time 1`), so an option is looked for first.
+std::optional<std::string> extraArgumentText(const CLI::App& app)
 {
     const auto parsed = app.get_subcommands();
     const CLI::App& command = parsed.empty() ? app : *parsed.front();
@@ -31,7 +32,8 @@ std::optional<std::string> unknownOptionText(const CLI::App& app)
     for (const CLI::Option* option : command.get_options())
         for (const std::string& longName : option->get_lnames())
             known.push_back("--" + longName);
-    for (const std::string& extra : command.remaining()) {
+    const std::vector<std::string> extras = command.remaining();
+    for (const std::string& extra : extras) {
         if (extra.size() < 2 || extra[0] != '-')
             continue;
         const std::string flag = extra.substr(0, extra.find('='));
@@ -39,6 +41,10 @@ std::optional<std::string> unknownOptionText(const CLI::App& app)
         return fmt::format("unknown option '{}' of `{}`{} (`{} --help` lists its options)", flag, name,
                            close ? fmt::format(": did you mean '{}'?", *close) : "", name);
     }
+    // No option among them: words past the command's positionals, named from the first.
+    if (!extras.empty())
+        return fmt::format("unexpected argument '{}' of `{}` (`{} --help` lists its arguments)", extras.front(),
+                           name, name);
     return std::nullopt;
 }
 
@@ -59,15 +65,12 @@ std::string parseErrorText(const CLI::ParseError& e, const CLI::App& app, const 
         std::vector<std::string> commands;
         for (const CLI::App* command : app.get_subcommands({}))
             commands.push_back(command->get_name());
-        if (std::find(commands.begin(), commands.end(), args.front()) == commands.end()) {
-            const auto close = pba::scene_detail::closestName(args.front(), commands);
-            return fmt::format("unknown command '{}'{} (the commands: {})", args.front(),
-                               close ? fmt::format(": did you mean '{}'?", *close) : "", fmt::join(commands, ", "));
-        }
+        if (std::find(commands.begin(), commands.end(), args.front()) == commands.end())
+            return pba::app::unknownCommandText(app, args.front());
     }
     if (dynamic_cast<const CLI::ExtrasError*>(&e))
-        if (const auto option = unknownOptionText(app))
-            return *option;
+        if (const auto extra = extraArgumentText(app))
+            return *extra;
     return what;
 }
 

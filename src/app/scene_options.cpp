@@ -50,7 +50,7 @@ void addSceneOptions(CLI::App& command, SceneOptions& options, const std::string
                        "implicit-gyroscopic or splitting (semi-implicit Euler or velocity Verlet whose rigid "
                        "rotation takes the implicit gyroscopic step or the momentum-keeping splitting); "
                        "implicit-euler or xpbd (particles joined by springs: backward Euler, or the springs as "
-                       "constraints in --substeps)")
+                       "constraints in --substeps; a particle with no spring moves as by semi-implicit Euler)")
         ->type_name("NAME");
     command.add_option("--substeps", options.substeps, "xpbd's substeps a step (overrides the scene; default 10)")
         ->type_name("N");

@@ -179,6 +179,8 @@ void warnOfLargeCsv(const SimOptions& options, const Scene& scene)
 
 int runSim(const SimOptions& options)
 {
+    if (options.swarmParticles && !options.out)
+        throw UsageError("--swarm-particles: writes the swarms' particles to --out's CSV, and there is no --out");
     Scene scene = loadSceneWithOverrides(options.scene);
     checkFrameRate(options, scene);
     warnOfLargeCsv(options, scene);

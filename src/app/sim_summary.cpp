@@ -245,6 +245,21 @@ void printSystemRows(const World& world, const render::BodyGroups& groups, const
     }
 }
 
+/// The energy the dryer's work leaves unexplained, as a balance in joules: E start + W - E now is
+/// what bounces, contacts and the integration took (or gave). A ratio (E now - W) / E start read
+/// as an energy ratio, and went negative where the dryer's work outgrew the start's energy.
+void printDryerBalance(double start, double work, double now)
+{
+    const double lost = start + work - now;
+    const std::string share = start > 0.0 ? fmt::format(", {:.3g}% of the start's energy", 100.0 * std::abs(lost) / start)
+                                          : std::string();
+    fmt::print("(+ the dryer's work): the blow dryer did {:.6g} J of work on the bodies in its cone (its force as "
+               "each body's integrator applies it, against each step's mean velocity), so their energy is not kept; "
+               "the balance: {:.6g} J at the start + {:.6g} J of work - {:.6g} J now = {:.3g} J {} by bounces, "
+               "contacts and the integration{}\n",
+               work, start, work, now, std::abs(lost), lost >= 0.0 ? "taken" : "given", share);
+}
+
 /// The whole scene's energy and momentum, now and at the start (swarms not included).
 void printSceneTotals(const World& world, const std::vector<BodySummary>& summary, const std::vector<double>& energies,
                       const study::JetWatch& jet, double sourceWork)
@@ -264,11 +279,7 @@ void printSceneTotals(const World& world, const std::vector<BodySummary>& summar
                "the start\n", energy, start, energyRatioText(start != 0.0 ? energy / start : 1.0),
                dryerWorked(jet, all) ? kDryerNote : "", vectorText(momentum), vectorText(startMomentum));
     if (dryerWorked(jet, all))
-        fmt::print("(+ the dryer's work): the blow dryer did {:.6g} J of work on the bodies in its cone (its force "
-                   "as each body's integrator applies it, against each step's mean velocity), so their energy is "
-                   "not kept; without that work, E now/E start is {} (what bounces, contacts and the integration "
-                   "took or gave)\n",
-                   sourceWork, energyRatioText(start != 0.0 ? (energy - sourceWork) / start : 1.0));
+        printDryerBalance(start, sourceWork, energy);
 }
 
 } // namespace
@@ -276,8 +287,15 @@ void printSceneTotals(const World& world, const std::vector<BodySummary>& summar
 void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary,
                   const study::JetWatch& jet, const study::RigidWatch& rigid, double sourceWork, bool everyParticle)
 {
-    fmt::print("scene {}: {} steps of dt = {:.6g} s, t = {:.6g} s, collision response {}{}\n", scene.name, world.stepCount(),
-               scene.dt, world.time(), collisionResponseName(world.collisionResponse()),
+    // A run takes round(duration / dt) steps, at least one: where that is not the duration, the
+    // line says so rather than let t = 20 s on a 10 s scene look like a bug.
+    const bool rounded = std::abs(world.time() - scene.duration) > 1e-9 * scene.duration;
+    fmt::print("scene {}: {} step{} of dt = {:.6g} s, t = {:.6g} s{}, collision response {}{}\n", scene.name,
+               world.stepCount(), world.stepCount() == 1 ? "" : "s", scene.dt, world.time(),
+               rounded ? fmt::format(" (the duration, {:.6g} s, is {:.6g} steps: a run takes the nearest whole number, "
+                                     "at least one)", scene.duration, scene.duration / scene.dt)
+                       : "",
+               collisionResponseName(world.collisionResponse()),
                world.coupledBodiesReflect() ? " (reflect for bodies joined by springs)" : "");
     if (world.bodyCount() == 0) {
         printSwarmSummary(world);

@@ -114,7 +114,10 @@ void addViewCommand(CLI::App& root, Action& selected)
                  "Mouse: drag to orbit, right-drag or shift-drag to pan, wheel to zoom.\n"
                  "Without a display: `pba render SCENE --out pba-out/frame.png --time T` draws the scene, or\n"
                  "xvfb-run -a -s \"-screen 0 1280x720x24\" pba view SCENE --time T --screenshot pba-out/shot.png\n"
-                 "captures the window with its panel (the invisible window closes after the shot).\n");
+                 "captures the window with its panel (the invisible window closes after the shot).\n"
+                 "\nExamples:\n  pba view integrators --lanes\n"
+                 "  pba view tennis-racket --camera 1.4,2.6,2.2,0,2,0 --show axes\n"
+                 "  pba view dominoes --show contacts --time 1.5 --screenshot pba-out/dominoes.png\n");
     view->callback([options, &selected] { selected = [options] { return runView(*options); }; });
 }
 

@@ -122,10 +122,9 @@ void bodiesSection(ViewerState& state)
     }
     ImGui::Text("all: E = %.4g J   E/E0 = %.4f   |p| = %.3g kg m/s", total, total0 != 0.0 ? total / total0 : 1.0,
                 glm::length(momentum));
-    if (state.watch.hasSources()) { // (as pba sim says it: the push's share, and the rest's)
-        const double work = state.watch.sourceWork();
-        ImGui::Text("     the dryer's work %.4g J   (E - work)/E0 = %.4f", work,
-                    total0 != 0.0 ? (total - work) / total0 : 1.0);
+    if (state.watch.hasSources()) { // (as pba sim says it: the push's share, and the balance's rest)
+        const double work = state.watch.sourceWork(), lost = total0 + work - total;
+        ImGui::Text("     the dryer's work %.4g J   E0 + work - E = %.4g J", work, lost);
     }
     constexpr std::size_t kRows = 12;
     const std::size_t shown = std::min(state.groups.size(), kRows);

@@ -49,6 +49,26 @@ TEST(PbaField, DrawsTheSliceAsAPng)
     EXPECT_TRUE(std::filesystem::exists(dir / ".pba-output"));
 }
 
+// An option the chosen output would ignore, or a picture under another format's name, is refused
+// before any work: exit 2, one line, nothing written.
+TEST(PbaField, RefusesOptionsTheOutputWouldIgnore)
+{
+    const auto dir = freshDir("field_refused");
+    const std::pair<std::string, const char*> cases[] = {
+        {"blow-dryer --slice --out " + (dir / "f.csv").string(), "--out: --slice writes a PNG, so the file must end in .png"},
+        {"blow-dryer --at 0,1,0 --slice --out " + (dir / "f.png").string(), "--at: prints the force at a point, and --slice"},
+        {"blow-dryer --slice --json --out " + (dir / "f.png").string(), "--json: prints --at's forces as JSON"},
+        {"blow-dryer --at 0,1,0 --out " + (dir / "f.png").string(), "--out: names --slice's picture, and there is no --slice"}};
+    for (const auto& [args, message] : cases) {
+        const CommandResult r = runPba("field " + args);
+        EXPECT_EQ(r.exitCode, 2) << args;
+        EXPECT_EQ(r.err.rfind(std::string("pba: error: ") + message, 0), 0u) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_EQ(r.out, "") << args;
+    }
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0) << "nothing written";
+}
+
 TEST(PbaField, TheLegendIsDarkSoTheWhiteDirectionArrowShowsInIt)
 {
     const auto dir = freshDir("field_legend");

@@ -74,8 +74,19 @@ TEST(PbaHelp, HelpCommandPrintsWhatHelpFlagPrints)
     }
     const CommandResult unknown = runPba("help simulate");
     EXPECT_EQ(unknown.exitCode, 2);
-    EXPECT_NE(unknown.err.find("help: no command 'simulate'"), std::string::npos) << unknown.err;
+    EXPECT_NE(unknown.err.find("help: unknown command 'simulate'"), std::string::npos) << unknown.err;
     EXPECT_EQ(unknown.out, "");
+}
+
+// docs/commands.md promises every command's help ends in examples (`scenes` and `help` take
+// nothing worth one).
+TEST(PbaHelp, EveryCommandsHelpEndsInExamples)
+{
+    for (const char* command : {"sim", "field", "render", "view", "compare", "bench"}) {
+        const std::string help = helpOf(command);
+        const auto at = help.find("\nExamples:\n  pba " + std::string(command) + " ");
+        EXPECT_NE(at, std::string::npos) << "pba " << command << " --help\n" << help;
+    }
 }
 
 TEST(PbaHelp, VersionIsOneLine)

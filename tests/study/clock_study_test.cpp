@@ -125,6 +125,9 @@ TEST(PbaCompareClocks, WritesTheReportTableAndCsv)
     std::getline(csv, header);
     EXPECT_EQ(header, "clock,hitch,rate,t,distance");
     EXPECT_NE(r.out.find("variable"), std::string::npos);
+    // What it wrote is a result, on stdout as every command's "wrote" line.
+    EXPECT_NE(r.out.find("wrote " + (dir / "out").string() + "/report.md, clocks.csv"), std::string::npos) << r.out;
+    EXPECT_EQ(r.err.find("wrote"), std::string::npos) << r.err;
 }
 
 TEST(PbaCompareClocks, RefusesWhatDoesNotApply)
