@@ -174,6 +174,7 @@ private:
     std::vector<double> m_stillFor; ///< seconds below the sleep speed
     std::vector<RigidState> m_start, m_end;
     std::vector<double> m_reach; ///< how far any point of the body moves in the step, or is pushed
+    std::vector<double> m_spinReach; ///< the share of m_reach that the body's spin gives
     /// How far a partner may push a body in the step, and which way.
     struct Push {
         double length = 0.0;

@@ -101,12 +101,12 @@ int reduceToFour(ContactPoint* points, int count)
 }
 
 void collideWithRoom(const CollisionShape& shape, const Transform& pose, std::span<const Plane> planes, double margin,
-                     BodyIndex body, BodyIndex firstSurface, std::vector<Contact>& out)
+                     BodyIndex body, BodyIndex firstSurface, std::vector<Contact>& out, std::optional<double> sphereMargin)
 {
     thread_local Candidates candidates;
     const dvec3& x = pose.position;
     const bool sphere = shape.kind == CollisionShape::Kind::Sphere;
-    const double reach = shape.boundingRadius() + margin;
+    const double reach = shape.boundingRadius() + sphereMargin.value_or(margin);
     for (std::size_t p = 0; p < planes.size(); ++p) {
         const Plane& plane = planes[p];
         const double centre = plane.distance(x);

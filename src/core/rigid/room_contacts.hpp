@@ -2,6 +2,7 @@
 // The room as static geometry of the contact pipeline: each of its planes (floor, walls, ceiling,
 // the grille under a hole) and each hole's shaft is one more static body that a rigid body's
 // shape can touch, so a contact with the room is one more pair type for the one solver.
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -22,8 +23,11 @@ inline std::uint32_t surfaceCount(std::size_t planeCount) { return std::uint32_t
 /// the widest spread kept. A point over a floor's hole meets no floor; a body whose centre is
 /// below the floor and over the hole is in the hole's shaft, and its points meet the shaft's
 /// round wall instead (each with its own normal). Friction and restitution are left to the caller.
+/// A surface farther than `sphereMargin` (by default `margin`) from the shape's bounding sphere
+/// is passed over: what the body's turning adds to the margin stays within that sphere.
 void collideWithRoom(const contact::CollisionShape& shape, const contact::Transform& pose, std::span<const Plane> planes,
-                     double margin, BodyIndex body, BodyIndex firstSurface, std::vector<Contact>& out);
+                     double margin, BodyIndex body, BodyIndex firstSurface, std::vector<Contact>& out,
+                     std::optional<double> sphereMargin = std::nullopt);
 
 /// Moves a body at (x, q) out of every surface of the room one of its points is beyond, along
 /// that surface's normal by its deepest point's overlap; returns whether it moved. The room is
