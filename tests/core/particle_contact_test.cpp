@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "pba/forces.hpp"
+#include "pba/rigid_body.hpp"
 #include "pba/world.hpp"
 
 using namespace pba;
@@ -176,5 +177,26 @@ TEST(ParticleContacts, ASwarmsGrainsAreTheSameOnOneAndTwoThreads)
     for (std::size_t i = 0; i < one.swarm(0).size(); ++i) {
         ASSERT_EQ(one.swarm(0).position(i), two.swarm(0).position(i)) << i;
         ASSERT_EQ(one.swarm(0).velocity(i), two.swarm(0).velocity(i)) << i;
+    }
+}
+
+// The room is the world's boundary for balls too: a ball met the room by its own rule before
+// the rigid bodies' contacts, and a heavy box driven into it against a wall must not leave it
+// beyond the wall when the step ends.
+TEST(ParticleContacts, ABallSqueezedAgainstAWallByAHeavyBodyStaysInTheRoom)
+{
+    for (const double speed : {10.0, 30.0, 60.0}) {
+        World world;
+        world.setRoom({dvec3(-2, 0, -2), dvec3(2, 4, 2)});
+        const double r = 0.03;
+        Particle& b = world.addParticle(ball(dvec3(1.95, 1.0, 0.0), dvec3(0.0), 0.05, r, 0.0, 0.1));
+        auto box = std::make_unique<RigidBody>(Shape::box(dvec3(0.4)), 1000.0 / 0.064);
+        box->setPos(dvec3(1.0, 1.0, 0.0));
+        box->setVel(dvec3(speed, 0.0, 0.0));
+        world.addBody(std::move(box));
+        for (int n = 0; n < 100; ++n) {
+            world.step(0.002);
+            ASSERT_LE(b.getPos().x, 2.0 - r + 1e-9) << "at " << speed << " m/s, step " << n;
+        }
     }
 }

@@ -516,9 +516,9 @@ void RigidSystem::pushOutOfRoom(std::span<const std::uint32_t> bodies, std::vect
     if (moved)
         moved->clear();
     const double slop = m_settings.linearSlop;
+    // A ball of a rope or cloth too: it met the room by its own rule before this step's contacts,
+    // and a heavy body driven into it can have pushed it through a wall since.
     for (const std::uint32_t k : bodies) {
-        if (m_isPoint[k])
-            continue;
         SolverBody& b = m_solverBodies[k];
         const dvec3 before = b.endPosition;
         rigid::pushOutOfRoom(*m_material[k].shape, b.endPosition, b.endOrientation, m_planes);
