@@ -108,6 +108,9 @@ fs::path resolveOutputFile(const fs::path& requested)
     // `x.csv/` names a folder: refused here, before any work, not after it when the rename fails.
     if (!requested.has_filename() || requested.filename() == "." || requested.filename() == "..")
         throw BadOutput(fmt::format("{}: names a folder (it ends in '/'), expected a file path", describe(requested)));
+    if (requested.filename() == kManifestName)
+        throw BadOutput(fmt::format("{}: is the name of the list pba keeps of its files in a folder: choose another "
+                                    "name", describe(requested)));
     std::error_code ec;
     fs::path target = requested;
     // Follow links one by one (a link may name a file that does not exist yet).

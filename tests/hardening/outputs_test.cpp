@@ -288,6 +288,9 @@ TEST(Outputs, AFileThatPbaDidNotWriteIsNeverReplaced)
         EXPECT_NE(r.err.find(args.back() + ": a file pba did not write"), std::string::npos) << r.err;
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     }
+    const CommandResult list = runPbaArgv({"sim", "integrators", "--out", ".pba-output"}, {.workDir = dir});
+    EXPECT_EQ(list.exitCode, 2);
+    EXPECT_NE(list.err.find(".pba-output: is the name of the list pba keeps"), std::string::npos) << list.err;
     EXPECT_EQ(readFile(dir / "scene.json"), scene);
     for (const char* name : {"notes.csv", "mine.png", "mine.mp4", "slice.png"})
         EXPECT_EQ(readFile(dir / name), "the user's") << name;
