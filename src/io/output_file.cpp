@@ -62,25 +62,26 @@ void forget(std::vector<fs::path>& list, const fs::path& p)
     list.erase(std::remove(list.begin(), list.end(), p), list.end());
 }
 
-fs::path parentOf(const fs::path& p) { return p.parent_path().empty() ? fs::path(".") : p.parent_path(); }
 
 /// The folder an output goes into must exist, or be one folder short of it: `pba-out/x.png` in a
 /// fresh clone makes pba-out (Temporary does, once the work is done and writing starts), while a
 /// missing folder above that (`typo/pba-out/x.png`) is more likely a mistake than a wish.
 void requireParentFolder(const fs::path& requested, const fs::path& target)
 {
-    const fs::path parent = parentOf(target);
+    const fs::path parent = folderOf(target);
     std::error_code ec;
     if (fs::is_directory(parent, ec))
         return;
     if (fs::exists(parent, ec))
         throw BadOutput(fmt::format("{}: cannot be written: {} is not a folder", describe(requested), parent.string()));
-    if (!fs::is_directory(parentOf(parent), ec))
+    if (!fs::is_directory(folderOf(parent), ec))
         throw BadOutput(fmt::format("{}: cannot be written: the folder {} does not exist (a missing last folder is "
-                                    "made, not a path of them)", describe(requested), parentOf(parent).string()));
+                                    "made, not a path of them)", describe(requested), folderOf(parent).string()));
 }
 
 } // namespace
+
+fs::path folderOf(const fs::path& file) { return file.parent_path().empty() ? fs::path(".") : file.parent_path(); }
 
 bool syncToDisk(const fs::path& p, bool directory)
 {
@@ -118,7 +119,7 @@ fs::path resolveOutputFile(const fs::path& requested)
         const fs::path next = fs::read_symlink(target, ec);
         if (ec || hops == 40)
             throw BadOutput(fmt::format("{}: cannot follow the link", describe(requested)));
-        target = next.is_absolute() ? next : (parentOf(target) / next).lexically_normal();
+        target = next.is_absolute() ? next : (folderOf(target) / next).lexically_normal();
     }
     const fs::file_status status = fs::status(target, ec);
     if (fs::is_directory(status))
@@ -150,7 +151,7 @@ fs::path resolveOutputFolder(const fs::path& requested)
 Temporary::Temporary(fs::path target, Kind kind) : m_target(std::move(target)), m_kind(kind)
 {
     std::error_code made;
-    if (const fs::path parent = parentOf(m_target); !fs::is_directory(parent, made)) {
+    if (const fs::path parent = folderOf(m_target); !fs::is_directory(parent, made)) {
         // The one missing folder requireParentFolder let through, removed again with the
         // temporary if nothing else went into it.
         if (fs::create_directory(parent, made)) {
@@ -194,7 +195,7 @@ bool Temporary::listedWhenCommitted() const
 {
     if (m_kind != Kind::File || m_target.filename() == kManifestName)
         return false;
-    const fs::path folder = parentOf(m_target).lexically_normal();
+    const fs::path folder = folderOf(m_target).lexically_normal();
     std::lock_guard lock(registry().mutex);
     return std::none_of(registry().temporaries.begin(), registry().temporaries.end(),
                         [&](const fs::path& p) { return p.lexically_normal() == folder; });
@@ -217,7 +218,7 @@ void Temporary::commit()
             throw WriteError(fmt::format("{}: cannot be replaced: {}", describe(m_target), ec.message()));
     }
     m_committed = true;
-    syncToDisk(parentOf(m_target), true); // the rename itself, on the disk
+    syncToDisk(folderOf(m_target), true); // the rename itself, on the disk
 }
 
 bool writeAll(int fd, const void* bytes, std::size_t size)

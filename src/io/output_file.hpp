@@ -24,6 +24,9 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+/// The folder a file is in: "." for a bare name.
+std::filesystem::path folderOf(const std::filesystem::path& file);
+
 /// The file an output path names. A symbolic link is followed to its target, which is the file
 /// replaced (the link stays a link). Throws BadOutput for an empty path, a path ending in '/'
 /// (a folder's), a directory, anything that is not a regular file (a device such as /dev/null, a

@@ -192,8 +192,6 @@ Owner ownerOf(const fs::path& target, const OutputManifest& manifest, std::optio
     return manifest.listsName(name) ? Owner::ChangedSince : Owner::User;
 }
 
-fs::path folderOf(const fs::path& file) { return file.parent_path().empty() ? fs::path(".") : file.parent_path(); }
-
 } // namespace
 
 void requireReplaceable(const fs::path& target, const fs::path& shown)
