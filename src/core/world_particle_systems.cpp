@@ -471,25 +471,33 @@ detail::XpbdRigidContacts* World::startXpbdRigidContacts(const std::vector<std::
                                                          detail::SpringSolver& solver, double dt)
 {
     // The rigid bodies inside every substep too (xpbd_rigid_contacts.hpp), both ways, but for a
-    // particle and the body a joint joins it to (unless the joint says they collide).
+    // particle and the body a joint joins it to (unless the joint says they collide); and the
+    // rigid joints between them held there too.
     std::vector<std::pair<std::size_t, const RigidBody*>> rigid;
     for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
         if (isRigid(i))
             rigid.emplace_back(i, static_cast<const RigidBody*>(m_bodies.objects[i].get()));
     std::vector<std::pair<std::size_t, std::size_t>> joined; // (particle, body)
+    std::vector<detail::XpbdRigidContacts::Joint> joints;
     const rigid::RigidSystem& system = *m_rigid.system;
-    for (const rigid::Joint& j : system.joints())
-        if (j.b != rigid::kWorldBody && !j.collide && system.isPoint(j.a) != system.isPoint(j.b)) {
-            const auto [point, body] = system.isPoint(j.a) ? std::pair(j.a, j.b) : std::pair(j.b, j.a);
+    for (const rigid::Joint& j : system.joints()) {
+        if (j.b == rigid::kWorldBody || system.isPoint(j.a) == system.isPoint(j.b))
+            continue;
+        const bool pointFirst = system.isPoint(j.a);
+        const auto [point, body] = pointFirst ? std::pair(j.a, j.b) : std::pair(j.b, j.a);
+        if (!j.collide)
             joined.emplace_back(system.worldIndex(point), system.worldIndex(body));
-        }
+        if (j.stiffness == 0.0) // (a spring joint is a force: the joint solver alone applies it)
+            joints.push_back({system.worldIndex(point), system.worldIndex(body), pointFirst ? j.localA : j.localB,
+                              pointFirst ? j.localB : j.localA, j.type == JointType::Distance ? j.length : 0.0});
+    }
     const CoupledScratch& s = m_particleSystems.scratch;
     const std::size_t n = members.size();
     detail::XpbdRigidContacts& bodies = solver.rigidContacts;
     bodies.begin(rigid,
                  {members, std::span<const dvec3>(&s.x[0], n), std::span<const dvec3>(&s.v[0], n), solver.radius,
                   s.mass, solver.friction, solver.restitution},
-                 joined, dt);
+                 joined, joints, dt);
     return bodies.empty() ? nullptr : &bodies;
 }
 

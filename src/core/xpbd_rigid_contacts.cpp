@@ -18,10 +18,11 @@ dvec3 XpbdRigidContacts::Body::spin() const
 }
 
 void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const RigidBody*>> bodies,
-                              const Members& members, Joined joined, double dt)
+                              const Members& members, Joined joined, std::span<const Joint> joints, double dt)
 {
     m_bodies.clear();
     m_joined.clear();
+    m_held.clear();
     m_radius = members.radius;
     m_mass = members.mass;
     m_friction = members.friction;
@@ -36,8 +37,9 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
         hi = glm::max(hi, members.x[p]);
         reach = std::max(reach, members.radius[p] + glm::length(members.v[p]) * dt);
     }
-    if (!(reach > 0.0))
-        return;
+    const auto isJoined = [&](std::size_t world) {
+        return std::any_of(joints.begin(), joints.end(), [&](const Joint& j) { return j.body == world; });
+    };
     for (const auto& [world, b] : bodies) {
         const bool moving = !b->isFixed();
         Body body;
@@ -57,7 +59,7 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
         body.reach = b->getBoundingRadius();
         const double travel = glm::length(body.v) * dt + glm::length(body.accel) * dt * dt;
         const dvec3 nearest = glm::clamp(body.x, lo, hi);
-        if (glm::length(body.x - nearest) <= body.reach + travel + reach)
+        if ((reach > 0.0 && glm::length(body.x - nearest) <= body.reach + travel + reach) || isJoined(world))
             m_bodies.push_back(body);
     }
     if (m_bodies.empty())
@@ -75,6 +77,14 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
             m_joined.emplace_back(std::uint32_t(p - members.world.begin()), std::uint32_t(k - m_bodies.begin()));
     }
     std::sort(m_joined.begin(), m_joined.end());
+    for (const Joint& j : joints) {
+        const auto p = std::find(members.world.begin(), members.world.end(), j.particle);
+        const auto k = std::find_if(m_bodies.begin(), m_bodies.end(), [&](const Body& b) { return b.world == j.body; });
+        if (p != members.world.end() && k != m_bodies.end())
+            m_held.push_back({std::uint32_t(p - members.world.begin()), std::uint32_t(k - m_bodies.begin()), j.offset,
+                              j.local, j.length});
+    }
+    std::stable_sort(m_held.begin(), m_held.end(), [](const Held& a, const Held& b) { return a.member < b.member; });
 }
 
 void XpbdRigidContacts::SphereGrid::build(double cell, std::span<const Sphere> spheres)
@@ -207,8 +217,35 @@ void XpbdRigidContacts::advance(double h)
     gridMovingBodies();
 }
 
+void XpbdRigidContacts::holdJoined(std::size_t p, dvec3& x)
+{
+    auto j = std::lower_bound(m_held.begin(), m_held.end(), p,
+                              [](const Held& held, std::size_t member) { return held.member < member; });
+    for (; j != m_held.end() && j->member == p; ++j) {
+        const Body& b = m_bodies[j->body];
+        const dmat3 turn = glm::mat3_cast(b.q);
+        const dvec3 arm = turn * j->local;
+        const dvec3 d = (x + j->offset) - (b.x + arm);
+        const double distance = glm::length(d);
+        if (!(distance > 0.0))
+            continue; // held exactly, or no line to hold it along
+        const dvec3 n = d / distance;
+        const dvec3 turning = glm::cross(arm, n);
+        const double wBody =
+            b.inverseMass + glm::dot(turning, turn * (b.inverseInertiaBody * (glm::transpose(turn) * turning)));
+        const double wMember = 1.0 / m_mass[p];
+        const dvec3 moved = -(wMember * (distance - j->length) / (wMember + wBody)) * n;
+        x += moved;
+        // The body gave the member m dx / h: it takes the opposite, at its point.
+        const dvec3 impulse = -m_mass[p] * moved / m_h;
+        m_pushes[p].push_back({j->body, impulse, glm::cross(arm, impulse)});
+    }
+}
+
 void XpbdRigidContacts::keepOut(std::size_t p, const dvec3& start, dvec3& x)
 {
+    if (!m_held.empty())
+        holdJoined(p, x);
     const double r = m_radius[p];
     if (!(r > 0.0))
         return;
