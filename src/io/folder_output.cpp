@@ -121,12 +121,8 @@ void FolderOutput::recheckFolder() const
 /// at the end.
 void FolderOutput::publish(const std::vector<ManifestEntry>& written)
 {
-    OutputManifest kept; // other outputs' files in the same folder, still there
-    for (const ManifestEntry& e : readManifest(m_folder).entries) { // as another run may have left it
-        std::error_code ec;
-        if (!m_owns(e.name) && fs::exists(fs::symlink_status(m_folder / e.name, ec)))
-            kept.entries.push_back(e);
-    }
+    // Other outputs' files in the same folder, still there, as another run may have left them.
+    const OutputManifest kept = stillThere(m_folder, readManifest(m_folder), m_owns);
     OutputManifest during = kept, after = kept;
     for (const ManifestEntry& e : m_manifest.entries)
         if (m_owned.count(e.name))
@@ -135,26 +131,19 @@ void FolderOutput::publish(const std::vector<ManifestEntry>& written)
         during.entries.push_back(e);
         after.entries.push_back(e);
     }
-    writeManifest(m_folder, during);
-    for (const ManifestEntry& e : written) {
-        std::error_code ec;
-        fs::rename(path() / e.name, m_folder / e.name, ec);
-        if (ec)
-            throw WriteError(fmt::format("{}: cannot be replaced: {}", (m_folder / e.name).string(), ec.message()));
-    }
-    for (const auto& [name, stamp] : m_owned)
-        if (!after.listsName(name)) {
+    publishBetween(m_folder, during, [&] {
+        for (const ManifestEntry& e : written) {
             std::error_code ec;
-            fs::remove(m_folder / name, ec); // stale: pba's, unchanged, and not of this run
+            fs::rename(path() / e.name, m_folder / e.name, ec);
+            if (ec)
+                throw WriteError(fmt::format("{}: cannot be replaced: {}", (m_folder / e.name).string(), ec.message()));
         }
-    if (m_owned.empty())
-        return; // `during` is `after`
-    try {
-        writeManifest(m_folder, after);
-    } catch (const WriteError&) {
-        // The outputs are in place and `during` still lists each of them (and names that are
-        // gone, which a check passes over): true, only longer.
-    }
+        for (const auto& [name, stamp] : m_owned)
+            if (!after.listsName(name)) {
+                std::error_code ec;
+                fs::remove(m_folder / name, ec); // stale: pba's, unchanged, and not of this run
+            }
+    }, after);
 }
 
 void FolderOutput::commit()

@@ -206,6 +206,30 @@ void requireReplaceable(const fs::path& target, const fs::path& shown)
                                     owner == Owner::User ? "a file pba did not write" : "changed since pba wrote it"));
 }
 
+OutputManifest stillThere(const fs::path& folder, const OutputManifest& manifest,
+                          const std::function<bool(const std::string&)>& skip)
+{
+    OutputManifest out;
+    for (const ManifestEntry& e : manifest.entries) {
+        std::error_code ec;
+        if (!skip(e.name) && fs::exists(fs::symlink_status(folder / e.name, ec)))
+            out.entries.push_back(e);
+    }
+    return out;
+}
+
+void publishBetween(const fs::path& folder, const OutputManifest& during, const std::function<void()>& move,
+                    const OutputManifest& after)
+{
+    writeManifest(folder, during);
+    move();
+    try {
+        writeManifest(folder, after);
+    } catch (const WriteError&) {
+        // The files are in place and `during` lists each of them: true, only longer.
+    }
+}
+
 void publishListed(const fs::path& made, const fs::path& target, const fs::path& shown)
 {
     const fs::path folder = folderOf(target);
@@ -221,24 +245,18 @@ void publishListed(const fs::path& made, const fs::path& target, const fs::path&
     const auto written = fingerprintOf(made);
     if (!written)
         throw WriteError(fmt::format("{}: cannot be read back: {}", made.string(), std::strerror(errno)));
-    OutputManifest after; // the folder's other files pba wrote, still there
-    for (const ManifestEntry& e : manifest.entries)
-        if (e.name != name && fs::exists(fs::symlink_status(folder / e.name, ec)))
-            after.entries.push_back(e);
+    // The folder's other files pba wrote, still there, and this one.
+    OutputManifest after = stillThere(folder, manifest, [&](const std::string& n) { return n == name; });
     OutputManifest during = after;
     if (old)
         during.entries.push_back({name, *old});
     during.entries.push_back({name, *written});
     after.entries.push_back({name, *written});
-    writeManifest(folder, during);
-    fs::rename(made, target, ec);
-    if (ec)
-        throw WriteError(fmt::format("{}: cannot be replaced: {}", shown.string(), ec.message()));
-    try {
-        writeManifest(folder, after);
-    } catch (const WriteError&) {
-        // The file is in place and `during` lists it (and its old bytes): true, only longer.
-    }
+    publishBetween(folder, during, [&] {
+        fs::rename(made, target, ec);
+        if (ec)
+            throw WriteError(fmt::format("{}: cannot be replaced: {}", shown.string(), ec.message()));
+    }, after);
 }
 
 } // namespace pba::io

@@ -6,6 +6,7 @@
 // touches: a file that is not listed, or no longer holds the bytes listed, is the user's.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -60,6 +61,16 @@ public:
 private:
     int m_fd = -1;
 };
+
+/// The entries of `manifest` whose files are still in `folder`, but for the names `skip` takes.
+OutputManifest stillThere(const std::filesystem::path& folder, const OutputManifest& manifest,
+                          const std::function<bool(const std::string&)>& skip);
+
+/// Writes `during` (every name the folder may hold while `move` runs, with its old bytes and its
+/// new), runs `move` (the renames onto the folder's names), then writes `after`: a crash half way,
+/// or a failure to write `after`, leaves a list that is true, only longer.
+void publishBetween(const std::filesystem::path& folder, const OutputManifest& during,
+                    const std::function<void()>& move, const OutputManifest& after);
 
 /// A file output the user named replaces only a file pba wrote: throws BadOutput, naming
 /// `shown`, if `target` exists and its folder's manifest does not list it with the bytes it holds
