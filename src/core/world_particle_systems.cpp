@@ -26,6 +26,9 @@ namespace {
 constexpr double kBallsHeldWithin = 1.01;
 constexpr double kBallsHeldAbove = 0.7;
 
+/// A member joined to a fixed body answers its springs as if this many times heavier: pinned.
+constexpr double kPinnedMassRatio = 1e9;
+
 /// How fast a member may move along a surface's normal and still rest on it (the rule after the
 /// step's resting contact): twice what its acceleration gives it in a step.
 double restingReach(const dvec3& acceleration, double dt)
@@ -407,6 +410,12 @@ void World::carryJoinedBodies(const std::vector<std::size_t>& members, detail::S
         if (k == members.size())
             continue;
         const auto& body = static_cast<const RigidBody&>(*m_bodies.objects[system.worldIndex(pointIsA ? j.b : j.a)]);
+        if (body.isFixed()) {
+            // Its point does not move: the member answers as pinned there, a mass no spring moves
+            // (and the body takes nothing: it carried a fixed table's share as speed it never had).
+            solver.solveMass[k] += kPinnedMassRatio * s.mass[k];
+            continue;
+        }
         const dvec3 arm = body.getOrientation() * (pointIsA ? j.localB : j.localA);
         // The least the body's point weighs in any direction (the trace bounds the largest
         // inverse inertia from above): the member never answers as heavier than the pair is.
