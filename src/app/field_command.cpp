@@ -54,6 +54,9 @@ int printFieldAt(const World& world, const FieldOptions& options)
 {
     if (options.at.size() != 3)
         throw UsageError(fmt::format("--at: expected X,Y,Z, got {} numbers", options.at.size()));
+    for (const double c : options.at)
+        if (!std::isfinite(c))
+            throw UsageError(fmt::format("--at: every coordinate must be a finite number, got {}", c));
     const dvec3 x(options.at[0], options.at[1], options.at[2]);
     const auto parts = fieldAt(world, x);
     dvec3 total(0.0);

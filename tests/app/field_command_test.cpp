@@ -49,8 +49,8 @@ TEST(PbaField, DrawsTheSliceAsAPng)
     EXPECT_TRUE(std::filesystem::exists(dir / ".pba-output"));
 }
 
-// An option the chosen output would ignore, or a picture under another format's name, is refused
-// before any work: exit 2, one line, nothing written.
+// An option the chosen output would ignore, a picture under another format's name, or a point
+// that is not one, is refused before any work: exit 2, one line, nothing written.
 TEST(PbaField, RefusesOptionsTheOutputWouldIgnore)
 {
     const auto dir = freshDir("field_refused");
@@ -58,7 +58,9 @@ TEST(PbaField, RefusesOptionsTheOutputWouldIgnore)
         {"blow-dryer --slice --out " + (dir / "f.csv").string(), "--out: --slice writes a PNG, so the file must end in .png"},
         {"blow-dryer --at 0,1,0 --slice --out " + (dir / "f.png").string(), "--at: prints the force at a point, and --slice"},
         {"blow-dryer --slice --json --out " + (dir / "f.png").string(), "--json: prints --at's forces as JSON"},
-        {"blow-dryer --at 0,1,0 --out " + (dir / "f.png").string(), "--out: names --slice's picture, and there is no --slice"}};
+        {"blow-dryer --at 0,1,0 --out " + (dir / "f.png").string(), "--out: names --slice's picture, and there is no --slice"},
+        {"blow-dryer --at nan,1,0", "--at: every coordinate must be a finite number, got nan"},
+        {"blow-dryer --at 0,inf,0 --json", "--at: every coordinate must be a finite number, got inf"}};
     for (const auto& [args, message] : cases) {
         const CommandResult r = runPba("field " + args);
         EXPECT_EQ(r.exitCode, 2) << args;
