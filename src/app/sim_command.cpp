@@ -1,7 +1,9 @@
 // `pba sim`: run a scene without drawing it, print its summary (sim_summary.cpp) and, on
 // request, write every physics step to CSV.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -177,10 +179,25 @@ void warnOfLargeCsv(const SimOptions& options, const Scene& scene)
                            "a shorter --duration writes less\n", bytes / 1e9, particles * steps, *options.out);
 }
 
+/// A CSV under a picture's, a video's or JSON's name would open as a broken file of that kind.
+void checkCsvName(const std::optional<std::string>& out)
+{
+    if (!out)
+        return;
+    std::string extension = std::filesystem::path(*out).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    for (const char* other : {".png", ".jpg", ".jpeg", ".mp4", ".gif", ".json"})
+        if (extension == other)
+            throw UsageError(fmt::format("--out: sim writes CSV, and '{}' names a {} file: give a name such as run.csv",
+                                         *out, extension.substr(1)));
+}
+
 int runSim(const SimOptions& options)
 {
     if (options.swarmParticles && !options.out)
         throw UsageError("--swarm-particles: writes the swarms' particles to --out's CSV, and there is no --out");
+    checkCsvName(options.out);
     Scene scene = loadSceneWithOverrides(options.scene);
     checkFrameRate(options, scene);
     warnOfLargeCsv(options, scene);

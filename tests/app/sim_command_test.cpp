@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "pba/scene/scene.hpp"
@@ -116,6 +117,18 @@ INSTANTIATE_TEST_SUITE_P(
                     BadRun{"trampoline --integrator xpbd",
                            "has rigid body 'crate' (a rope's or cloth's own \"integrator\" key sets it"},
                     BadRun{"granular --integrator implicit-euler", "has swarm 'grains', which has none"}));
+
+// A CSV under a picture's name would open as a broken picture: refused, nothing written.
+TEST(PbaSim, ACsvUnderAPicturesNameIsRefused)
+{
+    const auto dir = freshDir("sim_out_png");
+    const CommandResult r = runPba("sim rope --duration 0.01 --out " + (dir / "run.png").string());
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err, fmt::format("pba: error: --out: sim writes CSV, and '{}' names a png file: give a name such as "
+                                 "run.csv\n",
+                                 (dir / "run.png").string()));
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0) << "nothing written";
+}
 
 // --swarm-particles writes to --out's CSV: alone it would do nothing, so it is refused.
 TEST(PbaSim, SwarmParticlesWithoutOutIsRefused)
