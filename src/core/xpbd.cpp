@@ -83,12 +83,22 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
             m_start[p] = x[p];
             x[p] += h * v[p];
         });
+        // The joints to the obstacles are held after each sweep: swept apart, the springs
+        // converged on a member as light as itself and the joint then pulled it to a body thirty
+        // times heavier, so a box hung on a stiff rope sank as on a soft one.
         if (m_stiffest > kStiff) {
             m_lambda.assign(m_constraints.size(), 0.0);
-            for (int sweep = 0; sweep < kMaxSweeps && project<true>(springs, x) > kTolerance; ++sweep) {
+            for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
+                const double error = project<true>(springs, x);
+                if (room.obstacles)
+                    room.obstacles->hold(x);
+                if (!(error > kTolerance))
+                    break;
             }
         } else {
             project<false>(springs, x);
+            if (room.obstacles)
+                room.obstacles->hold(x);
         }
         keepApart(room.touching, x);
         if (room.obstacles)

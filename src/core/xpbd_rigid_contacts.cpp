@@ -217,35 +217,39 @@ void XpbdRigidContacts::advance(double h)
     gridMovingBodies();
 }
 
-void XpbdRigidContacts::holdJoined(std::size_t p, dvec3& x)
+void XpbdRigidContacts::hold(std::span<dvec3> x)
 {
-    auto j = std::lower_bound(m_held.begin(), m_held.end(), p,
-                              [](const Held& held, std::size_t member) { return held.member < member; });
-    for (; j != m_held.end() && j->member == p; ++j) {
-        const Body& b = m_bodies[j->body];
+    for (const Held& j : m_held) {
+        Body& b = m_bodies[j.body];
         const dmat3 turn = glm::mat3_cast(b.q);
-        const dvec3 arm = turn * j->local;
-        const dvec3 d = (x + j->offset) - (b.x + arm);
+        const dvec3 arm = turn * j.local;
+        const dvec3 d = (x[j.member] + j.offset) - (b.x + arm);
         const double distance = glm::length(d);
         if (!(distance > 0.0))
             continue; // held exactly, or no line to hold it along
         const dvec3 n = d / distance;
-        const dvec3 turning = glm::cross(arm, n);
-        const double wBody =
-            b.inverseMass + glm::dot(turning, turn * (b.inverseInertiaBody * (glm::transpose(turn) * turning)));
-        const double wMember = 1.0 / m_mass[p];
-        const dvec3 moved = -(wMember * (distance - j->length) / (wMember + wBody)) * n;
-        x += moved;
-        // The body gave the member m dx / h: it takes the opposite, at its point.
-        const dvec3 impulse = -m_mass[p] * moved / m_h;
-        m_pushes[p].push_back({j->body, impulse, glm::cross(arm, impulse)});
+        const dmat3 inverseInertia = turn * b.inverseInertiaBody * glm::transpose(turn);
+        const double wBody = b.inverseMass + glm::dot(glm::cross(arm, n), inverseInertia * glm::cross(arm, n));
+        const double wMember = 1.0 / m_mass[j.member];
+        const dvec3 p = ((distance - j.length) / (wMember + wBody)) * n; // towards the member, kg m
+        x[j.member] -= wMember * p;
+        if (b.inverseMass == 0.0)
+            continue;
+        // The body's share of the move, and the velocity and spin that make it over the substep.
+        const dvec3 impulse = p / m_h, moment = glm::cross(arm, p) / m_h;
+        b.x += b.inverseMass * p;
+        b.q = rigid::turned(b.q, inverseInertia * glm::cross(arm, p));
+        b.v += b.inverseMass * impulse;
+        b.momentum += moment;
+        b.impulse += impulse;
+        b.moment += moment;
     }
+    if (!m_held.empty())
+        gridMovingBodies(); // (where the joints moved them)
 }
 
 void XpbdRigidContacts::keepOut(std::size_t p, const dvec3& start, dvec3& x)
 {
-    if (!m_held.empty())
-        holdJoined(p, x);
     const double r = m_radius[p];
     if (!(r > 0.0))
         return;

@@ -7,19 +7,23 @@
 // times the depth (Coulomb friction in position, as the room's), one that arrived faster than
 // resting contact leaves at e times its speed towards the body (e the larger restitution, as
 // between bodies), and the body takes the opposite of what that gave the member (m dx / h, and
-// m dv for a bounce) as an impulse at the contact point before the next substep. The bodies' own step then starts from their velocities with the step's impulses added.
+// m dv for a bounce) as an impulse at the contact point before the next substep. The bodies' own
+// step then starts from their velocities with the step's impulses added.
 //
 // Met only after the step, by the rigid contact solver, the two sides were staggered: the solver
 // saw each particle as a lone ball and the springs answered a step later, which threw a 5 kg crate
 // off an XPBD trampoline at dt = 0.002 s (and a 20 kg one at 0.001 s).
 //
-// A member joined to a body by a ball or a rigid distance joint is held to it in every substep
-// the same way: its point put back at the joint's distance from the body's point, shared by their
-// inverse masses along the line between them (the body's through its arm and inertia), and the
-// body takes the opposite impulse. (A spring joint is a force: the joint solver alone applies it.) Held only after the step by the joint solver, the rope's end swung free
-// through the substeps and was snapped back once a step: an XPBD rope holding a 20 kg crate
-// gained energy from dt = 0.005 s and blew up at 1/60 s. The joint solver after the step then
-// finds the joint held. Private to the core.
+// A member joined to a body by a ball or a rigid distance joint is held to it in every substep,
+// as XPBD holds two bodies (Müller et al.): the member's point and the body's put back the joint's
+// distance apart, each moved by its share of the inverse masses along the line between them (the
+// body's through its arm and inertia), and the body's velocity and spin changed by its move over h.
+// (A spring joint is a force: the joint solver alone applies it.) Held only after the step by the
+// joint solver, the rope's end swung free through the substeps and was snapped back once a step:
+// an XPBD rope holding a 20 kg crate gained energy from dt = 0.005 s and blew up at 1/60 s. With
+// the body's share given as an impulse for the next substep instead of moved, a box at rest on a
+// rope of one substep bobbed and gained energy. The joint solver after the step then finds the
+// joint held. Private to the core.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -61,7 +65,7 @@ public:
     bool empty() const { return m_bodies.empty(); }
 
     void advance(double h) override;
-    /// Member p held by its joints first, then put back out of the bodies.
+    void hold(std::span<dvec3> x) override;
     void keepOut(std::size_t p, const dvec3& start, dvec3& x) override;
     bool bounce(std::size_t p, const dvec3& arriving, double resting, dvec3& v) override;
     void react() override;
@@ -104,7 +108,6 @@ private:
         dvec3 offset{0.0}, local{0.0};
         double length = 0.0;
     };
-    void holdJoined(std::size_t p, dvec3& x);
     /// Bodies' spheres in a hashed grid of cells (Müller's "Ten Minute Physics" hashing): a
     /// body is listed in each cell its sphere overlaps, and a member looks only at the bodies
     /// listed in its own cell. A sheet over a bed of 1,600 fixed blocks spent most of its time
@@ -151,7 +154,7 @@ private:
     std::vector<std::vector<Push>> m_pushes; ///< per member, this substep's
     std::vector<Touch> m_touch;              ///< per member, this substep's
     std::vector<std::pair<std::uint32_t, std::uint32_t>> m_joined; ///< (member, body) pairs a joint joins, in order
-    std::vector<Held> m_held; ///< by member
+    std::vector<Held> m_held;
 };
 
 } // namespace pba::detail
