@@ -82,6 +82,9 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
     desc.collide = reader.boolean("collide", false);
     if (desc.collide && desc.radius == 0.0)
         reader.fail("collide", "its particles need a \"radius\" to collide: points never touch");
+    if (desc.collide && desc.count > 1 && desc.regionMin == desc.regionMax)
+        reader.fail("region", "its colliding grains would all start at one point, with no direction to part along: "
+                              "give the region a size");
     desc.integrator = readIntegrator(reader, "integrator", Integrator::SemiImplicitEuler);
     if (isSpringSystemMethod(desc.integrator))
         reader.fail("integrator", fmt::format("{} steps particles joined by springs; a swarm has none: take "

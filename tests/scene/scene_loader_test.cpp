@@ -147,6 +147,8 @@ INSTANTIATE_TEST_SUITE_P(
                              "cloths[0].friction", "must not be negative"},
                     BadScene{S(R"("radius": -1)"), "swarms[0].radius", "must not be negative"},
                     BadScene{S(R"("collide": true)"), "swarms[0].collide", "need a \"radius\" to collide"},
+                    BadScene{S(R"("collide": true, "radius": 0.01, "region": {"min": [0, 1, 0], "max": [0, 1, 0]})"),
+                             "swarms[0].region", "would all start at one point, with no direction to part along"},
                     BadScene{S(R"("radius": 1.5)"), "swarms[0].radius", "its region's corner: a ball of radius 1.5"},
                     BadScene{R"({"duration": 0})", "duration", "must be positive"},
                     BadScene{R"({"gravity": [0, -9.81]})", "gravity", "array of 3 numbers"},
