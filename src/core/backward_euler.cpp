@@ -89,8 +89,9 @@ Mat6 Mat6::inverse() const
 
 void BackwardEuler::step(const SpringSystem& springs, std::span<const double> mass, std::span<dvec3> x,
                          std::span<dvec3> v, std::span<const dvec3> force, double dt, std::span<const dvec3> heldOn,
-                         const Bearers& bearers)
+                         const Bearers& bearers, std::span<const dmat3> along)
 {
+    m_along = along;
     const std::size_t n = x.size();
     m_x0.assign(x.begin(), x.end());
     m_v0.assign(v.begin(), v.end());
@@ -141,7 +142,8 @@ bool BackwardEuler::correct(const SpringSystem& springs, std::span<const double>
     springForces(springs, x, v);
     const double remaining = sumOf(n, [&](std::size_t p) {
         // A held member's surface takes up its residual along the normal.
-        const dvec3 residual = dt * (m_otherForce[p] + springSum(springs, m_perSpring, p)) - mass[p] * (v[p] - m_v0[p]);
+        const dvec3 residual =
+            dt * (m_otherForce[p] + springSum(springs, m_perSpring, p)) - massTimes(mass, p, v[p] - m_v0[p]);
         m_rhs[p] = filtered(p, residual);
         return glm::dot(m_rhs[p], m_inverseDiagonal[p].apply(m_rhs[p]));
     });
@@ -176,7 +178,7 @@ double BackwardEuler::phi(const SpringSystem& springs, std::span<const double> m
     const double bodies = sumOf(n, [&](std::size_t p) {
         m_trial[p] = v[p] + step * m_dv[p];
         const dvec3 change = m_trial[p] - m_v0[p];
-        return 0.5 * mass[p] * glm::dot(change, change) - dt * glm::dot(m_otherForce[p], m_trial[p]);
+        return 0.5 * glm::dot(change, massTimes(mass, p, change)) - dt * glm::dot(m_otherForce[p], m_trial[p]);
     });
     return bodies + sumOf(springs.size(), [&](std::size_t s) {
         const std::uint32_t a = springs.a(s), b = springs.b(s);
@@ -248,7 +250,7 @@ void BackwardEuler::linearise(const SpringSystem& springs, std::span<const doubl
     // Each body's diagonal block's inverse; at the start also its right-hand side dt f0 - sum
     // dt^2 K (v_a - v_b) and its forces other than the springs, which keep their start values.
     forEachIndex(n, [&](std::size_t p) {
-        dmat3 diagonal(mass[p]);
+        dmat3 diagonal = m_along.empty() ? dmat3(mass[p]) : dmat3(mass[p]) + m_along[p];
         for (const std::uint32_t end : springs.incident(p)) {
             const Block& block = m_blocks[end >> 1];
             diagonal += dmat3(block.alpha) + block.beta * glm::outerProduct(block.u, block.u);
@@ -284,7 +286,7 @@ double BackwardEuler::solve(const SpringSystem& springs, std::span<const double>
     // along the normal stays where the step put it, or moves with its bearer's.
     springPass(springs, m_dv);
     double scale = sumOf(n, [&](std::size_t p) {
-        m_r[p] = m_rhs[p] - (mass[p] * m_dv[p] + springSum(springs, m_perSpring, p)); // whole, for the bearers
+        m_r[p] = m_rhs[p] - (massTimes(mass, p, m_dv[p]) + springSum(springs, m_perSpring, p)); // whole, for the bearers
         const dvec3 rhs = filtered(p, m_rhs[p]);
         return glm::dot(rhs, m_inverseDiagonal[p].apply(rhs));
     });
@@ -305,7 +307,7 @@ double BackwardEuler::solve(const SpringSystem& springs, std::span<const double>
     for (int iteration = 0; iteration < kMaxIterations && rz > target; ++iteration) {
         springPass(springs, m_z);
         double pap = sumOf(n, [&](std::size_t p) {
-            const dvec3 az = mass[p] * m_z[p] + springSum(springs, m_perSpring, p);
+            const dvec3 az = massTimes(mass, p, m_z[p]) + springSum(springs, m_perSpring, p);
             m_p[p] = m_z[p] + beta * m_p[p];
             m_ap[p] = az + beta * m_ap[p];
             return glm::dot(m_p[p], m_ap[p]);
@@ -355,7 +357,7 @@ void BackwardEuler::heldImpulses(const SpringSystem& springs, std::span<const do
     out.resize(m_normal.size());
     forEachIndex(m_normal.size(), [&](std::size_t p) {
         const dvec3& normal = m_normal[p];
-        const dvec3 given = mass[p] * m_dv[p] + springSum(springs, m_perSpring, p) - m_rhs[p];
+        const dvec3 given = massTimes(mass, p, m_dv[p]) + springSum(springs, m_perSpring, p) - m_rhs[p];
         out[p] = normal == dvec3(0.0) ? 0.0 : glm::dot(normal, given);
     });
 }

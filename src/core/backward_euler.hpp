@@ -145,10 +145,11 @@ public:
     /// force, springs included); `mass[k]` its mass; `heldOn[k]` the unit normal of the surface
     /// member k rests on, which stops it along the normal for the step, or zero (`heldOn`
     /// empty: none rests), or, for a member held on one of `bearers`, moves it along the normal
-    /// with that body. The springs' fixed ends must be placed.
+    /// with that body. `along[k]`, if given, adds a mass that member k carries in some directions
+    /// only (a body it is joined to by a rod: along the rod). The springs' fixed ends must be placed.
     void step(const SpringSystem& springs, std::span<const double> mass, std::span<dvec3> x, std::span<dvec3> v,
               std::span<const dvec3> force, double dt, std::span<const dvec3> heldOn = {},
-              const Bearers& bearers = {});
+              const Bearers& bearers = {}, std::span<const dmat3> along = {});
 
     /// After a step with members held: how much member k's surface pushed it (the change of its
     /// velocity along the normal, m/s, not negative; zero where it was not held or was let go),
@@ -241,6 +242,12 @@ private:
     /// their velocities, those alone, masses, the members held on them, and the conjugate
     /// gradients' vectors and preconditioners for them.
     const Bearers* m_bearers = nullptr;
+    std::span<const dmat3> m_along; ///< the step's directional masses (step's `along`), or none
+    /// Member p's mass times w, its directional mass included.
+    dvec3 massTimes(std::span<const double> mass, std::size_t p, const dvec3& w) const
+    {
+        return m_along.empty() ? mass[p] * w : mass[p] * w + m_along[p] * w;
+    }
     std::vector<Twist> m_u, m_uAlone, m_ru, m_zu, m_pu, m_apu;
     std::vector<BodyMass> m_uMass;
     std::vector<Mat6> m_uDiagonal, m_uInverse;

@@ -26,13 +26,17 @@ struct SpringSolver {
     /// start. Members, not thread_local: a lambda run on a pool thread names that thread's copy.
     std::vector<dvec3> positions, startForces;
     std::vector<dvec3> heldOn; ///< backward Euler's: the normal of the surface each member rests on, or zero
-    /// Backward Euler's: each member's mass in the solve, with a rigid body it is joined to, and
-    /// those bodies: the member, the body (a world index), its mass carried, the arm, and the
-    /// member's velocity before the solve.
+    /// Backward Euler's: each member's mass in the solve, with a rigid body it is joined to at a
+    /// point; the mass it carries along a rod to one (none: empty); and those bodies: the member,
+    /// the body (a world index), its mass carried, the directions it is carried in (the identity
+    /// at a point, the rod's outer product along one), the arm, and the member's velocity before
+    /// the solve.
     std::vector<double> solveMass;
+    std::vector<dmat3> alongRods;
     struct Carried {
         std::size_t member, body;
         double mass;
+        dmat3 along;
         dvec3 arm, before;
     };
     std::vector<Carried> carried;

@@ -159,6 +159,11 @@ void setDistance(const JointDesc& desc, const dvec3& onA, const dvec3& onB, rigi
         throw std::invalid_argument(fmt::format("a spring's damping must be finite and >= 0, got {}", desc.damping));
     j.stiffness = desc.stiffness.value_or(0.0);
     j.damping = desc.damping;
+    // A rod of no length keeps two points together, as a ball joint does, but along one line:
+    // the line between them, which has no direction where it holds. A crate on one under a rope
+    // gained 7 times its energy at 1/60 s, where the ball joint's kept it.
+    if (j.length == 0.0 && j.stiffness == 0.0)
+        j.type = JointType::Ball;
 }
 
 } // namespace

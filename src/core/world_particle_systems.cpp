@@ -6,6 +6,7 @@
 #include "pba/world.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "collision_rules.hpp"
 #include "grain_contacts.hpp"
@@ -28,6 +29,28 @@ constexpr double kBallsHeldAbove = 0.7;
 
 /// A member joined to a fixed body answers its springs as if this many times heavier: pinned.
 constexpr double kPinnedMassRatio = 1e9;
+
+/// What a member at `point` (its end of a rod, `mass` its own) carries of the body whose end of the
+/// rod is `arm` from its centre: the body's mass at that point along the rod (the rod's outer
+/// product), as pinned for a fixed body; nothing if the rod has no direction now. A rod moves the
+/// two together along it and leaves the member free across it.
+struct RodCarry {
+    double mass = 0.0;
+    dmat3 along{0.0};
+};
+std::optional<RodCarry> carriedAlongRod(const RigidBody& body, const dvec3& arm, const dvec3& point, double mass)
+{
+    const dvec3 n = unitOrZero(point - (body.getPos() + arm));
+    if (n == dvec3(0.0))
+        return std::nullopt;
+    if (body.isFixed())
+        return RodCarry{kPinnedMassRatio * mass, glm::outerProduct(n, n)};
+    const dmat3 turn = glm::mat3_cast(body.getOrientation());
+    const dvec3 turning = glm::cross(arm, n);
+    const double w = 1.0 / body.getMass() +
+                     glm::dot(turning, turn * (body.getInverseInertiaBody() * (glm::transpose(turn) * turning)));
+    return RodCarry{1.0 / w, glm::outerProduct(n, n)};
+}
 
 /// How fast a member may move along a surface's normal and still rest on it (the rule after the
 /// step's resting contact): twice what its acceleration gives it in a step.
@@ -265,7 +288,7 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
     carryJoinedBodies(members, solver);
     solver.backwardEuler.step(solver.springs, solver.solveMass, std::span<dvec3>(&s.x[0], n),
                               std::span<dvec3>(&s.v[0], n), start, dt, solver.heldOn,
-                              {solver.bearerOf, solver.bearerArm, solver.bearers});
+                              {solver.bearerOf, solver.bearerArm, solver.bearers}, solver.alongRods);
     rubAndPushBearers(members, solver);
     pushCarriedBodies(solver, dt);
     collideAndStore(members, dt);
@@ -394,29 +417,46 @@ void World::carryJoinedBodies(const std::vector<std::size_t>& members, detail::S
     // solve, and its weight: the implicit springs then move the two as one, as the joint after the
     // step will. Alone, the member answered its springs as if free, and the joint then dragged it
     // back to a body a hundred times heavier: the springs felt at most the member's mass over dt
-    // squared of the body, and a crate on a rope gained energy at 1/60 s.
+    // squared of the body, and a crate on a rope gained energy at 1/60 s. Joined by a rod, it
+    // carries the body's point along the rod only (carriedAlongRod): carried in no direction, a
+    // crate on a rod under a rope gained 16 times its energy at dt 0.01.
     const CoupledScratch& s = m_particleSystems.scratch;
     solver.solveMass.assign(s.mass.begin(), s.mass.end());
+    solver.alongRods.clear();
     solver.carried.clear();
     if (!m_rigid.system)
         return;
     const rigid::RigidSystem& system = *m_rigid.system;
     for (const rigid::Joint& j : system.joints()) {
-        // (A particle's joint to a body is a ball or a distance; only the ball holds it at a point.)
-        if (j.type != JointType::Ball || j.b == rigid::kWorldBody || system.isPoint(j.a) == system.isPoint(j.b))
+        // (A particle's joint to a body is a ball or a distance; a spring is a force, not carried.)
+        if (j.b == rigid::kWorldBody || system.isPoint(j.a) == system.isPoint(j.b) || j.stiffness > 0.0)
             continue;
         const bool pointIsA = system.isPoint(j.a);
         const std::size_t k = placeAmong(members, system.worldIndex(pointIsA ? j.a : j.b));
         if (k == members.size())
             continue;
-        const auto& body = static_cast<const RigidBody&>(*m_bodies.objects[system.worldIndex(pointIsA ? j.b : j.a)]);
+        const std::size_t world = system.worldIndex(pointIsA ? j.b : j.a);
+        const auto& body = static_cast<const RigidBody&>(*m_bodies.objects[world]);
+        const dvec3 arm = body.getOrientation() * (pointIsA ? j.localB : j.localA);
+        if (j.type == JointType::Distance && j.length > 0.0) {
+            const auto rod = carriedAlongRod(body, arm, s.x[k] + (pointIsA ? j.localA : j.localB), s.mass[k]);
+            if (!rod)
+                continue;
+            if (solver.alongRods.empty())
+                solver.alongRods.assign(members.size(), dmat3(0.0));
+            solver.alongRods[k] += rod->mass * rod->along;
+            if (!body.isFixed()) {
+                solver.startForces[k] += rod->mass * (rod->along * gravity());
+                solver.carried.push_back({k, world, rod->mass, rod->along, arm, s.v[k]});
+            }
+            continue;
+        }
         if (body.isFixed()) {
             // Its point does not move: the member answers as pinned there, a mass no spring moves
             // (and the body takes nothing: it carried a fixed table's share as speed it never had).
             solver.solveMass[k] += kPinnedMassRatio * s.mass[k];
             continue;
         }
-        const dvec3 arm = body.getOrientation() * (pointIsA ? j.localB : j.localA);
         // The least the body's point weighs in any direction (the trace bounds the largest
         // inverse inertia from above): the member never answers as heavier than the pair is.
         const dmat3 inverseInertia = body.getInverseInertiaBody();
@@ -424,7 +464,7 @@ void World::carryJoinedBodies(const std::vector<std::size_t>& members, detail::S
         const double carried = 1.0 / (1.0 / body.getMass() + glm::dot(arm, arm) * turn);
         solver.solveMass[k] += carried;
         solver.startForces[k] += carried * gravity();
-        solver.carried.push_back({k, system.worldIndex(pointIsA ? j.b : j.a), carried, arm, s.v[k]});
+        solver.carried.push_back({k, world, carried, dmat3(1.0), arm, s.v[k]});
     }
 }
 
@@ -434,7 +474,7 @@ void World::pushCarriedBodies(detail::SpringSolver& solver, double dt)
     // before its own step.
     const CoupledScratch& s = m_particleSystems.scratch;
     for (const auto& c : solver.carried) {
-        const dvec3 impulse = c.mass * (s.v[c.member] - c.before - gravity() * dt);
+        const dvec3 impulse = c.mass * (c.along * (s.v[c.member] - c.before - gravity() * dt));
         pushBeforeItsStep(c.body, impulse, glm::cross(c.arm, impulse));
     }
 }
