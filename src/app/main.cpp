@@ -61,6 +61,12 @@ std::string parseErrorText(const CLI::ParseError& e, const CLI::App& app, const 
             return fmt::format("{}: cannot read '{}' as a number", what.substr(prefix.size(), equals - prefix.size()),
                                what.substr(equals + 3));
     }
+    if (dynamic_cast<const CLI::ArgumentMismatch*>(&e)) {
+        // "--dt: At Most 1 required but received 2": an option given twice.
+        const std::string marker = ": At Most 1 required but received ";
+        if (const std::size_t at = what.find(marker); at != std::string::npos)
+            return fmt::format("{}: given {} times; give it once", what.substr(0, at), what.substr(at + marker.size()));
+    }
     if (dynamic_cast<const CLI::ExtrasError*>(&e) && !args.empty() && args.front().rfind("-", 0) != 0) {
         std::vector<std::string> commands;
         for (const CLI::App* command : app.get_subcommands({}))
