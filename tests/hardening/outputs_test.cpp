@@ -271,13 +271,14 @@ TEST(Outputs, AnInterruptedRunLeavesNoTemporary)
 TEST(Outputs, AFileThatPbaDidNotWriteIsNeverReplaced)
 {
     const fs::path dir = freshDir("users_files");
-    std::ofstream(dir / "scene.json") << readFile(sourceDir() / "scenes/integrators.json");
-    const std::string scene = readFile(dir / "scene.json");
+    // (A scene under a CSV's name: a .json one is refused as an output by its name alone.)
+    std::ofstream(dir / "scene.csv") << readFile(sourceDir() / "scenes/integrators.json");
+    const std::string scene = readFile(dir / "scene.csv");
     for (const char* name : {"notes.csv", "mine.png", "mine.mp4", "slice.png"})
         writeText(dir / name, "the user's");
     fs::create_symlink("notes.csv", dir / "link.csv");
     for (const std::vector<std::string>& args :
-         {std::vector<std::string>{"sim", "scene.json", "--dt", "1e-5", "--duration", "1000", "--out", "scene.json"},
+         {std::vector<std::string>{"sim", "scene.csv", "--dt", "1e-5", "--duration", "1000", "--out", "scene.csv"},
           std::vector<std::string>{"sim", "integrators", "--dt", "1e-5", "--duration", "1000", "--out", "notes.csv"},
           std::vector<std::string>{"sim", "integrators", "--dt", "1e-5", "--duration", "1000", "--out", "link.csv"},
           std::vector<std::string>{"render", "integrators", "--size", "64x48", "--time", "0.1", "--out", "mine.png"},
@@ -291,7 +292,7 @@ TEST(Outputs, AFileThatPbaDidNotWriteIsNeverReplaced)
     const CommandResult list = runPbaArgv({"sim", "integrators", "--out", ".pba-output"}, {.workDir = dir});
     EXPECT_EQ(list.exitCode, 2);
     EXPECT_NE(list.err.find(".pba-output: is the name of the list pba keeps"), std::string::npos) << list.err;
-    EXPECT_EQ(readFile(dir / "scene.json"), scene);
+    EXPECT_EQ(readFile(dir / "scene.csv"), scene);
     for (const char* name : {"notes.csv", "mine.png", "mine.mp4", "slice.png"})
         EXPECT_EQ(readFile(dir / name), "the user's") << name;
     EXPECT_FALSE(fs::exists(dir / ".pba-output"));
