@@ -521,7 +521,8 @@ detail::XpbdRigidContacts* World::startXpbdRigidContacts(const std::vector<std::
 {
     // The rigid bodies inside every substep too (xpbd_rigid_contacts.hpp), both ways, but for a
     // particle and the body a joint joins it to (unless the joint says they collide); and the
-    // rigid joints between them held there too.
+    // joints between them held there too (the joint solver after the step leaves their springs
+    // alone).
     std::vector<std::pair<std::size_t, const RigidBody*>> rigid;
     for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
         if (isRigid(i))
@@ -536,9 +537,9 @@ detail::XpbdRigidContacts* World::startXpbdRigidContacts(const std::vector<std::
         const auto [point, body] = pointFirst ? std::pair(j.a, j.b) : std::pair(j.b, j.a);
         if (!j.collide)
             joined.emplace_back(system.worldIndex(point), system.worldIndex(body));
-        if (j.stiffness == 0.0) // (a spring joint is a force: the joint solver alone applies it)
-            joints.push_back({system.worldIndex(point), system.worldIndex(body), pointFirst ? j.localA : j.localB,
-                              pointFirst ? j.localB : j.localA, j.type == JointType::Distance ? j.length : 0.0});
+        joints.push_back({system.worldIndex(point), system.worldIndex(body), pointFirst ? j.localA : j.localB,
+                          pointFirst ? j.localB : j.localA, j.type == JointType::Distance ? j.length : 0.0,
+                          j.stiffness, j.damping});
     }
     const CoupledScratch& s = m_particleSystems.scratch;
     const std::size_t n = members.size();

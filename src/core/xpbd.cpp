@@ -91,14 +91,14 @@ void Xpbd::step(const SpringSystem& springs, std::span<const double> mass, std::
             for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
                 const double error = project<true>(springs, x);
                 if (room.obstacles)
-                    room.obstacles->hold(x);
+                    room.obstacles->hold(x, m_start);
                 if (!(error > kTolerance))
                     break;
             }
         } else {
             project<false>(springs, x);
             if (room.obstacles)
-                room.obstacles->hold(x);
+                room.obstacles->hold(x, m_start);
         }
         keepApart(room.touching, x);
         if (room.obstacles)

@@ -69,9 +69,10 @@ public:
         virtual ~Obstacles() = default;
         /// Before a substep's projections: the obstacles move on by h.
         virtual void advance(double h) = 0;
-        /// After them: the members joined to obstacles held to them, one joint after another (a
-        /// body may hold several members), both sides moved.
-        virtual void hold(std::span<dvec3> x) = 0;
+        /// After them (after each sweep of them): the members joined to obstacles held to them,
+        /// one joint after another (a body may hold several members), both sides moved; `start`
+        /// where the members began the substep.
+        virtual void hold(std::span<dvec3> x, std::span<const dvec3> start) = 0;
         /// After them: member p, at x, having begun the substep at `start`, put back outside every
         /// obstacle (on all cores, each member by itself).
         virtual void keepOut(std::size_t p, const dvec3& start, dvec3& x) = 0;

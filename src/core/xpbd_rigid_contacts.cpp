@@ -82,7 +82,7 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
         const auto k = std::find_if(m_bodies.begin(), m_bodies.end(), [&](const Body& b) { return b.world == j.body; });
         if (p != members.world.end() && k != m_bodies.end())
             m_held.push_back({std::uint32_t(p - members.world.begin()), std::uint32_t(k - m_bodies.begin()), j.offset,
-                              j.local, j.length});
+                              j.local, j.length, j.stiffness, j.damping});
     }
     std::stable_sort(m_held.begin(), m_held.end(), [](const Held& a, const Held& b) { return a.member < b.member; });
 }
@@ -207,6 +207,8 @@ void XpbdRigidContacts::forEachNear(const dvec3& x, F&& f) const
 void XpbdRigidContacts::advance(double h)
 {
     m_h = h;
+    for (Held& j : m_held)
+        j.lambda = 0.0;
     for (Body& b : m_bodies) {
         if (b.inverseMass == 0.0)
             continue;
@@ -217,9 +219,9 @@ void XpbdRigidContacts::advance(double h)
     gridMovingBodies();
 }
 
-void XpbdRigidContacts::hold(std::span<dvec3> x)
+void XpbdRigidContacts::hold(std::span<dvec3> x, std::span<const dvec3> start)
 {
-    for (const Held& j : m_held) {
+    for (Held& j : m_held) {
         Body& b = m_bodies[j.body];
         const dmat3 turn = glm::mat3_cast(b.q);
         const dvec3 arm = turn * j.local;
@@ -231,7 +233,18 @@ void XpbdRigidContacts::hold(std::span<dvec3> x)
         const dmat3 inverseInertia = turn * b.inverseInertiaBody * glm::transpose(turn);
         const double wBody = b.inverseMass + glm::dot(glm::cross(arm, n), inverseInertia * glm::cross(arm, n));
         const double wMember = 1.0 / m_mass[j.member];
-        const dvec3 p = ((distance - j.length) / (wMember + wBody)) * n; // towards the member, kg m
+        // A spring as XPBD's (xpbd.hpp): compliance 1 / (k h^2), its damping over the two points'
+        // moves in the substep, and its multiplier kept over the sweeps.
+        double error = distance - j.length, compliance = 0.0, gamma = 0.0;
+        if (j.stiffness > 0.0) {
+            compliance = 1.0 / (j.stiffness * m_h * m_h);
+            gamma = j.damping / (j.stiffness * m_h);
+            const dvec3 bodyMoved = (b.v + glm::cross(b.spin(), arm)) * m_h;
+            error += gamma * glm::dot(n, (x[j.member] - start[j.member]) - bodyMoved) - compliance * j.lambda;
+        }
+        const double change = error / ((1.0 + gamma) * (wMember + wBody) + compliance);
+        j.lambda += change;
+        const dvec3 p = change * n; // towards the member, kg m
         x[j.member] -= wMember * p;
         if (b.inverseMass == 0.0)
             continue;

@@ -17,8 +17,8 @@
 // A member joined to a body by a ball or a rigid distance joint is held to it in every substep,
 // as XPBD holds two bodies (Müller et al.): the member's point and the body's put back the joint's
 // distance apart, each moved by its share of the inverse masses along the line between them (the
-// body's through its arm and inertia), and the body's velocity and spin changed by its move over h.
-// (A spring joint is a force: the joint solver alone applies it.) Held only after the step by the
+// body's through its arm and inertia), and the body's velocity and spin changed by its move over h;
+// a spring joint as XPBD's springs are (xpbd.hpp), of compliance 1 / k. Held only after the step by the
 // joint solver, the rope's end swung free through the substeps and was snapped back once a step:
 // an XPBD rope holding a 20 kg crate gained energy from dt = 0.005 s and blew up at 1/60 s. With
 // the body's share given as an impulse for the next substep instead of moved, a box at rest on a
@@ -50,13 +50,14 @@ public:
     };
     /// (particle, body), world indices, that a joint joins: they never touch.
     using Joined = std::span<const std::pair<std::size_t, std::size_t>>;
-    /// A rigid joint between a particle and a rigid body (world indices): the particle's point
-    /// (its position plus `offset`: a particle does not turn) and the body's (`local`, in its
-    /// frame) kept `length` apart (0 for a ball joint).
+    /// A joint between a particle and a rigid body (world indices): the particle's point (its
+    /// position plus `offset`: a particle does not turn) and the body's (`local`, in its frame)
+    /// kept `length` apart (0 for a ball joint), rigidly or, with a stiffness (N/m), as a spring
+    /// with its damping (N s/m).
     struct Joint {
         std::size_t particle = 0, body = 0;
         dvec3 offset{0.0}, local{0.0};
-        double length = 0.0;
+        double length = 0.0, stiffness = 0.0, damping = 0.0;
     };
     /// The rigid bodies (world index, body) that the members may meet in a step of dt: those
     /// whose bounding spheres, moving, come near the members' box, and those joined to a member.
@@ -65,7 +66,7 @@ public:
     bool empty() const { return m_bodies.empty(); }
 
     void advance(double h) override;
-    void hold(std::span<dvec3> x) override;
+    void hold(std::span<dvec3> x, std::span<const dvec3> start) override;
     void keepOut(std::size_t p, const dvec3& start, dvec3& x) override;
     bool bounce(std::size_t p, const dvec3& arriving, double resting, dvec3& v) override;
     void react() override;
@@ -106,7 +107,8 @@ private:
     struct Held {
         std::uint32_t member = 0, body = 0;
         dvec3 offset{0.0}, local{0.0};
-        double length = 0.0;
+        double length = 0.0, stiffness = 0.0, damping = 0.0;
+        double lambda = 0.0; ///< a spring's multiplier over the substep's sweeps so far
     };
     /// Bodies' spheres in a hashed grid of cells (Müller's "Ten Minute Physics" hashing): a
     /// body is listed in each cell its sphere overlaps, and a member looks only at the bodies

@@ -403,7 +403,7 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     const bool withJoints = !m_islands.links(island).empty();
     solver.prepare(m_cache.contacts(), m_islands.contacts(island), m_islands.bodies(island), m_solverBodies, settings,
                    withJoints);
-    joints.prepare(m_joints, m_islands.links(island), m_solverBodies, settings, worldBody());
+    joints.prepare(m_joints, solvedLinks(island), m_solverBodies, settings, worldBody());
     if (withJoints)
         solveMechanismVelocities(solver, joints, settings);
     else // a heap's, or a few bodies'
@@ -437,6 +437,25 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     // overlap the step made, and whose resting bodies have no motion to take it from.
     if (withJoints)
         capEnergy(island);
+}
+
+std::span<const std::uint32_t> RigidSystem::solvedLinks(std::size_t island) const
+{
+    // A spring joint to a point met in its own substeps is applied there (XPBD's,
+    // xpbd_rigid_contacts.hpp): applied here too, its force would count twice.
+    const auto links = m_islands.links(island);
+    const auto inSubsteps = [&](const Joint& j) {
+        return j.stiffness > 0.0 && ((j.a != kWorldBody && m_material[j.a].metInSubsteps) ||
+                                     (j.b != kWorldBody && m_material[j.b].metInSubsteps));
+    };
+    if (std::none_of(links.begin(), links.end(), [&](std::uint32_t k) { return inSubsteps(m_joints[k]); }))
+        return links;
+    thread_local std::vector<std::uint32_t> solved;
+    solved.clear();
+    for (const std::uint32_t k : links)
+        if (!inSubsteps(m_joints[k]))
+            solved.push_back(k);
+    return solved;
 }
 
 void RigidSystem::sweepPositions(std::size_t island, ContactSolver& solver, std::vector<Contact>& atEnd, int sweeps)

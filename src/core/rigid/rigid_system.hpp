@@ -137,6 +137,8 @@ private:
     void prepareBodies(double dt, std::size_t surfaces);
     /// An island's three passes (contact_solver.hpp), with its joints' sweeps among them.
     void solveIsland(std::size_t island, const SolverSettings& settings);
+    /// The island's joints that its solve holds: all but those held in substeps elsewhere.
+    std::span<const std::uint32_t> solvedLinks(std::size_t island) const;
     static void solveMechanismVelocities(ContactSolver& solver, JointSolver& joints, const SolverSettings& settings);
     void moveEndPoses(std::size_t island, const ContactSolver& solver, double dt);
     void capEnergy(std::size_t island);
