@@ -415,3 +415,26 @@ TEST(PointBody, ACrateOnASpringUnderAnXpbdRopeSwingsWithoutItsEnergyRunningAway)
         EXPECT_LT(mostEnergyOver(scene.world, dt, 1.5), 1.005) << "dt " << dt;
     }
 }
+
+// A fixed particle's spring joint is the joint solver's to apply, whatever the particle's method:
+// a box hung on a spring from a fixed particle marked xpbd bobs down to two static stretches
+// (the substeps, which step no fixed particle, once left the spring to nobody, and the box fell).
+TEST(PointBody, ABoxOnASpringFromAFixedParticleHangsOnIt)
+{
+    Scene scene = parseScene(R"({"gravity": [0, -9.81, 0], "room": {"min": [-3, 0, -2], "max": [3, 4.2, 2]},
+        "particles": [{"name": "hook", "position": [0, 3.5, 0], "mass": 0.1, "integrator": "xpbd", "fixed": true}],
+        "rigid_bodies": [{"name": "box", "shape": {"type": "box", "size": [0.2, 0.2, 0.2]}, "mass": 1,
+                          "position": [0, 2.5, 0]}],
+        "joints": [{"type": "distance", "bodies": ["hook", "box"], "anchors": [[0, 3.5, 0], [0, 2.6, 0]],
+                    "length": 0.9, "stiffness": 100}]})",
+                             "box-on-a-spring.json");
+    World& world = scene.world;
+    const Body& box = world.body(*world.findBody("box"));
+    double lowest = box.getPos().y;
+    for (int n = 0; n < 200; ++n) {
+        world.step(0.005);
+        lowest = std::min(lowest, box.getPos().y);
+    }
+    const double stretch = kG / 100.0;
+    EXPECT_NEAR(lowest, 2.5 - 2.0 * stretch, 0.05 * stretch);
+}

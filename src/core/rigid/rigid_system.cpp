@@ -125,6 +125,7 @@ void RigidSystem::setPoint(std::size_t k, const PointBody& p)
     m.inverseInertiaBody = dmat3(0.0); // a point does not turn
     m.driftWeight = driftWeight(p.integrator);
     m.metInSubsteps = p.metInSubsteps;
+    m.stepsItsSpringJoints = p.stepsItsSpringJoints;
     m_start[k] = p.start;
     m_end[k] = p.end;
     m_stillFor[k] = 0.0; // its island never sleeps: the particle moves on under its own forces
@@ -441,19 +442,19 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
 
 std::span<const std::uint32_t> RigidSystem::solvedLinks(std::size_t island) const
 {
-    // A spring joint to a point met in its own substeps is applied there (XPBD's,
-    // xpbd_rigid_contacts.hpp): applied here too, its force would count twice.
+    // A spring joint to a point whose own method applies it (PointBody::stepsItsSpringJoints):
+    // applied here too, its force would count twice.
     const auto links = m_islands.links(island);
-    const auto inSubsteps = [&](const Joint& j) {
-        return j.stiffness > 0.0 && ((j.a != kWorldBody && m_material[j.a].metInSubsteps) ||
-                                     (j.b != kWorldBody && m_material[j.b].metInSubsteps));
+    const auto appliedElsewhere = [&](const Joint& j) {
+        return j.stiffness > 0.0 && ((j.a != kWorldBody && m_material[j.a].stepsItsSpringJoints) ||
+                                     (j.b != kWorldBody && m_material[j.b].stepsItsSpringJoints));
     };
-    if (std::none_of(links.begin(), links.end(), [&](std::uint32_t k) { return inSubsteps(m_joints[k]); }))
+    if (std::none_of(links.begin(), links.end(), [&](std::uint32_t k) { return appliedElsewhere(m_joints[k]); }))
         return links;
     thread_local std::vector<std::uint32_t> solved;
     solved.clear();
     for (const std::uint32_t k : links)
-        if (!inSubsteps(m_joints[k]))
+        if (!appliedElsewhere(m_joints[k]))
             solved.push_back(k);
     return solved;
 }
