@@ -19,6 +19,7 @@ namespace pba::detail {
 struct SpringSolver {
     std::vector<std::size_t> members; ///< what it was made for
     std::size_t forces = 0;
+    std::vector<SpringSystem::PlacedSpring> placedSprings;
     SpringSystem springs;
     BackwardEuler backwardEuler;
     Xpbd xpbd;
@@ -40,6 +41,15 @@ struct SpringSolver {
         dvec3 arm, before;
     };
     std::vector<Carried> carried;
+    /// Backward Euler's: the spring joints between its members and rigid bodies, springs of the
+    /// solve whose fixed end is the body's point (SpringSystem::PlacedSpring): the spring's index,
+    /// the member, the body (a world index), the joint's point on the member (from its centre)
+    /// and on the body (in its frame), and that point's velocity over the step.
+    struct SpringJoint {
+        std::size_t spring = 0, member = 0, body = 0;
+        dvec3 offset{0.0}, local{0.0}, velocity{0.0};
+    };
+    std::vector<SpringJoint> springJoints;
     /// Backward Euler's: the moving bodies members rest on (world indices, and as the solve's
     /// bearers), each member's bearer and arm, and the friction of what it is held on (the
     /// pair's, or below zero: the room's, the member's own).
@@ -57,16 +67,18 @@ struct SpringSolver {
     std::vector<Xpbd::Touching> touching;
 
     /// Makes the springs (and, for XPBD, their colours) anew unless they were made for these
-    /// members and forces.
+    /// members, forces and placed springs.
     void prepare(std::span<const ClonePtr<Force>> worldForces, std::span<const std::size_t> system,
-                 std::size_t bodyCount, bool colour)
+                 std::size_t bodyCount, bool colour, std::span<const SpringSystem::PlacedSpring> placed = {})
     {
         if (forces == worldForces.size() && members.size() == system.size() &&
-            std::equal(members.begin(), members.end(), system.begin()))
+            std::equal(members.begin(), members.end(), system.begin()) &&
+            std::equal(placed.begin(), placed.end(), placedSprings.begin(), placedSprings.end()))
             return;
         members.assign(system.begin(), system.end());
         forces = worldForces.size();
-        springs = SpringSystem(worldForces, system, bodyCount);
+        placedSprings.assign(placed.begin(), placed.end());
+        springs = SpringSystem(worldForces, system, bodyCount, placed);
         xpbd = colour ? Xpbd(springs) : Xpbd();
     }
 };

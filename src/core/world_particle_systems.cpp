@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <tuple>
 
 #include "collision_rules.hpp"
 #include "grain_contacts.hpp"
@@ -71,6 +72,81 @@ std::size_t placeAmong(const std::vector<std::size_t>& members, std::size_t i)
 {
     const auto it = std::lower_bound(members.begin(), members.end(), i);
     return it != members.end() && *it == i ? std::size_t(it - members.begin()) : members.size();
+}
+
+/// The spring joints between `members` of a backward-Euler system and moving or fixed rigid
+/// bodies, as springs of its solve (placed anew each step at the body's point) and, in `joints`,
+/// what places them and gives the bodies their reactions (spring indices still to be set).
+std::vector<detail::SpringSystem::PlacedSpring> springJointsOf(const rigid::RigidSystem& system,
+                                                               const std::vector<std::size_t>& members,
+                                                               std::vector<detail::SpringSolver::SpringJoint>& joints)
+{
+    std::vector<detail::SpringSystem::PlacedSpring> placed;
+    joints.clear();
+    for (const rigid::Joint& j : system.joints()) {
+        if (j.type != JointType::Distance || !(j.stiffness > 0.0) || j.b == rigid::kWorldBody ||
+            system.isPoint(j.a) == system.isPoint(j.b))
+            continue;
+        const bool pointIsA = system.isPoint(j.a);
+        const std::size_t k = placeAmong(members, system.worldIndex(pointIsA ? j.a : j.b));
+        if (k == members.size())
+            continue;
+        placed.push_back({members[k], j.stiffness, j.length, j.damping});
+        joints.push_back({0, k, system.worldIndex(pointIsA ? j.b : j.a), pointIsA ? j.localA : j.localB,
+                          pointIsA ? j.localB : j.localA, dvec3(0.0)});
+    }
+    return placed;
+}
+
+/// Each spring joint's fixed end where the body's point will be at the end of the step, going on
+/// with the body's velocity and spin (the body is not in the solve, and far heavier than the
+/// member in the cases that matter); and its force on the member at the start, added to `start`
+/// (the solve takes every force at the start). The solve's damping takes the fixed end as still:
+/// the point's own velocity along the spring comes in there as a force, constant over the step.
+void placeSpringJoints(detail::SpringSolver& solver, std::span<const ClonePtr<Body>> bodies,
+                       std::span<const dvec3> x, std::span<const dvec3> v, std::span<dvec3> start, double dt)
+{
+    const detail::SpringSystem& springs = solver.springs;
+    for (detail::SpringSolver::SpringJoint& j : solver.springJoints) {
+        const auto& body = static_cast<const RigidBody&>(*bodies[j.body]);
+        const dvec3 arm = body.getOrientation() * j.local;
+        j.velocity = body.isFixed() ? dvec3(0.0) : body.getVel() + glm::cross(body.getAngularVelocity(), arm);
+        const dvec3 point = body.getPos() + arm + j.velocity * dt - j.offset;
+        solver.springs.placeFixedPoint(j.spring, point);
+        const dvec3 d = point - x[j.member];
+        const double length = glm::length(d);
+        if (!(length > 0.0))
+            continue;
+        const dvec3 u = d / length;
+        start[j.member] += (springs.stiffness(j.spring) * (length - springs.restLength(j.spring)) +
+                            springs.damping(j.spring) * glm::dot(u, j.velocity - v[j.member])) * u;
+    }
+}
+
+/// What each spring joint gave its member over the step (backward Euler's force at the end, from
+/// `before`, the members' start positions, to x and v), as (body, impulse, arm): the opposite is
+/// the body's.
+std::vector<std::tuple<std::size_t, dvec3, dvec3>> springJointReactions(const detail::SpringSolver& solver,
+                                                                          std::span<const ClonePtr<Body>> bodies,
+                                                                          std::span<const dvec3> before,
+                                                                          std::span<const dvec3> x,
+                                                                          std::span<const dvec3> v, double dt)
+{
+    const detail::SpringSystem& springs = solver.springs;
+    std::vector<std::tuple<std::size_t, dvec3, dvec3>> out;
+    for (const detail::SpringSolver::SpringJoint& j : solver.springJoints) {
+        const auto& body = static_cast<const RigidBody&>(*bodies[j.body]);
+        if (body.isFixed())
+            continue;
+        const dvec3 point = springs.fixedPoint(j.spring);
+        const dvec3 d = point - x[j.member], d0 = point - before[j.member];
+        const double length = glm::length(d), length0 = glm::length(d0);
+        const dvec3 u = length > 0.0 ? d / length : dvec3(0.0), u0 = length0 > 0.0 ? d0 / length0 : dvec3(0.0);
+        const dvec3 force = springs.stiffness(j.spring) * (length - springs.restLength(j.spring)) * u +
+                            springs.damping(j.spring) * glm::dot(u0, j.velocity - v[j.member]) * u0;
+        out.emplace_back(j.body, -dt * force, body.getOrientation() * j.local);
+    }
+    return out;
 }
 
 /// The normal of the surface backward Euler holds a member on for the step (or zero): the first of
@@ -242,7 +318,15 @@ detail::SpringSolver& World::startSpringSystem(const std::vector<std::size_t>& m
 {
     detail::SpringSolvers& solvers = *m_particleSystems.springSolvers;
     detail::SpringSolver& solver = xpbd ? solvers.xpbd : solvers.backwardEuler;
-    solver.prepare(m_forces.objects, members, m_bodies.objects.size(), xpbd); // XPBD colours its constraints
+    // Backward Euler's spring joints to rigid bodies are springs of its solve (placeSpringJoints);
+    // XPBD holds them in its substeps (xpbd_rigid_contacts.hpp).
+    const auto placed = xpbd || !m_rigid.system ? std::vector<detail::SpringSystem::PlacedSpring>{}
+                                                : springJointsOf(*m_rigid.system, members, solver.springJoints);
+    if (placed.empty())
+        solver.springJoints.clear();
+    solver.prepare(m_forces.objects, members, m_bodies.objects.size(), xpbd, placed); // XPBD colours its constraints
+    for (std::size_t k = 0; k < solver.springJoints.size(); ++k)
+        solver.springJoints[k].spring = solver.springs.size() - placed.size() + k;
     startSystem(members);
     CoupledScratch& s = m_particleSystems.scratch;
     s.mass.resize(members.size());
@@ -283,6 +367,8 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
         solver.heldOn[k] = restingOn(ballPlanes(planes, radius, room), s.x[k], s.v[k], reach,
                                     std::min(reach * dt, radius > 0.0 ? radius : fall));
     });
+    placeSpringJoints(solver, m_bodies.objects, std::span<const dvec3>(&s.x[0], n), std::span<const dvec3>(&s.v[0], n),
+                      start, dt);
     holdOnBalls(members, solver.heldOn, dt);
     holdOnBodies(members, solver, dt);
     carryJoinedBodies(members, solver);
@@ -291,6 +377,16 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
                               {solver.bearerOf, solver.bearerArm, solver.bearers}, solver.alongRods);
     rubAndPushBearers(members, solver);
     pushCarriedBodies(solver, dt);
+    if (!solver.springJoints.empty()) {
+        std::vector<dvec3>& before = solver.positions; // (the fixed ends are placed: free again)
+        before.resize(n);
+        for (std::size_t k = 0; k < n; ++k)
+            before[k] = m_bodies.previous[members[k]].pos;
+        for (const auto& [body, impulse, arm] : springJointReactions(solver, m_bodies.objects, before,
+                                                                     std::span<const dvec3>(&s.x[0], n),
+                                                                     std::span<const dvec3>(&s.v[0], n), dt))
+            pushBeforeItsStep(body, impulse, glm::cross(arm, impulse));
+    }
     collideAndStore(members, dt);
 }
 

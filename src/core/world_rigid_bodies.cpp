@@ -86,7 +86,8 @@ void World::givePointBodies()
         point.integrator = p.getIntegrator();
         point.fixed = p.isFixed();
         point.metInSubsteps = p.getIntegrator() == Integrator::Xpbd; // (integrateXpbd)
-        point.stepsItsSpringJoints = point.metInSubsteps && !point.fixed;
+        point.stepsItsSpringJoints = // (integrateXpbd, integrateBackwardEuler)
+            !point.fixed && (point.integrator == Integrator::Xpbd || point.integrator == Integrator::ImplicitEuler);
         system.setPoint(k, point);
     }
 }
