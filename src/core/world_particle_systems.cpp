@@ -535,6 +535,8 @@ void World::carryJoinedBodies(const std::vector<std::size_t>& members, detail::S
         const auto& body = static_cast<const RigidBody&>(*m_bodies.objects[world]);
         const dvec3 arm = body.getOrientation() * (pointIsA ? j.localB : j.localA);
         if (j.type == JointType::Distance && j.length > 0.0) {
+            if (j.collide)
+                continue; // the contacts after the step push the pair apart: carried too, it was kicked
             const auto rod = carriedAlongRod(body, arm, s.x[k] + (pointIsA ? j.localA : j.localB), s.mass[k]);
             if (!rod)
                 continue;
