@@ -34,6 +34,7 @@ struct SpringSolver {
     /// the solve.
     std::vector<double> solveMass;
     std::vector<dmat3> alongRods;
+    double dt = 0.0; ///< the step's, while it is carried
     struct Carried {
         std::size_t member, body;
         double mass;

@@ -53,6 +53,42 @@ std::optional<RodCarry> carriedAlongRod(const RigidBody& body, const dvec3& arm,
     return RodCarry{1.0 / w, glm::outerProduct(n, n)};
 }
 
+/// A rigid body at one end of a rod: its world index, itself, and its end of the rod from its centre.
+struct RodBody {
+    std::size_t world;
+    const RigidBody& body;
+    dvec3 arm;
+};
+/// The member's side of a rod: its mass, the rod's length, gravity and the step.
+struct RodMember {
+    double mass, length;
+    dvec3 gravity;
+    double dt;
+};
+/// Member k, at `point` with velocity v, carries the body at the rod's far end along the rod
+/// (carriedAlongRod), unless its swing across the rod is faster than the step resolves: a light
+/// member under a heavy body swings about the body's point at w^2 = (the weight it carries) /
+/// (its mass x the rod's length), which the joint after the step cannot follow past w dt = 1 (a
+/// crate on a 3 cm rod under a rope gained 7 times its energy at dt 0.01). Returns whether it
+/// carried it; if not, the caller carries the body as at a point.
+bool carryAlongRod(detail::SpringSolver& solver, const RodBody& b, std::size_t k, const dvec3& point, const dvec3& v,
+                   const RodMember& m)
+{
+    const auto rod = carriedAlongRod(b.body, b.arm, point, m.mass);
+    if (!rod)
+        return true; // no direction now: nothing to carry
+    if (!b.body.isFixed() && rod->mass * glm::length(m.gravity) * m.dt * m.dt > m.mass * m.length)
+        return false;
+    if (solver.alongRods.empty())
+        solver.alongRods.assign(solver.solveMass.size(), dmat3(0.0));
+    solver.alongRods[k] += rod->mass * rod->along;
+    if (!b.body.isFixed()) {
+        solver.startForces[k] += rod->mass * (rod->along * m.gravity);
+        solver.carried.push_back({k, b.world, rod->mass, rod->along, b.arm, v});
+    }
+    return true;
+}
+
 /// How fast a member may move along a surface's normal and still rest on it (the rule after the
 /// step's resting contact): twice what its acceleration gives it in a step.
 double restingReach(const dvec3& acceleration, double dt)
@@ -371,6 +407,7 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
                       start, dt);
     holdOnBalls(members, solver.heldOn, dt);
     holdOnBodies(members, solver, dt);
+    solver.dt = dt;
     carryJoinedBodies(members, solver);
     solver.backwardEuler.step(solver.springs, solver.solveMass, std::span<dvec3>(&s.x[0], n),
                               std::span<dvec3>(&s.v[0], n), start, dt, solver.heldOn,
@@ -514,7 +551,7 @@ void World::carryJoinedBodies(const std::vector<std::size_t>& members, detail::S
     // step will. Alone, the member answered its springs as if free, and the joint then dragged it
     // back to a body a hundred times heavier: the springs felt at most the member's mass over dt
     // squared of the body, and a crate on a rope gained energy at 1/60 s. Joined by a rod, it
-    // carries the body's point along the rod only (carriedAlongRod): carried in no direction, a
+    // carries the body's point along the rod only (carryAlongRod): carried in no direction, a
     // crate on a rod under a rope gained 16 times its energy at dt 0.01.
     const CoupledScratch& s = m_particleSystems.scratch;
     solver.solveMass.assign(s.mass.begin(), s.mass.end());
@@ -537,17 +574,9 @@ void World::carryJoinedBodies(const std::vector<std::size_t>& members, detail::S
         if (j.type == JointType::Distance && j.length > 0.0) {
             if (j.collide)
                 continue; // the contacts after the step push the pair apart: carried too, it was kicked
-            const auto rod = carriedAlongRod(body, arm, s.x[k] + (pointIsA ? j.localA : j.localB), s.mass[k]);
-            if (!rod)
-                continue;
-            if (solver.alongRods.empty())
-                solver.alongRods.assign(members.size(), dmat3(0.0));
-            solver.alongRods[k] += rod->mass * rod->along;
-            if (!body.isFixed()) {
-                solver.startForces[k] += rod->mass * (rod->along * gravity());
-                solver.carried.push_back({k, world, rod->mass, rod->along, arm, s.v[k]});
-            }
-            continue;
+            if (carryAlongRod(solver, {world, body, arm}, k, s.x[k] + (pointIsA ? j.localA : j.localB), s.v[k],
+                              {s.mass[k], j.length, gravity(), solver.dt}))
+                continue; // (else as at a point, below)
         }
         if (body.isFixed()) {
             // Its point does not move: the member answers as pinned there, a mass no spring moves
