@@ -19,7 +19,6 @@ namespace pba::detail {
 struct SpringSolver {
     std::vector<std::size_t> members; ///< what it was made for
     std::size_t forces = 0;
-    std::vector<SpringSystem::PlacedSpring> placedSprings;
     SpringSystem springs;
     BackwardEuler backwardEuler;
     Xpbd xpbd;
@@ -34,7 +33,6 @@ struct SpringSolver {
     /// the solve.
     std::vector<double> solveMass;
     std::vector<dmat3> alongRods;
-    double dt = 0.0; ///< the step's, while it is carried
     struct Carried {
         std::size_t member, body;
         double mass;
@@ -42,15 +40,6 @@ struct SpringSolver {
         dvec3 arm, before;
     };
     std::vector<Carried> carried;
-    /// Backward Euler's: the spring joints between its members and rigid bodies, springs of the
-    /// solve whose fixed end is the body's point (SpringSystem::PlacedSpring): the spring's index,
-    /// the member, the body (a world index), the joint's point on the member (from its centre)
-    /// and on the body (in its frame), and that point's velocity over the step.
-    struct SpringJoint {
-        std::size_t spring = 0, member = 0, body = 0;
-        dvec3 offset{0.0}, local{0.0}, velocity{0.0};
-    };
-    std::vector<SpringJoint> springJoints;
     /// Backward Euler's: the moving bodies members rest on (world indices, and as the solve's
     /// bearers), each member's bearer and arm, and the friction of what it is held on (the
     /// pair's, or below zero: the room's, the member's own).
@@ -68,18 +57,16 @@ struct SpringSolver {
     std::vector<Xpbd::Touching> touching;
 
     /// Makes the springs (and, for XPBD, their colours) anew unless they were made for these
-    /// members, forces and placed springs.
+    /// members and forces.
     void prepare(std::span<const ClonePtr<Force>> worldForces, std::span<const std::size_t> system,
-                 std::size_t bodyCount, bool colour, std::span<const SpringSystem::PlacedSpring> placed = {})
+                 std::size_t bodyCount, bool colour)
     {
         if (forces == worldForces.size() && members.size() == system.size() &&
-            std::equal(members.begin(), members.end(), system.begin()) &&
-            std::equal(placed.begin(), placed.end(), placedSprings.begin(), placedSprings.end()))
+            std::equal(members.begin(), members.end(), system.begin()))
             return;
         members.assign(system.begin(), system.end());
         forces = worldForces.size();
-        placedSprings.assign(placed.begin(), placed.end());
-        springs = SpringSystem(worldForces, system, bodyCount, placed);
+        springs = SpringSystem(worldForces, system, bodyCount);
         xpbd = colour ? Xpbd(springs) : Xpbd();
     }
 };

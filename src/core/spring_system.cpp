@@ -40,7 +40,7 @@ private:
 } // namespace
 
 SpringSystem::SpringSystem(std::span<const ClonePtr<Force>> forces, std::span<const std::size_t> members,
-                           std::size_t bodyCount, std::span<const PlacedSpring> placed)
+                           std::size_t bodyCount)
     : m_bodies(members.size())
 {
     m_local.assign(bodyCount, kFixed);
@@ -53,9 +53,6 @@ SpringSystem::SpringSystem(std::span<const ClonePtr<Force>> forces, std::span<co
         forces[f]->accept(gatherer);
         m_isSpring[f] = gatherer.found ? 1 : 0;
     }
-    const dvec3 unplaced(0.0);
-    for (const PlacedSpring& s : placed)
-        addSpring(s.member, 0, s.stiffness, s.restLength, s.damping, &unplaced);
     m_local.clear();
     m_local.shrink_to_fit();
     buildIncidence();

@@ -20,22 +20,12 @@ public:
     static constexpr std::uint32_t kFixed = std::numeric_limits<std::uint32_t>::max();
     static constexpr std::size_t kAnchor = std::numeric_limits<std::size_t>::max();
 
-    /// A spring from a member (a world index) to a point placed anew every step (placeFixedPoint):
-    /// a spring joint's, whose other end is a rigid body's point.
-    struct PlacedSpring {
-        std::size_t member = 0;
-        double stiffness = 0.0, restLength = 0.0, damping = 0.0;
-        bool operator==(const PlacedSpring&) const = default;
-    };
-
     SpringSystem() = default;
     /// The springs of `forces` with an end among `members` (world indices, in the system's
-    /// order), of a world of `bodyCount` bodies, then `placed` (each member's, in order: spring
-    /// size() - placed.size() + k is placed[k]'s). A spring's end that is not a member is a fixed
+    /// order), of a world of `bodyCount` bodies. A spring's end that is not a member is a fixed
     /// point: no force couples two systems (World::step refuses bodies coupled with different
     /// integrators), so such an end is fixed or an anchor.
-    SpringSystem(std::span<const ClonePtr<Force>> forces, std::span<const std::size_t> members, std::size_t bodyCount,
-                 std::span<const PlacedSpring> placed = {});
+    SpringSystem(std::span<const ClonePtr<Force>> forces, std::span<const std::size_t> members, std::size_t bodyCount);
 
     std::size_t size() const { return m_a.size(); }
     std::size_t bodies() const { return m_bodies; }
@@ -51,8 +41,6 @@ public:
     /// Puts each fixed end where it is at the start of the step: an anchor's point, or the fixed
     /// body's position in `positions` (one per world body; a program may move a fixed body).
     void placeFixedEnds(std::span<const dvec3> positions);
-    /// Puts spring s's fixed end (a placed spring's, or an anchor's) at `point`.
-    void placeFixedPoint(std::size_t s, const dvec3& point) { m_fixedPoint[m_fixedEnd[s]] = point; }
 
     /// The springs at member p: incident(p)[k] is 2 s + 1 where p is spring s's second end and 2 s
     /// where it is the first, in the springs' order.

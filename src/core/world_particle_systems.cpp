@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <optional>
-#include <tuple>
 
 #include "collision_rules.hpp"
 #include "grain_contacts.hpp"
@@ -53,42 +52,6 @@ std::optional<RodCarry> carriedAlongRod(const RigidBody& body, const dvec3& arm,
     return RodCarry{1.0 / w, glm::outerProduct(n, n)};
 }
 
-/// A rigid body at one end of a rod: its world index, itself, and its end of the rod from its centre.
-struct RodBody {
-    std::size_t world;
-    const RigidBody& body;
-    dvec3 arm;
-};
-/// The member's side of a rod: its mass, the rod's length, gravity and the step.
-struct RodMember {
-    double mass, length;
-    dvec3 gravity;
-    double dt;
-};
-/// Member k, at `point` with velocity v, carries the body at the rod's far end along the rod
-/// (carriedAlongRod), unless its swing across the rod is faster than the step resolves: a light
-/// member under a heavy body swings about the body's point at w^2 = (the weight it carries) /
-/// (its mass x the rod's length), which the joint after the step cannot follow past w dt = 1 (a
-/// crate on a 3 cm rod under a rope gained 7 times its energy at dt 0.01). Returns whether it
-/// carried it; if not, the caller carries the body as at a point.
-bool carryAlongRod(detail::SpringSolver& solver, const RodBody& b, std::size_t k, const dvec3& point, const dvec3& v,
-                   const RodMember& m)
-{
-    const auto rod = carriedAlongRod(b.body, b.arm, point, m.mass);
-    if (!rod)
-        return true; // no direction now: nothing to carry
-    if (!b.body.isFixed() && rod->mass * glm::length(m.gravity) * m.dt * m.dt > m.mass * m.length)
-        return false;
-    if (solver.alongRods.empty())
-        solver.alongRods.assign(solver.solveMass.size(), dmat3(0.0));
-    solver.alongRods[k] += rod->mass * rod->along;
-    if (!b.body.isFixed()) {
-        solver.startForces[k] += rod->mass * (rod->along * m.gravity);
-        solver.carried.push_back({k, b.world, rod->mass, rod->along, b.arm, v});
-    }
-    return true;
-}
-
 /// How fast a member may move along a surface's normal and still rest on it (the rule after the
 /// step's resting contact): twice what its acceleration gives it in a step.
 double restingReach(const dvec3& acceleration, double dt)
@@ -108,81 +71,6 @@ std::size_t placeAmong(const std::vector<std::size_t>& members, std::size_t i)
 {
     const auto it = std::lower_bound(members.begin(), members.end(), i);
     return it != members.end() && *it == i ? std::size_t(it - members.begin()) : members.size();
-}
-
-/// The spring joints between `members` of a backward-Euler system and moving or fixed rigid
-/// bodies, as springs of its solve (placed anew each step at the body's point) and, in `joints`,
-/// what places them and gives the bodies their reactions (spring indices still to be set).
-std::vector<detail::SpringSystem::PlacedSpring> springJointsOf(const rigid::RigidSystem& system,
-                                                               const std::vector<std::size_t>& members,
-                                                               std::vector<detail::SpringSolver::SpringJoint>& joints)
-{
-    std::vector<detail::SpringSystem::PlacedSpring> placed;
-    joints.clear();
-    for (const rigid::Joint& j : system.joints()) {
-        if (j.type != JointType::Distance || !(j.stiffness > 0.0) || j.b == rigid::kWorldBody ||
-            system.isPoint(j.a) == system.isPoint(j.b))
-            continue;
-        const bool pointIsA = system.isPoint(j.a);
-        const std::size_t k = placeAmong(members, system.worldIndex(pointIsA ? j.a : j.b));
-        if (k == members.size())
-            continue;
-        placed.push_back({members[k], j.stiffness, j.length, j.damping});
-        joints.push_back({0, k, system.worldIndex(pointIsA ? j.b : j.a), pointIsA ? j.localA : j.localB,
-                          pointIsA ? j.localB : j.localA, dvec3(0.0)});
-    }
-    return placed;
-}
-
-/// Each spring joint's fixed end where the body's point will be at the end of the step, going on
-/// with the body's velocity and spin (the body is not in the solve, and far heavier than the
-/// member in the cases that matter); and its force on the member at the start, added to `start`
-/// (the solve takes every force at the start). The solve's damping takes the fixed end as still:
-/// the point's own velocity along the spring comes in there as a force, constant over the step.
-void placeSpringJoints(detail::SpringSolver& solver, std::span<const ClonePtr<Body>> bodies,
-                       std::span<const dvec3> x, std::span<const dvec3> v, std::span<dvec3> start, double dt)
-{
-    const detail::SpringSystem& springs = solver.springs;
-    for (detail::SpringSolver::SpringJoint& j : solver.springJoints) {
-        const auto& body = static_cast<const RigidBody&>(*bodies[j.body]);
-        const dvec3 arm = body.getOrientation() * j.local;
-        j.velocity = body.isFixed() ? dvec3(0.0) : body.getVel() + glm::cross(body.getAngularVelocity(), arm);
-        const dvec3 point = body.getPos() + arm + j.velocity * dt - j.offset;
-        solver.springs.placeFixedPoint(j.spring, point);
-        const dvec3 d = point - x[j.member];
-        const double length = glm::length(d);
-        if (!(length > 0.0))
-            continue;
-        const dvec3 u = d / length;
-        start[j.member] += (springs.stiffness(j.spring) * (length - springs.restLength(j.spring)) +
-                            springs.damping(j.spring) * glm::dot(u, j.velocity - v[j.member])) * u;
-    }
-}
-
-/// What each spring joint gave its member over the step (backward Euler's force at the end, from
-/// `before`, the members' start positions, to x and v), as (body, impulse, arm): the opposite is
-/// the body's.
-std::vector<std::tuple<std::size_t, dvec3, dvec3>> springJointReactions(const detail::SpringSolver& solver,
-                                                                          std::span<const ClonePtr<Body>> bodies,
-                                                                          std::span<const dvec3> before,
-                                                                          std::span<const dvec3> x,
-                                                                          std::span<const dvec3> v, double dt)
-{
-    const detail::SpringSystem& springs = solver.springs;
-    std::vector<std::tuple<std::size_t, dvec3, dvec3>> out;
-    for (const detail::SpringSolver::SpringJoint& j : solver.springJoints) {
-        const auto& body = static_cast<const RigidBody&>(*bodies[j.body]);
-        if (body.isFixed())
-            continue;
-        const dvec3 point = springs.fixedPoint(j.spring);
-        const dvec3 d = point - x[j.member], d0 = point - before[j.member];
-        const double length = glm::length(d), length0 = glm::length(d0);
-        const dvec3 u = length > 0.0 ? d / length : dvec3(0.0), u0 = length0 > 0.0 ? d0 / length0 : dvec3(0.0);
-        const dvec3 force = springs.stiffness(j.spring) * (length - springs.restLength(j.spring)) * u +
-                            springs.damping(j.spring) * glm::dot(u0, j.velocity - v[j.member]) * u0;
-        out.emplace_back(j.body, -dt * force, body.getOrientation() * j.local);
-    }
-    return out;
 }
 
 /// The normal of the surface backward Euler holds a member on for the step (or zero): the first of
@@ -354,15 +242,7 @@ detail::SpringSolver& World::startSpringSystem(const std::vector<std::size_t>& m
 {
     detail::SpringSolvers& solvers = *m_particleSystems.springSolvers;
     detail::SpringSolver& solver = xpbd ? solvers.xpbd : solvers.backwardEuler;
-    // Backward Euler's spring joints to rigid bodies are springs of its solve (placeSpringJoints);
-    // XPBD holds them in its substeps (xpbd_rigid_contacts.hpp).
-    const auto placed = xpbd || !m_rigid.system ? std::vector<detail::SpringSystem::PlacedSpring>{}
-                                                : springJointsOf(*m_rigid.system, members, solver.springJoints);
-    if (placed.empty())
-        solver.springJoints.clear();
-    solver.prepare(m_forces.objects, members, m_bodies.objects.size(), xpbd, placed); // XPBD colours its constraints
-    for (std::size_t k = 0; k < solver.springJoints.size(); ++k)
-        solver.springJoints[k].spring = solver.springs.size() - placed.size() + k;
+    solver.prepare(m_forces.objects, members, m_bodies.objects.size(), xpbd); // XPBD colours its constraints
     startSystem(members);
     CoupledScratch& s = m_particleSystems.scratch;
     s.mass.resize(members.size());
@@ -403,27 +283,14 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
         solver.heldOn[k] = restingOn(ballPlanes(planes, radius, room), s.x[k], s.v[k], reach,
                                     std::min(reach * dt, radius > 0.0 ? radius : fall));
     });
-    placeSpringJoints(solver, m_bodies.objects, std::span<const dvec3>(&s.x[0], n), std::span<const dvec3>(&s.v[0], n),
-                      start, dt);
     holdOnBalls(members, solver.heldOn, dt);
     holdOnBodies(members, solver, dt);
-    solver.dt = dt;
     carryJoinedBodies(members, solver);
     solver.backwardEuler.step(solver.springs, solver.solveMass, std::span<dvec3>(&s.x[0], n),
                               std::span<dvec3>(&s.v[0], n), start, dt, solver.heldOn,
                               {solver.bearerOf, solver.bearerArm, solver.bearers}, solver.alongRods);
     rubAndPushBearers(members, solver);
     pushCarriedBodies(solver, dt);
-    if (!solver.springJoints.empty()) {
-        std::vector<dvec3>& before = solver.positions; // (the fixed ends are placed: free again)
-        before.resize(n);
-        for (std::size_t k = 0; k < n; ++k)
-            before[k] = m_bodies.previous[members[k]].pos;
-        for (const auto& [body, impulse, arm] : springJointReactions(solver, m_bodies.objects, before,
-                                                                     std::span<const dvec3>(&s.x[0], n),
-                                                                     std::span<const dvec3>(&s.v[0], n), dt))
-            pushBeforeItsStep(body, impulse, glm::cross(arm, impulse));
-    }
     collideAndStore(members, dt);
 }
 
@@ -551,7 +418,7 @@ void World::carryJoinedBodies(const std::vector<std::size_t>& members, detail::S
     // step will. Alone, the member answered its springs as if free, and the joint then dragged it
     // back to a body a hundred times heavier: the springs felt at most the member's mass over dt
     // squared of the body, and a crate on a rope gained energy at 1/60 s. Joined by a rod, it
-    // carries the body's point along the rod only (carryAlongRod): carried in no direction, a
+    // carries the body's point along the rod only (carriedAlongRod): carried in no direction, a
     // crate on a rod under a rope gained 16 times its energy at dt 0.01.
     const CoupledScratch& s = m_particleSystems.scratch;
     solver.solveMass.assign(s.mass.begin(), s.mass.end());
@@ -574,9 +441,17 @@ void World::carryJoinedBodies(const std::vector<std::size_t>& members, detail::S
         if (j.type == JointType::Distance && j.length > 0.0) {
             if (j.collide)
                 continue; // the contacts after the step push the pair apart: carried too, it was kicked
-            if (carryAlongRod(solver, {world, body, arm}, k, s.x[k] + (pointIsA ? j.localA : j.localB), s.v[k],
-                              {s.mass[k], j.length, gravity(), solver.dt}))
-                continue; // (else as at a point, below)
+            const auto rod = carriedAlongRod(body, arm, s.x[k] + (pointIsA ? j.localA : j.localB), s.mass[k]);
+            if (!rod)
+                continue;
+            if (solver.alongRods.empty())
+                solver.alongRods.assign(members.size(), dmat3(0.0));
+            solver.alongRods[k] += rod->mass * rod->along;
+            if (!body.isFixed()) {
+                solver.startForces[k] += rod->mass * (rod->along * gravity());
+                solver.carried.push_back({k, world, rod->mass, rod->along, arm, s.v[k]});
+            }
+            continue;
         }
         if (body.isFixed()) {
             // Its point does not move: the member answers as pinned there, a mass no spring moves

@@ -86,8 +86,7 @@ void World::givePointBodies()
         point.integrator = p.getIntegrator();
         point.fixed = p.isFixed();
         point.metInSubsteps = p.getIntegrator() == Integrator::Xpbd; // (integrateXpbd)
-        point.stepsItsSpringJoints = // (integrateXpbd, integrateBackwardEuler)
-            !point.fixed && (point.integrator == Integrator::Xpbd || point.integrator == Integrator::ImplicitEuler);
+        point.stepsItsSpringJoints = point.metInSubsteps && !point.fixed;
         system.setPoint(k, point);
     }
 }
