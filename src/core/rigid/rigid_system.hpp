@@ -63,8 +63,8 @@ public:
         /// Met by the rigid bodies inside its own method's substeps (XPBD's,
         /// xpbd_rigid_contacts.hpp): here it is only joined.
         bool metInSubsteps = false;
-        /// Its spring joints are applied by its own method (XPBD in its substeps, implicit Euler
-        /// in its solve): here they are left alone, or their force would count twice.
+        /// Its spring joints are applied by its own method (XPBD's, in its substeps): here they
+        /// are left alone, or their force would count twice.
         bool stepsItsSpringJoints = false;
     };
     std::size_t size() const { return m_world.size(); }
