@@ -80,6 +80,22 @@ std::string parseErrorText(const CLI::ParseError& e, const CLI::App& app, const 
     return what;
 }
 
+/// An empty word (`--dt ""` or `--dt=`, a script's unset variable) is refused: CLI11 reads it as
+/// no value at all, or as 0, and `pba sim rope --dt ""` ran with the scene's own dt.
+std::optional<std::string> emptyArgumentText(const std::vector<std::string>& args)
+{
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& word = args[i];
+        if (word.empty())
+            return i > 0 && args[i - 1].rfind("--", 0) == 0
+                       ? fmt::format("{}: empty; give it a value", args[i - 1])
+                       : std::string("an empty argument: give it a value, or leave it out");
+        if (word.size() > 2 && word.rfind("--", 0) == 0 && word.back() == '=')
+            return fmt::format("{}: empty; give it a value", word.substr(0, word.size() - 1));
+    }
+    return std::nullopt;
+}
+
 /// Every error is one line on stderr, whatever a path, a flag or a name it quotes holds.
 void printError(std::string_view what)
 {
@@ -122,6 +138,10 @@ int main(int argc, char** argv)
     addHelpCommand(app, selected);
 
     const std::vector<std::string> typed(argv + 1, argv + argc);
+    if (const auto empty = emptyArgumentText(typed)) {
+        printError(*empty);
+        return kExitBadInput;
+    }
     std::vector<std::string> args(typed.rbegin(), typed.rend()); // CLI11 takes the arguments in reverse order
     try {
         app.parse(args);

@@ -114,6 +114,8 @@ INSTANTIATE_TEST_SUITE_P(
                     BadRun{"integrators --no-such-option", "no-such-option"},
                     BadRun{"integrators --dt abc", "--dt: cannot read 'abc' as a number"},
                     BadRun{"integrators --dt 0.01 --dt 0.02", "--dt: given 2 times; give it once"},
+                    BadRun{"integrators --dt ''", "--dt: empty; give it a value"},
+                    BadRun{"integrators --duration=", "--duration: empty; give it a value"},
                     BadRun{"integrators --duration 1,5", "--duration: cannot read '1,5' as a number"},
                     BadRun{"trampoline --integrator xpbd",
                            "has rigid body 'crate' (a rope's or cloth's own \"integrator\" key sets it"},

@@ -159,7 +159,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadFlags{{"sim", "--dt", "1e-12"}, "--dt: 60 s at dt = 1e-12 s is 6e+13 steps"},
                       BadFlags{{"sim", "--frame-rate", "1e300"}, "--frame-rate"},
                       BadFlags{{"sim", "integrators", "--duration", "1e300"}, "--duration"},
-                      BadFlags{{"sim", "integrators", "--out", ""}, "the path is empty"}));
+                      BadFlags{{"sim", "integrators", "--out", ""}, "--out: empty; give it a value"}));
 
 // A thin, tall dryer's slice asked for millions of rows of scratch data; it is bounded now.
 TEST(NumericFlagsSlice, AThinDryersSliceIsBounded)
