@@ -529,7 +529,6 @@ detail::XpbdRigidContacts* World::startXpbdRigidContacts(const std::vector<std::
     for (std::size_t i = 0; i < m_bodies.objects.size(); ++i)
         if (isRigid(i))
             rigid.emplace_back(i, static_cast<const RigidBody*>(m_bodies.objects[i].get()));
-    std::vector<std::pair<std::size_t, std::size_t>> joined; // (particle, body)
     std::vector<detail::XpbdRigidContacts::Joint> joints;
     const rigid::RigidSystem& system = *m_rigid.system;
     for (const rigid::Joint& j : system.joints()) {
@@ -537,11 +536,9 @@ detail::XpbdRigidContacts* World::startXpbdRigidContacts(const std::vector<std::
             continue;
         const bool pointFirst = system.isPoint(j.a);
         const auto [point, body] = pointFirst ? std::pair(j.a, j.b) : std::pair(j.b, j.a);
-        if (!j.collide)
-            joined.emplace_back(system.worldIndex(point), system.worldIndex(body));
         joints.push_back({system.worldIndex(point), system.worldIndex(body), pointFirst ? j.localA : j.localB,
                           pointFirst ? j.localB : j.localA, j.type == JointType::Distance ? j.length : 0.0,
-                          j.stiffness, j.damping});
+                          j.stiffness, j.damping, j.collide});
     }
     const CoupledScratch& s = m_particleSystems.scratch;
     const std::size_t n = members.size();
@@ -549,7 +546,7 @@ detail::XpbdRigidContacts* World::startXpbdRigidContacts(const std::vector<std::
     bodies.begin(rigid,
                  {members, std::span<const dvec3>(&s.x[0], n), std::span<const dvec3>(&s.v[0], n), solver.radius,
                   s.mass, solver.friction, solver.restitution},
-                 joined, joints, dt);
+                 joints, dt);
     return bodies.empty() ? nullptr : &bodies;
 }
 

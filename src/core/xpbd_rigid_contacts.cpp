@@ -18,7 +18,7 @@ dvec3 XpbdRigidContacts::Body::spin() const
 }
 
 void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const RigidBody*>> bodies,
-                              const Members& members, Joined joined, std::span<const Joint> joints, double dt)
+                              const Members& members, std::span<const Joint> joints, double dt)
 {
     m_bodies.clear();
     m_joined.clear();
@@ -69,21 +69,17 @@ void XpbdRigidContacts::begin(std::span<const std::pair<std::size_t, const Rigid
     m_touch.assign(members.x.size(), Touch{});
     for (auto& pushes : m_pushes) // (emptied by each react, but for a step a blow-up cut short)
         pushes.clear();
-    for (const std::pair<std::size_t, std::size_t>& pair : joined) { // (a few joints: a line through the members each)
-        const auto p = std::find(members.world.begin(), members.world.end(), pair.first);
-        const auto k =
-            std::find_if(m_bodies.begin(), m_bodies.end(), [&](const Body& b) { return b.world == pair.second; });
-        if (p != members.world.end() && k != m_bodies.end())
-            m_joined.emplace_back(std::uint32_t(p - members.world.begin()), std::uint32_t(k - m_bodies.begin()));
-    }
-    std::sort(m_joined.begin(), m_joined.end());
-    for (const Joint& j : joints) {
+    for (const Joint& j : joints) { // (a few joints: a line through the members each)
         const auto p = std::find(members.world.begin(), members.world.end(), j.particle);
         const auto k = std::find_if(m_bodies.begin(), m_bodies.end(), [&](const Body& b) { return b.world == j.body; });
-        if (p != members.world.end() && k != m_bodies.end())
-            m_held.push_back({std::uint32_t(p - members.world.begin()), std::uint32_t(k - m_bodies.begin()), j.offset,
-                              j.local, j.length, j.stiffness, j.damping});
+        if (p == members.world.end() || k == m_bodies.end())
+            continue;
+        const Held held{std::uint32_t(p - members.world.begin()), std::uint32_t(k - m_bodies.begin()), j};
+        m_held.push_back(held);
+        if (!j.collide)
+            m_joined.emplace_back(held.member, held.body);
     }
+    std::sort(m_joined.begin(), m_joined.end());
     std::stable_sort(m_held.begin(), m_held.end(), [](const Held& a, const Held& b) { return a.member < b.member; });
 }
 
@@ -207,8 +203,8 @@ void XpbdRigidContacts::forEachNear(const dvec3& x, F&& f) const
 void XpbdRigidContacts::advance(double h)
 {
     m_h = h;
-    for (Held& j : m_held)
-        j.lambda = 0.0;
+    for (Held& held : m_held)
+        held.lambda = 0.0;
     for (Body& b : m_bodies) {
         if (b.inverseMass == 0.0)
             continue;
@@ -221,18 +217,20 @@ void XpbdRigidContacts::advance(double h)
 
 void XpbdRigidContacts::hold(std::span<dvec3> x, std::span<const dvec3> start)
 {
-    for (Held& j : m_held) {
-        Body& b = m_bodies[j.body];
+    for (Held& held : m_held) {
+        const Joint& j = held.joint;
+        Body& b = m_bodies[held.body];
+        const std::uint32_t member = held.member;
         const dmat3 turn = glm::mat3_cast(b.q);
         const dvec3 arm = turn * j.local;
-        const dvec3 d = (x[j.member] + j.offset) - (b.x + arm);
+        const dvec3 d = (x[member] + j.offset) - (b.x + arm);
         const double distance = glm::length(d);
         if (!(distance > 0.0))
             continue; // held exactly, or no line to hold it along
         const dvec3 n = d / distance;
         const dmat3 inverseInertia = turn * b.inverseInertiaBody * glm::transpose(turn);
         const double wBody = b.inverseMass + glm::dot(glm::cross(arm, n), inverseInertia * glm::cross(arm, n));
-        const double wMember = 1.0 / m_mass[j.member];
+        const double wMember = 1.0 / m_mass[member];
         // A spring as XPBD's (xpbd.hpp): compliance 1 / (k h^2), its damping over the two points'
         // moves in the substep, and its multiplier kept over the sweeps.
         double error = distance - j.length, compliance = 0.0, gamma = 0.0;
@@ -240,12 +238,12 @@ void XpbdRigidContacts::hold(std::span<dvec3> x, std::span<const dvec3> start)
             compliance = 1.0 / (j.stiffness * m_h * m_h);
             gamma = j.damping / (j.stiffness * m_h);
             const dvec3 bodyMoved = (b.v + glm::cross(b.spin(), arm)) * m_h;
-            error += gamma * glm::dot(n, (x[j.member] - start[j.member]) - bodyMoved) - compliance * j.lambda;
+            error += gamma * glm::dot(n, (x[member] - start[member]) - bodyMoved) - compliance * held.lambda;
         }
         const double change = error / ((1.0 + gamma) * (wMember + wBody) + compliance);
-        j.lambda += change;
+        held.lambda += change;
         const dvec3 p = change * n; // towards the member, kg m
-        x[j.member] -= wMember * p;
+        x[member] -= wMember * p;
         if (b.inverseMass == 0.0)
             continue;
         // The body's share of the move, and the velocity and spin that make it over the substep.

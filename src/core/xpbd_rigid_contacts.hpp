@@ -18,8 +18,9 @@
 // as XPBD holds two bodies (Müller et al.): the member's point and the body's put back the joint's
 // distance apart, each moved by its share of the inverse masses along the line between them (the
 // body's through its arm and inertia), and the body's velocity and spin changed by its move over h;
-// a spring joint as XPBD's springs are (xpbd.hpp), of compliance 1 / k. Held only after the step by the
-// joint solver, the rope's end swung free through the substeps and was snapped back once a step:
+// a spring joint as XPBD's springs are (xpbd.hpp), of compliance 1 / k. Held only after the step
+// by the joint solver, the rope's end swung free through the substeps and was snapped back once a
+// step:
 // an XPBD rope holding a 20 kg crate gained energy from dt = 0.005 s and blew up at 1/60 s. With
 // the body's share given as an impulse for the next substep instead of moved, a box at rest on a
 // rope of one substep bobbed and gained energy. The joint solver after the step then finds the
@@ -48,21 +49,20 @@ public:
         std::span<const dvec3> x, v;
         std::span<const double> radius, mass, friction, restitution;
     };
-    /// (particle, body), world indices, that a joint joins: they never touch.
-    using Joined = std::span<const std::pair<std::size_t, std::size_t>>;
     /// A joint between a particle and a rigid body (world indices): the particle's point (its
     /// position plus `offset`: a particle does not turn) and the body's (`local`, in its frame)
     /// kept `length` apart (0 for a ball joint), rigidly or, with a stiffness (N/m), as a spring
-    /// with its damping (N s/m).
+    /// with its damping (N s/m). The two never touch unless the joint says they `collide`.
     struct Joint {
         std::size_t particle = 0, body = 0;
         dvec3 offset{0.0}, local{0.0};
         double length = 0.0, stiffness = 0.0, damping = 0.0;
+        bool collide = false;
     };
     /// The rigid bodies (world index, body) that the members may meet in a step of dt: those
     /// whose bounding spheres, moving, come near the members' box, and those joined to a member.
     void begin(std::span<const std::pair<std::size_t, const RigidBody*>> bodies, const Members& members,
-               Joined joined, std::span<const Joint> joints, double dt);
+               std::span<const Joint> joints, double dt);
     bool empty() const { return m_bodies.empty(); }
 
     void advance(double h) override;
@@ -103,12 +103,12 @@ private:
         dvec3 normal{0.0}, arm{0.0};
     };
     static constexpr std::uint32_t kNone = 0xffffffffu;
-    /// A joint as the substeps hold it: the member, the body (an index into m_bodies), and the rest.
+    /// A joint as the substeps hold it: its member and body (an index into m_bodies), and a
+    /// spring's multiplier over the substep's sweeps so far.
     struct Held {
         std::uint32_t member = 0, body = 0;
-        dvec3 offset{0.0}, local{0.0};
-        double length = 0.0, stiffness = 0.0, damping = 0.0;
-        double lambda = 0.0; ///< a spring's multiplier over the substep's sweeps so far
+        Joint joint;
+        double lambda = 0.0;
     };
     /// Bodies' spheres in a hashed grid of cells (Müller's "Ten Minute Physics" hashing): a
     /// body is listed in each cell its sphere overlaps, and a member looks only at the bodies

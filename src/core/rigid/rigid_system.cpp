@@ -125,7 +125,6 @@ void RigidSystem::setPoint(std::size_t k, const PointBody& p)
     m.inverseInertiaBody = dmat3(0.0); // a point does not turn
     m.driftWeight = driftWeight(p.integrator);
     m.metInSubsteps = p.metInSubsteps;
-    m.stepsItsSpringJoints = p.stepsItsSpringJoints;
     m_start[k] = p.start;
     m_end[k] = p.end;
     m_stillFor[k] = 0.0; // its island never sleeps: the particle moves on under its own forces
@@ -442,12 +441,15 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
 
 std::span<const std::uint32_t> RigidSystem::solvedLinks(std::size_t island) const
 {
-    // A spring joint to a point whose own method applies it (PointBody::stepsItsSpringJoints):
-    // applied here too, its force would count twice.
+    // A spring joint to a moving point met in its own substeps is held there (XPBD's,
+    // xpbd_rigid_contacts.hpp): applied here too, its force would count twice. (A fixed point is
+    // no member of the substeps, and its joints stay here.)
     const auto links = m_islands.links(island);
+    const auto inSubsteps = [&](BodyIndex k) {
+        return k != kWorldBody && m_material[k].metInSubsteps && m_material[k].inverseMass > 0.0;
+    };
     const auto appliedElsewhere = [&](const Joint& j) {
-        return j.stiffness > 0.0 && ((j.a != kWorldBody && m_material[j.a].stepsItsSpringJoints) ||
-                                     (j.b != kWorldBody && m_material[j.b].stepsItsSpringJoints));
+        return j.stiffness > 0.0 && (inSubsteps(j.a) || inSubsteps(j.b));
     };
     if (std::none_of(links.begin(), links.end(), [&](std::uint32_t k) { return appliedElsewhere(m_joints[k]); }))
         return links;

@@ -63,9 +63,6 @@ public:
         /// Met by the rigid bodies inside its own method's substeps (XPBD's,
         /// xpbd_rigid_contacts.hpp): here it is only joined.
         bool metInSubsteps = false;
-        /// Its spring joints are applied by its own method (XPBD's, in its substeps): here they
-        /// are left alone, or their force would count twice.
-        bool stepsItsSpringJoints = false;
     };
     std::size_t size() const { return m_world.size(); }
     std::size_t worldIndex(std::size_t k) const { return m_world[k]; }
@@ -122,8 +119,7 @@ private:
         double inverseMass = 0.0;
         dmat3 inverseInertiaBody{0.0};
         double driftWeight = 1.0;
-        bool metInSubsteps = false;        ///< a point body's (PointBody)
-        bool stepsItsSpringJoints = false; ///< a point body's (PointBody)
+        bool metInSubsteps = false; ///< a point body's (PointBody)
     };
     bool anythingAwake() const { return !m_awake.empty() || !m_points.empty(); }
     /// Whether a contact between a and b is left out: two bodies a joint joins (unless it says
@@ -141,7 +137,8 @@ private:
     void prepareBodies(double dt, std::size_t surfaces);
     /// An island's three passes (contact_solver.hpp), with its joints' sweeps among them.
     void solveIsland(std::size_t island, const SolverSettings& settings);
-    /// The island's joints that its solve holds: all but those held in substeps elsewhere.
+    /// The island's joints that its solve holds: all but the spring joints of a moving point met
+    /// in its own substeps, which hold them there.
     std::span<const std::uint32_t> solvedLinks(std::size_t island) const;
     static void solveMechanismVelocities(ContactSolver& solver, JointSolver& joints, const SolverSettings& settings);
     void moveEndPoses(std::size_t island, const ContactSolver& solver, double dt);
