@@ -40,6 +40,14 @@ struct SpringSolver {
         dvec3 arm, before;
     };
     std::vector<Carried> carried;
+    /// Backward Euler's: the points of rigid bodies that spring joints tie members to, solved as
+    /// members after the system's own (World::carryJoinedBodies): their states, the joints'
+    /// springs, the system with those springs (made anew when they change), and the whole state
+    /// of members and points for the solve.
+    std::vector<dvec3> pointX, pointV;
+    std::vector<SpringSystem::LocalSpring> jointSprings, joinedWith;
+    SpringSystem joined;
+    std::vector<dvec3> wholeX, wholeV;
     /// Backward Euler's: the moving bodies members rest on (world indices, and as the solve's
     /// bearers), each member's bearer and arm, and the friction of what it is held on (the
     /// pair's, or below zero: the room's, the member's own).
@@ -58,6 +66,19 @@ struct SpringSolver {
 
     /// Makes the springs (and, for XPBD, their colours) anew unless they were made for these
     /// members and forces.
+    /// The springs to solve with: the system's own, with the joint points' when there are any.
+    const SpringSystem& solvedSprings()
+    {
+        if (jointSprings.empty())
+            return springs;
+        if (joinedWith != jointSprings) {
+            joined = springs.withExtraMembers(pointX.size(), jointSprings);
+            joinedWith = jointSprings;
+        }
+        joined.placeFixedEnds(positions);
+        return joined;
+    }
+
     void prepare(std::span<const ClonePtr<Force>> worldForces, std::span<const std::size_t> system,
                  std::size_t bodyCount, bool colour)
     {
@@ -67,6 +88,7 @@ struct SpringSolver {
         members.assign(system.begin(), system.end());
         forces = worldForces.size();
         springs = SpringSystem(worldForces, system, bodyCount);
+        joinedWith.clear(); // (joined is made from springs)
         xpbd = colour ? Xpbd(springs) : Xpbd();
     }
 };

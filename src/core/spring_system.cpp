@@ -81,6 +81,22 @@ void SpringSystem::addSpring(std::size_t a, std::size_t b, double k, double rest
     }
 }
 
+SpringSystem SpringSystem::withExtraMembers(std::size_t extra, std::span<const LocalSpring> springs) const
+{
+    SpringSystem joined = *this;
+    joined.m_bodies += extra;
+    for (const LocalSpring& s : springs) {
+        joined.m_a.push_back(s.a);
+        joined.m_b.push_back(s.b);
+        joined.m_stiffness.push_back(s.stiffness);
+        joined.m_rest.push_back(s.rest);
+        joined.m_damping.push_back(s.damping);
+        joined.m_fixedEnd.push_back(kFixed);
+    }
+    joined.buildIncidence();
+    return joined;
+}
+
 void SpringSystem::placeFixedEnds(std::span<const dvec3> positions)
 {
     for (std::size_t e = 0; e < m_fixedBody.size(); ++e)

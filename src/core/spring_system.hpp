@@ -55,6 +55,16 @@ public:
     /// Kept only with an end among the members.
     void addSpring(std::size_t a, std::size_t b, double k, double rest, double c, const dvec3* anchor);
 
+    /// A spring between two members given as the system's own indices.
+    struct LocalSpring {
+        std::uint32_t a = 0, b = 0;
+        double stiffness = 0.0, rest = 0.0, damping = 0.0;
+        bool operator==(const LocalSpring&) const = default;
+    };
+    /// This system with `extra` members after its own and `springs` among them (a rigid body's
+    /// point joined to a member by a spring joint, solved as one more member: World's joint points).
+    SpringSystem withExtraMembers(std::size_t extra, std::span<const LocalSpring> springs) const;
+
 private:
     void buildIncidence();
 

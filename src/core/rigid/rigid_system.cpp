@@ -125,6 +125,7 @@ void RigidSystem::setPoint(std::size_t k, const PointBody& p)
     m.inverseInertiaBody = dmat3(0.0); // a point does not turn
     m.driftWeight = driftWeight(p.integrator);
     m.metInSubsteps = p.metInSubsteps;
+    m.springJointsInItsSolve = p.springJointsInItsSolve;
     m_start[k] = p.start;
     m_end[k] = p.end;
     m_stillFor[k] = 0.0; // its island never sleeps: the particle moves on under its own forces
@@ -441,15 +442,16 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
 
 std::span<const std::uint32_t> RigidSystem::solvedLinks(std::size_t island) const
 {
-    // A spring joint to a moving point met in its own substeps is held there (XPBD's,
-    // xpbd_rigid_contacts.hpp): applied here too, its force would count twice. (A fixed point is
-    // no member of the substeps, and its joints stay here.)
+    // A spring joint to a moving point is a spring of the point's own solve (XPBD's substeps,
+    // xpbd_rigid_contacts.hpp; backward Euler's joint points, world_particle_systems.cpp):
+    // applied here too, its force would count twice. (A fixed point is in neither solve, and its
+    // joints stay here.)
     const auto links = m_islands.links(island);
-    const auto inSubsteps = [&](BodyIndex k) {
-        return k != kWorldBody && m_material[k].metInSubsteps && m_material[k].inverseMass > 0.0;
+    const auto inItsSolve = [&](BodyIndex k) {
+        return k != kWorldBody && m_material[k].springJointsInItsSolve && m_material[k].inverseMass > 0.0;
     };
     const auto appliedElsewhere = [&](const Joint& j) {
-        return j.stiffness > 0.0 && (inSubsteps(j.a) || inSubsteps(j.b));
+        return j.stiffness > 0.0 && (inItsSolve(j.a) || inItsSolve(j.b));
     };
     if (std::none_of(links.begin(), links.end(), [&](std::uint32_t k) { return appliedElsewhere(m_joints[k]); }))
         return links;
