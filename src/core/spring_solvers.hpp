@@ -40,11 +40,22 @@ struct SpringSolver {
         dvec3 arm, before;
     };
     std::vector<Carried> carried;
-    /// Backward Euler's: the points of rigid bodies that spring joints tie members to, solved as
-    /// members after the system's own (World::carryJoinedBodies): their states, the joints'
-    /// springs, the system with those springs (made anew when they change), and the whole state
-    /// of members and points for the solve.
+    /// Backward Euler's: how each joint between a member and a rigid body enters the solve (the
+    /// member carries the body's mass at a ball joint, pinned along a rod to a fixed body; a
+    /// spring joint's or rod's body point is one more member: world_particle_systems.cpp).
+    struct Link {
+        enum Kind { Carried, PinnedAlongRod, Point } kind = Carried;
+        std::size_t joint = 0, member = 0, body = 0; ///< the body a world index
+        bool moves = true;                           ///< the body is not fixed
+        std::size_t sharing = 1; ///< how many carried members and points the body has in the solve
+    };
+    std::vector<Link> links;
+    static constexpr std::size_t kNoBody = std::size_t(-1);
+    /// The body points, solved as members after the system's own: their states and bodies (a
+    /// fixed body's: kNoBody), the springs with them, the system with those springs (made anew
+    /// when they change), and the whole state of members and points for the solve.
     std::vector<dvec3> pointX, pointV;
+    std::vector<std::size_t> pointBody;
     std::vector<SpringSystem::LocalSpring> jointSprings, joinedWith;
     SpringSystem joined;
     std::vector<dvec3> wholeX, wholeV;
@@ -67,14 +78,21 @@ struct SpringSolver {
     /// Makes the springs (and, for XPBD, their colours) anew unless they were made for these
     /// members and forces.
     /// The springs to solve with: the system's own, with the joint points' when there are any.
+    /// Made anew when the joint points' springs join other ends; their values change every step
+    /// (a rod's stiffness follows the body's mass along it).
     const SpringSystem& solvedSprings()
     {
         if (jointSprings.empty())
             return springs;
-        if (joinedWith != jointSprings) {
+        const auto sameEnds = [](const SpringSystem::LocalSpring& a, const SpringSystem::LocalSpring& b) {
+            return a.a == b.a && a.b == b.b;
+        };
+        if (joined.bodies() != springs.bodies() + pointX.size() ||
+            !std::equal(joinedWith.begin(), joinedWith.end(), jointSprings.begin(), jointSprings.end(), sameEnds)) {
             joined = springs.withExtraMembers(pointX.size(), jointSprings);
             joinedWith = jointSprings;
         }
+        joined.setLastSprings(jointSprings);
         joined.placeFixedEnds(positions);
         return joined;
     }

@@ -97,6 +97,16 @@ SpringSystem SpringSystem::withExtraMembers(std::size_t extra, std::span<const L
     return joined;
 }
 
+void SpringSystem::setLastSprings(std::span<const LocalSpring> springs)
+{
+    const std::size_t first = size() - springs.size();
+    for (std::size_t i = 0; i < springs.size(); ++i) {
+        m_stiffness[first + i] = springs[i].stiffness;
+        m_rest[first + i] = springs[i].rest;
+        m_damping[first + i] = springs[i].damping;
+    }
+}
+
 void SpringSystem::placeFixedEnds(std::span<const dvec3> positions)
 {
     for (std::size_t e = 0; e < m_fixedBody.size(); ++e)

@@ -30,28 +30,6 @@ constexpr double kBallsHeldAbove = 0.7;
 /// A member joined to a fixed body answers its springs as if this many times heavier: pinned.
 constexpr double kPinnedMassRatio = 1e9;
 
-/// What a member at `point` (its end of a rod, `mass` its own) carries of the body whose end of the
-/// rod is `arm` from its centre: the body's mass at that point along the rod (the rod's outer
-/// product), as pinned for a fixed body; nothing if the rod has no direction now. A rod moves the
-/// two together along it and leaves the member free across it.
-struct RodCarry {
-    double mass = 0.0;
-    dmat3 along{0.0};
-};
-std::optional<RodCarry> carriedAlongRod(const RigidBody& body, const dvec3& arm, const dvec3& point, double mass)
-{
-    const dvec3 n = unitOrZero(point - (body.getPos() + arm));
-    if (n == dvec3(0.0))
-        return std::nullopt;
-    if (body.isFixed())
-        return RodCarry{kPinnedMassRatio * mass, glm::outerProduct(n, n)};
-    const dmat3 turn = glm::mat3_cast(body.getOrientation());
-    const dvec3 turning = glm::cross(arm, n);
-    const double w = 1.0 / body.getMass() +
-                     glm::dot(turning, turn * (body.getInverseInertiaBody() * (glm::transpose(turn) * turning)));
-    return RodCarry{1.0 / w, glm::outerProduct(n, n)};
-}
-
 /// A rigid body's point that a spring joint ties a member to, solved as one more member: where
 /// it is (less the member's own offset to its anchor, so that the spring runs between the two
 /// members), how fast it moves, and the mass it answers with: the body's at that point, K^-1 with
@@ -75,7 +53,7 @@ JointPoint jointPoint(const RigidBody& body, const dvec3& arm, const dvec3& offs
             glm::inverse(k) / double(sharing)};
 }
 
-/// Backward Euler's step of a system's members (x, v) and its joint points (joinBySprings).
+/// Backward Euler's step of a system's members (x, v) and its joint points (addJointPoints).
 void solveWithJointPoints(detail::SpringSolver& solver, std::span<dvec3> x, std::span<dvec3> v, double dt)
 {
     const bool points = !solver.pointX.empty();
@@ -116,56 +94,83 @@ std::size_t placeAmong(const std::vector<std::size_t>& members, std::size_t i)
     return it != members.end() && *it == i ? std::size_t(it - members.begin()) : members.size();
 }
 
-/// The spring joints that tie a member of this system to a rigid body: (joint, member) each, and
-/// how many of them tie each one's body.
-struct Tied {
-    std::size_t joint, member, sharing;
-};
-std::vector<Tied> springJointsOf(const rigid::RigidSystem& system, const std::vector<std::size_t>& members)
+/// How a joint between a member of a system and a rigid body enters backward Euler's solve: the
+/// member carries the body's mass at a ball joint (World::carryJoinedBodies), and pinned along a
+/// rod to a fixed body; a spring joint's or a rod's body point is one more member of the solve
+/// (addJointPoints). A rod whose ends collide is left to the joint solver and the contacts.
+using Link = detail::SpringSolver::Link;
+std::vector<Link> linksInTheSolve(const rigid::RigidSystem& system, const std::vector<ClonePtr<Body>>& bodies,
+                                  const std::vector<std::size_t>& members)
 {
-    std::vector<Tied> tied;
-    const auto& joints = system.joints();
-    const auto bodyOf = [&](std::size_t i) { return system.isPoint(joints[i].a) ? joints[i].b : joints[i].a; };
-    for (std::size_t i = 0; i < joints.size(); ++i) {
-        const rigid::Joint& j = joints[i];
-        if (j.b == rigid::kWorldBody || system.isPoint(j.a) == system.isPoint(j.b) || !(j.stiffness > 0.0))
+    std::vector<Link> links;
+    for (std::size_t i = 0; i < system.joints().size(); ++i) {
+        const rigid::Joint& j = system.joints()[i];
+        if (j.b == rigid::kWorldBody || system.isPoint(j.a) == system.isPoint(j.b))
             continue;
-        const std::size_t k = placeAmong(members, system.worldIndex(system.isPoint(j.a) ? j.a : j.b));
-        if (k != members.size())
-            tied.push_back({i, k, 0});
+        const bool pointIsA = system.isPoint(j.a);
+        const std::size_t k = placeAmong(members, system.worldIndex(pointIsA ? j.a : j.b));
+        const std::size_t body = system.worldIndex(pointIsA ? j.b : j.a);
+        const bool rod = j.type == JointType::Distance && j.length > 0.0 && !(j.stiffness > 0.0);
+        if (k == members.size() || (rod && j.collide))
+            continue;
+        const bool fixed = bodies[body]->isFixed();
+        const Link::Kind kind = j.stiffness > 0.0 ? Link::Point
+                                : rod            ? (fixed ? Link::PinnedAlongRod : Link::Point)
+                                                 : Link::Carried;
+        links.push_back({kind, i, k, body, !fixed});
     }
-    for (Tied& t : tied)
-        t.sharing = std::size_t(std::count_if(tied.begin(), tied.end(),
-                                              [&](const Tied& other) { return bodyOf(other.joint) == bodyOf(t.joint); }));
-    return tied;
+    for (Link& l : links)
+        l.sharing = std::size_t(std::count_if(links.begin(), links.end(), [&](const Link& other) {
+            return other.body == l.body && other.kind != Link::PinnedAlongRod;
+        }));
+    return links;
 }
 
-/// A spring joint's body point is one more member of the solve, after the system's own, with the
-/// body's mass at that point and its weight, tied to the member by the joint's spring: the two
-/// sides of the spring then answer it implicitly together, and the body takes what the solve gave
-/// its point (World::pushCarriedBodies). Applied after the member's solve, the spring yanked a
-/// rope's light end with a crate's weight: the crate gained 14 times its energy at 1/60 s.
-void joinBySprings(const rigid::RigidSystem& system, const std::vector<ClonePtr<Body>>& bodies,
+/// The mass `mass` (a 3 x 3 matrix) answers with along unit direction u.
+double massAlong(const dmat3& mass, const dvec3& u)
+{
+    return 1.0 / glm::dot(u, glm::inverse(mass) * u);
+}
+
+/// A rod as a spring of the solve, and the springs that hold a body's points in the solve at their
+/// distances: dt^2 k this many times the mass of the body's point along it (of the lighter end,
+/// for two points), so that a rod stretches by g dt^2 / 100 under the body's weight, while
+/// conjugate gradients, preconditioned by each member's own block, still converge (the pair's
+/// condition is about four times this). The joint solver after the step holds the rod exactly.
+constexpr double kStiffLinkRatio = 100.0;
+
+/// A spring joint's or a rod's body point is one more member of the solve, after the system's own,
+/// with the body's mass at that point and its weight, tied to the member by the joint's spring
+/// (a rod: a stiff spring): the two sides then answer it implicitly together, and the body takes
+/// what the solve gave its point (World::pushCarriedBodies). Applied after the member's solve, the
+/// spring yanked a rope's light end with a crate's weight (14 times the energy at 1/60 s), and a
+/// rope's end swinging about a crate on a 3 cm rod, carried along the rod's start direction,
+/// gained 73 times its energy at 1/60 s.
+void addJointPoints(const rigid::RigidSystem& system, const std::vector<ClonePtr<Body>>& bodies,
                    const std::vector<std::size_t>& members, std::span<const dvec3> x, std::span<const dvec3> v,
-                   std::span<const double> mass, const dvec3& gravity, detail::SpringSolver& solver)
+                   std::span<const double> mass, const dvec3& gravity, double dt, detail::SpringSolver& solver)
 {
     const std::size_t n = members.size();
-    for (const Tied& t : springJointsOf(system, members)) {
-        const rigid::Joint& j = system.joints()[t.joint];
+    for (const Link& l : solver.links) {
+        if (l.kind != Link::Point)
+            continue;
+        rigid::Joint j = system.joints()[l.joint];
         const bool pointIsA = system.isPoint(j.a);
-        const std::size_t world = system.worldIndex(pointIsA ? j.b : j.a);
-        const auto& body = static_cast<const RigidBody&>(*bodies[world]);
+        const auto& body = static_cast<const RigidBody&>(*bodies[l.body]);
         const dvec3 arm = body.getOrientation() * (pointIsA ? j.localB : j.localA);
-        const JointPoint p = jointPoint(body, arm, pointIsA ? j.localA : j.localB, mass[t.member], t.sharing);
+        const JointPoint p = jointPoint(body, arm, pointIsA ? j.localA : j.localB, mass[l.member], l.sharing);
+        const dvec3 u = unitOrZero(p.x - x[l.member]);
+        if (!(j.stiffness > 0.0)) // a rod
+            j.stiffness = u == dvec3(0.0) ? 0.0 : kStiffLinkRatio * massAlong(p.mass, u) / (dt * dt);
         const auto point = std::uint32_t(n + solver.pointX.size());
         solver.pointX.push_back(p.x);
         solver.pointV.push_back(p.v);
-        solver.jointSprings.push_back({std::uint32_t(t.member), point, j.stiffness, j.length, j.damping});
+        solver.pointBody.push_back(l.moves ? l.body : detail::SpringSolver::kNoBody);
+        solver.jointSprings.push_back({std::uint32_t(l.member), point, j.stiffness, j.length, j.damping});
         // The spring's force at the start, on both ends (the solve's forces include its springs').
-        const dvec3 u = unitOrZero(p.x - x[t.member]);
-        const dvec3 pull = (j.stiffness * (glm::length(p.x - x[t.member]) - j.length) +
-                            j.damping * glm::dot(u, p.v - v[t.member])) * u;
-        solver.startForces[t.member] += pull;
+        const dvec3 pull = (j.stiffness * (glm::length(p.x - x[l.member]) - j.length) +
+                            j.damping * glm::dot(u, p.v - v[l.member])) * u;
+        solver.startForces[l.member] += pull;
         solver.startForces.push_back(body.isFixed() ? -pull : p.mass * gravity - pull);
         solver.solveMass.push_back(0.0);
         if (solver.alongRods.empty())
@@ -175,8 +180,40 @@ void joinBySprings(const rigid::RigidSystem& system, const std::vector<ClonePtr<
         solver.bearerOf.push_back(detail::BackwardEuler::kNoBearer);
         solver.bearerArm.push_back(dvec3(0.0));
         if (!body.isFixed())
-            solver.carried.push_back({point, world, 1.0, p.mass, arm, p.v});
+            solver.carried.push_back({point, l.body, 1.0, p.mass, arm, p.v});
     }
+}
+
+/// A moving body with several carried members and points in the solve moves them as one: each
+/// pair is held at its distance by a stiff spring (kStiffLinkRatio), so that two ropes pulling a
+/// light box apart meet its whole mass, not each its own share of it.
+void linkPointsOfABody(std::size_t n, std::span<const dvec3> x, double dt, detail::SpringSolver& solver)
+{
+    struct Node {
+        std::size_t body;
+        std::uint32_t index; ///< a member's, or a point's (n and beyond)
+    };
+    std::vector<Node> nodes;
+    for (const Link& l : solver.links)
+        if (l.kind == Link::Carried && l.moves)
+            nodes.push_back({l.body, std::uint32_t(l.member)});
+    for (std::size_t i = 0; i < solver.pointBody.size(); ++i)
+        if (solver.pointBody[i] != detail::SpringSolver::kNoBody)
+            nodes.push_back({solver.pointBody[i], std::uint32_t(n + i)});
+    const auto at = [&](std::uint32_t i) { return i < n ? x[i] : solver.pointX[i - n]; };
+    const auto weighs = [&](std::uint32_t i, const dvec3& u) {
+        return i < n ? solver.solveMass[i] : massAlong(solver.alongRods[i], u);
+    };
+    for (std::size_t a = 0; a < nodes.size(); ++a)
+        for (std::size_t b = a + 1; b < nodes.size(); ++b) {
+            const dvec3 d = at(nodes[b].index) - at(nodes[a].index);
+            const dvec3 u = unitOrZero(d);
+            if (nodes[a].body != nodes[b].body || u == dvec3(0.0))
+                continue;
+            const double lighter = std::min(weighs(nodes[a].index, u), weighs(nodes[b].index, u));
+            solver.jointSprings.push_back(
+                {nodes[a].index, nodes[b].index, kStiffLinkRatio * lighter / (dt * dt), glm::length(d), 0.0});
+        }
 }
 
 /// The normal of the surface backward Euler holds a member on for the step (or zero): the first of
@@ -392,6 +429,15 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
     holdOnBalls(members, solver.heldOn, dt);
     holdOnBodies(members, solver, dt);
     carryJoinedBodies(members, solver);
+    solver.pointX.clear();
+    solver.pointV.clear();
+    solver.pointBody.clear();
+    solver.jointSprings.clear();
+    if (m_rigid.system) {
+        const std::span<const dvec3> x(&s.x[0], n), v(&s.v[0], n);
+        addJointPoints(*m_rigid.system, m_bodies.objects, members, x, v, s.mass, gravity(), dt, solver);
+        linkPointsOfABody(n, x, dt, solver);
+    }
     solveWithJointPoints(solver, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n), dt);
     rubAndPushBearers(members, solver);
     pushCarriedBodies(solver, dt);
@@ -521,64 +567,46 @@ void World::carryJoinedBodies(const std::vector<std::size_t>& members, detail::S
     // solve, and its weight: the implicit springs then move the two as one, as the joint after the
     // step will. Alone, the member answered its springs as if free, and the joint then dragged it
     // back to a body a hundred times heavier: the springs felt at most the member's mass over dt
-    // squared of the body, and a crate on a rope gained energy at 1/60 s. Joined by a rod, it
-    // carries the body's point along the rod only (carriedAlongRod): carried in no direction, a
-    // crate on a rod under a rope gained 16 times its energy at dt 0.01.
+    // squared of the body, and a crate on a rope gained energy at 1/60 s. (A rod's and a spring
+    // joint's body points are members of their own: addJointPoints.)
     const CoupledScratch& s = m_particleSystems.scratch;
     solver.solveMass.assign(s.mass.begin(), s.mass.end());
     solver.alongRods.clear();
     solver.carried.clear();
-    solver.pointX.clear();
-    solver.pointV.clear();
-    solver.jointSprings.clear();
+    solver.links.clear();
     if (!m_rigid.system)
         return;
     const rigid::RigidSystem& system = *m_rigid.system;
-    for (const rigid::Joint& j : system.joints()) {
-        // (A particle's joint to a body is a ball or a distance; a spring is a force, not carried.)
-        if (j.b == rigid::kWorldBody || system.isPoint(j.a) == system.isPoint(j.b) || j.stiffness > 0.0)
-            continue;
+    solver.links = linksInTheSolve(system, m_bodies.objects, members);
+    for (const Link& l : solver.links) {
+        const rigid::Joint& j = system.joints()[l.joint];
         const bool pointIsA = system.isPoint(j.a);
-        const std::size_t k = placeAmong(members, system.worldIndex(pointIsA ? j.a : j.b));
-        if (k == members.size())
-            continue;
-        const std::size_t world = system.worldIndex(pointIsA ? j.b : j.a);
-        const auto& body = static_cast<const RigidBody&>(*m_bodies.objects[world]);
+        const std::size_t k = l.member;
+        const auto& body = static_cast<const RigidBody&>(*m_bodies.objects[l.body]);
         const dvec3 arm = body.getOrientation() * (pointIsA ? j.localB : j.localA);
-        if (j.type == JointType::Distance && j.length > 0.0) {
-            if (j.collide)
-                continue; // the contacts after the step push the pair apart: carried too, it was kicked
-            const auto rod = carriedAlongRod(body, arm, s.x[k] + (pointIsA ? j.localA : j.localB), s.mass[k]);
-            if (!rod)
-                continue;
+        if (l.kind == Link::PinnedAlongRod) {
+            // Its point does not move: the member answers as pinned along the rod, free across it.
+            const dvec3 n = unitOrZero(s.x[k] + (pointIsA ? j.localA : j.localB) - (body.getPos() + arm));
             if (solver.alongRods.empty())
                 solver.alongRods.assign(members.size(), dmat3(0.0));
-            solver.alongRods[k] += rod->mass * rod->along;
-            if (!body.isFixed()) {
-                solver.startForces[k] += rod->mass * (rod->along * gravity());
-                solver.carried.push_back({k, world, rod->mass, rod->along, arm, s.v[k]});
-            }
-            continue;
-        }
-        if (body.isFixed()) {
+            solver.alongRods[k] += kPinnedMassRatio * s.mass[k] * glm::outerProduct(n, n);
+        } else if (l.kind == Link::Carried && !l.moves) {
             // Its point does not move: the member answers as pinned there, a mass no spring moves
             // (and the body takes nothing: it carried a fixed table's share as speed it never had).
             solver.solveMass[k] += kPinnedMassRatio * s.mass[k];
-            continue;
+        } else if (l.kind == Link::Carried) {
+            // The least the body's point weighs in any direction (the trace bounds the largest
+            // inverse inertia from above): the member never answers as heavier than the pair is.
+            // A body with several members and points in the solve shares its mass among them.
+            const dmat3 inverseInertia = body.getInverseInertiaBody();
+            const double turn = inverseInertia[0][0] + inverseInertia[1][1] + inverseInertia[2][2];
+            const double carried = 1.0 / (1.0 / body.getMass() + glm::dot(arm, arm) * turn) / double(l.sharing);
+            solver.solveMass[k] += carried;
+            solver.startForces[k] += carried * gravity();
+            solver.carried.push_back({k, l.body, carried, dmat3(1.0), arm, s.v[k]});
         }
-        // The least the body's point weighs in any direction (the trace bounds the largest
-        // inverse inertia from above): the member never answers as heavier than the pair is.
-        const dmat3 inverseInertia = body.getInverseInertiaBody();
-        const double turn = inverseInertia[0][0] + inverseInertia[1][1] + inverseInertia[2][2];
-        const double carried = 1.0 / (1.0 / body.getMass() + glm::dot(arm, arm) * turn);
-        solver.solveMass[k] += carried;
-        solver.startForces[k] += carried * gravity();
-        solver.carried.push_back({k, world, carried, dmat3(1.0), arm, s.v[k]});
     }
-    joinBySprings(system, m_bodies.objects, members, std::span<const dvec3>(&s.x[0], members.size()),
-                  std::span<const dvec3>(&s.v[0], members.size()), s.mass, gravity(), solver);
 }
-
 
 void World::pushCarriedBodies(detail::SpringSolver& solver, double dt)
 {
