@@ -391,30 +391,95 @@ std::string parseErrorReason(const nlohmann::json::exception& error)
 
 namespace {
 
-/// Where the parser is in the document, as the JSON path an error names (cloths[0].stiffness):
-/// the objects' current keys and the arrays' current indices, from the parser's events.
-class ParsePosition {
+/// A first pass over a scene's text, as the parser's SAX events: where the parser is in the
+/// document, as the JSON path an error names (cloths[0].stiffness), the first key its object
+/// already has, and what stops the text being read. nlohmann's parse callback could watch this
+/// too, but its parser rescans the enclosing array each time an object in it ends, which made a
+/// long array of particles quadratic to load.
+class DocumentCheck {
 public:
-    /// Follows one parse event; returns the path of a key its object already has, if this
-    /// event is one.
-    std::optional<std::string> follow(Json::parse_event_t event, const Json& parsed)
+    /// Far beyond any scene's nesting (a few levels). Without a limit a text of '[' alone is
+    /// read to its end, a level of nesting for each byte, before any check of the scene sees it.
+    static constexpr std::size_t kMaxDepth = 64;
+
+    struct Problem {
+        std::string field;
+        std::string reason;
+    };
+
+    bool null() { return value(); }
+    bool boolean(bool) { return value(); }
+    bool number_integer(Json::number_integer_t) { return value(); }
+    bool number_unsigned(Json::number_unsigned_t) { return value(); }
+    bool number_float(Json::number_float_t, const Json::string_t&) { return value(); }
+    bool string(Json::string_t&) { return value(); }
+    bool binary(Json::binary_t&) { return value(); }
+    bool start_object(std::size_t) { return open(false); }
+    bool start_array(std::size_t) { return open(true); }
+    bool end_object() { return close(); }
+    bool end_array() { return close(); }
+
+    bool key(Json::string_t& key)
     {
-        using Event = Json::parse_event_t;
-        if ((event == Event::object_start || event == Event::array_start || event == Event::value) &&
-            !m_frames.empty() && m_frames.back().array)
-            ++m_frames.back().index; // an element of an array begins (a value: and ends)
-        if (event == Event::object_start || event == Event::array_start) {
-            m_frames.emplace_back();
-            m_frames.back().array = event == Event::array_start;
-        } else if (event == Event::object_end || event == Event::array_end) {
-            m_frames.pop_back();
-        } else if (event == Event::key) {
-            Frame& object = m_frames.back();
-            object.key = parsed.get<std::string>();
-            if (!object.keys.insert(object.key).second)
-                return path();
+        Frame& object = m_frames.back();
+        object.key = key;
+        if (!object.keys.insert(object.key).second && !m_duplicate)
+            m_duplicate = path();
+        return true;
+    }
+
+    bool parse_error(std::size_t, const std::string&, const Json::exception& error)
+    {
+        // A number too large (out_of_range) is the value being read; a syntax error is the
+        // document's, and the parser's line and column say where.
+        const bool number = dynamic_cast<const Json::out_of_range*>(&error) != nullptr;
+        m_failure = Problem{number ? path(true) : "(document)", parseErrorReason(error)};
+        return false;
+    }
+
+    /// What stopped the text being read: a syntax error, a number too large, a nesting too deep.
+    const std::optional<Problem>& failure() const { return m_failure; }
+    /// The path of the first key that its object already had.
+    const std::optional<std::string>& duplicate() const { return m_duplicate; }
+
+private:
+    struct Frame {
+        bool array = false;
+        long index = -1;            ///< an array's element being read
+        std::string key;            ///< an object's key being read
+        std::set<std::string> keys; ///< an object's keys so far
+    };
+
+    /// An element of an array begins (a scalar: and ends).
+    void countElement()
+    {
+        if (!m_frames.empty() && m_frames.back().array)
+            ++m_frames.back().index;
+    }
+
+    bool value()
+    {
+        countElement();
+        return true;
+    }
+
+    bool open(bool array)
+    {
+        countElement();
+        if (m_frames.size() == kMaxDepth) {
+            m_failure = Problem{"(document)", fmt::format("nested deeper than {} levels of objects and arrays",
+                                                          kMaxDepth)};
+            return false;
         }
-        return std::nullopt;
+        m_frames.emplace_back();
+        m_frames.back().array = array;
+        return true;
+    }
+
+    bool close()
+    {
+        m_frames.pop_back();
+        return true;
     }
 
     /// The path to the value being read; "(document)" outside every object. `unfinished`: the
@@ -434,14 +499,9 @@ public:
         return out.empty() ? "(document)" : out;
     }
 
-private:
-    struct Frame {
-        bool array = false;
-        long index = -1;           ///< an array's element being read
-        std::string key;           ///< an object's key being read
-        std::set<std::string> keys; ///< an object's keys so far
-    };
     std::vector<Frame> m_frames;
+    std::optional<Problem> m_failure;
+    std::optional<std::string> m_duplicate;
 };
 
 Scene parseScene(std::string_view json, const std::string& source, const std::filesystem::path& directory)
@@ -449,25 +509,20 @@ Scene parseScene(std::string_view json, const std::string& source, const std::fi
     // A NUL byte would end the document early, silently dropping what follows it.
     if (const auto nul = json.find('\0'); nul != std::string_view::npos)
         throw SceneError(source, "(document)", fmt::format("contains a NUL byte at offset {}: not a text file", nul));
+    DocumentCheck check;
+    Json::sax_parse(json.begin(), json.end(), &check);
+    if (const auto& failure = check.failure())
+        throw SceneError(source, failure->field, failure->reason);
     // Duplicate keys: JSON leaves them undefined and the parser keeps the last; a scene refuses
     // them, as it refuses unknown keys (both are usually mistakes).
-    ParsePosition position;
-    std::optional<std::string> duplicate;
-    const auto watch = [&](int, Json::parse_event_t event, Json& parsed) {
-        if (auto at = position.follow(event, parsed); at && !duplicate)
-            duplicate = std::move(at);
-        return true;
-    };
+    if (const auto& duplicate = check.duplicate())
+        throw SceneError(source, *duplicate, "duplicate key (each key may appear once in an object)");
     Json document;
     try {
-        document = Json::parse(json.begin(), json.end(), watch);
-    } catch (const nlohmann::json::out_of_range& error) { // a number too large: the value being read
-        throw SceneError(source, position.path(true), parseErrorReason(error));
-    } catch (const nlohmann::json::exception& error) { // a syntax error: the parser's line and column say where
+        document = Json::parse(json.begin(), json.end());
+    } catch (const nlohmann::json::exception& error) { // the first pass read this text, so only in theory
         throw SceneError(source, "(document)", parseErrorReason(error));
     }
-    if (duplicate)
-        throw SceneError(source, *duplicate, "duplicate key (each key may appear once in an object)");
     return readScene(document, source, directory);
 }
 

@@ -2,6 +2,7 @@
 // file, the field (as a JSON path) and the reason.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
 #include <string>
 
@@ -411,6 +412,66 @@ TEST(SceneLoader, ANulByteAndSwarmsBeyondTheMemoryAreRefused)
     } catch (const SceneError& e) {
         EXPECT_EQ(e.field().rfind("swarms[", 0), 0u) << e.what();
         EXPECT_NE(e.reason().find("of memory available"), std::string::npos) << e.what();
+    }
+}
+
+// nlohmann's parse callback, which once watched for duplicate keys, made its parser rescan an
+// array each time an object in it ended: a long list of particles took time in the square of its
+// length. The loader is timed against a plain parse of the same text, linear on any machine and
+// under any sanitizer: a quadratic loader takes many times as long at this length, and the
+// loader's first pass, which builds nothing, less.
+TEST(SceneLoader, ALongArrayIsReadInTimeLinearInItsLength)
+{
+    std::string json = R"({"ground": {"height": 0}, "particles": [)";
+    for (int i = 0; i < 200000; ++i)
+        json += fmt::format(R"({}{{"name": "p{}", {}"position": [0, 1, 0]}})", i > 0 ? ", " : "", i,
+                            i == 1 ? R"("name": "twice", )" : "");
+    json += "]}";
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    EXPECT_EQ(nlohmann::json::parse(json)["particles"].size(), 200000u);
+    const auto parsed = Clock::now();
+    try {
+        parseScene(json, "long.json");
+        FAIL() << "accepted a duplicate key";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.field(), "particles[1].name") << e.what();
+        EXPECT_NE(e.reason().find("duplicate key"), std::string::npos) << e.what();
+    }
+    const auto loaded = Clock::now();
+    EXPECT_LT(loaded - parsed, 3 * (parsed - start) + std::chrono::milliseconds(500))
+        << "plain parse " << std::chrono::duration<double>(parsed - start).count() << " s, loader "
+        << std::chrono::duration<double>(loaded - parsed).count() << " s";
+}
+
+// The parser keeps a record per level open, so a file of '[' alone took memory and time in
+// proportion to its length before failing at its end; nesting is refused at the 65th level, long
+// before (a message about the end of input would mean the whole file was read). 64 levels are
+// still read, up to the scene's own checks.
+TEST(SceneLoader, NestingDeeperThan64LevelsIsRefusedWhereItStarts)
+{
+    try {
+        parseScene(std::string(100000, '['), "deep.json");
+        FAIL() << "accepted 100,000 levels";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.field(), "(document)") << e.what();
+        EXPECT_EQ(e.reason(), "nested deeper than 64 levels of objects and arrays") << e.what();
+    }
+    const auto nested = [](int arrays) {
+        return R"({"gravity": )" + std::string(arrays, '[') + std::string(arrays, ']') + "}";
+    };
+    try {
+        parseScene(nested(63), "deep.json"); // the object and 63 arrays: 64 levels
+        FAIL() << "accepted an empty gravity";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.field(), "gravity") << e.what();
+    }
+    try {
+        parseScene(nested(64), "deep.json");
+        FAIL() << "accepted 65 levels";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.field(), "(document)") << e.what();
+        EXPECT_NE(e.reason().find("nested deeper than 64 levels"), std::string::npos) << e.what();
     }
 }
 
