@@ -1,6 +1,9 @@
 // The `pba` command: one subcommand per file, errors as one line and a documented exit code.
 #include <algorithm>
+#include <cerrno>
 #include <csignal>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <optional>
 #include <string>
@@ -102,9 +105,8 @@ void printError(std::string_view what)
     fmt::print(stderr, "pba: error: {}\n", pba::scene_detail::oneLine(what, pba::scene_detail::kWhole));
 }
 
-} // namespace
-
-int main(int argc, char** argv)
+/// Runs the command the arguments name; returns its exit status.
+int run(int argc, char** argv)
 {
     using namespace pba::app;
     // Before any thread starts: SIGINT, SIGTERM and SIGHUP remove temporaries and stop child
@@ -169,3 +171,25 @@ int main(int argc, char** argv)
         return kExitFailure;
     }
 }
+
+/// Results reach standard output through stdio's buffer, so a write that fails (a full disk,
+/// /dev/full, a reader gone) may show only here, after the command returned 0: it is reported
+/// then and the status is 1, a failed write's. An earlier error keeps its own status and line.
+int finishStandardOutput(int status)
+{
+    errno = 0;
+    const bool flushFailed = std::fflush(stdout) != 0;
+    const int error = errno;
+    std::cout.flush();
+    if (!flushFailed && !std::ferror(stdout) && !std::cout.fail())
+        return status;
+    if (status != pba::app::kExitSuccess)
+        return status;
+    // A write that failed before the last flush left no errno behind: stdio dropped its buffer.
+    printError(fmt::format("standard output: {}", flushFailed && error != 0 ? std::strerror(error) : "a write failed"));
+    return pba::app::kExitFailure;
+}
+
+} // namespace
+
+int main(int argc, char** argv) { return finishStandardOutput(run(argc, argv)); }

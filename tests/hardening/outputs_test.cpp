@@ -6,6 +6,8 @@
 
 #include <sys/stat.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -149,6 +151,24 @@ TEST(Outputs, AFailedWriteLeavesThePreviousFileAndNoTemporary)
             EXPECT_EQ(readFile(target), "previous") << args.back();
     }
     EXPECT_TRUE(temporaries(dir).empty());
+}
+
+// Results on standard output sit in stdio's buffer until the program ends, so a write that failed
+// there went unseen and the run exited 0. /dev/full fails every write as a full disk would.
+TEST(Outputs, AFailedWriteToStandardOutputExitsOneNamingIt)
+{
+    if (!fs::exists("/dev/full"))
+        GTEST_SKIP() << "no /dev/full";
+    for (const std::string args : {"scenes", "sim integrators --duration 0.1", "field blow-dryer --at 0,1,0 --json"}) {
+        const CommandResult r = runPba(args + " >/dev/full");
+        EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.err;
+        EXPECT_EQ(r.err, "pba: error: standard output: " + std::string(std::strerror(ENOSPC)) + "\n") << args;
+    }
+    // An error before the write keeps its status and stays the only line.
+    const CommandResult bad = runPba("sim integrators --dt -1 >/dev/full");
+    EXPECT_EQ(bad.exitCode, 2) << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+    EXPECT_EQ(bad.err.find("standard output"), std::string::npos) << bad.err;
 }
 
 TEST(Outputs, AFailingHelperProgramIsReportedInOneLineAndChangesNothing)
