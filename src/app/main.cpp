@@ -83,18 +83,60 @@ std::string parseErrorText(const CLI::ParseError& e, const CLI::App& app, const 
     return what;
 }
 
-/// An empty word (`--dt ""` or `--dt=`, a script's unset variable) is refused: CLI11 reads it as
-/// no value at all, or as 0, and `pba sim rope --dt ""` ran with the scene's own dt.
-std::optional<std::string> emptyArgumentText(const std::vector<std::string>& args)
+/// What an empty positional should have held, for its message.
+std::string positionalWant(const std::string& name)
 {
+    if (name == "SCENE")
+        return "a scene name or a file";
+    if (name == "COMMAND")
+        return "a command's name";
+    return "a value";
+}
+
+/// An empty word (`--dt ""` or `--dt=`, a script's unset variable) is refused: CLI11 reads it as
+/// no value at all, or as 0, and `pba sim rope --dt ""` ran with the scene's own dt. It is named
+/// as what the words before it make it: an option's value, or a positional of the command (SCENE
+/// in `pba sim ""`), counted past the options and their values.
+std::optional<std::string> emptyArgumentText(const CLI::App& app, const std::vector<std::string>& args)
+{
+    const CLI::App* command = nullptr; // once its name is read
+    std::size_t positionals = 0;       // the command's words so far that are neither options nor their values
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& word = args[i];
-        if (word.empty())
-            return i > 0 && args[i - 1].rfind("--", 0) == 0
-                       ? fmt::format("{}: empty; give it a value", args[i - 1])
-                       : std::string("an empty argument: give it a value, or leave it out");
         if (word.size() > 2 && word.rfind("--", 0) == 0 && word.back() == '=')
             return fmt::format("{}: empty; give it a value", word.substr(0, word.size() - 1));
+        if (word.size() > 2 && word.rfind("--", 0) == 0 && word.find('=') == std::string::npos) {
+            // The next word is the option's value, unless the option is a known flag or the word
+            // is an option itself (as CLI11 reads it).
+            const CLI::Option* option = (command ? command : &app)->get_option_no_throw(word);
+            if (option && option->get_items_expected_max() == 0)
+                continue;
+            if (i + 1 < args.size() && args[i + 1].empty())
+                return fmt::format("{}: empty; give it a value", word);
+            if (i + 1 < args.size() && args[i + 1].rfind("--", 0) != 0)
+                ++i;
+            continue;
+        }
+        if (word.empty()) {
+            if (command) {
+                const auto named = command->get_options([](const CLI::Option* o) { return o->get_positional(); });
+                if (positionals < named.size()) {
+                    const std::string name = named[positionals]->get_name();
+                    return fmt::format("{}: empty; give it {}", name, positionalWant(name));
+                }
+            }
+            return std::string("an empty argument: give it a value, or leave it out");
+        }
+        if (word.size() > 1 && word[0] == '-')
+            continue; // a short flag (-h)
+        if (!command) {
+            const auto found = app.get_subcommands([&](const CLI::App* c) { return c->check_name(word); });
+            if (!found.empty()) {
+                command = found.front();
+                continue;
+            }
+        }
+        ++positionals;
     }
     return std::nullopt;
 }
@@ -140,7 +182,7 @@ int run(int argc, char** argv)
     addHelpCommand(app, selected);
 
     const std::vector<std::string> typed(argv + 1, argv + argc);
-    if (const auto empty = emptyArgumentText(typed)) {
+    if (const auto empty = emptyArgumentText(app, typed)) {
         printError(*empty);
         return kExitBadInput;
     }

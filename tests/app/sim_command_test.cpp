@@ -116,6 +116,8 @@ INSTANTIATE_TEST_SUITE_P(
                     BadRun{"integrators --dt 0.01 --dt 0.02", "--dt: given 2 times; give it once"},
                     BadRun{"integrators --dt ''", "--dt: empty; give it a value"},
                     BadRun{"integrators --duration=", "--duration: empty; give it a value"},
+                    BadRun{"''", "SCENE: empty; give it a scene name or a file"},
+                    BadRun{"--dt 0.01 ''", "SCENE: empty; give it a scene name or a file"},
                     BadRun{"integrators --duration 1,5", "--duration: cannot read '1,5' as a number"},
                     BadRun{"trampoline --integrator xpbd",
                            "has rigid body 'crate' (a rope's or cloth's own \"integrator\" key sets it"},

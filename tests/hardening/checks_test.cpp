@@ -159,7 +159,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BadFlags{{"sim", "--dt", "1e-12"}, "--dt: 60 s at dt = 1e-12 s is 6e+13 steps"},
                       BadFlags{{"sim", "--frame-rate", "1e300"}, "--frame-rate"},
                       BadFlags{{"sim", "integrators", "--duration", "1e300"}, "--duration"},
-                      BadFlags{{"sim", "integrators", "--out", ""}, "--out: empty; give it a value"}));
+                      BadFlags{{"sim", "integrators", "--out", ""}, "--out: empty; give it a value"},
+                      // A flag takes no value: the empty word after it is the positional.
+                      BadFlags{{"field", "--json", ""}, "SCENE: empty; give it a scene name or a file"},
+                      BadFlags{{"help", ""}, "COMMAND: empty; give it a command's name"}));
 
 // A thin, tall dryer's slice asked for millions of rows of scratch data; it is bounded now.
 TEST(NumericFlagsSlice, AThinDryersSliceIsBounded)
