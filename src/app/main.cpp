@@ -227,6 +227,9 @@ int finishStandardOutput(int status)
         return status;
     if (status != pba::app::kExitSuccess)
         return status;
+    // A reader that stopped reading (`pba scenes | head -3`) wanted no more: no message for it.
+    if (flushFailed && error == EPIPE)
+        return pba::app::kExitFailure;
     // A write that failed before the last flush left no errno behind: stdio dropped its buffer.
     printError(fmt::format("standard output: {}", flushFailed && error != 0 ? std::strerror(error) : "a write failed"));
     return pba::app::kExitFailure;
