@@ -26,13 +26,13 @@ struct SpringSolver {
     /// start. Members, not thread_local: a lambda run on a pool thread names that thread's copy.
     std::vector<dvec3> positions, startForces;
     std::vector<dvec3> heldOn; ///< backward Euler's: the normal of the surface each member rests on, or zero
-    /// Backward Euler's: each member's mass in the solve, with a rigid body it is joined to at a
-    /// point; the mass it carries along a rod to one (none: empty); and those bodies: the member,
-    /// the body (a world index), its mass carried, the directions it is carried in (the identity
-    /// at a point, the rod's outer product along one), the arm, and the member's velocity before
-    /// the solve.
+    /// Backward Euler's: each member's mass in the solve, with a rigid body it carries at a ball
+    /// joint; its mass in some directions only (pinned along a rod to a fixed body; a joint
+    /// point's whole mass matrix), or none (empty); and the bodies that take what the solve gave
+    /// the mass they lent: the member (or joint point), the body (a world index), the mass, the
+    /// directions it acts in, the arm, and the velocity before the solve.
     std::vector<double> solveMass;
-    std::vector<dmat3> alongRods;
+    std::vector<dmat3> directionalMass;
     struct Carried {
         std::size_t member, body;
         double mass;

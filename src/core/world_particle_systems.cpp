@@ -65,7 +65,7 @@ void solveWithJointPoints(detail::SpringSolver& solver, std::span<dvec3> x, std:
     }
     solver.backwardEuler.step(solver.solvedSprings(), solver.solveMass, points ? solver.wholeX : x,
                               points ? solver.wholeV : v, solver.startForces, dt, solver.heldOn,
-                              {solver.bearerOf, solver.bearerArm, solver.bearers}, solver.alongRods);
+                              {solver.bearerOf, solver.bearerArm, solver.bearers}, solver.directionalMass);
     if (!points)
         return;
     std::copy_n(solver.wholeX.begin(), x.size(), x.begin());
@@ -175,9 +175,9 @@ void addJointPoints(const rigid::RigidSystem& system, const std::vector<ClonePtr
         solver.startForces[l.member] += pull;
         solver.startForces.push_back(body.isFixed() ? -pull : p.mass * gravity - pull);
         solver.solveMass.push_back(0.0);
-        if (solver.alongRods.empty())
-            solver.alongRods.assign(n, dmat3(0.0));
-        solver.alongRods.push_back(p.mass);
+        if (solver.directionalMass.empty())
+            solver.directionalMass.assign(n, dmat3(0.0));
+        solver.directionalMass.push_back(p.mass);
         solver.heldOn.push_back(dvec3(0.0));
         solver.bearerOf.push_back(detail::BackwardEuler::kNoBearer);
         solver.bearerArm.push_back(dvec3(0.0));
@@ -201,7 +201,7 @@ void linkPointsOfABody(std::size_t n, double dt, detail::SpringSolver& solver)
             if (body[a] == detail::SpringSolver::kNoBody || body[a] != body[b] || u == dvec3(0.0))
                 continue;
             const double lighter =
-                std::min(massAlong(solver.alongRods[n + a], u), massAlong(solver.alongRods[n + b], u));
+                std::min(massAlong(solver.directionalMass[n + a], u), massAlong(solver.directionalMass[n + b], u));
             solver.jointSprings.push_back({std::uint32_t(n + a), std::uint32_t(n + b),
                                            kStiffLinkRatio * lighter / (dt * dt), glm::length(d), 0.0});
         }
@@ -562,7 +562,7 @@ void World::carryJoinedBodies(const std::vector<std::size_t>& members, detail::S
     // joint's body points are members of their own: addJointPoints.)
     const CoupledScratch& s = m_particleSystems.scratch;
     solver.solveMass.assign(s.mass.begin(), s.mass.end());
-    solver.alongRods.clear();
+    solver.directionalMass.clear();
     solver.carried.clear();
     solver.links.clear();
     if (!m_rigid.system)
@@ -578,9 +578,9 @@ void World::carryJoinedBodies(const std::vector<std::size_t>& members, detail::S
         if (l.kind == Link::PinnedAlongRod) {
             // Its point does not move: the member answers as pinned along the rod, free across it.
             const dvec3 n = unitOrZero(s.x[k] + (pointIsA ? j.localA : j.localB) - (body.getPos() + arm));
-            if (solver.alongRods.empty())
-                solver.alongRods.assign(members.size(), dmat3(0.0));
-            solver.alongRods[k] += kPinnedMassRatio * s.mass[k] * glm::outerProduct(n, n);
+            if (solver.directionalMass.empty())
+                solver.directionalMass.assign(members.size(), dmat3(0.0));
+            solver.directionalMass[k] += kPinnedMassRatio * s.mass[k] * glm::outerProduct(n, n);
         } else if (l.kind == Link::Carried && !l.moves) {
             // Its point does not move: the member answers as pinned there, a mass no spring moves
             // (and the body takes nothing: it carried a fixed table's share as speed it never had).
