@@ -47,7 +47,8 @@ struct SpringSolver {
         enum Kind { Carried, PinnedAlongRod, Point } kind = Carried;
         std::size_t joint = 0, member = 0, body = 0; ///< the body a world index
         bool moves = true;                           ///< the body is not fixed
-        std::size_t sharing = 1; ///< a point's: how many points its body has in the solve
+        /// How many points and carriers share the body (1: a body only carried is carried whole)
+        std::size_t sharing = 1;
     };
     std::vector<Link> links;
     static constexpr std::size_t kNoBody = std::size_t(-1);

@@ -119,10 +119,17 @@ std::vector<Link> linksInTheSolve(const rigid::RigidSystem& system, const std::v
                                                  : Link::Carried;
         links.push_back({kind, i, k, body, !fixed});
     }
+    // A body with points in the solve is shared by them and by the particles carrying it; a body
+    // only carried is carried whole by each (sharing it, a 52 kg ball on two ball joints from a
+    // light cloth gained 1.48 times its energy at 1/60 s, where carried whole 1.09).
+    const auto hasPoints = [&](std::size_t body) {
+        return std::any_of(links.begin(), links.end(),
+                           [&](const Link& l) { return l.body == body && l.kind == Link::Point; });
+    };
     for (Link& l : links)
-        if (l.kind == Link::Point)
+        if (l.kind != Link::PinnedAlongRod && hasPoints(l.body))
             l.sharing = std::size_t(std::count_if(links.begin(), links.end(), [&](const Link& other) {
-                return other.body == l.body && other.kind == Link::Point;
+                return other.body == l.body && other.kind != Link::PinnedAlongRod;
             }));
     return links;
 }
@@ -186,24 +193,37 @@ void addJointPoints(const rigid::RigidSystem& system, const std::vector<ClonePtr
     }
 }
 
-/// A moving body with several points in the solve moves them as one: each pair is held at its
-/// distance by a stiff spring (kStiffLinkRatio), so that two ropes pulling a light box apart meet
-/// its whole mass, not each its own share of it (1.8 times the energy). (A particle carrying the
-/// body at a ball joint is not held to them: sharing the body with it, a 52 kg ball hung on two
-/// ball joints from a light cloth gained 1.48 times its energy at 1/60 s, where carried whole 1.09.)
-void linkPointsOfABody(std::size_t n, double dt, detail::SpringSolver& solver)
+/// A moving body with several points in the solve (and the particles carrying it beside them)
+/// moves them as one: each pair is held at its distance by a stiff spring (kStiffLinkRatio), so
+/// that two ropes pulling a light box apart meet its whole mass, not each its own share of it
+/// (1.8 times the energy).
+void linkPointsOfABody(std::span<const dvec3> x, double dt, detail::SpringSolver& solver)
 {
-    const std::vector<std::size_t>& body = solver.pointBody;
-    for (std::size_t a = 0; a < body.size(); ++a)
-        for (std::size_t b = a + 1; b < body.size(); ++b) {
-            const dvec3 d = solver.pointX[b] - solver.pointX[a];
+    const std::size_t n = x.size();
+    struct Node {
+        std::size_t body;
+        std::uint32_t index; ///< a member's, or a point's (n and beyond)
+    };
+    std::vector<Node> nodes;
+    for (const Link& l : solver.links)
+        if (l.kind == Link::Carried && l.moves && l.sharing > 1)
+            nodes.push_back({l.body, std::uint32_t(l.member)});
+    for (std::size_t i = 0; i < solver.pointBody.size(); ++i)
+        if (solver.pointBody[i] != detail::SpringSolver::kNoBody)
+            nodes.push_back({solver.pointBody[i], std::uint32_t(n + i)});
+    const auto at = [&](std::uint32_t i) { return i < n ? x[i] : solver.pointX[i - n]; };
+    const auto weighs = [&](std::uint32_t i, const dvec3& u) {
+        return i < n ? solver.solveMass[i] : massAlong(solver.directionalMass[i], u);
+    };
+    for (std::size_t a = 0; a < nodes.size(); ++a)
+        for (std::size_t b = a + 1; b < nodes.size(); ++b) {
+            const dvec3 d = at(nodes[b].index) - at(nodes[a].index);
             const dvec3 u = unitOrZero(d);
-            if (body[a] == detail::SpringSolver::kNoBody || body[a] != body[b] || u == dvec3(0.0))
+            if (nodes[a].body != nodes[b].body || u == dvec3(0.0))
                 continue;
-            const double lighter =
-                std::min(massAlong(solver.directionalMass[n + a], u), massAlong(solver.directionalMass[n + b], u));
-            solver.jointSprings.push_back({std::uint32_t(n + a), std::uint32_t(n + b),
-                                           kStiffLinkRatio * lighter / (dt * dt), glm::length(d), 0.0});
+            const double lighter = std::min(weighs(nodes[a].index, u), weighs(nodes[b].index, u));
+            solver.jointSprings.push_back(
+                {nodes[a].index, nodes[b].index, kStiffLinkRatio * lighter / (dt * dt), glm::length(d), 0.0});
         }
 }
 
@@ -427,7 +447,7 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
     if (m_rigid.system) {
         const std::span<const dvec3> x(&s.x[0], n), v(&s.v[0], n);
         addJointPoints(*m_rigid.system, m_bodies.objects, members, x, v, s.mass, gravity(), dt, solver);
-        linkPointsOfABody(n, dt, solver);
+        linkPointsOfABody(x, dt, solver);
     }
     solveWithJointPoints(solver, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n), dt);
     rubAndPushBearers(members, solver);
@@ -590,7 +610,8 @@ void World::carryJoinedBodies(const std::vector<std::size_t>& members, detail::S
             // inverse inertia from above): the member never answers as heavier than the pair is.
             const dmat3 inverseInertia = body.getInverseInertiaBody();
             const double turn = inverseInertia[0][0] + inverseInertia[1][1] + inverseInertia[2][2];
-            const double carried = 1.0 / (1.0 / body.getMass() + glm::dot(arm, arm) * turn);
+            // A body with points in the solve too is shared among them and its carriers.
+            const double carried = 1.0 / (1.0 / body.getMass() + glm::dot(arm, arm) * turn) / double(l.sharing);
             solver.solveMass[k] += carried;
             solver.startForces[k] += carried * gravity();
             solver.carried.push_back({k, l.body, carried, dmat3(1.0), arm, s.v[k]});
