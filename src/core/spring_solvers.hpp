@@ -76,8 +76,6 @@ struct SpringSolver {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;
     std::vector<Xpbd::Touching> touching;
 
-    /// Makes the springs (and, for XPBD, their colours) anew unless they were made for these
-    /// members and forces.
     /// The springs to solve with: the system's own, with the joint points' when there are any.
     /// Made anew when the joint points' springs join other ends; their values change every step
     /// (a rod's stiffness follows the body's mass along it).
@@ -98,6 +96,8 @@ struct SpringSolver {
         return joined;
     }
 
+    /// Makes the springs (and, for XPBD, their colours) anew unless they were made for these
+    /// members and forces.
     void prepare(std::span<const ClonePtr<Force>> worldForces, std::span<const std::size_t> system,
                  std::size_t bodyCount, bool colour)
     {

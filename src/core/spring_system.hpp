@@ -60,8 +60,8 @@ public:
         std::uint32_t a = 0, b = 0;
         double stiffness = 0.0, rest = 0.0, damping = 0.0;
     };
-    /// This system with `extra` members after its own and `springs` among them (a rigid body's
-    /// point joined to a member by a spring joint, solved as one more member: World's joint points).
+    /// This system with `extra` members after its own and `springs` among them (rigid bodies'
+    /// points solved as members: the joint points of world_particle_systems.cpp).
     SpringSystem withExtraMembers(std::size_t extra, std::span<const LocalSpring> springs) const;
     /// Sets the stiffness, rest length and damping of the last springs.size() springs (made by
     /// withExtraMembers with springs of the same ends).
