@@ -15,6 +15,7 @@
 #include "lanes.hpp"
 #include "picture_options.hpp"
 #include "progress.hpp"
+#include "io/output_file.hpp"
 #include "render_output.hpp"
 #include "scene_options.hpp"
 #include "pba/clock.hpp"
@@ -134,10 +135,14 @@ int renderDefaultScene(const std::string& directory)
     RenderOptions options;
     options.scene.scene = kDefaultScene;
     options.scene.duration = 10.0;
-    options.out = directory + "/" + kDefaultScene + ".mp4";
+    const std::string video = directory + "/" + kDefaultScene + ".mp4", still = directory + "/" + kDefaultScene + ".png";
+    // Both paths are checked before the video's 20 s: a user's still there refused after them left
+    // the video written and the run refused.
+    io::resolveOutputFile(still);
+    options.out = video;
     if (const int code = runRender(options); code != kExitSuccess)
         return code;
-    options.out = directory + "/" + kDefaultScene + ".png";
+    options.out = still;
     options.time = 10.0;
     if (const int code = runRender(options); code != kExitSuccess)
         return code;

@@ -254,7 +254,7 @@ void addSimCommand(CLI::App& root, Action& selected)
                     "change: only dt and the number of steps matter)")
         ->type_name("HZ");
     sim->add_flag("--swarm-particles", options->swarmParticles,
-                  "With --out: also write a row per swarm particle (named SWARM[i]) at every step, about 100 "
+                  "With --out: also write a row per swarm particle (named as its swarm, NAME[i]) at every step, about 100 "
                   "bytes each (10 MB a step for 100,000 particles: pair it with a short --duration); without it "
                   "swarms are summarised by statistics");
     sim->add_flag("--every-particle", options->everyParticle,

@@ -171,6 +171,21 @@ TEST(Outputs, AFailedWriteToStandardOutputExitsOneNamingIt)
     EXPECT_EQ(bad.err.find("standard output"), std::string::npos) << bad.err;
 }
 
+// Bare pba with no display renders two files: a user's file at the second is refused before the
+// first is rendered (it was refused after 20 s, the video written).
+TEST(Outputs, BarePbaRefusesAUsersStillBeforeRenderingItsVideo)
+{
+    const fs::path dir = freshDir("bare_pba_users_still");
+    fs::create_directories(dir / "pba-out");
+    std::ofstream(dir / "pba-out" / "blow-dryer.png") << "the user's";
+    const CommandResult r = runShell("cd '" + dir.string() + "' && env -u DISPLAY " + pbaBinary());
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("blow-dryer.png: a file pba did not write"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "pba-out" / "blow-dryer.mp4"));
+    std::ifstream in(dir / "pba-out" / "blow-dryer.png");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "the user's");
+}
+
 TEST(Outputs, AFailingHelperProgramIsReportedInOneLineAndChangesNothing)
 {
     const fs::path dir = freshDir("failing_helpers");
