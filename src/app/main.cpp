@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <optional>
@@ -60,9 +61,15 @@ std::string parseErrorText(const CLI::ParseError& e, const CLI::App& app, const 
         // "Could not convert: --dt = abc": every option CLI11 converts is a number.
         const std::string prefix = "Could not convert: ";
         const std::size_t equals = what.find(" = ");
-        if (what.rfind(prefix, 0) == 0 && equals != std::string::npos)
-            return fmt::format("{}: cannot read '{}' as a number", what.substr(prefix.size(), equals - prefix.size()),
-                               what.substr(equals + 3));
+        if (what.rfind(prefix, 0) == 0 && equals != std::string::npos) {
+            const std::string option = what.substr(prefix.size(), equals - prefix.size()), value = what.substr(equals + 3);
+            // A number that failed to convert was read for a whole-number option (--fps 0.5).
+            char* end = nullptr;
+            std::strtod(value.c_str(), &end);
+            if (!value.empty() && end == value.c_str() + value.size())
+                return fmt::format("{}: expected a whole number, got '{}'", option, value);
+            return fmt::format("{}: cannot read '{}' as a number", option, value);
+        }
     }
     if (dynamic_cast<const CLI::ArgumentMismatch*>(&e)) {
         // "--dt: At Most 1 required but received 2": an option given twice.

@@ -1,6 +1,7 @@
 #include "render_output.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <string_view>
 
 #include <fmt/format.h>
@@ -14,9 +15,13 @@ OutputKind outputKind(const std::string& out)
     const std::filesystem::path path(out);
     if (!out.empty() && (out.back() == '/' || std::filesystem::is_directory(path)))
         return OutputKind::Frames;
-    if (path.extension() == ".png")
+    // The extension in any case: a camera's or another program's IMG.PNG is a PNG.
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension == ".png")
         return OutputKind::Png;
-    if (path.extension() == ".mp4")
+    if (extension == ".mp4")
         return OutputKind::Mp4;
     throw UsageError(fmt::format("--out: expected FILE.png, FILE.mp4 or DIR/, got '{}'", out));
 }

@@ -56,7 +56,22 @@ TEST(PbaRender, BadOutputIsBadInputAndLeavesNothing)
               2);
     EXPECT_EQ(runPba("render integrators --out " + (dir / "missing/deeper/frames/").string()).exitCode, 2);
     EXPECT_EQ(runPba("render integrators --size 12 --out " + (dir / "x.png").string()).exitCode, 2);
+    const CommandResult fraction = runPba("render integrators --fps 0.5 --out " + (dir / "x.mp4").string());
+    EXPECT_EQ(fraction.exitCode, 2);
+    EXPECT_EQ(fraction.err, "pba: error: --fps: expected a whole number, got '0.5'\n");
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0);
+}
+
+// The extension is read in any case: IMG.PNG is a PNG.
+TEST(PbaRender, AnExtensionInCapitalsIsTheSameKind)
+{
+    const auto dir = freshDir("render_capitals");
+    ASSERT_EQ(runPba("render integrators --time 0.1 --size 64x48 --out " + (dir / "IMG.PNG").string()).exitCode, 0);
+    int w = 0, h = 0, channels = 0;
+    unsigned char* data = stbi_load((dir / "IMG.PNG").c_str(), &w, &h, &channels, 4);
+    ASSERT_NE(data, nullptr);
+    EXPECT_EQ(w, 64);
+    stbi_image_free(data);
 }
 
 namespace {
