@@ -10,15 +10,21 @@
 
 namespace pba::app {
 
+std::string lowerExtension(const std::string& path)
+{
+    // In any case: a camera's or another program's IMG.PNG is a PNG.
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return extension;
+}
+
 OutputKind outputKind(const std::string& out)
 {
     const std::filesystem::path path(out);
     if (!out.empty() && (out.back() == '/' || std::filesystem::is_directory(path)))
         return OutputKind::Frames;
-    // The extension in any case: a camera's or another program's IMG.PNG is a PNG.
-    std::string extension = path.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string extension = lowerExtension(out);
     if (extension == ".png")
         return OutputKind::Png;
     if (extension == ".mp4")

@@ -16,6 +16,8 @@ enum class OutputKind { Png, Mp4, Frames };
 /// FILE.png, FILE.mp4, or a directory (a path ending in '/' or an existing directory).
 /// Throws UsageError for anything else.
 OutputKind outputKind(const std::string& out);
+/// The path's extension in lower case (".png"), or empty.
+std::string lowerExtension(const std::string& path);
 
 /// frame_NNNNN.png (five digits or more): the names a folder of frames is made of.
 bool isFrameName(const std::string& name);

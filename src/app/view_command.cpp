@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "render_output.hpp"
 #include "scene_options.hpp"
 #include "picture_options.hpp"
 #include "frame_steps.hpp"
@@ -36,6 +37,9 @@ int runView(const ViewOptions& options)
         throw UsageError(fmt::format("--frames: must be positive, got {}", *options.frames));
     if (options.screenshot && !options.time)
         throw UsageError("--screenshot needs --time T (the simulated time to save)");
+    // It is saved as a PNG: another name (shot.jpg) would hold a PNG under a JPEG's name.
+    if (options.screenshot && lowerExtension(*options.screenshot) != ".png")
+        throw UsageError(fmt::format("--screenshot: expected FILE.png, got '{}'", *options.screenshot));
     if (options.time && options.frames)
         throw UsageError("--time and --frames: choose one");
     if (options.time) {

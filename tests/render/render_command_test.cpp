@@ -149,6 +149,9 @@ TEST(PbaView, ScreenshotNeedsTimeAndBadTimesAreRefused)
     EXPECT_EQ(runPba("view integrators --time 1 --frames 10").exitCode, 2);
     EXPECT_EQ(runPba("view integrators --duration 1 --time 2 --screenshot " + png).exitCode, 2);
     EXPECT_EQ(runPba("view integrators --time 1 --screenshot " + (dir / "missing/deeper/x.png").string()).exitCode, 2);
+    const CommandResult jpeg = runPba("view integrators --time 1 --screenshot " + (dir / "x.jpg").string());
+    EXPECT_EQ(jpeg.exitCode, 2);
+    EXPECT_NE(jpeg.err.find("--screenshot: expected FILE.png"), std::string::npos) << jpeg.err;
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0);
 }
 
