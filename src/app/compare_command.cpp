@@ -263,6 +263,10 @@ int runClockCompare(const CompareOptions& options)
     if (!options.integrators.empty() || !options.collisions.empty())
         throw UsageError("--clocks: runs the scene as it is, with each clock: --integrators and --collisions do not "
                          "apply (set them in the scene, or run pba compare without --clocks)");
+    if (options.body || options.workPrecision)
+        throw UsageError(fmt::format("--clocks: runs the scene as it is, with each clock: {} does not apply (run pba "
+                                     "compare without --clocks for it)",
+                                     options.body ? "--body" : "--work-precision"));
     if (options.dts.size() > 1)
         throw UsageError(fmt::format("--clocks: takes one --dt (the fixed clock's), got {}", options.dts.size()));
     study::ClockConfig config;
@@ -290,8 +294,14 @@ int runCompare(const CompareOptions& options)
     {
         // A scene with a moving rigid body gets the rotation study.
         Scene scene = loadScene(options.scene);
-        if (study::studiedRigidBody(scene.world))
+        if (study::studiedRigidBody(scene.world)) {
+            if (options.workPrecision)
+                throw UsageError(fmt::format("--work-precision: goes with the integrator study, and {} has a moving "
+                                             "rigid body, which gets the rotation study (run it on a scene without one, "
+                                             "such as integrators)",
+                                             scene.source));
             return runRotationCompare(options, std::move(scene));
+        }
         if (options.body)
             throw UsageError(fmt::format("--body: chooses the rigid body the rotation study measures, and {} has no "
                                          "moving rigid body",

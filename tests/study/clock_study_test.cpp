@@ -134,7 +134,8 @@ TEST(PbaCompareClocks, RefusesWhatDoesNotApply)
 {
     const auto dir = pba::test::freshDir("compare-clocks-bad");
     const std::string out = " --out " + (dir / "out").string();
-    for (const std::string args : {"--clocks --integrators rk4", "--clocks --dt 0.01,0.02", "--clocks --duration 1"}) {
+    for (const std::string args : {"--clocks --integrators rk4", "--clocks --dt 0.01,0.02", "--clocks --duration 1",
+                                   "--clocks --body bob", "--clocks --work-precision"}) {
         const auto r = pba::test::runPba("compare integrators " + args + out);
         EXPECT_EQ(r.exitCode, 2) << args;
         EXPECT_NE(r.err.find("--"), std::string::npos) << r.err;

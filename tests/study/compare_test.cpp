@@ -444,7 +444,9 @@ TEST(PbaCompare, TheRotationStudyMeasuresTheBodyNamedAndSaysWhenItIsNoFreeBody)
         {"incline --body steepbox", "--body: builtin:incline has no body named 'steepbox': did you mean 'steep-box'?"},
         {"incline --body steep-ramp", "--body: 'steep-ramp' in builtin:incline is fixed"},
         {"spring --body bob", "--body: chooses the rigid body the rotation study measures, and builtin:spring has no "
-                              "moving rigid body"}};
+                              "moving rigid body"},
+        {"tennis-racket --work-precision", "--work-precision: goes with the integrator study, and builtin:tennis-racket "
+                                           "has a moving rigid body"}};
     for (const auto& [args, message] : bad) {
         const CommandResult e = runPba(std::string("compare ") + args + " --out " + (dir / "bad").string());
         EXPECT_EQ(e.exitCode, 2) << args;
