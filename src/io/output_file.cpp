@@ -162,8 +162,14 @@ Temporary::Temporary(fs::path target, Kind kind) : m_target(std::move(target)), 
             throw BadOutput(fmt::format("{}: cannot be written: the folder {} cannot be made: {}", describe(m_target),
                                         parent.string(), made ? made.message() : "it is not a folder"));
     }
-    m_temporary = m_target;
-    m_temporary += fmt::format(".tmp-{}", ::getpid());
+    // NAME.tmp-PID beside the target; a name near the file system's limit of 255 bytes is cut
+    // so that the temporary's still fits (a legal 255-byte name could not be written).
+    constexpr std::size_t kNameMax = 255;
+    const std::string suffix = fmt::format(".tmp-{}", ::getpid());
+    std::string name = m_target.filename().string();
+    if (name.size() + suffix.size() > kNameMax)
+        name.resize(kNameMax - suffix.size());
+    m_temporary = m_target.parent_path() / (name + suffix);
     {
         std::lock_guard lock(registry().mutex);
         registry().temporaries.push_back(m_temporary);

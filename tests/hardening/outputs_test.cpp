@@ -186,6 +186,22 @@ TEST(Outputs, BarePbaRefusesAUsersStillBeforeRenderingItsVideo)
     EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "the user's");
 }
 
+// A name of the file system's longest (255 bytes) is written, and leaves no temporary: its
+// temporary's name, NAME.tmp-PID, was longer than the limit.
+TEST(Outputs, ANameOfTheLongestLengthIsWritten)
+{
+    const fs::path dir = freshDir("longest_name");
+    for (const std::string extension : {".csv", ".png"}) {
+        const fs::path out = dir / (std::string(255 - extension.size(), 'a') + extension);
+        const std::string command = extension == ".csv" ? "sim integrators --duration 0.1 --out "
+                                                        : "render integrators --time 0.1 --size 64x48 --out ";
+        const CommandResult r = runPba(command + out.string());
+        EXPECT_EQ(r.exitCode, 0) << extension << "\n" << r.err;
+        EXPECT_TRUE(fs::is_regular_file(out)) << extension;
+    }
+    EXPECT_TRUE(temporaries(dir).empty());
+}
+
 TEST(Outputs, AFailingHelperProgramIsReportedInOneLineAndChangesNothing)
 {
     const fs::path dir = freshDir("failing_helpers");
