@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <optional>
+#include <tuple>
+#include <unordered_map>
 
 #include "collision_rules.hpp"
 #include "grain_contacts.hpp"
@@ -122,15 +124,17 @@ std::vector<Link> linksInTheSolve(const rigid::RigidSystem& system, const std::v
     // A body with points in the solve is shared by them and by the particles carrying it; a body
     // only carried is carried whole by each (sharing it, a 52 kg ball on two ball joints from a
     // light cloth gained 1.48 times its energy at 1/60 s, where carried whole 1.09).
-    const auto hasPoints = [&](std::size_t body) {
-        return std::any_of(links.begin(), links.end(),
-                           [&](const Link& l) { return l.body == body && l.kind == Link::Point; });
-    };
+    // (Counted by body, once: a cloth may hang hundreds of bodies.)
+    std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t>> counts; // body: points, links sharing it
+    for (const Link& l : links)
+        if (l.kind != Link::PinnedAlongRod) {
+            auto& [points, sharing] = counts[l.body];
+            points += l.kind == Link::Point ? 1 : 0;
+            ++sharing;
+        }
     for (Link& l : links)
-        if (l.kind != Link::PinnedAlongRod && hasPoints(l.body))
-            l.sharing = std::size_t(std::count_if(links.begin(), links.end(), [&](const Link& other) {
-                return other.body == l.body && other.kind != Link::PinnedAlongRod;
-            }));
+        if (l.kind != Link::PinnedAlongRod && counts[l.body].first > 0)
+            l.sharing = counts[l.body].second;
     return links;
 }
 
@@ -215,11 +219,14 @@ void linkPointsOfABody(std::span<const dvec3> x, double dt, detail::SpringSolver
     const auto weighs = [&](std::uint32_t i, const dvec3& u) {
         return i < n ? solver.solveMass[i] : massAlong(solver.directionalMass[i], u);
     };
+    // Each body's nodes side by side, in a fixed order, and each pair of one body's once.
+    std::sort(nodes.begin(), nodes.end(),
+              [](const Node& a, const Node& b) { return std::tie(a.body, a.index) < std::tie(b.body, b.index); });
     for (std::size_t a = 0; a < nodes.size(); ++a)
-        for (std::size_t b = a + 1; b < nodes.size(); ++b) {
+        for (std::size_t b = a + 1; b < nodes.size() && nodes[b].body == nodes[a].body; ++b) {
             const dvec3 d = at(nodes[b].index) - at(nodes[a].index);
             const dvec3 u = unitOrZero(d);
-            if (nodes[a].body != nodes[b].body || u == dvec3(0.0))
+            if (u == dvec3(0.0))
                 continue;
             const double lighter = std::min(weighs(nodes[a].index, u), weighs(nodes[b].index, u));
             solver.jointSprings.push_back(

@@ -86,7 +86,6 @@ void World::givePointBodies()
         point.integrator = p.getIntegrator();
         point.fixed = p.isFixed();
         point.metInSubsteps = p.getIntegrator() == Integrator::Xpbd; // (integrateXpbd)
-        point.springJointsInItsSolve = isSpringSystemMethod(p.getIntegrator());
         system.setPoint(k, point);
     }
 }

@@ -125,7 +125,7 @@ void RigidSystem::setPoint(std::size_t k, const PointBody& p)
     m.inverseInertiaBody = dmat3(0.0); // a point does not turn
     m.driftWeight = driftWeight(p.integrator);
     m.metInSubsteps = p.metInSubsteps;
-    m.springJointsInItsSolve = p.springJointsInItsSolve;
+    m.springJointsInItsSolve = isSpringSystemMethod(p.integrator);
     m_start[k] = p.start;
     m_end[k] = p.end;
     m_stillFor[k] = 0.0; // its island never sleeps: the particle moves on under its own forces

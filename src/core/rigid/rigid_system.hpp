@@ -63,9 +63,6 @@ public:
         /// Met by the rigid bodies inside its own method's substeps (XPBD's,
         /// xpbd_rigid_contacts.hpp): here it is only joined.
         bool metInSubsteps = false;
-        /// Its spring joints are springs of its own method's solve (XPBD's substeps, backward
-        /// Euler's joint points: world_particle_systems.cpp): not applied here.
-        bool springJointsInItsSolve = false;
     };
     std::size_t size() const { return m_world.size(); }
     std::size_t worldIndex(std::size_t k) const { return m_world[k]; }
@@ -122,8 +119,10 @@ private:
         double inverseMass = 0.0;
         dmat3 inverseInertiaBody{0.0};
         double driftWeight = 1.0;
-        bool metInSubsteps = false;          ///< a point body's (PointBody)
-        bool springJointsInItsSolve = false; ///< the same
+        bool metInSubsteps = false; ///< a point body's (PointBody)
+        /// A point body's spring joints are springs of its own method's solve (XPBD's substeps,
+        /// backward Euler's joint points: world_particle_systems.cpp): not applied here.
+        bool springJointsInItsSolve = false;
     };
     bool anythingAwake() const { return !m_awake.empty() || !m_points.empty(); }
     /// Whether a contact between a and b is left out: two bodies a joint joins (unless it says
