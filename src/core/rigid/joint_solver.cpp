@@ -56,6 +56,16 @@ dvec3 anchorVelocity(const SolverBody& a, const SolverBody& b, const dvec3& ra, 
     return b.pointVelocity(rb) - a.pointVelocity(ra);
 }
 
+/// What an impulse p at arm r does to the velocity of the body's point there: (1/m I - [r] I^-1 [r]) p.
+dmat3 bodyPointMass(const SolverBody& body, const dvec3& r)
+{
+    const dmat3 s = skew(r);
+    return dmat3(body.inverseMass) - s * body.inverseInertia * s;
+}
+
+/// How many times a Verlet-type spring's line is found again (prepareSpring).
+constexpr int kSpringLineRounds = 6;
+
 /// Two unit vectors across `axis` (unit).
 void acrossOf(const dvec3& axis, dvec3 (&t)[2]) { tangentsOf(axis, t); }
 
@@ -105,17 +115,11 @@ void JointSolver::prepare(std::span<Joint> joints, std::span<const std::uint32_t
             const dvec3 d = (b.position + r.rB) - (a.position + r.rA);
             const double len = glm::length(d);
             r.n = len > 0.0 ? d / len : dvec3(0.0, 1.0, 0.0);
-            const double k = glm::dot(r.n, pointMass(a, b, r.rA, r.rB) * r.n);
-            const double mass = k > 0.0 ? 1.0 / k : 0.0;
             if (j.stiffness > 0.0) {
-                // gamma and beta of the implicit spring: the row becomes
-                // lambda = -(Cdot + beta/dt C + gamma lambda_acc) / (K + gamma).
-                const double soft = dt * (j.damping + dt * j.stiffness);
-                r.gamma = soft > 0.0 ? 1.0 / soft : 0.0;
-                r.bias = soft > 0.0 ? (len - j.length) * (j.stiffness / (j.damping + dt * j.stiffness)) : 0.0;
-                r.axialMass = mass > 0.0 ? 1.0 / (1.0 / mass + r.gamma) : 0.0;
+                prepareSpring(j, r, a, b, d, dt);
             } else {
-                r.axialMass = mass;
+                const double k = glm::dot(r.n, pointMass(a, b, r.rA, r.rB) * r.n);
+                r.axialMass = k > 0.0 ? 1.0 / k : 0.0;
             }
         }
         r.linearImpulse = j.linearImpulse;
@@ -134,7 +138,7 @@ void JointSolver::warmStart()
         SolverBody& a = m_bodies[r.a];
         SolverBody& b = m_bodies[r.b];
         if (j.type == JointType::Distance) {
-            applyLinear(a, b, r.rA, r.rB, r.axialImpulse * r.n);
+            applyLinear(a, b, r.rA, r.rB, r.axialImpulse * r.n + r.startImpulse * r.startDirection);
             continue;
         }
         applyLinear(a, b, r.rA, r.rB, r.linearImpulse);
@@ -186,11 +190,75 @@ void JointSolver::solveFixedAngular(Rows& r, SolverBody& a, SolverBody& b)
     applyAngular(a, b, l);
 }
 
+void JointSolver::prepareSpring(const Joint& j, Rows& r, const SolverBody& a, const SolverBody& b, const dvec3& d,
+                                double dt)
+{
+    // The spring's impulse over the step weighs its start's stretch and its end's as the body's
+    // method weighs the start and end velocities in the position's update (driftWeight): the
+    // end's alone under semi-implicit Euler, implicitly, with the damping (a soft constraint,
+    // Catto's "Soft Constraints"); half each under velocity Verlet, the splitting and RK4, along
+    // the mean of the start's and end's lines and scaled by |d0 + d1| / (|d0| + |d1|), which
+    // keeps the spring's energy exactly over a step that the two anchors drift by the mean of
+    // their velocities (a discrete gradient, Gonzalez). Taken at the end alone there, the start
+    // velocity's half of the drift left the swing's turn out of the position, and a ball
+    // circling on a spring gained energy every step.
+    const dmat3 ma = bodyPointMass(a, r.rA), mb = bodyPointMass(b, r.rB);
+    const double ka = glm::dot(r.n, ma * r.n), kb = glm::dot(r.n, mb * r.n);
+    const double wa = a.driftWeight, wb = b.driftWeight;
+    r.endShare = ka + kb > 0.0 ? (wa * ka + wb * kb) / (ka + kb) : 1.0;
+    const double start = glm::dot(r.n, d) - j.length;
+    r.startImpulse = -(1.0 - r.endShare) * dt * j.stiffness * start;
+    r.stretchScale = 1.0;
+    r.endLine = r.n;
+    if (r.endShare < 1.0) {
+        // Where the free step and the start's share leave the two anchors, and the line between
+        // the start's and that: the start's share acts along the line it depends on, found
+        // again a few times (each time closer by the square of the step's turn).
+        const auto drifted = [&](const SolverBody& body, const dvec3& arm, const dvec3& kick) {
+            const double w = body.driftWeight;
+            return (1.0 - w) * body.pointStartVelocity(arm) + w * (body.pointVelocity(arm) + kick);
+        };
+        const double startLength = glm::length(d);
+        const double startImpulse = r.startImpulse;
+        for (int round = 0; round < kSpringLineRounds; ++round) {
+            const dvec3 kick = r.startImpulse * r.n;
+            const dvec3 end = d + dt * (drifted(b, r.rB, mb * kick) - drifted(a, r.rA, -(ma * kick)));
+            const double endLength = glm::length(end);
+            const dvec3 mean = d + end;
+            const double meanLength = glm::length(mean);
+            if (!(endLength > 0.0 && meanLength > 0.0))
+                break;
+            r.endLine = end / endLength;
+            r.n = mean / meanLength;
+            r.stretchScale = meanLength / (startLength + endLength);
+            r.startImpulse = startImpulse * r.stretchScale;
+        }
+    }
+    r.startDirection = r.n;
+    // The stretch at the end as the velocities drive it: springStretch + dt e . (wB vB - wA vA),
+    // e the end's line.
+    const dvec3& e = r.endLine;
+    r.springStretch = glm::dot(e, d) - j.length +
+                      dt * glm::dot(e, (1.0 - wb) * b.pointStartVelocity(r.rB) - (1.0 - wa) * a.pointStartVelocity(r.rA));
+    const double k = glm::dot(r.n, (ma + mb) * r.n);
+    const double kw = glm::dot(e, (wa * ma + wb * mb) * r.n);
+    const double endStiffness = r.endShare * r.stretchScale * j.stiffness;
+    r.springGain = 1.0 / (1.0 + dt * (endStiffness * dt * kw + j.damping * k));
+}
+
 void JointSolver::solveDistance(const Joint& j, Rows& r, SolverBody& a, SolverBody& b)
 {
     const double speed = glm::dot(r.n, anchorVelocity(a, b, r.rA, r.rB));
-    const double lambda =
-        j.stiffness > 0.0 ? -r.axialMass * (speed + r.bias + r.gamma * r.axialImpulse) : -r.axialMass * speed;
+    double lambda = -r.axialMass * speed;
+    if (j.stiffness > 0.0) {
+        // The impulse so far must equal -dt (share k stretchAtEnd + c speed); the sweep moves it there.
+        const double dt = m_settings.dt;
+        const double drive =
+            glm::dot(r.endLine, b.driftWeight * b.pointVelocity(r.rB) - a.driftWeight * a.pointVelocity(r.rA));
+        const double stretch = r.springStretch + dt * drive;
+        const double endStiffness = r.endShare * r.stretchScale * j.stiffness;
+        lambda = -r.springGain * (dt * (endStiffness * stretch + j.damping * speed) + r.axialImpulse);
+    }
     r.axialImpulse += lambda;
     applyLinear(a, b, r.rA, r.rB, lambda * r.n);
 }

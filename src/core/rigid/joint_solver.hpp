@@ -67,7 +67,14 @@ private:
         double axialMass = 0.0;  ///< hinge limits: about the axis; distance: along n
         dvec3 n{0.0};            ///< distance: from A's anchor to B's
         double angle = 0.0;      ///< hinge: at the start of the step
-        double bias = 0.0, gamma = 0.0; ///< distance spring: the soft constraint's terms
+        // A distance spring's terms (prepareSpring).
+        double endShare = 1.0;      ///< the share of its impulse taken at the end of the step
+        double startImpulse = 0.0;  ///< the rest, from the start's stretch, along startDirection
+        dvec3 startDirection{0.0};
+        dvec3 endLine{0.0};         ///< the line between the anchors at the end, as foreseen
+        double stretchScale = 1.0;  ///< |d0 + d1| / (|d0| + |d1|)
+        double springStretch = 0.0; ///< the stretch at the end but for dt e . (wB vB - wA vA)
+        double springGain = 0.0;    ///< 1 / (1 + dt (share scale dt k Kw + c K))
         dvec3 linearImpulse{0.0}, angularImpulse{0.0};
         double axialImpulse = 0.0, lowerImpulse = 0.0, upperImpulse = 0.0;
     };
@@ -75,6 +82,8 @@ private:
     void solveHingeAngular(const Joint& j, Rows& r, SolverBody& a, SolverBody& b);
     void solveFixedAngular(Rows& r, SolverBody& a, SolverBody& b);
     void solveDistance(const Joint& j, Rows& r, SolverBody& a, SolverBody& b);
+    static void prepareSpring(const Joint& j, Rows& r, const SolverBody& a, const SolverBody& b, const dvec3& d,
+                              double dt);
     void holdPoints(const Joint& j, SolverBody& a, SolverBody& b);
     void holdAxis(const Joint& j, SolverBody& a, SolverBody& b);
     void holdOrientation(const Joint& j, SolverBody& a, SolverBody& b);
