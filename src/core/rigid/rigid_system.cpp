@@ -440,25 +440,28 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
         capEnergy(island);
 }
 
-std::span<const std::uint32_t> RigidSystem::solvedLinks(std::size_t island) const
+bool RigidSystem::appliedElsewhere(const Joint& j) const
 {
     // A spring joint to a moving point is a spring of the point's own solve (XPBD's substeps,
     // xpbd_rigid_contacts.hpp; backward Euler's joint points, world_particle_systems.cpp):
     // applied here too, its force would count twice. (A fixed point is in neither solve, and its
     // joints stay here.)
-    const auto links = m_islands.links(island);
     const auto inItsSolve = [&](BodyIndex k) {
         return k != kWorldBody && m_material[k].springJointsInItsSolve && m_material[k].inverseMass > 0.0;
     };
-    const auto appliedElsewhere = [&](const Joint& j) {
-        return j.stiffness > 0.0 && (inItsSolve(j.a) || inItsSolve(j.b));
-    };
-    if (std::none_of(links.begin(), links.end(), [&](std::uint32_t k) { return appliedElsewhere(m_joints[k]); }))
+    return j.stiffness > 0.0 && (inItsSolve(j.a) || inItsSolve(j.b));
+}
+
+std::span<const std::uint32_t> RigidSystem::solvedLinks(std::size_t island) const
+{
+    const auto links = m_islands.links(island);
+    const auto elsewhere = [&](std::uint32_t k) { return appliedElsewhere(m_joints[k]); };
+    if (std::none_of(links.begin(), links.end(), elsewhere))
         return links;
     thread_local std::vector<std::uint32_t> solved;
     solved.clear();
     for (const std::uint32_t k : links)
-        if (!appliedElsewhere(m_joints[k]))
+        if (!elsewhere(k))
             solved.push_back(k);
     return solved;
 }
@@ -699,8 +702,12 @@ RigidSystem::Energies RigidSystem::springEnergy(std::size_t island) const
             const double stretch = glm::length((xb + qb * j.localB) - (xa + qa * j.localA)) - j.length;
             return 0.5 * j.stiffness * stretch * stretch;
         };
-        e.start += energy(When::Start);
-        e.free += energy(When::Free);
+        const double start = energy(When::Start);
+        e.start += start;
+        // The free step leaves out a spring that this solve applies: its stretch at the free
+        // step's end, with no pull that it would have had, is no energy the island could have
+        // had (counted, it let a hinged chain hanging on a spring gain 4 times its energy).
+        e.free += appliedElsewhere(j) ? energy(When::Free) : start;
         e.end += energy(When::End);
     }
     return e;

@@ -143,10 +143,12 @@ private:
     /// The island's joints that its solve holds: all but the spring joints of a moving point met
     /// in its own substeps, which hold them there.
     std::span<const std::uint32_t> solvedLinks(std::size_t island) const;
+    /// Whether a joint's spring is applied by its point's own solve rather than this one's.
+    bool appliedElsewhere(const Joint& j) const;
     static void solveMechanismVelocities(ContactSolver& solver, JointSolver& joints, const SolverSettings& settings);
     void moveEndPoses(std::size_t island, const ContactSolver& solver, double dt);
     void capEnergy(std::size_t island);
-    /// What the island's spring joints store at the start, at the free step's end and now.
+    /// What the island's spring joints store at the start, after the free step and now.
     struct Energies {
         double start = 0.0, free = 0.0, end = 0.0;
     };
