@@ -11,6 +11,7 @@
 #include "pba/integrator.hpp"
 #include "pba/mass_properties.hpp"
 #include "pba/mesh.hpp"
+#include "pba/overlap.hpp"
 #include "pba/particle.hpp"
 #include "pba/rigid_body.hpp"
 #include "pba/rotation.hpp"

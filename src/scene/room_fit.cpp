@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "one_line.hpp"
+#include "pba/overlap.hpp"
 #include "pba/scene/scene.hpp"
 
 namespace pba::scene_detail {
@@ -19,6 +21,9 @@ namespace {
 /// A gap this small against the numbers involved is touching: a turned box's corner computed on
 /// the floor lands a rounding error either side of it.
 constexpr double kTouch = 1e-9;
+/// How deep a body may start in a fixed one: a millimetre's push is not seen (a box set on a
+/// ramp by hand is that close to it).
+constexpr double kInsideFixedTolerance = 1e-3;
 /// A cylinder's rims as polygons of this many corners, where a shape is cut by the floor over
 /// the hole (the polygon falls short of the circle by 1 - cos(pi / 256), under 1e-4 of the radius).
 constexpr int kRimCorners = 256;
@@ -192,6 +197,34 @@ void requireRigidBodiesInside(const World& world, const std::string& file)
                                      "is allowed)", shapeTypeName(s.shape.type), turns ? " at its orientation" : "",
                                      overlap->second, overlap->first,
                                      world.room() ? "inside the room" : "above the ground"));
+    }
+}
+
+void requireRigidBodiesOutsideFixedOnes(const World& world, const std::string& file)
+{
+    std::vector<std::size_t> rigid, fixed;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (world.isRigid(i)) {
+            rigid.push_back(i);
+            if (world.body(i).isFixed())
+                fixed.push_back(i);
+        }
+    for (std::size_t k = 0; k < rigid.size(); ++k) {
+        const auto& body = static_cast<const RigidBody&>(world.body(rigid[k]));
+        if (body.isFixed())
+            continue;
+        for (const std::size_t f : fixed) {
+            const auto& other = static_cast<const RigidBody&>(world.body(f));
+            const double depth = overlapDepth(other, body);
+            if (depth <= kInsideFixedTolerance)
+                continue;
+            const bool turns = body.getShape().type != ShapeType::Sphere;
+            throw SceneError(file, fmt::format("rigid_bodies[{}].position", k),
+                             fmt::format("the {}{} starts {:.3g} m inside the fixed body '{}': a body must start "
+                                         "outside every fixed body (touching is allowed)",
+                                         shapeTypeName(body.getShape().type), turns ? " at its orientation" : "", depth,
+                                         oneLine(other.getName())));
+        }
     }
 }
 

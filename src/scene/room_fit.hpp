@@ -4,7 +4,7 @@
 // the grille or the shaft's wall), the walls and the ceiling. The contacts push a body back out
 // of a surface by its speed, not its depth, so one that starts 0.14 m into the floor stays there,
 // and one larger than the room is thrown about by every wall at once. Touching is allowed: a box
-// resting on the floor starts exactly on it.
+// resting on the floor starts exactly on it. Likewise clear of every fixed body.
 #include <string>
 
 #include "pba/world.hpp"
@@ -16,5 +16,11 @@ namespace pba::scene_detail {
 /// is larger than the room along an axis, else rigid_bodies[i].position, naming the surface and
 /// the depth. Call when the world is complete: the blow dryer cuts its hole after the bodies.
 void requireRigidBodiesInside(const World& world, const std::string& file);
+
+/// Throws SceneError (rigid_bodies[i].position) for the first moving rigid body that starts
+/// more than a millimetre inside a fixed one: the contacts would push it out through the
+/// nearest face in one step, lifting it (energy from nowhere) or through the body (a sphere
+/// wholly inside a fixed box dropped out of its bottom).
+void requireRigidBodiesOutsideFixedOnes(const World& world, const std::string& file);
 
 } // namespace pba::scene_detail

@@ -357,6 +357,7 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
     });
     root.finish();
     scene_detail::requireRigidBodiesInside(scene.world, file);
+    scene_detail::requireRigidBodiesOutsideFixedOnes(scene.world, file);
     requireFiniteEnergies(scene.world, scene.fabric, file);
     return scene;
 }

@@ -14,6 +14,7 @@
 
 #include "core/contact/narrow_phase.hpp"
 #include "core/contact/polyhedron_contact.hpp"
+#include "pba/overlap.hpp"
 
 namespace {
 
@@ -706,3 +707,19 @@ TEST(NarrowPhase, EveryPairOfShapesGivesAConsistentManifold)
 }
 
 } // namespace
+
+// What the scene loader asks before the first step: how deep one body starts in another.
+TEST(NarrowPhase, OverlapDepthIsTheDeepestPointsDepth)
+{
+    pba::RigidBody table, box, ball;
+    table.setShapeWithMass(Shape::box(dvec3(1.0, 0.1, 1.0)), 10.0);
+    table.setPos(dvec3(0.0, 1.0, 0.0));
+    box.setShapeWithMass(Shape::box(dvec3(0.1)), 1.0);
+    box.setPos(dvec3(0.2, 1.07, 0.0)); // its bottom 3 cm below the table's top
+    EXPECT_NEAR(pba::overlapDepth(table, box), 0.03, 1e-12);
+    box.setPos(dvec3(0.2, 1.1, 0.0)); // resting on it
+    EXPECT_NEAR(pba::overlapDepth(table, box), 0.0, 1e-12);
+    ball.setShapeWithMass(Shape::sphere(0.1), 1.0);
+    ball.setPos(dvec3(3.0, 1.0, 0.0)); // far away
+    EXPECT_EQ(pba::overlapDepth(table, ball), 0.0);
+}

@@ -1,0 +1,24 @@
+#include "pba/overlap.hpp"
+
+#include <algorithm>
+
+#include "contact/narrow_phase.hpp"
+
+namespace pba {
+
+double overlapDepth(const RigidBody& a, const RigidBody& b)
+{
+    if (glm::length(b.getPos() - a.getPos()) > a.getBoundingRadius() + b.getBoundingRadius())
+        return 0.0;
+    const auto transform = [](const RigidBody& body) {
+        return contact::Transform{body.getPos(), glm::mat3_cast(body.getOrientation())};
+    };
+    const contact::Manifold m = contact::collide(contact::CollisionShape::of(a.getShape()), transform(a),
+                                                 contact::CollisionShape::of(b.getShape()), transform(b), 0.0);
+    double depth = 0.0;
+    for (int i = 0; i < m.count; ++i)
+        depth = std::max(depth, -m.points[std::size_t(i)].separation);
+    return depth;
+}
+
+} // namespace pba
