@@ -45,6 +45,10 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
     if (desc.name.empty() || !names.insert(desc.name).second)
         reader.fail("name", desc.name.empty() ? "must not be empty"
                                               : fmt::format("'{}' is already taken", oneLine(desc.name)));
+    // Its particles' rows are NAME[i], like a rope's particles; it comes after every other body.
+    if (const auto taken = names.lower_bound(desc.name + "["); taken != names.end() && taken->starts_with(desc.name + "["))
+        reader.fail("name", fmt::format("its particles' rows would be named {0}[0], {0}[1], ..., and '{1}' is already a "
+                                        "body's name", oneLine(desc.name), oneLine(*taken)));
     desc.count = readCount(reader, "count", 1e8);
     ObjectReader region = reader.object("region");
     region.expectKeys({"min", "max"});

@@ -266,6 +266,8 @@ INSTANTIATE_TEST_SUITE_P(
                              "rigid_bodies[1].position", "the box at its orientation starts 0.03 m inside the fixed body 'table'"},
                     BadScene{R"({"rigid_bodies": [{"name": "s", "position": [0, 1, 0], "shape": {"type": "sphere", "radius": 0.1}}, {"name": "t", "fixed": true, "position": [0, 1, 0], "shape": {"type": "box", "size": [1, 1, 1]}}]})",
                              "rigid_bodies[0].position", "the sphere starts 0.6 m inside the fixed body 't'"},
+                    BadScene{R"({"particles": [{"name": "s[0]", "position": [0, 1, 0]}], "swarms": [{"name": "s", "count": 10, "region": {"min": [0, 1, 0], "max": [1, 2, 1]}}]})",
+                             "swarms[0].name", "its particles' rows would be named s[0], s[1], ..., and 's[0]' is already a body's name"},
                     BadScene{J(R"({"type": "distance", "bodies": ["r"], "anchors": [[0, 1, 0], [1, 1, 0]], "length": 0.5})"),
                              "joints[0].length", "its anchors are 1 m apart, not 0.5"},
                     BadScene{R"({"rigid_bodies": [{"name": "t", "fixed": true, "position": [0, 1, 0], "shape": {"type": "sphere", "radius": 0.1}}], "joints": [{"type": "ball", "bodies": ["t"], "anchor": [0, 1, 0]}]})",
