@@ -672,12 +672,43 @@ void RigidSystem::capEnergy(std::size_t island)
     const double excess = end - std::max(start, free);
     if (!(excess > 0.0)) // a NaN too: the finite check names the body
         return;
-    const double keep = kinetic > excess ? std::sqrt(1.0 - excess / kinetic) : 0.0;
+    // An island that nothing holds keeps its momentum: the excess is taken from its motion about
+    // its centre of mass (three bodies on two springs in zero g lost a seventh of it in 3 s
+    // otherwise).
+    dvec3 momentum(0.0);
+    double mass = 0.0;
+    if (heldByNothing(island))
+        for (const std::uint32_t k : bodies) {
+            momentum += m_solverBodies[k].v / m_material[k].inverseMass;
+            mass += 1.0 / m_material[k].inverseMass;
+        }
+    const dvec3 centre = mass > 0.0 ? momentum / mass : dvec3(0.0);
+    const double about = kinetic - 0.5 * mass * glm::dot(centre, centre);
+    const bool aboutCentre = mass > 0.0 && about > excess;
+    const double keep = aboutCentre ? std::sqrt(1.0 - excess / about)
+                                    : (kinetic > excess ? std::sqrt(1.0 - excess / kinetic) : 0.0);
+    const dvec3 kept = aboutCentre ? centre : dvec3(0.0);
     for (const std::uint32_t k : bodies) {
         SolverBody& b = m_solverBodies[k];
-        b.v *= keep;
+        b.v = kept + (b.v - kept) * keep;
         b.w *= keep; // L = I w: scaled alike
     }
+}
+
+bool RigidSystem::heldByNothing(std::size_t island) const
+{
+    const auto movable = [&](BodyIndex k) { return k < m_world.size() && m_motion[k] == Motion::Awake; };
+    for (const std::uint32_t index : m_islands.contacts(island)) {
+        const Contact& c = m_cache.contacts()[index];
+        if (!movable(c.a) || !movable(c.b))
+            return false;
+    }
+    for (const std::uint32_t index : m_islands.links(island)) {
+        const Joint& j = m_joints[index];
+        if (!movable(j.a) || !movable(j.b))
+            return false;
+    }
+    return true;
 }
 
 RigidSystem::Energies RigidSystem::springEnergy(std::size_t island) const

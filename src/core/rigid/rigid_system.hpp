@@ -148,6 +148,8 @@ private:
     static void solveMechanismVelocities(ContactSolver& solver, JointSolver& joints, const SolverSettings& settings);
     void moveEndPoses(std::size_t island, const ContactSolver& solver, double dt);
     void capEnergy(std::size_t island);
+    /// Whether no contact or joint ties the island to a static body or the world.
+    bool heldByNothing(std::size_t island) const;
     /// What the island's spring joints store at the start, after the free step and now.
     struct Energies {
         double start = 0.0, free = 0.0, end = 0.0;
