@@ -36,6 +36,7 @@ rigid rolling 0.8 -0.8,1.5,3.8,-1.1,0.2,0 axes
 rigid tennis-racket 4.5 1.4,2.6,2.2,0,2,0 axes
 rigid blow-dryer-boxes 4 0.4,3.4,3.6,0,2.5,0
 rigid double-pendulum 3.7 0,2.4,4.6,0,2.3,0 joints # the rods bent: the chaos shows
+rigid spring-pendulum 1.3 0,3.0,2.6,0,2.9,0 joints
 # Ropes, cloth and the stiff spring, framed the same way.
 rigid rope 0.8 0,2.8,6.5,-0.3,1.2,0 # the free end striking the floor
 rigid cloth 1.2 0,2.6,5,0,2.2,0

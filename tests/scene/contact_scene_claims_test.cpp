@@ -1,7 +1,8 @@
 // The rigid-contact scenes held to their one-line claims: a tower and a pyramid stand, dominoes
 // fall in turn, a box stays on a gentle ramp and slides down a steep one with the textbook
 // acceleration, Newton's cradle passes its blow along, pendulums swing with their periods and
-// their rods hold, a chain's energy never grows, and a wrecking ball knocks a wall down.
+// their rods hold, a ball on a spring keeps its energy, a chain's energy never grows, and a
+// wrecking ball knocks a wall down.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -240,6 +241,27 @@ SCENE_CLAIM(ContactSceneClaims, ThePendulumSwingsWithTheEllipticIntegralsPeriodI
     const double period = (crossings.back() - crossings.front()) / double(crossings.size() - 1);
     EXPECT_NEAR(period, exact, 0.01 * exact);
     EXPECT_LT(worst, 1e-3);
+}
+
+SCENE_CLAIM(ContactSceneClaims, TheSpringPendulumSwingsAndBouncesKeepingItsEnergy, "spring-pendulum")
+{
+    Scene scene = loadScene("spring-pendulum");
+    World& world = scene.world;
+    const Body& bob = world.body(0);
+    const dvec3 top(0.0, 3.5, 0.0);
+    const double e0 = world.totalEnergy();
+    double worst = 0.0, widest = 0.0, shortest = INFINITY, longest = 0.0;
+    while (world.time() < scene.duration - 0.5 * scene.dt) {
+        world.step(scene.dt);
+        worst = std::max(worst, std::abs(world.totalEnergy() - e0));
+        const dvec3 d = bob.getPos() - top;
+        widest = std::max(widest, std::atan2(std::abs(d.x), -d.y));
+        shortest = std::min(shortest, glm::length(d));
+        longest = std::max(longest, glm::length(d));
+    }
+    EXPECT_LT(worst, 1e-6 * std::abs(e0));
+    EXPECT_GT(widest, 45.0 * std::numbers::pi / 180.0); // it swings
+    EXPECT_GT(longest - shortest, 0.05);                 // and bounces
 }
 
 SCENE_CLAIM(ContactSceneClaims, TheDoublePendulumsRodsHoldAndItsEnergyNeverGrows, "double-pendulum")
