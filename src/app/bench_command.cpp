@@ -24,6 +24,7 @@
 #include "bench_timing.hpp"
 #include "bench_worker.hpp"
 #include "command.hpp"
+#include "flag_values.hpp"
 #include "scene_options.hpp"
 #include "pba/blow_dryer.hpp"
 #include "pba/scene/scene.hpp"
@@ -39,6 +40,7 @@ struct BenchOptions {
     bool quick = false;
     int windows = 0; ///< 0: the default (6, one with --quick)
     std::vector<double> sizes;
+    std::string sizeList; ///< --sizes as typed: one word, so that a repeated --sizes is refused
     bool peerWorker = false; ///< --peer-worker: one row, windows on request (bench/peers/run.py)
     std::string phase = "flight";
     bool phases = false; ///< --phases: where a swarm step's time goes, instead of the rows
@@ -353,8 +355,7 @@ void addBenchCommand(CLI::App& root, Action& selected)
     bench->add_option("--windows", options->windows, "Windows timed per row, 1 to 100 (default 6, 1 with --quick)")
         ->check(CLI::Range(1, 100))
         ->option_text("N");
-    bench->add_option("--sizes", options->sizes, "Comma-separated particle counts (default 1e3,1e5,1e6,1e7)")
-        ->delimiter(',')
+    bench->add_option("--sizes", options->sizeList, "Comma-separated particle counts (default 1e3,1e5,1e6,1e7)")
         ->option_text("N,...");
     CLI::Option* peerWorker = bench->add_flag("--peer-worker", options->peerWorker,
                     "For bench/peers/run.py and bench/alternate.py: only the swarm (semi-implicit Euler, or "
@@ -429,7 +430,11 @@ void addBenchCommand(CLI::App& root, Action& selected)
                   "  pba bench --phases --sizes 1e5 --quick\n");
     bench->callback([options, integrator, &selected] {
         options->integratorGiven = integrator->count() > 0;
-        selected = [options] { return runBench(*options); };
+        selected = [options] {
+            BenchOptions read = *options;
+            read.sizes = numberList("--sizes", read.sizeList);
+            return runBench(read);
+        };
     });
 }
 

@@ -11,6 +11,7 @@
 #include "clock_report.hpp"
 #include "command.hpp"
 #include "compare_report.hpp"
+#include "flag_values.hpp"
 #include "io/folder_output.hpp"
 #include "progress.hpp"
 #include "rotation_report.hpp"
@@ -31,6 +32,8 @@ struct CompareOptions {
     std::vector<std::string> integrators;
     std::vector<std::string> collisions;
     std::vector<double> dts;
+    // The list flags as typed: one word each, so that a repeated flag is refused as sim's are.
+    std::string integratorList, collisionList, dtList;
     std::optional<double> duration;
     std::optional<std::string> body; ///< --body: the rigid body the rotation study measures
     int jobs = 0;
@@ -47,6 +50,15 @@ void dropRepeats(std::vector<T>& list)
         if (std::find(kept.begin(), kept.end(), x) == kept.end())
             kept.push_back(x);
     list = std::move(kept);
+}
+
+/// The options with their list flags split into the lists.
+CompareOptions withLists(CompareOptions options)
+{
+    options.integrators = listItems(options.integratorList);
+    options.collisions = listItems(options.collisionList);
+    options.dts = numberList("--dt", options.dtList);
+    return options;
 }
 
 /// The longest run, and so the largest dt, a study takes: gnuplot's axes reach a few times past
@@ -372,16 +384,14 @@ void addCompareCommand(CLI::App& root, Action& selected)
     compare->add_option("--out", options->out, "Directory for report.md, results.csv, orders.csv and the PNG plots "
                                                "(default pba-compare)")
         ->type_name("DIR");
-    compare->add_option("--integrators", options->integrators,
+    compare->add_option("--integrators", options->integratorList,
                         "Comma-separated integrators (default all four; with rigid bodies all six)")
-        ->delimiter(',')
         ->option_text("NAME,...");
-    compare->add_option("--collisions", options->collisions, "Comma-separated collision responses (default all three)")
-        ->delimiter(',')
+    compare->add_option("--collisions", options->collisionList,
+                        "Comma-separated collision responses (default all three)")
         ->option_text("MODE,...");
-    compare->add_option("--dt", options->dts, "Comma-separated timesteps (default 0.0005,0.001,0.002,0.005,0.01,0.02,"
-                                              "0.05,0.1; with rigid bodies the first seven, up to 0.05)")
-        ->delimiter(',')
+    compare->add_option("--dt", options->dtList, "Comma-separated timesteps (default 0.0005,0.001,0.002,0.005,0.01,0.02,"
+                                                 "0.05,0.1; with rigid bodies the first seven, up to 0.05)")
         ->option_text("DT,...");
     compare->add_option("--duration", options->duration, "Simulated time of each run (default the scene's)")
         ->type_name("SECONDS");
@@ -406,7 +416,7 @@ void addCompareCommand(CLI::App& root, Action& selected)
                     "  pba compare tennis-racket --out pba-out/racket\n"
                     "  pba compare incline --body steep-box --out pba-out/incline\n"
                     "  pba compare --clocks blow-dryer --out pba-out/clocks\n");
-    compare->callback([options, &selected] { selected = [options] { return runCompare(*options); }; });
+    compare->callback([options, &selected] { selected = [options] { return runCompare(withLists(*options)); }; });
 }
 
 } // namespace pba::app

@@ -162,7 +162,16 @@ INSTANTIATE_TEST_SUITE_P(
                       BadFlags{{"sim", "integrators", "--out", ""}, "--out: empty; give it a value"},
                       // A flag takes no value: the empty word after it is the positional.
                       BadFlags{{"field", "--json", ""}, "SCENE: empty; give it a scene name or a file"},
-                      BadFlags{{"help", ""}, "COMMAND: empty; give it a command's name"}));
+                      BadFlags{{"help", ""}, "COMMAND: empty; give it a command's name"},
+                      // A list flag given twice was merged into one list; sim refuses a repeated flag.
+                      BadFlags{{"compare", "--dt", "0.01", "--dt", "0.02", "--out", "OUT"},
+                               "--dt: given 2 times; give it once"},
+                      BadFlags{{"compare", "--integrators", "rk4", "--integrators", "rk4", "--out", "OUT"},
+                               "--integrators: given 2 times; give it once"},
+                      BadFlags{{"compare", "--collisions", "exact", "--collisions", "clamp", "--out", "OUT"},
+                               "--collisions: given 2 times; give it once"},
+                      BadFlags{{"bench", "--sizes", "1e3", "--sizes", "1e5"}, "--sizes: given 2 times; give it once"},
+                      BadFlags{{"compare", "--dt", "0.01,abc", "--out", "OUT"}, "--dt: cannot read 'abc' as a number"}));
 
 // A thin, tall dryer's slice asked for millions of rows of scratch data; it is bounded now.
 TEST(NumericFlagsSlice, AThinDryersSliceIsBounded)
