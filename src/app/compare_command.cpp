@@ -55,8 +55,8 @@ void dropRepeats(std::vector<T>& list)
 /// The options with their list flags split into the lists.
 CompareOptions withLists(CompareOptions options)
 {
-    options.integrators = listItems(options.integratorList);
-    options.collisions = listItems(options.collisionList);
+    options.integrators = listItems("--integrators", options.integratorList);
+    options.collisions = listItems("--collisions", options.collisionList);
     options.dts = numberList("--dt", options.dtList);
     return options;
 }

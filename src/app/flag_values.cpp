@@ -9,8 +9,10 @@
 
 namespace pba::app {
 
-std::vector<std::string> listItems(const std::string& text)
+std::vector<std::string> listItems(const std::string& flag, const std::string& text)
 {
+    if (text.empty())
+        return {}; // not given: main() refuses an empty value typed on the command line
     std::vector<std::string> items(1);
     for (const char c : text) {
         if (c == ',')
@@ -18,17 +20,20 @@ std::vector<std::string> listItems(const std::string& text)
         else
             items.back() += c;
     }
-    std::erase(items, std::string());
+    for (std::size_t i = 0; i < items.size(); ++i)
+        if (items[i].empty())
+            throw UsageError(fmt::format("{}: item {} of '{}' is empty; give a comma-separated list with no empty "
+                                         "item", flag, i + 1, text));
     return items;
 }
 
 std::vector<double> numberList(const std::string& flag, const std::string& text)
 {
     std::vector<double> numbers;
-    for (const std::string& item : listItems(text)) {
+    for (const std::string& item : listItems(flag, text)) {
         char* end = nullptr;
         const double x = std::strtod(item.c_str(), &end);
-        if (item.empty() || end != item.c_str() + item.size())
+        if (end != item.c_str() + item.size())
             throw UsageError(fmt::format("{}: cannot read '{}' as a number", flag, item));
         numbers.push_back(x);
     }

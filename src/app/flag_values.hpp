@@ -6,8 +6,9 @@
 
 namespace pba::app {
 
-/// `text` split at its commas, empty items left out.
-std::vector<std::string> listItems(const std::string& text);
+/// `text` split at its commas (none for an empty text, a flag not given); throws UsageError naming `flag` for an empty item (`rk4,`), which
+/// is a typo or a script's unset variable, not a shorter list.
+std::vector<std::string> listItems(const std::string& flag, const std::string& text);
 
 /// listItems() read as numbers; throws UsageError naming `flag` and the item that is not one.
 std::vector<double> numberList(const std::string& flag, const std::string& text);

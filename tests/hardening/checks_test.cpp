@@ -171,7 +171,14 @@ INSTANTIATE_TEST_SUITE_P(
                       BadFlags{{"compare", "--collisions", "exact", "--collisions", "clamp", "--out", "OUT"},
                                "--collisions: given 2 times; give it once"},
                       BadFlags{{"bench", "--sizes", "1e3", "--sizes", "1e5"}, "--sizes: given 2 times; give it once"},
-                      BadFlags{{"compare", "--dt", "0.01,abc", "--out", "OUT"}, "--dt: cannot read 'abc' as a number"}));
+                      BadFlags{{"compare", "--dt", "0.01,abc", "--out", "OUT"}, "--dt: cannot read 'abc' as a number"},
+                      // CLI11 dropped a list's empty items, so `rk4,` ran as `rk4`.
+                      BadFlags{{"compare", "--integrators", "rk4,", "--out", "OUT"},
+                               "--integrators: item 2 of 'rk4,' is empty"},
+                      BadFlags{{"compare", "--collisions", ",exact", "--out", "OUT"},
+                               "--collisions: item 1 of ',exact' is empty"},
+                      BadFlags{{"compare", "--dt", "0.01,,0.02", "--out", "OUT"}, "--dt: item 2 of '0.01,,0.02' is empty"},
+                      BadFlags{{"bench", "--sizes", "1e3,"}, "--sizes: item 2 of '1e3,' is empty"}));
 
 // A thin, tall dryer's slice asked for millions of rows of scratch data; it is bounded now.
 TEST(NumericFlagsSlice, AThinDryersSliceIsBounded)
