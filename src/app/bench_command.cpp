@@ -47,7 +47,7 @@ struct BenchOptions {
     std::string integrator = "semi-implicit-euler"; ///< --phases' and --peer-worker's integrator
     bool integratorGiven = false;                   ///< --integrator was on the command line
     bool pileWorker = false; ///< --pile-worker: a pile of --dice dice, windows on request (bench/peers/pile.py)
-    std::size_t dice = 1000;
+    long long dice = 1000; ///< signed: CLI11 reads -1 into an unsigned count as 2^64 - 1
     int iterations = kPileIterations; ///< --iterations: the pile worker's velocity sweeps a step
 };
 
@@ -292,8 +292,10 @@ int runBench(const BenchOptions& options)
         throw UsageError("--integrator: only with --phases or --peer-worker (the rows time every integrator)");
     if (options.peerWorker)
         return runPeerWorker(options);
+    if (options.pileWorker && options.dice < 1)
+        throw UsageError(fmt::format("--dice: must be a whole number of at least 1, got {}", options.dice));
     if (options.pileWorker)
-        return runPileWorker(options.dice, options.iterations);
+        return runPileWorker(static_cast<std::size_t>(options.dice), options.iterations);
     if (options.phases)
         return runPhases(options);
     std::vector<std::size_t> sizes;

@@ -178,7 +178,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BadFlags{{"compare", "--collisions", ",exact", "--out", "OUT"},
                                "--collisions: item 1 of ',exact' is empty"},
                       BadFlags{{"compare", "--dt", "0.01,,0.02", "--out", "OUT"}, "--dt: item 2 of '0.01,,0.02' is empty"},
-                      BadFlags{{"bench", "--sizes", "1e3,"}, "--sizes: item 2 of '1e3,' is empty"}));
+                      BadFlags{{"bench", "--sizes", "1e3,"}, "--sizes: item 2 of '1e3,' is empty"},
+                      // Read into an unsigned count, -1 was 2^64 - 1 dice.
+                      BadFlags{{"bench", "--pile-worker", "--dice", "-1"},
+                               "--dice: must be a whole number of at least 1, got -1"}));
 
 // A thin, tall dryer's slice asked for millions of rows of scratch data; it is bounded now.
 TEST(NumericFlagsSlice, AThinDryersSliceIsBounded)
