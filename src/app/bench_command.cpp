@@ -355,6 +355,7 @@ void addBenchCommand(CLI::App& root, Action& selected)
     bench->add_flag("--json", options->json, "Print {\"results\": [...]} instead of a table");
     bench->add_flag("--quick", options->quick, "Measure briefly, at N = 1e3 and 1e5 (for scripted checks)");
     bench->add_option("--windows", options->windows, "Windows timed per row, 1 to 100 (default 6, 1 with --quick)")
+        ->transform(decimalOnly())
         ->check(CLI::Range(1, 100))
         ->option_text("N");
     bench->add_option("--sizes", options->sizeList, "Comma-separated particle counts (default 1e3,1e5,1e6,1e7)")
@@ -383,10 +384,12 @@ void addBenchCommand(CLI::App& root, Action& selected)
                     ->excludes(peerWorker);
     bench->get_option("--phases")->excludes(pileWorker);
     bench->add_option("--dice", options->dice, "With --pile-worker: the dice thrown (default 1000)")
+        ->transform(decimalOnly())
         ->needs(pileWorker)
         ->option_text("N");
     bench->add_option("--iterations", options->iterations,
                       "With --pile-worker: the solver's velocity sweeps a step, a fixed count (default 10, Bullet's)")
+        ->transform(decimalOnly())
         ->needs(pileWorker)
         ->check(CLI::Range(1, 1000))
         ->option_text("N");

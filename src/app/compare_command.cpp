@@ -394,6 +394,7 @@ void addCompareCommand(CLI::App& root, Action& selected)
                                                  "0.05,0.1; with rigid bodies the first seven, up to 0.05)")
         ->option_text("DT,...");
     compare->add_option("--duration", options->duration, "Simulated time of each run (default the scene's)")
+        ->transform(decimalOnly())
         ->type_name("SECONDS");
     compare->add_option("--body", options->body,
                         "With rigid bodies: the one the rotation study measures (default the first moving one)")
@@ -406,6 +407,7 @@ void addCompareCommand(CLI::App& root, Action& selected)
                       "write work_precision.csv and .png: error against CPU time, the cheapest method for an accuracy "
                       "(seconds more than the study alone)");
     compare->add_option("--jobs", options->jobs, "Runs in parallel (default all cores); results do not depend on it")
+        ->transform(decimalOnly())
         ->type_name("N");
     compare->footer("\nOn a scene with rigid bodies (dice, tennis-racket, rolling, blow-dryer-boxes) it studies rotation\n"
                     "instead: every integrator (all six) and dt (default up to 0.05) on the first moving rigid body\n"

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
+#include "flag_values.hpp"
 #include "gnuplot.hpp"
 #include "io/output_file.hpp"
 #include "pba/blow_dryer.hpp"
@@ -251,6 +252,7 @@ void addFieldCommand(CLI::App& root, Action& selected)
                                            "(each field's share and the total, gravity included)")
         ->delimiter(',')
         ->expected(3)
+        ->transform(decimalOnly())
         ->option_text("X,Y,Z");
     field->add_flag("--json", options->json, "With --at: print {\"total\": [x,y,z], \"forces\": [...]} instead");
     field->add_flag("--slice", options->slice, "Draw the field in the vertical plane through the dryer's axis: "
@@ -258,6 +260,7 @@ void addFieldCommand(CLI::App& root, Action& selected)
     field->add_option("--out", options->out, "With --slice: the PNG to write")->type_name("FILE.png");
     field->add_option("--resolution", options->resolution,
                       "With --slice: colour map samples across the picture, 16 to 2000 (default 240)")
+        ->transform(decimalOnly())
         ->check(CLI::Range(16, 2000))
         ->option_text("N");
     field->footer("\nExamples:\n  pba field blow-dryer --at 0,1,0\n  pba field blow-dryer-flow --slice --out pba-out/field.png\n");

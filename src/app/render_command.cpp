@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "flag_values.hpp"
 #include "frame_steps.hpp"
 #include "lanes.hpp"
 #include "picture_options.hpp"
@@ -163,8 +164,11 @@ void addRenderCommand(CLI::App& root, Action& selected)
         ->required()
         ->type_name("PATH");
     render->add_option("--time", options->time, "With a PNG: the simulated time to show (default: the end)")
+        ->transform(decimalOnly())
         ->type_name("SECONDS");
-    render->add_option("--fps", options->fps, "Frames per second of video time (default 60)")->type_name("HZ");
+    render->add_option("--fps", options->fps, "Frames per second of video time (default 60)")
+        ->transform(decimalOnly())
+        ->type_name("HZ");
     render->add_option("--size", options->size, "Image size, 16 to 8192 a side and at most 4096x4096 pixels in all "
                                                "(default 1280x720)")->type_name("WxH");
     render->add_option("--clock", options->clock, kClockOptionHelp)->type_name("NAME");

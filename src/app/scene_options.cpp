@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "flag_values.hpp"
 
 namespace pba::app {
 
@@ -42,8 +43,10 @@ void addSceneOptions(CLI::App& command, SceneOptions& options, const std::string
 {
     addScenePositional(command, options.scene, defaultScene);
     command.add_option("--dt", options.dt, "Fixed physics timestep in seconds (overrides the scene)")
+        ->transform(decimalOnly())
         ->type_name("SECONDS");
     command.add_option("--duration", options.duration, "Simulated time in seconds (overrides the scene)")
+        ->transform(decimalOnly())
         ->type_name("SECONDS");
     command.add_option("--integrator", options.integrator,
                        "For every moving body: forward-euler, semi-implicit-euler, velocity-verlet, rk4; "
@@ -53,6 +56,7 @@ void addSceneOptions(CLI::App& command, SceneOptions& options, const std::string
                        "constraints in --substeps; a particle with no spring moves as by semi-implicit Euler)")
         ->type_name("NAME");
     command.add_option("--substeps", options.substeps, "xpbd's substeps a step (overrides the scene; default 10)")
+        ->transform(decimalOnly())
         ->type_name("N");
     command.add_option("--collision", options.collision,
                        "Collision response: exact (time of impact), reflect (mirror back) or clamp (put back)")

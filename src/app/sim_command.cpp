@@ -12,6 +12,7 @@
 
 #include "atomic_file.hpp"
 #include "command.hpp"
+#include "flag_values.hpp"
 #include "csv.hpp"
 #include "progress.hpp"
 #include "scene_options.hpp"
@@ -252,6 +253,7 @@ void addSimCommand(CLI::App& root, Action& selected)
     sim->add_option("--frame-rate", options->frameRate,
                     "Drive the fixed-timestep clock with synthetic frames of 1/HZ seconds (the results do not "
                     "change: only dt and the number of steps matter)")
+        ->transform(decimalOnly())
         ->type_name("HZ");
     sim->add_flag("--swarm-particles", options->swarmParticles,
                   "With --out: also write a row per swarm particle (named as its swarm, NAME[i]) at every step, about 100 "

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "flag_values.hpp"
 #include "render_output.hpp"
 #include "scene_options.hpp"
 #include "picture_options.hpp"
@@ -98,10 +99,12 @@ void addViewCommand(CLI::App& root, Action& selected)
     view->add_option("--frames", options->frames,
                      "Run this many frames of real time, then close (the simulated time reached depends on "
                      "the machine)")
+        ->transform(decimalOnly())
         ->type_name("N");
     view->add_option("--time", options->time,
                      "Run to exactly this simulated time with synthetic frames of 1/60 s (as pba render), then "
                      "stay paused there, or with --screenshot save it and close")
+        ->transform(decimalOnly())
         ->type_name("SECONDS");
     view->add_option("--screenshot", options->screenshot, "With --time: save the window at that time to this PNG")
         ->type_name("FILE.png");

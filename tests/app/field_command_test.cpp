@@ -59,8 +59,9 @@ TEST(PbaField, RefusesOptionsTheOutputWouldIgnore)
         {"blow-dryer --at 0,1,0 --slice --out " + (dir / "f.png").string(), "--at: prints the force at a point, and --slice"},
         {"blow-dryer --slice --json --out " + (dir / "f.png").string(), "--json: prints --at's forces as JSON"},
         {"blow-dryer --at 0,1,0 --out " + (dir / "f.png").string(), "--out: names --slice's picture, and there is no --slice"},
-        {"blow-dryer --at nan,1,0", "--at: every coordinate must be a finite number, got nan"},
-        {"blow-dryer --at 0,inf,0 --json", "--at: every coordinate must be a finite number, got inf"}};
+        {"blow-dryer --at nan,1,0", "--at: cannot read 'nan' as a number"},
+        {"blow-dryer --at 0,inf,0 --json", "--at: cannot read 'inf' as a number"},
+        {"blow-dryer --at 0,1e400,0", "--at: every coordinate must be a finite number, got inf"}};
     for (const auto& [args, message] : cases) {
         const CommandResult r = runPba("field " + args);
         EXPECT_EQ(r.exitCode, 2) << args;

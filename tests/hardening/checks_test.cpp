@@ -181,7 +181,37 @@ INSTANTIATE_TEST_SUITE_P(
                       BadFlags{{"bench", "--sizes", "1e3,"}, "--sizes: item 2 of '1e3,' is empty"},
                       // Read into an unsigned count, -1 was 2^64 - 1 dice.
                       BadFlags{{"bench", "--pile-worker", "--dice", "-1"},
-                               "--dice: must be a whole number of at least 1, got -1"}));
+                               "--dice: must be a whole number of at least 1, got -1"},
+                      // CLI11 reads numbers with strtold and strtoll(..., 0): 0x10 was 16, inf a dt.
+                      BadFlags{{"sim", "integrators", "--dt", "0x10"}, "--dt: cannot read '0x10' as a number"},
+                      BadFlags{{"sim", "integrators", "--duration", "inf"}, "--duration: cannot read 'inf'"},
+                      BadFlags{{"sim", "integrators", "--substeps", "0x5"}, "--substeps: cannot read '0x5'"},
+                      BadFlags{{"sim", "integrators", "--frame-rate", "nan"}, "--frame-rate: cannot read 'nan'"},
+                      BadFlags{{"render", "integrators", "--fps", "0x3c", "--out", "OUT.png"}, "--fps: cannot read"},
+                      BadFlags{{"render", "integrators", "--time", "0x1p0", "--out", "OUT.png"}, "--time: cannot read"},
+                      BadFlags{{"field", "--at", "0,infinity,0"}, "--at: cannot read 'infinity'"},
+                      BadFlags{{"field", "--slice", "--resolution", "0x100", "--out", "OUT.png"}, "--resolution"},
+                      BadFlags{{"compare", "--dt", "0.01,0x10", "--out", "OUT"}, "--dt: cannot read '0x10'"},
+                      BadFlags{{"compare", "--duration", "NaN", "--out", "OUT"}, "--duration: cannot read 'NaN'"},
+                      BadFlags{{"compare", "--jobs", "0x2", "--out", "OUT"}, "--jobs: cannot read '0x2'"},
+                      BadFlags{{"bench", "--sizes", "0x400"}, "--sizes: cannot read '0x400'"},
+                      BadFlags{{"bench", "--windows", "0x2"}, "--windows: cannot read '0x2'"},
+                      BadFlags{{"bench", "--pile-worker", "--dice", "0x10"}, "--dice: cannot read '0x10'"},
+                      BadFlags{{"bench", "--pile-worker", "--iterations", "0x10"}, "--iterations: cannot read"}));
+
+// A number's leading zeros are a decimal's: --fps 010 is 10 frames a second, not octal's 8.
+TEST(NumericFlagsDecimal, LeadingZerosAreRead)
+{
+    const auto dir = freshDir("leading_zeros");
+    const CommandResult r =
+        runPbaArgv({"render", "integrators", "--duration", "0.5", "--fps", "010", "--out", (dir / "f").string() + "/"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("(6 frames,"), std::string::npos) << r.out;
+    EXPECT_EQ(runPbaArgv({"sim", "integrators", "--dt", "00.5", "--duration", "1"}).out.rfind("scene integrators: 2 "
+                                                                                             "steps of dt = 0.5 s",
+                                                                                             0),
+              0u);
+}
 
 // A thin, tall dryer's slice asked for millions of rows of scratch data; it is bounded now.
 TEST(NumericFlagsSlice, AThinDryersSliceIsBounded)
