@@ -1,5 +1,4 @@
 // The `pba` command: one subcommand per file, errors as one line and a documented exit code.
-#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -15,80 +14,14 @@
 
 #include "command.hpp"
 #include "help_formatter.hpp"
+#include "parse_errors.hpp"
 #include "io/output_file.hpp"
 #include "pba/blow_up_watch.hpp"
 #include "pba/scene/scene.hpp"
-#include "scene/closest_name.hpp"
 #include "scene/one_line.hpp"
 #include "scene_options.hpp"
 
 namespace {
-
-/// What the command could not place: the first option it did not know, with the one it is close
-/// to, or else the first word past its positionals. An unknown option's value is among them too
-/// (CLI11 lists "1 --time" for `--time 1`), so an option is looked for first.
-std::optional<std::string> extraArgumentText(const CLI::App& app)
-{
-    const auto parsed = app.get_subcommands();
-    const CLI::App& command = parsed.empty() ? app : *parsed.front();
-    const std::string name = parsed.empty() ? "pba" : "pba " + command.get_name();
-    std::vector<std::string> known;
-    for (const CLI::Option* option : command.get_options())
-        for (const std::string& longName : option->get_lnames())
-            known.push_back("--" + longName);
-    const std::vector<std::string> extras = command.remaining();
-    for (const std::string& extra : extras) {
-        if (extra.size() < 2 || extra[0] != '-')
-            continue;
-        const std::string flag = extra.substr(0, extra.find('='));
-        const auto close = pba::scene_detail::closestName(flag, known);
-        return fmt::format("unknown option '{}' of `{}`{} (`{} --help` lists its options)", flag, name,
-                           close ? fmt::format(": did you mean '{}'?", *close) : "", name);
-    }
-    // No option among them: words past the command's positionals, named from the first.
-    if (!extras.empty())
-        return fmt::format("unexpected argument '{}' of `{}` (`{} --help` lists its arguments)", extras.front(),
-                           name, name);
-    return std::nullopt;
-}
-
-/// CLI11's words for a few errors, in pba's: the option and the reason, and the command a
-/// mistyped one was meant to be. `args` are the arguments as typed.
-std::string parseErrorText(const CLI::ParseError& e, const CLI::App& app, const std::vector<std::string>& args)
-{
-    const std::string what = e.what();
-    if (dynamic_cast<const CLI::ConversionError*>(&e)) {
-        // "Could not convert: --dt = abc": every option CLI11 converts is a number.
-        const std::string prefix = "Could not convert: ";
-        const std::size_t equals = what.find(" = ");
-        if (what.rfind(prefix, 0) == 0 && equals != std::string::npos) {
-            const std::string option = what.substr(prefix.size(), equals - prefix.size()), value = what.substr(equals + 3);
-            // A number that failed to convert was read for a whole-number option (--fps 0.5).
-            char* end = nullptr;
-            std::strtod(value.c_str(), &end);
-            if (!value.empty() && end == value.c_str() + value.size())
-                return fmt::format("{}: expected a whole number, got '{}'", option, value);
-            return fmt::format("{}: cannot read '{}' as a number", option, value);
-        }
-    }
-    if (dynamic_cast<const CLI::ArgumentMismatch*>(&e)) {
-        // "--dt: At Most 1 required but received 2": an option given twice.
-        const std::string marker = ": At Most 1 required but received ";
-        if (const std::size_t at = what.find(marker); at != std::string::npos)
-            return fmt::format("{}: given {} times; give it once", what.substr(0, at), what.substr(at + marker.size()));
-    }
-    if (dynamic_cast<const CLI::ExtrasError*>(&e) && !args.empty() && args.front().rfind("-", 0) != 0) {
-        std::vector<std::string> commands;
-        for (const CLI::App* command : app.get_subcommands({}))
-            commands.push_back(command->get_name());
-        if (std::find(commands.begin(), commands.end(), args.front()) == commands.end())
-            return pba::app::unknownCommandText(app, args.front());
-    }
-    if (dynamic_cast<const CLI::ExtrasError*>(&e))
-        if (const auto extra = extraArgumentText(app))
-            return *extra;
-    return what;
-}
 
 /// What an empty positional should have held, for its message.
 std::string positionalWant(const std::string& name)
@@ -199,7 +132,7 @@ int run(int argc, char** argv)
     } catch (const CLI::Success& e) { // --help, --version
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        printError(parseErrorText(e, app, typed));
+        printError(pba::app::parseErrorText(e, app, typed));
         return kExitBadInput;
     }
     if (!selected) // `pba` alone: the default scene, in a window or rendered
