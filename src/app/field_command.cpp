@@ -27,6 +27,7 @@ namespace {
 struct FieldOptions {
     std::string scene;
     std::vector<double> at;
+    std::string atText; ///< --at as typed: one word, split here so that its count is checked whole
     bool json = false;
     bool slice = false;
     std::optional<std::string> out;
@@ -54,7 +55,7 @@ std::vector<Contribution> fieldAt(const World& world, const dvec3& x)
 int printFieldAt(const World& world, const FieldOptions& options)
 {
     if (options.at.size() != 3)
-        throw UsageError(fmt::format("--at: expected X,Y,Z, got {} numbers", options.at.size()));
+        throw UsageError(fmt::format("--at: expected 3 numbers (x,y,z), got {}", options.at.size()));
     for (const double c : options.at)
         if (!std::isfinite(c))
             throw UsageError(fmt::format("--at: every coordinate must be a finite number, got {}", c));
@@ -248,11 +249,8 @@ void addFieldCommand(CLI::App& root, Action& selected)
     CLI::App* field = root.add_subcommand("field", "Inspect a scene's force fields: the force at a point, or a "
                                                    "picture of the blow dryer's field");
     addScenePositional(*field, options->scene, "blow-dryer");
-    field->add_option("--at", options->at, "Print the force on a unit-mass particle at rest at this point "
-                                           "(each field's share and the total, gravity included)")
-        ->delimiter(',')
-        ->expected(3)
-        ->transform(decimalOnly())
+    field->add_option("--at", options->atText, "Print the force on a unit-mass particle at rest at this point "
+                                               "(each field's share and the total, gravity included)")
         ->option_text("X,Y,Z");
     field->add_flag("--json", options->json, "With --at: print {\"total\": [x,y,z], \"forces\": [...]} instead");
     field->add_flag("--slice", options->slice, "Draw the field in the vertical plane through the dryer's axis: "
@@ -264,7 +262,13 @@ void addFieldCommand(CLI::App& root, Action& selected)
         ->check(CLI::Range(16, 2000))
         ->option_text("N");
     field->footer("\nExamples:\n  pba field blow-dryer --at 0,1,0\n  pba field blow-dryer-flow --slice --out pba-out/field.png\n");
-    field->callback([options, &selected] { selected = [options] { return runField(*options); }; });
+    field->callback([options, &selected] {
+        selected = [options] {
+            FieldOptions read = *options;
+            read.at = numberList("--at", read.atText);
+            return runField(read);
+        };
+    });
 }
 
 } // namespace pba::app

@@ -61,7 +61,9 @@ TEST(PbaField, RefusesOptionsTheOutputWouldIgnore)
         {"blow-dryer --at 0,1,0 --out " + (dir / "f.png").string(), "--out: names --slice's picture, and there is no --slice"},
         {"blow-dryer --at nan,1,0", "--at: cannot read 'nan' as a number"},
         {"blow-dryer --at 0,inf,0 --json", "--at: cannot read 'inf' as a number"},
-        {"blow-dryer --at 0,1e400,0", "--at: every coordinate must be a finite number, got inf"}};
+        {"blow-dryer --at 0,1e400,0", "--at: every coordinate must be a finite number, got inf"},
+        {"blow-dryer --at 0,1,0,", "--at: item 4 of '0,1,0,' is empty"},
+        {"blow-dryer --at 0,1,0 --at 0,2,0", "--at: given 2 times; give it once"}};
     for (const auto& [args, message] : cases) {
         const CommandResult r = runPba("field " + args);
         EXPECT_EQ(r.exitCode, 2) << args;

@@ -180,7 +180,9 @@ TEST(PbaCommands, AMistypedCommandOrOptionIsNamedWithTheOneItIsCloseTo)
         {"sim integrators --time 1", "unknown option '--time' of `pba sim` (`pba sim --help` lists its options)"},
         {"sim integrators extra more",
          "unexpected argument 'extra' of `pba sim` (`pba sim --help` lists its arguments)"},
-        {"scenes extra", "unexpected argument 'extra' of `pba scenes` (`pba scenes --help` lists its arguments)"}};
+        {"scenes extra", "unexpected argument 'extra' of `pba scenes` (`pba scenes --help` lists its arguments)"},
+        // Before the command, an option is root's: CLI11 said "The following argument was not expected".
+        {"--bogus sim", "unknown option '--bogus' of `pba` (`pba --help` lists its options)"}};
     for (const auto& [args, message] : cases) {
         const CommandResult r = runPba(args);
         EXPECT_EQ(r.exitCode, 2) << args;
@@ -190,6 +192,30 @@ TEST(PbaCommands, AMistypedCommandOrOptionIsNamedWithTheOneItIsCloseTo)
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_EQ(r.err.find("did you mean"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("unknown command 'frobnicate' (the commands: sim,"), std::string::npos) << r.err;
+}
+
+// CLI11's own messages ("--out: 1 required FILE.csv missing", "--windows: Value 0 not in range 1
+// to 100") reached the user as CLI11 wrote them: each is one line in pba's form, naming the option
+// and the reason, with exit 2.
+TEST(PbaCommands, CommandLineErrorsNameTheOptionAndTheReason)
+{
+    const std::pair<const char*, const char*> cases[] = {
+        {"sim integrators --out", "--out: expected a value (FILE.csv), got none"},
+        {"field --at", "--at: expected a value (X,Y,Z), got none"},
+        {"field --at 1,2", "--at: expected 3 numbers (x,y,z), got 2"},
+        {"field --at 1,2,3,4", "--at: expected 3 numbers (x,y,z), got 4"},
+        {"render integrators", "--out: required; give it a value (PATH)"},
+        {"bench --windows 0", "--windows: must be from 1 to 100, got 0"},
+        {"field --slice --resolution 5", "--resolution: must be from 16 to 2000, got 5"},
+        {"bench --peer-worker --phase x", "--phase: unknown value 'x' (expected one of: flight, landed, rested)"},
+        {"bench --phases --peer-worker", "--peer-worker: not with --phases"},
+        {"bench --iterations 5", "--iterations: only with --pile-worker"}};
+    for (const auto& [args, message] : cases) {
+        const CommandResult r = runPba(args);
+        EXPECT_EQ(r.exitCode, 2) << args;
+        EXPECT_EQ(r.err, std::string("pba: error: ") + message + "\n");
+        EXPECT_EQ(r.out, "") << args;
+    }
 }
 
 // The incline's lesson in pba sim's words: the steep ramp's box slides at g (sin 35 - 0.5 cos 35).
