@@ -21,6 +21,7 @@
 #include "study/rotation_plots.hpp"
 #include "scene/closest_name.hpp"
 #include "scene_options.hpp"
+#include "shown_path.hpp"
 
 namespace pba::app {
 
@@ -263,8 +264,8 @@ int runRotationCompare(const CompareOptions& options, Scene scene)
     if (!std::isnan(result.exactPeriod))
         fmt::print("flip period error (T - T_exact) / T_exact, T_exact = {:.6f} s:\n{}\n", result.exactPeriod,
                    rotationTable(config, result, RotationMeasure::PeriodError, false));
-    progress.finish(fmt::format("wrote {}/report.md, results.csv{} ({} runs)", options.out, plots ? " and plots" : "",
-                                result.runs.size()));
+    progress.finish(fmt::format("wrote {}/report.md, results.csv{} ({} runs)", shownPath(options.out),
+                                plots ? " and plots" : "", result.runs.size()));
     return kExitSuccess;
 }
 
@@ -295,7 +296,7 @@ int runClockCompare(const CompareOptions& options)
     const bool plot = publishStudy(folder, config, result, "clocks.csv", writeClockCsv, writeClockPlot, writeClockReport);
     fmt::print("largest distance of a body from the 60 Hz run, {} at dt = {:g} s:\n{}\n{}", config.scene.name,
                config.dt, clockTable(config, result, false), clockFindings(config, result));
-    fmt::print("wrote {}/report.md, clocks.csv{}\n", options.out, plot ? " and clocks.png" : "");
+    fmt::print("wrote {}/report.md, clocks.csv{}\n", shownPath(options.out), plot ? " and clocks.png" : "");
     return kExitSuccess;
 }
 
@@ -367,7 +368,7 @@ int runCompare(const CompareOptions& options)
     if (options.workPrecision)
         fmt::print("\nwork against precision (work_precision.csv), cheapest to an error of 1e-3 on one thread:\n{}",
                    study::workPrecisionFindings(points, 1e-3));
-    progress.finish(fmt::format("wrote {}/report.md, results.csv, orders.csv{}{} ({} runs)", options.out,
+    progress.finish(fmt::format("wrote {}/report.md, results.csv, orders.csv{}{} ({} runs)", shownPath(options.out),
                                 result.stability.empty() ? "" : ", stability.csv", plots ? " and plots" : "",
                                 result.runs.size()));
     return kExitSuccess;

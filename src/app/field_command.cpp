@@ -19,6 +19,7 @@
 #include "pba/blow_dryer.hpp"
 #include "pba/scene/scene.hpp"
 #include "scene_options.hpp"
+#include "shown_path.hpp"
 
 namespace pba::app {
 
@@ -211,7 +212,7 @@ int drawSlice(const Scene& scene, const FieldOptions& options)
         fmt::arg("h0", frame.hMin), fmt::arg("h1", frame.hMax), fmt::arg("max", std::max(scale, 1e-9)));
     runGnuplot(script, dir.path(), {scene.name}); // the name is data (ARG1), never script text
     publish(dir.path() / "slice.png", target);
-    fmt::print("wrote {} (peak |F| = {:.4g} N)\n", *options.out, maxMagnitude);
+    fmt::print("wrote {} (peak |F| = {:.4g} N)\n", shownPath(*options.out), maxMagnitude);
     return kExitSuccess;
 }
 

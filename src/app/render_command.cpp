@@ -19,6 +19,7 @@
 #include "io/output_file.hpp"
 #include "render_output.hpp"
 #include "scene_options.hpp"
+#include "shown_path.hpp"
 #include "pba/clock.hpp"
 #include "render/image_io.hpp"
 #include "render/offscreen.hpp"
@@ -115,11 +116,11 @@ int runRender(const RenderOptions& options)
             progress.update(frame + 1);
         }
     } catch (const BlowUpError& error) {
-        fmt::print(stderr, "pba: error: {}: {}\n", scene.source, error.what());
+        fmt::print(stderr, "pba: error: {}: {}\n", shownPath(scene.source), error.what());
         return kExitSimulationFailure;
     }
     sink.finish();
-    progress.finish(fmt::format("wrote {} ({} frame{}, {}x{}, t = {:.3g} s)", options.out,
+    progress.finish(fmt::format("wrote {} ({} frame{}, {}x{}, t = {:.3g} s)", shownPath(options.out),
                                 kind == OutputKind::Png ? 1 : frames, kind == OutputKind::Png || frames == 1 ? "" : "s",
                                 width, height, render::drawnTime(scene.world, alpha, settings.interpolate)));
     return kExitSuccess;

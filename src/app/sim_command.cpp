@@ -16,6 +16,7 @@
 #include "csv.hpp"
 #include "progress.hpp"
 #include "scene_options.hpp"
+#include "shown_path.hpp"
 #include "sim_summary.hpp"
 #include "pba/blow_up_watch.hpp"
 #include "pba/clock.hpp"
@@ -177,7 +178,8 @@ void warnOfLargeCsv(const SimOptions& options, const Scene& scene)
     const double bytes = 100.0 * particles * steps;
     if (bytes > 1e9)
         fmt::print(stderr, "pba sim: --swarm-particles will write about {:.0f} GB ({:g} rows of swarm particles) to {}; "
-                           "a shorter --duration writes less\n", bytes / 1e9, particles * steps, *options.out);
+                           "a shorter --duration writes less\n",
+                   bytes / 1e9, particles * steps, shownPath(*options.out));
 }
 
 /// A CSV under a picture's, a video's or JSON's name would open as a broken file of that kind.
@@ -218,7 +220,7 @@ int runSim(const SimOptions& options)
     } catch (const BlowUpError& error) {
         if (csv)
             csv->commit(); // the rows so far are valid, up to the last finite step
-        fmt::print(stderr, "pba: error: {}: {}\n", scene.source, error.what());
+        fmt::print(stderr, "pba: error: {}: {}\n", shownPath(scene.source), error.what());
         return kExitSimulationFailure;
     }
     if (csv)
@@ -227,7 +229,7 @@ int runSim(const SimOptions& options)
     if (options.out)
         fmt::print("wrote {} to {}\n", options.swarmParticles ? "every body and swarm particle at every step"
                                                               : fmt::format("{} rows", (world.stepCount() + 1) * world.bodyCount()),
-                   *options.out);
+                   shownPath(*options.out));
     return kExitSuccess;
 }
 

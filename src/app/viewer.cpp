@@ -8,6 +8,7 @@
 #include <imgui.h>
 
 #include "command.hpp"
+#include "shown_path.hpp"
 #include "io/output_file.hpp"
 #include "key_input.hpp"
 #include "lanes.hpp"
@@ -105,9 +106,9 @@ int saveScreenshot(const ViewerState& state, render::WindowContext& window, glm:
                    const std::filesystem::path& shot, const ViewerRun& run)
 {
     render::writePng(shot, size.x, size.y, window.readPixels());
-    fmt::print("wrote {} (t = {:g} s)\n", *run.screenshot, *run.time);
+    fmt::print("wrote {} (t = {:g} s)\n", shownPath(*run.screenshot), *run.time);
     if (state.error)
-        fmt::print(stderr, "pba: error: {}: {}\n", state.scene.source, *state.error);
+        fmt::print(stderr, "pba: error: {}: {}\n", shownPath(state.scene.source), *state.error);
     return state.error ? kExitSimulationFailure : kExitSuccess;
 }
 

@@ -96,6 +96,33 @@ TEST(Security, OddOutputNamesAreWrittenUnderExactlyThatName)
     EXPECT_TRUE(temporaries(dir).empty());
 }
 
+// A path is printed with its control characters escaped, in a "wrote" line as in an error: a
+// newline in it split the line, and a reader of the output saw two.
+TEST(Security, APathWithControlCharactersIsPrintedOnOneLine)
+{
+    const fs::path dir = freshDir("control_paths") / "new\nline\tfolder";
+    fs::create_directories(dir);
+    const std::string shown = (dir.parent_path() / "new\\nline\\tfolder").string();
+    const std::pair<std::vector<std::string>, std::string> writes[] = {
+        {{"sim", "integrators", "--duration", "0.05", "--out", (dir / "run.csv").string()},
+         "wrote 18 rows to " + shown + "/run.csv\n"},
+        {{"field", "--slice", "--resolution", "16", "--out", (dir / "f.png").string()}, "wrote " + shown + "/f.png ("},
+        {{"render", "integrators", "--size", "64x48", "--out", (dir / "a.png").string()}, "wrote " + shown + "/a.png ("},
+        {{"compare", "--dt", "0.01", "--integrators", "rk4", "--out", (dir / "study").string()},
+         "wrote " + shown + "/study/report.md"}};
+    for (const auto& [args, line] : writes) {
+        const CommandResult r = runPbaArgv(args);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_NE(r.out.find(line), std::string::npos) << r.out;
+        EXPECT_EQ(r.out.find(dir.string()), std::string::npos) << r.out;
+    }
+    fs::copy_file(sourceDir() / "scenes/rope.json", dir / "rope.json");
+    const CommandResult blowUp = runPbaArgv({"sim", (dir / "rope.json").string(), "--dt", "0.05"});
+    EXPECT_EQ(blowUp.exitCode, 3) << blowUp.err;
+    EXPECT_EQ(blowUp.err.rfind("pba: error: " + shown + "/rope.json: the energy", 0), 0u) << blowUp.err;
+    EXPECT_EQ(std::count(blowUp.err.begin(), blowUp.err.end(), '\n'), 1) << blowUp.err;
+}
+
 TEST(Outputs, AnythingButARegularFileIsRefusedAndLeftAlone)
 {
     const fs::path dir = freshDir("not_regular");
