@@ -89,6 +89,24 @@ TEST(PbaHelp, EveryCommandsHelpEndsInExamples)
     }
 }
 
+// Every option a command's help lists is in docs/commands.md, or, for view's and render's, in
+// docs/viewer.md, where commands.md sends them: render's --arrows and --no-trails were in neither.
+TEST(PbaHelp, EveryOptionIsInTheDocs)
+{
+    const std::string commands = readFile(sourceDir() / "docs" / "commands.md");
+    const std::string viewer = readFile(sourceDir() / "docs" / "viewer.md");
+    const std::regex option(R"(\n  (?:-h,)?(--[a-z-]+))");
+    for (const auto& command : kCommands) {
+        const std::string help = helpOf(command);
+        const bool drawing = command == "view" || command == "render";
+        for (auto it = std::sregex_iterator(help.begin(), help.end(), option); it != std::sregex_iterator(); ++it) {
+            const std::regex named("(^|[^a-z-])" + (*it)[1].str() + "(?![a-z-])"); // --phase, not --phases
+            EXPECT_TRUE(std::regex_search(commands, named) || (drawing && std::regex_search(viewer, named)))
+                << "pba " << command << " " << (*it)[1];
+        }
+    }
+}
+
 TEST(PbaHelp, VersionIsOneLine)
 {
     const CommandResult r = runPba("--version");
