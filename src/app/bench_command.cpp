@@ -352,7 +352,10 @@ void addBenchCommand(CLI::App& root, Action& selected)
                                                    "on 1 and all cores, the heap-Particle baseline, the bandwidth "
                                                    "bound, a 128 x 128 cloth, piles of 1,000 and 10,000 "
                                                    "dice");
-    bench->add_flag("--json", options->json, "Print {\"results\": [...]} instead of a table");
+    bench->add_flag("--json", options->json,
+                    "Print one JSON object instead of the tables: {\"machine\": {\"cores\": N}, \"results\": [...]}, "
+                    "a row of each table an object with its \"layout\" (with --phases {\"results\": [...]} alone; "
+                    "the keys: docs/commands.md)");
     bench->add_flag("--quick", options->quick, "Measure briefly, at N = 1e3 and 1e5 (for scripted checks)");
     bench->add_option("--windows", options->windows, "Windows timed per row, 1 to 100 (default 6, 1 with --quick)")
         ->transform(decimalOnly())

@@ -253,7 +253,9 @@ void addFieldCommand(CLI::App& root, Action& selected)
     field->add_option("--at", options->atText, "Print the force on a unit-mass particle at rest at this point "
                                                "(each field's share and the total, gravity included)")
         ->option_text("X,Y,Z");
-    field->add_flag("--json", options->json, "With --at: print {\"total\": [x,y,z], \"forces\": [...]} instead");
+    field->add_flag("--json", options->json,
+                    "With --at: print {\"at\": [x,y,z], \"forces\": [{\"force\": [x,y,z], \"type\": NAME}, ...], "
+                    "\"total\": [x,y,z]} instead");
     field->add_flag("--slice", options->slice, "Draw the field in the vertical plane through the dryer's axis: "
                                                "magnitude colour map, arrows, the cone and the floor");
     field->add_option("--out", options->out, "With --slice: the PNG to write")->type_name("FILE.png");

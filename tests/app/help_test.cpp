@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <regex>
+#include <set>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "pba/scene/scene.hpp"
 #include "support/run_command.hpp"
@@ -87,6 +90,54 @@ TEST(PbaHelp, EveryCommandsHelpEndsInExamples)
         const auto at = help.find("\nExamples:\n  pba " + std::string(command) + " ");
         EXPECT_NE(at, std::string::npos) << "pba " << command << " --help\n" << help;
     }
+}
+
+namespace {
+
+/// The line of `help` that describes `option`, with the lines its description wraps onto.
+std::string optionHelp(const std::string& help, const std::string& option)
+{
+    const std::size_t at = help.find("\n  " + option + " ");
+    const std::size_t end = at == std::string::npos ? at : help.find("\n  --", at + 1);
+    return at == std::string::npos ? std::string() : help.substr(at, end - at);
+}
+
+/// Every key of `object`, and of the objects in its arrays, at any depth.
+void collectKeys(const nlohmann::json& object, std::set<std::string>& keys)
+{
+    for (const auto& [key, value] : object.items()) {
+        if (object.is_object())
+            keys.insert(key);
+        if (value.is_structured())
+            collectKeys(value, keys);
+    }
+}
+
+} // namespace
+
+// `field --json`'s help named two of its three keys, and `bench --json`'s one of two: the help
+// and docs/commands.md now name every key the commands write.
+TEST(PbaHelp, JsonOutputsAreDescribedByTheHelpAndTheDocs)
+{
+    const std::string docs = readFile(sourceDir() / "docs" / "commands.md");
+    const CommandResult field = runPba("field blow-dryer --at 0,1,0 --json");
+    ASSERT_EQ(field.exitCode, 0) << field.err;
+    std::set<std::string> keys;
+    collectKeys(nlohmann::json::parse(field.out), keys);
+    const std::string fieldHelp = optionHelp(helpOf("field"), "--json");
+    for (const std::string& key : keys) {
+        EXPECT_NE(fieldHelp.find("\"" + key + "\""), std::string::npos) << key << "\n" << fieldHelp;
+        EXPECT_NE(docs.find("\"" + key + "\""), std::string::npos) << key;
+    }
+    const CommandResult phases = runPba("bench --phases --sizes 1e3 --quick --json");
+    ASSERT_EQ(phases.exitCode, 0) << phases.err;
+    keys.clear();
+    collectKeys(nlohmann::json::parse(phases.out), keys);
+    for (const std::string& key : keys)
+        EXPECT_NE(docs.find("\"" + key + "\""), std::string::npos) << key;
+    const std::string benchHelp = optionHelp(helpOf("bench"), "--json");
+    for (const char* key : {"\"machine\"", "\"results\"", "\"layout\""})
+        EXPECT_NE(benchHelp.find(key), std::string::npos) << key << "\n" << benchHelp;
 }
 
 // Every option a command's help lists is in docs/commands.md, or, for view's and render's, in
