@@ -27,9 +27,12 @@ void Progress::update(long done)
     const double fraction = m_total > 0 ? double(done) / double(m_total) : 1.0;
     const int width = 30;
     const int filled = static_cast<int>(fraction * width);
-    const double remaining = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
-    fmt::print(stderr, "\r{} [{}{}] {}/{}  {:.1f} s elapsed, {:.1f} s left   ", m_what, std::string(filled, '#'),
-               std::string(width - filled, '.'), done, m_total, elapsed, remaining);
+    // Until a unit of work has finished there is no rate to estimate from: "0.0 s left" there
+    // read as nearly done when nothing was. Padded, so that the estimate overwrites those words.
+    const std::string left = done > 0 ? fmt::format("{:.1f} s left", elapsed * (1.0 - fraction) / fraction)
+                                      : std::string("estimating the time left");
+    fmt::print(stderr, "\r{} [{}{}] {}/{}  {:.1f} s elapsed, {:<24}   ", m_what, std::string(filled, '#'),
+               std::string(width - filled, '.'), done, m_total, elapsed, left);
     std::fflush(stderr);
 }
 

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <csignal>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -178,6 +179,22 @@ TEST(PbaCompare, WritesEveryRowAndPlotsAndIsTheSameWhateverTheJobs)
     EXPECT_NE(report.find("## Findings"), std::string::npos);
     EXPECT_NE(report.find("![height](height.png)"), std::string::npos);
     EXPECT_NE(one.out.find("order of accuracy"), std::string::npos);
+}
+
+// The progress bar showed "0.0 s left" while no run had finished (the estimate divided by a
+// fraction of 0): before the first it says it is estimating. Each run here takes seconds.
+TEST(PbaCompare, TheProgressBarEstimatesNothingBeforeARunHasFinished)
+{
+    const auto dir = freshDir("compare_progress");
+    RunOptions options;
+    options.stderrOnTerminal = true;
+    options.stopAfterMs = 2500; // the bar appears after a second; the first run ends after several
+    options.stopSignal = SIGINT;
+    const CommandResult r = runPbaArgv({"compare", "--dt", "1e-6", "--out", (dir / "study").string()}, options);
+    EXPECT_EQ(r.exitCode, 128 + SIGINT) << r.err;
+    EXPECT_TRUE(std::regex_search(r.err, std::regex(R"(0/16  \d+\.\d s elapsed, estimating the time left)"))) << r.err;
+    EXPECT_EQ(r.err.find(" s left"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "study" / "report.md"));
 }
 
 TEST(PbaCompare, OneDtReportReadsTrueAndTheSpringHasOneTable)

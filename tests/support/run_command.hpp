@@ -64,6 +64,7 @@ inline CommandResult runPba(const std::string& args) { return runShell(pbaBinary
 #include <functional>
 #include <vector>
 
+#include <fcntl.h>
 #include <sys/resource.h>
 
 namespace pba::test {
@@ -75,6 +76,7 @@ struct RunOptions {
     int stopSignal = SIGTERM;
     std::filesystem::path workDir{}; ///< empty: this process's
     std::function<void(pid_t)> whileRunning{}; ///< called once it started, before waiting for it
+    bool stderrOnTerminal = false;   ///< stderr a pseudo-terminal, as a progress bar needs (read into err)
 };
 
 /// Runs the pba binary with an argument vector, no shell: what the arguments hold reaches pba
@@ -89,12 +91,23 @@ inline CommandResult runPbaArgv(const std::vector<std::string>& args, const RunO
     for (auto& a : argv)
         pointers.push_back(a.data());
     pointers.push_back(nullptr);
+    const int terminal = options.stderrOnTerminal ? ::posix_openpt(O_RDWR | O_NOCTTY) : -1;
+    if (terminal >= 0 && (::grantpt(terminal) != 0 || ::unlockpt(terminal) != 0))
+        return {};
+    const std::string terminalName = terminal >= 0 ? ::ptsname(terminal) : "";
     const pid_t pid = ::fork();
     if (pid == 0) {
         std::FILE* out = std::freopen(outPath.c_str(), "w", stdout);
         std::FILE* err = std::freopen(errPath.c_str(), "w", stderr);
         (void)out;
         (void)err;
+        if (terminal >= 0) {
+            const int side = ::open(terminalName.c_str(), O_RDWR | O_NOCTTY);
+            if (side < 0 || ::dup2(side, STDERR_FILENO) < 0)
+                ::_exit(125);
+            ::close(side);
+            ::close(terminal);
+        }
         if (!options.path.empty())
             ::setenv("PATH", options.path.c_str(), 1);
         if (options.fileSizeLimit >= 0) {
@@ -118,6 +131,14 @@ inline CommandResult runPbaArgv(const std::vector<std::string>& args, const RunO
     result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     result.out = readFile(outPath);
     result.err = readFile(errPath);
+    if (terminal >= 0) {
+        // What the program wrote to its terminal, up to the end its exit left (EIO) or nothing more.
+        ::fcntl(terminal, F_SETFL, O_NONBLOCK);
+        char buffer[4096];
+        for (ssize_t n; (n = ::read(terminal, buffer, sizeof buffer)) > 0;)
+            result.err.append(buffer, std::size_t(n));
+        ::close(terminal);
+    }
     std::filesystem::remove(outPath);
     std::filesystem::remove(errPath);
     return result;
