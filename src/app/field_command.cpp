@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "atomic_file.hpp"
 #include "command.hpp"
 #include "flag_values.hpp"
 #include "gnuplot.hpp"
@@ -173,7 +174,7 @@ int drawSlice(const Scene& scene, const FieldOptions& options)
     const std::vector<WorldDryer> dryers = blowDryers(scene.world);
     if (dryers.empty())
         throw UsageError(fmt::format("{}: scene has no blow-dryer force to slice", scene.source));
-    const std::filesystem::path target = io::resolveOutputFile(*options.out); // before any work
+    const std::filesystem::path target = resolveWritableFile("--out", *options.out); // before any work
     const BlowDryerField& f = dryers.front().field;
     const SliceFrame frame = sliceFrame(scene.world, f);
     ScratchDir dir("pba-field");

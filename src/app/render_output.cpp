@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "atomic_file.hpp"
 #include "command.hpp"
 
 namespace pba::app {
@@ -51,7 +52,7 @@ FrameSink::FrameSink(OutputKind kind, const std::string& out, int width, int hei
     if (kind == OutputKind::Frames)
         m_folder = std::make_unique<io::FolderOutput>(out, isFrameName);
     else
-        m_out = io::resolveOutputFile(out);
+        m_out = resolveWritableFile("--out", out);
     if (kind == OutputKind::Mp4)
         m_video = std::make_unique<render::VideoWriter>(m_out, width, height, fps);
 }

@@ -206,7 +206,7 @@ int runSim(const SimOptions& options)
     warnOfLargeCsv(options, scene);
     std::unique_ptr<AtomicFile> csv;
     if (options.out) {
-        csv = std::make_unique<AtomicFile>(*options.out);
+        csv = std::make_unique<AtomicFile>(*options.out, "--out");
         writeCsvHeader(csv->stream(), scene.world.hasRigidBodies());
     }
     World& world = scene.world;

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <imgui.h>
 
+#include "atomic_file.hpp"
 #include "command.hpp"
 #include "shown_path.hpp"
 #include "io/output_file.hpp"
@@ -117,7 +118,7 @@ int saveScreenshot(const ViewerState& state, render::WindowContext& window, glm:
 int runViewer(Scene scene, const ViewerRun& run)
 {
     const std::optional<std::filesystem::path> shot =
-        run.screenshot ? std::optional(io::resolveOutputFile(*run.screenshot)) : std::nullopt; // before the window opens
+        run.screenshot ? std::optional(resolveWritableFile("--screenshot", *run.screenshot)) : std::nullopt; // before the window opens
     KeyInput keys; // outlives the window, whose key callback writes to it
     render::WindowContext window(1280, 720, fmt::format("pba: {}", scene.name));
     glfwSetWindowUserPointer(window.window(), &keys);

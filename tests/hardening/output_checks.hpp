@@ -112,17 +112,18 @@ inline std::filesystem::path stagingFolder(const std::filesystem::path& dir)
     return {};
 }
 
-/// A 64 KiB tmpfs mounted at `dir` while this lives: a disk that fills. Mounting needs root (or
-/// CAP_SYS_ADMIN); without it mounted() is false and why() says so, for GTEST_SKIP.
+/// A 64 KiB tmpfs mounted at `dir` while this lives: a disk that fills, or with MS_RDONLY in
+/// `flags` one that cannot be written at all. Mounting needs root (or CAP_SYS_ADMIN); without it
+/// mounted() is false and why() says so, for GTEST_SKIP.
 class SmallDisk {
 public:
-    explicit SmallDisk(const std::filesystem::path& dir) : m_dir(dir)
+    explicit SmallDisk(const std::filesystem::path& dir, unsigned long flags = 0) : m_dir(dir)
     {
         std::filesystem::create_directories(dir);
-        if (::mount("tmpfs", dir.c_str(), "tmpfs", 0, "size=64k") == 0)
+        if (::mount("tmpfs", dir.c_str(), "tmpfs", flags, "size=64k") == 0)
             m_mounted = true;
         else
-            m_why = std::string("a full disk is a 64 KiB tmpfs, and mounting one needs root: ") + std::strerror(errno);
+            m_why = std::string("a small disk is a 64 KiB tmpfs, and mounting one needs root: ") + std::strerror(errno);
     }
     ~SmallDisk()
     {

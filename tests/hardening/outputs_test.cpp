@@ -324,6 +324,33 @@ TEST(Outputs, AVideoOnAFullDiskKeepsThePreviousOne)
     EXPECT_TRUE(temporaries(dir).empty());
 }
 
+// A folder that cannot be written is found before the work, as sim's was: field's slice and
+// render's picture and video failed only once made, naming their temporary, with exit 1.
+TEST(Outputs, AFolderThatCannotBeWrittenIsRefusedBeforeAnyWork)
+{
+    const fs::path dir = freshDir("read_only");
+    SmallDisk disk(dir / "disk", MS_RDONLY);
+    if (!disk.mounted() && ::geteuid() == 0)
+        GTEST_SKIP() << disk.why();
+    if (!disk.mounted())
+        fs::permissions(dir / "disk", fs::perms::owner_read | fs::perms::owner_exec); // honoured but by root
+    const std::vector<std::vector<std::string>> runs{
+        {"field", "--slice", "--out", "disk/f.png"},
+        {"render", "integrators", "--size", "64x48", "--out", "disk/a.png"},
+        {"render", "integrators", "--size", "64x48", "--duration", "0.2", "--out", "disk/a.mp4"},
+        {"sim", "integrators", "--duration", "0.1", "--out", "disk/run.csv"}};
+    for (const auto& args : runs) {
+        const CommandResult r = runPbaArgv(args, {.workDir = dir});
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        EXPECT_EQ(r.err.rfind("pba: error: --out: " + args.back() + ": cannot be written (", 0), 0u) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_EQ(r.out, "") << r.out;
+    }
+    if (!disk.mounted())
+        fs::permissions(dir / "disk", fs::perms::owner_all);
+    EXPECT_TRUE(fs::is_empty(dir / "disk"));
+}
+
 // SIGHUP is what a closed terminal sends.
 TEST(Outputs, AnInterruptedRunLeavesNoTemporary)
 {
