@@ -199,9 +199,10 @@ void JointSolver::prepareSpring(const Joint& j, Rows& r, const SolverBody& a, co
     // Catto's "Soft Constraints"); half each under velocity Verlet, the splitting and RK4, along
     // the mean of the start's and end's lines and scaled by |d0 + d1| / (|d0| + |d1|), which
     // keeps the spring's energy exactly over a step that the two anchors drift by the mean of
-    // their velocities (a discrete gradient, Gonzalez). Taken at the end alone there, the start
-    // velocity's half of the drift left the swing's turn out of the position, and a ball
-    // circling on a spring gained energy every step.
+    // their velocities (a discrete gradient, Gonzalez); the start's alone under forward Euler.
+    // Taken at the end alone under a Verlet-type method, the start velocity's half of the drift
+    // left the swing's turn out of the position, and a ball circling on a spring gained energy
+    // every step.
     const dmat3 ma = bodyPointMass(a, r.rA), mb = bodyPointMass(b, r.rB);
     const double ka = glm::dot(r.n, ma * r.n), kb = glm::dot(r.n, mb * r.n);
     const double wa = a.driftWeight, wb = b.driftWeight;
