@@ -138,7 +138,7 @@ void JointSolver::warmStart()
         SolverBody& a = m_bodies[r.a];
         SolverBody& b = m_bodies[r.b];
         if (j.type == JointType::Distance) {
-            applyLinear(a, b, r.rA, r.rB, r.axialImpulse * r.n + r.startImpulse * r.startDirection);
+            applyLinear(a, b, r.rA, r.rB, (r.axialImpulse + r.startImpulse) * r.n);
             continue;
         }
         applyLinear(a, b, r.rA, r.rB, r.linearImpulse);
@@ -235,7 +235,6 @@ void JointSolver::prepareSpring(const Joint& j, Rows& r, const SolverBody& a, co
             r.startImpulse = startImpulse * r.stretchScale;
         }
     }
-    r.startDirection = r.n;
     // The stretch at the end as the velocities drive it: springStretch + dt e . (wB vB - wA vA),
     // e the end's line.
     const dvec3& e = r.endLine;

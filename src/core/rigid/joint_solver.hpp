@@ -69,8 +69,7 @@ private:
         double angle = 0.0;      ///< hinge: at the start of the step
         // A distance spring's terms (prepareSpring).
         double endShare = 1.0;      ///< the share of its impulse taken at the end of the step
-        double startImpulse = 0.0;  ///< the rest, from the start's stretch, along startDirection
-        dvec3 startDirection{0.0};
+        double startImpulse = 0.0;  ///< the rest, from the start's stretch, along n
         dvec3 endLine{0.0};         ///< the line between the anchors at the end, as foreseen
         double stretchScale = 1.0;  ///< |d0 + d1| / (|d0| + |d1|)
         double springStretch = 0.0; ///< the stretch at the end but for dt e . (wB vB - wA vA)
