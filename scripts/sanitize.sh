@@ -15,7 +15,7 @@ export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1:strict_stri
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 # Mesa's driver (llvmpipe) and libEGL keep caches alive until exit; those are not ours.
 export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
-gl='^(PbaRender|PbaView|HeadlessRender|RenderClock|Security|Outputs)\.'
+gl='^(PbaRender|PbaView|HeadlessRender|RenderClock|Security|Outputs)\.|^NumericFlagsDecimal\.LeadingZerosAreRead$'
 # The install test links an uninstrumented consumer against these instrumented libraries: it
 # tests packaging, which the plain build already does. The simulated hours (tunnelling, soak)
 # run the same code as the short tests 10^4 times over; unvectorised and checked at every load
@@ -25,7 +25,7 @@ gl='^(PbaRender|PbaView|HeadlessRender|RenderClock|Security|Outputs)\.'
 # the work-precision study run here (about a minute and a half more than without them).
 long='^(Tunnelling|Soak)\.|^Swarm\.CrowdedBlocksGetTheSameRuleAsParticlesAlone$'
 ctest --test-dir build-asan --output-on-failure -j "$jobs" -E "$gl|^install\.|$long"
-# The OpenGL tests (and the output tests, whose pba children render) run with address and UB
-# checks but without leak checks: llvmpipe's JIT-compiled
+# The OpenGL tests (and the output tests and the leading-zeros one, whose pba children render)
+# run with address and UB checks but without leak checks: llvmpipe's JIT-compiled
 # code allocates from frames LeakSanitizer cannot name, so its leaks cannot be told from ours.
 ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" ctest --test-dir build-asan --output-on-failure -j "$jobs" -R "$gl"
