@@ -56,13 +56,6 @@ dvec3 anchorVelocity(const SolverBody& a, const SolverBody& b, const dvec3& ra, 
     return b.pointVelocity(rb) - a.pointVelocity(ra);
 }
 
-/// What an impulse p at arm r does to the velocity of the body's point there: (1/m I - [r] I^-1 [r]) p.
-dmat3 bodyPointMass(const SolverBody& body, const dvec3& r)
-{
-    const dmat3 s = skew(r);
-    return dmat3(body.inverseMass) - s * body.inverseInertia * s;
-}
-
 /// How many times a Verlet-type spring's line is found again (prepareSpring).
 constexpr int kSpringLineRounds = 6;
 
@@ -206,12 +199,12 @@ void JointSolver::prepareSpring(const Joint& j, Rows& r, const SolverBody& a, co
     const dmat3 ma = bodyPointMass(a, r.rA), mb = bodyPointMass(b, r.rB);
     const double ka = glm::dot(r.n, ma * r.n), kb = glm::dot(r.n, mb * r.n);
     const double wa = a.driftWeight, wb = b.driftWeight;
-    r.endShare = ka + kb > 0.0 ? (wa * ka + wb * kb) / (ka + kb) : 1.0;
+    const double endShare = ka + kb > 0.0 ? (wa * ka + wb * kb) / (ka + kb) : 1.0;
     const double start = glm::dot(r.n, d) - j.length;
-    r.startImpulse = -(1.0 - r.endShare) * dt * j.stiffness * start;
-    r.stretchScale = 1.0;
+    r.startImpulse = -(1.0 - endShare) * dt * j.stiffness * start;
+    double stretchScale = 1.0;
     r.endLine = r.n;
-    if (r.endShare < 1.0) {
+    if (endShare < 1.0) {
         // Where the free step and the start's share leave the two anchors, and the line between
         // the start's and that: the start's share acts along the line it depends on, found
         // again a few times (each time closer by the square of the step's turn).
@@ -231,8 +224,8 @@ void JointSolver::prepareSpring(const Joint& j, Rows& r, const SolverBody& a, co
                 break;
             r.endLine = end / endLength;
             r.n = mean / meanLength;
-            r.stretchScale = meanLength / (startLength + endLength);
-            r.startImpulse = startImpulse * r.stretchScale;
+            stretchScale = meanLength / (startLength + endLength);
+            r.startImpulse = startImpulse * stretchScale;
         }
     }
     // The stretch at the end as the velocities drive it: springStretch + dt e . (wB vB - wA vA),
@@ -242,8 +235,8 @@ void JointSolver::prepareSpring(const Joint& j, Rows& r, const SolverBody& a, co
                       dt * glm::dot(e, (1.0 - wb) * b.pointStartVelocity(r.rB) - (1.0 - wa) * a.pointStartVelocity(r.rA));
     const double k = glm::dot(r.n, (ma + mb) * r.n);
     const double kw = glm::dot(e, (wa * ma + wb * mb) * r.n);
-    const double endStiffness = r.endShare * r.stretchScale * j.stiffness;
-    r.springGain = 1.0 / (1.0 + dt * (endStiffness * dt * kw + j.damping * k));
+    r.endStiffness = endShare * stretchScale * j.stiffness;
+    r.springGain = 1.0 / (1.0 + dt * (r.endStiffness * dt * kw + j.damping * k));
 }
 
 void JointSolver::solveDistance(const Joint& j, Rows& r, SolverBody& a, SolverBody& b)
@@ -251,13 +244,12 @@ void JointSolver::solveDistance(const Joint& j, Rows& r, SolverBody& a, SolverBo
     const double speed = glm::dot(r.n, anchorVelocity(a, b, r.rA, r.rB));
     double lambda = -r.axialMass * speed;
     if (j.stiffness > 0.0) {
-        // The impulse so far must equal -dt (share k stretchAtEnd + c speed); the sweep moves it there.
+        // The impulse so far must equal -dt (endStiffness stretchAtEnd + c speed); the sweep moves it there.
         const double dt = m_settings.dt;
         const double drive =
             glm::dot(r.endLine, b.driftWeight * b.pointVelocity(r.rB) - a.driftWeight * a.pointVelocity(r.rA));
         const double stretch = r.springStretch + dt * drive;
-        const double endStiffness = r.endShare * r.stretchScale * j.stiffness;
-        lambda = -r.springGain * (dt * (endStiffness * stretch + j.damping * speed) + r.axialImpulse);
+        lambda = -r.springGain * (dt * (r.endStiffness * stretch + j.damping * speed) + r.axialImpulse);
     }
     r.axialImpulse += lambda;
     applyLinear(a, b, r.rA, r.rB, lambda * r.n);

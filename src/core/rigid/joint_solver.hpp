@@ -68,12 +68,13 @@ private:
         dvec3 n{0.0};            ///< distance: from A's anchor to B's
         double angle = 0.0;      ///< hinge: at the start of the step
         // A distance spring's terms (prepareSpring).
-        double endShare = 1.0;      ///< the share of its impulse taken at the end of the step
+        /// k times the share of its impulse taken at the end of the step, times |d0 + d1| /
+        /// (|d0| + |d1|) under a Verlet-type method
+        double endStiffness = 0.0;
         double startImpulse = 0.0;  ///< the rest, from the start's stretch, along n
         dvec3 endLine{0.0};         ///< the line between the anchors at the end, as foreseen
-        double stretchScale = 1.0;  ///< |d0 + d1| / (|d0| + |d1|)
         double springStretch = 0.0; ///< the stretch at the end but for dt e . (wB vB - wA vA)
-        double springGain = 0.0;    ///< 1 / (1 + dt (share scale dt k Kw + c K))
+        double springGain = 0.0;    ///< 1 / (1 + dt (endStiffness dt Kw + c K))
         dvec3 linearImpulse{0.0}, angularImpulse{0.0};
         double axialImpulse = 0.0, lowerImpulse = 0.0, upperImpulse = 0.0;
     };

@@ -126,12 +126,18 @@ inline void SolverBody::turnPose(const dvec3& l)
 /// [r]x, the matrix of r x (.).
 inline dmat3 skew(const dvec3& r) { return dmat3(0.0, r.z, -r.y, -r.z, 0.0, r.x, r.y, -r.x, 0.0); }
 
+/// What an impulse p at arm r does to the velocity of the body's point there: (1/m I - [r]x I^-1 [r]x) p.
+inline dmat3 bodyPointMass(const SolverBody& body, const dvec3& r)
+{
+    const dmat3 s = skew(r);
+    return dmat3(body.inverseMass) - s * body.inverseInertia * s;
+}
+
 /// What an impulse P at arms rA (on A, negated) and rB (on B) does to the two points' relative
 /// velocity: K P, with K = (1/mA + 1/mB) I - [rA]x IA^-1 [rA]x - [rB]x IB^-1 [rB]x.
 inline dmat3 pointMass(const SolverBody& a, const SolverBody& b, const dvec3& ra, const dvec3& rb)
 {
-    const dmat3 sa = skew(ra), sb = skew(rb);
-    return dmat3(a.inverseMass + b.inverseMass) - sa * a.inverseInertia * sa - sb * b.inverseInertia * sb;
+    return bodyPointMass(a, ra) + bodyPointMass(b, rb);
 }
 
 } // namespace pba::rigid
