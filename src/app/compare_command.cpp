@@ -162,7 +162,7 @@ bool publishStudy(io::FolderOutput& folder, const Config& config, const Result& 
 study::StudyConfig makeConfig(const CompareOptions& options)
 {
     study::StudyConfig config;
-    config.scene = loadScene(options.scene);
+    config.scene = loadSceneArgument(options.scene);
     bool moving = false;
     for (std::size_t i = 0; i < config.scene.world.bodyCount(); ++i)
         moving = moving || !config.scene.world.body(i).isFixed();
@@ -283,7 +283,7 @@ int runClockCompare(const CompareOptions& options)
     if (options.dts.size() > 1)
         throw UsageError(fmt::format("--clocks: takes one --dt (the fixed clock's), got {}", options.dts.size()));
     study::ClockConfig config;
-    config.scene = loadScene(options.scene);
+    config.scene = loadSceneArgument(options.scene);
     config.duration = readDuration(options, config.scene);
     if (config.duration < study::kClockMinDuration)
         throw UsageError(fmt::format("--duration: the clocks study needs at least {:g} s (the hitch is at {:g} s), "
@@ -306,7 +306,7 @@ int runCompare(const CompareOptions& options)
         return runClockCompare(options);
     {
         // A scene with a moving rigid body gets the rotation study.
-        Scene scene = loadScene(options.scene);
+        Scene scene = loadSceneArgument(options.scene);
         if (study::studiedRigidBody(scene.world)) {
             if (options.workPrecision)
                 throw UsageError(fmt::format("--work-precision: goes with the integrator study, and {} has a moving "

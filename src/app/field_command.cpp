@@ -235,7 +235,7 @@ void checkFieldOptions(const FieldOptions& options)
 int runField(const FieldOptions& options)
 {
     checkFieldOptions(options);
-    const Scene scene = loadScene(options.scene);
+    const Scene scene = loadSceneArgument(options.scene);
     if (options.slice)
         return drawSlice(scene, options);
     if (options.at.empty())

@@ -1,4 +1,5 @@
 // The `pba` command: one subcommand per file, errors as one line and a documented exit code.
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -124,6 +125,15 @@ int run(int argc, char** argv)
     const std::vector<std::string> typed(argv + 1, argv + argc);
     if (const auto empty = emptyArgumentText(app, typed)) {
         printError(*empty);
+        return kExitBadInput;
+    }
+    // CLI11 answers --version wherever it stands before a command, and drops the other words.
+    const auto command = std::find_if(typed.begin(), typed.end(), [&](const std::string& w) {
+        return !app.get_subcommands([&](const CLI::App* c) { return c->check_name(w); }).empty();
+    });
+    if (typed.size() > 1 && std::find(typed.begin(), command, "--version") != command) {
+        const auto other = std::find_if(typed.begin(), typed.end(), [](const std::string& w) { return w != "--version"; });
+        printError(fmt::format("--version: takes nothing else, got '{}'", other == typed.end() ? "--version" : *other));
         return kExitBadInput;
     }
     std::vector<std::string> args(typed.rbegin(), typed.rend()); // CLI11 takes the arguments in reverse order

@@ -1,7 +1,11 @@
 // `pba render`: the viewer's pictures without a display: one PNG, numbered PNG frames, or an
 // MP4. Video time follows the fixed-timestep clock fed with frames of 1/fps seconds, so the
 // interpolation between physics states is exercised exactly as in the window.
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <memory>
@@ -120,9 +124,14 @@ int runRender(const RenderOptions& options)
         return kExitSimulationFailure;
     }
     sink.finish();
-    progress.finish(fmt::format("wrote {} ({} frame{}, {}x{}, t = {:.3g} s)", shownPath(options.out),
+    // H.264's colour planes need even sizes: the video is padded by a row or a column of black.
+    const bool padded = kind == OutputKind::Mp4 && (width % 2 != 0 || height % 2 != 0);
+    const std::string size = padded ? fmt::format("{}x{}, padded from {}x{} as H.264 needs even sizes",
+                                                  width + width % 2, height + height % 2, width, height)
+                                    : fmt::format("{}x{}", width, height);
+    progress.finish(fmt::format("wrote {} ({} frame{}, {}, t = {:.3g} s)", shownPath(options.out),
                                 kind == OutputKind::Png ? 1 : frames, kind == OutputKind::Png || frames == 1 ? "" : "s",
-                                width, height, render::drawnTime(scene.world, alpha, settings.interpolate)));
+                                size, render::drawnTime(scene.world, alpha, settings.interpolate)));
     return kExitSuccess;
 }
 
@@ -130,10 +139,16 @@ int runRender(const RenderOptions& options)
 
 int renderDefaultScene(const std::string& directory)
 {
+    // The user typed no --out: a folder that cannot be made or written is named as what it is.
+    std::error_code ec;
+    std::filesystem::create_directories(directory, ec);
+    if (ec || ::access(directory.c_str(), W_OK) != 0)
+        throw io::BadOutput(fmt::format("{}: cannot be {} ({}): pba without a command renders into it, so run it "
+                                        "from a folder you may write in",
+                                        directory, ec ? "made" : "written", ec ? ec.message() : std::strerror(errno)));
     // Twenty seconds of silence look like a hang: say what is coming before the work starts.
     fmt::print(stderr, "pba: no display: rendering the {} scene to {}/{}.mp4 and {}/{}.png (about 20 s)...\n",
                kDefaultScene, directory, kDefaultScene, directory, kDefaultScene);
-    std::filesystem::create_directories(directory);
     RenderOptions options;
     options.scene.scene = kDefaultScene;
     options.scene.duration = 10.0;

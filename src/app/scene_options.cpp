@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <vector>
 
 #include <fmt/format.h>
@@ -81,9 +82,20 @@ std::uint64_t stepCount(double seconds, double dt, const std::string& what)
     return static_cast<std::uint64_t>(std::max(1.0, steps));
 }
 
+Scene loadSceneArgument(const std::string& nameOrPath)
+{
+    // A built-in's name wins over a file of that name in the current folder; say so, since the
+    // user may have meant the file.
+    std::error_code ec;
+    if (!builtinSceneText(nameOrPath).empty() && std::filesystem::is_regular_file(nameOrPath, ec))
+        fmt::print(stderr, "pba: note: '{0}' is the built-in scene; for the file of that name here, give ./{0}\n",
+                   nameOrPath);
+    return loadScene(nameOrPath);
+}
+
 Scene loadSceneWithOverrides(const SceneOptions& options)
 {
-    Scene scene = loadScene(options.scene);
+    Scene scene = loadSceneArgument(options.scene);
     if (options.dt) {
         if (!std::isfinite(*options.dt) || *options.dt <= 0.0)
             throw UsageError(fmt::format("--dt: must be finite and positive, got {}", *options.dt));

@@ -41,6 +41,10 @@ inline constexpr double kMaxSteps = 1e10;
 /// round(seconds / dt), at least 1; throws UsageError naming `what` beyond kMaxSteps.
 std::uint64_t stepCount(double seconds, double dt, const std::string& what);
 
+/// Loads SCENE as typed: a built-in's name, or a file (with a note on stderr when a file here
+/// has a built-in's name).
+Scene loadSceneArgument(const std::string& nameOrPath);
+
 /// Loads the scene and applies the overrides; throws SceneError or UsageError on bad input
 /// (a duration of more than kMaxSteps steps of dt included).
 Scene loadSceneWithOverrides(const SceneOptions& options);

@@ -1,6 +1,7 @@
 #include "io/folder_output.hpp"
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
@@ -26,6 +27,9 @@ FolderOutput::FolderOutput(const fs::path& requested, NamePredicate owns)
 {
     checkFolder();
     makeFolders();
+    // The staging folder is pba's own name: a folder that refuses it is named as the user gave it.
+    if (::access(m_folder.c_str(), W_OK) != 0)
+        throw BadOutput(fmt::format("{}: cannot be written: {}", m_folder.string(), std::strerror(errno)));
     m_staging.emplace(m_folder / ".pba-staging", Temporary::Kind::Folder);
 }
 

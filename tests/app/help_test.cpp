@@ -165,6 +165,17 @@ TEST(PbaHelp, VersionIsOneLine)
     EXPECT_TRUE(std::regex_match(r.out, std::regex(R"(pba \d+\.\d+\.\d+\n)"))) << r.out;
 }
 
+// CLI11 printed the version and dropped whatever came with it.
+TEST(PbaHelp, VersionWithOtherWordsIsRefused)
+{
+    for (const std::string args : {"--version extra", "--version sim", "bogus --version"}) {
+        const CommandResult r = runPba(args);
+        EXPECT_EQ(r.exitCode, 2) << args;
+        EXPECT_EQ(r.err.rfind("pba: error: --version: takes nothing else, got '", 0), 0u) << r.err;
+        EXPECT_EQ(r.out, "") << r.out;
+    }
+}
+
 TEST(PbaHelp, ScenesCommandListsEveryBuiltinSceneOnALineOfItsOwn)
 {
     const CommandResult r = runPba("scenes");

@@ -266,6 +266,20 @@ TEST(PbaSim, ABadClothOrRopeIsExit2NamingTheField)
     EXPECT_NE(r.err.find(": ropes[0].count: must be a whole number from 2"), std::string::npos) << r.err;
 }
 
+// A built-in's name is the built-in even when a file here has that name; the note says how to
+// reach the file.
+TEST(PbaSim, AFileNamedLikeABuiltinSceneIsNamedInANote)
+{
+    const auto dir = freshDir("sim_shadowed");
+    std::ofstream(dir / "pendulum") << "not a scene";
+    const CommandResult r = runPbaArgv({"sim", "pendulum", "--duration", "0.01"}, {.workDir = dir});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err, "pba: note: 'pendulum' is the built-in scene; for the file of that name here, give ./pendulum\n");
+    const CommandResult file = runPbaArgv({"sim", "./pendulum"}, {.workDir = dir});
+    EXPECT_EQ(file.exitCode, 2) << file.err;
+    EXPECT_EQ(file.err.find("note"), std::string::npos) << file.err;
+}
+
 TEST(PbaSim, UnwritableOutputIsBadInput)
 {
     const CommandResult r = runPba("sim integrators --out /nonexistent/dir/run.csv");

@@ -346,6 +346,23 @@ TEST(Outputs, AFolderThatCannotBeWrittenIsRefusedBeforeAnyWork)
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
         EXPECT_EQ(r.out, "") << r.out;
     }
+    // A folder output is named as given, not by its staging folder inside; bare pba's pba-out
+    // (no --out typed) by its own name.
+    const std::vector<std::vector<std::string>> folders{
+        {"render", "integrators", "--size", "64x48", "--duration", "0.1", "--out", "disk/"},
+        {"compare", "--duration", "0.2", "--out", "disk"}};
+    for (const auto& args : folders) {
+        const CommandResult r = runPbaArgv(args, {.workDir = dir});
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        EXPECT_EQ(r.err.rfind("pba: error: " + (dir / "disk").string() + ": cannot be written: ", 0), 0u) << r.err;
+        EXPECT_EQ(r.err.find("staging"), std::string::npos) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    }
+    const CommandResult bare = runShell("cd '" + (dir / "disk").string() + "' && env -u DISPLAY " + pbaBinary());
+    EXPECT_EQ(bare.exitCode, 2) << bare.err;
+    EXPECT_EQ(bare.err.rfind("pba: error: pba-out: cannot be made (", 0), 0u) << bare.err;
+    EXPECT_EQ(bare.err.find("--out"), std::string::npos) << bare.err;
+    EXPECT_EQ(std::count(bare.err.begin(), bare.err.end(), '\n'), 1) << bare.err;
     if (!disk.mounted())
         fs::permissions(dir / "disk", fs::perms::owner_all);
     EXPECT_TRUE(fs::is_empty(dir / "disk"));

@@ -186,6 +186,20 @@ TEST(PbaRender, FramesCoverExactlyTheTimeAskedFor)
     EXPECT_NE(video.out.find("41 frames, 64x48, t = 20 s"), std::string::npos) << video.out;
 }
 
+// H.264 needs even sizes: an odd --size is padded, and the summary says the video's real size.
+TEST(PbaRender, AnOddSizedVideoSaysItWasPadded)
+{
+    const auto dir = freshDir("render_odd_video");
+    const CommandResult r =
+        runPba("render integrators --fps 10 --duration 0.2 --size 65x49 --out " + (dir / "x.mp4").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("3 frames, 66x50, padded from 65x49 as H.264 needs even sizes"), std::string::npos) << r.out;
+    const CommandResult probe = runShell("ffprobe -v error -show_entries stream=width,height -of csv=p=0 " +
+                                         (dir / "x.mp4").string());
+    if (probe.exitCode == 0)
+        EXPECT_EQ(probe.out, "66,50\n");
+}
+
 // `pba render` stops at a blow-up with exit 3 naming the body, and writes no picture: here the
 // built-in rope at dt = 0.05, whose energy the room's walls keep finite as it explodes.
 TEST(PbaRender, ABlowUpIsExitThreeNamingTheBodyAndWritesNothing)
