@@ -107,7 +107,7 @@ std::array<double, 2> readLimits(ObjectReader& reader)
 
 } // namespace
 
-void readJoint(const Json& value, const std::string& path, const std::string& file, World& world)
+JointDesc readJoint(const Json& value, const std::string& path, const std::string& file, World& world)
 {
     ObjectReader reader(value, path, file);
     reader.expectKeys(
@@ -170,6 +170,7 @@ void readJoint(const Json& value, const std::string& path, const std::string& fi
     } catch (const std::invalid_argument& e) {
         reader.failHere(e.what());
     }
+    return joint;
 }
 
 } // namespace pba::scene_detail

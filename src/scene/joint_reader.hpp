@@ -7,7 +7,7 @@
 
 namespace pba::scene_detail {
 
-/// Reads joints[i] at `path` and adds it to the world (after its rigid bodies).
-void readJoint(const Json& value, const std::string& path, const std::string& file, World& world);
+/// Reads joints[i] at `path` and adds it to the world (after its rigid bodies); returns it.
+JointDesc readJoint(const Json& value, const std::string& path, const std::string& file, World& world);
 
 } // namespace pba::scene_detail

@@ -21,9 +21,9 @@ namespace {
 /// A gap this small against the numbers involved is touching: a turned box's corner computed on
 /// the floor lands a rounding error either side of it.
 constexpr double kTouch = 1e-9;
-/// How deep a body may start in a fixed one: a millimetre's push is not seen (a box set on a
-/// ramp by hand is that close to it).
-constexpr double kInsideFixedTolerance = 1e-3;
+/// How deep a body may start in another: a millimetre's push is not seen (a box set on a ramp
+/// by hand is that close to it).
+constexpr double kInsideTolerance = 1e-3;
 /// A cylinder's rims as polygons of this many corners, where a shape is cut by the floor over
 /// the hole (the polygon falls short of the circle by 1 - cos(pi / 256), under 1e-4 of the radius).
 constexpr int kRimCorners = 256;
@@ -200,32 +200,57 @@ void requireRigidBodiesInside(const World& world, const std::string& file)
     }
 }
 
-void requireRigidBodiesOutsideFixedOnes(const World& world, const std::string& file)
+void requireRigidBodiesApart(const World& world, const std::string& file, const std::vector<BodyPair>& joinedApart)
 {
-    std::vector<std::size_t> rigid, fixed;
+    // Bounding spheres swept along x: a pile of dice in a scene file meets only its neighbours.
+    struct Reach {
+        double low, high;
+        std::size_t body, index; ///< world index; index among the rigid bodies (rigid_bodies[index])
+    };
+    std::vector<Reach> reaches;
     for (std::size_t i = 0; i < world.bodyCount(); ++i)
         if (world.isRigid(i)) {
-            rigid.push_back(i);
-            if (world.body(i).isFixed())
-                fixed.push_back(i);
+            const auto& body = static_cast<const RigidBody&>(world.body(i));
+            const double r = body.getBoundingRadius();
+            reaches.push_back({body.getPos().x - r, body.getPos().x + r, i, reaches.size()});
         }
-    for (std::size_t k = 0; k < rigid.size(); ++k) {
-        const auto& body = static_cast<const RigidBody&>(world.body(rigid[k]));
-        if (body.isFixed())
-            continue;
-        for (const std::size_t f : fixed) {
-            const auto& other = static_cast<const RigidBody&>(world.body(f));
-            const double depth = overlapDepth(other, body);
-            if (depth <= kInsideFixedTolerance)
+    std::sort(reaches.begin(), reaches.end(), [](const Reach& a, const Reach& b) { return a.low < b.low; });
+    // The deepest of the first body (in the file's order) that starts inside another.
+    std::optional<std::pair<const Reach*, const Reach*>> first;
+    double firstDepth = 0.0;
+    for (std::size_t k = 0; k < reaches.size(); ++k)
+        for (std::size_t j = k + 1; j < reaches.size() && reaches[j].low <= reaches[k].high; ++j) {
+            const auto& a = static_cast<const RigidBody&>(world.body(reaches[k].body));
+            const auto& b = static_cast<const RigidBody&>(world.body(reaches[j].body));
+            const BodyPair key{std::min(reaches[k].body, reaches[j].body), std::max(reaches[k].body, reaches[j].body)};
+            if ((a.isFixed() && b.isFixed()) || std::binary_search(joinedApart.begin(), joinedApart.end(), key))
                 continue;
-            const bool turns = body.getShape().type != ShapeType::Sphere;
-            throw SceneError(file, fmt::format("rigid_bodies[{}].position", k),
-                             fmt::format("the {}{} starts {:.3g} m inside the fixed body '{}': a body must start "
-                                         "outside every fixed body (touching is allowed)",
-                                         shapeTypeName(body.getShape().type), turns ? " at its orientation" : "", depth,
-                                         oneLine(other.getName())));
+            const double depth = overlapDepth(a, b);
+            if (depth <= kInsideTolerance)
+                continue;
+            // The moving one is named; of two moving ones, the later in the file.
+            const Reach* named = &reaches[k];
+            const Reach* other = &reaches[j];
+            if (a.isFixed() || (!b.isFixed() && reaches[j].index > reaches[k].index))
+                std::swap(named, other);
+            if (!first || named->index < first->first->index ||
+                (named->index == first->first->index && depth > firstDepth)) {
+                first.emplace(named, other);
+                firstDepth = depth;
+            }
         }
-    }
+    if (!first)
+        return;
+    const auto& body = static_cast<const RigidBody&>(world.body(first->first->body));
+    const auto& other = static_cast<const RigidBody&>(world.body(first->second->body));
+    const bool turns = body.getShape().type != ShapeType::Sphere;
+    throw SceneError(file, fmt::format("rigid_bodies[{}].position", first->first->index),
+                     fmt::format("the {}{} starts {:.3g} m inside the {}body '{}': {}", shapeTypeName(body.getShape().type),
+                                 turns ? " at its orientation" : "", firstDepth, other.isFixed() ? "fixed " : "",
+                                 oneLine(other.getName()),
+                                 other.isFixed() ? "a body must start outside every fixed body (touching is allowed)"
+                                                 : "bodies that collide must start apart (touching is allowed; "
+                                                   "joined ones collide only with \"collide\": true)"));
 }
 
 } // namespace pba::scene_detail

@@ -4,8 +4,11 @@
 // the grille or the shaft's wall), the walls and the ceiling. The contacts push a body back out
 // of a surface by its speed, not its depth, so one that starts 0.14 m into the floor stays there,
 // and one larger than the room is thrown about by every wall at once. Touching is allowed: a box
-// resting on the floor starts exactly on it. Likewise clear of every fixed body.
+// resting on the floor starts exactly on it. Likewise clear of each other.
+#include <cstddef>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "pba/world.hpp"
 
@@ -17,10 +20,15 @@ namespace pba::scene_detail {
 /// the depth. Call when the world is complete: the blow dryer cuts its hole after the bodies.
 void requireRigidBodiesInside(const World& world, const std::string& file);
 
-/// Throws SceneError (rigid_bodies[i].position) for the first moving rigid body that starts
-/// more than a millimetre inside a fixed one: the contacts would push it out through the
-/// nearest face in one step, lifting it (energy from nowhere) or through the body (a sphere
-/// wholly inside a fixed box dropped out of its bottom).
-void requireRigidBodiesOutsideFixedOnes(const World& world, const std::string& file);
+/// Two world indices, the lower first.
+using BodyPair = std::pair<std::size_t, std::size_t>;
+
+/// Throws SceneError (rigid_bodies[i].position) for the first rigid body, in the file's order,
+/// that starts more than a millimetre inside another (a fixed one, or a moving one but for the
+/// sorted `joinedApart`, whose joints keep them from colliding): the contacts would push it out
+/// through the nearest face in one step, lifting it (energy from nowhere: a box started 15 cm
+/// into another rose with a third more energy) or through the body (a sphere wholly inside a
+/// fixed box dropped out of its bottom).
+void requireRigidBodiesApart(const World& world, const std::string& file, const std::vector<BodyPair>& joinedApart);
 
 } // namespace pba::scene_detail

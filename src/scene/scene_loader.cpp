@@ -346,8 +346,11 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
     root.array("rigid_bodies", [&](const Json& value, const std::string& path, std::size_t) {
         scene_detail::readRigidBody(value, path, file, directory, scene.world, names, meshes);
     });
+    std::vector<scene_detail::BodyPair> joinedApart; // may start inside each other
     root.array("joints", [&](const Json& value, const std::string& path, std::size_t) {
-        scene_detail::readJoint(value, path, file, scene.world);
+        const JointDesc joint = scene_detail::readJoint(value, path, file, scene.world);
+        if (joint.bodyB && !joint.collide)
+            joinedApart.emplace_back(std::min(joint.bodyA, *joint.bodyB), std::max(joint.bodyA, *joint.bodyB));
     });
     root.array("swarms", [&](const Json& value, const std::string& path, std::size_t) {
         readSwarm(value, path, file, scene.world, names);
@@ -357,7 +360,8 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
     });
     root.finish();
     scene_detail::requireRigidBodiesInside(scene.world, file);
-    scene_detail::requireRigidBodiesOutsideFixedOnes(scene.world, file);
+    std::sort(joinedApart.begin(), joinedApart.end());
+    scene_detail::requireRigidBodiesApart(scene.world, file, joinedApart);
     requireFiniteEnergies(scene.world, scene.fabric, file);
     return scene;
 }

@@ -266,6 +266,10 @@ INSTANTIATE_TEST_SUITE_P(
                              "rigid_bodies[1].position", "the box at its orientation starts 0.03 m inside the fixed body 'table'"},
                     BadScene{R"({"rigid_bodies": [{"name": "s", "position": [0, 1, 0], "shape": {"type": "sphere", "radius": 0.1}}, {"name": "t", "fixed": true, "position": [0, 1, 0], "shape": {"type": "box", "size": [1, 1, 1]}}]})",
                              "rigid_bodies[0].position", "the sphere starts 0.6 m inside the fixed body 't'"},
+                    BadScene{R"({"rigid_bodies": [{"name": "a", "position": [0, 0.15, 0], "shape": {"type": "box", "size": [0.3, 0.3, 0.3]}}, {"name": "b", "position": [0.1, 0.3, 0], "shape": {"type": "box", "size": [0.3, 0.3, 0.3]}}]})",
+                             "rigid_bodies[1].position", "the box at its orientation starts 0.15 m inside the body 'a': bodies that collide must start apart"},
+                    BadScene{R"({"rigid_bodies": [{"name": "a", "position": [0, 1, 0], "shape": {"type": "sphere", "radius": 0.2}}, {"name": "b", "position": [0.3, 1, 0], "shape": {"type": "sphere", "radius": 0.2}}, {"name": "c", "position": [0.6, 1, 0], "shape": {"type": "sphere", "radius": 0.2}}], "joints": [{"type": "ball", "bodies": ["a", "b"], "anchor": [0.15, 1, 0]}]})",
+                             "rigid_bodies[2].position", "the sphere starts 0.1 m inside the body 'b'"},
                     BadScene{R"({"particles": [{"name": "s[0]", "position": [0, 1, 0]}], "swarms": [{"name": "s", "count": 10, "region": {"min": [0, 1, 0], "max": [1, 2, 1]}}]})",
                              "swarms[0].name", "its particles' rows would be named s[0], s[1], ..., and 's[0]' is already a body's name"},
                     BadScene{J(R"({"type": "distance", "bodies": ["r"], "anchors": [[0, 1, 0], [1, 1, 0]], "length": 0.5})"),
@@ -311,7 +315,7 @@ TEST(SceneLoader, AJointsCollideKeyLetsItsBodiesCollide)
     for (const bool collide : {false, true}) {
         Scene scene = parseScene(fmt::format(R"({{"room": {{"min": [-2, 0, -2], "max": [2, 4, 2]}}, "rigid_bodies": [
             {{"name": "a", "shape": {{"type": "box", "size": [0.4, 0.2, 0.2]}}, "position": [0, 2, 0]}},
-            {{"name": "b", "shape": {{"type": "box", "size": [0.2, 0.4, 0.2]}}, "position": [0.26, 2, 0]}}],
+            {{"name": "b", "shape": {{"type": "box", "size": [0.2, 0.4, 0.2]}}, "position": [0.2995, 2, 0]}}],
             "joints": [{{"type": "fixed", "bodies": ["a", "b"]{}}}]}})",
                                              collide ? R"(, "collide": true)" : ""),
                                  "weld.json");
