@@ -19,17 +19,6 @@ std::optional<double> floorHeight(const World& world)
     return std::nullopt;
 }
 
-bool onlyGravity(const World& world)
-{
-    struct Counter final : ForceVisitor {
-        std::size_t gravities = 0;
-        void visit(const Gravity&) override { ++gravities; }
-    } counter;
-    for (std::size_t i = 0; i < world.forceCount(); ++i)
-        world.force(i).accept(counter);
-    return counter.gravities == world.forceCount();
-}
-
 /// The springs on `particle` (the oscillator's exact solution needs the one spring's numbers).
 std::vector<const Spring*> springsOn(const World& world, std::size_t particle)
 {
@@ -49,6 +38,17 @@ std::vector<const Spring*> springsOn(const World& world, std::size_t particle)
 }
 
 } // namespace
+
+bool onlyGravity(const World& world)
+{
+    struct Counter final : ForceVisitor {
+        std::size_t gravities = 0;
+        void visit(const Gravity&) override { ++gravities; }
+    } counter;
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        world.force(i).accept(counter);
+    return counter.gravities == world.forceCount();
+}
 
 std::optional<ExactSolution> ExactSolution::find(const World& world, std::size_t particle)
 {

@@ -7,6 +7,9 @@
 
 namespace pba::study {
 
+/// Whether gravity is the only force of the world.
+bool onlyGravity(const World& world);
+
 /// The exact motion of one particle, if the scene has one we know.
 class ExactSolution {
 public:

@@ -40,6 +40,20 @@ std::optional<ExactSolution> firstExact(const StudyConfig& config)
     return std::nullopt;
 }
 
+/// Whether the bounce findings' mechanisms (the shadow energy, the mirror's gain) are the whole
+/// story: gravity is the only force and every moving particle bounces elastically. A dryer, drag
+/// or a restitution below 1 change the energy too, and then only the figures are quoted.
+bool elasticBouncesUnderGravity(const StudyConfig& config)
+{
+    const World& world = config.scene.world;
+    if (!onlyGravity(world) || world.gravity() == dvec3(0.0))
+        return false;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (!world.body(i).isFixed() && world.body(i).getCor() != 1.0)
+            return false;
+    return true;
+}
+
 /// "at dt = 0.3", "at dt = 0.01 and 0.05", "over every dt from 0.0005 to 0.1".
 std::string overDts(const std::vector<double>& dts)
 {
@@ -61,12 +75,13 @@ std::string endRatios(const std::vector<const ParticleResult*>& rows)
 
 /// "its energy after 10 s is 0.9737 times the start at dt = 0.0005 and it blew up at t = 0.21 s
 /// at dt = 0.1": a run that blew up has no end energy to quote, only when it blew up.
-std::string endClauses(const std::vector<const ParticleResult*>& rows, double duration)
+std::string endClauses(const std::vector<const ParticleResult*>& rows, double duration, bool lessSourceWork)
 {
     const auto one = [&](const ParticleResult& r) {
         return std::isnan(r.blewUpAt)
-                   ? fmt::format("its energy after {} s is {} times the start at dt = {}", duration,
-                                 ratioText(r.energyRatioEnd), r.dt)
+                   ? fmt::format("its energy{} after {} s is {} times the start at dt = {}",
+                                 lessSourceWork ? " less the dryer's work" : "", duration, ratioText(r.energyRatioEnd),
+                                 r.dt)
                    : fmt::format("it blew up at t = {:.3g} s at dt = {}", r.blewUpAt, r.dt);
     };
     return rows.size() > 1 ? one(*rows.front()) + " and " + one(*rows.back()) : one(*rows.front());
@@ -126,27 +141,37 @@ std::string survivors(const StudyConfig& config, const StudyResult& result)
                        collisionResponseName(c), config.duration, text);
 }
 
+/// endClauses for each response that gave different runs, "With the `exact` response ... . "
+/// for each when there are several; empty when the integrator has no runs.
+std::string endClausesByResponse(const StudyConfig& config, const StudyResult& result, Integrator integrator)
+{
+    const auto responses = distinctResponses(config, result);
+    std::string text;
+    for (CollisionResponse c : responses) {
+        const auto rows = rowsOf(config, result, integrator, c);
+        if (rows.empty())
+            continue;
+        const std::string clauses = endClauses(rows, config.duration, result.lessSourceWork);
+        text += responses.size() > 1 ? fmt::format("With the `{}` response {}. ", collisionResponseName(c), clauses)
+                                     : capitalised(clauses) + ". ";
+    }
+    return text;
+}
+
 std::string forwardEuler(const StudyConfig& config, const StudyResult& result)
 {
     if (!has(config.integrators, Integrator::ForwardEuler))
         return "";
-    const auto responses = distinctResponses(config, result);
-    std::string numbers;
-    bool gains = true, growing = true, any = false;
-    for (CollisionResponse c : responses) {
+    bool gains = true, growing = true;
+    for (CollisionResponse c : distinctResponses(config, result)) {
         const auto rows = rowsOf(config, result, Integrator::ForwardEuler, c);
-        if (rows.empty())
-            continue;
-        any = true;
         for (std::size_t i = 0; i < rows.size(); ++i) {
             gains = gains && rows[i]->energyRatioEnd > 1.0;
             growing = growing && rows.size() > 1 && (i == 0 || rows[i]->energyRatioEnd > rows[i - 1]->energyRatioEnd);
         }
-        numbers += responses.size() > 1 ? fmt::format("With the `{}` response {}. ", collisionResponseName(c),
-                                                      endClauses(rows, config.duration))
-                                        : capitalised(endClauses(rows, config.duration)) + ". ";
     }
-    if (!any)
+    const std::string numbers = endClausesByResponse(config, result, Integrator::ForwardEuler);
+    if (numbers.empty())
         return "";
     std::string text = gains ? "**Forward Euler gains energy.** " : "**Forward Euler.** ";
     text += numbers;
@@ -172,7 +197,7 @@ std::string forwardEuler(const StudyConfig& config, const StudyResult& result)
 std::string semiImplicitEulerBounces(const StudyConfig& config, const StudyResult& result)
 {
     std::string reflectText, exactText;
-    if (has(config.collisions, CollisionResponse::Reflect)) {
+    if (has(config.collisions, CollisionResponse::Reflect) && elasticBouncesUnderGravity(config)) {
         double worst = 0, largest = 0;
         for (const auto* r : rowsOf(config, result, Integrator::SemiImplicitEuler, CollisionResponse::Reflect))
             if (r->dt <= 0.05 + 1e-12) {
@@ -193,7 +218,7 @@ std::string semiImplicitEulerBounces(const StudyConfig& config, const StudyResul
         for (const auto* r : rowsOf(config, result, Integrator::SemiImplicitEuler, CollisionResponse::Exact))
             if (!chosen || r->dt <= 0.05 + 1e-12)
                 chosen = r;
-        if (chosen && chosen->bounces > 0 && chosen->energyRatioEnd < 1.0)
+        if (chosen && chosen->bounces > 0 && chosen->energyRatioEnd < 1.0 && elasticBouncesUnderGravity(config))
             exactText = fmt::format("With the `exact` time-of-impact response it loses energy at every bounce and "
                                     "ends at {:.3f} of its start energy at dt = {}{}: between bounces it conserves "
                                     "the shadow energy E - m g v dt / 2, and each bounce, by reversing v, lowers that "
@@ -238,13 +263,15 @@ std::string semiImplicitEuler(const StudyConfig& config, const StudyResult& resu
     // The bounce findings are a single particle's (its shadow energy, the mirror's gain): a
     // system's energy is spread over modes the bounces do not speak for.
     if (anyCollision(result) && !result.followsSystem)
-        return semiImplicitEulerBounces(config, result);
+        if (std::string bounces = semiImplicitEulerBounces(config, result); !bounces.empty())
+            return bounces;
     const auto rows = rowsOf(config, result, Integrator::SemiImplicitEuler, distinctResponses(config, result).front());
     if (rows.empty())
         return "";
     const auto exact = firstExact(config);
     if (!exact || exact->kind() != ExactSolution::Kind::Oscillator)
-        return fmt::format("**Semi-implicit Euler.** {}.\n\n", capitalised(endClauses(rows, config.duration)));
+        return fmt::format("**Semi-implicit Euler.** {}\n\n",
+                           endClausesByResponse(config, result, Integrator::SemiImplicitEuler));
     // Symplectic only below its stability limit: past it the energy grows geometrically.
     std::vector<const ParticleResult*> stable, unstable;
     for (const auto* r : rows)
@@ -258,7 +285,7 @@ std::string semiImplicitEuler(const StudyConfig& config, const StudyResult& resu
     if (!unstable.empty())
         text += fmt::format("{}Above {} its energy grows without bound: {}.", stable.empty() ? "" : " ",
                             stabilityLimitText(result, Integrator::SemiImplicitEuler),
-                            endClauses(unstable, config.duration));
+                            endClauses(unstable, config.duration, result.lessSourceWork));
     return text + "\n\n";
 }
 
@@ -361,7 +388,8 @@ std::string mirrorAgainstPrediction(const ExactSolution& exact, const std::vecto
 /// The gain of an integrator exact in flight, with the reflect response: the response's own.
 std::string reflectGain(const StudyConfig& config, const StudyResult& result)
 {
-    if (!has(config.collisions, CollisionResponse::Reflect) || !anyCollision(result) || result.followsSystem)
+    if (!has(config.collisions, CollisionResponse::Reflect) || !anyCollision(result) || result.followsSystem ||
+        !elasticBouncesUnderGravity(config))
         return "";
     std::vector<Integrator> gaining;
     std::vector<const ParticleResult*> shown; // of the first gaining integrator
