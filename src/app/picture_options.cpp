@@ -70,9 +70,11 @@ CameraChoice parseCamera(const std::string& text)
     }
     choice.position = glm::vec3(float(v[0]), float(v[1]), float(v[2]));
     choice.target = glm::vec3(float(v[3]), float(v[4]), float(v[5]));
+    // Compared as the camera keeps it, in single precision: 0.1 m apart is 0.1f, not below it.
     const double apart = std::hypot(v[0] - v[3], v[1] - v[4], v[2] - v[5]);
-    if (!(apart >= render::OrbitCamera::kMinDistance && apart <= render::OrbitCamera::kMaxDistance))
-        throw UsageError(fmt::format("--camera: the position and the target must be {:g} to {:g} m apart, got {:.3g} m",
+    const float kept = float(apart);
+    if (!(kept >= render::OrbitCamera::kMinDistance && kept <= render::OrbitCamera::kMaxDistance))
+        throw UsageError(fmt::format("--camera: the position and the target must be {:g} to {:g} m apart, got {:.6g} m",
                                      render::OrbitCamera::kMinDistance, render::OrbitCamera::kMaxDistance, apart));
     const float pitch = render::OrbitCamera::pitchOf(choice.position, choice.target);
     if (std::abs(pitch) > render::OrbitCamera::kMaxPitch)

@@ -17,6 +17,18 @@ namespace pba::app {
 
 namespace {
 
+/// Whether `exact` acts as `reflect` on some body of this run: a coupled one that XPBD does not
+/// step (XPBD meets the room in each substep, under any response).
+bool reflectsCoupledBodies(const World& world)
+{
+    if (!world.coupledBodiesReflect())
+        return false;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (world.isCoupled(i) && !world.body(i).isFixed() && world.body(i).getIntegrator() != Integrator::Xpbd)
+            return true;
+    return false;
+}
+
 /// Statistics of each swarm instead of a row per particle.
 void printSwarmSummary(const World& world)
 {
@@ -37,7 +49,11 @@ void printSwarmSummary(const World& world)
                     break;
                 }
         }
-        const double n = double(std::max<std::size_t>(swarm.size(), 1));
+        if (swarm.size() == 0) {
+            fmt::print("swarm {}: no particles ({})\n", swarm.name(), integratorName(swarm.integrator()));
+            continue;
+        }
+        const double n = double(swarm.size());
         fmt::print("swarm {}: {} particles ({}), mean position ({:.3f}, {:.3f}, {:.3f}), height {:.3f} to {:.3f}, "
                    "mean speed {:.3f} m/s, {} outside the surfaces\n",
                    swarm.name(), swarm.size(), integratorName(swarm.integrator()), mean.x / n, mean.y / n, mean.z / n,
@@ -118,9 +134,12 @@ void printJetSummary(const World& world, const study::JetWatch& jet, const rende
         const study::BodyInJet& b = bodies[i];
         if (world.body(i).isFixed() || (groups.inFabric(i) && !everyParticle))
             continue;
-        fmt::print("{:<22} {:>6.3g}kg {:>9.1f}% {:>10} {:>11.2f}s {:>13.3f}m {:>14.2f}s\n", b.name, b.mass,
+        // A body never in the cone has no height there: a dash, not "nanm".
+        const std::string height =
+            std::isnan(b.meanHeightInCone) ? std::string("-") : fmt::format("{:.3f}m", b.meanHeightInCone);
+        fmt::print("{:<22} {:>6.3g}kg {:>9.1f}% {:>10} {:>11.2f}s {:>14} {:>14.2f}s\n", b.name, b.mass,
                    100.0 * jet.fractionInCone(i), b.caughtAt ? fmt::format("{:.2f}s", *b.caughtAt) : std::string("never"),
-                   b.longestStay, b.meanHeightInCone, b.longestInShaft);
+                   b.longestStay, height, b.longestInShaft);
     }
     printFabricInJet(world, jet, groups);
     const auto inShaft = jet.swarmsInShaft(world);
@@ -296,7 +315,7 @@ void printSummary(const Scene& scene, const World& world, const std::vector<Body
                                      "at least one)", scene.duration, scene.duration / scene.dt)
                        : "",
                collisionResponseName(world.collisionResponse()),
-               world.coupledBodiesReflect() ? " (reflect for bodies joined by springs)" : "");
+               reflectsCoupledBodies(world) ? " (reflect for bodies joined by springs)" : "");
     if (world.bodyCount() == 0) {
         printSwarmSummary(world);
         printJetSummary(world, jet, render::BodyGroups(world, scene.fabric), everyParticle);

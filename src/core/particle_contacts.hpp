@@ -74,6 +74,10 @@ struct BallContacts {
         remember();
     }
 
+    /// Whether pair k, of the last solve, arrived fast enough to rebound (a bounce, as the room's
+    /// and the rigid bodies' contacts count one), rather than rest.
+    bool rebounded(std::size_t k) const { return m_contacts[k].bounce > 0.0; }
+
     /// A ball pushed out of the room by a sweep back on its surfaces (those of `walls`, a bit a
     /// plane), its speed into them taken away.
     static void keepInRoom(std::span<const Plane> planes, std::uint32_t walls, Ball& ball);

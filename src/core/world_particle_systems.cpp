@@ -786,6 +786,11 @@ void World::collideBalls(double dt)
     });
     if (contacts.pairs.empty())
         return;
+    for (std::size_t k = 0; k < contacts.pairs.size(); ++k)
+        if (contacts.rebounded(k))
+            for (const std::uint32_t ball : {contacts.pairs[k].first, contacts.pairs[k].second})
+                if (!m_bodies.objects[contacts.bodies[ball]]->isFixed())
+                    ++m_bodies.bounces[contacts.bodies[ball]];
     for (std::size_t k = 0; k < contacts.balls.size(); ++k)
         if (!m_bodies.objects[contacts.bodies[k]]->isFixed())
             m_bodies.objects[contacts.bodies[k]]->setState({contacts.balls[k].x, contacts.balls[k].v});

@@ -17,8 +17,12 @@ namespace {
 std::uint64_t readCount(ObjectReader& reader, const std::string& key, double limit)
 {
     const double x = reader.number(key);
-    if (!(x >= 0 && x <= limit && std::floor(x) == x))
-        reader.fail(key, fmt::format("must be a whole number from 0 to {:g}, got {}", limit, x));
+    // A whole number written in full is compared exactly: 2^53 + 1 rounds to 2^53 as a double.
+    const Json& raw = reader.raw(key);
+    const bool past = raw.is_number_unsigned() && raw.get<std::uint64_t>() > static_cast<std::uint64_t>(limit);
+    if (past || !(x >= 0 && x <= limit && std::floor(x) == x))
+        reader.fail(key, fmt::format("must be a whole number from 0 to {:.0f}, got {}", limit,
+                                     raw.is_number_integer() ? raw.dump() : fmt::format("{}", x)));
     return static_cast<std::uint64_t>(x);
 }
 

@@ -112,7 +112,7 @@ void RigidWatch::endSlide(const World& world, Track& t)
     const double denominator = s.n * s.stt - s.st * s.st;
     if (s.to - s.from >= RigidFigures::kLeastSlide && denominator > 0.0 &&
         (!f.slide || s.to - s.from > f.slide->to - f.slide->from))
-        f.slide = RigidFigures::Slide{s.on == kRoom ? "the room" : world.body(s.on).getName(), s.from, s.to,
+        f.slide = RigidFigures::Slide{s.on != kRoom ? world.body(s.on).getName() : world.room() ? "the room" : "the ground", s.from, s.to,
                                       (s.n * s.stv - s.st * s.sv) / denominator};
     t.sliding.reset();
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -278,6 +279,34 @@ TEST(PbaSim, AFileNamedLikeABuiltinSceneIsNamedInANote)
     const CommandResult file = runPbaArgv({"sim", "./pendulum"}, {.workDir = dir});
     EXPECT_EQ(file.exitCode, 2) << file.err;
     EXPECT_EQ(file.err.find("note"), std::string::npos) << file.err;
+}
+
+// What the summary says of what is not there: an empty swarm has no heights, a body never in
+// the dryer's cone no height in it; a box slides on the ground where there is no room; XPBD's
+// springs meet the room in their substeps, so no response is turned into another for them.
+TEST(PbaSim, TheSummaryNamesWhatIsNotThereInWords)
+{
+    const auto dir = freshDir("sim_summary_words");
+    std::ofstream(dir / "empty.json")
+        << R"({"swarms": [{"name": "s", "count": 0, "region": {"min": [0, 1, 0], "max": [1, 2, 1]}, "seed": 1}],
+              "forces": [{"type": "blow-dryer", "nozzle": [0, 0, 0], "axis": [0, 1, 0], "height": 2, "top_radius": 1, "strength": 1}],
+              "rigid_bodies": [{"name": "box", "position": [1.5, 0.1, 0], "shape": {"type": "box", "size": [0.2, 0.2, 0.2]}}]})";
+    const CommandResult empty = runPbaArgv({"sim", (dir / "empty.json").string(), "--duration", "0.1"});
+    ASSERT_EQ(empty.exitCode, 0) << empty.err;
+    EXPECT_NE(empty.out.find("swarm s: no particles"), std::string::npos) << empty.out;
+    EXPECT_EQ(empty.out.find("inf"), std::string::npos) << empty.out;
+    EXPECT_EQ(std::regex_search(empty.out, std::regex("nan", std::regex::icase)), false) << empty.out;
+
+    std::ofstream(dir / "slide.json")
+        << R"({"dt": 0.005, "duration": 1, "ground": {"height": 0}, "rigid_bodies": [{"name": "b",
+              "shape": {"type": "box", "size": [0.2, 0.2, 0.2]}, "position": [0, 0.1, 0], "velocity": [2, 0, 0]}]})";
+    const CommandResult slide = runPbaArgv({"sim", (dir / "slide.json").string()});
+    EXPECT_NE(slide.out.find("slides on the ground"), std::string::npos) << slide.out;
+
+    const CommandResult xpbd = runPba("sim rope --integrator xpbd --duration 0.01");
+    EXPECT_EQ(xpbd.out.find("reflect for bodies joined by springs"), std::string::npos) << xpbd.out;
+    const CommandResult implicit = runPba("sim rope --duration 0.01");
+    EXPECT_NE(implicit.out.find("reflect for bodies joined by springs"), std::string::npos) << implicit.out;
 }
 
 TEST(PbaSim, UnwritableOutputIsBadInput)

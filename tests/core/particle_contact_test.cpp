@@ -39,6 +39,9 @@ TEST(ParticleContacts, TwoEqualBallsHeadOnExchangeVelocities)
     EXPECT_NEAR(glm::length(world.body(0).getVel() - dvec3(-1.5, 0, 0)), 0.0, 1e-9);
     EXPECT_NEAR(glm::length(world.body(1).getVel() - dvec3(1, 0, 0)), 0.0, 1e-9);
     EXPECT_GE(glm::length(world.body(1).getPos() - world.body(0).getPos()), 0.2 - 1e-12) << "apart again";
+    // One impact, one bounce each, as a ball's off the floor is counted.
+    EXPECT_EQ(world.bounceCount(0), 1u);
+    EXPECT_EQ(world.bounceCount(1), 1u);
 }
 
 TEST(ParticleContacts, UnequalBallsHeadOnKeepMomentumAndEnergy)
@@ -77,6 +80,7 @@ TEST(ParticleContacts, ABallRestingOnABallRestingOnTheFloorStaysPut)
         world.step(1e-3);
     EXPECT_LT(glm::length(world.body(0).getPos() - dvec3(0, 0.1, 0)), 1e-4);
     EXPECT_LT(glm::length(world.body(1).getPos() - dvec3(0, 0.3, 0)), 1e-4);
+    EXPECT_EQ(world.bounceCount(1), 0u) << "resting contact is no bounce";
 }
 
 TEST(ParticleContacts, ABallOnAFixedBallStaysBelowTheFrictionAngleAndSlidesAbove)

@@ -186,6 +186,21 @@ TEST(PbaRender, FramesCoverExactlyTheTimeAskedFor)
     EXPECT_NE(video.out.find("41 frames, 64x48, t = 20 s"), std::string::npos) << video.out;
 }
 
+// The camera's distance is kept in single precision: 0.1 m apart is its least, not below it.
+TEST(PbaRender, ACameraAtItsLeastAndMostDistanceIsTaken)
+{
+    const auto dir = freshDir("render_camera_edges");
+    for (const char* camera : {"0,0,0,0,0,0.1", "0,1,0,0,1,1000"}) {
+        const CommandResult r = runPbaArgv({"render", "spring", "--camera", camera, "--size", "64x48", "--out",
+                                            (dir / "c.png").string()});
+        EXPECT_EQ(r.exitCode, 0) << camera << ": " << r.err;
+    }
+    const CommandResult far = runPbaArgv({"render", "spring", "--camera", "0,1,0,0,1,1000.4", "--size", "64x48",
+                                          "--out", (dir / "c.png").string()});
+    EXPECT_EQ(far.exitCode, 2);
+    EXPECT_NE(far.err.find("got 1000.4 m"), std::string::npos) << far.err;
+}
+
 // H.264 needs even sizes: an odd --size is padded, and the summary says the video's real size.
 TEST(PbaRender, AnOddSizedVideoSaysItWasPadded)
 {

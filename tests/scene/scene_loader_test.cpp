@@ -212,6 +212,8 @@ INSTANTIATE_TEST_SUITE_P(
                     BadScene{S(R"("velocity_jitter": -1)"), "swarms[0].velocity_jitter", "must not be negative"},
                     BadScene{S(R"("integrator": "euler")"), "swarms[0].integrator", "unknown integrator"},
                     BadScene{S(R"("seed": -3)"), "swarms[0].seed", "whole number"},
+                    BadScene{S(R"("seed": 9007199254740993)"), "swarms[0].seed",
+                             "must be a whole number from 0 to 9007199254740992, got 9007199254740993"},
                     BadScene{S(R"("region": {"min": [0, 0.5, 0], "max": [0, 9, 0]})"), "swarms[0].region", "outside"},
                     BadScene{S(R"("region": {"min": [1, 1, 1], "max": [0, 1, 1]})"), "swarms[0].region.min",
                              "must not be above max"},
