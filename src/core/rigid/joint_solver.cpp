@@ -56,6 +56,24 @@ dvec3 anchorVelocity(const SolverBody& a, const SolverBody& b, const dvec3& ra, 
     return b.pointVelocity(rb) - a.pointVelocity(ra);
 }
 
+/// What an angular impulse l with the linear impulse carry * l that keeps the anchors' relative
+/// velocity does to the bodies' relative spin: S l, S the Schur complement of the joint's 6x6 K
+/// (the anchors' 3x3 block eliminated). Without the carry, S is IA^-1 + IB^-1.
+struct Carried {
+    dmat3 spin{0.0};  ///< S
+    dmat3 carry{0.0}; ///< -K_pp^-1 C, C the anchors' velocity change per angular impulse
+};
+
+Carried carriedWith(const SolverBody& a, const SolverBody& b, const dvec3& ra, const dvec3& rb)
+{
+    // l turns A by -IA^-1 l and B by IB^-1 l: the anchors' relative velocity changes by C l.
+    const dmat3 c = -(skew(rb) * b.inverseInertia + skew(ra) * a.inverseInertia);
+    Carried out;
+    out.carry = -(inverseOr0(pointMass(a, b, ra, rb)) * c);
+    out.spin = a.inverseInertia + b.inverseInertia + glm::transpose(c) * out.carry;
+    return out;
+}
+
 /// How many times a Verlet-type spring's line is found again (prepareSpring).
 constexpr int kSpringLineRounds = 6;
 
@@ -91,7 +109,9 @@ void JointSolver::prepare(std::span<Joint> joints, std::span<const std::uint32_t
         r.rA = ra * j.localA;
         r.rB = rb * j.localB;
         r.linearMass = inverseOr0(pointMass(a, b, r.rA, r.rB));
-        const dmat3 angular = a.inverseInertia + b.inverseInertia;
+        const Carried carried = carriedWith(a, b, r.rA, r.rB);
+        const dmat3& angular = carried.spin;
+        r.carry = carried.carry;
         if (j.type == JointType::Hinge) {
             r.axis = glm::normalize(ra * j.axisA);
             acrossOf(r.axis, r.across);
@@ -146,13 +166,21 @@ void JointSolver::solveBall(Rows& r, SolverBody& a, SolverBody& b)
     applyLinear(a, b, r.rA, r.rB, lambda);
 }
 
+void JointSolver::applyCarried(Rows& r, SolverBody& a, SolverBody& b, const dvec3& l)
+{
+    applyAngular(a, b, l);
+    const dvec3 p = r.carry * l;
+    r.linearImpulse += p;
+    applyLinear(a, b, r.rA, r.rB, p);
+}
+
 void JointSolver::solveHingeAngular(const Joint& j, Rows& r, SolverBody& a, SolverBody& b)
 {
     // Across the axis the two bodies turn together.
     const Block2 mass{{{r.acrossMass[0][0], r.acrossMass[0][1]}, {r.acrossMass[1][0], r.acrossMass[1][1]}}};
     const dvec3 l = acrossImpulse(mass, r.across, b.w - a.w);
     r.angularImpulse += l;
-    applyAngular(a, b, l);
+    applyCarried(r, a, b, l);
     if (!j.limited)
         return;
     // About it, the angle may close its gap to a limit within the step, not cross it (as a
@@ -164,14 +192,14 @@ void JointSolver::solveHingeAngular(const Joint& j, Rows& r, SolverBody& a, Solv
         const double spin = glm::dot(r.axis, a.w - b.w);
         const double target = -std::max(r.angle - j.lower, 0.0) / dt;
         const double next = std::max(r.lowerImpulse - r.axialMass * (spin - target), 0.0);
-        applyAngular(a, b, -(next - r.lowerImpulse) * r.axis);
+        applyCarried(r, a, b, -(next - r.lowerImpulse) * r.axis);
         r.lowerImpulse = next;
     }
     {
         const double spin = glm::dot(r.axis, a.w - b.w);
         const double target = std::max(j.upper - r.angle, 0.0) / dt;
         const double next = std::max(r.upperImpulse + r.axialMass * (spin - target), 0.0);
-        applyAngular(a, b, (next - r.upperImpulse) * r.axis);
+        applyCarried(r, a, b, (next - r.upperImpulse) * r.axis);
         r.upperImpulse = next;
     }
 }
@@ -180,7 +208,7 @@ void JointSolver::solveFixedAngular(Rows& r, SolverBody& a, SolverBody& b)
 {
     const dvec3 l = -(r.angularMass * (b.w - a.w));
     r.angularImpulse += l;
-    applyAngular(a, b, l);
+    applyCarried(r, a, b, l);
 }
 
 void JointSolver::prepareSpring(const Joint& j, Rows& r, const SolverBody& a, const SolverBody& b, const dvec3& d,
@@ -297,6 +325,28 @@ void JointSolver::holdPoints(const Joint& j, SolverBody& a, SolverBody& b)
     b.movePose(p, rb);
 }
 
+namespace {
+
+/// The position pass's angular move l (A by -l, B by +l), with the move of the anchors that
+/// keeps them where they were, as the velocity rows carry them.
+void turnCarried(const Joint& j, SolverBody& a, SolverBody& b, const Carried& carried, const dvec3& l)
+{
+    const dvec3 ra = glm::mat3_cast(a.endOrientation) * j.localA, rb = glm::mat3_cast(b.endOrientation) * j.localB;
+    a.turnPose(-l);
+    b.turnPose(l);
+    const dvec3 p = carried.carry * l;
+    a.movePose(-p, ra);
+    b.movePose(p, rb);
+}
+
+/// carriedWith at the end poses' arms.
+Carried carriedAtEnd(const Joint& j, const SolverBody& a, const SolverBody& b)
+{
+    return carriedWith(a, b, glm::mat3_cast(a.endOrientation) * j.localA, glm::mat3_cast(b.endOrientation) * j.localB);
+}
+
+} // namespace
+
 void JointSolver::holdAxis(const Joint& j, SolverBody& a, SolverBody& b)
 {
     const dvec3 axisA = glm::normalize(glm::mat3_cast(a.endOrientation) * j.axisA);
@@ -304,20 +354,16 @@ void JointSolver::holdAxis(const Joint& j, SolverBody& a, SolverBody& b)
     // B's axis is A's turned by about axisA x axisB: turn B back by that much, across the axis.
     dvec3 across[2];
     acrossOf(axisA, across);
-    const dmat3 angular = a.inverseInertia + b.inverseInertia;
-    const dvec3 l = acrossImpulse(inverse2(angular, across), across, glm::cross(axisA, axisB));
-    a.turnPose(-l);
-    b.turnPose(l);
+    const Carried carried = carriedAtEnd(j, a, b);
+    const dvec3 l = acrossImpulse(inverse2(carried.spin, across), across, glm::cross(axisA, axisB));
+    turnCarried(j, a, b, carried, l);
     if (!j.limited)
         return;
     const double angle = hingeAngle(j, a.endOrientation, b.endOrientation);
     const double beyond = angle < j.lower ? angle - j.lower : angle > j.upper ? angle - j.upper : 0.0;
-    const double k = glm::dot(axisA, angular * axisA);
-    if (beyond != 0.0 && k > 0.0) { // A turns back within the range, B the other way
-        const dvec3 turn = (-beyond / k) * axisA;
-        a.turnPose(turn);
-        b.turnPose(-turn);
-    }
+    const double k = glm::dot(axisA, carried.spin * axisA);
+    if (beyond != 0.0 && k > 0.0) // A turns back within the range, B the other way
+        turnCarried(j, a, b, carried, (beyond / k) * axisA);
 }
 
 void JointSolver::holdOrientation(const Joint& j, SolverBody& a, SolverBody& b)
@@ -327,9 +373,8 @@ void JointSolver::holdOrientation(const Joint& j, SolverBody& a, SolverBody& b)
     if (error.w < 0.0)
         error = -error;
     const dvec3 theta = 2.0 * dvec3(error.x, error.y, error.z);
-    const dvec3 l = inverseOr0(a.inverseInertia + b.inverseInertia) * theta;
-    a.turnPose(-l);
-    b.turnPose(l);
+    const Carried carried = carriedAtEnd(j, a, b);
+    turnCarried(j, a, b, carried, inverseOr0(carried.spin) * theta);
 }
 
 void JointSolver::holdLength(const Joint& j, SolverBody& a, SolverBody& b)
