@@ -174,11 +174,19 @@ void JointSolver::applyCarried(Rows& r, SolverBody& a, SolverBody& b, const dvec
     applyLinear(a, b, r.rA, r.rB, p);
 }
 
+dvec3 JointSolver::carriedSpin(const Rows& r, const SolverBody& a, const SolverBody& b)
+{
+    // The rows' unknowns are angular impulses with their carried linear ones: the spin they
+    // are solved for counts the anchors' relative velocity along the carry too, so that each is
+    // the least-energy step along its impulses (a Gauss-Seidel step; a chain flew apart without).
+    return (b.w - a.w) + glm::transpose(r.carry) * anchorVelocity(a, b, r.rA, r.rB);
+}
+
 void JointSolver::solveHingeAngular(const Joint& j, Rows& r, SolverBody& a, SolverBody& b)
 {
     // Across the axis the two bodies turn together.
     const Block2 mass{{{r.acrossMass[0][0], r.acrossMass[0][1]}, {r.acrossMass[1][0], r.acrossMass[1][1]}}};
-    const dvec3 l = acrossImpulse(mass, r.across, b.w - a.w);
+    const dvec3 l = acrossImpulse(mass, r.across, carriedSpin(r, a, b));
     r.angularImpulse += l;
     applyCarried(r, a, b, l);
     if (!j.limited)
@@ -189,14 +197,14 @@ void JointSolver::solveHingeAngular(const Joint& j, Rows& r, SolverBody& a, Solv
     // (upper - angle) / dt. (An angular impulse l applied as below turns A by -l, B by +l.)
     const double dt = m_settings.dt;
     {
-        const double spin = glm::dot(r.axis, a.w - b.w);
+        const double spin = -glm::dot(r.axis, carriedSpin(r, a, b));
         const double target = -std::max(r.angle - j.lower, 0.0) / dt;
         const double next = std::max(r.lowerImpulse - r.axialMass * (spin - target), 0.0);
         applyCarried(r, a, b, -(next - r.lowerImpulse) * r.axis);
         r.lowerImpulse = next;
     }
     {
-        const double spin = glm::dot(r.axis, a.w - b.w);
+        const double spin = -glm::dot(r.axis, carriedSpin(r, a, b));
         const double target = std::max(j.upper - r.angle, 0.0) / dt;
         const double next = std::max(r.upperImpulse + r.axialMass * (spin - target), 0.0);
         applyCarried(r, a, b, (next - r.upperImpulse) * r.axis);
@@ -206,7 +214,7 @@ void JointSolver::solveHingeAngular(const Joint& j, Rows& r, SolverBody& a, Solv
 
 void JointSolver::solveFixedAngular(Rows& r, SolverBody& a, SolverBody& b)
 {
-    const dvec3 l = -(r.angularMass * (b.w - a.w));
+    const dvec3 l = -(r.angularMass * carriedSpin(r, a, b));
     r.angularImpulse += l;
     applyCarried(r, a, b, l);
 }
@@ -345,6 +353,14 @@ Carried carriedAtEnd(const Joint& j, const SolverBody& a, const SolverBody& b)
     return carriedWith(a, b, glm::mat3_cast(a.endOrientation) * j.localA, glm::mat3_cast(b.endOrientation) * j.localB);
 }
 
+/// A relative turn of B from A (as the velocity rows' spin), with the anchors' gap along the
+/// carry (carriedSpin's reason).
+dvec3 carriedTurn(const Joint& j, const SolverBody& a, const SolverBody& b, const Carried& carried, const dvec3& turn)
+{
+    const dvec3 ra = glm::mat3_cast(a.endOrientation) * j.localA, rb = glm::mat3_cast(b.endOrientation) * j.localB;
+    return turn + glm::transpose(carried.carry) * ((b.endPosition + rb) - (a.endPosition + ra));
+}
+
 } // namespace
 
 void JointSolver::holdAxis(const Joint& j, SolverBody& a, SolverBody& b)
@@ -355,15 +371,18 @@ void JointSolver::holdAxis(const Joint& j, SolverBody& a, SolverBody& b)
     dvec3 across[2];
     acrossOf(axisA, across);
     const Carried carried = carriedAtEnd(j, a, b);
-    const dvec3 l = acrossImpulse(inverse2(carried.spin, across), across, glm::cross(axisA, axisB));
+    const dvec3 l = acrossImpulse(inverse2(carried.spin, across), across,
+                                  carriedTurn(j, a, b, carried, glm::cross(axisA, axisB)));
     turnCarried(j, a, b, carried, l);
     if (!j.limited)
         return;
     const double angle = hingeAngle(j, a.endOrientation, b.endOrientation);
     const double beyond = angle < j.lower ? angle - j.lower : angle > j.upper ? angle - j.upper : 0.0;
     const double k = glm::dot(axisA, carried.spin * axisA);
-    if (beyond != 0.0 && k > 0.0) // A turns back within the range, B the other way
-        turnCarried(j, a, b, carried, (beyond / k) * axisA);
+    if (beyond != 0.0 && k > 0.0) { // A turns back within the range, B the other way
+        const double past = beyond - glm::dot(axisA, carriedTurn(j, a, b, carried, dvec3(0.0)));
+        turnCarried(j, a, b, carried, (past / k) * axisA);
+    }
 }
 
 void JointSolver::holdOrientation(const Joint& j, SolverBody& a, SolverBody& b)
@@ -374,7 +393,7 @@ void JointSolver::holdOrientation(const Joint& j, SolverBody& a, SolverBody& b)
         error = -error;
     const dvec3 theta = 2.0 * dvec3(error.x, error.y, error.z);
     const Carried carried = carriedAtEnd(j, a, b);
-    turnCarried(j, a, b, carried, inverseOr0(carried.spin) * theta);
+    turnCarried(j, a, b, carried, -(inverseOr0(carried.spin) * carriedTurn(j, a, b, carried, -theta)));
 }
 
 void JointSolver::holdLength(const Joint& j, SolverBody& a, SolverBody& b)

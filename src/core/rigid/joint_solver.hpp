@@ -87,6 +87,8 @@ private:
     void solveBall(Rows& r, SolverBody& a, SolverBody& b);
     /// An angular impulse l (A: -l, B: +l) with the linear impulse its row carries.
     static void applyCarried(Rows& r, SolverBody& a, SolverBody& b, const dvec3& l);
+    /// B's spin relative to A's as the angular rows solve for it (carried along the anchors).
+    static dvec3 carriedSpin(const Rows& r, const SolverBody& a, const SolverBody& b);
     void solveHingeAngular(const Joint& j, Rows& r, SolverBody& a, SolverBody& b);
     void solveFixedAngular(Rows& r, SolverBody& a, SolverBody& b);
     void solveDistance(const Joint& j, Rows& r, SolverBody& a, SolverBody& b);
