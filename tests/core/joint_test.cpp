@@ -249,6 +249,34 @@ TEST(Joints, AHingeLimitStopsABallHingedFarFromItsCentre)
     }
 }
 
+// A ball striking a hinged door meets the door and its hinge: the door's mass at the point
+// struck is I / d^2 (I about the hinge), and an elastic blow sends the ball back at
+// (m - I/d^2) / (m + I/d^2) of its speed. Solved without the hinge (a free door), the blow
+// lost 12% of the energy and the ball left at 1.097 m/s, not 1.218.
+TEST(Joints, ABlowOnAHingedBodyMeetsTheHingeToo)
+{
+    World world; // no gravity
+    RigidBody& door = addBody(world, Shape::box(dvec3(0.1, 2.0, 0.4)), 10.0, dvec3(0.0, 2.0, 0.0));
+    RigidBody& ball = addBody(world, Shape::sphere(0.1), 1.0, dvec3(-0.5, 1.2, 0.0));
+    for (RigidBody* body : {&door, &ball}) {
+        body->setCor(1.0);
+        body->setFriction(0.0);
+    }
+    ball.setVel(dvec3(2.0, 0.0, 0.0));
+    JointDesc hinge;
+    hinge.type = JointType::Hinge;
+    hinge.bodyA = 0;
+    hinge.anchor = dvec3(0.0, 3.0, 0.0);
+    hinge.axis = dvec3(0.0, 0.0, 1.0);
+    world.addJoint(hinge);
+    const double e0 = world.totalEnergy();
+    for (int n = 0; n < 300; ++n)
+        world.step(0.002);
+    const double inertia = 10.0 * (4.0 + 0.01) / 12.0 + 10.0 * 1.0, d = 1.8, held = inertia / (d * d);
+    EXPECT_NEAR(ball.getVel().x, (1.0 - held) / (1.0 + held) * 2.0, 2e-3);
+    EXPECT_NEAR(world.totalEnergy(), e0, 1e-3 * e0);
+}
+
 TEST(Joints, ADistanceJointKeepsItsLengthOrSpringsWithSqrtKOverM)
 {
     {

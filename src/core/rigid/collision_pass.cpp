@@ -2,6 +2,7 @@
 // contact whose points arrive faster than a resting speed takes, at that time and those points,
 // the impulses that send them off at e times their arriving speed.
 #include "rigid/contact_solver.hpp"
+#include "rigid/joint_solver.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -81,6 +82,16 @@ bool ContactSolver::collide(int maxStrikes)
         any = true;
     }
     markVelocities(m_moving);
+    return any;
+}
+
+bool ContactSolver::collide(JointSolver& joints)
+{
+    m_impactJoints = &joints;
+    joints.beginBlows();
+    const bool any = collide(kEveryStrike);
+    joints.endBlows();
+    m_impactJoints = nullptr;
     return any;
 }
 
@@ -283,6 +294,8 @@ void ContactSolver::solveImpact(const IslandContact& c, std::span<ImpactRow> row
             row.pushN = next;
             largest = std::max(largest, next);
         }
+        if (m_impactJoints)
+            m_impactJoints->sweepBlow();
         if (change <= 1e-12 * largest)
             break;
     }
@@ -301,6 +314,10 @@ bool ContactSolver::collideOne(const IslandContact& c)
     SolverBody& a = m_bodies[c.a];
     SolverBody& b = m_bodies[c.b];
     const dvec3 va0 = a.v, wa0 = a.w, vb0 = b.v, wb0 = b.w;
+    const std::span<const BodyIndex> joined = m_impactJoints ? m_impactJoints->bodies() : std::span<const BodyIndex>();
+    m_jointBodiesBefore.clear();
+    for (const BodyIndex k : joined)
+        m_jointBodiesBefore.emplace_back(m_bodies[k].v, m_bodies[k].w);
     solveImpact(c, std::span(rows, std::size_t(count)));
     // The end poses move by the velocity change over what is left of the step.
     const double left = m_settings.dt - tau;
@@ -314,6 +331,15 @@ bool ContactSolver::collideOne(const IslandContact& c)
     };
     shift(a, va0, wa0);
     shift(b, vb0, wb0);
+    // The bodies the joints moved with the blow: theirs too, and their contacts are looked at again.
+    for (std::size_t i = 0; i < joined.size(); ++i) {
+        SolverBody& body = m_bodies[joined[i]];
+        const auto [v0, w0] = m_jointBodiesBefore[i];
+        if (joined[i] == c.a || joined[i] == c.b || (body.v == v0 && body.w == w0))
+            continue;
+        shift(body, v0, w0);
+        ++m_blows[joined[i]];
+    }
     for (int i = 0; i < count; ++i) {
         m_rows[c.first + rows[i].point].bounced = true;
         VelocityRows& v = m_velocityRows[c.first + rows[i].point];

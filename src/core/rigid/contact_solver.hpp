@@ -30,6 +30,8 @@
 
 namespace pba::rigid {
 
+class JointSolver;
+
 /// What one step's solve works with: the world's knobs, and what this step makes of them.
 struct SolverSettings {
     ContactSettings contact;
@@ -82,6 +84,10 @@ public:
     /// Pass 1: restitution at the time of arrival, each contact giving at most `maxStrikes` blows
     /// (kEveryStrike: as many as the sweeps find). Returns whether any point bounced.
     bool collide(int maxStrikes = kEveryStrike);
+    /// The same for a mechanism: each blow's impulses are solved with `joints`' sweeps, so that
+    /// it meets the bodies as the joints hold them (a ball striking a door near its hinge
+    /// rebounds as from the door and its hinge, not from a free door).
+    bool collide(JointSolver& joints);
     static constexpr int kEveryStrike = 255;
     /// A heap's: a row of balls passes a blow on with one a contact (Newton's cradle), while a
     /// jammed heap of dice would pass blows back and forth through every contact until the
@@ -196,6 +202,9 @@ private:
     /// A large island's sweeps: most contacts four at a time, the rest (m_oneAtATime) after.
     WideContactRows m_wide;
     std::vector<std::uint32_t> m_oneAtATime; ///< indices into m_constraints, in order
+    JointSolver* m_impactJoints = nullptr; ///< collide(JointSolver&)'s, while it runs
+    /// The velocities of the joints' bodies before a blow (collideOne).
+    std::vector<std::pair<dvec3, dvec3>> m_jointBodiesBefore;
     std::vector<std::uint32_t> m_blows; ///< the collision pass's: per body, the blows it took
     std::vector<std::uint64_t> m_seen;  ///< per contact, its bodies' blows when last looked at
     std::vector<std::uint8_t> m_strikes; ///< per contact, the blows it gave this step

@@ -142,6 +142,11 @@ void JointSolver::prepare(std::span<Joint> joints, std::span<const std::uint32_t
         r.upperImpulse = j.upperImpulse;
         m_rows.push_back(r);
     }
+    m_movingBodies.clear();
+    for (const Rows& r : m_rows)
+        for (const BodyIndex k : {r.a, r.b})
+            if (!bodies[k].isStatic() && std::find(m_movingBodies.begin(), m_movingBodies.end(), k) == m_movingBodies.end())
+                m_movingBodies.push_back(k);
 }
 
 void JointSolver::warmStart()
@@ -291,10 +296,27 @@ void JointSolver::solveDistance(const Joint& j, Rows& r, SolverBody& a, SolverBo
     applyLinear(a, b, r.rA, r.rB, lambda * r.n);
 }
 
-void JointSolver::solveVelocities()
+void JointSolver::solveVelocities() { sweep(false); }
+
+void JointSolver::beginBlows()
+{
+    m_rowsBeforeBlows = m_rows;
+    for (Rows& r : m_rows) {
+        r.linearImpulse = r.angularImpulse = dvec3(0.0);
+        r.axialImpulse = r.lowerImpulse = r.upperImpulse = 0.0;
+    }
+}
+
+void JointSolver::sweepBlow() { sweep(true); }
+
+void JointSolver::endBlows() { m_rows.swap(m_rowsBeforeBlows); }
+
+void JointSolver::sweep(bool blow)
 {
     for (Rows& r : m_rows) {
         const Joint& j = m_joints[r.joint];
+        if (blow && j.type == JointType::Distance && j.stiffness > 0.0)
+            continue; // a spring's force passes nothing in an instant
         SolverBody& a = m_bodies[r.a];
         SolverBody& b = m_bodies[r.b];
         switch (j.type) {

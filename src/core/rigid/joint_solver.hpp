@@ -54,6 +54,14 @@ public:
                  const SolverSettings& settings, BodyIndex world);
     void warmStart();
     void solveVelocities();
+    /// The collision pass's: between beginBlows and endBlows, sweepBlow solves the joints with
+    /// the blow's impulses, from impulses of nothing (a spring passes no blow: it is left out),
+    /// and endBlows puts back what the step's sweeps warm-start from.
+    void beginBlows();
+    void sweepBlow();
+    void endBlows();
+    /// The moving bodies the joints join, each once.
+    std::span<const BodyIndex> bodies() const { return m_movingBodies; }
     void storeImpulses();
     /// One sweep on the bodies' end poses.
     void solvePositions();
@@ -103,6 +111,10 @@ private:
     std::span<SolverBody> m_bodies;
     SolverSettings m_settings;
     std::vector<Rows> m_rows;
+    std::vector<Rows> m_rowsBeforeBlows; ///< beginBlows'
+    std::vector<BodyIndex> m_movingBodies;
+    /// One sweep of every joint's velocity rows; with `blow`, not a spring's.
+    void sweep(bool blow);
 };
 
 } // namespace pba::rigid

@@ -512,7 +512,7 @@ void RigidSystem::solveMechanismVelocities(ContactSolver& solver, JointSolver& j
 {
     // A mechanism (a chain, a cradle on its threads): its blows pass in full, and the joints'
     // sweeps take turns with the contacts'.
-    solver.collide(ContactSolver::kEveryStrike);
+    solver.collide(joints);
     joints.warmStart();
     solver.warmStart();
     for (int it = 0; it < settings.maxVelocityIterations(); ++it) {
