@@ -6,7 +6,8 @@
 //     that sends them off at e times the speed they arrive with, at the time within the step at
 //     which they arrive (the velocity before impact, not the start's or the end's), a contact's
 //     points together and the contacts one after another, so that a blow passes along a row of
-//     touching balls as in Newton's cradle, and a box landing flat leaves flat;
+//     touching balls as in Newton's cradle, and a box landing flat leaves flat (in a mechanism
+//     the joints are swept with each blow's impulses);
 //  2. velocities: every contact, warm-started with the last step's impulses, may close its gap
 //     but not cross it (speculative contacts), with Coulomb friction, for a fixed number of
 //     sweeps; joints take part here (joint_solver.hpp);
