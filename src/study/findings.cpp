@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "exact_solution.hpp"
+#include "pba/forces.hpp"
 
 namespace pba::study {
 
@@ -41,12 +42,14 @@ std::optional<ExactSolution> firstExact(const StudyConfig& config)
 }
 
 /// Whether the bounce findings' mechanisms (the shadow energy, the mirror's gain) are the whole
-/// story: gravity is the only force and every moving particle bounces elastically. A dryer, drag
-/// or a restitution below 1 change the energy too, and then only the figures are quoted.
+/// story: gravity is the only force, the ground the only surface, and every moving particle
+/// bounces elastically. A dryer, drag, a restitution below 1 or a room's walls and ceiling (a
+/// bounce off the ceiling takes what one off the floor gives) change the energy too, and then
+/// only the figures are quoted.
 bool elasticBouncesUnderGravity(const StudyConfig& config)
 {
     const World& world = config.scene.world;
-    if (!onlyGravity(world) || world.gravity() == dvec3(0.0))
+    if (!onlyGravity(world) || world.gravity() == dvec3(0.0) || world.room() || world.planes().size() > 1)
         return false;
     for (std::size_t i = 0; i < world.bodyCount(); ++i)
         if (!world.body(i).isFixed() && world.body(i).getCor() != 1.0)
@@ -135,10 +138,32 @@ std::string survivors(const StudyConfig& config, const StudyResult& result)
         text += fmt::format("{}{} ", text.empty() ? "" : "; ", integratorName(integrator));
         text += all ? "at every dt" : largest > 0 ? fmt::format("up to dt = {}", largest) : "at none";
     }
-    return fmt::format("**Which dt the system survives** (`{}` response, {} s): {}. Past its stability limit the "
-                       "stiffest springs' mode grows geometrically and the run blows up; below it the total energy "
-                       "falls, to the springs' damping, the drag and the bounces.\n\n",
-                       collisionResponseName(c), config.duration, text);
+    // Only what the scene has is named: its springs' mode, their damping, drag, bounces.
+    struct Present final : ForceVisitor {
+        bool damping = false, drag = false;
+        void visit(const Spring& spring) override { damping = damping || spring.damping() > 0.0; }
+        void visit(const Drag&) override { drag = true; }
+    } present;
+    const World& world = config.scene.world;
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        world.force(i).accept(present);
+    std::vector<std::string> losses;
+    if (present.damping)
+        losses.emplace_back("the springs' damping");
+    if (present.drag)
+        losses.emplace_back("the drag");
+    if (anyCollision(result))
+        losses.emplace_back("the bounces");
+    std::string why = result.omegaMax ? " Past a method's stability limit the stiffest springs' mode grows "
+                                        "geometrically: the run blows up, or gains energy (the stability limits below)."
+                                      : "";
+    if (!losses.empty())
+        why += fmt::format(" Where it stays finite the total energy falls, to {}.",
+                           losses.size() == 1   ? losses[0]
+                           : losses.size() == 2 ? losses[0] + " and " + losses[1]
+                                                : losses[0] + ", " + losses[1] + " and " + losses[2]);
+    return fmt::format("**Which dt keep the system finite** (`{}` response, {} s): {}.{}\n\n",
+                       collisionResponseName(c), config.duration, text, why);
 }
 
 /// endClauses for each response that gave different runs, "With the `exact` response ... . "

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <limits>
 #include <numbers>
 
@@ -391,6 +392,15 @@ StabilityResult measureStabilityLimit(const Scene& scene, Integrator integrator,
         leftAt = run.series.t.empty() ? -1.0 : run.series.t.back();
         return run.stable;
     };
+    // Whether the scene's own motion leaves the linear regime: an accurate run (RK4 at omega dt
+    // = 0.05) does too. Two halvings that leave at the same time are not enough: forward Euler's
+    // spring left (0, 2 L) at 1.98 s at omega dt 0.5 and 0.25, where the exact swing never does.
+    std::optional<bool> accurateLeaves;
+    const auto sceneLeavesLinear = [&] {
+        if (!accurateLeaves)
+            accurateLeaves = runStability(scene, Integrator::RK4, 0.05 / omega, omega, criterion).leftLinearRegime;
+        return *accurateLeaves;
+    };
     // Bracket [lo, hi] with lo stable and hi not, from omega dt = 1.
     double lo = 1.0 / omega, hi = lo;
     if (stable(lo)) {
@@ -404,7 +414,8 @@ StabilityResult measureStabilityLimit(const Scene& scene, Integrator integrator,
     } else {
         for (lo = 0.5 * hi; !stable(lo); lo *= 0.5) {
             hi = lo;
-            if (leftLinear && leftLinearBefore && std::abs(leftAt - leftAtBefore) <= 0.1 * leftAt) {
+            if (leftLinear && leftLinearBefore && std::abs(leftAt - leftAtBefore) <= 0.1 * leftAt &&
+                sceneLeavesLinear()) {
                 result.unmeasured = fmt::format("a spring leaves lengths (0, 2 L) at t = {:.3g} s whatever the dt: "
                                                 "the scene leaves the linear regime the theory is for",
                                                 leftAt);
@@ -415,6 +426,8 @@ StabilityResult measureStabilityLimit(const Scene& scene, Integrator integrator,
             }
             if (0.5 * lo * omega < kMinOmegaDt) {
                 result.unmeasured = fmt::format("unstable down to omega dt = {:g}", lo * omega);
+                result.below = runStability(scene, integrator, lo, omega, criterion);
+                result.above = runStability(scene, integrator, 1.0 / omega, omega, criterion);
                 return result;
             }
         }
