@@ -43,9 +43,39 @@ inline constexpr std::array<Rgb, 10> kBodies = {
     0xa8d93a, // lime
 };
 
+/// An sRGB colour from hue (degrees), saturation and value (0 to 1).
+constexpr Rgb fromHsv(double hue, double saturation, double value)
+{
+    const double c = value * saturation, h = hue / 60.0;
+    const double m = value - c;
+    const double hm2 = h - 2.0 * double(int(h / 2.0)); // h mod 2
+    const double x = c * (1.0 - (hm2 > 1.0 ? hm2 - 1.0 : 1.0 - hm2));
+    double r = 0, g = 0, b = 0;
+    switch (int(h) % 6) {
+    case 0: r = c, g = x; break;
+    case 1: r = x, g = c; break;
+    case 2: g = c, b = x; break;
+    case 3: g = x, b = c; break;
+    case 4: r = x, b = c; break;
+    default: r = c, b = x; break;
+    }
+    const auto byte = [](double v) { return Rgb(v * 255.0 + 0.5); };
+    return (byte(r + m) << 16) | (byte(g + m) << 8) | byte(b + m);
+}
+
 /// The colour of the body (or rope, cloth or swarm) with this index: the same on every run, so
-/// a picture, its legend and its plots agree, and so do two pictures of one scene.
-constexpr Rgb bodyRgb(std::size_t index) { return kBodies[index % kBodies.size()]; }
+/// a picture, its legend and its plots agree, and so do two pictures of one scene. Past the ten
+/// picked ones, hues a golden angle apart at three shades, so that a row of dominoes or a chain's
+/// links does not repeat its colours every ten.
+constexpr Rgb bodyRgb(std::size_t index)
+{
+    if (index < kBodies.size())
+        return kBodies[index];
+    const std::size_t k = index - kBodies.size();
+    const double hue = double((k * 137508) % 360000) / 1000.0 + 15.0;
+    constexpr double kSaturation[3] = {0.62, 0.45, 0.75}, kValue[3] = {0.78, 0.95, 0.62};
+    return fromHsv(hue >= 360.0 ? hue - 360.0 : hue, kSaturation[k % 3], kValue[k % 3]);
+}
 
 constexpr Rgb integratorRgb(Integrator integrator)
 {
