@@ -199,7 +199,7 @@ void addRenderCommand(CLI::App& root, Action& selected)
     render->footer("\nExamples:\n  pba render integrators --out pba-out/integrators.png --time 1.2\n"
                    "  pba render blow-dryer --out pba-out/blow-dryer.mp4 --duration 10\n"
                    "  pba render spring --out pba-out/frames/ --fps 30\n"
-                   "  pba render dominoes --camera -0.6,1.3,2.8,-1.0,0.1,0 --show contacts --out pba-out/dominoes.png --time 1.6\n"
+                   "  pba render dominoes --camera -0.6,1.3,2.8,-1,0.1,0 --show contacts --time 1.6 --out pba-out/d.png\n"
                    "  pba render pendulum --camera 0,2.5,5,0,2,0 --show joints,axes --out pba-out/pendulum.png\n");
     render->callback([options, &selected] { selected = [options] { return runRender(*options); }; });
 }
