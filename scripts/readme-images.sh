@@ -52,7 +52,7 @@ rigid granular 4 0,0.16,0.62,0,0.04,0 # the mound at the end, from low beside it
 "$pba" render stiff-spring --size 640x360 --time 1.5 --camera=0,5.2,10.5,0,4.4,0 --out "$out/stiff-spring.png"
 # The README's first scene, from the example file it shows.
 "$pba" render docs/examples/first-scene.json --size 640x360 --time 3 --camera=0,2,6,0,1.6,0 --out "$out/first-scene.png"
-"$pba" render dice --size 640x360 --camera=0,2.4,3.8,0,0.1,-0.5 --out "$out/dice.png" # at the end: every die at rest
+"$pba" render dice --size 640x360 --camera=0.7,3.4,4.6,0.7,-0.2,1.5 --out "$out/dice.png" # at the end: every die at rest
 "$pba" render blow-dryer-swarm --size 640x360 --time 1.5 --out "$out/blow-dryer-swarm.png"
 "$pba" render fountain-1m --size 640x360 --time 1.5 --out "$out/fountain-1m.png"
 "$pba" field blow-dryer-flow --slice --out "$out/field-blow-dryer-flow.png"
