@@ -192,16 +192,19 @@ void addRope(const World& world, const RopeLayout& rope, double alpha, const Vie
     if (rope.particles.empty() || rope.particles.front() >= world.bodyCount())
         return;
     const glm::vec4 colour = groups[groups.groupOf(rope.particles.front())].colour;
+    glm::vec3 before(0.0f);
     for (std::size_t k = 0; k < rope.particles.size(); ++k) {
         const std::size_t i = rope.particles[k];
         if (i >= world.bodyCount())
             return;
-        const glm::vec3 at = drawnPosition(world, i, alpha, settings.interpolate);
-        if (k > 0)
-            out.addLine(drawnPosition(world, rope.particles[k - 1], alpha, settings.interpolate), at, colour);
         const bool pinned = world.body(i).isFixed();
-        out.sprites.push_back(
-            {at, settings.particleRadius * (pinned ? 0.8f : 0.45f), pinned ? groups.bodyColour(i) : colour});
+        const float radius = settings.particleRadius * (pinned ? 0.8f : 0.45f);
+        // A bead on the floor lies on it, as a lone particle's ball does, not half sunk in.
+        const glm::vec3 at = restingCentre(world, drawnPosition(world, i, alpha, settings.interpolate), radius);
+        if (k > 0)
+            out.addLine(before, at, colour);
+        out.sprites.push_back({at, radius, pinned ? groups.bodyColour(i) : colour});
+        before = at;
     }
 }
 
