@@ -198,7 +198,10 @@ void addRope(const World& world, const RopeLayout& rope, double alpha, const Vie
         if (i >= world.bodyCount())
             return;
         const bool pinned = world.body(i).isFixed();
-        const float radius = settings.particleRadius * (pinned ? 0.8f : 0.45f);
+        // A bead with a radius is drawn at its size: that is where it touches.
+        const auto* particle = dynamic_cast<const Particle*>(&world.body(i));
+        const float radius = particle && particle->getRadius() > 0.0 ? float(particle->getRadius())
+                                                                     : settings.particleRadius * (pinned ? 0.8f : 0.45f);
         // A bead on the floor lies on it, as a lone particle's ball does, not half sunk in.
         const glm::vec3 at = restingCentre(world, drawnPosition(world, i, alpha, settings.interpolate), radius);
         if (k > 0)
@@ -235,9 +238,17 @@ void addCloth(const World& world, const ClothLayout& cloth, double alpha, const 
             for (const std::size_t v : {a, b, d, a, d, c})
                 out.surfaces.push_back({x[v], n[v], colour});
         }
-    for (std::size_t k = 0; k < w * h; ++k)
-        if (world.body(cloth.first + k).isFixed())
+    // A cloth given a radius touches as a net of balls (docs/scenes.md): its balls are drawn too,
+    // so that what rests on it rests on them, and an edge it drapes over stays under them.
+    for (std::size_t k = 0; k < w * h; ++k) {
+        const Body& body = world.body(cloth.first + k);
+        const auto* particle = dynamic_cast<const Particle*>(&body);
+        if (particle && particle->getRadius() > 0.0)
+            out.sprites.push_back({x[k], float(particle->getRadius()), body.isFixed() ? groups.bodyColour(cloth.first + k)
+                                                                                     : front});
+        else if (body.isFixed())
             out.sprites.push_back({x[k], settings.particleRadius * 0.8f, groups.bodyColour(cloth.first + k)});
+    }
 }
 
 void addFabric(const World& world, double alpha, const ViewSettings& settings, const BodyGroups& groups, DrawList& out)
