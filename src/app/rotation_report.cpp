@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -9,6 +11,7 @@
 #include "compare_report.hpp"
 #include "csv.hpp"
 #include "gnuplot.hpp"
+#include "study/exact_solution.hpp"
 #include "study/rotation_plots.hpp"
 
 namespace pba::app {
@@ -60,20 +63,34 @@ bool sameEulers(const study::RotationResult& result, double dt)
 
 /// Why the body is no free body, for the measure, or nothing if it is one: the contacts it met in
 /// some run, the joint that holds it. Then its drifts are not its method's alone.
-std::string notFreeBecause(const study::RotationResult& result, bool momentum)
+std::string notFreeBecause(const study::RotationConfig& config, const study::RotationResult& result, bool momentum)
 {
     const bool touched =
         std::any_of(result.runs.begin(), result.runs.end(), [](const study::RotationRun& r) { return r.touched; });
-    if (!touched && !result.joined)
+    const bool forced = !study::onlyGravity(config.scene.world); // a dryer's air, drag
+    std::vector<std::string> what, how;
+    if (touched) {
+        what.emplace_back("it touches other bodies or the room");
+        how.emplace_back(momentum ? "the contacts turn L" : "contacts take energy by friction and inelastic impacts");
+    }
+    if (result.joined) {
+        what.emplace_back("a joint holds it");
+        how.emplace_back(momentum ? "the joint turns L" : "a joint's corrections move it");
+    }
+    if (forced) {
+        what.emplace_back("forces other than gravity act on it");
+        how.emplace_back(momentum ? "they turn L" : "they do work on it (the dryer's air lifts it)");
+    }
+    if (what.empty())
         return {};
-    const std::string what = touched && result.joined ? "it touches other bodies or the room, and a joint holds it"
-                             : touched                ? "it touches other bodies or the room"
-                                                      : "a joint holds it";
-    const std::string how =
-        momentum ? (touched && result.joined ? "their pushes turn L" : touched ? "the contacts turn L" : "the joint turns L")
-                 : (touched ? "contacts take energy by friction and inelastic impacts" : "a joint's corrections move it");
+    const auto joined = [](const std::vector<std::string>& parts) {
+        std::string text;
+        for (std::size_t i = 0; i < parts.size(); ++i)
+            text += (i == 0 ? "" : i + 1 == parts.size() ? " and " : ", ") + parts[i];
+        return text;
+    };
     return fmt::format(" `{}` is no free body here ({}): {}, so the drift is theirs as well as the method's.\n\n",
-                       result.body, what, how);
+                       result.body, joined(what), joined(how));
 }
 
 /// A measure's findings in a sentence per method at the largest dt: how far it drifted, or that
@@ -97,7 +114,7 @@ std::string driftFindings(const study::RotationConfig& config, const study::Rota
                                  momentum ? "" : (r.energyRatioEnd > 1.0 ? " (gaining)" : " (losing)"));
     }
     out.back() = '.';
-    if (const std::string notFree = notFreeBecause(result, momentum); !notFree.empty())
+    if (const std::string notFree = notFreeBecause(config, result, momentum); !notFree.empty())
         return out + notFree;
     out += momentum ? " A free body's torque-free step must keep L; a method that integrates omega rather than "
                       "turning L with the body changes |L|, and the implicit gyroscopic step damps it.\n\n"
@@ -163,7 +180,7 @@ void writeRotationReport(const std::filesystem::path& path, const study::Rotatio
         << rotationTable(config, result, RotationMeasure::EnergyDrift, true);
     out << "\n## Largest drift of |L|, max ||L|/|L0| - 1|\n\n" << driftFindings(config, result, true)
         << rotationTable(config, result, RotationMeasure::MomentumDrift, true);
-    if (!std::isnan(result.exactPeriod))
+    if (!std::isnan(result.exactPeriod) && result.flips)
         out << fmt::format("\n## Flip period against the exact one\n\nSpun near its intermediate axis, a free body "
                            "flips over and back with the period T = 4 K(k) sqrt(a b c / ((b - a)(2 E c - L^2))) (K the "
                            "complete elliptic integral of the first kind): here T_exact = {:.6f} s. Each cell is "
@@ -172,8 +189,19 @@ void writeRotationReport(const std::filesystem::path& path, const study::Rotatio
                            "measures is a wobble about another axis (see flip.png).\n\n",
                            result.exactPeriod)
             << rotationTable(config, result, RotationMeasure::PeriodError, true);
+    else if (!std::isnan(result.exactPeriod))
+        out << fmt::format("\n## Wobble period against the exact one\n\nSpun nearer its largest or smallest axis than "
+                           "its intermediate one, this body does not flip: it wobbles, its spin about the intermediate "
+                           "axis changing sign with the period T = 4 K(k) sqrt(a b c / ((b - a)(2 E c - L^2))) (K the "
+                           "complete elliptic integral of the first kind, a and c swapped for the largest axis): "
+                           "here T_exact = {:.6f} s. Each cell is (T - T_exact) / T_exact.\n\n",
+                           result.exactPeriod)
+            << rotationTable(config, result, RotationMeasure::PeriodError, true);
     else
-        out << "\nNo flip period: the body has two equal moments of inertia, or spins exactly about an axis.\n";
+        out << fmt::format("\nNo flip period: {}.\n",
+                           result.intermediateAxis < 0 ? "the body has two equal moments of inertia"
+                           : !result.spins             ? "the body starts without spin"
+                                                       : "the body spins exactly about a principal axis");
     out << "\n";
     if (withPlots) {
         out << "## Plots\n\n![drift](drift.png)\n";

@@ -97,9 +97,9 @@ std::string flipPlot(const std::filesystem::path& dir, const RotationConfig& con
     const std::size_t columns = n == 1 ? 1 : 2, rows = (n + columns - 1) / columns;
     std::string script = fmt::format(
         "set terminal pngcairo size {},{} font 'sans,10'\nset output 'flip.png'\nset multiplot layout {},{} title "
-        "ARG1.': angular velocity about its intermediate axis (body frame): each sign change is a flip'\n"
+        "ARG1.': angular velocity about its intermediate axis (body frame): each sign change is {}'\n"
         "set xlabel 't (s)'\nset ylabel 'omega (rad/s)'\nset key outside right\n",
-        columns == 1 ? 900 : 1400, 380 * rows + 40, rows, columns);
+        columns == 1 ? 900 : 1400, 380 * rows + 40, rows, columns, result.flips ? "a flip" : "half a wobble");
     for (Integrator integrator : config.integrators) {
         std::string line = fmt::format("set title '{}'\nplot ", integratorName(integrator));
         bool drawn = false;

@@ -138,6 +138,10 @@ RotationResult runRotationStudy(const RotationConfig& config, const std::functio
     }
     result.intermediateAxis = intermediateAxisOf(b.getInertiaBody());
     result.exactPeriod = torqueFreeFlipPeriod(b);
+    const dvec3 l = glm::transpose(glm::mat3_cast(b.getOrientation())) * b.getAngularMomentum(); // body frame
+    result.spins = l != dvec3(0.0);
+    if (const int k = result.intermediateAxis; k >= 0)
+        result.flips = std::abs(l[k]) >= std::abs(l[(k + 1) % 3]) && std::abs(l[k]) >= std::abs(l[(k + 2) % 3]);
     const std::size_t dts = config.dts.size();
     result.runs.resize(config.integrators.size() * dts);
     runInParallel(result.runs.size(), config.jobs, [&](std::size_t i) {

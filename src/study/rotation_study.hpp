@@ -47,6 +47,11 @@ struct RotationResult {
     bool joined = false;        ///< whether a joint holds it (then no run of it is a free body's)
     int intermediateAxis = -1;  ///< the body axis of intermediate inertia (-1: two moments equal)
     double exactPeriod = kNaN;  ///< torque-free flip period, s (NaN where the formula does not apply)
+    /// Whether it starts spun nearer its intermediate axis than the others (its angular
+    /// momentum's largest body-frame component there): it flips over and back. Spun nearer the
+    /// largest or smallest axis it only wobbles, its intermediate spin changing sign as often.
+    bool flips = false;
+    bool spins = false; ///< whether it starts with any angular momentum
     std::vector<RotationRun> runs; ///< in (integrator, dt) order
 };
 

@@ -74,6 +74,25 @@ TEST(RotationStudy, FlipPeriodHoldsOnBothSidesOfTheSeparatrix)
     EXPECT_NEAR(result.runs.at(0).flipPeriod, result.exactPeriod, 1e-5 * result.exactPeriod);
 }
 
+// Spun about its largest axis and nudged, a box wobbles: its intermediate spin changes sign with
+// the polhode's period, but it never flips, and the study does not say it does.
+TEST(RotationStudy, ABoxSpunNearItsLargestAxisWobblesAndDoesNotFlip)
+{
+    study::RotationConfig config;
+    config.scene = loadScene("tennis-racket");
+    auto& racket = static_cast<RigidBody&>(config.scene.world.body(0));
+    racket.setAngularVelocity(dvec3(6.0, 0.0, 0.3)); // about x, the largest moment
+    config.integrators = {Integrator::RK4};
+    config.dts = {0.001};
+    config.duration = 4.0;
+    const study::RotationResult result = study::runRotationStudy(config);
+    EXPECT_FALSE(result.flips);
+    ASSERT_FALSE(std::isnan(result.exactPeriod));
+    EXPECT_NEAR(result.runs.at(0).flipPeriod, result.exactPeriod, 1e-4 * result.exactPeriod);
+    racket.setAngularVelocity(dvec3(0.05, 0.0, 6.0)); // the racket's own: about the intermediate axis
+    EXPECT_TRUE(study::runRotationStudy(config).flips);
+}
+
 // The methods studied move the rigid bodies only: the hanging crate's rope keeps its implicit
 // Euler (stiff and damped for it, it blew up within steps under every explicit method, and every
 // run of the study with it).
