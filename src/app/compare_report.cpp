@@ -10,6 +10,7 @@
 #include "atomic_file.hpp"
 #include "csv.hpp"
 #include "gnuplot.hpp"
+#include "pba/forces.hpp"
 #include "study/findings.hpp"
 #include "study/plots.hpp"
 
@@ -129,14 +130,28 @@ double maxRatio(const study::Series& series)
     return most;
 }
 
-std::string stabilityRow(const study::StudyResult& result, const study::StabilityResult& s)
+/// Whether a spring of the scene is damped: the theory's limits are the undamped springs', and
+/// damping gives forward Euler a limit of its own (2 zeta / omega for a mode of damping ratio zeta).
+bool springsDamped(const World& world)
+{
+    struct Damped final : ForceVisitor {
+        bool any = false;
+        void visit(const Spring& spring) override { any = any || spring.damping() > 0.0; }
+    } damped;
+    for (std::size_t i = 0; i < world.forceCount(); ++i)
+        world.force(i).accept(damped);
+    return damped.any;
+}
+
+std::string stabilityRow(const study::StudyResult& result, const study::StabilityResult& s, bool damped)
 {
     const double omega = *result.omegaMax;
     const std::string measured = std::isnan(s.measuredDt) ? "not measured: " + s.unmeasured
                                                           : fmt::format("{:.5g}", s.measuredDt);
     const std::string omegaDt = std::isnan(s.measuredDt) ? std::string("-") : fmt::format("{:.4g}", omega * s.measuredDt);
     if (std::isnan(s.theoryDt))
-        return fmt::format("| {} | none: gains energy at every dt | {} | {} | - |\n", integratorName(s.integrator),
+        return fmt::format("| {} | {} | {} | {} | - |\n", integratorName(s.integrator),
+                           damped ? "none undamped (the damping gives it one)" : "none: gains energy at every dt",
                            measured, omegaDt);
     if (std::isinf(s.theoryDt)) {
         const double largest = std::size(study::kLadderOmegaDt) > 0 ? study::kLadderOmegaDt[std::size(study::kLadderOmegaDt) - 1] : 0.0;
@@ -281,10 +296,16 @@ std::string stabilitySection(const study::StudyConfig& config, const study::Stud
         c.energyFactor - 1.0, c.energyFactor, c.periods, c.periods * period, c.tolerance);
     out += "| integrator | theory dt limit (s) | measured dt limit (s) | omega dt measured | measured / theory |\n"
            "|---|---:|---:|---:|---:|\n";
+    const bool damped = springsDamped(config.scene.world);
     for (const auto& s : result.stability)
-        out += stabilityRow(result, s);
+        out += stabilityRow(result, s, damped);
+    if (damped)
+        out += "\nThe springs here are damped, and the theory's limits are the undamped springs': damping gives "
+               "forward Euler a limit of its own (its growth 1 + (omega dt)^2 a step is offset by the damping: "
+               "omega dt < 2 zeta for a mode of damping ratio zeta) and moves semi-implicit Euler's to "
+               "omega dt < 2 (sqrt(1 + zeta^2) - zeta); the measured limits include it.\n";
     for (const auto& s : result.stability)
-        if (std::isnan(s.theoryDt) && !std::isnan(s.measuredDt))
+        if (std::isnan(s.theoryDt) && !std::isnan(s.measuredDt) && !damped)
             out += fmt::format(
                 "\nForward Euler's number is the criterion's, not a limit of the method: its energy grows by "
                 "1 + (omega dt)^2 every step, about exp(2 pi P omega dt) over P periods, so a single oscillator "
