@@ -397,11 +397,13 @@ std::string centreErrorHeading(const study::StudyConfig& config, const study::St
 {
     const bool withExact = collision == CollisionResponse::Reflect && study::exactShownAsReflect(config, result);
     double firstImpact = std::numeric_limits<double>::infinity(), least = firstImpact, most = 0.0;
+    bool anyImpact = false; // at any dt
     // Whether the impacts, not the method, make the whole run's error: at the smallest dt it is
     // over ten times the error before the first impact for every method with a reference.
     bool impactsDominate = true, anyFinest = false;
     for (const ParticleResult& r : result.runs)
         if (r.particle == study::kSystemRow && r.collision == collision) {
+            anyImpact = anyImpact || !std::isnan(r.firstImpactAt);
             if (!std::isnan(r.firstImpactAt) && r.dt == config.dts.front())
                 firstImpact = std::min(firstImpact, r.firstImpactAt);
             if (std::isnan(r.blewUpAt) && !std::isnan(r.maxPositionError)) {
@@ -416,10 +418,15 @@ std::string centreErrorHeading(const study::StudyConfig& config, const study::St
     std::string text = fmt::format("## Centre of mass: largest distance from the reference run (m), `{}` response{}\n\n",
                                    collisionResponseName(collision), withExact ? " (and `exact`)" : "");
     if (std::isinf(firstImpact))
-        return text + "Over the whole run: nothing met a surface.";
+        return text + (anyImpact ? "At the smallest dt nothing met a surface over the whole run; at larger dt some "
+                                   "runs did, and their bounces part them from the reference."
+                                 : "Over the whole run: nothing met a surface.");
     text += fmt::format("Up to the reference's first impact (t = {:.3g} s at the smallest dt), where the motion is "
-                        "smooth: there the distance should fall with dt at the method's order.",
-                        firstImpact);
+                        "smooth: there the distance should fall with dt at the method's order{}.",
+                        firstImpact,
+                        result.lessSourceWork ? " where the forces are smooth too (the edge of the dryer's cone is "
+                                                "not, and a body crossing it breaks the order)"
+                                              : "");
     if (most > 0.0)
         text += fmt::format(" Over the whole run (`max_position_error` in `results.csv`) the runs part by {:.3g} to "
                             "{:.3g} m.",
