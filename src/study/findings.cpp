@@ -81,10 +81,16 @@ std::string endRatios(const std::vector<const ParticleResult*>& rows)
 std::string endClauses(const std::vector<const ParticleResult*>& rows, double duration, bool lessSourceWork)
 {
     const auto one = [&](const ParticleResult& r) {
+        // Below zero, less the dryer's work: the bounces and the integration took more than the
+        // start's energy, the dryer having put it in.
+        const bool below = lessSourceWork && r.energyRatioEnd < 0.0;
         return std::isnan(r.blewUpAt)
-                   ? fmt::format("its energy{} after {} s is {} times the start at dt = {}",
+                   ? fmt::format("its energy{} after {} s is {} times the start at dt = {}{}",
                                  lessSourceWork ? " less the dryer's work" : "", duration, ratioText(r.energyRatioEnd),
-                                 r.dt)
+                                 r.dt,
+                                 below ? " (below zero: what the bounces and the integration took is more than the "
+                                         "start's energy, the dryer's work having put it in)"
+                                       : "")
                    : fmt::format("it blew up at t = {:.3g} s at dt = {}", r.blewUpAt, r.dt);
     };
     return rows.size() > 1 ? one(*rows.front()) + " and " + one(*rows.back()) : one(*rows.front());
