@@ -376,8 +376,12 @@ OrbitCamera frameWorld(const World& world)
     }
     if (world.bodyCount() == 0)
         lo = hi = glm::vec3(0.0f);
-    if (world.ground())
+    if (world.ground()) {
         lo.y = std::min(lo.y, float(*world.ground()));
+        // Headroom above the start: a bounce may rise above where it fell from (forward Euler's
+        // gains half its height again in the integrators scene's 10 s).
+        hi.y += 0.5f * (hi.y - lo.y);
+    }
     lo -= glm::vec3(0.5f);
     hi += glm::vec3(0.5f);
     OrbitCamera camera = OrbitCamera::framing(lo, hi);
