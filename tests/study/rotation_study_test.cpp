@@ -19,6 +19,17 @@ const study::RotationRun& runOf(const study::RotationResult& result, Integrator 
     throw std::runtime_error("no such run");
 }
 
+/// The tennis racket spun at `spin` (world frame), studied with RK4 at dt 0.001.
+study::RotationConfig racketSpunAt(const dvec3& spin)
+{
+    study::RotationConfig config;
+    config.scene = loadScene("tennis-racket");
+    static_cast<RigidBody&>(config.scene.world.body(0)).setAngularVelocity(spin);
+    config.integrators = {Integrator::RK4};
+    config.dts = {0.001};
+    return config;
+}
+
 } // namespace
 
 TEST(RotationStudy, TennisRacketFlipsAtTheEllipticPeriodAndEachMethodShowsItsCharacter)
@@ -63,13 +74,8 @@ TEST(RotationStudy, ASymmetricBodyHasNoFlipPeriod)
 // period with the smallest and largest moments swapped, as the RK4 run measures it.
 TEST(RotationStudy, FlipPeriodHoldsOnBothSidesOfTheSeparatrix)
 {
-    study::RotationConfig config;
-    config.scene = loadScene("tennis-racket");
-    auto& racket = static_cast<RigidBody&>(config.scene.world.body(0));
-    racket.setAngularVelocity(dvec3(0.05, 0.0, 6.0)); // towards x, the largest moment
-    config.integrators = {Integrator::RK4};
-    config.dts = {0.001};
-    const study::RotationResult result = study::runRotationStudy(config);
+    // Nudged towards x, the largest moment.
+    const study::RotationResult result = study::runRotationStudy(racketSpunAt(dvec3(0.05, 0.0, 6.0)));
     ASSERT_FALSE(std::isnan(result.exactPeriod));
     EXPECT_NEAR(result.runs.at(0).flipPeriod, result.exactPeriod, 1e-5 * result.exactPeriod);
 }
@@ -78,18 +84,14 @@ TEST(RotationStudy, FlipPeriodHoldsOnBothSidesOfTheSeparatrix)
 // the polhode's period, but it never flips, and the study does not say it does.
 TEST(RotationStudy, ABoxSpunNearItsLargestAxisWobblesAndDoesNotFlip)
 {
-    study::RotationConfig config;
-    config.scene = loadScene("tennis-racket");
-    auto& racket = static_cast<RigidBody&>(config.scene.world.body(0));
-    racket.setAngularVelocity(dvec3(6.0, 0.0, 0.3)); // about x, the largest moment
-    config.integrators = {Integrator::RK4};
-    config.dts = {0.001};
+    study::RotationConfig config = racketSpunAt(dvec3(6.0, 0.0, 0.3)); // about x, the largest moment
     config.duration = 4.0;
     const study::RotationResult result = study::runRotationStudy(config);
     EXPECT_FALSE(result.flips);
     ASSERT_FALSE(std::isnan(result.exactPeriod));
     EXPECT_NEAR(result.runs.at(0).flipPeriod, result.exactPeriod, 1e-4 * result.exactPeriod);
-    racket.setAngularVelocity(dvec3(0.05, 0.0, 6.0)); // the racket's own: about the intermediate axis
+    config = racketSpunAt(dvec3(0.05, 0.0, 6.0)); // the racket's own: about the intermediate axis
+    config.duration = 4.0;
     EXPECT_TRUE(study::runRotationStudy(config).flips);
 }
 
