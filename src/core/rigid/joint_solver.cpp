@@ -109,7 +109,8 @@ void JointSolver::prepare(std::span<Joint> joints, std::span<const std::uint32_t
         r.rA = ra * j.localA;
         r.rB = rb * j.localB;
         r.linearMass = inverseOr0(pointMass(a, b, r.rA, r.rB));
-        const Carried carried = carriedWith(a, b, r.rA, r.rB);
+        const bool turns = j.type == JointType::Hinge || j.type == JointType::Fixed; // has angular rows
+        const Carried carried = turns ? carriedWith(a, b, r.rA, r.rB) : Carried{};
         const dmat3& angular = carried.spin;
         r.carry = carried.carry;
         if (j.type == JointType::Hinge) {
@@ -145,8 +146,10 @@ void JointSolver::prepare(std::span<Joint> joints, std::span<const std::uint32_t
     m_movingBodies.clear();
     for (const Rows& r : m_rows)
         for (const BodyIndex k : {r.a, r.b})
-            if (!bodies[k].isStatic() && std::find(m_movingBodies.begin(), m_movingBodies.end(), k) == m_movingBodies.end())
+            if (!bodies[k].isStatic())
                 m_movingBodies.push_back(k);
+    std::sort(m_movingBodies.begin(), m_movingBodies.end());
+    m_movingBodies.erase(std::unique(m_movingBodies.begin(), m_movingBodies.end()), m_movingBodies.end());
 }
 
 void JointSolver::warmStart()
