@@ -169,7 +169,7 @@ void JointSolver::warmStart()
 
 void JointSolver::solveBall(Rows& r, SolverBody& a, SolverBody& b)
 {
-    const dvec3 lambda = -(r.linearMass * anchorVelocity(a, b, r.rA, r.rB));
+    const dvec3 lambda = -(r.linearMass * rowAnchorVelocity(r, a, b));
     r.linearImpulse += lambda;
     applyLinear(a, b, r.rA, r.rB, lambda);
 }
@@ -187,7 +187,12 @@ dvec3 JointSolver::carriedSpin(const Rows& r, const SolverBody& a, const SolverB
     // The rows' unknowns are angular impulses with their carried linear ones: the spin they
     // are solved for counts the anchors' relative velocity along the carry too, so that each is
     // the least-energy step along its impulses (a Gauss-Seidel step; a chain flew apart without).
-    return (b.w - a.w) + glm::transpose(r.carry) * anchorVelocity(a, b, r.rA, r.rB);
+    return (b.w - a.w - r.blowSpin) + glm::transpose(r.carry) * rowAnchorVelocity(r, a, b);
+}
+
+dvec3 JointSolver::rowAnchorVelocity(const Rows& r, const SolverBody& a, const SolverBody& b)
+{
+    return anchorVelocity(a, b, r.rA, r.rB) - r.blowAnchor;
 }
 
 void JointSolver::solveHingeAngular(const Joint& j, Rows& r, SolverBody& a, SolverBody& b)
@@ -206,14 +211,14 @@ void JointSolver::solveHingeAngular(const Joint& j, Rows& r, SolverBody& a, Solv
     const double dt = m_settings.dt;
     {
         const double spin = -glm::dot(r.axis, carriedSpin(r, a, b));
-        const double target = -std::max(r.angle - j.lower, 0.0) / dt;
+        const double target = m_inBlows ? 0.0 : -std::max(r.angle - j.lower, 0.0) / dt;
         const double next = std::max(r.lowerImpulse - r.axialMass * (spin - target), 0.0);
         applyCarried(r, a, b, -(next - r.lowerImpulse) * r.axis);
         r.lowerImpulse = next;
     }
     {
         const double spin = -glm::dot(r.axis, carriedSpin(r, a, b));
-        const double target = std::max(j.upper - r.angle, 0.0) / dt;
+        const double target = m_inBlows ? 0.0 : std::max(j.upper - r.angle, 0.0) / dt;
         const double next = std::max(r.upperImpulse + r.axialMass * (spin - target), 0.0);
         applyCarried(r, a, b, (next - r.upperImpulse) * r.axis);
         r.upperImpulse = next;
@@ -285,7 +290,7 @@ void JointSolver::prepareSpring(const Joint& j, Rows& r, const SolverBody& a, co
 
 void JointSolver::solveDistance(const Joint& j, Rows& r, SolverBody& a, SolverBody& b)
 {
-    const double speed = glm::dot(r.n, anchorVelocity(a, b, r.rA, r.rB));
+    const double speed = glm::dot(r.n, rowAnchorVelocity(r, a, b));
     double lambda = -r.axialMass * speed;
     if (j.stiffness > 0.0) {
         // The impulse so far must equal -dt (endStiffness stretchAtEnd + c speed); the sweep moves it there.
@@ -303,16 +308,29 @@ void JointSolver::solveVelocities() { sweep(false); }
 
 void JointSolver::beginBlows()
 {
+    // A blow's sweeps keep each joint's relative velocities as they were before it: they take
+    // away what the blow does to the joints, and leave what the free step did to the velocity
+    // sweeps and their warm start (driven to zero here too, it was taken twice, and a chain
+    // struck against a wall tilted out of its plane by 7 degrees).
     m_rowsBeforeBlows = m_rows;
     for (Rows& r : m_rows) {
         r.linearImpulse = r.angularImpulse = dvec3(0.0);
         r.axialImpulse = r.lowerImpulse = r.upperImpulse = 0.0;
+        const SolverBody& a = m_bodies[r.a];
+        const SolverBody& b = m_bodies[r.b];
+        r.blowAnchor = anchorVelocity(a, b, r.rA, r.rB);
+        r.blowSpin = b.w - a.w;
     }
+    m_inBlows = true;
 }
 
 void JointSolver::sweepBlow() { sweep(true); }
 
-void JointSolver::endBlows() { m_rows.swap(m_rowsBeforeBlows); }
+void JointSolver::endBlows()
+{
+    m_rows.swap(m_rowsBeforeBlows);
+    m_inBlows = false;
+}
 
 void JointSolver::sweep(bool blow)
 {

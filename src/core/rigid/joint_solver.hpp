@@ -91,12 +91,17 @@ private:
         double springGain = 0.0;    ///< 1 / (1 + dt (endStiffness dt Kw + c K))
         dvec3 linearImpulse{0.0}, angularImpulse{0.0};
         double axialImpulse = 0.0, lowerImpulse = 0.0, upperImpulse = 0.0;
+        /// Between beginBlows and endBlows: the anchors' relative velocity and B's spin less A's
+        /// before the blows, which the rows keep (zero otherwise)
+        dvec3 blowAnchor{0.0}, blowSpin{0.0};
     };
     void solveBall(Rows& r, SolverBody& a, SolverBody& b);
     /// An angular impulse l (A: -l, B: +l) with the linear impulse its row carries.
     static void applyCarried(Rows& r, SolverBody& a, SolverBody& b, const dvec3& l);
     /// B's spin relative to A's as the angular rows solve for it (carried along the anchors).
     static dvec3 carriedSpin(const Rows& r, const SolverBody& a, const SolverBody& b);
+    /// The anchors' relative velocity as the rows solve for it (less blowAnchor).
+    static dvec3 rowAnchorVelocity(const Rows& r, const SolverBody& a, const SolverBody& b);
     void solveHingeAngular(const Joint& j, Rows& r, SolverBody& a, SolverBody& b);
     void solveFixedAngular(Rows& r, SolverBody& a, SolverBody& b);
     void solveDistance(const Joint& j, Rows& r, SolverBody& a, SolverBody& b);
@@ -112,6 +117,7 @@ private:
     SolverSettings m_settings;
     std::vector<Rows> m_rows;
     std::vector<Rows> m_rowsBeforeBlows; ///< beginBlows'
+    bool m_inBlows = false;
     std::vector<BodyIndex> m_movingBodies;
     /// One sweep of every joint's velocity rows; with `blow`, not a spring's.
     void sweep(bool blow);
