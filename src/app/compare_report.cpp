@@ -10,7 +10,7 @@
 #include "atomic_file.hpp"
 #include "csv.hpp"
 #include "gnuplot.hpp"
-#include "pba/forces.hpp"
+#include "study/exact_solution.hpp"
 #include "study/findings.hpp"
 #include "study/plots.hpp"
 
@@ -128,19 +128,6 @@ double maxRatio(const study::Series& series)
     for (double e : series.energyRatio)
         most = std::max(most, e);
     return most;
-}
-
-/// Whether a spring of the scene is damped: the theory's limits are the undamped springs', and
-/// damping gives forward Euler a limit of its own (2 zeta / omega for a mode of damping ratio zeta).
-bool springsDamped(const World& world)
-{
-    struct Damped final : ForceVisitor {
-        bool any = false;
-        void visit(const Spring& spring) override { any = any || spring.damping() > 0.0; }
-    } damped;
-    for (std::size_t i = 0; i < world.forceCount(); ++i)
-        world.force(i).accept(damped);
-    return damped.any;
 }
 
 std::string stabilityRow(const study::StudyResult& result, const study::StabilityResult& s, bool damped)
@@ -300,7 +287,8 @@ std::string stabilitySection(const study::StudyConfig& config, const study::Stud
         c.energyFactor - 1.0, c.energyFactor, c.periods, c.periods * period, c.tolerance);
     out += "| integrator | theory dt limit (s) | measured dt limit (s) | omega dt measured | measured / theory |\n"
            "|---|---:|---:|---:|---:|\n";
-    const bool damped = springsDamped(config.scene.world);
+    // The theory's limits are the undamped springs': damping gives forward Euler a limit of its own.
+    const bool damped = study::forceKinds(config.scene.world).dampedSprings;
     for (const auto& s : result.stability)
         out += stabilityRow(result, s, damped);
     if (damped)

@@ -12,6 +12,7 @@
 #include "csv.hpp"
 #include "gnuplot.hpp"
 #include "study/exact_solution.hpp"
+#include "study/findings.hpp"
 #include "study/rotation_plots.hpp"
 
 namespace pba::app {
@@ -67,7 +68,7 @@ std::string notFreeBecause(const study::RotationConfig& config, const study::Rot
 {
     const bool touched =
         std::any_of(result.runs.begin(), result.runs.end(), [](const study::RotationRun& r) { return r.touched; });
-    const bool forced = !study::onlyGravity(config.scene.world); // a dryer's air, drag
+    const bool forced = !study::forceKinds(config.scene.world).onlyGravity; // a dryer's air, drag
     std::vector<std::string> what, how;
     if (touched) {
         what.emplace_back("it touches other bodies or the room");
@@ -83,14 +84,8 @@ std::string notFreeBecause(const study::RotationConfig& config, const study::Rot
     }
     if (what.empty())
         return {};
-    const auto joined = [](const std::vector<std::string>& parts) {
-        std::string text;
-        for (std::size_t i = 0; i < parts.size(); ++i)
-            text += (i == 0 ? "" : i + 1 == parts.size() ? " and " : ", ") + parts[i];
-        return text;
-    };
     return fmt::format(" `{}` is no free body here ({}): {}, so the drift is theirs as well as the method's.\n\n",
-                       result.body, joined(what), joined(how));
+                       result.body, study::listText(what), study::listText(how));
 }
 
 /// A measure's findings in a sentence per method at the largest dt: how far it drifted, or that

@@ -12,11 +12,22 @@
 
 namespace pba::render {
 
+namespace {
+
+/// A particle's `radius` (where it touches), or 0 for a point or any other body.
+float ballRadius(const Body& body)
+{
+    const auto* particle = dynamic_cast<const Particle*>(&body);
+    return particle ? float(particle->getRadius()) : 0.0f;
+}
+
+} // namespace
+
 float drawnRadius(const Body& body, const ViewSettings& settings)
 {
     // A ball with a radius is drawn at its size: that is where it touches.
-    if (const auto* particle = dynamic_cast<const Particle*>(&body); particle && particle->getRadius() > 0.0)
-        return float(particle->getRadius());
+    if (const float radius = ballRadius(body); radius > 0.0f)
+        return radius;
     // Balls of one density: the radius grows as the cube root of the mass, so masses that differ
     // tenfold still differ visibly (2.15x) without hiding the light ones.
     const double scale = std::clamp(std::cbrt(body.getMass() / kDrawnReferenceMass), 0.4, 2.5);
@@ -199,9 +210,8 @@ void addRope(const World& world, const RopeLayout& rope, double alpha, const Vie
             return;
         const bool pinned = world.body(i).isFixed();
         // A bead with a radius is drawn at its size: that is where it touches.
-        const auto* particle = dynamic_cast<const Particle*>(&world.body(i));
-        const float radius = particle && particle->getRadius() > 0.0 ? float(particle->getRadius())
-                                                                     : settings.particleRadius * (pinned ? 0.8f : 0.45f);
+        const float ball = ballRadius(world.body(i));
+        const float radius = ball > 0.0f ? ball : settings.particleRadius * (pinned ? 0.8f : 0.45f);
         // A bead on the floor lies on it, as a lone particle's ball does, not half sunk in.
         const glm::vec3 at = restingCentre(world, drawnPosition(world, i, alpha, settings.interpolate), radius);
         if (k > 0)
@@ -242,10 +252,8 @@ void addCloth(const World& world, const ClothLayout& cloth, double alpha, const 
     // so that what rests on it rests on them, and an edge it drapes over stays under them.
     for (std::size_t k = 0; k < w * h; ++k) {
         const Body& body = world.body(cloth.first + k);
-        const auto* particle = dynamic_cast<const Particle*>(&body);
-        if (particle && particle->getRadius() > 0.0)
-            out.sprites.push_back({x[k], float(particle->getRadius()), body.isFixed() ? groups.bodyColour(cloth.first + k)
-                                                                                     : front});
+        if (const float ball = ballRadius(body); ball > 0.0f)
+            out.sprites.push_back({x[k], ball, body.isFixed() ? groups.bodyColour(cloth.first + k) : front});
         else if (body.isFixed())
             out.sprites.push_back({x[k], settings.particleRadius * 0.8f, groups.bodyColour(cloth.first + k)});
     }

@@ -39,15 +39,19 @@ std::vector<const Spring*> springsOn(const World& world, std::size_t particle)
 
 } // namespace
 
-bool onlyGravity(const World& world)
+ForceKinds forceKinds(const World& world)
 {
-    struct Counter final : ForceVisitor {
+    struct Collector final : ForceVisitor {
         std::size_t gravities = 0;
+        ForceKinds kinds;
         void visit(const Gravity&) override { ++gravities; }
-    } counter;
+        void visit(const Spring& spring) override { kinds.dampedSprings = kinds.dampedSprings || spring.damping() > 0.0; }
+        void visit(const Drag&) override { kinds.drag = true; }
+    } collector;
     for (std::size_t i = 0; i < world.forceCount(); ++i)
-        world.force(i).accept(counter);
-    return counter.gravities == world.forceCount();
+        world.force(i).accept(collector);
+    collector.kinds.onlyGravity = collector.gravities == world.forceCount();
+    return collector.kinds;
 }
 
 std::optional<ExactSolution> ExactSolution::find(const World& world, std::size_t particle)
@@ -57,7 +61,7 @@ std::optional<ExactSolution> ExactSolution::find(const World& world, std::size_t
     ExactSolution exact;
     exact.m_start = body.getPos();
     const auto floor = floorHeight(world);
-    if (floor && onlyGravity(world) && g.x == 0.0 && g.z == 0.0 && g.y < 0.0 && body.getVel() == dvec3(0.0) &&
+    if (floor && forceKinds(world).onlyGravity && g.x == 0.0 && g.z == 0.0 && g.y < 0.0 && body.getVel() == dvec3(0.0) &&
         body.getCor() == 1.0 && !world.room() && !world.floorHole()) {
         exact.m_kind = Kind::Bounce;
         exact.m_floor = *floor;

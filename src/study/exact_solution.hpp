@@ -7,8 +7,13 @@
 
 namespace pba::study {
 
-/// Whether gravity is the only force of the world.
-bool onlyGravity(const World& world);
+/// Which kinds of force the world has, for what a report may say of it.
+struct ForceKinds {
+    bool onlyGravity = true;    ///< no force but gravity
+    bool dampedSprings = false; ///< a spring with damping
+    bool drag = false;          ///< the linear `drag` force
+};
+ForceKinds forceKinds(const World& world);
 
 /// The exact motion of one particle, if the scene has one we know.
 class ExactSolution {

@@ -8,7 +8,6 @@
 #include <fmt/format.h>
 
 #include "exact_solution.hpp"
-#include "pba/forces.hpp"
 
 namespace pba::study {
 
@@ -31,15 +30,6 @@ std::vector<const ParticleResult*> rowsOf(const StudyConfig& config, const Study
     return rows;
 }
 
-/// The exact solution of the first moving particle, the one the report follows.
-std::optional<ExactSolution> firstExact(const StudyConfig& config)
-{
-    const World& world = config.scene.world;
-    for (std::size_t i = 0; i < world.bodyCount(); ++i)
-        if (!world.body(i).isFixed())
-            return ExactSolution::find(world, i);
-    return std::nullopt;
-}
 
 /// Whether the bounce findings' mechanisms (the shadow energy, the mirror's gain) are the whole
 /// story: gravity is the only force, the ground the only surface, and every moving particle
@@ -49,7 +39,7 @@ std::optional<ExactSolution> firstExact(const StudyConfig& config)
 bool elasticBouncesUnderGravity(const StudyConfig& config)
 {
     const World& world = config.scene.world;
-    if (!onlyGravity(world) || world.gravity() == dvec3(0.0) || world.room() || world.planes().size() > 1)
+    if (!forceKinds(world).onlyGravity || world.gravity() == dvec3(0.0) || world.room() || world.planes().size() > 1)
         return false;
     for (std::size_t i = 0; i < world.bodyCount(); ++i)
         if (!world.body(i).isFixed() && world.body(i).getCor() != 1.0)
@@ -145,18 +135,11 @@ std::string survivors(const StudyConfig& config, const StudyResult& result)
         text += all ? "at every dt" : largest > 0 ? fmt::format("up to dt = {}", largest) : "at none";
     }
     // Only what the scene has is named: its springs' mode, their damping, drag, bounces.
-    struct Present final : ForceVisitor {
-        bool damping = false, drag = false;
-        void visit(const Spring& spring) override { damping = damping || spring.damping() > 0.0; }
-        void visit(const Drag&) override { drag = true; }
-    } present;
-    const World& world = config.scene.world;
-    for (std::size_t i = 0; i < world.forceCount(); ++i)
-        world.force(i).accept(present);
+    const ForceKinds kinds = forceKinds(config.scene.world);
     std::vector<std::string> losses;
-    if (present.damping)
+    if (kinds.dampedSprings)
         losses.emplace_back("the springs' damping");
-    if (present.drag)
+    if (kinds.drag)
         losses.emplace_back("the drag");
     if (anyCollision(result))
         losses.emplace_back("the bounces");
@@ -164,10 +147,7 @@ std::string survivors(const StudyConfig& config, const StudyResult& result)
                                         "geometrically: the run blows up, or gains energy (the stability limits below)."
                                       : "";
     if (!losses.empty())
-        why += fmt::format(" Where it stays finite the total energy falls, to {}.",
-                           losses.size() == 1   ? losses[0]
-                           : losses.size() == 2 ? losses[0] + " and " + losses[1]
-                                                : losses[0] + ", " + losses[1] + " and " + losses[2]);
+        why += fmt::format(" Where it stays finite the total energy falls, to {}.", listText(losses));
     return fmt::format("**Which dt keep the system finite** (`{}` response, {} s): {}.{}\n\n",
                        collisionResponseName(c), config.duration, text, why);
 }
@@ -560,6 +540,23 @@ std::string orderText(const OrderResult& order)
 std::string ratioText(double ratio)
 {
     return std::abs(ratio) < 1e4 ? fmt::format("{:.4f}", ratio) : fmt::format("{:.4g}", ratio);
+}
+
+std::optional<ExactSolution> firstExact(const StudyConfig& config)
+{
+    const World& world = config.scene.world;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (!world.body(i).isFixed())
+            return ExactSolution::find(world, i);
+    return std::nullopt;
+}
+
+std::string listText(const std::vector<std::string>& parts)
+{
+    std::string text;
+    for (std::size_t i = 0; i < parts.size(); ++i)
+        text += (i == 0 ? "" : i + 1 == parts.size() ? " and " : ", ") + parts[i];
+    return text;
 }
 
 std::string findings(const StudyConfig& config, const StudyResult& result)

@@ -1,9 +1,11 @@
 #pragma once
 // The integrator study's findings in words, each sentence stated from the measured numbers and
 // only where they bear it out: a report must read true for any scene and any set of dt.
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "exact_solution.hpp"
 #include "study.hpp"
 
 namespace pba::study {
@@ -34,6 +36,12 @@ std::string orderText(const OrderResult& order);
 /// An energy ratio to four decimals ("1.0123"), or to four significant digits from 10^4 up
 /// ("9.504e+49"): a run past its stability limit ends many orders of magnitude up.
 std::string ratioText(double ratio);
+
+/// The exact solution of the first moving particle, the one the report follows.
+std::optional<ExactSolution> firstExact(const StudyConfig& config);
+
+/// "a", "a and b", "a, b and c".
+std::string listText(const std::vector<std::string>& parts);
 
 /// The findings, one paragraph each, in Markdown.
 std::string findings(const StudyConfig& config, const StudyResult& result);

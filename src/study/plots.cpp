@@ -174,13 +174,7 @@ std::string energyPlot(const std::filesystem::path& dir, const StudyConfig& conf
     const double dt = energyPlotDt(config, result);
     const auto responses = distinctResponses(config, result);
     const bool collides = anyCollision(result);
-    bool exactKept = false; // whether the first moving particle has an exact motion we know
-    const World& world = config.scene.world;
-    for (std::size_t i = 0; i < world.bodyCount(); ++i)
-        if (!world.body(i).isFixed()) {
-            exactKept = ExactSolution::find(world, i).has_value();
-            break;
-        }
+    const bool exactKept = firstExact(config).has_value(); // the first moving particle's motion known
     const std::string what = std::string(result.followsSystem ? "total energy (every body)" : "energy") +
                              (result.lessSourceWork ? " less the work of the dryer" : "");
     std::string script = fmt::format("set terminal pngcairo size {},500 font 'sans,10'\nset output 'energy.png'\n"
