@@ -40,6 +40,7 @@ struct RenderOptions {
     std::string size = "1280x720";
     bool arrows = false;
     bool noTrails = false;
+    bool noLegend = false;
     bool lanes = false;
     std::optional<std::string> camera;
     std::optional<std::string> show;
@@ -96,8 +97,8 @@ int runRender(const RenderOptions& options)
     settings.fabric = scene.fabric;
     if (options.lanes)
         settings.ghost = exactGhosts(scene.world);
-    render::OffscreenRenderer renderer(width, height);
-    renderer.setCamera(cameraFor(camera, scene.world));
+    render::OffscreenRenderer renderer(width, height, !options.noLegend);
+    renderer.setCamera(cameraFor(camera, scene.world), !camera || camera->view);
     render::Trails trails;
     const World initial = scene.world;
     const auto frames = static_cast<long>(std::floor(until * options.fps + 1e-9)) + 1;
@@ -193,6 +194,9 @@ void addRenderCommand(CLI::App& root, Action& selected)
                      "stutter the fixed clock's interpolation hides)");
     render->add_flag("--arrows", options->arrows, "Draw the blow dryer's field as arrows inside its cone");
     render->add_flag("--no-trails", options->noTrails, "Do not draw the particles' fading trails");
+    render->add_flag("--no-legend", options->noLegend,
+                     "Do not draw the legend (the scene, the time, the collision rules and each body's colour) in "
+                     "the lower left");
     render->add_flag("--lanes", options->lanes, "Integrator lanes: a ghost of the exact solution beside each particle "
                                                 "that has one (the integrators and spring scenes)");
     addPictureFlags(*render, options->camera, options->show);

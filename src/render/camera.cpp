@@ -83,4 +83,60 @@ OrbitCamera namedView(NamedView view, const OrbitCamera& framing)
     return camera;
 }
 
+namespace {
+
+/// How far (pixels) the picture of the box reaches down into the corner [0, cx] x [height - cy, height],
+/// and how far its top stays below the picture's top edge. The box's picture is the convex hull of its
+/// corners', so the lowest point of it left of x = cx is a corner there or a crossing of that line by
+/// a segment between two corners.
+struct Reach {
+    float into = 0.0f, above = 0.0f;
+};
+
+Reach reachInto(const OrbitCamera& camera, const glm::vec3& lo, const glm::vec3& hi, int width, int height,
+                const glm::vec2& corner)
+{
+    glm::vec2 p[8];
+    float top = float(height), lowest = -1e30f;
+    for (int k = 0; k < 8; ++k) {
+        const glm::vec3 c((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
+        p[k] = glm::vec2(camera.project(c, width, height));
+        top = std::min(top, p[k].y);
+        if (p[k].x <= corner.x)
+            lowest = std::max(lowest, p[k].y);
+    }
+    for (int a = 0; a < 8; ++a)
+        for (int b = a + 1; b < 8; ++b)
+            if ((p[a].x - corner.x) * (p[b].x - corner.x) < 0.0f) {
+                const float s = (corner.x - p[a].x) / (p[b].x - p[a].x);
+                lowest = std::max(lowest, p[a].y + s * (p[b].y - p[a].y));
+            }
+    return {lowest - (float(height) - corner.y), top};
+}
+
+} // namespace
+
+OrbitCamera clearOfCorner(OrbitCamera camera, const glm::vec3& lo, const glm::vec3& hi, int width, int height,
+                          const glm::vec2& corner)
+{
+    // A picture too small for the legend and the room both (a thumbnail) keeps its framing.
+    if (corner.y > 0.4f * float(height))
+        return camera;
+    const float gap = 6.0f; // pixels left between the box's picture and the corner's edge
+    // A few rounds: a pixel at the box's near floor moves further than one at the target's depth.
+    for (int round = 0; round < 12; ++round) {
+        const Reach reach = reachInto(camera, lo, hi, width, height, corner);
+        const float into = reach.into + gap;
+        if (into <= 0.0f)
+            break;
+        // Up into the space above the box, a pixel being the target's world height over its depth
+        // (look lower by that much); what that space lacks, by drawing back.
+        const float up = std::clamp(reach.above - gap, 0.0f, into);
+        camera.pan(0.0f, -up * 2.0f * std::tan(0.5f * camera.fovY) / float(height));
+        if (up < into)
+            camera.zoom(1.0f + (into - up) / float(height));
+    }
+    return camera;
+}
+
 } // namespace pba::render

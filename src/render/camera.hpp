@@ -38,4 +38,11 @@ struct OrbitCamera {
 enum class NamedView { Front, Side, Top, Corner };
 OrbitCamera namedView(NamedView view, const OrbitCamera& framing);
 
+/// The camera moved so that the picture of the box [lo, hi] keeps out of the picture's lower-left
+/// corner of `corner` pixels (the legend's): it looks lower, so the box rises into the space above,
+/// and draws back when that space is not enough. A corner taller than 0.4 of the picture (a
+/// thumbnail's legend) leaves the camera as it is.
+OrbitCamera clearOfCorner(OrbitCamera camera, const glm::vec3& lo, const glm::vec3& hi, int width, int height,
+                          const glm::vec2& corner);
+
 } // namespace pba::render

@@ -16,20 +16,35 @@ std::vector<std::uint8_t> OffscreenRenderer::render(const World& world, const Wo
         m_camera = frameWorld(initial);
         m_cameraSet = true;
     }
-    buildDrawList(world, initial, alpha, settings, trails, m_list);
     m_context.bindForDrawing();
-    m_renderer.draw(m_list, m_camera, width(), height());
-    if (m_imgui) {
-        // ImGui sizes an auto-resizing window during its first frame and shows it from the
-        // second, so the very first picture runs the legend twice.
-        for (int pass = m_legendShown ? 1 : 0; pass < 2; ++pass) {
-            m_imgui->beginFrame(width(), height(), 1.0f / 60.0f);
-            drawLegend(world, sceneName, dt, drawnTime(world, alpha, settings.interpolate), true, &settings.fabric);
-            m_imgui->endFrame();
+    if (m_imgui && !m_legendShown) {
+        // ImGui sizes an auto-resizing window in its first frame and shows it from the second: the
+        // legend is laid out twice before the first picture (the scene's drawing clears them), and
+        // a framing camera then keeps the room out of its corner.
+        glm::vec2 legend(0.0f);
+        for (int pass = 0; pass < 2; ++pass)
+            legend = drawLegendOnce(world, alpha, settings, sceneName, dt);
+        if (m_cameraFraming) {
+            const FramedBox box = framedBox(initial);
+            m_camera = clearOfCorner(m_camera, box.lo, box.hi, width(), height(), legend + glm::vec2(10.0f));
         }
         m_legendShown = true;
     }
+    buildDrawList(world, initial, alpha, settings, trails, m_list);
+    m_renderer.draw(m_list, m_camera, width(), height());
+    if (m_imgui)
+        drawLegendOnce(world, alpha, settings, sceneName, dt);
     return m_context.readPixels();
+}
+
+glm::vec2 OffscreenRenderer::drawLegendOnce(const World& world, double alpha, const ViewSettings& settings,
+                                            const std::string& sceneName, double dt)
+{
+    m_imgui->beginFrame(width(), height(), 1.0f / 60.0f);
+    const glm::vec2 size =
+        drawLegend(world, sceneName, dt, drawnTime(world, alpha, settings.interpolate), true, &settings.fabric);
+    m_imgui->endFrame();
+    return size;
 }
 
 std::vector<std::uint8_t> OffscreenRenderer::renderList(const DrawList& list)

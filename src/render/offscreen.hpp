@@ -26,11 +26,13 @@ public:
                                      double dt);
 
     OrbitCamera& camera() { return m_camera; }
-    /// Draws from this camera instead of the one framing the world.
-    void setCamera(const OrbitCamera& camera)
+    /// Draws from this camera instead of the one framing the world; `framing`, it is one of the
+    /// framing views, which the legend's corner may move (a camera placed by hand is kept).
+    void setCamera(const OrbitCamera& camera, bool framing = false)
     {
         m_camera = camera;
         m_cameraSet = true;
+        m_cameraFraming = framing;
     }
     int width() const { return m_context.width(); }
     int height() const { return m_context.height(); }
@@ -39,11 +41,15 @@ public:
     std::vector<std::uint8_t> renderList(const DrawList& list);
 
 private:
+    glm::vec2 drawLegendOnce(const World& world, double alpha, const ViewSettings& settings,
+                             const std::string& sceneName, double dt);
+
     HeadlessContext m_context;
     Renderer m_renderer;
     std::unique_ptr<ImGuiLayer> m_imgui;
     OrbitCamera m_camera;
     bool m_cameraSet = false;
+    bool m_cameraFraming = true;
     bool m_legendShown = false;
     DrawList m_list;
 };

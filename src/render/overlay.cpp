@@ -123,15 +123,17 @@ void groupLines(const World& world, const BodyGroups& groups, bool compact)
 
 } // namespace
 
-void drawLegend(const World& world, const std::string& sceneName, double dt, double shownTime, bool compact,
-                const FabricLayout* fabric)
+glm::vec2 drawLegend(const World& world, const std::string& sceneName, double dt, double shownTime, bool compact,
+                  const FabricLayout* fabric)
 {
-    // Bottom left: the room's upper half, where balls fly and hover, stays in view.
+    // Bottom left: the room's upper half, where balls fly and hover, stays in view (and a picture's
+    // framing camera keeps the room out of the box: OrbitCamera::clearOfCorner).
     ImGui::SetNextWindowPos(ImVec2(10, ImGui::GetIO().DisplaySize.y - 10), ImGuiCond_Always, ImVec2(0, 1));
     ImGui::SetNextWindowBgAlpha(0.65f);
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                                    ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+    glm::vec2 size(0.0f);
     if (ImGui::Begin("legend", nullptr, flags)) {
         ImGui::Text("%s   t = %.2f s   dt = %g s", sceneName.c_str(), shownTime, dt);
         collisionLine(world);
@@ -142,8 +144,10 @@ void drawLegend(const World& world, const std::string& sceneName, double dt, dou
             ImGui::Text("swarm %s: %zu particles (%s)", world.swarm(s).name().c_str(), world.swarm(s).size(),
                         std::string(integratorName(world.swarm(s).integrator())).c_str());
         }
+        size = glm::vec2(ImGui::GetWindowSize().x, ImGui::GetWindowSize().y);
     }
     ImGui::End();
+    return size;
 }
 
 } // namespace pba::render

@@ -4,6 +4,8 @@
 // headless (display size set by hand).
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "pba/fabric.hpp"
 
 struct GLFWwindow;
@@ -32,7 +34,8 @@ private:
 /// A small box naming the scene, the time, the collision rules that apply, and each body in its
 /// colour with its integrator (a rope or cloth of `fabric` on one line of its own, not particle by
 /// particle); `compact` shows the first few, as many as a quarter of the picture's height holds.
-void drawLegend(const World& world, const std::string& sceneName, double dt, double shownTime, bool compact = false,
+/// Returns the box's size in pixels (ImGui knows it from the legend's second frame on).
+glm::vec2 drawLegend(const World& world, const std::string& sceneName, double dt, double shownTime, bool compact = false,
                 const FabricLayout* fabric = nullptr);
 
 } // namespace pba::render

@@ -369,10 +369,10 @@ void buildDrawList(const World& world, const World& initial, double alpha, const
     }
 }
 
-OrbitCamera frameWorld(const World& world)
+FramedBox framedBox(const World& world)
 {
     if (world.room())
-        return OrbitCamera::framing(glm::vec3(world.room()->min), glm::vec3(world.room()->max));
+        return {glm::vec3(world.room()->min), glm::vec3(world.room()->max)};
     glm::vec3 lo(1e30f), hi(-1e30f);
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
         lo = glm::min(lo, glm::vec3(world.body(i).getPos()));
@@ -390,10 +390,15 @@ OrbitCamera frameWorld(const World& world)
         // gains half its height again in the integrators scene's 10 s).
         hi.y += 0.5f * (hi.y - lo.y);
     }
-    lo -= glm::vec3(0.5f);
-    hi += glm::vec3(0.5f);
-    OrbitCamera camera = OrbitCamera::framing(lo, hi);
-    camera.pitch = 0.2f;
+    return {lo - glm::vec3(0.5f), hi + glm::vec3(0.5f)};
+}
+
+OrbitCamera frameWorld(const World& world)
+{
+    const FramedBox box = framedBox(world);
+    OrbitCamera camera = OrbitCamera::framing(box.lo, box.hi);
+    if (!world.room())
+        camera.pitch = 0.2f;
     return camera;
 }
 

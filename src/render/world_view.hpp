@@ -76,6 +76,12 @@ std::vector<bool> fabricMembers(const World& world, const FabricLayout& fabric);
 void buildDrawList(const World& world, const World& initial, double alpha, const ViewSettings& settings,
                    const Trails* trails, DrawList& out);
 
+/// What a picture frames: the room, or the bodies above the ground with room around them.
+struct FramedBox {
+    glm::vec3 lo, hi;
+};
+FramedBox framedBox(const World& world);
+
 /// A camera that frames the room, or the ground and the particles.
 OrbitCamera frameWorld(const World& world);
 

@@ -125,6 +125,43 @@ TEST(Camera, LookingFromAPositionAtATargetAndNamedViews)
     EXPECT_GT(namedView(NamedView::Top, framing).eye().y, framing.target.y + 0.99f * framing.distance);
 }
 
+// A framing camera keeps the room's picture out of the legend's corner and inside the picture:
+// every point of every segment between two of the room's corners (the picture's outline and all
+// inside it) lies outside the corner, at a large and a small picture size and from the named views.
+// A thumbnail, whose legend is taller than 0.4 of it, keeps its framing.
+TEST(Camera, TheFramingKeepsTheRoomOutOfTheLegendsCorner)
+{
+    const World world = loadScene("incline").world;
+    const FramedBox box = framedBox(world);
+    const OrbitCamera thumbnail = clearOfCorner(frameWorld(world), box.lo, box.hi, 96, 64, {560, 80});
+    EXPECT_EQ(thumbnail.target, frameWorld(world).target);
+    EXPECT_EQ(thumbnail.distance, frameWorld(world).distance);
+    struct Case {
+        int width, height;
+        glm::vec2 corner;
+    };
+    for (const Case& c : {Case{1280, 720, {572, 122}}, Case{640, 360, {572, 105}}, Case{640, 360, {300, 140}}})
+        for (const OrbitCamera& start : {frameWorld(world), namedView(NamedView::Front, frameWorld(world)),
+                                         namedView(NamedView::Top, frameWorld(world))}) {
+            const OrbitCamera camera = clearOfCorner(start, box.lo, box.hi, c.width, c.height, c.corner);
+            glm::vec3 corners[8];
+            for (int k = 0; k < 8; ++k)
+                corners[k] = glm::vec3((k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y,
+                                       (k & 4) ? box.hi.z : box.lo.z);
+            for (int a = 0; a < 8; ++a) {
+                const glm::vec3 p = camera.project(corners[a], c.width, c.height);
+                EXPECT_TRUE(p.x >= 0 && p.x <= c.width && p.y >= 0 && p.y <= c.height) << "corner " << a;
+                for (int b = a + 1; b < 8; ++b)
+                    for (int k = 0; k <= 100; ++k) {
+                        const glm::vec3 q =
+                            camera.project(glm::mix(corners[a], corners[b], k / 100.0f), c.width, c.height);
+                        EXPECT_FALSE(q.x < c.corner.x && q.y > c.height - c.corner.y)
+                            << c.width << "x" << c.height << ": " << q.x << ", " << q.y;
+                    }
+            }
+        }
+}
+
 TEST(WorldView, AParticleWithARadiusIsDrawnAtThatSize)
 {
     Scene scene = parseScene(R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]},
