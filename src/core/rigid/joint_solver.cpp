@@ -208,17 +208,23 @@ void JointSolver::solveHingeAngular(const Joint& j, Rows& r, SolverBody& a, Solv
     // speculative contact): at the lower limit A's spin relative to B about the axis is at least
     // -(angle - lower) / dt, with an impulse that only turns A forwards; at the upper, at most
     // (upper - angle) / dt. (An angular impulse l applied as below turns A by -l, B by +l.)
+    // In a blow the rows measure the blow's change of that spin: it may bring the spin up to the
+    // bound, or leave it where the free step had it beyond (the velocity sweeps' work), and
+    // a hinge far from its limits turns freely.
     const double dt = m_settings.dt;
+    const double before = m_inBlows ? r.blowAxialSpin : 0.0;
     {
         const double spin = -glm::dot(r.axis, carriedSpin(r, a, b));
-        const double target = m_inBlows ? 0.0 : -std::max(r.angle - j.lower, 0.0) / dt;
+        const double bound = -std::max(r.angle - j.lower, 0.0) / dt - before;
+        const double target = m_inBlows ? std::min(bound, 0.0) : bound;
         const double next = std::max(r.lowerImpulse - r.axialMass * (spin - target), 0.0);
         applyCarried(r, a, b, -(next - r.lowerImpulse) * r.axis);
         r.lowerImpulse = next;
     }
     {
         const double spin = -glm::dot(r.axis, carriedSpin(r, a, b));
-        const double target = m_inBlows ? 0.0 : std::max(j.upper - r.angle, 0.0) / dt;
+        const double bound = std::max(j.upper - r.angle, 0.0) / dt - before;
+        const double target = m_inBlows ? std::max(bound, 0.0) : bound;
         const double next = std::max(r.upperImpulse + r.axialMass * (spin - target), 0.0);
         applyCarried(r, a, b, (next - r.upperImpulse) * r.axis);
         r.upperImpulse = next;
@@ -318,6 +324,7 @@ void JointSolver::beginBlows()
         r.axialImpulse = r.lowerImpulse = r.upperImpulse = 0.0;
         const SolverBody& a = m_bodies[r.a];
         const SolverBody& b = m_bodies[r.b];
+        r.blowAxialSpin = -glm::dot(r.axis, carriedSpin(r, a, b));
         r.blowAnchor = anchorVelocity(a, b, r.rA, r.rB);
         r.blowSpin = b.w - a.w;
     }

@@ -94,6 +94,9 @@ private:
         /// Between beginBlows and endBlows: the anchors' relative velocity and B's spin less A's
         /// before the blows, which the rows keep (zero otherwise)
         dvec3 blowAnchor{0.0}, blowSpin{0.0};
+        /// Between beginBlows and endBlows: hinge limits' spin (A's relative to B about the axis,
+        /// as the rows measure it) before the blows
+        double blowAxialSpin = 0.0;
     };
     void solveBall(Rows& r, SolverBody& a, SolverBody& b);
     /// An angular impulse l (A: -l, B: +l) with the linear impulse its row carries.
