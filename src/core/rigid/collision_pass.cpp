@@ -7,27 +7,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace pba::rigid {
 
 namespace {
-
-/// 1 / (1/mA + 1/mB + (rA x u) . IA^-1 (rA x u) + (rB x u) . IB^-1 (rB x u)): the mass the two
-/// points feel along u; 0 between two static bodies.
-double effectiveMass(const SolverBody& a, const SolverBody& b, const dvec3& ra, const dvec3& rb, const dvec3& u)
-{
-    const dvec3 ca = glm::cross(ra, u), cb = glm::cross(rb, u);
-    const double k = a.inverseMass + b.inverseMass + glm::dot(ca, a.inverseInertia * ca) +
-                     glm::dot(cb, b.inverseInertia * cb);
-    return k > 0.0 ? 1.0 / k : 0.0;
-}
-
-/// The impulse p on B at its arm, and its opposite on A at A's.
-void applyPair(SolverBody& a, SolverBody& b, const PointRows& r, const dvec3& p)
-{
-    a.applyImpulse(-p, r.rA);
-    b.applyImpulse(p, r.rB);
-}
 
 /// The smallest s in [0, span] at which gap + u s + a s^2 / 2 reaches 0, or NaN if it does not
 /// within the span. A gap already closed is reached at once.
@@ -89,10 +73,83 @@ bool ContactSolver::collide(JointSolver& joints)
 {
     m_impactJoints = &joints;
     joints.beginBlows();
+    m_pins = joints.pins();
+    if (m_pinOf.size() < m_bodies.size())
+        m_pinOf.resize(m_bodies.size(), -1);
+    for (std::size_t i = 0; i < m_pins.size(); ++i)
+        m_pinOf[m_pins[i].body] = std::int32_t(i);
     const bool any = collide(kEveryStrike);
+    for (const Pin& pin : m_pins)
+        m_pinOf[pin.body] = -1;
+    m_pins = {};
     joints.endBlows();
     m_impactJoints = nullptr;
     return any;
+}
+
+double ContactSolver::blowInverseMass(BodyIndex k, const dvec3& r, const dvec3& u) const
+{
+    if (!m_pins.empty() && m_pinOf[k] >= 0)
+        return m_pins[std::size_t(m_pinOf[k])].inverseMassAlong(r, u);
+    const SolverBody& body = m_bodies[k];
+    const dvec3 c = glm::cross(r, u);
+    return body.inverseMass + glm::dot(c, body.inverseInertia * c);
+}
+
+double ContactSolver::blowMass(BodyIndex a, BodyIndex b, const dvec3& ra, const dvec3& rb, const dvec3& u) const
+{
+    const double k = blowInverseMass(a, ra, u) + blowInverseMass(b, rb, u);
+    return k > 0.0 ? 1.0 / k : 0.0;
+}
+
+void ContactSolver::applyBlow(BodyIndex a, BodyIndex b, const PointRows& r, const dvec3& p)
+{
+    for (const auto& [k, impulse, arm] : {std::tuple(a, -p, r.rA), std::tuple(b, p, r.rB)}) {
+        SolverBody& body = m_bodies[k];
+        if (body.isStatic())
+            continue;
+        if (!m_pins.empty() && m_pinOf[k] >= 0)
+            m_pins[std::size_t(m_pinOf[k])].applyImpulse(body, impulse, arm);
+        else
+            body.applyImpulse(impulse, arm);
+    }
+}
+
+void ContactSolver::restingRows(const IslandContact& c, std::span<const ImpactRow> rows)
+{
+    m_resting.clear();
+    const auto pinned = [&](BodyIndex k) { return m_pinOf[k] >= 0 && (k == c.a || k == c.b); };
+    for (const IslandContact& other : m_constraints) {
+        const bool heldA = pinned(other.a) && m_bodies[other.b].isStatic();
+        const bool heldB = pinned(other.b) && m_bodies[other.a].isStatic();
+        if (!heldA && !heldB)
+            continue;
+        for (int i = 0; i < other.count; ++i) {
+            const bool struck = &other == &c && std::any_of(rows.begin(), rows.end(), [&](const ImpactRow& row) {
+                return row.point == i;
+            });
+            const PointRows& r = m_rows[other.first + i];
+            if (struck || r.separation > m_settings.contact.linearSlop)
+                continue;
+            RestingRow row{other.a, other.b, r};
+            row.rows.normalMass = blowMass(other.a, other.b, r.rA, r.rB, r.n);
+            row.targetN = std::min(glm::dot(r.n, relativeVelocity(m_bodies[other.a], m_bodies[other.b], r)), 0.0);
+            m_resting.push_back(row);
+        }
+    }
+}
+
+void ContactSolver::solveResting(double& change, double& largest)
+{
+    for (RestingRow& row : m_resting) {
+        const PointRows& r = row.rows;
+        const double vn = glm::dot(r.n, relativeVelocity(m_bodies[row.a], m_bodies[row.b], r));
+        const double next = std::max(row.pushN - r.normalMass * (vn - row.targetN), 0.0);
+        applyBlow(row.a, row.b, r, (next - row.pushN) * r.n);
+        change = std::max(change, std::abs(next - row.pushN));
+        row.pushN = next;
+        largest = std::max(largest, next);
+    }
 }
 
 bool ContactSolver::lookForBlow(std::size_t k, int maxStrikes)
@@ -245,7 +302,7 @@ int ContactSolver::impactRows(const IslandContact& c, double tau, const bool (&a
         row.rows.rB = p - xb;
         row.rows.n = sp.n;
         tangentsOf(sp.n, row.rows.t);
-        row.rows.normalMass = effectiveMass(a, b, row.rows.rA, row.rows.rB, sp.n);
+        row.rows.normalMass = blowMass(c.a, c.b, row.rows.rA, row.rows.rB, sp.n);
         const dvec3 atImpact = vb + glm::cross(wb, row.rows.rB) - va - glm::cross(wa, row.rows.rA);
         const double arriving = glm::dot(sp.n, atImpact);
         if (!(arriving < -m_settings.restingSpeed))
@@ -257,7 +314,7 @@ int ContactSolver::impactRows(const IslandContact& c, double tau, const bool (&a
         const double leaving = -arriving * (ownFall ? restitutionOf(c, m_rows[c.first + i]) : c.restitution);
         row.targetN = glm::dot(sp.n, now) + (leaving - arriving);
         for (int k = 0; k < 2; ++k) {
-            row.rows.tangentMass[k] = effectiveMass(a, b, row.rows.rA, row.rows.rB, row.rows.t[k]);
+            row.rows.tangentMass[k] = blowMass(c.a, c.b, row.rows.rA, row.rows.rB, row.rows.t[k]);
             row.targetT[k] = glm::dot(row.rows.t[k], now - atImpact); // its sliding at arrival stopped
         }
         ++count;
@@ -283,17 +340,18 @@ void ContactSolver::solveImpact(const IslandContact& c, std::span<ImpactRow> row
             const double scale = length > limit ? limit / length : 1.0;
             for (int k = 0; k < 2; ++k) {
                 const double next = want[k] * scale;
-                applyPair(a, b, r, (next - row.pushT[k]) * r.t[k]);
+                applyBlow(c.a, c.b, r, (next - row.pushT[k]) * r.t[k]);
                 change = std::max(change, std::abs(next - row.pushT[k]));
                 row.pushT[k] = next;
             }
             const double vn = glm::dot(r.n, relativeVelocity(a, b, r));
             const double next = std::max(row.pushN - r.normalMass * (vn - row.targetN), 0.0);
-            applyPair(a, b, r, (next - row.pushN) * r.n);
+            applyBlow(c.a, c.b, r, (next - row.pushN) * r.n);
             change = std::max(change, std::abs(next - row.pushN));
             row.pushN = next;
             largest = std::max(largest, next);
         }
+        solveResting(change, largest);
         if (m_impactJoints)
             m_impactJoints->sweepBlow();
         if (change <= 1e-12 * largest)
@@ -314,6 +372,9 @@ bool ContactSolver::collideOne(const IslandContact& c)
     SolverBody& a = m_bodies[c.a];
     SolverBody& b = m_bodies[c.b];
     const dvec3 va0 = a.v, wa0 = a.w, vb0 = b.v, wb0 = b.w;
+    m_resting.clear();
+    if (!m_pins.empty())
+        restingRows(c, std::span(rows, std::size_t(count)));
     const std::span<const BodyIndex> joined = m_impactJoints ? m_impactJoints->bodies() : std::span<const BodyIndex>();
     m_jointBodiesBefore.clear();
     for (const BodyIndex k : joined)

@@ -143,6 +143,20 @@ private:
     int impactRows(const IslandContact& c, double tau, const bool (&arrives)[contact::Manifold::kMaxPoints],
                    ImpactRow (&rows)[contact::Manifold::kMaxPoints]) const;
     void solveImpact(const IslandContact& c, std::span<ImpactRow> rows);
+    /// A point of a pinned body resting on a static one, held in the blow from approaching
+    /// faster than it did (no bounce: its own arrival is a blow of its own).
+    struct RestingRow {
+        BodyIndex a = 0, b = 0;
+        PointRows rows;
+        double targetN = 0.0, pushN = 0.0;
+    };
+    /// The resting points of the pinned bodies among c's two, but those of `rows`.
+    void restingRows(const IslandContact& c, std::span<const ImpactRow> rows);
+    void solveResting(double& change, double& largest);
+    /// A blow's masses and impulses: a pinned body's (Pin) or a free one's.
+    double blowInverseMass(BodyIndex k, const dvec3& r, const dvec3& u) const;
+    double blowMass(BodyIndex a, BodyIndex b, const dvec3& ra, const dvec3& rb, const dvec3& u) const;
+    void applyBlow(BodyIndex a, BodyIndex b, const PointRows& r, const dvec3& p);
     /// Whether contact k gives a blow now (collide's look at it).
     bool lookForBlow(std::size_t k, int maxStrikes);
     void startCollisions();
@@ -204,6 +218,9 @@ private:
     WideContactRows m_wide;
     std::vector<std::uint32_t> m_oneAtATime; ///< indices into m_constraints, in order
     JointSolver* m_impactJoints = nullptr; ///< collide(JointSolver&)'s, while it runs
+    std::span<const Pin> m_pins;           ///< collide(JointSolver&)'s pinned bodies
+    std::vector<std::int32_t> m_pinOf;     ///< per body: its pin in m_pins, or -1
+    std::vector<RestingRow> m_resting;     ///< the present blow's
     /// The velocities of the joints' bodies before a blow (collideOne).
     std::vector<std::pair<dvec3, dvec3>> m_jointBodiesBefore;
     std::vector<std::uint32_t> m_blows; ///< the collision pass's: per body, the blows it took

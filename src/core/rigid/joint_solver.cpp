@@ -329,6 +329,44 @@ void JointSolver::beginBlows()
         r.blowSpin = b.w - a.w;
     }
     m_inBlows = true;
+    findPins();
+}
+
+void JointSolver::findPins()
+{
+    m_pins.clear();
+    std::vector<int> joints(m_movingBodies.size(), 0);
+    const auto slot = [&](BodyIndex k) {
+        return std::size_t(std::lower_bound(m_movingBodies.begin(), m_movingBodies.end(), k) - m_movingBodies.begin());
+    };
+    for (const Rows& r : m_rows)
+        for (const BodyIndex k : {r.a, r.b})
+            if (!m_bodies[k].isStatic())
+                ++joints[slot(k)];
+    for (const Rows& r : m_rows) {
+        const Joint& j = m_joints[r.joint];
+        const bool aMoves = !m_bodies[r.a].isStatic(), bMoves = !m_bodies[r.b].isStatic();
+        if (aMoves == bMoves || j.type == JointType::Distance)
+            continue;
+        const BodyIndex k = aMoves ? r.a : r.b;
+        if (joints[slot(k)] != 1)
+            continue;
+        if (j.type == JointType::Hinge && j.limited &&
+            std::min(r.angle - j.lower, j.upper - r.angle) < kPinLimitGap)
+            continue;
+        const SolverBody& body = m_bodies[k];
+        Pin pin;
+        pin.body = k;
+        pin.arm = -(aMoves ? r.rA : r.rB);
+        // Its inertia about the anchor: the centre's, and its mass at the arm (parallel axes).
+        const dvec3 d = pin.arm;
+        const dmat3 about = body.inertia + (glm::dot(d, d) * dmat3(1.0) - glm::outerProduct(d, d)) / body.inverseMass;
+        if (j.type == JointType::Ball)
+            pin.inverseInertia = glm::inverse(about);
+        else if (j.type == JointType::Hinge)
+            pin.inverseInertia = glm::outerProduct(r.axis, r.axis) / glm::dot(r.axis, about * r.axis);
+        m_pins.push_back(pin); // a fixed joint's: no turn at all
+    }
 }
 
 void JointSolver::sweepBlow() { sweep(true); }

@@ -62,6 +62,10 @@ public:
     void endBlows();
     /// The moving bodies the joints join, each once.
     std::span<const BodyIndex> bodies() const { return m_movingBodies; }
+    /// The pinned bodies among them (Pin), worked out by beginBlows.
+    std::span<const Pin> pins() const { return m_pins; }
+    /// A hinge this close to a limit (rad) is not pinned: its limit rows act in the blow.
+    static constexpr double kPinLimitGap = 0.05;
     void storeImpulses();
     /// One sweep on the bodies' end poses.
     void solvePositions();
@@ -122,6 +126,8 @@ private:
     std::vector<Rows> m_rowsBeforeBlows; ///< beginBlows'
     bool m_inBlows = false;
     std::vector<BodyIndex> m_movingBodies;
+    std::vector<Pin> m_pins;
+    void findPins();
     /// One sweep of every joint's velocity rows; with `blow`, not a spring's.
     void sweep(bool blow);
 };
