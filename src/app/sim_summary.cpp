@@ -166,7 +166,7 @@ void printRigidSummary(const World& world, const study::RigidWatch& rigid)
         else if (f.restingFace.empty())
             parts.push_back(fmt::format("still from t = {:.3f} s", *f.stillFrom));
         else
-            parts.push_back(fmt::format("still from t = {:.3f} s on its {} face (tilted {:.2f} degrees)", *f.stillFrom,
+            parts.push_back(fmt::format("still from t = {:.3f} s, its {} face down (tilted {:.2f} degrees)", *f.stillFrom,
                                         f.restingFace, f.tilt));
         if (f.rollingFrom)
             parts.push_back(fmt::format("rolls without slipping from t = {:.3f} s at {:.4f} m/s", *f.rollingFrom,

@@ -21,4 +21,18 @@ double overlapDepth(const RigidBody& a, const RigidBody& b)
     return depth;
 }
 
+double overlapDepth(const RigidBody& body, const dvec3& centre, double radius)
+{
+    if (glm::length(centre - body.getPos()) > body.getBoundingRadius() + radius)
+        return 0.0;
+    const contact::Manifold m =
+        contact::collide(contact::CollisionShape::of(body.getShape()),
+                         contact::Transform{body.getPos(), glm::mat3_cast(body.getOrientation())},
+                         contact::CollisionShape::of(Shape::sphere(radius)), contact::Transform{centre, dmat3(1.0)}, 0.0);
+    double depth = 0.0;
+    for (int i = 0; i < m.count; ++i)
+        depth = std::max(depth, -m.points[std::size_t(i)].separation);
+    return depth;
+}
+
 } // namespace pba

@@ -24,12 +24,15 @@ struct FabricParticles {
     Integrator integrator = Integrator::SemiImplicitEuler;
 };
 
-FabricParticles readShared(ObjectReader& reader, std::size_t count)
+FabricParticles readShared(ObjectReader& reader, std::size_t count, std::set<std::string>& names)
 {
     FabricParticles shared;
     shared.name = readName(reader, "name");
     if (shared.name.empty())
         reader.fail("name", "must not be empty");
+    // The summary's row of the whole rope or cloth goes by its name, as a body's does.
+    if (!names.insert(shared.name).second)
+        reader.fail("name", fmt::format("'{}' is already taken", oneLine(shared.name)));
     // The whole rope or cloth weighs `mass`, so that its resolution does not change its weight.
     const double total = reader.positive("mass", 1.0);
     shared.mass = total / double(count);
@@ -119,7 +122,7 @@ void readRope(const Json& value, const std::string& path, const std::string& fil
     reader.expectKeys({"name", "from", "to", "count", "mass", "stiffness", "bending_stiffness", "damping", "pinned",
                        "restitution", "radius", "friction", "integrator"});
     const std::size_t count = readWholeCount(reader, "count", 100000);
-    const FabricParticles shared = readShared(reader, count);
+    const FabricParticles shared = readShared(reader, count, target.names);
     const dvec3 from = reader.vec3("from");
     const dvec3 to = reader.vec3("to");
     if (glm::length(to - from) == 0.0)
@@ -233,7 +236,7 @@ void readCloth(const Json& value, const std::string& path, const std::string& fi
                        "restitution", "radius", "friction", "integrator"});
     const std::size_t columns = readWholeCount(reader, "columns", 1000);
     const std::size_t rows = readWholeCount(reader, "rows", 1000);
-    const FabricParticles shared = readShared(reader, columns * rows);
+    const FabricParticles shared = readShared(reader, columns * rows, target.names);
     const dvec3 origin = reader.vec3("origin");
     const dvec3 across = reader.vec3("across");
     const dvec3 down = reader.vec3("down");

@@ -1,5 +1,6 @@
 #include "joint_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -14,6 +15,34 @@ namespace {
 
 /// How far a rigid rod's anchors may start from its length: a millimetre's jerk is not seen.
 constexpr double kRodLengthTolerance = 1e-3;
+/// How far an anchor may be from the body it joins, and a spring's length (m): a joint a thousand
+/// kilometres off holds nothing a scene can show, and at 1e300 its arms overflowed.
+constexpr double kMaxAnchorReach = 1e6;
+/// The stiffest spring (N/m): the implicit spring holds to 1e20; stiffer is a rigid rod.
+constexpr double kMaxStiffness = 1e15;
+/// How far a ball joint's anchor may be from a particle it joins (m): a particle does not turn,
+/// so an anchor beside it would hold it at a fixed offset in the world's frame from the body's
+/// point, which no joint does.
+constexpr double kParticleAnchorTolerance = 1e-3;
+
+/// Refuses `anchor` (the key `key`) too far from body `index`, or, with `atParticle`, not at it
+/// when it is a particle.
+void checkAnchor(const ObjectReader& reader, const World& world, const std::string& key, const dvec3& anchor,
+                 std::size_t index, bool atParticle = false)
+{
+    const Body& body = world.body(index);
+    const dvec3 d = anchor - body.getPos();
+    const double scale = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}); // 1e300 squared overflows
+    const double apart = scale > 0.0 ? scale * glm::length(d / scale) : 0.0;
+    if (atParticle && !world.isRigid(index) && !(apart <= kParticleAnchorTolerance))
+        reader.fail(key, fmt::format("must be at the particle '{}', ({:g}, {:g}, {:g}), not {:.3g} m from it: a "
+                                     "particle does not turn, so it is joined at its centre",
+                                     oneLine(body.getName()), body.getPos().x, body.getPos().y, body.getPos().z,
+                                     apart));
+    if (!(apart <= kMaxAnchorReach))
+        reader.fail(key, fmt::format("is {:.3g} m from '{}': an anchor must be within {:g} m of the body it joins",
+                                     apart, oneLine(body.getName()), kMaxAnchorReach));
+}
 
 JointType readType(ObjectReader& reader)
 {
@@ -97,11 +126,19 @@ std::array<double, 2> readLimits(ObjectReader& reader)
     const Json& value = reader.raw("limits");
     if (!value.is_array() || value.size() != 2 || !value[0].is_number() || !value[1].is_number())
         reader.fail("limits", "must be [lower, upper], two angles in radians");
-    const double lower = value[0].get<double>(), upper = value[1].get<double>();
-    if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= 0.0 && 0.0 <= upper &&
-          lower >= -std::numbers::pi && upper <= std::numbers::pi))
-        reader.fail("limits", fmt::format("must hold the start's angle, 0, within [-pi, pi] (lower <= 0 <= upper), "
-                                          "got [{}, {}]", lower, upper));
+    double lower = value[0].get<double>(), upper = value[1].get<double>();
+    // pi written to ten digits, 3.1415926536, is past pi by 7e-12: it is pi.
+    constexpr double kPiRounding = 1e-9;
+    if (std::abs(lower + std::numbers::pi) <= kPiRounding)
+        lower = -std::numbers::pi;
+    if (std::abs(upper - std::numbers::pi) <= kPiRounding)
+        upper = std::numbers::pi;
+    if (!(std::isfinite(lower) && std::isfinite(upper) && lower <= 0.0 && 0.0 <= upper))
+        reader.fail("limits", fmt::format("must hold the start's angle, 0 (lower <= 0 <= upper), got [{}, {}]",
+                                          lower, upper));
+    if (!(lower >= -std::numbers::pi && upper <= std::numbers::pi))
+        reader.fail("limits", fmt::format("must be within [-pi, pi], [-{1}, {1}], got [{0}, {2}]", lower,
+                                          std::numbers::pi, upper));
     return {lower, upper};
 }
 
@@ -139,19 +176,36 @@ JointDesc readJoint(const Json& value, const std::string& path, const std::strin
     onlyFor("limits", hinge, "hinge");
     if (distance) {
         joint.anchors = readAnchors(reader);
-        if (reader.has("length"))
+        checkAnchor(reader, world, "anchors[0]", joint.anchors[0], joint.bodyA);
+        checkAnchor(reader, world, "anchors[1]", joint.anchors[1], joint.bodyB.value_or(joint.bodyA));
+        if (reader.has("length")) {
             joint.length = reader.nonNegative("length");
-        if (reader.has("stiffness"))
+            if (*joint.length > kMaxAnchorReach)
+                reader.fail("length", fmt::format("must be at most {:g} m, got {:g}", kMaxAnchorReach, *joint.length));
+        }
+        if (reader.has("stiffness")) {
             joint.stiffness = reader.positive("stiffness");
+            if (*joint.stiffness > kMaxStiffness)
+                reader.fail("stiffness", fmt::format("must be at most {:g} N/m (stiffer, leave the stiffness out: "
+                                                     "a rigid rod), got {:g}", kMaxStiffness, *joint.stiffness));
+        }
         if (joint.length && !joint.stiffness)
             failIfRodIsNotAtItsLength(reader, joint);
         if (reader.has("damping") && !joint.stiffness)
             reader.fail("damping", "belongs to a spring: give a stiffness too (without one the rod is rigid)");
         joint.damping = reader.nonNegative("damping", 0.0);
-    } else if (joint.type == JointType::Fixed) {
-        joint.anchor = reader.vec3("anchor", world.body(joint.bodyA).getPos());
+        if (joint.damping > kMaxStiffness)
+            reader.fail("damping", fmt::format("must be at most {:g} N s/m, got {:g}", kMaxStiffness, joint.damping));
     } else {
-        joint.anchor = reader.vec3("anchor");
+        joint.anchor = joint.type == JointType::Fixed ? reader.vec3("anchor", world.body(joint.bodyA).getPos())
+                                                      : reader.vec3("anchor");
+        // A ball joint of a particle and a rigid body (the only one a particle may have) holds the
+        // particle at its centre.
+        const bool ballAcross = joint.type == JointType::Ball && joint.bodyB &&
+                                world.isRigid(joint.bodyA) != world.isRigid(*joint.bodyB);
+        checkAnchor(reader, world, "anchor", joint.anchor, joint.bodyA, ballAcross);
+        if (joint.bodyB)
+            checkAnchor(reader, world, "anchor", joint.anchor, *joint.bodyB, ballAcross);
     }
     if (hinge) {
         joint.axis = unitOrZero(reader.vec3("axis"));

@@ -171,6 +171,10 @@ void readRigidBody(const Json& value, const std::string& path, const std::string
                                               "implicit-gyroscopic or splitting",
                                               integratorName(body->getIntegrator())));
     body->setFixed(reader.boolean("fixed", false));
+    if (body->isFixed()) { // it never moves: its velocities would count in the summary's speed and energy
+        body->setVel(dvec3(0.0));
+        body->setAngularVelocity(dvec3(0.0));
+    }
     if (!std::isfinite(body->getRotationalKineticEnergy()))
         reader.fail("angular_velocity", "too large: the rotational kinetic energy is not finite");
     reader.finish();

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "pba/fabric.hpp"
 #include "pba/world.hpp"
 
 namespace pba::scene_detail {
@@ -30,5 +31,9 @@ using BodyPair = std::pair<std::size_t, std::size_t>;
 /// into another rose with a third more energy) or through the body (a sphere wholly inside a
 /// fixed box dropped out of its bottom).
 void requireRigidBodiesApart(const World& world, const std::string& file, const std::vector<BodyPair>& joinedApart);
+/// Refuses a particle with a radius (which meets rigid bodies) that starts more than a millimetre
+/// inside a rigid body it is not joined to, naming its particles[i] or its rope's or cloth's key.
+void requireParticlesOutsideRigidBodies(const World& world, const FabricLayout& fabric, const std::string& file,
+                                        const std::vector<BodyPair>& joinedApart);
 
 } // namespace pba::scene_detail

@@ -362,6 +362,7 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
     scene_detail::requireRigidBodiesInside(scene.world, file);
     std::sort(joinedApart.begin(), joinedApart.end());
     scene_detail::requireRigidBodiesApart(scene.world, file, joinedApart);
+    scene_detail::requireParticlesOutsideRigidBodies(scene.world, scene.fabric, file, joinedApart);
     requireFiniteEnergies(scene.world, scene.fabric, file);
     return scene;
 }

@@ -82,6 +82,12 @@ void readSwarm(const Json& value, const std::string& path, const std::string& fi
     const ContactKeys contact = readContactKeys(reader);
     desc.radius = contact.radius;
     desc.friction = contact.friction;
+    // In single precision a radius below the smallest normal float is none, and would get past
+    // "collide"'s need of one.
+    if (desc.radius != 0.0 && !(desc.radius >= kFloatMin && desc.radius <= kFloatMax))
+        reader.fail("radius", fmt::format("{} cannot be represented in single precision, as a swarm's numbers are "
+                                          "(0, or from {:.3g} to {:.3g} m)", desc.radius, kFloatMin, kFloatMax));
+    requireFloat(reader, "friction", dvec3(desc.friction));
     if (!insideSurfaces(world, desc.regionMin, desc.radius) || !insideSurfaces(world, desc.regionMax, desc.radius))
         reader.fail("radius", fmt::format("its region's corner: {}",
                                           ballOutsideText(world, insideSurfaces(world, desc.regionMin, desc.radius)

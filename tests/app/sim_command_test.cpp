@@ -226,7 +226,7 @@ TEST(PbaSim, SaysHowFastTheInclinesBoxSlides)
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("slides on steep-ramp without turning from t = 0.005 to"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("its speed changing at 1.609 m/s^2"), std::string::npos) << r.out;
-    EXPECT_EQ(r.out.find("gentle-box: still from t = 0.010 s on its -y face (tilted 20.00 degrees); slides"),
+    EXPECT_EQ(r.out.find("gentle-box: still from t = 0.010 s, its -y face down (tilted 20.00 degrees); slides"),
               std::string::npos) << r.out;
 }
 

@@ -282,8 +282,22 @@ INSTANTIATE_TEST_SUITE_P(
                              "joints[0].bodies", "joins 't' and 'u', and both are fixed"},
                     BadScene{J(R"({"type": "ball", "bodies": ["r"], "anchor": [0, 1, 0], "collide": true})"),
                              "joints[0].collide", "belongs to a joint of two bodies"},
-                    BadScene{J(R"({"type": "ball", "bodies": ["r", "rope[2]"], "anchor": [0, 1, 0], "collide": 1})"),
+                    BadScene{J(R"({"type": "ball", "bodies": ["r", "rope[2]"], "anchor": [0, 3, 0], "collide": 1})"),
                              "joints[0].collide", "expected a boolean, got a number"},
+                    BadScene{J(R"({"type": "ball", "bodies": ["r", "rope[2]"], "anchor": [0, 1, 0]})"),
+                             "joints[0].anchor", "must be at the particle 'rope[2]', (0, 3, 0), not 2 m from it"},
+                    BadScene{J(R"({"type": "ball", "bodies": ["r"], "anchor": [0, 1e300, 0]})"),
+                             "joints[0].anchor", "is 1e+300 m from 'r': an anchor must be within 1e+06 m"},
+                    BadScene{J(R"({"type": "distance", "bodies": ["r"], "anchors": [[0, 1, 0], [0, 2, 0]], "length": 1e300, "stiffness": 10})"),
+                             "joints[0].length", "must be at most 1e+06 m"},
+                    BadScene{J(R"({"type": "distance", "bodies": ["r"], "anchors": [[0, 1, 0], [0, 2, 0]], "stiffness": 1e300})"),
+                             "joints[0].stiffness", "must be at most 1e+15 N/m"},
+                    BadScene{R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "ropes": [{"name": "rope", "from": [-1, 1, 0], "to": [1, 1, 0], "count": 5, "stiffness": 100, "radius": 0.02}], "rigid_bodies": [{"name": "r", "position": [0, 1, 0], "shape": {"type": "box", "size": [0.2, 0.2, 0.2]}}]})",
+                             "ropes[0]", "the particle 'rope[2]' (radius 0.02 m) starts 0.12 m inside the body 'r'"},
+                    BadScene{R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "ropes": [{"name": "x", "from": [-1, 1, 0], "to": [1, 1, 0], "count": 5, "stiffness": 100}], "cloths": [{"name": "x", "origin": [-1, 2, 0], "across": [1, 0, 0], "down": [0, 0, 1], "columns": 3, "rows": 3, "stiffness": {"structural": 100}}]})",
+                             "cloths[0].name", "'x' is already taken"},
+                    BadScene{R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "swarms": [{"name": "s", "count": 10, "region": {"min": [-1, 1, -1], "max": [1, 2, 1]}, "radius": 1e-300, "collide": true, "seed": 1}]})",
+                             "swarms[0].radius", "cannot be represented in single precision"},
                     BadScene{R(R"(, "shape": {"typ": "sphere", "radius": 0.1})"), "rigid_bodies[0].shape.typ",
                              "unknown key (did you mean \"type\"?)"},
                     BadScene{R"({"particles": [{"name": "a", "position": [0, 1, 0]}], "forces": [{"type": "spring", "particle": "a", "anchor": [0,2,0], "stiffness": 1, "attachment": [0.1, 0, 0]}]})",
@@ -310,6 +324,24 @@ TEST(SceneLoader, AJointNamesARopesParticleByItsColumnName)
     const JointFrame frame = scene.world.jointFrame(0);
     EXPECT_EQ(frame.bodyB, scene.world.findBody("rope[4]"));
     EXPECT_EQ(frame.onA, frame.onB);
+}
+
+// Pi written to ten digits passes pi by 7e-12: it is read as pi, not refused as past it. A fixed
+// body's velocities are read as zero (it never moves), so neither the summary's speed nor the
+// world's energy counts them.
+TEST(SceneLoader, LimitsOfPiToTenDigitsAndAFixedBodysVelocities)
+{
+    Scene scene = parseScene(R"({"room": {"min": [-3, 0, -2], "max": [3, 4, 2]},
+        "rigid_bodies": [{"name": "post", "shape": {"type": "box", "size": [0.2, 1, 0.2]}, "position": [0, 0.5, 0],
+                          "fixed": true, "velocity": [1, 0, 0], "angular_velocity": [0, 1e300, 0]},
+                         {"name": "door", "shape": {"type": "box", "size": [1, 1, 0.1]}, "position": [0.7, 2, 0]}],
+        "joints": [{"type": "hinge", "bodies": ["door"], "anchor": [0.2, 2, 0], "axis": [0, 1, 0],
+                    "limits": [-3.1415926536, 3.1415926536]}]})",
+                             "door.json");
+    ASSERT_EQ(scene.world.jointCount(), 1u);
+    const Body& post = scene.world.body(*scene.world.findBody("post"));
+    EXPECT_EQ(post.getVel(), dvec3(0.0));
+    EXPECT_EQ(static_cast<const RigidBody&>(post).getAngularVelocity(), dvec3(0.0));
 }
 
 TEST(SceneLoader, AJointsCollideKeyLetsItsBodiesCollide)

@@ -98,7 +98,15 @@ double ContactSolver::blowInverseMass(BodyIndex k, const dvec3& r, const dvec3& 
 
 double ContactSolver::blowMass(BodyIndex a, BodyIndex b, const dvec3& ra, const dvec3& rb, const dvec3& u) const
 {
-    const double k = blowInverseMass(a, ra, u) + blowInverseMass(b, rb, u);
+    const bool pinned = !m_pins.empty() && (m_pinOf[a] >= 0 || m_pinOf[b] >= 0);
+    // 1 / (1/mA + 1/mB + (rA x u) . IA^-1 (rA x u) + (rB x u) . IB^-1 (rB x u)), summed in this
+    // order for free bodies; 0 between two static bodies.
+    const SolverBody& x = m_bodies[a];
+    const SolverBody& y = m_bodies[b];
+    const dvec3 ca = glm::cross(ra, u), cb = glm::cross(rb, u);
+    const double k = pinned ? blowInverseMass(a, ra, u) + blowInverseMass(b, rb, u)
+                            : x.inverseMass + y.inverseMass + glm::dot(ca, x.inverseInertia * ca) +
+                                  glm::dot(cb, y.inverseInertia * cb);
     return k > 0.0 ? 1.0 / k : 0.0;
 }
 
