@@ -3,6 +3,7 @@
 // the impulses that send them off at e times their arriving speed.
 #include "rigid/contact_solver.hpp"
 #include "rigid/joint_solver.hpp"
+#include "rigid/small_lcp.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -147,16 +148,52 @@ void ContactSolver::restingRows(const IslandContact& c, std::span<const ImpactRo
     }
 }
 
-void ContactSolver::solveResting(double& change, double& largest)
+void ContactSolver::solveBlowNormals(const IslandContact& c, std::span<ImpactRow> rows, double& change,
+                                     double& largest)
 {
-    for (RestingRow& row : m_resting) {
-        const PointRows& r = row.rows;
-        const double vn = glm::dot(r.n, relativeVelocity(m_bodies[row.a], m_bodies[row.b], r));
-        const double next = std::max(row.pushN - r.normalMass * (vn - row.targetN), 0.0);
-        applyBlow(row.a, row.b, r, (next - row.pushN) * r.n);
-        change = std::max(change, std::abs(next - row.pushN));
-        row.pushN = next;
-        largest = std::max(largest, next);
+    // The arriving points' and the resting points' normal impulses at once, exactly (a small
+    // LCP by active sets): a pinned plank's four points on its stand stop its roll and its pitch
+    // only together, and sweeps passed pushes between them for hundreds of rounds.
+    m_normals.clear();
+    for (ImpactRow& row : rows)
+        m_normals.push_back({c.a, c.b, &row.rows, &row.pushN, row.targetN});
+    for (RestingRow& row : m_resting)
+        m_normals.push_back({row.a, row.b, &row.rows, &row.pushN, row.targetN});
+    const std::size_t n = m_normals.size();
+    const auto speed = [&](const NormalRow& row) {
+        return glm::dot(row.rows->n, relativeVelocity(m_bodies[row.a], m_bodies[row.b], *row.rows));
+    };
+    // A: row i's change of speed for a unit push of row j, found by pushing and putting back.
+    std::vector<double>& A = m_normalMatrix;
+    A.assign(n * n, 0.0);
+    std::vector<double> now(n), b(n), x(n);
+    for (std::size_t i = 0; i < n; ++i)
+        now[i] = speed(m_normals[i]);
+    for (std::size_t j = 0; j < n; ++j) {
+        const NormalRow& pushed = m_normals[j];
+        SolverBody& pa = m_bodies[pushed.a];
+        SolverBody& pb = m_bodies[pushed.b];
+        const dvec3 va = pa.v, wa = pa.w, vb = pb.v, wb = pb.w;
+        applyBlow(pushed.a, pushed.b, *pushed.rows, pushed.rows->n);
+        for (std::size_t i = 0; i < n; ++i)
+            A[i * n + j] = speed(m_normals[i]) - now[i];
+        pa.v = va, pa.w = wa, pb.v = vb, pb.w = wb;
+    }
+    // Speeds as functions of the total pushes x: w = A x + b, wanted w >= 0, x >= 0, x . w = 0.
+    double scale = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        b[i] = now[i] - m_normals[i].target;
+        for (std::size_t j = 0; j < n; ++j)
+            b[i] -= A[i * n + j] * *m_normals[j].push;
+        scale = std::max(scale, std::abs(b[i]));
+    }
+    solveSmallLcp(A, b, n, 1e-12 * scale, x);
+    for (std::size_t i = 0; i < n; ++i) {
+        NormalRow& row = m_normals[i];
+        applyBlow(row.a, row.b, *row.rows, (x[i] - *row.push) * row.rows->n);
+        change = std::max(change, std::abs(x[i] - *row.push));
+        *row.push = x[i];
+        largest = std::max(largest, x[i]);
     }
 }
 
@@ -352,6 +389,8 @@ void ContactSolver::solveImpact(const IslandContact& c, std::span<ImpactRow> row
                 change = std::max(change, std::abs(next - row.pushT[k]));
                 row.pushT[k] = next;
             }
+            if (!m_resting.empty())
+                continue; // the normals all together, below
             const double vn = glm::dot(r.n, relativeVelocity(a, b, r));
             const double next = std::max(row.pushN - r.normalMass * (vn - row.targetN), 0.0);
             applyBlow(c.a, c.b, r, (next - row.pushN) * r.n);
@@ -359,7 +398,8 @@ void ContactSolver::solveImpact(const IslandContact& c, std::span<ImpactRow> row
             row.pushN = next;
             largest = std::max(largest, next);
         }
-        solveResting(change, largest);
+        if (!m_resting.empty())
+            solveBlowNormals(c, rows, change, largest);
         if (m_impactJoints)
             m_impactJoints->sweepBlow();
         if (change <= 1e-12 * largest)

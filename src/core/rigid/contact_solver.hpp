@@ -152,7 +152,16 @@ private:
     };
     /// The resting points of the pinned bodies among c's two, but those of `rows`.
     void restingRows(const IslandContact& c, std::span<const ImpactRow> rows);
-    void solveResting(double& change, double& largest);
+    /// With resting rows: the normal pushes of `rows` and m_resting together, exactly.
+    void solveBlowNormals(const IslandContact& c, std::span<ImpactRow> rows, double& change, double& largest);
+    struct NormalRow {
+        BodyIndex a = 0, b = 0;
+        const PointRows* rows = nullptr;
+        double* push = nullptr;
+        double target = 0.0;
+    };
+    std::vector<NormalRow> m_normals;      ///< solveBlowNormals' scratch
+    std::vector<double> m_normalMatrix;
     /// A blow's masses and impulses: a pinned body's (Pin) or a free one's.
     double blowInverseMass(BodyIndex k, const dvec3& r, const dvec3& u) const;
     double blowMass(BodyIndex a, BodyIndex b, const dvec3& ra, const dvec3& rb, const dvec3& u) const;
