@@ -124,7 +124,8 @@ void addPictureFlags(CLI::App& command, std::optional<std::string>& camera, std:
         ->type_name("VIEW|X,Y,Z,TX,TY,TZ");
     command.add_option("--show", show,
                        fmt::format("Marks drawn over the scene, comma-separated: contacts (each contact point and "
-                                   "its normal, longer the harder it pushes), joints (each joint's point on each "
+                                   "its normal, longer the harder it pushes, of rigid bodies and balls; not a "
+                                   "swarm's grains'), joints (each joint's point on each "
                                    "body, a hinge's axis), axes (each rigid body's axes, omega and L arrows); "
                                    "any of {}", kShowNames))
         ->type_name("LIST");

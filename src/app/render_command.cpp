@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -133,6 +134,11 @@ int runRender(const RenderOptions& options)
     progress.finish(fmt::format("wrote {} ({} frame{}, {}, t = {:.3g} s)", shownPath(options.out),
                                 kind == OutputKind::Png ? 1 : frames, kind == OutputKind::Png || frames == 1 ? "" : "s",
                                 size, render::drawnTime(scene.world, alpha, settings.interpolate)));
+    if (renderer.legendCovers() > render::OffscreenRenderer::kMostLegend) {
+        std::fflush(stdout); // after the "wrote" line
+        fmt::print(stderr, "pba: note: the legend was left out: it would have covered {:.0f}% of the {}x{} picture's "
+                           "height (from about 640x360 it fits)\n", 100.0f * renderer.legendCovers(), width, height);
+    }
     return kExitSuccess;
 }
 

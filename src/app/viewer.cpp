@@ -17,6 +17,7 @@
 #include "render/image_io.hpp"
 #include "render/overlay.hpp"
 #include "render/renderer.hpp"
+#include "render/world_view.hpp"
 
 namespace pba::app {
 
@@ -87,12 +88,25 @@ glm::ivec2 drawFrame(ViewerState& state, render::WindowContext& window, render::
                      render::DrawList& list, bool drawScene)
 {
     state.trails.record(state.scene.world, state.alpha(), state.settings);
-    render::drawLegend(state.scene.world, state.scene.name, state.clock.dt(),
-                       render::drawnTime(state.scene.world, state.alpha(), state.settings.interpolate), true,
-                       &state.settings.fabric);
+    const float display = ImGui::GetIO().DisplaySize.x;
+    const glm::vec2 legend = render::drawLegend(
+        state.scene.world, state.scene.name, state.clock.dt(),
+        render::drawnTime(state.scene.world, state.alpha(), state.settings.interpolate), true,
+        &state.settings.fabric, display - state.panelWidth);
     const float panel = drawPanel(state);
+    state.panelWidth = panel;
     int width = 0, height = 0;
     window.framebufferSize(width, height);
+    // ImGui's auto-sized window reports a stand-in size on its first frame: the legend's is
+    // taken once it is the same two frames running.
+    const bool settled = legend == state.lastLegend && legend.y > 0.0f;
+    state.lastLegend = legend;
+    if (state.clearLegend && settled) {
+        const render::FramedBox box = render::framedBox(state.initial);
+        state.camera = render::clearOfCorner(state.camera, box.lo, box.hi, std::max(width - int(panel), 1),
+                                             std::max(height, 1), legend + glm::vec2(10.0f));
+        state.clearLegend = false;
+    }
     window.bindForDrawing();
     if (drawScene) {
         render::buildDrawList(state.scene.world, state.initial, state.alpha(), state.settings, &state.trails, list);

@@ -115,13 +115,30 @@ void bodiesSection(ViewerState& state)
     const std::vector<double> now = world.energies(), start = state.initial.energies();
     double total = 0.0, total0 = 0.0;
     dvec3 momentum(0.0);
+    bool moving = false, fixed = false;
     for (const render::BodyGroup& group : state.groups.groups()) {
+        // A fixed body's height energy never changes: counted, it would hide the others' losses.
+        if (std::all_of(group.members.begin(), group.members.end(), [&](std::size_t i) { return world.body(i).isFixed(); })) {
+            fixed = true;
+            continue;
+        }
+        moving = true;
         total += render::groupEnergy(group, now);
         total0 += render::groupEnergy(group, start);
         momentum += render::groupMomentum(world, group);
     }
-    ImGui::Text("all: E = %.4g J   E/E0 = %.4f   |p| = %.3g kg m/s", total, total0 != 0.0 ? total / total0 : 1.0,
-                glm::length(momentum));
+    if (moving) {
+        ImGui::Text("all%s: E = %.4g J   E/E0 = %.4f", fixed ? " moving" : "", total,
+                    total0 != 0.0 ? total / total0 : 1.0);
+        ImGui::SameLine();
+        // On the next line where the panel is too narrow for it (a large momentum's digits).
+        const std::string p = fmt::format("|p| = {:.3g} kg m/s", glm::length(momentum));
+        if (ImGui::GetContentRegionAvail().x < ImGui::CalcTextSize(p.c_str()).x + 20.0f)
+            ImGui::NewLine();
+        ImGui::Text("  %s", p.c_str());
+    }
+    for (std::size_t s = 0; s < world.swarmCount(); ++s) // its statistics are pba sim's
+        ImGui::Text("swarm %s: %zu particles", world.swarm(s).name().c_str(), world.swarm(s).size());
     if (state.watch.hasSources()) { // (as pba sim says it: the push's share, and the balance's rest)
         const double work = state.watch.sourceWork(), lost = total0 + work - total;
         ImGui::Text("     the dryer's work %.4g J   E0 + work - E = %.4g J", work, lost);

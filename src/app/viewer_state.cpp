@@ -1,5 +1,7 @@
 #include "viewer_state.hpp"
 
+#include <algorithm>
+
 #include "frame_steps.hpp"
 #include "lanes.hpp"
 
@@ -14,6 +16,8 @@ void Series::push(float value)
 
 std::vector<PlotKind> plotKinds(const World& world, const render::BodyGroup& group)
 {
+    if (std::all_of(group.members.begin(), group.members.end(), [&](std::size_t i) { return world.body(i).isFixed(); }))
+        return {}; // a fixed body never moves: flat lines
     if (group.fabric())
         return {PlotKind::EnergyRatio};
     std::vector<PlotKind> kinds;
@@ -32,6 +36,7 @@ void ViewerState::load(Scene newScene)
     scene.world.setSwarmRollback(true); // a failed step pauses on the last finite state, swarms too
     scenePath = scene.source;
     camera = cameraFor(cameraChoice, scene.world);
+    clearLegend = !cameraChoice || cameraChoice->view;
     settings.fabric = scene.fabric;
     groups = render::BodyGroups(scene.world, scene.fabric);
     initial = scene.world;
@@ -258,7 +263,10 @@ void ViewerState::apply(ViewerCommand command)
     case ViewerCommand::Reset: reset(); break;
     case ViewerCommand::ReloadScene: reload(); break;
     case ViewerCommand::ToggleInterpolation: settings.interpolate = !settings.interpolate; break;
-    case ViewerCommand::FrameCamera: camera = cameraFor(cameraChoice, initial); break;
+    case ViewerCommand::FrameCamera:
+        camera = cameraFor(cameraChoice, initial);
+        clearLegend = !cameraChoice || cameraChoice->view;
+        break;
     case ViewerCommand::ToggleContacts: settings.contacts = !settings.contacts; break;
     case ViewerCommand::ToggleJoints: settings.joints = !settings.joints; break;
     case ViewerCommand::ToggleAxes: settings.axes = !settings.axes; break;

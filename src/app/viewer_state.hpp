@@ -70,6 +70,11 @@ struct ViewerState {
     render::OrbitCamera camera;
     /// `--camera`: where the camera starts, and where `c` puts it back (for every scene loaded).
     std::optional<CameraChoice> cameraChoice;
+    /// Set when the camera is framed (not placed by `--camera X,Y,Z,...`): once the legend's size
+    /// is known, the camera moves so that the room keeps out of its corner.
+    bool clearLegend = false;
+    float panelWidth = 430.0f;   ///< the panel's width on the last frame
+    glm::vec2 lastLegend{0.0f}; ///< the legend's size on the last frame
     /// Each rope, cloth and other body of the scene: the panel's rows, the colours, the plots.
     render::BodyGroups groups;
     std::vector<GroupPlots> plots; ///< of the first kPlottedGroups groups

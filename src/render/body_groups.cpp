@@ -15,19 +15,25 @@ glm::vec4 colourOf(palette::Rgb rgb)
     return {r, g, b, 1.0f};
 }
 
+/// "rope NAME", or the name alone where it already says what it is ("rope", "cloth": not "rope rope").
+std::string kindAndName(const std::string& kind, const std::string& name)
+{
+    return name == kind ? name : kind + " " + name;
+}
+
 /// The ropes and cloths whose particles all exist, as groups (unordered).
 std::vector<BodyGroup> fabricGroups(const World& world, const FabricLayout& fabric)
 {
     std::vector<BodyGroup> out;
     for (const RopeLayout& rope : fabric.ropes) {
         out.push_back({BodyGroup::Kind::Rope, rope.name,
-                       "rope " + rope.name + ": " + std::to_string(rope.particles.size()) + " particles",
+                       kindAndName("rope", rope.name) + ": " + std::to_string(rope.particles.size()) + " particles",
                        rope.particles});
     }
     for (const ClothLayout& cloth : fabric.cloths) {
         BodyGroup g{BodyGroup::Kind::Cloth, cloth.name,
-                    "cloth " + cloth.name + ": " + std::to_string(cloth.width) + " x " + std::to_string(cloth.height) +
-                        " particles",
+                    kindAndName("cloth", cloth.name) + ": " + std::to_string(cloth.width) + " x " +
+                        std::to_string(cloth.height) + " particles",
                     {}};
         for (std::size_t k = 0; k < cloth.width * cloth.height; ++k)
             g.members.push_back(cloth.first + k);

@@ -9,7 +9,9 @@ namespace {
 /// Which kinds of body the world has, as far as collisions go.
 struct Kinds {
     bool freePoints = false;        ///< particles on their own, and swarms: the response applies
-    bool freeSemiImplicit = false;  ///< one of those integrates with semi-implicit Euler
+    /// one of those integrates with semi-implicit Euler and bounces elastically: what the note
+    /// says of its bounce height is the practical's comparison, which a lossy bounce has not
+    bool freeSemiImplicit = false;
     bool coupledPoints = false;     ///< particles joined by springs (ropes, cloths)
     bool rigid = false;
 };
@@ -27,12 +29,14 @@ Kinds kindsOf(const World& world)
             k.coupledPoints = true;
         } else {
             k.freePoints = true;
-            k.freeSemiImplicit = k.freeSemiImplicit || body.getIntegrator() == Integrator::SemiImplicitEuler;
+            k.freeSemiImplicit = k.freeSemiImplicit ||
+                                 (body.getIntegrator() == Integrator::SemiImplicitEuler && body.getCor() == 1.0);
         }
     }
     for (std::size_t s = 0; s < world.swarmCount(); ++s) {
         k.freePoints = true;
-        k.freeSemiImplicit = k.freeSemiImplicit || world.swarm(s).integrator() == Integrator::SemiImplicitEuler;
+        k.freeSemiImplicit = k.freeSemiImplicit || (world.swarm(s).integrator() == Integrator::SemiImplicitEuler &&
+                                                     world.swarm(s).restitution() == 1.0);
     }
     return k;
 }

@@ -24,7 +24,11 @@ std::vector<std::uint8_t> OffscreenRenderer::render(const World& world, const Wo
         glm::vec2 legend(0.0f);
         for (int pass = 0; pass < 2; ++pass)
             legend = drawLegendOnce(world, alpha, settings, sceneName, dt);
-        if (m_cameraFraming) {
+        // A thumbnail's legend would hide most of the scene (hanging-crate's, 88% of 320x180).
+        m_legendCovers = (legend.y + 10.0f) / float(height());
+        if (m_legendCovers > kMostLegend)
+            m_imgui.reset();
+        else if (m_cameraFraming) {
             const FramedBox box = framedBox(initial);
             m_camera = clearOfCorner(m_camera, box.lo, box.hi, width(), height(), legend + glm::vec2(10.0f));
         }

@@ -37,6 +37,10 @@ public:
     int width() const { return m_context.width(); }
     int height() const { return m_context.height(); }
     std::string driver() const { return m_context.renderer(); }
+    /// The share of the picture's height the legend's corner takes (0 without a legend); over
+    /// kMostLegend, the legend is left out.
+    float legendCovers() const { return m_legendCovers; }
+    static constexpr float kMostLegend = 0.5f;
     /// Draws a prepared list (benchmarks, swarms) without the legend.
     std::vector<std::uint8_t> renderList(const DrawList& list);
 
@@ -51,6 +55,7 @@ private:
     bool m_cameraSet = false;
     bool m_cameraFraming = true;
     bool m_legendShown = false;
+    float m_legendCovers = 0.0f;
     DrawList m_list;
 };
 

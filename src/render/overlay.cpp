@@ -72,13 +72,14 @@ void bullet(const glm::vec4& c)
     ImGui::SameLine();
 }
 
-/// Which collision rule applies to this scene's bodies, readable on the picture.
-void collisionLine(const World& world)
+/// Which collision rule applies to this scene's bodies, readable on the picture: wrapped within
+/// `width`, the scene's part of it.
+void collisionLine(const World& world, float width)
 {
     const std::string note = collisionNote(world);
     if (note.empty())
         return;
-    ImGui::PushTextWrapPos(std::max(200.0f, ImGui::GetIO().DisplaySize.x - 40.0f)); // within the picture
+    ImGui::PushTextWrapPos(std::max(200.0f, width - 40.0f));
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.80f, 0.86f, 0.95f, 1.0f));
     ImGui::TextWrapped("%s", note.c_str());
     ImGui::PopStyleColor();
@@ -124,7 +125,7 @@ void groupLines(const World& world, const BodyGroups& groups, bool compact)
 } // namespace
 
 glm::vec2 drawLegend(const World& world, const std::string& sceneName, double dt, double shownTime, bool compact,
-                  const FabricLayout* fabric)
+                     const FabricLayout* fabric, float sceneWidth)
 {
     // Bottom left: the room's upper half, where balls fly and hover, stays in view (and a picture's
     // framing camera keeps the room out of the box: OrbitCamera::clearOfCorner).
@@ -136,7 +137,7 @@ glm::vec2 drawLegend(const World& world, const std::string& sceneName, double dt
     glm::vec2 size(0.0f);
     if (ImGui::Begin("legend", nullptr, flags)) {
         ImGui::Text("%s   t = %.2f s   dt = %g s", sceneName.c_str(), shownTime, dt);
-        collisionLine(world);
+        collisionLine(world, sceneWidth > 0.0f ? sceneWidth : ImGui::GetIO().DisplaySize.x);
         const BodyGroups groups(world, fabric ? *fabric : FabricLayout{});
         groupLines(world, groups, compact);
         for (std::size_t s = 0; s < world.swarmCount(); ++s) {

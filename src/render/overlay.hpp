@@ -34,8 +34,10 @@ private:
 /// A small box naming the scene, the time, the collision rules that apply, and each body in its
 /// colour with its integrator (a rope or cloth of `fabric` on one line of its own, not particle by
 /// particle); `compact` shows the first few, as many as a quarter of the picture's height holds.
-/// Returns the box's size in pixels (ImGui knows it from the legend's second frame on).
+/// `sceneWidth`: the width the scene is drawn in (the viewer's, beside its panel; 0: the whole
+/// display), which long lines wrap within. Returns the box's size in pixels (ImGui knows it from
+/// the legend's second frame on).
 glm::vec2 drawLegend(const World& world, const std::string& sceneName, double dt, double shownTime, bool compact = false,
-                const FabricLayout* fabric = nullptr);
+                     const FabricLayout* fabric = nullptr, float sceneWidth = 0.0f);
 
 } // namespace pba::render

@@ -186,6 +186,22 @@ TEST(PbaRender, FramesCoverExactlyTheTimeAskedFor)
     EXPECT_NE(video.out.find("41 frames, 64x48, t = 20 s"), std::string::npos) << video.out;
 }
 
+// A thumbnail's legend would hide most of it (hanging-crate's, 88% of 320x180): it is left out,
+// the picture is the one --no-legend draws, and a note says so; a picture it fits keeps it.
+TEST(PbaRender, AThumbnailLeavesTheLegendOutAndSaysSo)
+{
+    const auto dir = freshDir("render_thumbnail");
+    const std::string common = "render hanging-crate --time 0.5 --size 320x180 --out ";
+    const CommandResult small = runPba(common + (dir / "a.png").string());
+    ASSERT_EQ(small.exitCode, 0) << small.err;
+    EXPECT_NE(small.err.find("pba: note: the legend was left out: it would have covered"), std::string::npos)
+        << small.err;
+    ASSERT_EQ(runPba(common + (dir / "b.png").string() + " --no-legend").exitCode, 0);
+    EXPECT_EQ(readFile(dir / "a.png"), readFile(dir / "b.png"));
+    const CommandResult large = runPba("render hanging-crate --time 0.5 --size 640x360 --out " + (dir / "c.png").string());
+    EXPECT_EQ(large.err.find("legend"), std::string::npos) << large.err;
+}
+
 // The camera's distance is kept in single precision: 0.1 m apart is its least, not below it.
 TEST(PbaRender, ACameraAtItsLeastAndMostDistanceIsTaken)
 {

@@ -94,6 +94,12 @@ TEST(CollisionNote, SaysWhatAppliesToThisScenesBodies)
     EXPECT_EQ(rope.find("semi-implicit"), std::string::npos) << rope;
     EXPECT_EQ(rope.find("particles: exact"), std::string::npos) << rope;
 
+    // The grains bounce at a tenth of their speed: semi-implicit Euler's bounce height is the
+    // practical's comparison of elastic bounces, and is not said of them.
+    const std::string granular = collisionNote(loadScene("granular").world);
+    EXPECT_NE(granular.find("particles: reflect"), std::string::npos) << granular;
+    EXPECT_EQ(granular.find("bounce height"), std::string::npos) << granular;
+
     Scene rk4 = loadScene("integrators");
     for (std::size_t i = 0; i < rk4.world.bodyCount(); ++i)
         rk4.world.body(i).setIntegrator(Integrator::RK4);
@@ -176,4 +182,16 @@ TEST(WorldView, AParticleWithARadiusIsDrawnAtThatSize)
     buildDrawList(scene.world, scene.world, 1.0, settings, nullptr, list);
     ASSERT_FALSE(list.sprites.empty());
     EXPECT_FLOAT_EQ(list.sprites.back().radius, 0.03f) << "the swarm's grains at their radius";
+}
+
+// A rope or cloth is "rope NAME" in the legend and the panel, but a rope named "rope" is not
+// "rope rope".
+TEST(BodyGroupsLabel, KindAndNameOnceEach)
+{
+    const Scene crate = loadScene("hanging-crate");
+    const BodyGroups groups(crate.world, crate.fabric);
+    ASSERT_GT(groups.size(), 0u);
+    EXPECT_EQ(groups[0].label, "rope: 14 particles");
+    const Scene cloth = loadScene("cloth");
+    EXPECT_EQ(BodyGroups(cloth.world, cloth.fabric)[0].label.rfind("cloth ", 0), 0u);
 }
