@@ -85,16 +85,29 @@ CameraChoice parseCamera(const std::string& text)
     return choice;
 }
 
-render::OrbitCamera cameraFor(const std::optional<CameraChoice>& choice, const World& world)
+static_assert(float(SceneCamera::kMinDistance) == render::OrbitCamera::kMinDistance &&
+              float(SceneCamera::kMaxDistance) == render::OrbitCamera::kMaxDistance &&
+              float(SceneCamera::kMaxPitch) == render::OrbitCamera::kMaxPitch,
+              "a scene's camera takes what --camera takes");
+
+render::OrbitCamera cameraFor(const std::optional<CameraChoice>& choice, const World& world,
+                              const std::optional<SceneCamera>& sceneCamera)
 {
     const render::OrbitCamera framing = render::frameWorld(world);
-    if (!choice)
-        return framing;
-    if (choice->view)
+    if (choice && choice->view)
         return render::namedView(*choice->view, framing);
-    render::OrbitCamera camera = render::OrbitCamera::lookingFrom(choice->position, choice->target);
+    if (!choice && !sceneCamera)
+        return framing;
+    const glm::vec3 position = choice ? choice->position : glm::vec3(sceneCamera->position);
+    const glm::vec3 target = choice ? choice->target : glm::vec3(sceneCamera->target);
+    render::OrbitCamera camera = render::OrbitCamera::lookingFrom(position, target);
     camera.fovY = framing.fovY;
     return camera;
+}
+
+bool framingCamera(const std::optional<CameraChoice>& choice, const std::optional<SceneCamera>& sceneCamera)
+{
+    return choice ? choice->view.has_value() : !sceneCamera;
 }
 
 void applyShow(const std::string& list, render::ViewSettings& settings)
@@ -119,8 +132,9 @@ void addPictureFlags(CLI::App& command, std::optional<std::string>& camera, std:
 {
     command.add_option("--camera", camera,
                        fmt::format("Where the camera stands: a view of the room ({}), or X,Y,Z,TX,TY,TZ, its "
-                                   "position and the point it looks at, in metres (default: the whole room from "
-                                   "above a corner)", kCameraViews))
+                                   "position and the point it looks at, in metres (default: the scene's own "
+                                   "camera, if it gives one, else the whole room from above a corner)",
+                                   kCameraViews))
         ->type_name("VIEW|X,Y,Z,TX,TY,TZ");
     command.add_option("--show", show,
                        fmt::format("Marks drawn over the scene, comma-separated: contacts (each contact point and "

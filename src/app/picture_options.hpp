@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
 
+#include "pba/scene/scene.hpp"
 #include "pba/world.hpp"
 #include "render/camera.hpp"
 #include "render/world_view.hpp"
@@ -26,9 +27,13 @@ struct CameraChoice {
 /// position straight above or below the target (where no view is upright).
 CameraChoice parseCamera(const std::string& text);
 
-/// The camera a choice gives for this world: a named view keeps the framing camera's target
-/// and distance; without a choice, the framing camera.
-render::OrbitCamera cameraFor(const std::optional<CameraChoice>& choice, const World& world);
+/// The camera a choice gives for this scene: a named view keeps the framing camera's target
+/// and distance; without a choice, the scene's own camera, or else the framing camera.
+render::OrbitCamera cameraFor(const std::optional<CameraChoice>& choice, const World& world,
+                              const std::optional<SceneCamera>& sceneCamera);
+/// Whether that camera is a framing one, which may move to keep the room out of the legend's
+/// corner (a camera placed by hand, on the command line or in the scene, stays put).
+bool framingCamera(const std::optional<CameraChoice>& choice, const std::optional<SceneCamera>& sceneCamera);
 
 /// "contacts,joints,axes" (any of them, in any order): turns those marks on. Throws UsageError
 /// naming --show for an empty list or an unknown name.

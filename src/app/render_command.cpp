@@ -99,7 +99,7 @@ int runRender(const RenderOptions& options)
     if (options.lanes)
         settings.ghost = exactGhosts(scene.world);
     render::OffscreenRenderer renderer(width, height, !options.noLegend);
-    renderer.setCamera(cameraFor(camera, scene.world), !camera || camera->view);
+    renderer.setCamera(cameraFor(camera, scene.world, scene.camera), framingCamera(camera, scene.camera));
     render::Trails trails;
     const World initial = scene.world;
     const auto frames = static_cast<long>(std::floor(until * options.fps + 1e-9)) + 1;

@@ -35,8 +35,8 @@ void ViewerState::load(Scene newScene)
     scene = std::move(newScene);
     scene.world.setSwarmRollback(true); // a failed step pauses on the last finite state, swarms too
     scenePath = scene.source;
-    camera = cameraFor(cameraChoice, scene.world);
-    clearLegend = !cameraChoice || cameraChoice->view;
+    camera = cameraFor(cameraChoice, scene.world, scene.camera);
+    clearLegend = framingCamera(cameraChoice, scene.camera);
     settings.fabric = scene.fabric;
     groups = render::BodyGroups(scene.world, scene.fabric);
     initial = scene.world;
@@ -264,8 +264,8 @@ void ViewerState::apply(ViewerCommand command)
     case ViewerCommand::ReloadScene: reload(); break;
     case ViewerCommand::ToggleInterpolation: settings.interpolate = !settings.interpolate; break;
     case ViewerCommand::FrameCamera:
-        camera = cameraFor(cameraChoice, initial);
-        clearLegend = !cameraChoice || cameraChoice->view;
+        camera = cameraFor(cameraChoice, initial, loaded.camera);
+        clearLegend = framingCamera(cameraChoice, loaded.camera);
         break;
     case ViewerCommand::ToggleContacts: settings.contacts = !settings.contacts; break;
     case ViewerCommand::ToggleJoints: settings.joints = !settings.joints; break;

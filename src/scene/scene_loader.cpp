@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -293,12 +294,31 @@ void readContactSettings(ObjectReader reader, ContactSettings& settings)
     reader.finish();
 }
 
+SceneCamera readCamera(ObjectReader reader)
+{
+    reader.expectKeys({"position", "target"});
+    SceneCamera camera{reader.vec3("position"), reader.vec3("target")};
+    const dvec3 offset = camera.position - camera.target;
+    const double apart = glm::length(offset);
+    if (!(apart >= SceneCamera::kMinDistance && apart <= SceneCamera::kMaxDistance))
+        reader.fail("position", fmt::format("must be {:g} to {:g} m from the target, got {:.6g} m",
+                                            SceneCamera::kMinDistance, SceneCamera::kMaxDistance, apart));
+    const double pitch = std::asin(std::clamp(offset.y / apart, -1.0, 1.0));
+    if (std::abs(pitch) > SceneCamera::kMaxPitch)
+        reader.fail("position", fmt::format("is straight {} the target ({:.1f} degrees from level, at most {:.1f}): "
+                                            "move it sideways",
+                                            pitch > 0 ? "above" : "below", std::abs(pitch) * 180.0 / std::numbers::pi,
+                                            SceneCamera::kMaxPitch * 180.0 / std::numbers::pi));
+    reader.finish();
+    return camera;
+}
+
 Scene readScene(const Json& document, const std::string& file, const std::filesystem::path& directory)
 {
     ObjectReader root(document, "", file);
     root.expectKeys({"name", "summary", "description", "dt", "duration", "gravity", "collision_response", "substeps",
-                     "contacts", "ground", "room", "particles", "ropes", "cloths", "rigid_bodies", "joints", "swarms",
-                     "forces"});
+                     "contacts", "ground", "room", "camera", "particles", "ropes", "cloths", "rigid_bodies", "joints",
+                     "swarms", "forces"});
     Scene scene;
     scene.source = file;
     scene.name = readName(root, "name", "unnamed");
@@ -325,6 +345,8 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
     }
     if (root.has("contacts"))
         readContactSettings(root.object("contacts"), scene.world.contactSettings());
+    if (root.has("camera"))
+        scene.camera = readCamera(root.object("camera"));
     readSurfaces(root, scene.world);
     scene.world.addForce(std::make_unique<Gravity>(g));
     if (document.is_object() && document.contains("swarms") && !(fitsFloat(g.x) && fitsFloat(g.y) && fitsFloat(g.z)))

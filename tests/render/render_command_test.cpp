@@ -202,6 +202,19 @@ TEST(PbaRender, AThumbnailLeavesTheLegendOutAndSaysSo)
     EXPECT_EQ(large.err.find("legend"), std::string::npos) << large.err;
 }
 
+// A scene's own camera is where its pictures look from by default: the same picture as
+// --camera with its numbers, and another than the framing view's.
+TEST(PbaRender, AScenesOwnCameraIsTheDefault)
+{
+    const auto dir = freshDir("render_scene_camera");
+    const std::string common = "render newtons-cradle --time 0.5 --size 160x90 --no-legend --out ";
+    ASSERT_EQ(runPba(common + (dir / "own.png").string()).exitCode, 0);
+    ASSERT_EQ(runPba(common + (dir / "flag.png").string() + " --camera 0.1,1.3,2.4,0.1,1.05,0").exitCode, 0);
+    ASSERT_EQ(runPba(common + (dir / "corner.png").string() + " --camera corner").exitCode, 0);
+    EXPECT_EQ(readFile(dir / "own.png"), readFile(dir / "flag.png"));
+    EXPECT_NE(readFile(dir / "own.png"), readFile(dir / "corner.png"));
+}
+
 // The camera's distance is kept in single precision: 0.1 m apart is its least, not below it.
 TEST(PbaRender, ACameraAtItsLeastAndMostDistanceIsTaken)
 {

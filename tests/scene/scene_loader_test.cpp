@@ -284,6 +284,13 @@ INSTANTIATE_TEST_SUITE_P(
                              "joints[0].collide", "belongs to a joint of two bodies"},
                     BadScene{J(R"({"type": "ball", "bodies": ["r", "rope[2]"], "anchor": [0, 3, 0], "collide": 1})"),
                              "joints[0].collide", "expected a boolean, got a number"},
+                    BadScene{R"({"camera": {"position": [0, 1, 0], "target": [0, 1, 0.05]}})", "camera.position",
+                             "must be 0.1 to 1000 m from the target, got 0.05 m"},
+                    BadScene{R"({"camera": {"position": [0, 9, 0], "target": [0, 1, 0.01]}})", "camera.position",
+                             "is straight above the target"},
+                    BadScene{R"({"camera": {"position": [0, 1, 5], "target": [0, 1, 0], "up": [0, 1, 0]}})",
+                             "camera.up", "unknown key"},
+                    BadScene{R"({"camera": {"position": [0, 1, 5]}})", "camera.target", "required"},
                     BadScene{J(R"({"type": "ball", "bodies": ["r", "rope[2]"], "anchor": [0, 1, 0]})"),
                              "joints[0].anchor", "must be at the particle 'rope[2]', (0, 3, 0), not 2 m from it"},
                     BadScene{J(R"({"type": "ball", "bodies": ["r"], "anchor": [0, 1e300, 0]})"),
@@ -342,6 +349,17 @@ TEST(SceneLoader, LimitsOfPiToTenDigitsAndAFixedBodysVelocities)
     const Body& post = scene.world.body(*scene.world.findBody("post"));
     EXPECT_EQ(post.getVel(), dvec3(0.0));
     EXPECT_EQ(static_cast<const RigidBody&>(post).getAngularVelocity(), dvec3(0.0));
+}
+
+// A scene may say where pictures of it look from; the rigid scenes place theirs on their action.
+TEST(SceneLoader, ACameraKeyIsWherePicturesLookFrom)
+{
+    const Scene scene = parseScene(R"({"camera": {"position": [0.5, 2, 6], "target": [0, 1, 0]}})", "cam.json");
+    ASSERT_TRUE(scene.camera);
+    EXPECT_EQ(scene.camera->position, dvec3(0.5, 2.0, 6.0));
+    EXPECT_EQ(scene.camera->target, dvec3(0.0, 1.0, 0.0));
+    EXPECT_FALSE(parseScene("{}", "none.json").camera);
+    EXPECT_TRUE(loadScene("newtons-cradle").camera);
 }
 
 TEST(SceneLoader, AJointsCollideKeyLetsItsBodiesCollide)

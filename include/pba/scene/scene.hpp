@@ -2,6 +2,7 @@
 // Scenes: JSON files (documented in docs/scenes.md) that build a World. This library
 // sits on top of the core; the core itself knows no file format.
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -12,6 +13,17 @@
 
 namespace pba {
 
+/// Where a picture of the scene looks from unless told otherwise (the scene's `camera`): a
+/// position and the point it looks at, kMinDistance to kMaxDistance apart, and not straight
+/// above or below it (at most kMaxPitch from level), as `--camera X,Y,Z,TX,TY,TZ` takes them.
+struct SceneCamera {
+    dvec3 position{0.0};
+    dvec3 target{0.0};
+    static constexpr double kMinDistance = 0.1;
+    static constexpr double kMaxDistance = 1000.0;
+    static constexpr double kMaxPitch = 1.5; ///< rad
+};
+
 /// A scene as loaded: the world at t = 0 plus how long and with which dt to run it.
 struct Scene {
     std::string name;
@@ -21,6 +33,7 @@ struct Scene {
     double duration = 10.0;  ///< s
     World world;
     FabricLayout fabric;     ///< which of the world's particles form its ropes and cloths
+    std::optional<SceneCamera> camera;
     std::string source;      ///< file path, or "builtin:NAME"
 };
 
