@@ -53,7 +53,7 @@ rigid cloth-folds 3 0.5,1.0,1.8,0.1,0.0,0
 own balls-in-the-dryer 8
 rigid ping-pong 10 0.3,0.3,0.75,0,0.12,0
 rigid granular 4 0,0.16,0.62,0,0.04,0 # the mound at the end, from low beside it
-"$pba" render stiff-spring --size 640x360 --time 1.5 --camera=0,5.2,10.5,0,4.4,0 --out "$out/stiff-spring.png"
+own stiff-spring 1.5
 # The README's first scene, from the example file it shows.
 "$pba" render docs/examples/first-scene.json --size 640x360 --time 3 --camera=0,2,6,0,1.6,0 --out "$out/first-scene.png"
 "$pba" render dice --size 640x360 --camera=0.7,3.4,4.6,0.7,-0.2,1.5 --out "$out/dice.png" # at the end: every die at rest

@@ -286,7 +286,9 @@ void addBodies(const World& world, const World& initial, double alpha, const Vie
             if (const auto exact = settings.ghost(i, t)) {
                 const glm::vec3 lane(0.0f, 0.0f, -3.0f * settings.particleRadius);
                 const glm::vec3 ghost = restingCentre(world, *exact + lane, settings.particleRadius);
-                out.sprites.push_back({ghost, settings.particleRadius, glm::vec4(1.0f, 1.0f, 1.0f, 0.55f)});
+                // Its body's colour, paler and half seen through: not a grey a fixed ball has.
+                const glm::vec3 pale = glm::mix(glm::vec3(colour), glm::vec3(1.0f), 0.5f);
+                out.sprites.push_back({ghost, settings.particleRadius, glm::vec4(pale, 0.55f)});
                 out.addLine(at, ghost, glm::vec4(0.85f, 0.85f, 0.95f, 0.25f));
             }
         }
