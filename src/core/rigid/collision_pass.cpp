@@ -146,6 +146,13 @@ void ContactSolver::restingRows(const IslandContact& c, std::span<const ImpactRo
             m_resting.push_back(row);
         }
     }
+    // The blow's LCP is dense (its cost the cube of its rows, each sweep): a board on a hundred
+    // posts keeps the points closest to touching.
+    if (m_resting.size() > kMaxRestingRows) {
+        std::nth_element(m_resting.begin(), m_resting.begin() + kMaxRestingRows, m_resting.end(),
+                         [](const RestingRow& x, const RestingRow& y) { return x.rows.separation < y.rows.separation; });
+        m_resting.resize(kMaxRestingRows);
+    }
 }
 
 void ContactSolver::solveBlowNormals(const IslandContact& c, std::span<ImpactRow> rows, double& change,

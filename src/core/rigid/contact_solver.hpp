@@ -150,8 +150,10 @@ private:
         PointRows rows;
         double targetN = 0.0, pushN = 0.0;
     };
-    /// The resting points of the pinned bodies among c's two, but those of `rows`.
+    /// The resting points of the pinned bodies among c's two, but those of `rows`; at most
+    /// kMaxRestingRows, the closest to touching.
     void restingRows(const IslandContact& c, std::span<const ImpactRow> rows);
+    static constexpr std::size_t kMaxRestingRows = 12;
     /// With resting rows: the normal pushes of `rows` and m_resting together, exactly.
     void solveBlowNormals(const IslandContact& c, std::span<ImpactRow> rows, double& change, double& largest);
     struct NormalRow {

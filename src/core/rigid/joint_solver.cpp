@@ -349,7 +349,9 @@ void JointSolver::findPins()
         if (aMoves == bMoves || j.type == JointType::Distance)
             continue;
         const BodyIndex k = aMoves ? r.a : r.b;
-        if (joints[slot(k)] != 1)
+        // A particle (a point body, which does not turn) keeps the sweeps: held at its centre, it
+        // has no turn to take.
+        if (joints[slot(k)] != 1 || m_bodies[k].inverseInertia == dmat3(0.0))
             continue;
         if (j.type == JointType::Hinge && j.limited &&
             std::min(r.angle - j.lower, j.upper - r.angle) < kPinLimitGap)
