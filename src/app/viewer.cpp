@@ -121,7 +121,10 @@ int saveScreenshot(const ViewerState& state, render::WindowContext& window, glm:
                    const std::filesystem::path& shot, const ViewerRun& run)
 {
     render::writePng(shot, size.x, size.y, window.readPixels());
-    fmt::print("wrote {} (t = {:g} s)\n", shownPath(*run.screenshot), *run.time);
+    // The state drawn: T itself, or without interpolation the last one the steps made (2.01 s
+    // for T = 2.005 at dt 0.01), as the picture's legend says.
+    fmt::print("wrote {} (t = {:g} s)\n", shownPath(*run.screenshot),
+               render::drawnTime(state.scene.world, state.alpha(), state.settings.interpolate));
     if (state.error)
         fmt::print(stderr, "pba: error: {}: {}\n", shownPath(state.scene.source), *state.error);
     return state.error ? kExitSimulationFailure : kExitSuccess;

@@ -115,7 +115,9 @@ void addJoints(const World& world, double alpha, const ViewSettings& settings, c
         if (frame.bodyB)
             out.addLine(drawnPosition(world, *frame.bodyB, alpha, interpolate), onB, kRodColour);
         else
-            out.sprites.push_back({onB, 0.03f, kAnchorColour}); // the point on the world, a small ball
+            // The point on the world, a ball large enough to be seen from across the room (a chain
+            // seemed to hang from nothing at 3 cm).
+            out.sprites.push_back({onB, 0.05f, kAnchorColour});
         if (frame.type == JointType::Distance)
             out.addLine(onA, onB, kRodColour);
         if (!settings.joints)

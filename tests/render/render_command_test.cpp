@@ -140,6 +140,18 @@ TEST(PbaView, TimeAndScreenshotAreReproducible)
     EXPECT_TRUE(a == b) << "two captures at 1.5 s differ";
 }
 
+// The time said is the state drawn: without interpolation, the last state the steps made (at
+// dt 0.01, 2.01 s for 2.005), as the picture's legend says.
+TEST(PbaView, AScreenshotSaysTheTimeOfTheStateItDraws)
+{
+    const auto dir = freshDir("view_state_time");
+    const CommandResult last = runView("integrators --no-interpolation --time 2.005 --screenshot " + (dir / "a.png").string());
+    ASSERT_EQ(last.exitCode, 0) << last.err;
+    EXPECT_NE(last.out.find("(t = 2.01 s)"), std::string::npos) << last.out;
+    const CommandResult blended = runView("integrators --time 2.005 --screenshot " + (dir / "b.png").string());
+    EXPECT_NE(blended.out.find("(t = 2.005 s)"), std::string::npos) << blended.out;
+}
+
 TEST(PbaView, ScreenshotNeedsTimeAndBadTimesAreRefused)
 {
     const auto dir = freshDir("view_usage");
