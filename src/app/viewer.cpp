@@ -102,9 +102,8 @@ glm::ivec2 drawFrame(ViewerState& state, render::WindowContext& window, render::
     const bool settled = legend == state.lastLegend && legend.y > 0.0f;
     state.lastLegend = legend;
     if (state.clearLegend && settled) {
-        const render::FramedBox box = render::framedBox(state.initial);
-        state.camera = render::clearOfCorner(state.camera, box.lo, box.hi, std::max(width - int(panel), 1),
-                                             std::max(height, 1), legend + glm::vec2(10.0f));
+        state.camera = render::clearOfLegend(state.camera, state.initial, std::max(width - int(panel), 1),
+                                             std::max(height, 1), legend);
         state.clearLegend = false;
     }
     window.bindForDrawing();

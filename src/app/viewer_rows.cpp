@@ -118,7 +118,7 @@ void bodiesSection(ViewerState& state)
     bool moving = false, fixed = false;
     for (const render::BodyGroup& group : state.groups.groups()) {
         // A fixed body's height energy never changes: counted, it would hide the others' losses.
-        if (std::all_of(group.members.begin(), group.members.end(), [&](std::size_t i) { return world.body(i).isFixed(); })) {
+        if (render::groupFixed(world, group)) {
             fixed = true;
             continue;
         }

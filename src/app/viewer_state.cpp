@@ -16,8 +16,8 @@ void Series::push(float value)
 
 std::vector<PlotKind> plotKinds(const World& world, const render::BodyGroup& group)
 {
-    if (std::all_of(group.members.begin(), group.members.end(), [&](std::size_t i) { return world.body(i).isFixed(); }))
-        return {}; // a fixed body never moves: flat lines
+    if (render::groupFixed(world, group))
+        return {};
     if (group.fabric())
         return {PlotKind::EnergyRatio};
     std::vector<PlotKind> kinds;

@@ -87,6 +87,11 @@ double groupEnergy(const BodyGroup& group, const std::vector<double>& energies)
     return sum;
 }
 
+bool groupFixed(const World& world, const BodyGroup& group)
+{
+    return std::all_of(group.members.begin(), group.members.end(), [&](std::size_t i) { return world.body(i).isFixed(); });
+}
+
 dvec3 groupMomentum(const World& world, const BodyGroup& group)
 {
     dvec3 p(0.0);

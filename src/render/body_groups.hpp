@@ -53,5 +53,8 @@ private:
 /// The sum of the members' energies (World::energies()) and their momentum.
 double groupEnergy(const BodyGroup& group, const std::vector<double>& energies);
 dvec3 groupMomentum(const World& world, const BodyGroup& group);
+/// Whether every member is fixed: it never moves (its height energy never changes, its plots are
+/// flat lines).
+bool groupFixed(const World& world, const BodyGroup& group);
 
 } // namespace pba::render

@@ -25,13 +25,11 @@ std::vector<std::uint8_t> OffscreenRenderer::render(const World& world, const Wo
         for (int pass = 0; pass < 2; ++pass)
             legend = drawLegendOnce(world, alpha, settings, sceneName, dt);
         // A thumbnail's legend would hide most of the scene (hanging-crate's, 88% of 320x180).
-        m_legendCovers = (legend.y + 10.0f) / float(height());
+        m_legendCovers = (legend.y + kLegendMargin) / float(height());
         if (m_legendCovers > kMostLegend)
             m_imgui.reset();
-        else if (m_cameraFraming) {
-            const FramedBox box = framedBox(initial);
-            m_camera = clearOfCorner(m_camera, box.lo, box.hi, width(), height(), legend + glm::vec2(10.0f));
-        }
+        else if (m_cameraFraming)
+            m_camera = clearOfLegend(m_camera, initial, width(), height(), legend);
         m_legendShown = true;
     }
     buildDrawList(world, initial, alpha, settings, trails, m_list);

@@ -11,6 +11,7 @@
 
 #include "body_groups.hpp"
 #include "collision_note.hpp"
+#include "world_view.hpp"
 #include "pba/particle.hpp"
 #include "pba/world.hpp"
 
@@ -124,12 +125,20 @@ void groupLines(const World& world, const BodyGroups& groups, bool compact)
 
 } // namespace
 
+OrbitCamera clearOfLegend(const OrbitCamera& camera, const World& initial, int width, int height,
+                          const glm::vec2& size)
+{
+    const FramedBox box = framedBox(initial);
+    return clearOfCorner(camera, box.lo, box.hi, width, height, size + glm::vec2(kLegendMargin));
+}
+
 glm::vec2 drawLegend(const World& world, const std::string& sceneName, double dt, double shownTime, bool compact,
                      const FabricLayout* fabric, float sceneWidth)
 {
     // Bottom left: the room's upper half, where balls fly and hover, stays in view (and a picture's
     // framing camera keeps the room out of the box: OrbitCamera::clearOfCorner).
-    ImGui::SetNextWindowPos(ImVec2(10, ImGui::GetIO().DisplaySize.y - 10), ImGuiCond_Always, ImVec2(0, 1));
+    ImGui::SetNextWindowPos(ImVec2(kLegendMargin, ImGui::GetIO().DisplaySize.y - kLegendMargin), ImGuiCond_Always,
+                            ImVec2(0, 1));
     ImGui::SetNextWindowBgAlpha(0.65f);
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |

@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include "pba/fabric.hpp"
+#include "render/camera.hpp"
 
 struct GLFWwindow;
 
@@ -37,6 +38,14 @@ private:
 /// `sceneWidth`: the width the scene is drawn in (the viewer's, beside its panel; 0: the whole
 /// display), which long lines wrap within. Returns the box's size in pixels (ImGui knows it from
 /// the legend's second frame on).
+/// The legend's distance from the picture's left and bottom edges, pixels.
+inline constexpr float kLegendMargin = 10.0f;
+
+/// The starting camera moved so that the picture of `initial`'s room (or its framed bodies) keeps
+/// out of the legend's corner, for a legend of drawLegend's `size` on a `width` x `height` picture.
+OrbitCamera clearOfLegend(const OrbitCamera& camera, const World& initial, int width, int height,
+                          const glm::vec2& size);
+
 glm::vec2 drawLegend(const World& world, const std::string& sceneName, double dt, double shownTime, bool compact = false,
                      const FabricLayout* fabric = nullptr, float sceneWidth = 0.0f);
 

@@ -252,8 +252,9 @@ TEST(PbaRender, AnOddSizedVideoSaysItWasPadded)
     EXPECT_NE(r.out.find("3 frames, 66x50, padded from 65x49 as H.264 needs even sizes"), std::string::npos) << r.out;
     const CommandResult probe = runShell("ffprobe -v error -show_entries stream=width,height -of csv=p=0 " +
                                          (dir / "x.mp4").string());
-    if (probe.exitCode == 0)
+    if (probe.exitCode == 0) {
         EXPECT_EQ(probe.out, "66,50\n");
+    }
 }
 
 // `pba render` stops at a blow-up with exit 3 naming the body, and writes no picture: here the

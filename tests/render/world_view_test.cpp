@@ -154,14 +154,15 @@ TEST(Camera, TheFramingKeepsTheRoomOutOfTheLegendsCorner)
             for (int k = 0; k < 8; ++k)
                 corners[k] = glm::vec3((k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y,
                                        (k & 4) ? box.hi.z : box.lo.z);
+            const float w = float(c.width), h = float(c.height);
             for (int a = 0; a < 8; ++a) {
                 const glm::vec3 p = camera.project(corners[a], c.width, c.height);
-                EXPECT_TRUE(p.x >= 0 && p.x <= c.width && p.y >= 0 && p.y <= c.height) << "corner " << a;
+                EXPECT_TRUE(p.x >= 0 && p.x <= w && p.y >= 0 && p.y <= h) << "corner " << a;
                 for (int b = a + 1; b < 8; ++b)
                     for (int k = 0; k <= 100; ++k) {
                         const glm::vec3 q =
-                            camera.project(glm::mix(corners[a], corners[b], k / 100.0f), c.width, c.height);
-                        EXPECT_FALSE(q.x < c.corner.x && q.y > c.height - c.corner.y)
+                            camera.project(glm::mix(corners[a], corners[b], float(k) / 100.0f), c.width, c.height);
+                        EXPECT_FALSE(q.x < c.corner.x && q.y > h - c.corner.y)
                             << c.width << "x" << c.height << ": " << q.x << ", " << q.y;
                     }
             }
