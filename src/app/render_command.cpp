@@ -81,6 +81,9 @@ int runRender(const RenderOptions& options)
     const double until = options.time.value_or(scene.duration);
     if (!std::isfinite(until) || until < 0.0)
         throw UsageError(fmt::format("--time: must be finite and not negative, got {}", until));
+    // A user who gives both means the picture to lie within the run: a later --time is a slip.
+    if (options.time && options.scene.duration && *options.time > *options.scene.duration)
+        throw UsageError(fmt::format("--time: {:g} s is past --duration {:g} s", *options.time, *options.scene.duration));
     stepCount(until, scene.dt, options.time ? "--time" : "--duration");
     if (!(until * options.fps <= kMaxSteps))
         throw UsageError(fmt::format("--duration: {:g} s at {} frames a second is more than {:g} frames", until,
@@ -189,7 +192,8 @@ void addRenderCommand(CLI::App& root, Action& selected)
     render->add_option("--time", options->time, "With a PNG: the simulated time to show (default: the end)")
         ->transform(decimalOnly())
         ->type_name("SECONDS");
-    render->add_option("--fps", options->fps, "Frames per second of video time (default 60)")
+    render->add_option("--fps", options->fps, "Frames per second of video time (default 60); with a PNG, the frames "
+                                             "that feed its trails and a --clock other than fixed")
         ->transform(decimalOnly())
         ->type_name("HZ");
     render->add_option("--size", options->size, "Image size, 16 to 8192 a side and at most 4096x4096 pixels in all "

@@ -151,6 +151,9 @@ INSTANTIATE_TEST_SUITE_P(
     Hardening, NumericFlags,
     ::testing::Values(BadFlags{{"render", "integrators", "--duration", "1e300", "--out", "OUT.mp4"}, "1e+302 steps"},
                       BadFlags{{"render", "integrators", "--time", "1e300", "--out", "OUT.png"}, "--time"},
+                      // As the viewer: a picture after the run's end was drawn without a word.
+                      BadFlags{{"render", "integrators", "--duration", "1", "--time", "2", "--out", "OUT.png"},
+                               "--time: 2 s is past --duration 1 s"},
                       BadFlags{{"bench", "--sizes", "-1"}, "--sizes"}, BadFlags{{"bench", "--sizes", "nan"}, "--sizes"},
                       BadFlags{{"bench", "--sizes", "0"}, "--sizes"}, BadFlags{{"bench", "--sizes", "0.5"}, "--sizes"},
                       BadFlags{{"bench", "--sizes", "1e20"}, "--sizes"},
