@@ -55,3 +55,23 @@ TEST(SmallLcp, ARedundantRowStillMeetsEverySpeed)
 }
 
 } // namespace
+
+namespace {
+
+TEST(SmallLcp, AnEqualityRowPullsAsWellAsPushes)
+{
+    // Row 0 an equality (a joint's): its speed is brought to 0 even by a pull (x < 0); row 1,
+    // a contact coupled to it, is left slack when it separates under that pull.
+    const std::vector<double> a{2.0, 1.0, 1.0, 2.0};
+    std::vector<double> x;
+    solveSmallLcp(a, {4.0, 3.0}, 2, 1e-12, x, 1);
+    EXPECT_NEAR(x[0], -2.0, 1e-8);
+    EXPECT_EQ(x[1], 0.0);
+    EXPECT_NEAR(speeds(a, {4.0, 3.0}, x)[1], 1.0, 1e-8);
+    // The equality's pull brings the contact to approach (1 - 2 < 0): it pushes too, both speeds 0.
+    solveSmallLcp(a, {4.0, 1.0}, 2, 1e-12, x, 1);
+    EXPECT_NEAR(x[0], -7.0 / 3.0, 1e-8);
+    EXPECT_NEAR(x[1], 2.0 / 3.0, 1e-8);
+}
+
+} // namespace

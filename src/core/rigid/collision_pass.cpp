@@ -111,9 +111,9 @@ double ContactSolver::blowMass(BodyIndex a, BodyIndex b, const dvec3& ra, const 
     return k > 0.0 ? 1.0 / k : 0.0;
 }
 
-void ContactSolver::applyBlow(BodyIndex a, BodyIndex b, const PointRows& r, const dvec3& p)
+void ContactSolver::applyBlow(BodyIndex a, BodyIndex b, const dvec3& rA, const dvec3& rB, const dvec3& p)
 {
-    for (const auto& [k, impulse, arm] : {std::tuple(a, -p, r.rA), std::tuple(b, p, r.rB)}) {
+    for (const auto& [k, impulse, arm] : {std::tuple(a, -p, rA), std::tuple(b, p, rB)}) {
         SolverBody& body = m_bodies[k];
         if (body.isStatic())
             continue;
@@ -124,13 +124,26 @@ void ContactSolver::applyBlow(BodyIndex a, BodyIndex b, const PointRows& r, cons
     }
 }
 
+void ContactSolver::pushRow(const BlowRow& r, double lambda)
+{
+    if (!r.angular) {
+        applyBlow(r.a, r.b, r.rA, r.rB, lambda * r.n);
+        return;
+    }
+    m_bodies[r.a].applyAngularImpulse(-lambda * r.n); // a mechanism's body: never pinned
+    m_bodies[r.b].applyAngularImpulse(lambda * r.n);
+}
+
 void ContactSolver::restingRows(const IslandContact& c, std::span<const ImpactRow> rows)
 {
     m_resting.clear();
-    const auto pinned = [&](BodyIndex k) { return m_pinOf[k] >= 0 && (k == c.a || k == c.b); };
+    const auto held = [&](BodyIndex k) {
+        return (!m_pins.empty() && m_pinOf[k] >= 0 && (k == c.a || k == c.b)) ||
+               std::find(m_mechanism.begin(), m_mechanism.end(), k) != m_mechanism.end();
+    };
     for (const IslandContact& other : m_constraints) {
-        const bool heldA = pinned(other.a) && m_bodies[other.b].isStatic();
-        const bool heldB = pinned(other.b) && m_bodies[other.a].isStatic();
+        const bool heldA = held(other.a) && m_bodies[other.b].isStatic();
+        const bool heldB = held(other.b) && m_bodies[other.a].isStatic();
         if (!heldA && !heldB)
             continue;
         for (int i = 0; i < other.count; ++i) {
@@ -158,49 +171,57 @@ void ContactSolver::restingRows(const IslandContact& c, std::span<const ImpactRo
 void ContactSolver::solveBlowNormals(const IslandContact& c, std::span<ImpactRow> rows, double& change,
                                      double& largest)
 {
-    // The arriving points' and the resting points' normal impulses at once, exactly (a small
-    // LCP by active sets): a pinned plank's four points on its stand stop its roll and its pitch
-    // only together, and sweeps passed pushes between them for hundreds of rounds.
+    // The arriving points' and the resting points' normal impulses, and the mechanism's joints',
+    // at once, exactly (a small LCP by active sets, the joints' rows its equalities): a pinned
+    // plank's four points on its stand stop its roll and its pitch only together, and sweeps
+    // passed pushes between them for hundreds of rounds.
     m_normals.clear();
+    for (std::size_t i = 0; i < m_jointEqualities.size(); ++i)
+        m_normals.push_back({m_jointEqualities[i], &m_jointPushes[i]});
     for (ImpactRow& row : rows)
-        m_normals.push_back({c.a, c.b, &row.rows, &row.pushN, row.targetN});
+        m_normals.push_back({blowRow(c.a, c.b, row.rows, row.targetN), &row.pushN});
     for (RestingRow& row : m_resting)
-        m_normals.push_back({row.a, row.b, &row.rows, &row.pushN, row.targetN});
+        m_normals.push_back({blowRow(row.a, row.b, row.rows, row.targetN), &row.pushN});
+    for (std::size_t i = 0; i < m_jointLimits.size(); ++i)
+        m_normals.push_back({m_jointLimits[i], &m_jointPushes[m_jointEqualities.size() + i]});
     const std::size_t n = m_normals.size();
-    const auto speed = [&](const NormalRow& row) {
-        return glm::dot(row.rows->n, relativeVelocity(m_bodies[row.a], m_bodies[row.b], *row.rows));
-    };
-    // A: row i's change of speed for a unit push of row j, found by pushing and putting back.
-    std::vector<double>& A = m_normalMatrix;
-    A.assign(n * n, 0.0);
+    const auto speed = [&](const BlowRow& row) { return row.speed(m_bodies[row.a], m_bodies[row.b]); };
     std::vector<double> now(n), b(n), x(n);
     for (std::size_t i = 0; i < n; ++i)
-        now[i] = speed(m_normals[i]);
-    for (std::size_t j = 0; j < n; ++j) {
-        const NormalRow& pushed = m_normals[j];
-        SolverBody& pa = m_bodies[pushed.a];
-        SolverBody& pb = m_bodies[pushed.b];
-        const dvec3 va = pa.v, wa = pa.w, vb = pb.v, wb = pb.w;
-        applyBlow(pushed.a, pushed.b, *pushed.rows, pushed.rows->n);
-        for (std::size_t i = 0; i < n; ++i)
-            A[i * n + j] = speed(m_normals[i]) - now[i];
-        pa.v = va, pa.w = wa, pb.v = vb, pb.w = wb;
+        now[i] = speed(m_normals[i].row);
+    // A: row i's change of speed for a unit push of row j, found by pushing and putting back
+    // (the rows stay the same through the blow's sweeps).
+    std::vector<double>& A = m_normalMatrix;
+    if (!m_normalMatrixMade) {
+        A.assign(n * n, 0.0);
+        for (std::size_t j = 0; j < n; ++j) {
+            const BlowRow& pushed = m_normals[j].row;
+            SolverBody& pa = m_bodies[pushed.a];
+            SolverBody& pb = m_bodies[pushed.b];
+            const dvec3 va = pa.v, wa = pa.w, vb = pb.v, wb = pb.w;
+            pushRow(pushed, 1.0);
+            for (std::size_t i = 0; i < n; ++i)
+                A[i * n + j] = speed(m_normals[i].row) - now[i];
+            pa.v = va, pa.w = wa, pb.v = vb, pb.w = wb;
+        }
+        m_normalMatrixMade = true;
     }
-    // Speeds as functions of the total pushes x: w = A x + b, wanted w >= 0, x >= 0, x . w = 0.
+    // Speeds as functions of the total pushes x: w = A x + b, wanted w >= 0, x >= 0, x . w = 0
+    // (w = 0 and x free on the joints' equalities).
     double scale = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-        b[i] = now[i] - m_normals[i].target;
+        b[i] = now[i] - m_normals[i].row.target;
         for (std::size_t j = 0; j < n; ++j)
             b[i] -= A[i * n + j] * *m_normals[j].push;
         scale = std::max(scale, std::abs(b[i]));
     }
-    solveSmallLcp(A, b, n, 1e-12 * scale, x);
+    solveSmallLcp(A, b, n, 1e-12 * scale, x, m_jointEqualities.size());
     for (std::size_t i = 0; i < n; ++i) {
         NormalRow& row = m_normals[i];
-        applyBlow(row.a, row.b, *row.rows, (x[i] - *row.push) * row.rows->n);
+        pushRow(row.row, x[i] - *row.push);
         change = std::max(change, std::abs(x[i] - *row.push));
         *row.push = x[i];
-        largest = std::max(largest, x[i]);
+        largest = std::max(largest, std::abs(x[i]));
     }
 }
 
@@ -380,6 +401,8 @@ void ContactSolver::solveImpact(const IslandContact& c, std::span<ImpactRow> row
     // arriving speed, and slides no faster than friction lets it.
     SolverBody& a = m_bodies[c.a];
     SolverBody& b = m_bodies[c.b];
+    const bool exact = !m_resting.empty() || !m_jointEqualities.empty() || !m_jointLimits.empty();
+    m_normalMatrixMade = false;
     for (int sweep = 0; sweep < kMaxImpactSweeps; ++sweep) {
         double change = 0.0, largest = 0.0;
         for (ImpactRow& row : rows) {
@@ -396,7 +419,7 @@ void ContactSolver::solveImpact(const IslandContact& c, std::span<ImpactRow> row
                 change = std::max(change, std::abs(next - row.pushT[k]));
                 row.pushT[k] = next;
             }
-            if (!m_resting.empty())
+            if (exact)
                 continue; // the normals all together, below
             const double vn = glm::dot(r.n, relativeVelocity(a, b, r));
             const double next = std::max(row.pushN - r.normalMass * (vn - row.targetN), 0.0);
@@ -405,7 +428,7 @@ void ContactSolver::solveImpact(const IslandContact& c, std::span<ImpactRow> row
             row.pushN = next;
             largest = std::max(largest, next);
         }
-        if (!m_resting.empty())
+        if (exact)
             solveBlowNormals(c, rows, change, largest);
         if (m_impactJoints)
             m_impactJoints->sweepBlow();
@@ -428,7 +451,13 @@ bool ContactSolver::collideOne(const IslandContact& c)
     SolverBody& b = m_bodies[c.b];
     const dvec3 va0 = a.v, wa0 = a.w, vb0 = b.v, wb0 = b.w;
     m_resting.clear();
-    if (!m_pins.empty())
+    m_mechanism.clear();
+    m_jointEqualities.clear();
+    m_jointLimits.clear();
+    if (m_impactJoints)
+        m_impactJoints->mechanismRows(c.a, c.b, m_mechanism, m_jointEqualities, m_jointLimits);
+    m_jointPushes.assign(m_jointEqualities.size() + m_jointLimits.size(), 0.0);
+    if (!m_pins.empty() || !m_mechanism.empty())
         restingRows(c, std::span(rows, std::size_t(count)));
     const std::span<const BodyIndex> joined = m_impactJoints ? m_impactJoints->bodies() : std::span<const BodyIndex>();
     m_jointBodiesBefore.clear();

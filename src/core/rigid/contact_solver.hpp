@@ -68,6 +68,21 @@ inline dvec3 relativeVelocity(const SolverBody& a, const SolverBody& b, const Po
     return b.pointVelocity(r.rB) - a.pointVelocity(r.rA);
 }
 
+/// A row of a blow solved exactly (the collision pass's small LCP): B's point less A's along n,
+/// at arms rA and rB, or (angular) B's spin less A's about n; the blow brings that speed to
+/// `target` (a joint's row), or to at least it (a contact's).
+struct BlowRow {
+    BodyIndex a = 0, b = 0;
+    dvec3 rA{0.0}, rB{0.0}, n{0.0};
+    bool angular = false;
+    double target = 0.0;
+
+    double speed(const SolverBody& x, const SolverBody& y) const
+    {
+        return angular ? glm::dot(n, y.w - x.w) : glm::dot(n, y.pointVelocity(rB) - x.pointVelocity(rA));
+    }
+};
+
 /// Solves one island's contacts. `contacts` holds every contact of the world; `island` lists
 /// the indices of this island's, in order. Works on `bodies` (the world's solver bodies: the
 /// island's and the static ones) and writes the impulses back into the contacts.
@@ -150,24 +165,35 @@ private:
         PointRows rows;
         double targetN = 0.0, pushN = 0.0;
     };
-    /// The resting points of the pinned bodies among c's two, but those of `rows`; at most
-    /// kMaxRestingRows, the closest to touching.
+    /// The resting points of the pinned bodies among c's two and of the blow's mechanism, but
+    /// those of `rows`; at most kMaxRestingRows, the closest to touching.
     void restingRows(const IslandContact& c, std::span<const ImpactRow> rows);
     static constexpr std::size_t kMaxRestingRows = 12;
-    /// With resting rows: the normal pushes of `rows` and m_resting together, exactly.
+    /// With resting rows or a mechanism: the normal pushes of `rows`, m_resting's and the
+    /// mechanism's joint rows together, exactly.
     void solveBlowNormals(const IslandContact& c, std::span<ImpactRow> rows, double& change, double& largest);
     struct NormalRow {
-        BodyIndex a = 0, b = 0;
-        const PointRows* rows = nullptr;
+        BlowRow row;
         double* push = nullptr;
-        double target = 0.0;
     };
+    static BlowRow blowRow(BodyIndex a, BodyIndex b, const PointRows& r, double target)
+    {
+        return {a, b, r.rA, r.rB, r.n, false, target};
+    }
+    /// The blow's impulse `lambda` along a row.
+    void pushRow(const BlowRow& r, double lambda);
     std::vector<NormalRow> m_normals;      ///< solveBlowNormals' scratch
-    std::vector<double> m_normalMatrix;
+    std::vector<double> m_normalMatrix;    ///< its rows' J M^-1 J^T, made once a blow
+    bool m_normalMatrixMade = false;
+    /// The present blow's mechanism (JointSolver::mechanismRows), its rows and their pushes.
+    std::vector<BodyIndex> m_mechanism;
+    std::vector<BlowRow> m_jointEqualities, m_jointLimits;
+    std::vector<double> m_jointPushes;
     /// A blow's masses and impulses: a pinned body's (Pin) or a free one's.
     double blowInverseMass(BodyIndex k, const dvec3& r, const dvec3& u) const;
     double blowMass(BodyIndex a, BodyIndex b, const dvec3& ra, const dvec3& rb, const dvec3& u) const;
-    void applyBlow(BodyIndex a, BodyIndex b, const PointRows& r, const dvec3& p);
+    void applyBlow(BodyIndex a, BodyIndex b, const dvec3& rA, const dvec3& rB, const dvec3& p);
+    void applyBlow(BodyIndex a, BodyIndex b, const PointRows& r, const dvec3& p) { applyBlow(a, b, r.rA, r.rB, p); }
     /// Whether contact k gives a blow now (collide's look at it).
     bool lookForBlow(std::size_t k, int maxStrikes);
     void startCollisions();

@@ -66,6 +66,16 @@ public:
     std::span<const Pin> pins() const { return m_pins; }
     /// A hinge this close to a limit (rad) is not pinned: its limit rows act in the blow.
     static constexpr double kPinLimitGap = 0.05;
+    /// A blow's mechanism (between beginBlows and endBlows): the moving bodies joined to x or y,
+    /// but pinned ones, through joints that pass a blow (not springs), and those joints' rows:
+    /// `equalities` keep each joint's relative velocities as they were before the blows, and
+    /// `limits` (a hinge's) may only push, as far as the step's gap to the limit. False, with
+    /// nothing, where the blow keeps the sweeps: no such body, a particle among them (it has no
+    /// turn to take), or more than kMaxMechanismRows rows.
+    bool mechanismRows(BodyIndex x, BodyIndex y, std::vector<BodyIndex>& bodies, std::vector<BlowRow>& equalities,
+                       std::vector<BlowRow>& limits) const;
+    /// The exact blow's matrix is dense: a chain of twelve hinges has 60 rows.
+    static constexpr std::size_t kMaxMechanismRows = 72;
     void storeImpulses();
     /// One sweep on the bodies' end poses.
     void solvePositions();

@@ -56,14 +56,14 @@ void solveActive(const std::vector<double>& a, const std::vector<double>& b, std
 } // namespace
 
 void solveSmallLcp(const std::vector<double>& a, const std::vector<double>& b, std::size_t n, double tolerance,
-                   std::vector<double>& x)
+                   std::vector<double>& x, std::size_t equalities)
 {
     x.assign(n, 0.0);
     std::vector<char> active(n, 1);
     for (std::size_t round = 0; round < 4 * n + 4; ++round) {
         solveActive(a, b, n, active, x);
         std::size_t worst = n;
-        for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t i = equalities; i < n; ++i)
             if (active[i] && x[i] < 0.0 && (worst == n || x[i] < x[worst]))
                 worst = i;
         if (worst < n) {
@@ -71,7 +71,7 @@ void solveSmallLcp(const std::vector<double>& a, const std::vector<double>& b, s
             continue;
         }
         double most = -tolerance;
-        for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t i = equalities; i < n; ++i) {
             if (active[i])
                 continue;
             double w = b[i];
@@ -86,8 +86,8 @@ void solveSmallLcp(const std::vector<double>& a, const std::vector<double>& b, s
             break;
         active[worst] = 1;
     }
-    for (double& v : x)
-        v = std::max(v, 0.0);
+    for (std::size_t i = equalities; i < n; ++i)
+        x[i] = std::max(x[i], 0.0);
 }
 
 } // namespace pba::rigid
