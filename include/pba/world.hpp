@@ -535,7 +535,7 @@ private:
     /// with its masses, and the springs' fixed ends placed.
     detail::SpringSolver& startSpringSystem(const std::vector<std::size_t>& members, bool xpbd);
     /// The system's end states through the surfaces into its bodies, each checked finite.
-    void collideAndStore(const std::vector<std::size_t>& members, double dt);
+    void collideAndStore(const std::vector<std::size_t>& members, double dt, Integrator integrator);
     /// Phase 4b (ParticleSystems, Bodies, Surfaces): the particles with a radius that touch each
     /// other after their step are separated and exchange impulses (src/core/particle_contacts.hpp);
     /// neighbours along one rope or cloth are left to their springs (src/core/spring_neighbours.hpp).

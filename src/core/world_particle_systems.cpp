@@ -359,7 +359,7 @@ void World::integrateCoupled(Integrator integrator, const std::vector<std::size_
             const dvec3 mean = 0.5 * (m_bodies.previous[members[k]].vel + s.v[k]);
             m_bodies.sourceWork[members[k]] = dt * glm::dot(s.sourceImpulse[k], mean);
         });
-    collideAndStore(members, dt);
+    collideAndStore(members, dt, integrator);
 }
 
 void World::bookSourceStage(const std::vector<std::size_t>& members, std::span<const std::uint8_t> wanted,
@@ -375,12 +375,15 @@ void World::bookSourceStage(const std::vector<std::size_t>& members, std::span<c
     });
 }
 
-void World::collideAndStore(const std::vector<std::size_t>& members, double dt)
+void World::collideAndStore(const std::vector<std::size_t>& members, double dt, Integrator integrator)
 {
     // Collisions, the bodies' new states and the check that they are finite in one pass, so
     // each body's object is visited once here: a cloth's bodies are many and far apart.
     const std::span<const Plane> planes(m_surfaces.planes);
     const CoupledScratch& s = m_particleSystems.scratch;
+    // As a rigid body's impulses move its end pose; backward Euler holds its resting members in
+    // its solve, and rubs them there.
+    const double drift = integrator == Integrator::ImplicitEuler ? 0.0 : rigid::driftWeight(integrator) * dt;
     const std::size_t bad = detail::lowestFailing(members, 2048, m_bodies.objects.size(), [&](std::size_t k) {
         const std::size_t i = members[k];
         State end{s.x[k], s.v[k]};
@@ -390,7 +393,7 @@ void World::collideAndStore(const std::vector<std::size_t>& members, double dt)
             m_bodies.bounces[i] += static_cast<std::uint64_t>(
                 afterStepWithFriction(coupledCollisionResponse(), ball, m_bodies.cors[i], m_bodies.frictions[i],
                                       glm::length(s.acc[k]) * dt, m_bodies.previous[i].pos, end.pos,
-                                      end.vel));
+                                      end.vel, std::optional(drift)));
         Body& b = *m_bodies.objects[i];
         b.setState(end);
         b.setAcc(s.acc[k]);
@@ -459,7 +462,7 @@ void World::integrateBackwardEuler(const std::vector<std::size_t>& members, std:
     solveWithJointPoints(solver, std::span<dvec3>(&s.x[0], n), std::span<dvec3>(&s.v[0], n), dt);
     rubAndPushBearers(members, solver);
     pushCarriedBodies(solver, dt);
-    collideAndStore(members, dt);
+    collideAndStore(members, dt, Integrator::ImplicitEuler);
 }
 
 void World::holdOnBodies(const std::vector<std::size_t>& members, detail::SpringSolver& solver, double dt) const
@@ -756,7 +759,7 @@ void World::integrateXpbd(const std::vector<std::size_t>& members, std::span<con
         giveXpbdReactions(solver.rigidContacts);
     // The step's mean acceleration: XPBD has no force at the start to keep.
     detail::forEachIndex(n, [&](std::size_t k) { s.acc[k] = (s.v[k] - m_bodies.previous[members[k]].vel) / dt; });
-    collideAndStore(members, dt);
+    collideAndStore(members, dt, Integrator::Xpbd);
 }
 
 void World::collideBalls(double dt)
