@@ -3,6 +3,7 @@
 // added without a picture, or a picture renamed, is caught here rather than by a reader.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cstdint>
 #include <filesystem>
 #include <regex>
@@ -69,4 +70,23 @@ TEST(ReadmeGallery, EveryPictureExistsAtTheGallerysSizeAndStaysSmall)
         EXPECT_LT(std::filesystem::file_size(file), 128u * 1024u) << file;
     }
     EXPECT_GE(count, static_cast<int>(pba::builtinSceneNames().size()) - 1) << "one picture for the two swarms";
+}
+
+// "The lines are the scenes' own summaries": each cell's words after its name are the scene's
+// summary without its "Task 3: ", "Rigid bodies: " or "The bonus: " and with a lower-case start,
+// then at most a `--show` hint. They had drifted apart in five scenes.
+TEST(ReadmeGallery, EachCellSaysItsScenesSummary)
+{
+    const std::string gallery = gallerySection();
+    for (const auto& name : pba::builtinSceneNames()) {
+        const std::regex cell("`" + name + R"(`: ([^|]*?)( \(`--show [a-z,]+`\))? \|)");
+        std::smatch m;
+        if (!std::regex_search(gallery, m, cell))
+            continue; // a swarm named beside another's picture (EveryBuiltInSceneHasACellWithAPicture)
+        std::string summary = pba::builtinSceneSummary(name);
+        summary = std::regex_replace(summary, std::regex("^(Task [0-9]+|Rigid bodies|The bonus): "), "");
+        if (summary.rfind("Newton", 0) != 0)
+            summary[0] = char(std::tolower(static_cast<unsigned char>(summary[0])));
+        EXPECT_EQ(m[1].str(), summary) << name;
+    }
 }

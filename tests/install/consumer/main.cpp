@@ -2,11 +2,14 @@
 // the analytic bounce puts it, or the installed library is not the one we built. Then the
 // installed scene loader builds a built-in scene and one from JSON text, and a run of the
 // first is watched for blow-ups (it has none): pba/scene/scene.hpp is installed with its library.
+// Last, the README's example (readmeExample, its lines as printed) runs.
 #include <cmath>
 #include <cstdio>
 
 #include <pba/pba.hpp>
 #include <pba/scene/scene.hpp>
+
+int readmeExample();
 
 namespace {
 
@@ -42,5 +45,7 @@ int main()
     std::printf("y = %.12f (expected %.12f)\n", world.body(0).getPos().y, expected);
     if (std::abs(world.body(0).getPos().y - expected) >= 1e-9)
         return 1;
-    return sceneLoaderWorks();
+    if (const int failed = sceneLoaderWorks())
+        return failed;
+    return readmeExample();
 }
