@@ -371,16 +371,8 @@ void JointSolver::findPins()
     }
 }
 
-bool JointSolver::mechanismRows(BodyIndex x, BodyIndex y, std::vector<BodyIndex>& bodies,
-                                std::vector<BlowRow>& equalities, std::vector<BlowRow>& limits) const
+bool JointSolver::mechanismOf(BodyIndex x, BodyIndex y, std::vector<BodyIndex>& bodies, std::vector<char>& taken) const
 {
-    bodies.clear();
-    equalities.clear();
-    limits.clear();
-    const auto passes = [&](const Rows& r) {
-        const Joint& j = m_joints[r.joint];
-        return !(j.type == JointType::Distance && j.stiffness > 0.0);
-    };
     const auto pinned = [&](BodyIndex k) {
         return std::any_of(m_pins.begin(), m_pins.end(), [&](const Pin& p) { return p.body == k; });
     };
@@ -389,15 +381,15 @@ bool JointSolver::mechanismRows(BodyIndex x, BodyIndex y, std::vector<BodyIndex>
         if (!m_bodies[k].isStatic() && !joined(k) && !pinned(k) &&
             std::binary_search(m_movingBodies.begin(), m_movingBodies.end(), k))
             bodies.push_back(k);
-    if (bodies.empty())
-        return false;
-    // The bodies' joints, and the bodies at their other ends, until no joint adds one.
-    std::vector<char> taken(m_rows.size(), 0);
-    for (bool grew = true; grew;) {
+    // The bodies' joints (not springs, which pass no blow), and the bodies at their other ends,
+    // until no joint adds one.
+    taken.assign(m_rows.size(), 0);
+    for (bool grew = !bodies.empty(); grew;) {
         grew = false;
         for (std::size_t i = 0; i < m_rows.size(); ++i) {
             const Rows& r = m_rows[i];
-            if (taken[i] || !passes(r) || !(joined(r.a) || joined(r.b)))
+            const Joint& j = m_joints[r.joint];
+            if (taken[i] || (j.type == JointType::Distance && j.stiffness > 0.0) || !(joined(r.a) || joined(r.b)))
                 continue;
             taken[i] = 1;
             grew = true;
@@ -406,48 +398,60 @@ bool JointSolver::mechanismRows(BodyIndex x, BodyIndex y, std::vector<BodyIndex>
                     bodies.push_back(k);
         }
     }
-    if (std::any_of(bodies.begin(), bodies.end(), [&](BodyIndex k) { return m_bodies[k].inverseInertia == dmat3(0.0); })) {
-        bodies.clear();
-        return false;
+    const auto point = [&](BodyIndex k) { return m_bodies[k].inverseInertia == dmat3(0.0); };
+    return !bodies.empty() && std::none_of(bodies.begin(), bodies.end(), point);
+}
+
+void JointSolver::blowRowsOf(const Rows& r, std::vector<BlowRow>& equalities, std::vector<BlowRow>& limits) const
+{
+    const Joint& j = m_joints[r.joint];
+    const auto linear = [&](const dvec3& n) {
+        equalities.push_back({r.a, r.b, r.rA, r.rB, n, false, glm::dot(n, r.blowAnchor)});
+    };
+    const auto angular = [&](const dvec3& n) {
+        equalities.push_back({r.a, r.b, r.rA, r.rB, n, true, glm::dot(n, r.blowSpin)});
+    };
+    if (j.type == JointType::Distance) {
+        linear(r.n);
+        return;
     }
-    const double dt = m_settings.dt;
     const dvec3 frame[3] = {dvec3(1.0, 0.0, 0.0), dvec3(0.0, 1.0, 0.0), dvec3(0.0, 0.0, 1.0)};
-    for (std::size_t i = 0; i < m_rows.size(); ++i) {
-        if (!taken[i])
-            continue;
-        const Rows& r = m_rows[i];
-        const Joint& j = m_joints[r.joint];
-        const auto linear = [&](const dvec3& n) {
-            equalities.push_back({r.a, r.b, r.rA, r.rB, n, false, glm::dot(n, r.blowAnchor)});
-        };
-        const auto angular = [&](const dvec3& n) {
-            equalities.push_back({r.a, r.b, r.rA, r.rB, n, true, glm::dot(n, r.blowSpin)});
-        };
-        if (j.type == JointType::Distance) {
-            linear(r.n);
-            continue;
-        }
+    for (const dvec3& n : frame)
+        linear(n);
+    if (j.type == JointType::Fixed)
         for (const dvec3& n : frame)
-            linear(n);
-        if (j.type == JointType::Fixed)
-            for (const dvec3& n : frame)
-                angular(n);
-        if (j.type != JointType::Hinge)
-            continue;
-        angular(r.across[0]);
-        angular(r.across[1]);
-        if (!j.limited)
-            continue;
-        // As solveHingeAngular's limit rows in a blow: A's spin relative to B's about the axis may
-        // change only as far as closes the gap within the step.
-        const double before = r.blowAxialSpin;
-        const double lower = std::min(-std::max(r.angle - j.lower, 0.0) / dt - before, 0.0);
-        const double upper = std::max(std::max(j.upper - r.angle, 0.0) / dt - before, 0.0);
-        limits.push_back({r.a, r.b, r.rA, r.rB, -r.axis, true, lower - glm::dot(r.axis, r.blowSpin)});
-        limits.push_back({r.a, r.b, r.rA, r.rB, r.axis, true, -upper + glm::dot(r.axis, r.blowSpin)});
-    }
-    if (equalities.size() + limits.size() > kMaxMechanismRows) {
-        bodies.clear(), equalities.clear(), limits.clear();
+            angular(n);
+    if (j.type != JointType::Hinge)
+        return;
+    angular(r.across[0]);
+    angular(r.across[1]);
+    if (!j.limited)
+        return;
+    // As solveHingeAngular's limit rows in a blow: A's spin relative to B's about the axis may
+    // change only as far as closes the gap within the step.
+    const double dt = m_settings.dt, before = r.blowAxialSpin;
+    const double lower = std::min(-std::max(r.angle - j.lower, 0.0) / dt - before, 0.0);
+    const double upper = std::max(std::max(j.upper - r.angle, 0.0) / dt - before, 0.0);
+    limits.push_back({r.a, r.b, r.rA, r.rB, -r.axis, true, lower - glm::dot(r.axis, r.blowSpin)});
+    limits.push_back({r.a, r.b, r.rA, r.rB, r.axis, true, -upper + glm::dot(r.axis, r.blowSpin)});
+}
+
+bool JointSolver::mechanismRows(BodyIndex x, BodyIndex y, std::vector<BodyIndex>& bodies,
+                                std::vector<BlowRow>& equalities, std::vector<BlowRow>& limits) const
+{
+    bodies.clear();
+    equalities.clear();
+    limits.clear();
+    std::vector<char> taken;
+    const bool found = mechanismOf(x, y, bodies, taken);
+    if (found)
+        for (std::size_t i = 0; i < m_rows.size(); ++i)
+            if (taken[i])
+                blowRowsOf(m_rows[i], equalities, limits);
+    if (!found || equalities.size() + limits.size() > kMaxMechanismRows) {
+        bodies.clear();
+        equalities.clear();
+        limits.clear();
         return false;
     }
     return true;

@@ -138,6 +138,10 @@ private:
     std::vector<BodyIndex> m_movingBodies;
     std::vector<Pin> m_pins;
     void findPins();
+    /// mechanismRows' parts: the mechanism's bodies and its joints (`taken`, by row), false for
+    /// none or one with a particle; one joint's blow rows.
+    bool mechanismOf(BodyIndex x, BodyIndex y, std::vector<BodyIndex>& bodies, std::vector<char>& taken) const;
+    void blowRowsOf(const Rows& r, std::vector<BlowRow>& equalities, std::vector<BlowRow>& limits) const;
     /// One sweep of every joint's velocity rows; with `blow`, not a spring's.
     void sweep(bool blow);
 };
