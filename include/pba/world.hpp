@@ -506,7 +506,7 @@ private:
     std::uint32_t bearerFor(detail::SpringSolver& solver, std::size_t world, double dt) const;
     /// After the solve: friction on the members held on rigid bodies or the room, and what the
     /// held members did to their bearers, as impulses at the end of those bodies' free steps.
-    void rubAndPushBearers(const std::vector<std::size_t>& members, detail::SpringSolver& solver);
+    void rubAndPushBearers(const std::vector<std::size_t>& members, detail::SpringSolver& solver, double dt);
     /// For backward Euler: each member's mass in the solve (solver.solveMass), with the mass and
     /// weight of a rigid body a ball joint joins it to (solver.carried), added to its start force.
     void carryJoinedBodies(const std::vector<std::size_t>& members, detail::SpringSolver& solver) const;

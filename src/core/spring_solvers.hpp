@@ -26,6 +26,7 @@ struct SpringSolver {
     /// start. Members, not thread_local: a lambda run on a pool thread names that thread's copy.
     std::vector<dvec3> positions, startForces;
     std::vector<dvec3> heldOn; ///< backward Euler's: the normal of the surface each member rests on, or zero
+    std::vector<char> heldOnRoom; ///< backward Euler's: whether that surface is the room's
     /// Backward Euler's: each member's mass in the solve, with a rigid body it carries at a ball
     /// joint; its mass in some directions only (pinned along a rod to a fixed body; a joint
     /// point's whole mass matrix), or none (empty); and the bodies that take what the solve gave
