@@ -66,24 +66,33 @@ std::string endRatios(const std::vector<const ParticleResult*>& rows)
     return text;
 }
 
-/// "its energy after 10 s is 0.9737 times the start at dt = 0.0005 and it blew up at t = 0.21 s
-/// at dt = 0.1": a run that blew up has no end energy to quote, only when it blew up.
+/// "its energy after 10 s is 0.9737 times the start at dt = 0.0005 and 1.2 times at dt = 0.1", or
+/// "... and it blew up at t = 0.21 s at dt = 0.1": a run that blew up has no end energy to quote,
+/// only when it blew up. The energy is named once.
 std::string endClauses(const std::vector<const ParticleResult*>& rows, double duration, bool lessSourceWork)
 {
+    bool named = false;
     const auto one = [&](const ParticleResult& r) {
+        if (!std::isnan(r.blewUpAt))
+            return fmt::format("it blew up at t = {:.3g} s at dt = {}", r.blewUpAt, r.dt);
         // Below zero, less the dryer's work: the bounces and the integration took more than the
         // start's energy, the dryer having put it in.
         const bool below = lessSourceWork && r.energyRatioEnd < 0.0;
-        return std::isnan(r.blewUpAt)
-                   ? fmt::format("its energy{} after {} s is {} times the start at dt = {}{}",
-                                 lessSourceWork ? " less the dryer's work" : "", duration, ratioText(r.energyRatioEnd),
-                                 r.dt,
-                                 below ? " (below zero: what the bounces and the integration took is more than the "
-                                         "start's energy, the dryer's work having put it in)"
-                                       : "")
-                   : fmt::format("it blew up at t = {:.3g} s at dt = {}", r.blewUpAt, r.dt);
+        const std::string subject = named ? "" : fmt::format("its energy{} after {} s is ",
+                                                             lessSourceWork ? " less the dryer's work" : "", duration);
+        const std::string text =
+            fmt::format("{}{} times {}at dt = {}{}", subject, ratioText(r.energyRatioEnd), named ? "" : "the start ",
+                        r.dt,
+                        below ? " (below zero: what the bounces and the integration took is more than the start's "
+                                "energy, the dryer's work having put it in)"
+                              : "");
+        named = true;
+        return text;
     };
-    return rows.size() > 1 ? one(*rows.front()) + " and " + one(*rows.back()) : one(*rows.front());
+    if (rows.size() == 1)
+        return one(*rows.front());
+    const std::string first = one(*rows.front());
+    return first + " and " + one(*rows.back());
 }
 
 std::string capitalised(std::string text)
