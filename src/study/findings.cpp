@@ -167,13 +167,23 @@ std::string endClausesByResponse(const StudyConfig& config, const StudyResult& r
 {
     const auto responses = distinctResponses(config, result);
     std::string text;
+    bool said = false; // after the first response's sentence, the others' figures alone
     for (CollisionResponse c : responses) {
         const auto rows = rowsOf(config, result, integrator, c);
         if (rows.empty())
             continue;
+        const bool finite = std::all_of(rows.begin(), rows.end(), [](const ParticleResult* r) {
+            return std::isnan(r->blewUpAt) && !(r->energyRatioEnd < 0.0);
+        });
+        if (said && finite && rows.size() > 1) {
+            text += fmt::format("With `{}`, {} and {} times. ", collisionResponseName(c),
+                                ratioText(rows.front()->energyRatioEnd), ratioText(rows.back()->energyRatioEnd));
+            continue;
+        }
         const std::string clauses = endClauses(rows, config.duration, result.lessSourceWork);
         text += responses.size() > 1 ? fmt::format("With the `{}` response {}. ", collisionResponseName(c), clauses)
                                      : capitalised(clauses) + ". ";
+        said = finite && rows.size() > 1;
     }
     return text;
 }
