@@ -487,10 +487,11 @@ inline int clampAfterStep(std::span<const PlaneT<T>> planes, T restitution, cons
 /// its acceleration gives in one step, |a| dt) is resting contact, not a bounce, as the exact
 /// rule's rebound too weak to leave the surface for a step: a body lying on the floor is pulled
 /// below it by every step and pushed back, and a rope's end counted a bounce nearly every step.
-/// With `restingDrift` (the coupled rule's: a rope's or a cloth's particles) that push is resting
-/// contact in the motion too: the body is put back on the surface and stays there (the clamp
-/// rule without a rebound), where the mirror and its rebound kept a rope's end, pulled down by its
-/// springs at three times gravity, hopping every third step for as long as it lay there. And the
+/// With `restingDrift` (the coupled rule's: a rope's or a cloth's particles) that push, up to the
+/// mirror's own hop, is resting contact in the motion too: the body is put back on the surface and
+/// stays there (the clamp rule without a rebound), where the mirror and its rebound kept a rope's
+/// end, pulled down by its springs at three times gravity, hopping every third step for as long
+/// as it lay there. And the
 /// friction's change of velocity moves the position by restingDrift times it (the share of the
 /// step's drift that the end velocity drives, times dt): friction that stops the velocity stops
 /// the step's slide too, where a rope's end lying on the floor crept 2.5 mm/s with zero velocity.
@@ -506,7 +507,12 @@ inline int afterStepWithFriction(CollisionResponse response, std::span<const Pla
     T size = glm::length(change);
     if (!(size > T(0)))
         return bounces;
-    const bool resting = !(-glm::dot(change / size, before) > T(2) * restingSpeed);
+    // The coupled rule's mirror lifts a body pulled onto the surface by its depth, which keeps
+    // it hopping at 2 |a| dt / (1 - e^2) (the lift giving back what e takes): an arrival no
+    // faster is the rule's own hop, not an impact (a velocity-Verlet rope's end hopped so).
+    const T bounded = std::min(restitution, T(0.9));
+    const T reach = restingDrift ? T(2) * restingSpeed / (T(1) - bounded * bounded) : T(2) * restingSpeed;
+    const bool resting = !(-glm::dot(change / size, before) > reach);
     if (resting && restingDrift) {
         x = end;
         v = before;
