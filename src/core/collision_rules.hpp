@@ -491,10 +491,10 @@ inline int clampAfterStep(std::span<const PlaneT<T>> planes, T restitution, cons
 /// mirror's own hop, is resting contact in the motion too: the body is put back on the surface and
 /// stays there (the clamp rule without a rebound), where the mirror and its rebound kept a rope's
 /// end, pulled down by its springs at three times gravity, hopping every third step for as long
-/// as it lay there. And the
-/// friction's change of velocity moves the position by restingDrift times it (the share of the
-/// step's drift that the end velocity drives, times dt): friction that stops the velocity stops
-/// the step's slide too, where a rope's end lying on the floor crept 2.5 mm/s with zero velocity.
+/// as it lay there. And the friction's change of velocity moves the position by restingDrift
+/// times it (the share of the step's drift that the end velocity drives, times dt): friction that
+/// stops the velocity stops the step's slide too, where a rope's end lying on the floor crept
+/// 2.5 mm/s with zero velocity.
 template <class T>
 inline int afterStepWithFriction(CollisionResponse response, std::span<const PlaneT<T>> planes, T restitution,
                                  T friction, T restingSpeed, const Vec3<T>& start, Vec3<T>& x, Vec3<T>& v,
