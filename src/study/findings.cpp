@@ -71,8 +71,7 @@ std::string endRatios(const std::vector<const ParticleResult*>& rows)
 /// only when it blew up. The energy is named once.
 std::string endClauses(const std::vector<const ParticleResult*>& rows, double duration, bool lessSourceWork)
 {
-    bool named = false;
-    const auto one = [&](const ParticleResult& r) {
+    const auto one = [&](const ParticleResult& r, bool named) {
         if (!std::isnan(r.blewUpAt))
             return fmt::format("it blew up at t = {:.3g} s at dt = {}", r.blewUpAt, r.dt);
         // Below zero, less the dryer's work: the bounces and the integration took more than the
@@ -80,19 +79,17 @@ std::string endClauses(const std::vector<const ParticleResult*>& rows, double du
         const bool below = lessSourceWork && r.energyRatioEnd < 0.0;
         const std::string subject = named ? "" : fmt::format("its energy{} after {} s is ",
                                                              lessSourceWork ? " less the dryer's work" : "", duration);
-        const std::string text =
-            fmt::format("{}{} times {}at dt = {}{}", subject, ratioText(r.energyRatioEnd), named ? "" : "the start ",
-                        r.dt,
-                        below ? " (below zero: what the bounces and the integration took is more than the start's "
-                                "energy, the dryer's work having put it in)"
-                              : "");
-        named = true;
-        return text;
+        return fmt::format("{}{} times {}at dt = {}{}", subject, ratioText(r.energyRatioEnd), named ? "" : "the start ",
+                           r.dt,
+                           below ? " (below zero: what the bounces and the integration took is more than the start's "
+                                   "energy, the dryer's work having put it in)"
+                                 : "");
     };
+    const ParticleResult& first = *rows.front();
     if (rows.size() == 1)
-        return one(*rows.front());
-    const std::string first = one(*rows.front());
-    return first + " and " + one(*rows.back());
+        return one(first, false);
+    // The second names the energy only if the first did not (it blew up).
+    return one(first, false) + " and " + one(*rows.back(), std::isnan(first.blewUpAt));
 }
 
 std::string capitalised(std::string text)
