@@ -63,7 +63,7 @@ std::pair<std::string, double> faceDown(const RigidBody& box, const dvec3& gravi
 RigidWatch::RigidWatch(const World& world)
 {
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
-        if (!world.isRigid(i))
+        if (!world.isRigid(i) || world.body(i).isFixed()) // a fixed body has nothing to tell
             continue;
         const RigidBody& body = rigid(world, i);
         Track t;

@@ -61,7 +61,7 @@ public:
 
     /// Call after every step.
     void record(const World& world);
-    /// One per rigid body, in the world's order.
+    /// One per rigid body that is not fixed, in the world's order.
     std::vector<RigidFigures> bodies(const World& world) const;
 
 private:
