@@ -33,6 +33,7 @@ own dominoes 1.6 contacts
 own newtons-cradle 0.62
 own wrecking-ball 1.8
 own chain 0.45 joints
+own dice 8 # the heap at rest in its tray
 own box-stack 2
 own incline 0.6
 own pendulum 0.4 joints
@@ -56,7 +57,6 @@ rigid granular 4 0,0.16,0.62,0,0.04,0 # the mound at the end, from low beside it
 own stiff-spring 1.5
 # The README's first scene, from the example file it shows.
 "$pba" render docs/examples/first-scene.json --size 640x360 --time 3 --camera=0,2,6,0,1.6,0 --out "$out/first-scene.png"
-"$pba" render dice --size 640x360 --camera=0.7,3.4,4.6,0.7,-0.2,1.5 --out "$out/dice.png" # at the end: every die at rest
 "$pba" render blow-dryer-swarm --size 640x360 --time 1.5 --out "$out/blow-dryer-swarm.png"
 "$pba" render fountain-1m --size 640x360 --time 1.5 --out "$out/fountain-1m.png"
 "$pba" field blow-dryer-flow --slice --out "$out/field-blow-dryer-flow.png"

@@ -99,6 +99,7 @@ int runRender(const RenderOptions& options)
     settings.interpolate = !options.noInterpolation;
     settings.trails = !options.noTrails;
     settings.fabric = scene.fabric;
+    settings.dice = scene.dice;
     if (options.lanes)
         settings.ghost = exactGhosts(scene.world);
     render::OffscreenRenderer renderer(width, height, !options.noLegend);

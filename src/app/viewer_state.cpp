@@ -38,6 +38,7 @@ void ViewerState::load(Scene newScene)
     camera = cameraFor(cameraChoice, scene.world, scene.camera);
     clearLegend = framingCamera(cameraChoice, scene.camera);
     settings.fabric = scene.fabric;
+    settings.dice = scene.dice;
     groups = render::BodyGroups(scene.world, scene.fabric);
     initial = scene.world;
     if (settings.ghost)

@@ -8,6 +8,7 @@ void DrawList::clear()
     lines.clear();
     triangles.clear();
     surfaces.clear();
+    bodies.clear();
     floor.reset();
     overlayLines.clear();
     overlaySprites.clear();

@@ -28,6 +28,18 @@ struct LitVertex {
     glm::vec4 colour;
 };
 
+/// A vertex of a rigid body's surface, lit as a LitVertex. Its shade is chosen per pixel from
+/// the direction it faces in the body's own frame (a ball's six patches have round borders, not
+/// a triangle's steps), and a die's pips are drawn from where on its faces it is.
+struct BodyVertex {
+    glm::vec3 position;
+    glm::vec3 normal;     ///< in the world
+    glm::vec4 colour;     ///< the body's
+    glm::vec3 bodyNormal; ///< in the body's frame
+    glm::vec3 onDie;      ///< a die's point in its frame over its half side (faces at +-1)
+    float die = 0.0f;     ///< 1 on a die: pips
+};
+
 /// A checkered rectangle in the plane y = height, with an optional round hole.
 struct Floor {
     glm::vec2 min{-1.0f}; ///< x, z
@@ -43,6 +55,7 @@ struct DrawList {
     std::vector<ColouredVertex> lines;     ///< pairs of vertices
     std::vector<ColouredVertex> triangles; ///< triples, drawn blended after everything opaque
     std::vector<LitVertex> surfaces;       ///< triples, opaque and lit, both sides
+    std::vector<BodyVertex> bodies;        ///< triples: the rigid bodies' faces
     std::optional<Floor> floor;
     /// Marks drawn last, over everything, with no depth test: contact points, joint frames and
     /// body axes, which lie inside or under the bodies they describe.

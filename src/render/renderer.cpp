@@ -12,7 +12,8 @@ Renderer::Renderer()
     : m_sprite("sprite", glsl::kSpriteVertex, glsl::kSpriteFragment),
       m_flat("flat", glsl::kFlatVertex, glsl::kFlatFragment),
       m_floor("floor", glsl::kFloorVertex, glsl::kFloorFragment),
-      m_lit("lit", glsl::kLitVertex, glsl::kLitFragment)
+      m_lit("lit", glsl::kLitVertex, glsl::kLitFragment),
+      m_body("body", glsl::kBodyVertex, glsl::kBodyFragment)
 {
     glGenVertexArrays(1, &m_vao);
     glGenBuffers(1, &m_vbo);
@@ -35,7 +36,7 @@ void Renderer::draw(const DrawList& list, const OrbitCamera& camera, int width, 
     glDisable(GL_CULL_FACE);
     const glm::mat4 view = camera.view();
     const glm::mat4 projection = camera.projection(float(width) / float(std::max(height, 1)));
-    for (const Shader* shader : {&m_sprite, &m_flat, &m_floor, &m_lit}) {
+    for (const Shader* shader : {&m_sprite, &m_flat, &m_floor, &m_lit, &m_body}) {
         shader->use();
         shader->set("uView", view);
         shader->set("uProjection", projection);
@@ -48,6 +49,7 @@ void Renderer::draw(const DrawList& list, const OrbitCamera& camera, int width, 
         drawFloor(*list.floor);
     drawColoured(list.lines, GL_LINES);
     drawSurfaces(list.surfaces);
+    drawBodies(list.bodies);
     drawSprites(list.sprites);
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -118,6 +120,28 @@ void Renderer::drawSurfaces(const std::vector<LitVertex>& vertices)
     glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(LitVertex),
                           reinterpret_cast<void*>(offsetof(LitVertex, colour)));
     glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size()));
+}
+
+void Renderer::drawBodies(const std::vector<BodyVertex>& vertices)
+{
+    if (vertices.empty())
+        return;
+    m_body.use();
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(BodyVertex)), vertices.data(),
+                 GL_STREAM_DRAW);
+    const auto attribute = [](GLuint index, GLint size, std::size_t offset) {
+        glEnableVertexAttribArray(index);
+        glVertexAttribPointer(index, size, GL_FLOAT, GL_FALSE, sizeof(BodyVertex), reinterpret_cast<void*>(offset));
+    };
+    attribute(0, 3, offsetof(BodyVertex, position));
+    attribute(1, 3, offsetof(BodyVertex, normal));
+    attribute(2, 4, offsetof(BodyVertex, colour));
+    attribute(3, 3, offsetof(BodyVertex, bodyNormal));
+    attribute(4, 3, offsetof(BodyVertex, onDie));
+    attribute(5, 1, offsetof(BodyVertex, die));
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size()));
+    for (GLuint index = 3; index < 6; ++index)
+        glDisableVertexAttribArray(index);
 }
 
 void Renderer::drawSprites(const std::vector<Sprite>& sprites)

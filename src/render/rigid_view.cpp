@@ -22,22 +22,6 @@ glm::vec3 followBody(const World& world, std::size_t i, double alpha, bool inter
     return drawnPose(world, i, alpha, interpolate).apply(local);
 }
 
-glm::vec4 faceColour(const glm::vec4& colour, const glm::vec3& normal)
-{
-    // Lighter towards white, darker towards black: the body's hue stays (its legend bullet's),
-    // and opposite faces differ most. Lighting alone does not tell faces apart: a cube turned a
-    // quarter looks as before.
-    static constexpr float kTowardsWhite[6] = {0.0f, 0.0f, 0.55f, 0.0f, 0.28f, 0.0f};
-    static constexpr float kTowardsBlack[6] = {0.0f, 0.5f, 0.0f, 0.72f, 0.0f, 0.28f};
-    const glm::vec3 a = glm::abs(normal);
-    const int axis = a.x >= a.y && a.x >= a.z ? 0 : a.y >= a.z ? 1 : 2;
-    const int face = 2 * axis + (normal[axis] < 0.0f ? 1 : 0);
-    glm::vec3 rgb(colour);
-    rgb = glm::mix(rgb, glm::vec3(1.0f), kTowardsWhite[face]);
-    rgb = glm::mix(rgb, glm::vec3(0.0f), kTowardsBlack[face]);
-    return {rgb, colour.a};
-}
-
 namespace {
 
 /// How far the body reaches: the scale of its axes and arrows.
@@ -88,16 +72,18 @@ void addRigidBody(const World& world, std::size_t i, double alpha, const ViewSet
     const auto& vertices = mesh.vertices();
     const auto& normals = mesh.normals();
     const auto& indices = mesh.indices();
-    for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
-        glm::vec3 n[3], sum(0.0f);
-        for (int k = 0; k < 3; ++k)
-            sum += n[k] = glm::normalize(localNormals * normals[indices[t + k]]);
-        // The face's direction in the body's frame: its vertices' normals together (a sphere's
-        // pole triangles have no area to take a cross product of).
-        const glm::vec4 tint = faceColour(colour, sum);
-        for (int k = 0; k < 3; ++k)
-            out.surfaces.push_back({pose.at + turn * glm::vec3(local * glm::vec4(vertices[indices[t + k]], 1.0f)),
-                                    turn * n[k], tint});
+    const bool die = std::binary_search(settings.dice.begin(), settings.dice.end(), i);
+    float halfSide = 0.0f; // a die's: its faces at +-1 in the pips' coordinates
+    if (die)
+        for (const glm::vec3& v : vertices) {
+            const glm::vec3 p(local * glm::vec4(v, 1.0f));
+            halfSide = std::max({halfSide, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+        }
+    for (const unsigned index : indices) {
+        const glm::vec3 p(local * glm::vec4(vertices[index], 1.0f));
+        const glm::vec3 n = glm::normalize(localNormals * normals[index]);
+        out.bodies.push_back({pose.at + turn * p, turn * n, colour, n, die ? p / halfSide : glm::vec3(0.0f),
+                              die ? 1.0f : 0.0f});
     }
 }
 

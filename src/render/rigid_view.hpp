@@ -1,5 +1,6 @@
 #pragma once
-// Rigid bodies as pictures: each body's mesh at its drawn pose, its faces told apart; the rods
+// Rigid bodies as pictures: each body's mesh at its drawn pose, its faces told apart (shaded by
+// the renderer, see BodyVertex), a die's with pips; the rods
 // and strings of its joints; and, on request, what the contact pipeline and the joints work with
 // (contact points and normals, joint frames) and each body's axes with its omega and L arrows.
 // Reads the world; never writes it.
@@ -26,11 +27,6 @@ DrawnPose drawnPose(const World& world, std::size_t i, double alpha, bool interp
 
 /// A point that moves with body i, given where it is now: where it is in the drawn pose.
 glm::vec3 followBody(const World& world, std::size_t i, double alpha, bool interpolate, const dvec3& now);
-
-/// The colour of a face whose outward normal, in the body's own frame, is `normal`: the body's
-/// colour, lighter or darker for each of the six directions it is nearest (+x, -x, +y, -y, +z,
-/// -z), so a die's faces differ and a ball's turning shows as six patches.
-glm::vec4 faceColour(const glm::vec4& colour, const glm::vec3& normal);
 
 /// The lengths of body i's arrows, in metres: omega's grows linearly (one turn a second spans
 /// kArrowPerTurn of the body's reach), L's as L / I_mean on the same scale, so they coincide

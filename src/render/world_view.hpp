@@ -33,6 +33,8 @@ struct ViewSettings {
     /// Which particles form ropes (drawn as a line of beads) and cloths (a lit surface) rather
     /// than balls with trails: the scene's layout, set by the program that loaded it.
     FabricLayout fabric;
+    /// The rigid bodies drawn as dice, pips on their faces (the scene's `"die": true`), ascending.
+    std::vector<std::size_t> dice;
 };
 
 /// Recent drawn positions of each body, for fading trails.

@@ -63,8 +63,8 @@ Scene manyDice(std::size_t count)
         throw std::invalid_argument("a pile of dice needs at least one die");
     Scene scene = loadScene("dice");
     World& world = scene.world;
-    const RigidBody die = static_cast<const RigidBody&>(world.body(0));
-    // 10 cm dice (the built-in's are 30 cm).
+    const RigidBody die = static_cast<const RigidBody&>(world.body(scene.dice.at(0)));
+    // 10 cm dice, thrown all over the room (the built-in's tray is left out).
     RigidBody prototype(Shape::box(dvec3(0.1)), 600.0);
     const double diameter = glm::length(dvec3(0.1));
     const Lattice lattice(*world.room(), diameter);
@@ -87,7 +87,12 @@ Scene manyDice(std::size_t count)
         many.addBody(std::move(body));
     }
     scene.world = std::move(many);
+    scene.dice.resize(count);
+    std::iota(scene.dice.begin(), scene.dice.end(), std::size_t(0));
+    scene.camera.reset(); // the whole room, not the tray's corner
     scene.name = fmt::format("dice x {}", count);
+    scene.summary = fmt::format("Rigid bodies: {} 10 cm dice thrown all over the room", count);
+    scene.description = scene.summary + ", each from its own cell of a lattice, with its own spin.";
     scene.source = fmt::format("builtin:dice with {} dice", count);
     return scene;
 }

@@ -138,13 +138,13 @@ dquat readOrientation(ObjectReader& reader)
 
 } // namespace
 
-void readRigidBody(const Json& value, const std::string& path, const std::string& file,
+bool readRigidBody(const Json& value, const std::string& path, const std::string& file,
                    const std::filesystem::path& directory, World& world, std::set<std::string>& names,
                    MeshLibrary& meshes)
 {
     ObjectReader reader(value, path, file);
     reader.expectKeys({"name", "shape", "density", "mass", "position", "orientation", "velocity", "angular_velocity",
-                       "restitution", "friction", "integrator", "fixed"});
+                       "restitution", "friction", "integrator", "fixed", "die"});
     const std::string name = readName(reader, "name");
     if (name.empty())
         reader.fail("name", "must not be empty");
@@ -177,8 +177,13 @@ void readRigidBody(const Json& value, const std::string& path, const std::string
     }
     if (!std::isfinite(body->getRotationalKineticEnergy()))
         reader.fail("angular_velocity", "too large: the rotational kinetic energy is not finite");
+    const bool die = reader.boolean("die", false);
+    const dvec3& side = shape.shape.size;
+    if (die && (shape.shape.type != ShapeType::Box || side.x != side.y || side.y != side.z))
+        reader.fail("die", "a die is a cube: its shape must be a box of three equal sides");
     reader.finish();
     world.addBody(std::move(body));
+    return die;
 }
 
 } // namespace pba::scene_detail

@@ -14,8 +14,8 @@ namespace pba::scene_detail {
 
 /// `directory`: where a mesh's relative path starts (the scene file's folder); empty for a
 /// built-in scene, which may not name a mesh file. `meshes`: the scene's meshes so far, which
-/// bodies naming the same OBJ file share.
-void readRigidBody(const Json& value, const std::string& path, const std::string& file,
+/// bodies naming the same OBJ file share. Whether the body is drawn as a die (`"die": true`).
+bool readRigidBody(const Json& value, const std::string& path, const std::string& file,
                    const std::filesystem::path& directory, World& world, std::set<std::string>& names,
                    MeshLibrary& meshes);
 

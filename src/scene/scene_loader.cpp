@@ -366,7 +366,8 @@ Scene readScene(const Json& document, const std::string& file, const std::filesy
         scene_detail::readCloth(value, path, file, fabric);
     });
     root.array("rigid_bodies", [&](const Json& value, const std::string& path, std::size_t) {
-        scene_detail::readRigidBody(value, path, file, directory, scene.world, names, meshes);
+        if (scene_detail::readRigidBody(value, path, file, directory, scene.world, names, meshes))
+            scene.dice.push_back(scene.world.bodyCount() - 1);
     });
     std::vector<scene_detail::BodyPair> joinedApart; // may start inside each other
     root.array("joints", [&](const Json& value, const std::string& path, std::size_t) {

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
+#include <utility>
 
 #include "pba/scene/scene.hpp"
 #include "render/offscreen.hpp"
@@ -252,4 +254,39 @@ TEST(HeadlessRender, AxesAreDrawnOverTheBodyTheyDescribe)
     settings.axes = true;
     const auto with = renderer.render(scene.world, scene.world, 1.0, settings, nullptr, "", 0.01);
     EXPECT_GT(greener(without, with, inside), 60);
+}
+
+// A die's top face, seen from above, shows its number of pips (1 on +x, 2 on +y, 3 on +z, the
+// opposite faces making 7), set apart from the face's own shade, and nothing else on the face.
+TEST(HeadlessRender, EachFaceOfADieShowsItsNumberOfPips)
+{
+    const std::pair<std::string, int> upwards[] = {
+        {"[0.70710678, 0, 0, 0.70710678]", 1}, {"[0.70710678, 0, 0, -0.70710678]", 6},
+        {"[1, 0, 0, 0]", 2},                   {"[0, 1, 0, 0]", 5},
+        {"[0.70710678, -0.70710678, 0, 0]", 3}, {"[0.70710678, 0.70710678, 0, 0]", 4}};
+    OffscreenRenderer renderer(kWidth, kHeight, false);
+    renderer.setCamera(OrbitCamera::lookingFrom(glm::vec3(0.0f, 3.0f, 0.2f), glm::vec3(0.0f, 0.5f, 0.0f)));
+    const auto apart = [](const Rgb& a, const Rgb& b) { return std::abs(a.r - b.r) + std::abs(a.g - b.g) + std::abs(a.b - b.b); };
+    for (const auto& [orientation, pips] : upwards) {
+        const Scene scene = parseScene(R"({"room": {"min": [-2, 0, -2], "max": [2, 4, 2]}, "rigid_bodies": [{"name":
+            "die", "shape": {"type": "box", "size": [1, 1, 1]}, "position": [0, 0.5, 0], "die": true, "orientation": )" +
+                                           orientation + "}]}",
+                                       "die.json");
+        ViewSettings settings;
+        settings.dice = scene.dice;
+        const auto image = renderer.render(scene.world, scene.world, 1.0, settings, nullptr, "", 0.01);
+        // u and v in half sides across the top face (a pip's centre is at 0 or +-0.5 of them).
+        const auto at = [&](float u, float v) { return pixelAt(image, renderer.camera(), glm::vec3(0.5f * u, 1.0f, 0.5f * v)); };
+        const Rgb face = at(0.25f, 0.75f); // no face has a pip there
+        int seen = 0;
+        for (const float u : {-0.5f, 0.0f, 0.5f})
+            for (const float v : {-0.5f, 0.0f, 0.5f})
+                seen += apart(at(u, v), face) > 90 ? 1 : 0;
+        EXPECT_EQ(seen, pips) << orientation;
+        for (const float s : {-1.0f, 1.0f})
+            for (const float t : {-1.0f, 1.0f}) {
+                EXPECT_LT(apart(at(0.25f * s, 0.75f * t), face), 12) << orientation << ": a plain face";
+                EXPECT_LT(apart(at(0.75f * s, 0.25f * t), face), 12) << orientation << ": a plain face";
+            }
+    }
 }

@@ -44,20 +44,20 @@ std::size_t linesOfColour(const std::vector<ColouredVertex>& lines, const glm::v
 
 } // namespace
 
-// Four dice, four colours; the rope's particles share the rope's one colour, its pin is grey,
-// and the ball beside it has a colour of its own.
+// Every die a colour of its own (the tray's walls are fixed: grey); the rope's particles share the
+// rope's one colour, its pin is grey, and the ball beside it has a colour of its own.
 TEST(BodyColours, EveryBodyAndEveryRopeOrClothHasItsOwnColour)
 {
     const Scene dice = loadScene("dice");
     const BodyGroups diceGroups(dice.world, dice.fabric);
     ASSERT_EQ(diceGroups.size(), dice.world.bodyCount());
     std::set<std::array<float, 3>> colours;
-    for (std::size_t i = 0; i < dice.world.bodyCount(); ++i) {
+    for (const std::size_t i : dice.dice) {
         const glm::vec4 c = diceGroups.bodyColour(i);
         EXPECT_EQ(c, diceGroups[diceGroups.groupOf(i)].colour) << "drawn, bullet and plot: one colour";
         colours.insert({c.r, c.g, c.b});
     }
-    EXPECT_EQ(colours.size(), dice.world.bodyCount()) << "no two dice alike";
+    EXPECT_EQ(colours.size(), dice.dice.size()) << "no two dice alike";
 
     Scene rope = parseScene(R"({"room": {"min": [-3, 0, -2], "max": [3, 4, 2]},
         "ropes": [{"name": "r", "from": [-2, 3, 0], "to": [2, 3, 0], "count": 5, "stiffness": 100, "pinned": ["start"]}],
@@ -88,34 +88,32 @@ TEST(BodyColours, TheRopeIsDrawnInItsLegendColour)
     EXPECT_EQ(linesOfColour(list.lines, colour), rope.fabric.ropes[0].particles.size() - 1);
 }
 
-// Six directions, six colours, all of the body's hue: lighter or darker, never another body's.
-TEST(BodyColours, EachOfABoxsSixFacesHasItsOwnShadeOfTheBodysColour)
-{
-    const glm::vec4 orange(0.95f, 0.56f, 0.17f, 1.0f);
-    std::set<std::array<float, 3>> shades;
-    for (int axis = 0; axis < 3; ++axis)
-        for (const float sign : {1.0f, -1.0f}) {
-            glm::vec3 n(0.0f);
-            n[axis] = sign;
-            const glm::vec4 c = faceColour(orange, n + glm::vec3(0.1f, 0.1f, 0.1f) * 0.2f);
-            shades.insert({c.r, c.g, c.b});
-            EXPECT_GE(c.r, c.g) << "still orange: red the largest";
-            EXPECT_GE(c.g, c.b);
-        }
-    EXPECT_EQ(shades.size(), 6u);
-}
-
-// A die's drawn triangles carry the face colour of their body-frame direction: at least three
-// shades on a turned die (six faces), each of its own hue.
-TEST(BodyColours, ADieIsDrawnWithItsFacesColouredApart)
+// A body's faces carry its colour and their direction in its own frame, from which the renderer
+// shades each face apart (a box's along its axes); a die's also where on the die they are, its
+// faces at +-1, for its pips. The tray's walls are no dice.
+TEST(BodyColours, ABodysFacesCarryItsColourAndTheirDirectionInItsFrame)
 {
     const Scene dice = loadScene("dice");
     ViewSettings settings;
+    settings.dice = dice.dice;
     const DrawList list = drawn(dice.world, settings);
-    std::set<std::array<float, 3>> shades;
-    for (const LitVertex& v : list.surfaces)
-        shades.insert({v.colour.r, v.colour.g, v.colour.b});
-    EXPECT_EQ(shades.size(), 6 * dice.world.bodyCount()); // every die a colour of its own, six shades of it
+    ASSERT_EQ(list.bodies.size(), 36 * dice.world.bodyCount()); // twelve triangles a box
+    ASSERT_GT(dice.dice.size(), 30u);
+    const BodyGroups groups(dice.world, dice.fabric);
+    for (std::size_t i = 0; i < dice.world.bodyCount(); ++i) {
+        const bool die = std::binary_search(dice.dice.begin(), dice.dice.end(), i);
+        EXPECT_EQ(die, !dice.world.body(i).isFixed()) << dice.world.body(i).getName();
+        for (std::size_t v = 36 * i; v < 36 * (i + 1); ++v) {
+            const BodyVertex& vertex = list.bodies[v];
+            EXPECT_EQ(vertex.colour, groups.bodyColour(i));
+            const glm::vec3 a = glm::abs(vertex.bodyNormal);
+            EXPECT_NEAR(a.x + a.y + a.z, 1.0f, 1e-5f) << "along one of the box's axes";
+            EXPECT_NEAR(std::max({a.x, a.y, a.z}), 1.0f, 1e-5f);
+            EXPECT_EQ(vertex.die, die ? 1.0f : 0.0f);
+            if (die)
+                EXPECT_NEAR(glm::dot(vertex.onDie, vertex.bodyNormal), 1.0f, 1e-5f) << "on its face";
+        }
+    }
 }
 
 // A pendulum's bob hangs from a rod drawn from its centre to the pivot, and the pivot is a small

@@ -34,6 +34,7 @@ struct Scene {
     World world;
     FabricLayout fabric;     ///< which of the world's particles form its ropes and cloths
     std::optional<SceneCamera> camera;
+    std::vector<std::size_t> dice; ///< the bodies drawn as dice (`"die": true`), ascending
     std::string source;      ///< file path, or "builtin:NAME"
 };
 
@@ -67,7 +68,7 @@ Scene loadScene(std::string_view nameOrPath);
 Scene resizedClothInTheDryer(int side);
 
 /// The built-in dice scene's room, gravity and dice (restitution, friction) with `count` 10 cm
-/// dice instead of four, each thrown from its own place in the room with its own velocity, spin
+/// dice instead of its own and without its tray, each thrown from its own place in the room with its own velocity, spin
 /// and orientation (numbers that depend on the die's index alone): the places are cells of a
 /// lattice over the whole room, each die jittered within its cell, so no two dice overlap at the
 /// start. The workload of `pba bench`'s pile rows and bench/peers/pile.py (1,000 and 10,000 dice)
