@@ -97,7 +97,9 @@ SCENE_CLAIM(TouchSceneClaims, TrampolineThrowsTheCrateBackUpAndHoldsItAtRest, "t
     EXPECT_GT(rebound - lowest, 0.45);
     EXPECT_GT(lowest - 0.2, 0.9) << "the crate reached within 0.9 m of the floor";
     EXPECT_NEAR(crate.getPos().y - 0.2, 1.31, 0.01); // its bottom, at rest in the sag
-    EXPECT_LT(speedOf(crate), 1e-3);
+    // Still as `pba sim` says it (the cloth's last sway dies out by about 14 s).
+    EXPECT_LT(speedOf(crate), 1e-6);
+    EXPECT_LT(glm::length(static_cast<const RigidBody&>(crate).getAngularVelocity()), 1e-6);
 }
 
 // Implicit Euler's promise holds with a heavy body on the sheet: at five times the scene's dt the
