@@ -8,7 +8,6 @@ void DrawList::clear()
     lines.clear();
     triangles.clear();
     surfaces.clear();
-    bodies.clear();
     floor.reset();
     overlayLines.clear();
     overlaySprites.clear();

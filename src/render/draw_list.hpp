@@ -21,23 +21,17 @@ struct ColouredVertex {
     glm::vec4 colour;
 };
 
-/// A vertex of a lit surface (a cloth): shaded from its normal on both sides.
+/// A vertex of a lit surface (a cloth, a rigid body's faces), shaded from its normal on both
+/// sides. A rigid body's also carries the direction it faces in the body's own frame: its shade
+/// is chosen from that per pixel (a ball's six patches have round borders, not a triangle's
+/// steps), and a die's pips are drawn from where on the die it is.
 struct LitVertex {
     glm::vec3 position;
-    glm::vec3 normal;
+    glm::vec3 normal;                ///< in the world
     glm::vec4 colour;
-};
-
-/// A vertex of a rigid body's surface, lit as a LitVertex. Its shade is chosen per pixel from
-/// the direction it faces in the body's own frame (a ball's six patches have round borders, not
-/// a triangle's steps), and a die's pips are drawn from where on its faces it is.
-struct BodyVertex {
-    glm::vec3 position;
-    glm::vec3 normal;     ///< in the world
-    glm::vec4 colour;     ///< the body's
-    glm::vec3 bodyNormal; ///< in the body's frame
-    glm::vec3 onDie;      ///< a die's point in its frame over its half side (faces at +-1)
-    float die = 0.0f;     ///< 1 on a die: pips
+    glm::vec3 bodyNormal{0.0f};      ///< in the body's frame; zero for no shade (a cloth)
+    glm::vec3 onDie{0.0f};           ///< a die's point in its frame over its half side (faces at +-1)
+    float die = 0.0f;                ///< 1 on a die: pips
 };
 
 /// A checkered rectangle in the plane y = height, with an optional round hole.
@@ -55,7 +49,6 @@ struct DrawList {
     std::vector<ColouredVertex> lines;     ///< pairs of vertices
     std::vector<ColouredVertex> triangles; ///< triples, drawn blended after everything opaque
     std::vector<LitVertex> surfaces;       ///< triples, opaque and lit, both sides
-    std::vector<BodyVertex> bodies;        ///< triples: the rigid bodies' faces
     std::optional<Floor> floor;
     /// Marks drawn last, over everything, with no depth test: contact points, joint frames and
     /// body axes, which lie inside or under the bodies they describe.

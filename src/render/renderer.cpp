@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include <cstddef>
+#include <vector>
 
 #include "shaders.hpp"
 
@@ -12,8 +13,7 @@ Renderer::Renderer()
     : m_sprite("sprite", glsl::kSpriteVertex, glsl::kSpriteFragment),
       m_flat("flat", glsl::kFlatVertex, glsl::kFlatFragment),
       m_floor("floor", glsl::kFloorVertex, glsl::kFloorFragment),
-      m_lit("lit", glsl::kLitVertex, glsl::kLitFragment),
-      m_body("body", glsl::kBodyVertex, glsl::kBodyFragment)
+      m_lit("lit", glsl::kLitVertex, glsl::kLitFragment)
 {
     glGenVertexArrays(1, &m_vao);
     glGenBuffers(1, &m_vbo);
@@ -36,7 +36,7 @@ void Renderer::draw(const DrawList& list, const OrbitCamera& camera, int width, 
     glDisable(GL_CULL_FACE);
     const glm::mat4 view = camera.view();
     const glm::mat4 projection = camera.projection(float(width) / float(std::max(height, 1)));
-    for (const Shader* shader : {&m_sprite, &m_flat, &m_floor, &m_lit, &m_body}) {
+    for (const Shader* shader : {&m_sprite, &m_flat, &m_floor, &m_lit}) {
         shader->use();
         shader->set("uView", view);
         shader->set("uProjection", projection);
@@ -49,7 +49,6 @@ void Renderer::draw(const DrawList& list, const OrbitCamera& camera, int width, 
         drawFloor(*list.floor);
     drawColoured(list.lines, GL_LINES);
     drawSurfaces(list.surfaces);
-    drawBodies(list.bodies);
     drawSprites(list.sprites);
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -86,20 +85,35 @@ void Renderer::drawFloor(const Floor& floor)
     glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
+namespace {
+
+/// Sends a list of vertices to the bound buffer.
+template <class Vertex>
+void upload(const std::vector<Vertex>& vertices)
+{
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)), vertices.data(),
+                 GL_STREAM_DRAW);
+}
+
+/// Points attribute `index` at `size` floats `offset` bytes into each Vertex.
+template <class Vertex>
+void attribute(GLuint index, GLint size, std::size_t offset)
+{
+    glEnableVertexAttribArray(index);
+    glVertexAttribPointer(index, size, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<void*>(offset));
+}
+
+} // namespace
+
 void Renderer::drawColoured(const std::vector<ColouredVertex>& vertices, unsigned mode)
 {
     if (vertices.empty())
         return;
     m_flat.use();
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(ColouredVertex)), vertices.data(),
-                 GL_STREAM_DRAW);
-    glEnableVertexAttribArray(0);
-    glEnableVertexAttribArray(1);
+    upload(vertices);
+    attribute<ColouredVertex>(0, 3, offsetof(ColouredVertex, position));
+    attribute<ColouredVertex>(1, 4, offsetof(ColouredVertex, colour));
     glDisableVertexAttribArray(2);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(ColouredVertex),
-                          reinterpret_cast<void*>(offsetof(ColouredVertex, position)));
-    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(ColouredVertex),
-                          reinterpret_cast<void*>(offsetof(ColouredVertex, colour)));
     glDrawArrays(mode, 0, static_cast<GLsizei>(vertices.size()));
 }
 
@@ -108,39 +122,15 @@ void Renderer::drawSurfaces(const std::vector<LitVertex>& vertices)
     if (vertices.empty())
         return;
     m_lit.use();
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(LitVertex)), vertices.data(),
-                 GL_STREAM_DRAW);
-    glEnableVertexAttribArray(0);
-    glEnableVertexAttribArray(1);
-    glEnableVertexAttribArray(2);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(LitVertex),
-                          reinterpret_cast<void*>(offsetof(LitVertex, position)));
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(LitVertex),
-                          reinterpret_cast<void*>(offsetof(LitVertex, normal)));
-    glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(LitVertex),
-                          reinterpret_cast<void*>(offsetof(LitVertex, colour)));
+    upload(vertices);
+    attribute<LitVertex>(0, 3, offsetof(LitVertex, position));
+    attribute<LitVertex>(1, 3, offsetof(LitVertex, normal));
+    attribute<LitVertex>(2, 4, offsetof(LitVertex, colour));
+    attribute<LitVertex>(3, 3, offsetof(LitVertex, bodyNormal));
+    attribute<LitVertex>(4, 3, offsetof(LitVertex, onDie));
+    attribute<LitVertex>(5, 1, offsetof(LitVertex, die));
     glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size()));
-}
-
-void Renderer::drawBodies(const std::vector<BodyVertex>& vertices)
-{
-    if (vertices.empty())
-        return;
-    m_body.use();
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(BodyVertex)), vertices.data(),
-                 GL_STREAM_DRAW);
-    const auto attribute = [](GLuint index, GLint size, std::size_t offset) {
-        glEnableVertexAttribArray(index);
-        glVertexAttribPointer(index, size, GL_FLOAT, GL_FALSE, sizeof(BodyVertex), reinterpret_cast<void*>(offset));
-    };
-    attribute(0, 3, offsetof(BodyVertex, position));
-    attribute(1, 3, offsetof(BodyVertex, normal));
-    attribute(2, 4, offsetof(BodyVertex, colour));
-    attribute(3, 3, offsetof(BodyVertex, bodyNormal));
-    attribute(4, 3, offsetof(BodyVertex, onDie));
-    attribute(5, 1, offsetof(BodyVertex, die));
-    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size()));
-    for (GLuint index = 3; index < 6; ++index)
+    for (GLuint index = 3; index < 6; ++index) // the other lists use the first three
         glDisableVertexAttribArray(index);
 }
 
@@ -152,14 +142,10 @@ void Renderer::drawSprites(const std::vector<Sprite>& sprites)
     glEnable(GL_PROGRAM_POINT_SIZE);
     glEnable(GL_BLEND); // ghosts are translucent
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(sprites.size() * sizeof(Sprite)), sprites.data(),
-                 GL_STREAM_DRAW);
-    glEnableVertexAttribArray(0);
-    glEnableVertexAttribArray(1);
-    glEnableVertexAttribArray(2);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Sprite), reinterpret_cast<void*>(offsetof(Sprite, position)));
-    glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, sizeof(Sprite), reinterpret_cast<void*>(offsetof(Sprite, radius)));
-    glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(Sprite), reinterpret_cast<void*>(offsetof(Sprite, colour)));
+    upload(sprites);
+    attribute<Sprite>(0, 3, offsetof(Sprite, position));
+    attribute<Sprite>(1, 1, offsetof(Sprite, radius));
+    attribute<Sprite>(2, 4, offsetof(Sprite, colour));
     glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(sprites.size()));
     glDisable(GL_BLEND);
 }

@@ -27,13 +27,11 @@ private:
     void drawColoured(const std::vector<ColouredVertex>& vertices, unsigned mode);
     void drawSprites(const std::vector<Sprite>& sprites);
     void drawSurfaces(const std::vector<LitVertex>& vertices);
-    void drawBodies(const std::vector<BodyVertex>& vertices);
 
     Shader m_sprite;
     Shader m_flat;
     Shader m_floor;
     Shader m_lit;
-    Shader m_body;
     unsigned m_vao = 0;
     unsigned m_vbo = 0;
 };

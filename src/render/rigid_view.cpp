@@ -82,7 +82,7 @@ void addRigidBody(const World& world, std::size_t i, double alpha, const ViewSet
     for (const unsigned index : indices) {
         const glm::vec3 p(local * glm::vec4(vertices[index], 1.0f));
         const glm::vec3 n = glm::normalize(localNormals * normals[index]);
-        out.bodies.push_back({pose.at + turn * p, turn * n, colour, n, die ? p / halfSide : glm::vec3(0.0f),
+        out.surfaces.push_back({pose.at + turn * p, turn * n, colour, n, die ? p / halfSide : glm::vec3(0.0f),
                               die ? 1.0f : 0.0f});
     }
 }

@@ -1,6 +1,6 @@
 #pragma once
 // Rigid bodies as pictures: each body's mesh at its drawn pose, its faces told apart (shaded by
-// the renderer, see BodyVertex), a die's with pips; the rods
+// the renderer, see LitVertex), a die's with pips; the rods
 // and strings of its joints; and, on request, what the contact pipeline and the joints work with
 // (contact points and normals, joint frames) and each body's axes with its omega and L arrows.
 // Reads the world; never writes it.

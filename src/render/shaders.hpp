@@ -55,42 +55,13 @@ out vec4 fragColour;
 void main() { fragColour = vColour; }
 )";
 
-// A cloth: lit from its per-vertex normal, two-sided (the back face's normal is turned toward
-// the eye), so a sheet folding over shows its shape from either side.
+// A lit surface (a cloth, a rigid body's faces): lit from its normal on both sides (the back
+// face's normal turned toward the eye), so a sheet folding over shows its shape from either side.
+// A rigid body's faces are also shaded lighter or darker by the direction the point faces in the
+// body's own frame (+x, -x, +y, -y, +z, -z), so a cube turned a quarter no longer looks as before
+// and a ball's turning shows; chosen per pixel, a ball's patches meet on smooth curves. A die also
+// has pips: 1 on +x opposite 6, 2 on +y opposite 5, 3 on +z opposite 4.
 inline constexpr const char* kLitVertex = R"(#version 330 core
-layout(location = 0) in vec3 aPosition;
-layout(location = 1) in vec3 aNormal;
-layout(location = 2) in vec4 aColour;
-uniform mat4 uView;
-uniform mat4 uProjection;
-out vec3 vNormal;
-out vec4 vColour;
-void main() {
-    gl_Position = uProjection * uView * vec4(aPosition, 1.0);
-    vNormal = mat3(uView) * aNormal;
-    vColour = aColour;
-}
-)";
-
-inline constexpr const char* kLitFragment = R"(#version 330 core
-in vec3 vNormal;
-in vec4 vColour;
-out vec4 fragColour;
-void main() {
-    vec3 normal = length(vNormal) > 0.0 ? normalize(vNormal) : vec3(0, 0, 1);
-    if (!gl_FrontFacing) normal = -normal;
-    vec3 light = normalize(vec3(-0.4, 0.7, 0.6));
-    float diffuse = abs(dot(normal, light));
-    float specular = pow(max(dot(reflect(-light, normal), vec3(0, 0, 1)), 0.0), 16.0);
-    fragColour = vec4(vColour.rgb * (0.3 + 0.7 * diffuse) + vec3(0.15 * specular), vColour.a);
-}
-)";
-
-// A rigid body's faces: lit as a cloth is, and shaded lighter or darker by the direction the
-// point faces in the body's own frame (+x, -x, +y, -y, +z, -z), so a cube turned a quarter no
-// longer looks as before and a ball's turning shows. Chosen per pixel, a ball's patches meet on
-// smooth curves. A die also has pips: 1 on +x opposite 6, 2 on +y opposite 5, 3 on +z opposite 4.
-inline constexpr const char* kBodyVertex = R"(#version 330 core
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec4 aColour;
@@ -114,7 +85,7 @@ void main() {
 }
 )";
 
-inline constexpr const char* kBodyFragment = R"(#version 330 core
+inline constexpr const char* kLitFragment = R"(#version 330 core
 in vec3 vNormal;
 in vec4 vColour;
 in vec3 vBodyNormal;
@@ -134,11 +105,14 @@ float pipDistance(int n, vec2 uv) {
     return d;
 }
 void main() {
+    vec3 rgb = vColour.rgb;
     vec3 a = abs(vBodyNormal);
     int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
     int face = 2 * axis + (vBodyNormal[axis] < 0.0 ? 1 : 0);
-    vec3 rgb = mix(vColour.rgb, vec3(1.0), kTowardsWhite[face]);
-    rgb = mix(rgb, vec3(0.0), kTowardsBlack[face]);
+    if (a.x + a.y + a.z > 0.0) { // a rigid body's: not a cloth's
+        rgb = mix(rgb, vec3(1.0), kTowardsWhite[face]);
+        rgb = mix(rgb, vec3(0.0), kTowardsBlack[face]);
+    }
     if (vDie > 0.5) {
         vec2 uv = axis == 0 ? vOnDie.yz : (axis == 1 ? vOnDie.zx : vOnDie.xy);
         float d = pipDistance(kPips[face], uv);

@@ -97,21 +97,22 @@ TEST(BodyColours, ABodysFacesCarryItsColourAndTheirDirectionInItsFrame)
     ViewSettings settings;
     settings.dice = dice.dice;
     const DrawList list = drawn(dice.world, settings);
-    ASSERT_EQ(list.bodies.size(), 36 * dice.world.bodyCount()); // twelve triangles a box
+    ASSERT_EQ(list.surfaces.size(), 36 * dice.world.bodyCount()); // twelve triangles a box
     ASSERT_GT(dice.dice.size(), 30u);
     const BodyGroups groups(dice.world, dice.fabric);
     for (std::size_t i = 0; i < dice.world.bodyCount(); ++i) {
         const bool die = std::binary_search(dice.dice.begin(), dice.dice.end(), i);
         EXPECT_EQ(die, !dice.world.body(i).isFixed()) << dice.world.body(i).getName();
         for (std::size_t v = 36 * i; v < 36 * (i + 1); ++v) {
-            const BodyVertex& vertex = list.bodies[v];
+            const LitVertex& vertex = list.surfaces[v];
             EXPECT_EQ(vertex.colour, groups.bodyColour(i));
             const glm::vec3 a = glm::abs(vertex.bodyNormal);
             EXPECT_NEAR(a.x + a.y + a.z, 1.0f, 1e-5f) << "along one of the box's axes";
             EXPECT_NEAR(std::max({a.x, a.y, a.z}), 1.0f, 1e-5f);
             EXPECT_EQ(vertex.die, die ? 1.0f : 0.0f);
-            if (die)
+            if (die) {
                 EXPECT_NEAR(glm::dot(vertex.onDie, vertex.bodyNormal), 1.0f, 1e-5f) << "on its face";
+            }
         }
     }
 }
