@@ -14,7 +14,7 @@ mkdir "$out"
 still() { # SCENE TIME [SIZE]
   "$pba" render "$1" --size "${3:-640x360}" --time "$2" --out "$out/$1.png"
 }
-still integrators 6
+still integrators 6 640x480 # taller, from its own camera: the legend leaves the bounces in view
 still bouncing-cube 3
 still spring 2
 still blow-dryer 6
