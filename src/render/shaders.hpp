@@ -113,21 +113,22 @@ void main() {
         rgb = mix(rgb, vec3(1.0), kTowardsWhite[face]);
         rgb = mix(rgb, vec3(0.0), kTowardsBlack[face]);
     }
+    vec3 normal = length(vNormal) > 0.0 ? normalize(vNormal) : vec3(0, 0, 1);
+    if (!gl_FrontFacing) normal = -normal;
+    vec3 light = normalize(vec3(-0.4, 0.7, 0.6));
+    float shade = 0.3 + 0.7 * abs(dot(normal, light));
+    float specular = pow(max(dot(reflect(-light, normal), vec3(0, 0, 1)), 0.0), 16.0);
     if (vDie > 0.5) {
         vec2 uv = axis == 0 ? vOnDie.yz : (axis == 1 ? vOnDie.zx : vOnDie.xy);
         float d = pipDistance(kPips[face], uv);
         float edge = max(fwidth(d), 1e-4);
         float pip = 1.0 - smoothstep(0.17 - edge, 0.17 + edge, d);
-        // Dark pips on a light face, light ones on a dark face.
-        vec3 ink = dot(rgb, vec3(0.3, 0.59, 0.11)) > 0.4 ? vec3(0.06) : vec3(0.95);
+        // Dark pips on a face that looks light, light ones on a face that looks dark (lit, as seen:
+        // a light face turned from the light is dark).
+        vec3 ink = dot(rgb * shade, vec3(0.3, 0.59, 0.11)) > 0.3 ? vec3(0.06) : vec3(0.95);
         rgb = mix(rgb, ink, pip);
     }
-    vec3 normal = length(vNormal) > 0.0 ? normalize(vNormal) : vec3(0, 0, 1);
-    if (!gl_FrontFacing) normal = -normal;
-    vec3 light = normalize(vec3(-0.4, 0.7, 0.6));
-    float diffuse = abs(dot(normal, light));
-    float specular = pow(max(dot(reflect(-light, normal), vec3(0, 0, 1)), 0.0), 16.0);
-    fragColour = vec4(rgb * (0.3 + 0.7 * diffuse) + vec3(0.15 * specular), vColour.a);
+    fragColour = vec4(rgb * shade + vec3(0.15 * specular), vColour.a);
 }
 )";
 
