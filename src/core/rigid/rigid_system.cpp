@@ -682,10 +682,13 @@ void RigidSystem::capEnergy(std::size_t island)
             momentum += m_solverBodies[k].v / m_material[k].inverseMass;
             mass += 1.0 / m_material[k].inverseMass;
         }
+    // Where the motion about the centre is less than the excess, all of it goes and the island
+    // moves on as one: its momentum is not the contacts' to take (two bodies on a spring joint in
+    // zero g stopped dead otherwise).
     const dvec3 centre = mass > 0.0 ? momentum / mass : dvec3(0.0);
     const double about = kinetic - 0.5 * mass * glm::dot(centre, centre);
-    const bool aboutCentre = mass > 0.0 && about > excess;
-    const double keep = aboutCentre ? std::sqrt(1.0 - excess / about)
+    const bool aboutCentre = mass > 0.0;
+    const double keep = aboutCentre ? (about > excess ? std::sqrt(1.0 - excess / about) : 0.0)
                                     : (kinetic > excess ? std::sqrt(1.0 - excess / kinetic) : 0.0);
     const dvec3 kept = aboutCentre ? centre : dvec3(0.0);
     for (const std::uint32_t k : bodies) {
