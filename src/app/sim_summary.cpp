@@ -279,24 +279,27 @@ void printDryerBalance(double start, double work, double now)
                work, start, work, now, std::abs(lost), lost >= 0.0 ? "taken" : "given", share);
 }
 
-/// The whole scene's energy and momentum, now and at the start (swarms not included).
-void printSceneTotals(const World& world, const std::vector<BodySummary>& summary, const std::vector<double>& energies,
-                      const study::JetWatch& jet, double sourceWork)
+/// The whole scene's energy and momentum, now and at the start (swarms not included), of its
+/// moving bodies where some are fixed (movingEnergy).
+void printSceneTotals(const World& world, const render::BodyGroups& groups, const std::vector<BodySummary>& summary,
+                      const std::vector<double>& energies, const study::JetWatch& jet, double sourceWork)
 {
-    double energy = 0.0, start = 0.0;
+    std::vector<double> startEnergies(world.bodyCount());
     dvec3 momentum(0.0), startMomentum(0.0);
     std::vector<std::size_t> all;
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
-        energy += energies[i];
-        start += summary[i].startEnergy;
+        startEnergies[i] = summary[i].startEnergy;
         if (!world.body(i).isFixed())
             momentum += world.body(i).getMass() * world.body(i).getVel();
         startMomentum += summary[i].startMomentum;
         all.push_back(i);
     }
-    fmt::print("all bodies: energy {:.6g} J, {:.6g} J at the start: E now/E start {}{}; momentum {} kg m/s, {} at "
-               "the start\n", energy, start, energyRatioText(start != 0.0 ? energy / start : 1.0),
-               dryerWorked(jet, all) ? kDryerNote : "", vectorText(momentum), vectorText(startMomentum));
+    const double energy = render::movingEnergy(world, groups, energies);
+    const double start = render::movingEnergy(world, groups, startEnergies);
+    fmt::print("{}: energy {:.6g} J, {:.6g} J at the start: E now/E start {}{}; momentum {} kg m/s, {} at "
+               "the start\n", render::anyGroupFixed(world, groups) ? "all moving bodies" : "all bodies", energy, start,
+               energyRatioText(start != 0.0 ? energy / start : 1.0), dryerWorked(jet, all) ? kDryerNote : "",
+               vectorText(momentum), vectorText(startMomentum));
     if (dryerWorked(jet, all))
         printDryerBalance(start, sourceWork, energy);
 }
@@ -325,7 +328,7 @@ void printSummary(const Scene& scene, const World& world, const std::vector<Body
     const std::vector<double> energies = world.energies();
     printBodyRows(world, groups, summary, energies, jet, everyParticle);
     printSystemRows(world, groups, summary, energies, jet);
-    printSceneTotals(world, summary, energies, jet, sourceWork);
+    printSceneTotals(world, groups, summary, energies, jet, sourceWork);
     printRigidSummary(world, rigid);
     printSwarmSummary(world);
     printJetSummary(world, jet, groups, everyParticle);

@@ -113,20 +113,16 @@ void bodiesSection(ViewerState& state)
 {
     const World& world = state.scene.world;
     const std::vector<double> now = world.energies(), start = state.initial.energies();
-    double total = 0.0, total0 = 0.0;
+    const double total = render::movingEnergy(world, state.groups, now);
+    const double total0 = render::movingEnergy(world, state.groups, start);
+    const bool fixed = render::anyGroupFixed(world, state.groups);
     dvec3 momentum(0.0);
-    bool moving = false, fixed = false;
-    for (const render::BodyGroup& group : state.groups.groups()) {
-        // A fixed body's height energy never changes: counted, it would hide the others' losses.
-        if (render::groupFixed(world, group)) {
-            fixed = true;
-            continue;
+    bool moving = false;
+    for (const render::BodyGroup& group : state.groups.groups())
+        if (!render::groupFixed(world, group)) {
+            moving = true;
+            momentum += render::groupMomentum(world, group);
         }
-        moving = true;
-        total += render::groupEnergy(group, now);
-        total0 += render::groupEnergy(group, start);
-        momentum += render::groupMomentum(world, group);
-    }
     if (moving) {
         ImGui::Text("all%s: E = %.4g J   E/E0 = %.4f", fixed ? " moving" : "", total,
                     total0 != 0.0 ? total / total0 : 1.0);

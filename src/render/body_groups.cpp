@@ -92,6 +92,21 @@ bool groupFixed(const World& world, const BodyGroup& group)
     return std::all_of(group.members.begin(), group.members.end(), [&](std::size_t i) { return world.body(i).isFixed(); });
 }
 
+double movingEnergy(const World& world, const BodyGroups& groups, const std::vector<double>& energies)
+{
+    double sum = 0.0;
+    for (const BodyGroup& group : groups.groups())
+        if (!groupFixed(world, group))
+            sum += groupEnergy(group, energies);
+    return sum;
+}
+
+bool anyGroupFixed(const World& world, const BodyGroups& groups)
+{
+    return std::any_of(groups.groups().begin(), groups.groups().end(),
+                       [&](const BodyGroup& group) { return groupFixed(world, group); });
+}
+
 dvec3 groupMomentum(const World& world, const BodyGroup& group)
 {
     dvec3 p(0.0);

@@ -56,5 +56,10 @@ dvec3 groupMomentum(const World& world, const BodyGroup& group);
 /// Whether every member is fixed: it never moves (its height energy never changes, its plots are
 /// flat lines).
 bool groupFixed(const World& world, const BodyGroup& group);
+/// The energy of the groups that move: a fixed body's height energy never changes, and counted it
+/// would hide the others' losses (three thousand joules of ramps beside a box's seventy).
+double movingEnergy(const World& world, const BodyGroups& groups, const std::vector<double>& energies);
+/// Whether some group is fixed, so that the scene's totals are of its moving bodies only.
+bool anyGroupFixed(const World& world, const BodyGroups& groups);
 
 } // namespace pba::render

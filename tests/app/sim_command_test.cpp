@@ -463,6 +463,24 @@ TEST(PbaSim, ARopeOrClothIsOneRowAndTheSceneHasTotals)
         << pair.out;
 }
 
+// The fixed ramps' height energy never changes and is left out of the totals: the incline's boxes,
+// the one sliding down to the floor, end with 0.46 of the energy they started with (0.997 with the
+// ramps counted); moving and fixed alike, the totals are the rows' sums.
+TEST(PbaSim, TheTotalsAreTheMovingBodiesWhereSomeAreFixed)
+{
+    const CommandResult incline = runPba("sim incline");
+    ASSERT_EQ(incline.exitCode, 0) << incline.err;
+    const std::size_t at = incline.out.find("all moving bodies: energy ");
+    ASSERT_NE(at, std::string::npos) << incline.out;
+    const std::size_t ratioAt = incline.out.find("E now/E start ", at);
+    ASSERT_NE(ratioAt, std::string::npos);
+    const double ratio = std::stod(incline.out.substr(ratioAt + 14, 8));
+    EXPECT_GT(ratio, 0.3);
+    EXPECT_LT(ratio, 0.6);
+    EXPECT_EQ(runPba("sim bouncing-cube --duration 1").out.find("all moving bodies"), std::string::npos)
+        << "nothing fixed: all bodies";
+}
+
 // The blow dryer does work on a ball in its cone: its energy ratio (1.76 after 5 s) says so
 // beside it, and a line gives that work and the ratio without it; a scene without a dryer says
 // nothing of it.
