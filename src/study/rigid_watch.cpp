@@ -110,7 +110,9 @@ void RigidWatch::endSlide(const World& world, Track& t)
     const Track::Sliding& s = *t.sliding;
     RigidFigures& f = t.figures;
     const double denominator = s.n * s.stt - s.st * s.st;
-    if (s.to - s.from >= RigidFigures::kLeastSlide && denominator > 0.0 &&
+    const double distance = s.n > 0.0 ? s.sv / s.n * (s.to - s.from) : 0.0; // its mean speed over the stretch
+    if (s.to - s.from >= RigidFigures::kLeastSlide && distance >= RigidFigures::kLeastSlideDistance &&
+        denominator > 0.0 &&
         (!f.slide || s.to - s.from > f.slide->to - f.slide->from))
         f.slide = RigidFigures::Slide{s.on != kRoom ? world.body(s.on).getName() : world.room() ? "the room" : "the ground", s.from, s.to,
                                       (s.n * s.stv - s.st * s.sv) / denominator};

@@ -39,6 +39,8 @@ struct RigidFigures {
     };
     std::optional<Slide> slide;
     static constexpr double kLeastSlide = 0.1; ///< s
+    /// and at least this far: a box held at the friction angle creeps a few hundredths of a millimetre
+    static constexpr double kLeastSlideDistance = 1e-3; ///< m
     double meanSpin = 0.0;             ///< |w| over the run, rad/s
     double energyDrift = 0.0;          ///< the largest |E_rot / E_rot(0) - 1| over the run; NaN without a spin at 0
     double momentumDrift = 0.0;        ///< the largest ||L| / |L(0)| - 1| over the run; NaN as energyDrift

@@ -57,6 +57,25 @@ TEST(RigidWatch, TheSteepRampsBoxSlidesAtTheTextbookAcceleration)
     }
 }
 
+// A box on a ramp at the friction angle itself (tan 26.57 degrees = 0.5 = mu) creeps a few
+// hundredths of a millimetre before it stops: no slide to report, where one of 0.000 m/s^2 was.
+TEST(RigidWatch, ACreepIsNoSlide)
+{
+    Scene scene = parseScene(R"({"dt": 0.005, "duration": 2, "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+        "rigid_bodies": [
+        {"name": "ramp", "shape": {"type": "box", "size": [2.0, 0.1, 0.6]}, "position": [0, 1.0, 0.0],
+         "orientation": [0.9732489894677302, 0, 0, 0.22975292054736118], "fixed": true, "friction": 0.5, "restitution": 0},
+        {"name": "box", "shape": {"type": "box", "size": [0.2, 0.2, 0.2]}, "mass": 2, "position": [0.201246, 1.268328, 0.0],
+         "orientation": [0.9732489894677302, 0, 0, 0.22975292054736118], "friction": 0.5, "restitution": 0}]})",
+                             "creep.json");
+    const dvec3 start = scene.world.body(1).getPos();
+    const std::vector<RigidFigures> figures = watched(scene);
+    ASSERT_EQ(figures.size(), 1u); // the ramp is fixed: nothing to say of it
+    EXPECT_LT(glm::length(scene.world.body(1).getPos() - start), RigidFigures::kLeastSlideDistance);
+    EXPECT_FALSE(figures[0].slide.has_value());
+    EXPECT_TRUE(figures[0].stillFrom.has_value());
+}
+
 // The scene's "By t = 2 s every die is still".
 TEST(RigidWatch, EveryDieIsStillByTheDescriptionsTime)
 {
