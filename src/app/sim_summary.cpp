@@ -188,9 +188,13 @@ void printRigidSummary(const World& world, const study::RigidWatch& rigid)
 }
 
 /// E now / E start to six places, or, where those read 1.000000 and it is not 1, how far from
-/// 1 it is ("1 - 4.6e-14"): a rounding-level drift is what exact integration claims.
-std::string energyRatioText(double ratio)
+/// 1 it is ("1 - 4.6e-14"): a rounding-level drift is what exact integration claims. A dash where
+/// the start's energy is zero: no ratio (a body at rest in zero g that something set moving read 1).
+std::string energyRatioText(double now, double start)
 {
+    if (start == 0.0)
+        return "-";
+    const double ratio = now / start;
     const double off = ratio - 1.0;
     if (off != 0.0 && std::abs(off) < 5e-7)
         return fmt::format("1 {} {:.1e}", off > 0.0 ? '+' : '-', std::abs(off));
@@ -221,11 +225,10 @@ void printBodyRows(const World& world, const render::BodyGroups& groups, const s
     for (const std::size_t i : rows) {
         const Body& b = world.body(i);
         const dvec3& x = b.getPos();
-        const double ratio = summary[i].startEnergy != 0.0 ? energies[i] / summary[i].startEnergy : 1.0;
         fmt::print("{:<22} {:<20} {:>32} {:>11.4g} {:>10.4f} {:>8} {:>14}{}\n", b.getName(),
                    b.isFixed() ? std::string("(fixed)") : std::string(integratorName(b.getIntegrator())),
                    fmt::format("({:.4f}, {:.4f}, {:.4f})", x.x, x.y, x.z), glm::length(b.getVel()),
-                   summary[i].highest, world.bounceCount(i), energyRatioText(ratio),
+                   summary[i].highest, world.bounceCount(i), energyRatioText(energies[i], summary[i].startEnergy),
                    dryerWorked(jet, {i}) ? kDryerNote : "");
     }
 }
@@ -259,7 +262,7 @@ void printSystemRows(const World& world, const render::BodyGroups& groups, const
         fmt::print("{:<22} {:>9} {:<20} {:>32} {:>32} {:>14}{}\n",
                    fmt::format("{} {}", g.kind == render::BodyGroup::Kind::Rope ? "rope" : "cloth", g.name),
                    g.members.size(), integrator, vectorText(centre / std::max(mass, 1e-300)),
-                   vectorText(render::groupMomentum(world, g)), energyRatioText(start != 0.0 ? energy / start : 1.0),
+                   vectorText(render::groupMomentum(world, g)), energyRatioText(energy, start),
                    dryerWorked(jet, g.members) ? kDryerNote : "");
     }
 }
@@ -298,7 +301,7 @@ void printSceneTotals(const World& world, const render::BodyGroups& groups, cons
     const double start = render::movingEnergy(world, groups, startEnergies);
     fmt::print("{}: energy {:.6g} J, {:.6g} J at the start: E now/E start {}{}; momentum {} kg m/s, {} at "
                "the start\n", render::anyGroupFixed(world, groups) ? "all moving bodies" : "all bodies", energy, start,
-               energyRatioText(start != 0.0 ? energy / start : 1.0), dryerWorked(jet, all) ? kDryerNote : "",
+               energyRatioText(energy, start), dryerWorked(jet, all) ? kDryerNote : "",
                vectorText(momentum), vectorText(startMomentum));
     if (dryerWorked(jet, all))
         printDryerBalance(start, sourceWork, energy);

@@ -463,6 +463,22 @@ TEST(PbaSim, ARopeOrClothIsOneRowAndTheSceneHasTotals)
         << pair.out;
 }
 
+// A body with no energy at the start has no ratio: a dash, where one set moving by a joint read 1.
+TEST(PbaSim, NoEnergyAtTheStartIsNoRatio)
+{
+    const auto dir = freshDir("sim_no_ratio");
+    std::ofstream(dir / "pair.json") << R"({"gravity": [0, 0, 0], "particles": [
+        {"name": "still", "position": [0, 1, 0], "mass": 1},
+        {"name": "moving", "position": [0, 2, 0], "velocity": [1, 0, 0], "mass": 1}]})";
+    const CommandResult r = runPba("sim " + (dir / "pair.json").string() + " --duration 0.1");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::size_t still = r.out.find("\nstill ");
+    ASSERT_NE(still, std::string::npos) << r.out;
+    const std::string row = r.out.substr(still + 1, r.out.find('\n', still + 1) - still - 1);
+    EXPECT_EQ(row.back(), '-') << row;
+    EXPECT_NE(r.out.find("E now/E start 1.000000"), std::string::npos) << r.out; // the totals: 0.5 J of 0.5 J
+}
+
 // The fixed ramps' height energy never changes and is left out of the totals: the incline's boxes,
 // the one sliding down to the floor, end with 0.46 of the energy they started with (0.997 with the
 // ramps counted); moving and fixed alike, the totals are the rows' sums.
