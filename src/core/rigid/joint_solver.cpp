@@ -167,6 +167,36 @@ void JointSolver::warmStart()
     }
 }
 
+double JointSolver::explicitSpringWork() const
+{
+    std::vector<std::pair<BodyIndex, std::pair<dvec3, dvec3>>> kicks; // a body's dv and dw
+    const auto kick = [&](BodyIndex k, const dvec3& p, const dvec3& r) {
+        const SolverBody& body = m_bodies[k];
+        if (body.isStatic())
+            return;
+        auto at = std::find_if(kicks.begin(), kicks.end(), [&](const auto& e) { return e.first == k; });
+        if (at == kicks.end())
+            at = kicks.insert(kicks.end(), {k, {dvec3(0.0), dvec3(0.0)}});
+        at->second.first += body.inverseMass * p;
+        at->second.second += body.inverseInertia * glm::cross(r, p);
+    };
+    for (const Rows& r : m_rows) {
+        const Joint& j = m_joints[r.joint];
+        if (j.type != JointType::Distance || !(j.stiffness > 0.0) || r.endStiffness != 0.0 || r.startImpulse == 0.0)
+            continue;
+        kick(r.a, -r.startImpulse * r.n, r.rA);
+        kick(r.b, r.startImpulse * r.n, r.rB);
+    }
+    double work = 0.0;
+    for (const auto& [k, change] : kicks) {
+        const SolverBody& b = m_bodies[k];
+        const dvec3 v = b.vFree + change.first, w = b.wFree + change.second;
+        work += 0.5 * (glm::dot(v, v) - glm::dot(b.vFree, b.vFree)) / b.inverseMass +
+                0.5 * (glm::dot(w, b.inertia * w) - glm::dot(b.wFree, b.inertia * b.wFree));
+    }
+    return work;
+}
+
 void JointSolver::solveBall(Rows& r, SolverBody& a, SolverBody& b)
 {
     const dvec3 lambda = -(r.linearMass * rowAnchorVelocity(r, a, b));

@@ -77,6 +77,10 @@ public:
     /// The exact blow's matrix is dense: a chain of twelve hinges has 60 rows.
     static constexpr std::size_t kMaxMechanismRows = 72;
     void storeImpulses();
+    /// The kinetic energy that the explicit springs' impulses (all of a spring between forward
+    /// Euler's bodies, taken at the step's start) give the free step's velocities: the method's
+    /// own work, as its gain in a fall is, which an island's energy cap must leave to it.
+    double explicitSpringWork() const;
     /// One sweep on the bodies' end poses.
     void solvePositions();
 

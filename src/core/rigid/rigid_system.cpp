@@ -419,7 +419,8 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     // contacts are found where the bodies are) and after it, when what a body was lifted into
     // is pushed away from it.
     const auto bodies = m_islands.bodies(island);
-    capEnergy(island);
+    const double methodWork = joints.explicitSpringWork();
+    capEnergy(island, methodWork);
     pushOutOfRoom(bodies);
     thread_local std::vector<Contact> atEnd;
     contactsAtEnd(island, atEnd);
@@ -437,7 +438,7 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     // motion (a chain's energy never grows). Not for contacts alone, whose pass only undoes an
     // overlap the step made, and whose resting bodies have no motion to take it from.
     if (withJoints)
-        capEnergy(island);
+        capEnergy(island, methodWork);
 }
 
 bool RigidSystem::appliedElsewhere(const Joint& j) const
@@ -645,7 +646,7 @@ void RigidSystem::pairsAtEnd(std::span<const std::uint32_t> contacts, std::vecto
     }
 }
 
-void RigidSystem::capEnergy(std::size_t island)
+void RigidSystem::capEnergy(std::size_t island, double methodWork)
 {
     // No contact leaves an island with more energy than it started the step with, or would have
     // ended it with untouched: what the linearised contacts and the push-outs would add is taken
@@ -667,7 +668,7 @@ void RigidSystem::capEnergy(std::size_t island)
     // A spring joint's energy is the island's too: what it stores is not a gain.
     const Energies springs = springEnergy(island);
     start += springs.start;
-    free += springs.free;
+    free += springs.free + methodWork;
     end += springs.end;
     const double excess = end - std::max(start, free);
     if (!(excess > 0.0)) // a NaN too: the finite check names the body
@@ -745,8 +746,15 @@ RigidSystem::Energies RigidSystem::springEnergy(std::size_t island) const
         // a spring gain 4 times its energy. Under semi-implicit Euler the soft spring's own
         // backward Euler takes energy, and the free stretch leaves room for the swing of its
         // energy that the method makes, which capped every step would drain.
+        // Between forward Euler's bodies (or one and the world) the spring is all explicit: its
+        // start's impulse moves nothing in the step, so the free step's stretch is the end's, and
+        // the kinetic energy the impulse gives is the method's (explicitSpringWork).
         const auto drifts = [&](BodyIndex k) { return k != kWorldBody && m_material[k].driftWeight < 1.0; };
-        e.free += appliedElsewhere(j) || !(drifts(j.a) || drifts(j.b)) ? energy(When::Free) : start;
+        const auto explicitEnd = [&](BodyIndex k) {
+            return k == kWorldBody || m_material[k].inverseMass == 0.0 || m_material[k].driftWeight == 0.0;
+        };
+        const bool explicitSpring = explicitEnd(j.a) && explicitEnd(j.b);
+        e.free += appliedElsewhere(j) || explicitSpring || !(drifts(j.a) || drifts(j.b)) ? energy(When::Free) : start;
         e.end += energy(When::End);
     }
     return e;

@@ -147,7 +147,8 @@ private:
     bool appliedElsewhere(const Joint& j) const;
     static void solveMechanismVelocities(ContactSolver& solver, JointSolver& joints, const SolverSettings& settings);
     void moveEndPoses(std::size_t island, const ContactSolver& solver, double dt);
-    void capEnergy(std::size_t island);
+    /// `methodWork`: what the bodies' own methods add beyond the free step (explicitSpringWork).
+    void capEnergy(std::size_t island, double methodWork);
     /// Whether no contact or joint ties the island to a static body or the world.
     bool heldByNothing(std::size_t island) const;
     /// What the island's spring joints store at the start, after the free step and now.
