@@ -30,17 +30,23 @@ int middleAxisOf(const dmat3& inertia)
 }
 
 /// The speed at which a sphere's point nearest a surface it touches slips along that surface,
-/// or nothing when it touches none (within 0.1 mm, not over a hole).
-std::optional<double> sphereSlip(const World& world, const RigidBody& ball)
+/// or nothing when it touches none: a room's surface within 0.1 mm, not over a hole, or else the
+/// one fixed body it touches (a ball rolling on a table).
+std::optional<double> sphereSlip(const World& world, const RigidBody& ball, const Touch& touch)
 {
     const double r = ball.getShape().radius;
     const dvec3 x = ball.getPos(), w = ball.getAngularVelocity();
+    const auto slip = [&](const dvec3& n) { // n: out of the surface, towards the centre
+        const dvec3 contact = ball.getVel() + glm::cross(w, -r * n);
+        return glm::length(contact - glm::dot(contact, n) * n);
+    };
     for (const Plane& plane : world.planes()) {
         if (plane.distance(x) - r > 1e-4 || (plane.holeRadius > 0.0 && plane.overHole(x)))
             continue;
-        const dvec3 contact = ball.getVel() + glm::cross(w, -r * plane.normal);
-        return glm::length(contact - glm::dot(contact, plane.normal) * plane.normal);
+        return slip(plane.normal);
     }
+    if (touch.on < world.bodyCount() && world.body(touch.on).isFixed() && glm::length(touch.outward) > 0.0)
+        return slip(glm::normalize(touch.outward));
     return std::nullopt;
 }
 
@@ -74,28 +80,42 @@ RigidWatch::RigidWatch(const World& world)
         t.momentum0 = glm::length(body.getAngularMomentum());
         if (!(t.energy0 > 0.0 && t.momentum0 > 0.0))
             t.figures.energyDrift = t.figures.momentumDrift = std::numeric_limits<double>::quiet_NaN();
-        look(world, t, kNone);
+        look(world, t, Touch{});
         m_tracks.push_back(t);
     }
 }
 
+namespace {
+
+/// touchedSurfaces, with the normal of a contact with what each body touches.
+std::vector<Touch> touches(const World& world)
+{
+    std::vector<Touch> on(world.bodyCount());
+    const auto add = [&](std::size_t body, std::size_t other, const dvec3& outward) {
+        on[body].on = on[body].on == kNone || on[body].on == other ? other : kMany;
+        on[body].outward = outward;
+    };
+    for (const World::ContactPointView& c : world.contactPoints()) { // the normal runs from A into B
+        add(c.bodyA, c.bodyB.value_or(kRoom), -c.normal);
+        if (c.bodyB)
+            add(*c.bodyB, c.bodyA, c.normal);
+    }
+    return on;
+}
+
+} // namespace
+
 std::vector<std::size_t> touchedSurfaces(const World& world)
 {
-    std::vector<std::size_t> on(world.bodyCount(), kNone);
-    const auto add = [&](std::size_t body, std::size_t other) {
-        on[body] = on[body] == kNone || on[body] == other ? other : kMany;
-    };
-    for (const World::ContactPointView& c : world.contactPoints()) {
-        add(c.bodyA, c.bodyB.value_or(kRoom));
-        if (c.bodyB)
-            add(*c.bodyB, c.bodyA);
-    }
+    std::vector<std::size_t> on;
+    for (const Touch& t : touches(world))
+        on.push_back(t.on);
     return on;
 }
 
 void RigidWatch::record(const World& world)
 {
-    const std::vector<std::size_t> on = touchedSurfaces(world);
+    const std::vector<Touch> on = touches(world);
     for (Track& t : m_tracks) {
         look(world, t, on[t.body]);
         t.spinSum += glm::length(rigid(world, t.body).getAngularVelocity());
@@ -119,8 +139,9 @@ void RigidWatch::endSlide(const World& world, Track& t)
     t.sliding.reset();
 }
 
-void RigidWatch::look(const World& world, Track& t, std::size_t touches) const
+void RigidWatch::look(const World& world, Track& t, const Touch& touch) const
 {
+    const std::size_t touches = touch.on;
     const RigidBody& body = rigid(world, t.body);
     RigidFigures& f = t.figures;
     const double now = world.time();
@@ -146,7 +167,7 @@ void RigidWatch::look(const World& world, Track& t, std::size_t touches) const
     else if (!f.stillFrom)
         f.stillFrom = now;
     if (body.getShape().type == ShapeType::Sphere && !f.rollingFrom && !still) {
-        if (const auto slip = sphereSlip(world, body); slip && *slip < kNoSlip) {
+        if (const auto slip = sphereSlip(world, body, touch); slip && *slip < kNoSlip) {
             f.rollingFrom = now;
             f.rollingSpeed = glm::length(body.getVel());
         }

@@ -55,6 +55,12 @@ struct RigidFigures {
 /// touches, or kNone, or kMany when it touches more than one.
 inline constexpr std::size_t kRoom = std::size_t(-1), kNone = std::size_t(-2), kMany = std::size_t(-3);
 std::vector<std::size_t> touchedSurfaces(const World& world);
+/// What a body touches (as touchedSurfaces) and the normal of its last contact with it, out of
+/// what it touches towards the body.
+struct Touch {
+    std::size_t on = kNone;
+    dvec3 outward{0.0};
+};
 
 class RigidWatch {
 public:
@@ -84,7 +90,7 @@ private:
         };
         std::optional<Sliding> sliding;
     };
-    void look(const World& world, Track& t, std::size_t touches) const;
+    void look(const World& world, Track& t, const Touch& touch) const;
     static void endSlide(const World& world, Track& t);
     std::vector<Track> m_tracks;
 };

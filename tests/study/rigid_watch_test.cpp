@@ -36,6 +36,25 @@ TEST(RigidWatch, TheRollingBallRollsWhenTheClosedFormSays)
     EXPECT_FALSE(figures[0].free()); // it started without a spin: nothing to keep
 }
 
+// The same on a fixed table rather than the floor: it rolls from t = 2 v0 / (7 mu g) at 5/7 v0
+// (the watch looked at the room's surfaces alone, and saw the roll only once the ball was down).
+TEST(RigidWatch, ABallRollsOnAFixedTableWhenTheClosedFormSays)
+{
+    Scene scene = parseScene(R"({"dt": 0.001, "duration": 0.6, "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+        "rigid_bodies": [
+        {"name": "table", "shape": {"type": "box", "size": [3.0, 0.1, 1.0]}, "position": [0, 0.95, 0], "fixed": true,
+         "friction": 0.3},
+        {"name": "ball", "shape": {"type": "sphere", "radius": 0.1}, "position": [-1, 1.1, 0], "velocity": [1, 0, 0],
+         "friction": 0.3}]})",
+                             "table.json");
+    const std::vector<RigidFigures> figures = watched(scene);
+    ASSERT_EQ(figures.size(), 1u);
+    const double v0 = 1.0, tRoll = 2.0 * v0 / (7.0 * 0.3 * 9.81);
+    ASSERT_TRUE(figures[0].rollingFrom.has_value());
+    EXPECT_NEAR(*figures[0].rollingFrom, tRoll, 0.02 * tRoll);
+    EXPECT_NEAR(figures[0].rollingSpeed, 5.0 / 7.0 * v0, 0.005);
+}
+
 // The incline's lesson as `pba sim` measures it: the box on the 35-degree ramp slides down it
 // without turning, its speed growing at g (sin 35 - mu cos 35) with mu = 0.5; the one on the
 // 20-degree ramp, below the friction angle, does not slide.
