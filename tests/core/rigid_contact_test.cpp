@@ -199,6 +199,31 @@ TEST(RigidContact, ABoxDroppedFlatReboundsToESquaredHAtEveryDtForEveryIntegrator
         }
 }
 
+// A box resting on a face stays where it rests, with its energy, at any dt: at 0.32 s and beyond,
+// the step's reach (half g dt^2 past the box's height) took its top corners into the floor's
+// contact in place of two it stood on, and it tipped over with a third more energy each step.
+TEST(RigidContact, ABoxRestingOnAFaceStaysAtEveryDt)
+{
+    for (const double dt : {0.005, 0.32, 0.5, 1.0})
+        for (const Integrator integrator : kRigidIntegrators) {
+            World world;
+            world.setGround(0.0);
+            world.addForce(std::make_unique<Gravity>(dvec3(0.0, -kG, 0.0)));
+            auto body = std::make_unique<RigidBody>(Shape::box(dvec3(0.5)), 40.0);
+            body->setPos(dvec3(0.0, 0.25, 0.0));
+            body->setCor(0.0);
+            body->setIntegrator(integrator);
+            auto& box = static_cast<RigidBody&>(world.addBody(std::move(body)));
+            const double e0 = world.totalEnergy();
+            for (int n = 0; n < 20; ++n) {
+                world.step(dt);
+                ASSERT_LE(world.totalEnergy(), e0 + 1e-5 * std::abs(e0)) << "dt " << dt << ", " << integratorName(integrator);
+            }
+            EXPECT_LT(glm::length(box.getPos() - dvec3(0.0, 0.25, 0.0)), 1e-5) << "dt " << dt << ", " << integratorName(integrator);
+            EXPECT_LT(glm::length(box.getAngularVelocity()), 1e-6) << "dt " << dt << ", " << integratorName(integrator);
+        }
+}
+
 // Each body keeps its own integrator, and a contact between two bodies stepped by different ones
 // is the same exchange: equal spheres head-on with e = 1 swap their velocities to 1e-9 for every
 // pair of methods (no gravity, so every method's free step is the exact straight line).

@@ -36,7 +36,23 @@ void emit(Candidates& c, BodyIndex body, BodyIndex surfaceBody, std::vector<Cont
     Contact contact;
     contact.a = body;
     contact.b = surfaceBody;
-    const int count = reduceToFour(c.points.data(), int(c.points.size()));
+    // Four or more corners touching (within kNear of the deepest) are the contact: what else the
+    // step's reach takes in is left out. A 50 cm box resting on a face at dt 0.32 s, whose reach
+    // (half g dt^2) took in its top corners, kept two of them, the furthest from the deepest, in
+    // place of two it stood on, and tipped over with a third more energy.
+    constexpr double kNear = 0.01;
+    const double deepest =
+        std::min_element(c.points.begin(), c.points.end(), [](const ContactPoint& p, const ContactPoint& q) {
+            return p.separation < q.separation;
+        })->separation;
+    const auto isNear = [&](const ContactPoint& p) { return p.separation <= deepest + kNear; };
+    int candidates = int(c.points.size());
+    if (const auto touching = std::count_if(c.points.begin(), c.points.end(), isNear);
+        touching >= 4 && touching < candidates) {
+        std::stable_partition(c.points.begin(), c.points.end(), isNear);
+        candidates = int(touching);
+    }
+    const int count = reduceToFour(c.points.data(), candidates);
     contact.count = count;
     for (int k = 0; k < count; ++k)
         contact.points[k] = c.points[k];
