@@ -68,6 +68,11 @@ public:
     /// Every body's energy (World::energies) less the work the sources did on it: what the
     /// integration, the contacts and the forces that keep energy made of the start's.
     std::vector<double> energiesWithoutSourceWork(const World& world) const;
+    /// The largest rise, from one check to the next, of the energy less the sources' work (0 if
+    /// it never rose), and the time of the check that saw it: what "its energy never grows from
+    /// one step to the next" claims.
+    double largestStepRise() const { return m_largestRise; }
+    double largestStepRiseAt() const { return m_largestRiseAt; }
     /// The total energy above which the run has blown up: start + sources' work +
     /// kEnergyGrowthLimit * scale.
     double energyBound() const { return m_start + m_work + kEnergyGrowthLimit * m_scale; }
@@ -84,6 +89,8 @@ private:
     double m_start = 0.0;
     double m_scale = 0.0;
     double m_work = 0.0;
+    double m_lastHeld = 0.0; ///< at the last check: the energy less the sources' work
+    double m_largestRise = 0.0, m_largestRiseAt = 0.0;
     std::vector<double> m_bodyWork; ///< m_work body by body
     /// At the last check (or the start): the sources' wrench on each body, each body's state
     /// and angular velocity, and the world's time.

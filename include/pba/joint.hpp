@@ -46,6 +46,8 @@ struct JointFrame {
     std::optional<std::size_t> bodyB; ///< world index; none when joined to the world
     dvec3 onA{0.0}, onB{0.0};
     dvec3 axis{0.0};
+    double length = 0.0;    ///< a distance joint's
+    double stiffness = 0.0; ///< a distance joint's: 0 for a rod
 };
 
 } // namespace pba

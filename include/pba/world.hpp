@@ -260,6 +260,7 @@ public:
         dvec3 point{0.0};
         dvec3 normal{0.0};
         double impulse = 0.0;
+        double separation = 0.0;         ///< where the step found it: below zero, an overlap
         std::size_t bodyA = 0;           ///< world index
         std::optional<std::size_t> bodyB; ///< world index; none for the room
     };

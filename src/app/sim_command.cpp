@@ -225,7 +225,7 @@ int runSim(const SimOptions& options)
     }
     if (csv)
         csv->commit();
-    printSummary(scene, world, record.summary(), jet, rigid, watch.sourceWork(), options.everyParticle);
+    printSummary(scene, world, record.summary(), jet, rigid, watch, options.everyParticle);
     if (options.out)
         fmt::print("wrote {} to {}\n", options.swarmParticles ? "every body and swarm particle at every step"
                                                               : fmt::format("{} rows", (world.stepCount() + 1) * world.bodyCount()),

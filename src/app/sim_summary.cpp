@@ -152,6 +152,31 @@ void printJetSummary(const World& world, const study::JetWatch& jet, const rende
     }
 }
 
+/// What the contacts and joints did over the run, as the engine saw them after each step.
+void printPipelineSummary(const World& world, const study::PipelineFigures& p)
+{
+    std::size_t rigidBodies = 0;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        rigidBodies += world.isRigid(i) ? 1 : 0;
+    std::vector<std::string> parts;
+    if (rigidBodies >= 2)
+        parts.push_back(p.deepestOverlap > 0.0 ? fmt::format("the deepest overlap of two bodies {:.2f} mm (t = {:.3f} s)",
+                                                             1e3 * p.deepestOverlap, p.deepestAt)
+                                               : std::string("no two bodies overlapped"));
+    if (p.asleepFrom)
+        parts.push_back(fmt::format("every moving body asleep from t = {:.3f} s", *p.asleepFrom));
+    if (!parts.empty())
+        fmt::print("  contacts: {}\n", fmt::join(parts, "; "));
+    if (!p.widest)
+        return;
+    const JointFrame frame = world.jointFrame(*p.widest);
+    const std::string joining = frame.bodyB ? fmt::format("'{}' to '{}'", world.body(frame.bodyA).getName(),
+                                                          world.body(*frame.bodyB).getName())
+                                            : fmt::format("'{}' to the world", world.body(frame.bodyA).getName());
+    fmt::print("  joints: held to {:.2g} m at worst (joints[{}], joining {}, at t = {:.3f} s)\n", p.widestJoint,
+               *p.widest, joining, p.widestAt);
+}
+
 /// What each rigid body did, as the watch measured it: the parts that apply to it.
 void printRigidSummary(const World& world, const study::RigidWatch& rigid)
 {
@@ -185,6 +210,7 @@ void printRigidSummary(const World& world, const study::RigidWatch& rigid)
         parts.push_back(fmt::format("spins at {:.3g} rad/s on average", f.meanSpin));
         fmt::print("  {}: {}\n", f.name, fmt::join(parts, "; "));
     }
+    printPipelineSummary(world, rigid.pipeline());
 }
 
 /// E now / E start to six places, or, where those read 1.000000 and it is not 1, how far from
@@ -307,11 +333,31 @@ void printSceneTotals(const World& world, const render::BodyGroups& groups, cons
         printDryerBalance(start, sourceWork, energy);
 }
 
+/// The largest rise of the energy (less a dryer's work) from one step to the next: what a
+/// description's "its energy never grows" claims.
+void printLargestStepRise(const World& world, const BlowUpWatch& watch)
+{
+    if (world.bodyCount() == 0 || !watch.watchesGrowth())
+        return;
+    // A rise of a trillionth of the energy's scale is the sum's rounding, not the step's.
+    const std::string less = watch.hasSources() ? " less the sources' work" : "";
+    const double rise = watch.largestStepRise(), rounding = 1e-12 * watch.energyScale();
+    if (rise > rounding)
+        fmt::print("the energy{} rose by at most {:.2g} J in one step (t = {:.3f} s)\n", less, rise,
+                   watch.largestStepRiseAt());
+    else if (rise > 0.0)
+        fmt::print("the energy{} never rose from one step to the next by more than rounding ({:.2g} J at most, of a "
+                   "scale of {:.3g} J)\n", less, rise, watch.energyScale());
+    else
+        fmt::print("the energy{} never rose from one step to the next\n", less);
+}
+
 } // namespace
 
 void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary,
-                  const study::JetWatch& jet, const study::RigidWatch& rigid, double sourceWork, bool everyParticle)
+                  const study::JetWatch& jet, const study::RigidWatch& rigid, const BlowUpWatch& watch, bool everyParticle)
 {
+    const double sourceWork = watch.sourceWork();
     // A run takes round(duration / dt) steps, at least one: where that is not the duration, the
     // line says so rather than let t = 20 s on a 10 s scene look like a bug.
     const bool rounded = std::abs(world.time() - scene.duration) > 1e-9 * scene.duration;
@@ -332,6 +378,7 @@ void printSummary(const Scene& scene, const World& world, const std::vector<Body
     printBodyRows(world, groups, summary, energies, jet, everyParticle);
     printSystemRows(world, groups, summary, energies, jet);
     printSceneTotals(world, groups, summary, energies, jet, sourceWork);
+    printLargestStepRise(world, watch);
     printRigidSummary(world, rigid);
     printSwarmSummary(world);
     printJetSummary(world, jet, groups, everyParticle);

@@ -3,6 +3,7 @@
 // swarms and the blow dryer's jet did.
 #include <vector>
 
+#include "pba/blow_up_watch.hpp"
 #include "pba/scene/scene.hpp"
 #include "study/jet_watch.hpp"
 #include "study/rigid_watch.hpp"
@@ -24,7 +25,7 @@ struct BodySummary {
 /// (`sourceWork`, BlowUpWatch's sum of its power) and the ratio without it. `everyParticle` adds
 /// a row per particle of each rope and cloth.
 void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary,
-                  const study::JetWatch& jet, const study::RigidWatch& rigid, double sourceWork,
+                  const study::JetWatch& jet, const study::RigidWatch& rigid, const BlowUpWatch& watch,
                   bool everyParticle = false);
 
 } // namespace pba::app

@@ -43,6 +43,7 @@ BlowUpWatch::BlowUpWatch(const World& world) : m_active(true), m_start(world.tot
 {
     m_sources = world.hasEnergySources();
     m_growth = std::isfinite(m_start);
+    m_lastHeld = m_start;
     addSourceWork(world);
     m_startEnergies = world.energies();
     const double g = glm::length(world.gravity());
@@ -67,6 +68,11 @@ void BlowUpWatch::check(const World& world)
     const double energy = world.totalEnergy();
     if (!std::isfinite(energy))
         throwNonFinite(world);
+    if (const double rise = energy - m_work - m_lastHeld; rise > m_largestRise) {
+        m_largestRise = rise;
+        m_largestRiseAt = world.time();
+    }
+    m_lastHeld = energy - m_work;
     if (m_growth && energy > energyBound() && !driven(world))
         throwGrowth(world, energy);
 }

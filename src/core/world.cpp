@@ -223,6 +223,7 @@ std::vector<World::ContactPointView> World::contactPoints() const
             view.point = p.point;
             view.normal = p.normal;
             view.impulse = p.normalImpulse;
+            view.separation = p.separation;
             view.bodyA = system.worldIndex(c.a);
             if (c.b < system.size())
                 view.bodyB = system.worldIndex(c.b);
@@ -252,6 +253,8 @@ JointFrame World::jointFrame(std::size_t i) const
     frame.onB = xb + qb * j.localB;
     if (j.type == JointType::Hinge)
         frame.axis = glm::normalize(qa * j.axisA);
+    frame.length = j.length;
+    frame.stiffness = j.stiffness;
     return frame;
 }
 

@@ -113,8 +113,38 @@ std::vector<std::size_t> touchedSurfaces(const World& world)
     return on;
 }
 
+void RigidWatch::lookAtPipeline(const World& world)
+{
+    const double now = world.time();
+    for (const World::ContactPointView& c : world.contactPoints()) {
+        // The engine's own contact points: a pair's separation below zero is an overlap.
+        const double overlap = -c.separation;
+        if (c.bodyB && overlap > m_pipeline.deepestOverlap)
+            m_pipeline.deepestOverlap = overlap, m_pipeline.deepestAt = now;
+    }
+    bool asleep = true;
+    for (const Track& t : m_tracks)
+        asleep = asleep && world.isAsleep(t.body);
+    if (!asleep)
+        m_pipeline.asleepFrom.reset();
+    else if (!m_pipeline.asleepFrom)
+        m_pipeline.asleepFrom = now;
+    for (std::size_t j = 0; j < world.jointCount(); ++j) {
+        const JointFrame frame = world.jointFrame(j);
+        double gap = glm::length(frame.onB - frame.onA);
+        if (frame.type == JointType::Distance) {
+            if (frame.stiffness > 0.0) // a spring: its stretch is its own
+                continue;
+            gap = std::abs(gap - frame.length);
+        }
+        if (gap > m_pipeline.widestJoint)
+            m_pipeline.widestJoint = gap, m_pipeline.widestAt = now, m_pipeline.widest = j;
+    }
+}
+
 void RigidWatch::record(const World& world)
 {
+    lookAtPipeline(world);
     const std::vector<Touch> on = touches(world);
     for (Track& t : m_tracks) {
         look(world, t, on[t.body]);

@@ -62,6 +62,18 @@ struct Touch {
     dvec3 outward{0.0};
 };
 
+/// What the contacts and joints did over the whole run, as the engine saw them after each step:
+/// what a scene's description claims of them ("none inside another", "the rod stays within a
+/// millimetre", "asleep by 3 s").
+struct PipelineFigures {
+    double deepestOverlap = 0.0;          ///< m, of two bodies in touch (0 if none overlapped)
+    double deepestAt = 0.0;               ///< s
+    std::optional<double> asleepFrom;     ///< every moving rigid body asleep from then to the end
+    double widestJoint = 0.0;             ///< m: a ball, hinge or fixed joint's two points apart, or a rod's length off
+    double widestAt = 0.0;                ///< s
+    std::optional<std::size_t> widest;    ///< which joint
+};
+
 class RigidWatch {
 public:
     explicit RigidWatch(const World& world);
@@ -71,8 +83,11 @@ public:
     void record(const World& world);
     /// One per rigid body that is not fixed, in the world's order.
     std::vector<RigidFigures> bodies(const World& world) const;
+    const PipelineFigures& pipeline() const { return m_pipeline; }
 
 private:
+    void lookAtPipeline(const World& world);
+    PipelineFigures m_pipeline;
     struct Track {
         std::size_t body = 0;
         RigidFigures figures;

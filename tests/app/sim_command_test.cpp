@@ -463,6 +463,35 @@ TEST(PbaSim, ARopeOrClothIsOneRowAndTheSceneHasTotals)
         << pair.out;
 }
 
+namespace {
+
+/// The number after `label` in sim's output (NaN if the label is not there).
+double numberAfter(const std::string& out, const std::string& label)
+{
+    const std::size_t at = out.find(label);
+    return at == std::string::npos ? NAN : std::stod(out.substr(at + label.size()));
+}
+
+} // namespace
+
+// What the scenes' descriptions claim of contacts, joints and the energy, sim measures: the dice
+// overlap by under 5 mm and are all asleep by 3 s; the chain's hinges hold within a millimetre and
+// its energy never grows from one step to the next.
+TEST(PbaSim, ContactsJointsAndTheEnergysStepsAreMeasured)
+{
+    const CommandResult dice = runPba("sim dice");
+    ASSERT_EQ(dice.exitCode, 0) << dice.err;
+    EXPECT_LT(numberAfter(dice.out, "contacts: the deepest overlap of two bodies "), 5.0) << dice.out; // mm
+    EXPECT_LT(numberAfter(dice.out, "every moving body asleep from t = "), 3.0) << dice.out;
+    const CommandResult chain = runPba("sim chain");
+    ASSERT_EQ(chain.exitCode, 0) << chain.err;
+    EXPECT_LT(numberAfter(chain.out, "joints: held to "), 1e-3) << chain.out;
+    EXPECT_NE(chain.out.find("the energy never rose from one step to the next"), std::string::npos) << chain.out;
+    const CommandResult drop = runPba("sim integrators --duration 2");
+    EXPECT_GT(numberAfter(drop.out, "the energy rose by at most "), 0.0) << "forward Euler's gain: " << drop.out;
+    EXPECT_EQ(drop.out.find("joints:"), std::string::npos) << "no joints, no line";
+}
+
 // A body with no energy at the start has no ratio: a dash, where one set moving by a joint read 1.
 TEST(PbaSim, NoEnergyAtTheStartIsNoRatio)
 {

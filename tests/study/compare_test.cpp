@@ -364,8 +364,9 @@ TEST(IntegratorFindings, WithoutAnExactSolutionTheMethodsAreComparedByTheStepTha
                 const double kept = m == Integrator::ForwardEuler ? 0.002 : m == Integrator::RK4 ? 0.01 : 0.005;
                 const auto* run = study::findRun(result, m, c, dt);
                 ASSERT_NE(run, nullptr);
-                if (dt <= kept)
+                if (dt <= kept) {
                     EXPECT_NEAR(run->energyRatioEnd, 1.0, 0.01) << integratorName(m) << " " << dt;
+                }
             }
 
     study::StudyConfig bounce;
