@@ -22,16 +22,22 @@ std::vector<RigidFigures> watched(Scene& scene)
     return watch.bodies(scene.world);
 }
 
+/// A ball sliding at v0 without spin rolls from t = 2 v0 / (7 mu g) (within `share` of it) at 5/7 v0.
+void expectRollsAsTheClosedFormSays(const RigidFigures& ball, double v0, double mu, double share)
+{
+    const double tRoll = 2.0 * v0 / (7.0 * mu * 9.81);
+    ASSERT_TRUE(ball.rollingFrom.has_value());
+    EXPECT_NEAR(*ball.rollingFrom, tRoll, share * tRoll);
+    EXPECT_NEAR(ball.rollingSpeed, 5.0 / 7.0 * v0, 0.005);
+}
+
 // A ball sliding at v0 without spin rolls from t = 2 v0 / (7 mu g) at 5/7 v0.
 TEST(RigidWatch, TheRollingBallRollsWhenTheClosedFormSays)
 {
     Scene scene = loadScene("rolling");
     const std::vector<RigidFigures> figures = watched(scene);
     ASSERT_EQ(figures.size(), 1u);
-    const double v0 = 3.0, tRoll = 2.0 * v0 / (7.0 * 0.3 * 9.81);
-    ASSERT_TRUE(figures[0].rollingFrom.has_value());
-    EXPECT_NEAR(*figures[0].rollingFrom, tRoll, 0.01 * tRoll);
-    EXPECT_NEAR(figures[0].rollingSpeed, 5.0 / 7.0 * v0, 0.005);
+    expectRollsAsTheClosedFormSays(figures[0], 3.0, 0.3, 0.01);
     EXPECT_FALSE(figures[0].stillFrom.has_value());
     EXPECT_FALSE(figures[0].free()); // it started without a spin: nothing to keep
 }
@@ -49,10 +55,7 @@ TEST(RigidWatch, ABallRollsOnAFixedTableWhenTheClosedFormSays)
                              "table.json");
     const std::vector<RigidFigures> figures = watched(scene);
     ASSERT_EQ(figures.size(), 1u);
-    const double v0 = 1.0, tRoll = 2.0 * v0 / (7.0 * 0.3 * 9.81);
-    ASSERT_TRUE(figures[0].rollingFrom.has_value());
-    EXPECT_NEAR(*figures[0].rollingFrom, tRoll, 0.02 * tRoll);
-    EXPECT_NEAR(figures[0].rollingSpeed, 5.0 / 7.0 * v0, 0.005);
+    expectRollsAsTheClosedFormSays(figures[0], 1.0, 0.3, 0.02);
 }
 
 // The incline's lesson as `pba sim` measures it: the box on the 35-degree ramp slides down it
