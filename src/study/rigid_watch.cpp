@@ -88,14 +88,14 @@ RigidWatch::RigidWatch(const World& world)
 namespace {
 
 /// touchedSurfaces, with the normal of a contact with what each body touches.
-std::vector<Touch> touches(const World& world)
+std::vector<Touch> touches(const World& world, const std::vector<World::ContactPointView>& contacts)
 {
     std::vector<Touch> on(world.bodyCount());
     const auto add = [&](std::size_t body, std::size_t other, const dvec3& outward) {
         on[body].on = on[body].on == kNone || on[body].on == other ? other : kMany;
         on[body].outward = outward;
     };
-    for (const World::ContactPointView& c : world.contactPoints()) { // the normal runs from A into B
+    for (const World::ContactPointView& c : contacts) { // the normal runs from A into B
         add(c.bodyA, c.bodyB.value_or(kRoom), -c.normal);
         if (c.bodyB)
             add(*c.bodyB, c.bodyA, c.normal);
@@ -108,15 +108,15 @@ std::vector<Touch> touches(const World& world)
 std::vector<std::size_t> touchedSurfaces(const World& world)
 {
     std::vector<std::size_t> on;
-    for (const Touch& t : touches(world))
+    for (const Touch& t : touches(world, world.contactPoints()))
         on.push_back(t.on);
     return on;
 }
 
-void RigidWatch::lookAtPipeline(const World& world)
+void RigidWatch::lookAtPipeline(const World& world, const std::vector<World::ContactPointView>& contacts)
 {
     const double now = world.time();
-    for (const World::ContactPointView& c : world.contactPoints()) {
+    for (const World::ContactPointView& c : contacts) {
         // The engine's own contact points: a pair's separation below zero is an overlap.
         const double overlap = -c.separation;
         if (c.bodyB && overlap > m_pipeline.deepestOverlap)
@@ -144,8 +144,9 @@ void RigidWatch::lookAtPipeline(const World& world)
 
 void RigidWatch::record(const World& world)
 {
-    lookAtPipeline(world);
-    const std::vector<Touch> on = touches(world);
+    const std::vector<World::ContactPointView> contacts = world.contactPoints();
+    lookAtPipeline(world, contacts);
+    const std::vector<Touch> on = touches(world, contacts);
     for (Track& t : m_tracks) {
         look(world, t, on[t.body]);
         t.spinSum += glm::length(rigid(world, t.body).getAngularVelocity());

@@ -86,7 +86,7 @@ public:
     const PipelineFigures& pipeline() const { return m_pipeline; }
 
 private:
-    void lookAtPipeline(const World& world);
+    void lookAtPipeline(const World& world, const std::vector<World::ContactPointView>& contacts);
     PipelineFigures m_pipeline;
     struct Track {
         std::size_t body = 0;
