@@ -340,7 +340,7 @@ void printLargestStepRise(const World& world, const BlowUpWatch& watch)
     if (world.bodyCount() == 0 || !watch.watchesGrowth())
         return;
     // A rise of a trillionth of the energy's scale is the sum's rounding, not the step's.
-    const std::string less = watch.hasSources() ? " less the sources' work" : "";
+    const std::string less = watch.hasSources() ? " less the dryer's work" : ""; // a scene's one source
     const double rise = watch.largestStepRise(), rounding = 1e-12 * watch.energyScale();
     if (rise > rounding)
         fmt::print("the energy{} rose by at most {:.2g} J in one step (t = {:.3f} s)\n", less, rise,
