@@ -172,7 +172,7 @@ void RigidWatch::endSlide(const World& world, Track& t)
 
 void RigidWatch::look(const World& world, Track& t, const Touch& touch) const
 {
-    const std::size_t touches = touch.on;
+    const std::size_t surface = touch.on; // what it touches
     const RigidBody& body = rigid(world, t.body);
     RigidFigures& f = t.figures;
     const double now = world.time();
@@ -181,13 +181,13 @@ void RigidWatch::look(const World& world, Track& t, const Touch& touch) const
     const bool still = speed < kStill && glm::length(w) < kStill;
     // Sliding: on one surface that does not move, moving without turning (a box down a ramp).
     constexpr double kNoTurn = 1e-3; // rad/s
-    const bool onFixed = touches == kRoom || (touches < world.bodyCount() && world.body(touches).isFixed());
+    const bool onFixed = surface == kRoom || (surface < world.bodyCount() && world.body(surface).isFixed());
     const bool slides = onFixed && speed >= kStill && glm::length(w) < kNoTurn;
-    if (t.sliding && (!slides || t.sliding->on != touches))
+    if (t.sliding && (!slides || t.sliding->on != surface))
         endSlide(world, t);
     if (slides) {
         if (!t.sliding)
-            t.sliding = Track::Sliding{touches, now, now};
+            t.sliding = Track::Sliding{surface, now, now};
         Track::Sliding& s = *t.sliding;
         const double at = now - s.from;
         s.to = now;
