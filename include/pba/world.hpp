@@ -310,6 +310,9 @@ public:
     /// Whether body i is integrated in a coupled group: it moves, and a force couples it to a
     /// body, or it takes implicit-euler or xpbd (whose step is a system's, joined by springs or not).
     bool isCoupled(std::size_t i) const;
+    /// Whether bodies a and b, particles with a radius, collide as balls after their steps: not
+    /// neighbours along one rope's or cloth's springs, which hold them instead (as of the last step).
+    bool ballsCollide(std::size_t a, std::size_t b) const;
     /// Whether any moving body is coupled: then `exact` acts as `reflect` on those bodies.
     bool hasCoupledBodies() const;
     /// The moving bodies joined to body i (transitively, through moving bodies) by forces

@@ -135,24 +135,21 @@ private:
 /// viewer would: same steps, same bytes. Throws BlowUpError at the first step that blows up,
 /// before its rows are written (the world's own checks, then the BlowUpWatch's: an energy that
 /// is not finite is no more a valid row than an infinite position).
-void stepToEnd(const SimOptions& options, Scene& scene, StepRecord& record, BlowUpWatch& watch, study::JetWatch& jet,
-               study::RigidWatch& rigid)
+void stepToEnd(const SimOptions& options, Scene& scene, StepRecord& record, RunWatches& watches)
 {
     World& world = scene.world;
     const std::uint64_t total = stepCount(scene.duration, scene.dt, "--duration");
     std::optional<FixedTimestepClock> clock;
     if (options.frameRate)
         clock.emplace(scene.dt);
-    const study::JetWatch::Attachment attached = jet.attach(world);
+    const study::JetWatch::Attachment attached = watches.jet.attach(world);
     Progress progress("simulating", static_cast<long>(total)); // a bar on a terminal, after a second
     try {
         while (world.stepCount() < total) {
             const std::uint64_t now = clock ? static_cast<std::uint64_t>(clock->advance(1.0 / *options.frameRate)) : 1;
             for (std::uint64_t k = 0; k < now && world.stepCount() < total; ++k) {
                 world.step(scene.dt);
-                watch.check(world);
-                jet.record(world);
-                rigid.record(world);
+                watches.record(world);
                 record();
                 if (world.stepCount() % 1024 == 0)
                     progress.update(static_cast<long>(world.stepCount()));
@@ -211,12 +208,10 @@ int runSim(const SimOptions& options)
     }
     World& world = scene.world;
     StepRecord record(world, csv.get(), options.swarmParticles);
-    BlowUpWatch watch(world);
-    study::JetWatch jet(world);
-    study::RigidWatch rigid(world);
+    RunWatches watches(scene);
     record();
     try {
-        stepToEnd(options, scene, record, watch, jet, rigid);
+        stepToEnd(options, scene, record, watches);
     } catch (const BlowUpError& error) {
         if (csv)
             csv->commit(); // the rows so far are valid, up to the last finite step
@@ -225,7 +220,8 @@ int runSim(const SimOptions& options)
     }
     if (csv)
         csv->commit();
-    printSummary(scene, world, record.summary(), jet, rigid, watch, options.everyParticle);
+    watches.finish(world);
+    printSummary(scene, world, record.summary(), watches, options.everyParticle);
     if (options.out)
         fmt::print("wrote {} to {}\n", options.swarmParticles ? "every body and swarm particle at every step"
                                                               : fmt::format("{} rows", (world.stepCount() + 1) * world.bodyCount()),

@@ -12,10 +12,21 @@
 #include "pba/particle.hpp"
 #include "pba/rigid_body.hpp"
 #include "render/body_groups.hpp"
+#include "study/mound.hpp"
 
 namespace pba::app {
 
 namespace {
+
+/// Which bodies are a rope's or cloth's particles.
+std::vector<bool> fabricMembers(const Scene& scene)
+{
+    const render::BodyGroups groups(scene.world, scene.fabric);
+    std::vector<bool> in(scene.world.bodyCount());
+    for (std::size_t i = 0; i < in.size(); ++i)
+        in[i] = groups.inFabric(i);
+    return in;
+}
 
 /// Whether `exact` acts as `reflect` on some body of this run: a coupled one that XPBD does not
 /// step (XPBD meets the room in each substep, under any response).
@@ -58,6 +69,10 @@ void printSwarmSummary(const World& world)
                    "mean speed {:.3f} m/s, {} outside the surfaces\n",
                    swarm.name(), swarm.size(), integratorName(swarm.integrator()), mean.x / n, mean.y / n, mean.z / n,
                    low, high, speed / n, outside);
+        if (swarm.desc().collide)
+            fmt::print("swarm {}: its grains' mound stands at {:.1f} degrees (a line through each ring's highest grain "
+                       "about its axis), the deepest two grains overlap by {:.3f} of a radius\n", swarm.name(), study::angleOfRepose(swarm),
+                       study::deepestGrainOverlap(swarm));
     }
 }
 
@@ -207,10 +222,40 @@ void printRigidSummary(const World& world, const study::RigidWatch& rigid)
             parts.push_back(fmt::format("slides on {} without turning from t = {:.3f} to {:.3f} s, its speed changing "
                                         "at {:.3f} m/s^2", f.slide->on, f.slide->from, f.slide->to,
                                         f.slide->acceleration));
+        if (f.largestTilt)
+            parts.push_back(fmt::format("its start's up tilted by up to {:.1f} degrees", *f.largestTilt));
+        if (f.highs.size() >= 2)
+            parts.push_back(fmt::format("at its highest every {:.4f} s on average ({} times)",
+                                        (f.highs.back() - f.highs.front()) / double(f.highs.size() - 1), f.highs.size()));
         parts.push_back(fmt::format("spins at {:.3g} rad/s on average", f.meanSpin));
         fmt::print("  {}: {}\n", f.name, fmt::join(parts, "; "));
     }
     printPipelineSummary(world, rigid.pipeline());
+}
+
+/// What the balls (particles with a radius) did, as the ball watch saw them every tenth step.
+void printBallSummary(const World& world, const study::BallFigures& f)
+{
+    if (f.balls == 0)
+        return;
+    std::vector<std::string> parts;
+    if (f.balls >= 2)
+        parts.push_back(f.deepestPair > 0.0 ? fmt::format("two that collide overlapped by {:.2g}% of the smaller's "
+                                                          "diameter at most (t = {:.2f} s)", 100.0 * f.deepestPair,
+                                                          f.deepestPairAt)
+                                            : std::string("no two that collide overlapped"));
+    if (world.hasRigidBodies())
+        parts.push_back(f.deepestInBody > 0.0 ? fmt::format("one went {:.2f} mm into '{}' at most (t = {:.2f} s)",
+                                                            1e3 * f.deepestInBody, f.deepestBody, f.deepestInBodyAt)
+                                              : std::string("none went into a rigid body"));
+    if (f.freeBalls >= 2)
+        parts.push_back(f.oneGroupFrom ? fmt::format("the {} free balls touch as one group (within {:g} mm) from "
+                                                     "t = {:.2f} s to the end", f.freeBalls, 1e3 * study::BallWatch::kTouch,
+                                                     *f.oneGroupFrom)
+                                       : fmt::format("the {} free balls are not one touching group at the end",
+                                                     f.freeBalls));
+    fmt::print("balls ({} particles with a radius, looked at every {} steps): {}\n", f.balls,
+               study::BallWatch::kEvery, fmt::join(parts, "; "));
 }
 
 /// E now / E start to six places, or, where those read 1.000000 and it is not 1, how far from
@@ -293,6 +338,24 @@ void printSystemRows(const World& world, const render::BodyGroups& groups, const
     }
 }
 
+/// Where each rope's and cloth's particles are at the end, and the fastest of them: a sheet lying
+/// in folds, a sheet come to rest.
+void printFabricEnds(const World& world, const render::BodyGroups& groups)
+{
+    for (const render::BodyGroup& g : groups.groups()) {
+        if (!g.fabric() || g.members.empty())
+            continue;
+        double low = INFINITY, high = -INFINITY, fastest = 0.0;
+        for (const std::size_t i : g.members) {
+            low = std::min(low, world.body(i).getPos().y);
+            high = std::max(high, world.body(i).getPos().y);
+            fastest = std::max(fastest, glm::length(world.body(i).getVel()));
+        }
+        fmt::print("{} {} at the end: its particles {:.3f} to {:.3f} m high, the fastest at {:.3g} m/s\n",
+                   g.kind == render::BodyGroup::Kind::Rope ? "rope" : "cloth", g.name, low, high, fastest);
+    }
+}
+
 /// The energy the dryer's work leaves unexplained, as a balance in joules: E start + W - E now is
 /// what bounces, contacts and the integration took (or gave). A ratio (E now - W) / E start read
 /// as an energy ratio, and went negative where the dryer's work outgrew the start's energy.
@@ -309,8 +372,8 @@ void printDryerBalance(double start, double work, double now)
 }
 
 /// The whole scene's energy and momentum, now and at the start (swarms not included), of its
-/// moving bodies where some are fixed (movingEnergy).
-void printSceneTotals(const World& world, const render::BodyGroups& groups, const std::vector<BodySummary>& summary,
+/// moving bodies where some are fixed (movingEnergy). Returns the start's energy.
+double printSceneTotals(const World& world, const render::BodyGroups& groups, const std::vector<BodySummary>& summary,
                       const std::vector<double>& energies, const study::JetWatch& jet, double sourceWork)
 {
     std::vector<double> startEnergies(world.bodyCount());
@@ -331,11 +394,12 @@ void printSceneTotals(const World& world, const render::BodyGroups& groups, cons
                vectorText(momentum), vectorText(startMomentum));
     if (dryerWorked(jet, all))
         printDryerBalance(start, sourceWork, energy);
+    return start;
 }
 
 /// The largest rise of the energy (less a dryer's work) from one step to the next: what a
 /// description's "its energy never grows" claims.
-void printLargestStepRise(const World& world, const BlowUpWatch& watch)
+void printLargestStepRise(const World& world, const BlowUpWatch& watch, double startEnergy)
 {
     if (world.bodyCount() == 0 || !watch.watchesGrowth())
         return;
@@ -343,8 +407,10 @@ void printLargestStepRise(const World& world, const BlowUpWatch& watch)
     const std::string less = watch.hasSources() ? " less the dryer's work" : ""; // a scene's one source
     const double rise = watch.largestStepRise(), rounding = 1e-12 * watch.energyScale();
     if (rise > rounding)
-        fmt::print("the energy{} rose by at most {:.2g} J in one step (t = {:.3f} s)\n", less, rise,
-                   watch.largestStepRiseAt());
+        fmt::print("the energy{} rose by at most {:.2g} J in one step (t = {:.3f} s){}\n", less, rise,
+                   watch.largestStepRiseAt(), startEnergy > 0.0 ? fmt::format(", {:.2g}% of the start's energy",
+                                                                             100.0 * rise / startEnergy)
+                                                                : std::string());
     else if (rise > 0.0)
         fmt::print("the energy{} never rose from one step to the next by more than rounding ({:.2g} J at most, of a "
                    "scale of {:.3g} J)\n", less, rise, watch.energyScale());
@@ -354,9 +420,24 @@ void printLargestStepRise(const World& world, const BlowUpWatch& watch)
 
 } // namespace
 
-void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary,
-                  const study::JetWatch& jet, const study::RigidWatch& rigid, const BlowUpWatch& watch, bool everyParticle)
+RunWatches::RunWatches(const Scene& scene)
+    : blowUp(scene.world), jet(scene.world), rigid(scene.world), balls(scene.world, fabricMembers(scene))
 {
+}
+
+void RunWatches::record(const World& world)
+{
+    blowUp.check(world);
+    jet.record(world);
+    rigid.record(world);
+    balls.record(world);
+}
+
+void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary,
+                  const RunWatches& watches, bool everyParticle)
+{
+    const study::JetWatch& jet = watches.jet;
+    const BlowUpWatch& watch = watches.blowUp;
     const double sourceWork = watch.sourceWork();
     // A run takes round(duration / dt) steps, at least one: where that is not the duration, the
     // line says so rather than let t = 20 s on a 10 s scene look like a bug.
@@ -377,9 +458,11 @@ void printSummary(const Scene& scene, const World& world, const std::vector<Body
     const std::vector<double> energies = world.energies();
     printBodyRows(world, groups, summary, energies, jet, everyParticle);
     printSystemRows(world, groups, summary, energies, jet);
-    printSceneTotals(world, groups, summary, energies, jet, sourceWork);
-    printLargestStepRise(world, watch);
-    printRigidSummary(world, rigid);
+    printFabricEnds(world, groups);
+    const double startEnergy = printSceneTotals(world, groups, summary, energies, jet, sourceWork);
+    printLargestStepRise(world, watch, startEnergy);
+    printRigidSummary(world, watches.rigid);
+    printBallSummary(world, watches.balls.figures());
     printSwarmSummary(world);
     printJetSummary(world, jet, groups, everyParticle);
 }

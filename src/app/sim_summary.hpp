@@ -5,6 +5,7 @@
 
 #include "pba/blow_up_watch.hpp"
 #include "pba/scene/scene.hpp"
+#include "study/ball_watch.hpp"
 #include "study/jet_watch.hpp"
 #include "study/rigid_watch.hpp"
 
@@ -17,15 +18,28 @@ struct BodySummary {
     double highest = -INFINITY;
 };
 
+/// What `pba sim` watches over a run, each after every step: whether it blows up, and what the
+/// jet, the rigid bodies and the balls did.
+struct RunWatches {
+    explicit RunWatches(const Scene& scene);
+    /// After every step; throws BlowUpError (BlowUpWatch::check) before the others look.
+    void record(const World& world);
+    /// After the last step.
+    void finish(const World& world) { balls.finish(world); }
+    BlowUpWatch blowUp;
+    study::JetWatch jet;
+    study::RigidWatch rigid;
+    study::BallWatch balls;
+};
+
 /// The run's summary on stdout: the scene's steps, a row per body that is no rope's or cloth's
 /// (its final position and speed, highest point, bounces and energy ratio), a row per rope and
 /// cloth (its totals), the whole scene's energy and momentum, then the rigid bodies', the swarms'
 /// and the jet's figures where the scene has them. Where the blow dryer pushed a body, its energy
 /// ratio says so: the dryer's work, not an error; the scene's line gives that work
-/// (`sourceWork`, BlowUpWatch's sum of its power) and the ratio without it. `everyParticle` adds
+/// (BlowUpWatch's sum of its power) and the ratio without it. `everyParticle` adds
 /// a row per particle of each rope and cloth.
 void printSummary(const Scene& scene, const World& world, const std::vector<BodySummary>& summary,
-                  const study::JetWatch& jet, const study::RigidWatch& rigid, const BlowUpWatch& watch,
-                  bool everyParticle = false);
+                  const RunWatches& watches, bool everyParticle = false);
 
 } // namespace pba::app

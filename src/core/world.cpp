@@ -565,4 +565,9 @@ std::vector<Wrench> World::sourceWrenches(std::span<const State> at) const
     return wrenches;
 }
 
+bool World::ballsCollide(std::size_t a, std::size_t b) const
+{
+    return m_bodies.radii[a] > 0.0 && m_bodies.radii[b] > 0.0 && !m_particleSystems.neighbours->near(a, b);
+}
+
 } // namespace pba

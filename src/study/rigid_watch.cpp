@@ -64,6 +64,19 @@ std::pair<std::string, double> faceDown(const RigidBody& box, const dvec3& gravi
     return {face, std::acos(std::min(std::abs(down[axis]), 1.0)) * 180.0 / pi};
 }
 
+/// Up: against gravity, or +y in zero g.
+dvec3 upOf(const World& world)
+{
+    const dvec3 g = world.gravity();
+    return glm::length(g) > 0.0 ? -glm::normalize(g) : dvec3(0.0, 1.0, 0.0);
+}
+
+/// The time between two samples where the straight line through their values crosses zero.
+double crossing(double before, double beforeAt, double now, double nowAt)
+{
+    return beforeAt + (nowAt - beforeAt) * before / (before - now);
+}
+
 } // namespace
 
 RigidWatch::RigidWatch(const World& world)
@@ -80,6 +93,18 @@ RigidWatch::RigidWatch(const World& world)
         t.momentum0 = glm::length(body.getAngularMomentum());
         if (!(t.energy0 > 0.0 && t.momentum0 > 0.0))
             t.figures.energyDrift = t.figures.momentumDrift = std::numeric_limits<double>::quiet_NaN();
+        if (body.getShape().type != ShapeType::Sphere) {
+            t.startUp = glm::transpose(glm::mat3_cast(body.getOrientation())) * upOf(world);
+            t.figures.largestTilt = 0.0;
+        }
+        // Hung from the world alone (a pendulum's bob, a cradle's ball): its highs are its swing's.
+        bool toOthers = false;
+        for (std::size_t j = 0; j < world.jointCount(); ++j) {
+            const JointFrame frame = world.jointFrame(j);
+            t.hung = t.hung || (frame.bodyA == i && !frame.bodyB);
+            toOthers = toOthers || (frame.bodyB && (frame.bodyA == i || *frame.bodyB == i));
+        }
+        t.hung = t.hung && !toOthers;
         look(world, t, Touch{});
         m_tracks.push_back(t);
     }
@@ -208,9 +233,21 @@ void RigidWatch::look(const World& world, Track& t, const Touch& touch) const
         // The crossing between the samples, not the step after it: a flip's time to a small
         // fraction of dt rather than to dt (the sign changes once in a step, at the scenes' dt).
         if (middle * t.lastMiddle < 0.0)
-            f.flips.push_back(t.lastMiddleAt + (now - t.lastMiddleAt) * t.lastMiddle / (t.lastMiddle - middle));
+            f.flips.push_back(crossing(t.lastMiddle, t.lastMiddleAt, middle, now));
         if (middle != 0.0)
             t.lastMiddle = middle, t.lastMiddleAt = now;
+    }
+    const dvec3 up = upOf(world);
+    if (f.largestTilt) {
+        const double cosine = glm::dot(glm::mat3_cast(body.getOrientation()) * t.startUp, up);
+        f.largestTilt = std::max(*f.largestTilt, std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / std::acos(-1.0));
+    }
+    if (t.hung) {
+        const double rise = glm::dot(body.getVel(), up);
+        if (t.lastRise > 0.0 && rise < 0.0)
+            f.highs.push_back(crossing(t.lastRise, t.lastRiseAt, rise, now));
+        if (rise != 0.0)
+            t.lastRise = rise, t.lastRiseAt = now;
     }
     // NaN (and so never "free") for a body that started without a spin: no ratio to keep.
     f.energyDrift = std::max(f.energyDrift, std::abs(body.getRotationalKineticEnergy() / t.energy0 - 1.0));

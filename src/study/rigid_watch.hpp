@@ -41,6 +41,13 @@ struct RigidFigures {
     static constexpr double kLeastSlide = 0.1; ///< s
     /// and at least this far: a box held at the friction angle creeps a few hundredths of a millimetre
     static constexpr double kLeastSlideDistance = 1e-3; ///< m
+    /// Not a sphere: the largest angle (degrees) by which the body's own axis that pointed up at
+    /// the start tilted away from up over the run: a box rocking in the jet, a domino falling.
+    std::optional<double> largestTilt;
+    /// A body joined to the world and to no other body: the times its centre was at its highest
+    /// (its upward speed changing sign, between the steps as flips): a pendulum's turning points,
+    /// two a period.
+    std::vector<double> highs;
     double meanSpin = 0.0;             ///< |w| over the run, rad/s
     double energyDrift = 0.0;          ///< the largest |E_rot / E_rot(0) - 1| over the run; NaN without a spin at 0
     double momentumDrift = 0.0;        ///< the largest ||L| / |L(0)| - 1| over the run; NaN as energyDrift
@@ -95,6 +102,9 @@ private:
         double lastMiddle = 0.0; ///< the last nonzero angular velocity about it
         double lastMiddleAt = 0.0; ///< the time it was seen
         double energy0 = 0.0, momentum0 = 0.0, spinSum = 0.0;
+        dvec3 startUp{0.0};      ///< up at the start, in the body's frame; zero for a sphere
+        bool hung = false;       ///< joined to the world and to no other body: its highs are recorded
+        double lastRise = 0.0, lastRiseAt = 0.0; ///< its last nonzero upward speed and when
         long steps = 0;
         /// The slide going on: its surface (a world index, or kRoom) and its speed's sums for
         /// the least-squares slope, times from its start.

@@ -16,9 +16,11 @@
 
 #include "pba/scene/scene.hpp"
 #include "pba/world.hpp"
+#include "study/mound.hpp"
 #include "support/scene_claim.hpp"
 
 using namespace pba;
+using pba::study::angleOfRepose;
 
 namespace {
 
@@ -38,40 +40,6 @@ World pour(double mu, int threads, double seconds = 0.0)
     return world;
 }
 
-/// The mound's angle, degrees: around the vertical axis through the grains' mean, the
-/// highest grain centre in each ring one grain wide, out to the ring within which 95% of the
-/// grains lie; a least-squares line through (ring's middle, height), and the atan of its fall.
-/// A cone of half-angle 90° - theta reads theta; a flat layer reads 0.
-double angleOfRepose(const Swarm& grains)
-{
-    const std::size_t n = grains.size();
-    double cx = 0.0, cz = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-        cx += grains.position(i).x;
-        cz += grains.position(i).z;
-    }
-    cx /= double(n), cz /= double(n);
-    std::vector<double> rho(n);
-    for (std::size_t i = 0; i < n; ++i)
-        rho[i] = std::hypot(grains.position(i).x - cx, grains.position(i).z - cz);
-    std::vector<double> sorted = rho;
-    std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(n * 95 / 100), sorted.end());
-    const double edge = sorted[n * 95 / 100], ring = 2.0 * grains.radius();
-    std::vector<double> top(std::size_t(std::ceil(edge / ring)), -1.0);
-    for (std::size_t i = 0; i < n; ++i)
-        if (rho[i] < edge)
-            top[std::size_t(rho[i] / ring)] = std::max(top[std::size_t(rho[i] / ring)], double(grains.position(i).y));
-    double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0, m = 0.0;
-    for (std::size_t b = 0; b < top.size(); ++b) {
-        if (top[b] < 0.0)
-            continue; // an empty ring
-        const double x = (double(b) + 0.5) * ring;
-        sx += x, sy += top[b], sxx += x * x, sxy += x * top[b], m += 1.0;
-    }
-    const double slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
-    return std::atan(-slope) * 180.0 / std::numbers::pi;
-}
-
 double deepestOverlap(const Swarm& grains) // of two grains, in radii
 {
     double deepest = 0.0;
@@ -89,6 +57,7 @@ SCENE_CLAIM(GranularSceneClaims, GrainsDumpedOntoOneSpotMoundWithoutOverlapping,
     World world = pour(0.6, 0);
     const Swarm& grains = world.swarm(0);
     EXPECT_LT(deepestOverlap(grains), 0.1);
+    EXPECT_NEAR(study::deepestGrainOverlap(grains), deepestOverlap(grains), 1e-6) << "sim's figure, by its grid";
     EXPECT_GT(angleOfRepose(grains), 25.0);
     // And it stands: over the next 4 s nearly every grain stays within a millimetre of where it was.
     std::vector<double> start(grains.size() * 3);

@@ -227,3 +227,46 @@ TEST(RigidWatch, ABallRollsOnlyWhereItsContactDoesNotSlip)
 
 } // namespace
 } // namespace pba::study
+
+namespace pba::study {
+namespace {
+
+// The pendulum's bob is at its highest twice a period: every 2 sqrt(I / (m g l)) K(sin 30 degrees)
+// for its 60-degree swing (I about the pivot), as its description says.
+TEST(RigidWatch, APendulumIsAtItsHighestEveryHalfPeriod)
+{
+    Scene scene = loadScene("pendulum");
+    const std::vector<RigidFigures> figures = watched(scene);
+    ASSERT_EQ(figures.size(), 1u);
+    const RigidFigures& bob = figures[0];
+    ASSERT_GE(bob.highs.size(), 10u);
+    const double r = 0.1, l = 1.0, g = 9.81, inertia = 0.4 * r * r + l * l; // per kilogram
+    const double half = 2.0 * std::sqrt(inertia / (g * l)) * std::comp_ellint_1(0.5);
+    EXPECT_NEAR((bob.highs.back() - bob.highs.front()) / double(bob.highs.size() - 1), half, 1e-3 * half);
+    EXPECT_FALSE(bob.largestTilt.has_value()) << "a sphere has no up of its own";
+}
+
+// A cube turning about z at a steady w in zero g, free of torques: its start's up tilts by w t
+// until it passes a half turn, the largest angle being the last step's.
+TEST(RigidWatch, ABodysLargestTiltIsHowFarItsStartsUpTurned)
+{
+    World world;
+    auto cube = std::make_unique<RigidBody>(Shape::box(dvec3(0.2)), 500.0);
+    cube->setName("cube");
+    cube->setPos(dvec3(0.0, 1.0, 0.0));
+    const double w = 0.5;
+    cube->setAngularVelocity(dvec3(0.0, 0.0, w));
+    world.addBody(std::move(cube));
+    RigidWatch watch(world);
+    for (int n = 0; n < 1000; ++n) {
+        world.step(0.002);
+        watch.record(world);
+    }
+    const RigidFigures f = watch.bodies(world).at(0);
+    ASSERT_TRUE(f.largestTilt.has_value());
+    EXPECT_NEAR(*f.largestTilt, w * 2.0 * 180.0 / std::acos(-1.0), 1e-4); // the rotation's own rounding
+    EXPECT_TRUE(f.highs.empty()) << "no joint: no swing";
+}
+
+} // namespace
+} // namespace pba::study

@@ -1,0 +1,52 @@
+#pragma once
+// What the balls (particles with a radius) did over a run, looked at every tenth step: how far two
+// that collide went into each other, how far one went into a rigid body, and when the balls that
+// are no rope's or cloth's came together in one touching group. `pba sim` prints these, so that
+// descriptions such as "no particle is ever inside the box" say what it measures.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pba/world.hpp"
+
+namespace pba::study {
+
+struct BallFigures {
+    std::size_t balls = 0;       ///< particles with a radius
+    /// Two balls that collide (World::ballsCollide): their deepest overlap, as a share of the
+    /// smaller one's diameter, and when.
+    double deepestPair = 0.0, deepestPairAt = 0.0;
+    /// A ball and a rigid body: how far the ball went into it (m), which body, and when.
+    double deepestInBody = 0.0, deepestInBodyAt = 0.0;
+    std::string deepestBody;
+    /// The free balls (moving, in no rope or cloth), when there are two or more: every one of them
+    /// touching another, all in one group, from then to the end.
+    std::size_t freeBalls = 0;
+    std::optional<double> oneGroupFrom;
+};
+
+class BallWatch {
+public:
+    /// `inFabric[i]`: body i is a rope's or cloth's particle.
+    BallWatch(const World& world, const std::vector<bool>& inFabric);
+    bool active() const { return !m_balls.empty(); }
+    /// Call after every step; it looks every kEvery steps.
+    void record(const World& world);
+    /// Call after the last step: it looks there too.
+    void finish(const World& world);
+    static constexpr int kEvery = 10;
+    /// Two balls touch when their surfaces are this close (m).
+    static constexpr double kTouch = 1e-3;
+    const BallFigures& figures() const { return m_figures; }
+
+private:
+    void look(const World& world);
+    std::vector<std::size_t> m_balls;     ///< world indices of the particles with a radius
+    std::vector<double> m_radii;
+    std::vector<bool> m_free;             ///< of m_balls: in the touching group
+    std::vector<std::size_t> m_bodies;    ///< the rigid bodies
+    long m_steps = 0;
+    BallFigures m_figures;
+};
+
+} // namespace pba::study
