@@ -492,6 +492,27 @@ TEST(PbaSim, ContactsJointsAndTheEnergysStepsAreMeasured)
     EXPECT_EQ(drop.out.find("joints:"), std::string::npos) << "no joints, no line";
 }
 
+// What the descriptions claim of tilts, swings, balls and heaps, sim measures: the pendulum at
+// its highest every half period, the light box in the jet tilting by up to 26.5 degrees, the
+// sheet never more than a millimetre into the box and at rest, the balls in the dryer one clump
+// from 2.3 s, the grains' mound steep and their overlaps small.
+TEST(PbaSim, TiltsSwingsBallsAndHeapsAreMeasured)
+{
+    const CommandResult pendulum = runPba("sim pendulum --duration 5");
+    ASSERT_EQ(pendulum.exitCode, 0) << pendulum.err;
+    EXPECT_NEAR(numberAfter(pendulum.out, "at its highest every "), 2.1572 / 2.0, 1e-3) << pendulum.out;
+    const CommandResult boxes = runPba("sim blow-dryer-boxes");
+    EXPECT_NEAR(numberAfter(boxes.out, "light: moving at the end; its start's up tilted by up to "), 26.5, 0.5) << boxes.out;
+    const CommandResult sheet = runPba("sim cloth-on-box");
+    EXPECT_LT(numberAfter(sheet.out, "one went "), 1.0) << sheet.out; // mm
+    EXPECT_LT(numberAfter(sheet.out, "the fastest at "), 0.01) << sheet.out;
+    const CommandResult balls = runPba("sim balls-in-the-dryer --duration 10");
+    EXPECT_NEAR(numberAfter(balls.out, "touch as one group (within 1 mm) from t = "), 2.3, 0.1) << balls.out;
+    const CommandResult grains = runPba("sim granular");
+    EXPECT_GT(numberAfter(grains.out, "mound stands at "), 25.0) << grains.out;
+    EXPECT_LT(numberAfter(grains.out, "the deepest two grains overlap by "), 0.1) << grains.out;
+}
+
 // A body with no energy at the start has no ratio: a dash, where one set moving by a joint read 1.
 TEST(PbaSim, NoEnergyAtTheStartIsNoRatio)
 {
