@@ -12,6 +12,7 @@
 #include "pba/particle.hpp"
 #include "pba/rigid_body.hpp"
 #include "render/body_groups.hpp"
+#include "study/exact_solution.hpp"
 #include "study/mound.hpp"
 
 namespace pba::app {
@@ -66,12 +67,13 @@ void printSwarmSummary(const World& world)
         }
         const double n = double(swarm.size());
         fmt::print("swarm {}: {} particles ({}), mean position ({:.3f}, {:.3f}, {:.3f}), height {:.3f} to {:.3f}, "
-                   "mean speed {:.3f} m/s, {} outside the surfaces\n",
+                   "mean speed {:.3f} m/s, {} beyond the room's surfaces{}\n",
                    swarm.name(), swarm.size(), integratorName(swarm.integrator()), mean.x / n, mean.y / n, mean.z / n,
-                   low, high, speed / n, outside);
+                   low, high, speed / n, outside, world.floorHole() ? " (those in the floor's hole not counted)" : "");
         if (swarm.desc().collide)
             fmt::print("swarm {}: its grains' mound stands at {:.1f} degrees (a line through each ring's highest grain "
-                       "about its axis), the deepest two grains overlap by {:.3f} of a radius\n", swarm.name(), study::angleOfRepose(swarm),
+                       "about its axis), the deepest two grains overlap by {:.3f} of a radius\n", swarm.name(),
+                       study::angleOfRepose(swarm) + 0.0, // (a flat layer's -0 reads 0)
                        study::deepestGrainOverlap(swarm));
     }
 }
@@ -175,7 +177,7 @@ void printPipelineSummary(const World& world, const study::PipelineFigures& p)
         rigidBodies += world.isRigid(i) ? 1 : 0;
     std::vector<std::string> parts;
     if (rigidBodies >= 2)
-        parts.push_back(p.deepestOverlap > 0.0 ? fmt::format("the deepest overlap of two bodies {:.2f} mm (t = {:.3f} s)",
+        parts.push_back(p.deepestOverlap > 0.0 ? fmt::format("the deepest overlap of two bodies {:.3g} mm (t = {:.3f} s)",
                                                              1e3 * p.deepestOverlap, p.deepestAt)
                                                : std::string("no two bodies overlapped"));
     if (p.asleepFrom)
@@ -192,6 +194,12 @@ void printPipelineSummary(const World& world, const study::PipelineFigures& p)
                *p.widest, joining, p.widestAt);
 }
 
+/// A length in millimetres under 10 cm, else in metres.
+std::string distanceText(double metres)
+{
+    return metres < 0.1 ? fmt::format("{:.2f} mm", 1e3 * metres) : fmt::format("{:.3f} m", metres);
+}
+
 /// What each rigid body did, as the watch measured it: the parts that apply to it.
 void printRigidSummary(const World& world, const study::RigidWatch& rigid)
 {
@@ -199,6 +207,7 @@ void printRigidSummary(const World& world, const study::RigidWatch& rigid)
         return;
     fmt::print("rigid bodies (still: |v| < {:g} m/s and |w| < {:g} rad/s; rolling: the contact slips slower than {:g} "
                "m/s):\n", study::kStill, study::kStill, study::kNoSlip);
+    double nearest = INFINITY, farthest = 0.0;
     for (const study::RigidFigures& f : rigid.bodies(world)) {
         std::vector<std::string> parts;
         if (!f.stillFrom)
@@ -223,21 +232,29 @@ void printRigidSummary(const World& world, const study::RigidWatch& rigid)
                                         "at {:.3f} m/s^2", f.slide->on, f.slide->from, f.slide->to,
                                         f.slide->acceleration));
         if (f.largestTilt)
-            parts.push_back(fmt::format("its start's up tilted by up to {:.1f} degrees", *f.largestTilt));
+            parts.push_back(fmt::format("its start's up tilted by up to {:.2f} degrees{}", *f.largestTilt,
+                                        f.tippedAt ? fmt::format(" (past 45 at t = {:.3f} s)", *f.tippedAt)
+                                                   : std::string()));
         if (f.highs.size() >= 2)
             parts.push_back(fmt::format("at its highest every {:.4f} s on average ({} times)",
                                         (f.highs.back() - f.highs.front()) / double(f.highs.size() - 1), f.highs.size()));
         parts.push_back(fmt::format("spins at {:.3g} rad/s on average", f.meanSpin));
+        parts.push_back(fmt::format("ends {} from its start", distanceText(f.fromStart)));
         fmt::print("  {}: {}\n", f.name, fmt::join(parts, "; "));
+        nearest = std::min(nearest, f.fromStart);
+        farthest = std::max(farthest, f.fromStart);
     }
+    if (nearest < farthest)
+        fmt::print("  moved: the moving bodies end {} to {} from where they started\n", distanceText(nearest),
+                   distanceText(farthest));
     printPipelineSummary(world, rigid.pipeline());
 }
 
 /// What the balls (particles with a radius) did, as the ball watch saw them every tenth step.
 void printBallSummary(const World& world, const study::BallFigures& f)
 {
-    if (f.balls == 0)
-        return;
+    if (f.balls == 0 || (f.balls == 1 && !world.hasRigidBodies()))
+        return; // a lone ball in a room: nothing to say
     std::vector<std::string> parts;
     if (f.balls >= 2)
         parts.push_back(f.deepestPair > 0.0 ? fmt::format("two that collide overlapped by {:.2g}% of the smaller's "
@@ -254,7 +271,7 @@ void printBallSummary(const World& world, const study::BallFigures& f)
                                                      *f.oneGroupFrom)
                                        : fmt::format("the {} free balls are not one touching group at the end",
                                                      f.freeBalls));
-    fmt::print("balls ({} particles with a radius, looked at every {} steps): {}\n", f.balls,
+    fmt::print("balls ({} particle{} with a radius, looked at every {} steps): {}\n", f.balls, f.balls == 1 ? "" : "s",
                study::BallWatch::kEvery, fmt::join(parts, "; "));
 }
 
@@ -338,37 +355,57 @@ void printSystemRows(const World& world, const render::BodyGroups& groups, const
     }
 }
 
-/// Where each rope's and cloth's particles are at the end, and the fastest of them: a sheet lying
-/// in folds, a sheet come to rest.
+/// Where each rope's and cloth's particles are at the end, the fastest of them, and how many
+/// bounced: a sheet lying in folds, a sheet come to rest, a rope's end striking the floor.
 void printFabricEnds(const World& world, const render::BodyGroups& groups)
 {
     for (const render::BodyGroup& g : groups.groups()) {
         if (!g.fabric() || g.members.empty())
             continue;
         double low = INFINITY, high = -INFINITY, fastest = 0.0;
+        std::uint64_t most = 0;
+        std::size_t bounced = 0;
         for (const std::size_t i : g.members) {
             low = std::min(low, world.body(i).getPos().y);
             high = std::max(high, world.body(i).getPos().y);
             fastest = std::max(fastest, glm::length(world.body(i).getVel()));
+            most = std::max(most, world.bounceCount(i));
+            bounced += world.bounceCount(i) > 0 ? 1 : 0;
         }
-        fmt::print("{} {} at the end: its particles {:.3f} to {:.3f} m high, the fastest at {:.3g} m/s\n",
-                   g.kind == render::BodyGroup::Kind::Rope ? "rope" : "cloth", g.name, low, high, fastest);
+        fmt::print("{} {} at the end: its particles {:.3f} to {:.3f} m high, the fastest at {:.3g} m/s; {}\n",
+                   g.kind == render::BodyGroup::Kind::Rope ? "rope" : "cloth", g.name, low, high, fastest,
+                   bounced == 0 ? std::string("none bounced")
+                                : fmt::format("{} of its {} particles bounced, up to {} times", bounced,
+                                              g.members.size(), most));
     }
+}
+
+/// What may take a scene's energy, for its balance: bounces, contacts, its drag and damped springs
+/// where it has them, and the integration.
+std::string whatTakesEnergy(const World& world)
+{
+    const study::ForceKinds kinds = study::forceKinds(world);
+    std::string text = "bounces, contacts";
+    if (kinds.drag)
+        text += ", drag";
+    if (kinds.dampedSprings)
+        text += ", the springs' damping";
+    return text + " and the integration";
 }
 
 /// The energy the dryer's work leaves unexplained, as a balance in joules: E start + W - E now is
 /// what bounces, contacts and the integration took (or gave). A ratio (E now - W) / E start read
 /// as an energy ratio, and went negative where the dryer's work outgrew the start's energy.
-void printDryerBalance(double start, double work, double now)
+void printDryerBalance(const World& world, double start, double work, double now)
 {
     const double lost = start + work - now;
     const std::string share = start > 0.0 ? fmt::format(", {:.3g}% of the start's energy", 100.0 * std::abs(lost) / start)
                                           : std::string();
     fmt::print("(+ the dryer's work): the blow dryer did {:.6g} J of work on the bodies in its cone (its force as "
                "each body's integrator applies it, against each step's mean velocity), so their energy is not kept; "
-               "the balance: {:.6g} J at the start + {:.6g} J of work - {:.6g} J now = {:.3g} J {} by bounces, "
-               "contacts and the integration{}\n",
-               work, start, work, now, std::abs(lost), lost >= 0.0 ? "taken" : "given", share);
+               "the balance: {:.6g} J at the start {} {:.6g} J of work - {:.6g} J now = {:.3g} J {} by {}{}\n",
+               work, start, work < 0.0 ? '-' : '+', std::abs(work), now, std::abs(lost), lost >= 0.0 ? "taken" : "given",
+               whatTakesEnergy(world), share);
 }
 
 /// The whole scene's energy and momentum, now and at the start (swarms not included), of its
@@ -393,7 +430,7 @@ double printSceneTotals(const World& world, const render::BodyGroups& groups, co
                energyRatioText(energy, start), dryerWorked(jet, all) ? kDryerNote : "",
                vectorText(momentum), vectorText(startMomentum));
     if (dryerWorked(jet, all))
-        printDryerBalance(start, sourceWork, energy);
+        printDryerBalance(world, start, sourceWork, energy);
     return start;
 }
 
@@ -412,8 +449,8 @@ void printLargestStepRise(const World& world, const BlowUpWatch& watch, double s
                                                                              100.0 * rise / startEnergy)
                                                                 : std::string());
     else if (rise > 0.0)
-        fmt::print("the energy{} never rose from one step to the next by more than rounding ({:.2g} J at most, of a "
-                   "scale of {:.3g} J)\n", less, rise, watch.energyScale());
+        fmt::print("the energy{} never rose from one step to the next by more than rounding ({:.2g} J at most, "
+                   "of energy terms adding up to {:.3g} J)\n", less, rise, watch.energyScale());
     else
         fmt::print("the energy{} never rose from one step to the next\n", less);
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "pba/forces.hpp"
+#include "pba/spring_network.hpp"
 
 namespace pba::study {
 
@@ -46,6 +47,15 @@ ForceKinds forceKinds(const World& world)
         ForceKinds kinds;
         void visit(const Gravity&) override { ++gravities; }
         void visit(const Spring& spring) override { kinds.dampedSprings = kinds.dampedSprings || spring.damping() > 0.0; }
+        void visit(const TwoBodySpring& spring) override
+        {
+            kinds.dampedSprings = kinds.dampedSprings || spring.damping() > 0.0;
+        }
+        void visit(const SpringNetwork& network) override
+        {
+            for (std::size_t l = 0; l < network.size() && !kinds.dampedSprings; ++l)
+                kinds.dampedSprings = network.link(l).damping > 0.0;
+        }
         void visit(const Drag&) override { kinds.drag = true; }
     } collector;
     for (std::size_t i = 0; i < world.forceCount(); ++i)

@@ -10,7 +10,7 @@ namespace pba::study {
 /// Which kinds of force the world has, for what a report may say of it.
 struct ForceKinds {
     bool onlyGravity = true;    ///< no force but gravity
-    bool dampedSprings = false; ///< a spring with damping
+    bool dampedSprings = false; ///< a spring with damping (anchored, between two bodies, or a rope's or cloth's)
     bool drag = false;          ///< the linear `drag` force
 };
 ForceKinds forceKinds(const World& world);

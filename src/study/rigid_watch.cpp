@@ -93,6 +93,7 @@ RigidWatch::RigidWatch(const World& world)
         t.momentum0 = glm::length(body.getAngularMomentum());
         if (!(t.energy0 > 0.0 && t.momentum0 > 0.0))
             t.figures.energyDrift = t.figures.momentumDrift = std::numeric_limits<double>::quiet_NaN();
+        t.start = body.getPos();
         if (body.getShape().type != ShapeType::Sphere) {
             t.startUp = glm::transpose(glm::mat3_cast(body.getOrientation())) * upOf(world);
             t.figures.largestTilt = 0.0;
@@ -241,6 +242,8 @@ void RigidWatch::look(const World& world, Track& t, const Touch& touch) const
     if (f.largestTilt) {
         const double cosine = glm::dot(glm::mat3_cast(body.getOrientation()) * t.startUp, up);
         f.largestTilt = std::max(*f.largestTilt, std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / std::acos(-1.0));
+        if (*f.largestTilt > 45.0 && !f.tippedAt)
+            f.tippedAt = now;
     }
     if (t.hung) {
         const double rise = glm::dot(body.getVel(), up);
@@ -261,6 +264,7 @@ std::vector<RigidFigures> RigidWatch::bodies(const World& world) const
         endSlide(world, t); // a slide that lasts to the end of the run
         RigidFigures f = t.figures;
         f.meanSpin = t.steps > 0 ? t.spinSum / double(t.steps) : 0.0;
+        f.fromStart = glm::length(rigid(world, t.body).getPos() - t.start);
         const RigidBody& body = rigid(world, t.body);
         if (f.stillFrom && body.getShape().type == ShapeType::Box && glm::length(world.gravity()) > 0.0)
             std::tie(f.restingFace, f.tilt) = faceDown(body, world.gravity());

@@ -44,6 +44,8 @@ struct RigidFigures {
     /// Not a sphere: the largest angle (degrees) by which the body's own axis that pointed up at
     /// the start tilted away from up over the run: a box rocking in the jet, a domino falling.
     std::optional<double> largestTilt;
+    std::optional<double> tippedAt;    ///< when that tilt first passed 45 degrees, s (a domino's fall)
+    double fromStart = 0.0;            ///< how far its centre ends from where it started, m
     /// A body joined to the world and to no other body: the times its centre was at its highest
     /// (its upward speed changing sign, between the steps as flips): a pendulum's turning points,
     /// two a period.
@@ -103,6 +105,7 @@ private:
         double lastMiddleAt = 0.0; ///< the time it was seen
         double energy0 = 0.0, momentum0 = 0.0, spinSum = 0.0;
         dvec3 startUp{0.0};      ///< up at the start, in the body's frame; zero for a sphere
+        dvec3 start{0.0};        ///< its centre at the start
         bool hung = false;       ///< joined to the world and to no other body: its highs are recorded
         double lastRise = 0.0, lastRiseAt = 0.0; ///< its last nonzero upward speed and when
         long steps = 0;

@@ -594,6 +594,21 @@ TEST(PbaSim, TheDryersBalanceIsInJoulesWhenTheLossOutgrowsTheStart)
         << balls.out;
 }
 
+// The balance names the scene's drag and damped springs among what took the energy, and a dryer
+// that took energy (a ping-pong ball slowed by the air) as work subtracted, not "+ -0.008 J".
+TEST(PbaSim, TheDryersBalanceNamesDragDampingAndWorkTaken)
+{
+    const CommandResult boxes = runPba("sim blow-dryer-boxes --duration 2");
+    EXPECT_NE(boxes.out.find(" taken by bounces, contacts, drag and the integration, "), std::string::npos) << boxes.out;
+    const CommandResult sheet = runPba("sim cloth-in-the-dryer --duration 2");
+    EXPECT_NE(sheet.out.find(" by bounces, contacts, the springs' damping and the integration, "), std::string::npos)
+        << sheet.out;
+    const CommandResult ball = runPba("sim ping-pong");
+    EXPECT_NE(ball.out.find(" J at the start - "), std::string::npos) << ball.out;
+    EXPECT_EQ(ball.out.find("+ -"), std::string::npos) << ball.out;
+    EXPECT_EQ(ball.out.find("\nballs ("), std::string::npos) << "a lone ball has no overlaps to tell: " << ball.out;
+}
+
 // A position outside the room is told the room's bounds (or the ground's height), so the fix
 // can be read off the message.
 TEST(PbaSim, APositionOutsideTheRoomIsToldItsBounds)

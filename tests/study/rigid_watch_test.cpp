@@ -247,7 +247,8 @@ TEST(RigidWatch, APendulumIsAtItsHighestEveryHalfPeriod)
 }
 
 // A cube turning about z at a steady w in zero g, free of torques: its start's up tilts by w t
-// until it passes a half turn, the largest angle being the last step's.
+// until it passes a half turn, the largest angle being the last step's; it passes 45 degrees at
+// t = pi / (4 w), and its centre stays where it was.
 TEST(RigidWatch, ABodysLargestTiltIsHowFarItsStartsUpTurned)
 {
     World world;
@@ -265,6 +266,10 @@ TEST(RigidWatch, ABodysLargestTiltIsHowFarItsStartsUpTurned)
     const RigidFigures f = watch.bodies(world).at(0);
     ASSERT_TRUE(f.largestTilt.has_value());
     EXPECT_NEAR(*f.largestTilt, w * 2.0 * 180.0 / std::acos(-1.0), 1e-4); // the rotation's own rounding
+    ASSERT_TRUE(f.tippedAt.has_value());
+    EXPECT_NEAR(*f.tippedAt, std::acos(-1.0) / 4.0 / w, 0.002) << "past 45 degrees at the step after pi/4 / w";
+    EXPECT_GE(*f.tippedAt, std::acos(-1.0) / 4.0 / w);
+    EXPECT_LT(f.fromStart, 1e-12) << "it turned in place";
     EXPECT_TRUE(f.highs.empty()) << "no joint: no swing";
 }
 
