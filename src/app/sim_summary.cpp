@@ -19,6 +19,8 @@ namespace pba::app {
 
 namespace {
 
+std::string vectorText(const dvec3& v) { return fmt::format("({:.4f}, {:.4f}, {:.4f})", v.x, v.y, v.z); }
+
 /// Which bodies are a rope's or cloth's particles.
 std::vector<bool> fabricMembers(const Scene& scene)
 {
@@ -275,6 +277,21 @@ void printBallSummary(const World& world, const study::BallFigures& f)
                study::BallWatch::kEvery, fmt::join(parts, "; "));
 }
 
+/// Where each particle with a known exact motion is against it at the end.
+void printExactSolutions(const World& world, const RunWatches& watches)
+{
+    for (const auto& [i, solution] : watches.exact) {
+        const dvec3 exact = solution.position(world.time()), x = world.body(i).getPos();
+        fmt::print("{}: the exact solution ({}) puts it at {} at t = {:.6g} s: {:.3g} m from it\n",
+                   world.body(i).getName(),
+                   solution.kind() == study::ExactSolution::Kind::Bounce
+                       ? fmt::format("elastic bounces from {:g} m, every {:.4g} s", solution.height(), solution.period())
+                       : fmt::format("an undamped oscillator of amplitude {:g} m and period {:.4g} s", solution.height(),
+                                     solution.period()),
+                   vectorText(exact), world.time(), glm::length(x - exact));
+    }
+}
+
 /// E now / E start to six places, or, where those read 1.000000 and it is not 1, how far from
 /// 1 it is ("1 - 4.6e-14"): a rounding-level drift is what exact integration claims. A dash where
 /// the start's energy is zero: no ratio (a body at rest in zero g that something set moving read 1).
@@ -320,8 +337,6 @@ void printBodyRows(const World& world, const render::BodyGroups& groups, const s
                    dryerWorked(jet, {i}) ? kDryerNote : "");
     }
 }
-
-std::string vectorText(const dvec3& v) { return fmt::format("({:.4f}, {:.4f}, {:.4f})", v.x, v.y, v.z); }
 
 /// A row per rope and cloth: its particles, integrator, centre of mass, momentum and the ratio
 /// of its total energy, in place of a row per particle.
@@ -460,6 +475,10 @@ void printLargestStepRise(const World& world, const BlowUpWatch& watch, double s
 RunWatches::RunWatches(const Scene& scene)
     : blowUp(scene.world), jet(scene.world), rigid(scene.world), balls(scene.world, fabricMembers(scene))
 {
+    for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
+        if (!scene.world.isRigid(i) && !scene.world.body(i).isFixed())
+            if (auto solution = study::ExactSolution::find(scene.world, i))
+                exact.emplace_back(i, *solution);
 }
 
 void RunWatches::record(const World& world)
@@ -498,6 +517,7 @@ void printSummary(const Scene& scene, const World& world, const std::vector<Body
     printFabricEnds(world, groups);
     const double startEnergy = printSceneTotals(world, groups, summary, energies, jet, sourceWork);
     printLargestStepRise(world, watch, startEnergy);
+    printExactSolutions(world, watches);
     printRigidSummary(world, watches.rigid);
     printBallSummary(world, watches.balls.figures());
     printSwarmSummary(world);

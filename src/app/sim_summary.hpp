@@ -6,6 +6,7 @@
 #include "pba/blow_up_watch.hpp"
 #include "pba/scene/scene.hpp"
 #include "study/ball_watch.hpp"
+#include "study/exact_solution.hpp"
 #include "study/jet_watch.hpp"
 #include "study/rigid_watch.hpp"
 
@@ -30,6 +31,8 @@ struct RunWatches {
     study::JetWatch jet;
     study::RigidWatch rigid;
     study::BallWatch balls;
+    /// The particles whose exact motion is known from the start (study::ExactSolution), with it.
+    std::vector<std::pair<std::size_t, study::ExactSolution>> exact;
 };
 
 /// The run's summary on stdout: the scene's steps, a row per body that is no rope's or cloth's

@@ -594,6 +594,24 @@ TEST(PbaSim, TheDryersBalanceIsInJoulesWhenTheLossOutgrowsTheStart)
         << balls.out;
 }
 
+// A particle whose exact motion is known is set beside it at the end: spring's bob against
+// y = 3 - cos(sqrt(10) t) at t = 10 s, 2.0213 m; integrators' two dropped balls against their
+// elastic bounces, forward Euler's far off (it gained height), semi-implicit Euler's near.
+TEST(PbaSim, AParticleIsSetBesideItsExactSolution)
+{
+    const CommandResult spring = runPba("sim spring");
+    ASSERT_EQ(spring.exitCode, 0) << spring.err;
+    const double y = 3.0 - std::cos(std::sqrt(10.0) * 10.0);
+    EXPECT_NE(spring.out.find(fmt::format("puts it at (0.0000, {:.4f}, 0.0000) at t = 10 s", y)), std::string::npos)
+        << spring.out;
+    const CommandResult drop = runPba("sim integrators");
+    EXPECT_GT(numberAfter(drop.out, "forward-euler: the exact solution (elastic bounces from 2 m, every 1.277 s) puts it at "
+                                    "(0.0000, 1.7694, 0.0000) at t = 10 s: "), 1.0) << drop.out;
+    EXPECT_LT(numberAfter(drop.out, "semi-implicit-euler: the exact solution (elastic bounces from 2 m, every 1.277 s) "
+                                    "puts it at (0.5000, 1.7694, 0.0000) at t = 10 s: "), 0.1) << drop.out;
+    EXPECT_EQ(runPba("sim blow-dryer --duration 1").out.find("exact solution"), std::string::npos);
+}
+
 // The balance names the scene's drag and damped springs among what took the energy, and a dryer
 // that took energy (a ping-pong ball slowed by the air) as work subtracted, not "+ -0.008 J".
 TEST(PbaSim, TheDryersBalanceNamesDragDampingAndWorkTaken)
