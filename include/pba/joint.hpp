@@ -48,6 +48,7 @@ struct JointFrame {
     dvec3 axis{0.0};
     double length = 0.0;    ///< a distance joint's
     double stiffness = 0.0; ///< a distance joint's: 0 for a rod
+    double damping = 0.0;   ///< a spring-like distance joint's
 };
 
 } // namespace pba

@@ -19,7 +19,12 @@ namespace pba::app {
 
 namespace {
 
-std::string vectorText(const dvec3& v) { return fmt::format("({:.4f}, {:.4f}, {:.4f})", v.x, v.y, v.z); }
+/// A vector to four places, a component that rounds to zero as 0.0000, not -0.0000.
+std::string vectorText(const dvec3& v)
+{
+    const auto place = [](double c) { return std::abs(c) < 5e-5 ? 0.0 : c; };
+    return fmt::format("({:.4f}, {:.4f}, {:.4f})", place(v.x), place(v.y), place(v.z));
+}
 
 /// Which bodies are a rope's or cloth's particles.
 std::vector<bool> fabricMembers(const Scene& scene)
@@ -68,15 +73,21 @@ void printSwarmSummary(const World& world)
             continue;
         }
         const double n = double(swarm.size());
-        fmt::print("swarm {}: {} particles ({}), mean position ({:.3f}, {:.3f}, {:.3f}), height {:.3f} to {:.3f}, "
+        fmt::print("swarm {}: {} particle{} ({}), mean position ({:.3f}, {:.3f}, {:.3f}), height {:.3f} to {:.3f}, "
                    "mean speed {:.3f} m/s, {} beyond the room's surfaces{}\n",
-                   swarm.name(), swarm.size(), integratorName(swarm.integrator()), mean.x / n, mean.y / n, mean.z / n,
+                   swarm.name(), swarm.size(), swarm.size() == 1 ? "" : "s", integratorName(swarm.integrator()),
+                   mean.x / n + 0.0, mean.y / n + 0.0, mean.z / n + 0.0,
                    low, high, speed / n, outside, world.floorHole() ? " (those in the floor's hole not counted)" : "");
-        if (swarm.desc().collide)
-            fmt::print("swarm {}: its grains' mound stands at {:.1f} degrees (a line through each ring's highest grain "
-                       "about its axis), the deepest two grains overlap by {:.3f} of a radius\n", swarm.name(),
-                       study::angleOfRepose(swarm) + 0.0, // (a flat layer's -0 reads 0)
-                       study::deepestGrainOverlap(swarm));
+        if (!swarm.desc().collide || swarm.size() < 2)
+            continue;
+        const dvec3 g = world.gravity();
+        const std::string mound = glm::length(g) > 0.0 && swarm.size() >= 3
+                                      ? fmt::format("its grains' mound stands at {:.1f} degrees (a line through each "
+                                                    "ring's highest grain about its axis), ",
+                                                    study::angleOfRepose(swarm, -glm::normalize(g)))
+                                      : std::string("its grains: ");
+        fmt::print("swarm {}: {}the deepest two grains overlap by {:.3f} of a radius\n", swarm.name(), mound,
+                   study::deepestGrainOverlap(swarm));
     }
 }
 
@@ -233,7 +244,7 @@ void printRigidSummary(const World& world, const study::RigidWatch& rigid)
             parts.push_back(fmt::format("slides on {} without turning from t = {:.3f} to {:.3f} s, its speed changing "
                                         "at {:.3f} m/s^2", f.slide->on, f.slide->from, f.slide->to,
                                         f.slide->acceleration));
-        if (f.largestTilt)
+        if (f.largestTilt && *f.largestTilt >= 0.005) // (what reads 0.00 says nothing)
             parts.push_back(fmt::format("its start's up tilted by up to {:.2f} degrees{}", *f.largestTilt,
                                         f.tippedAt ? fmt::format(" (past 45 at t = {:.3f} s)", *f.tippedAt)
                                                    : std::string()));
@@ -247,7 +258,7 @@ void printRigidSummary(const World& world, const study::RigidWatch& rigid)
         farthest = std::max(farthest, f.fromStart);
     }
     if (nearest < farthest)
-        fmt::print("  moved: the moving bodies end {} to {} from where they started\n", distanceText(nearest),
+        fmt::print("  moved: the bodies that are not fixed end {} to {} from where they started\n", distanceText(nearest),
                    distanceText(farthest));
     printPipelineSummary(world, rigid.pipeline());
 }
@@ -332,7 +343,7 @@ void printBodyRows(const World& world, const render::BodyGroups& groups, const s
         const dvec3& x = b.getPos();
         fmt::print("{:<22} {:<20} {:>32} {:>11.4g} {:>10.4f} {:>8} {:>14}{}\n", b.getName(),
                    b.isFixed() ? std::string("(fixed)") : std::string(integratorName(b.getIntegrator())),
-                   fmt::format("({:.4f}, {:.4f}, {:.4f})", x.x, x.y, x.z), glm::length(b.getVel()),
+                   vectorText(x), glm::length(b.getVel()),
                    summary[i].highest, world.bounceCount(i), energyRatioText(energies[i], summary[i].startEnergy),
                    dryerWorked(jet, {i}) ? kDryerNote : "");
     }
@@ -390,20 +401,29 @@ void printFabricEnds(const World& world, const render::BodyGroups& groups)
         fmt::print("{} {} at the end: its particles {:.3f} to {:.3f} m high, the fastest at {:.3g} m/s; {}\n",
                    g.kind == render::BodyGroup::Kind::Rope ? "rope" : "cloth", g.name, low, high, fastest,
                    bounced == 0 ? std::string("none bounced")
-                                : fmt::format("{} of its {} particles bounced, up to {} times", bounced,
-                                              g.members.size(), most));
+                                : fmt::format("{} of its {} particles bounced, {}", bounced, g.members.size(),
+                                              most == 1 ? std::string("once each") : fmt::format("up to {} times", most)));
     }
 }
 
+/// A percentage to three figures, without an exponent from 1,000 on.
+std::string percentText(double percent)
+{
+    return percent >= 1000.0 ? fmt::format("{:.0f}", percent) : fmt::format("{:.3g}", percent);
+}
+
 /// What may take a scene's energy, for its balance: bounces, contacts, its drag and damped springs
-/// where it has them, and the integration.
+/// (forces or joints) where it has them, and the integration.
 std::string whatTakesEnergy(const World& world)
 {
     const study::ForceKinds kinds = study::forceKinds(world);
+    bool dampedJoints = false;
+    for (std::size_t j = 0; j < world.jointCount(); ++j)
+        dampedJoints = dampedJoints || world.jointFrame(j).damping > 0.0;
     std::string text = "bounces, contacts";
     if (kinds.drag)
         text += ", drag";
-    if (kinds.dampedSprings)
+    if (kinds.dampedSprings || dampedJoints)
         text += ", the springs' damping";
     return text + " and the integration";
 }
@@ -414,13 +434,14 @@ std::string whatTakesEnergy(const World& world)
 void printDryerBalance(const World& world, double start, double work, double now)
 {
     const double lost = start + work - now;
-    const std::string share = start > 0.0 ? fmt::format(", {:.3g}% of the start's energy", 100.0 * std::abs(lost) / start)
-                                          : std::string();
+    const std::string share =
+        start > 0.0 ? fmt::format(", {}% of the start's energy", percentText(100.0 * std::abs(lost) / start)) : std::string();
     fmt::print("(+ the dryer's work): the blow dryer did {:.6g} J of work on the bodies in its cone (its force as "
                "each body's integrator applies it, against each step's mean velocity), so their energy is not kept; "
                "the balance: {:.6g} J at the start {} {:.6g} J of work - {:.6g} J now = {:.3g} J {} by {}{}\n",
                work, start, work < 0.0 ? '-' : '+', std::abs(work), now, std::abs(lost), lost >= 0.0 ? "taken" : "given",
-               whatTakesEnergy(world), share);
+               // Drag and damping only take: what gave energy is among the others.
+               lost >= 0.0 ? whatTakesEnergy(world) : std::string("bounces, contacts and the integration"), share);
 }
 
 /// The whole scene's energy and momentum, now and at the start (swarms not included), of its

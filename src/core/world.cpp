@@ -255,6 +255,7 @@ JointFrame World::jointFrame(std::size_t i) const
         frame.axis = glm::normalize(qa * j.axisA);
     frame.length = j.length;
     frame.stiffness = j.stiffness;
+    frame.damping = j.damping;
     return frame;
 }
 

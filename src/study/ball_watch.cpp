@@ -7,6 +7,7 @@
 #include "pba/overlap.hpp"
 #include "pba/particle.hpp"
 #include "pba/rigid_body.hpp"
+#include "study/near_pairs.hpp"
 
 namespace pba::study {
 
@@ -23,7 +24,15 @@ BallWatch::BallWatch(const World& world, const std::vector<bool>& inFabric)
         m_balls.push_back(i);
         m_radii.push_back(p->getRadius());
         m_free.push_back(!p->isFixed() && !(i < inFabric.size() && inFabric[i]));
+        m_fixed.push_back(p->isFixed());
     }
+    // A ball and a body a joint joins may lie in each other (a crate hung from a rope's end).
+    for (std::size_t j = 0; j < world.jointCount(); ++j)
+        if (const JointFrame frame = world.jointFrame(j); frame.bodyB) {
+            m_joined.emplace_back(frame.bodyA, *frame.bodyB);
+            m_joined.emplace_back(*frame.bodyB, frame.bodyA);
+        }
+    std::sort(m_joined.begin(), m_joined.end());
     m_figures.balls = m_balls.size();
     m_figures.freeBalls = std::size_t(std::count(m_free.begin(), m_free.end(), true));
 }
@@ -41,33 +50,6 @@ void BallWatch::finish(const World& world)
 }
 
 namespace {
-
-/// The pairs of `centres` (radii `radii`) within `reach` of touching, each once (i < j): a grid
-/// of cells as wide as the largest ball and the reach, its cells sorted by their keys.
-template <class Visit>
-void forNearPairs(const std::vector<dvec3>& centres, const std::vector<double>& radii, double reach, Visit&& visit)
-{
-    const double cell = 2.0 * *std::max_element(radii.begin(), radii.end()) + reach;
-    const auto key = [&](const dvec3& x, int dx, int dy, int dz) {
-        const auto c = [&](double v, int d) { return std::uint64_t(std::int64_t(std::floor(v / cell)) + d + (1 << 20)); };
-        return (c(x.x, dx) << 42) | (c(x.y, dy) << 21) | c(x.z, dz);
-    };
-    std::vector<std::pair<std::uint64_t, std::size_t>> cells(centres.size());
-    for (std::size_t i = 0; i < centres.size(); ++i)
-        cells[i] = {key(centres[i], 0, 0, 0), i};
-    std::sort(cells.begin(), cells.end());
-    for (std::size_t i = 0; i < centres.size(); ++i)
-        for (int dx = -1; dx <= 1; ++dx)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dz = -1; dz <= 1; ++dz) {
-                    const std::uint64_t k = key(centres[i], dx, dy, dz);
-                    auto it = std::lower_bound(cells.begin(), cells.end(), std::pair(k, std::size_t(0)));
-                    for (; it != cells.end() && it->first == k; ++it)
-                        if (const std::size_t j = it->second;
-                            j > i && glm::length(centres[j] - centres[i]) < radii[i] + radii[j] + reach)
-                            visit(i, j);
-                }
-}
 
 std::size_t rootOf(std::vector<std::size_t>& parent, std::size_t i)
 {
@@ -90,8 +72,8 @@ void BallWatch::look(const World& world)
         const double gap = glm::length(centres[j] - centres[i]) - m_radii[i] - m_radii[j];
         if (m_free[i] && m_free[j])
             group[rootOf(group, i)] = rootOf(group, j); // within kTouch: touching
-        if (gap >= 0.0 || !world.ballsCollide(m_balls[i], m_balls[j]))
-            return;
+        if (gap >= 0.0 || !world.ballsCollide(m_balls[i], m_balls[j]) || (m_fixed[i] && m_fixed[j]))
+            return; // (two fixed balls do not meet: neither moves)
         const double share = -gap / (2.0 * std::min(m_radii[i], m_radii[j]));
         if (share > m_figures.deepestPair)
             m_figures.deepestPair = share, m_figures.deepestPairAt = now;
@@ -99,7 +81,8 @@ void BallWatch::look(const World& world)
     for (const std::size_t b : m_bodies) {
         const auto& body = static_cast<const RigidBody&>(world.body(b));
         for (std::size_t k = 0; k < m_balls.size(); ++k) {
-            if (glm::length(centres[k] - body.getPos()) >= body.getBoundingRadius() + m_radii[k])
+            if (glm::length(centres[k] - body.getPos()) >= body.getBoundingRadius() + m_radii[k] ||
+                std::binary_search(m_joined.begin(), m_joined.end(), std::pair(m_balls[k], b)))
                 continue;
             const double depth = overlapDepth(body, centres[k], m_radii[k]);
             if (depth > m_figures.deepestInBody)

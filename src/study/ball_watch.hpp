@@ -13,10 +13,10 @@ namespace pba::study {
 
 struct BallFigures {
     std::size_t balls = 0;       ///< particles with a radius
-    /// Two balls that collide (World::ballsCollide): their deepest overlap, as a share of the
-    /// smaller one's diameter, and when.
+    /// Two balls that collide (World::ballsCollide), not both fixed: their deepest overlap, as a
+    /// share of the smaller one's diameter, and when.
     double deepestPair = 0.0, deepestPairAt = 0.0;
-    /// A ball and a rigid body: how far the ball went into it (m), which body, and when.
+    /// A ball and a rigid body no joint joins: how far the ball went into it (m), which body, and when.
     double deepestInBody = 0.0, deepestInBodyAt = 0.0;
     std::string deepestBody;
     /// The free balls (moving, in no rope or cloth), when there are two or more: every one of them
@@ -44,6 +44,8 @@ private:
     std::vector<std::size_t> m_balls;     ///< world indices of the particles with a radius
     std::vector<double> m_radii;
     std::vector<bool> m_free;             ///< of m_balls: in the touching group
+    std::vector<bool> m_fixed;            ///< of m_balls
+    std::vector<std::pair<std::size_t, std::size_t>> m_joined; ///< world indices a joint joins, both ways, sorted
     std::vector<std::size_t> m_bodies;    ///< the rigid bodies
     long m_steps = 0;
     BallFigures m_figures;

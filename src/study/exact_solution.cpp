@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "pba/forces.hpp"
+#include "pba/particle.hpp"
 #include "pba/spring_network.hpp"
 
 namespace pba::study {
@@ -64,15 +65,36 @@ ForceKinds forceKinds(const World& world)
     return collector.kinds;
 }
 
+namespace {
+
+/// Whether body i moves alone under the forces: a point (a ball meets other balls and bodies) that
+/// no joint holds.
+bool movesAlone(const World& world, std::size_t i)
+{
+    const auto* particle = dynamic_cast<const Particle*>(&world.body(i));
+    if (!particle || particle->getRadius() > 0.0)
+        return false;
+    for (std::size_t j = 0; j < world.jointCount(); ++j) {
+        const JointFrame frame = world.jointFrame(j);
+        if (frame.bodyA == i || frame.bodyB == i)
+            return false;
+    }
+    return true;
+}
+
+} // namespace
+
 std::optional<ExactSolution> ExactSolution::find(const World& world, std::size_t particle)
 {
     const Body& body = world.body(particle);
     const dvec3 g = world.gravity();
     ExactSolution exact;
     exact.m_start = body.getPos();
+    if (!movesAlone(world, particle))
+        return std::nullopt;
     const auto floor = floorHeight(world);
     if (floor && forceKinds(world).onlyGravity && g.x == 0.0 && g.z == 0.0 && g.y < 0.0 && body.getVel() == dvec3(0.0) &&
-        body.getCor() == 1.0 && !world.room() && !world.floorHole()) {
+        body.getCor() == 1.0 && !world.room() && !world.floorHole() && body.getPos().y > *floor) {
         exact.m_kind = Kind::Bounce;
         exact.m_floor = *floor;
         exact.m_height = body.getPos().y - *floor;
@@ -97,6 +119,8 @@ std::optional<ExactSolution> ExactSolution::find(const World& world, std::size_t
             exact.m_w = std::sqrt(spring->stiffness() / body.getMass());
             exact.m_v0 = glm::dot(body.getVel(), u);
             exact.m_height = std::hypot(exact.m_s0, exact.m_v0 / exact.m_w);
+            if (!(exact.m_height < exact.m_rest))
+                return std::nullopt; // it would pass its anchor, where the force is no longer linear
             return exact;
         }
     }

@@ -20,9 +20,10 @@ class ExactSolution {
 public:
     enum class Kind { Bounce, Oscillator };
 
-    /// A particle dropped from rest onto a floor under gravity alone with e = 1 (apex h, first
-    /// impact at sqrt(2h/g), period 2 sqrt(2h/g)); or a particle on an undamped spring without
-    /// gravity or surfaces, moving along the spring. Nothing otherwise.
+    /// A point particle (no radius) that no joint holds, dropped from rest above a floor under
+    /// gravity alone with e = 1 (apex h, first impact at sqrt(2h/g), period 2 sqrt(2h/g)); or one
+    /// on an undamped spring without gravity or surfaces, moving along the spring and never
+    /// reaching its anchor. Nothing otherwise.
     static std::optional<ExactSolution> find(const World& world, std::size_t particle);
 
     Kind kind() const { return m_kind; }

@@ -6,11 +6,11 @@
 
 namespace pba::study {
 
-/// The mound's angle, degrees: around the vertical axis through the grains' mean, the highest
-/// grain centre in each ring one grain wide, out to the ring within which 95% of the grains lie;
-/// a least-squares line through (ring's middle, height), and the atan of its fall. A cone of
-/// half-angle 90° - theta reads theta; a flat layer reads 0.
-double angleOfRepose(const Swarm& grains);
+/// The mound's angle, degrees: around the axis along `up` through the grains' mean, the highest
+/// grain centre in each ring one grain wide (at most 10,000 rings), out to the ring within which
+/// 95% of the grains lie; a least-squares line through (ring's middle, height), and the atan of
+/// its fall. A cone of half-angle 90° - theta reads theta; a flat layer reads 0.
+double angleOfRepose(const Swarm& grains, const dvec3& up = dvec3(0.0, 1.0, 0.0));
 
 /// The deepest overlap of two grains, in radii (0 when none overlap).
 double deepestGrainOverlap(const Swarm& grains);

@@ -37,7 +37,11 @@ std::optional<double> sphereSlip(const World& world, const RigidBody& ball, cons
     const double r = ball.getShape().radius;
     const dvec3 x = ball.getPos(), w = ball.getAngularVelocity();
     const auto slip = [&](const dvec3& n) { // n: out of the surface, towards the centre
-        const dvec3 contact = ball.getVel() + glm::cross(w, -r * n);
+        // A ball that does not move along the surface (one bouncing straight up) is not rolling.
+        const dvec3 v = ball.getVel();
+        if (glm::length(v - glm::dot(v, n) * n) < kStill)
+            return double(INFINITY);
+        const dvec3 contact = v + glm::cross(w, -r * n);
         return glm::length(contact - glm::dot(contact, n) * n);
     };
     for (const Plane& plane : world.planes()) {
@@ -94,7 +98,8 @@ RigidWatch::RigidWatch(const World& world)
         if (!(t.energy0 > 0.0 && t.momentum0 > 0.0))
             t.figures.energyDrift = t.figures.momentumDrift = std::numeric_limits<double>::quiet_NaN();
         t.start = body.getPos();
-        if (body.getShape().type != ShapeType::Sphere) {
+        const bool weighed = glm::length(world.gravity()) > 0.0; // in zero g nothing is up
+        if (weighed && body.getShape().type != ShapeType::Sphere) {
             t.startUp = glm::transpose(glm::mat3_cast(body.getOrientation())) * upOf(world);
             t.figures.largestTilt = 0.0;
         }
@@ -105,7 +110,7 @@ RigidWatch::RigidWatch(const World& world)
             t.hung = t.hung || (frame.bodyA == i && !frame.bodyB);
             toOthers = toOthers || (frame.bodyB && (frame.bodyA == i || *frame.bodyB == i));
         }
-        t.hung = t.hung && !toOthers;
+        t.hung = weighed && t.hung && !toOthers;
         look(world, t, Touch{});
         m_tracks.push_back(t);
     }
@@ -246,10 +251,12 @@ void RigidWatch::look(const World& world, Track& t, const Touch& touch) const
             f.tippedAt = now;
     }
     if (t.hung) {
+        // A turning point between a rise and a fall each faster than still: a body at rest whose
+        // speed's rounding changes sign has none.
         const double rise = glm::dot(body.getVel(), up);
-        if (t.lastRise > 0.0 && rise < 0.0)
+        if (t.lastRise >= kStill && rise <= -kStill)
             f.highs.push_back(crossing(t.lastRise, t.lastRiseAt, rise, now));
-        if (rise != 0.0)
+        if (std::abs(rise) >= kStill)
             t.lastRise = rise, t.lastRiseAt = now;
     }
     // NaN (and so never "free") for a body that started without a spin: no ratio to keep.

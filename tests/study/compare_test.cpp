@@ -14,6 +14,7 @@
 #include "render/palette.hpp"
 #include "study/findings.hpp"
 #include "study/plots.hpp"
+#include "study/exact_solution.hpp"
 #include "study/study.hpp"
 #include "compare_run.hpp"
 #include "support/run_command.hpp"
@@ -645,4 +646,42 @@ TEST(PbaCompare, WritesWorkPrecisionWithTheMethodsOrders)
     const std::string report = readFile(dir / "out/report.md");
     EXPECT_NE(report.find("## Work against precision"), std::string::npos);
     EXPECT_NE(r.out.find("work against precision"), std::string::npos);
+}
+
+namespace {
+
+std::optional<pba::study::ExactSolution> exactOfFirst(const std::string& json)
+{
+    const pba::Scene scene = pba::parseScene(json, "exact.json");
+    return pba::study::ExactSolution::find(scene.world, 0);
+}
+
+} // namespace
+
+// An exact solution is claimed only for the motion it describes: a point dropped from above the
+// floor, or on a spring that never reaches its anchor, alone. A ball (the floor meets it a radius
+// up, and other balls meet it), a particle a joint holds, one lying on the floor (no bounce, a
+// period of 0) and a spring passed through its anchor (no longer linear) have none.
+TEST(ExactSolutions, OnlyAPointMovingAloneHasOne)
+{
+    const std::string drop = R"({"ground": {"height": 0}, "particles": [{"name": "p", "position": [0, 1, 0])";
+    EXPECT_TRUE(exactOfFirst(drop + "}]}").has_value());
+    EXPECT_FALSE(exactOfFirst(drop + R"(, "radius": 0.1}]})").has_value());
+    EXPECT_FALSE(exactOfFirst(R"({"ground": {"height": 0}, "particles": [{"name": "p", "position": [0, 0, 0]}]})")
+                     .has_value());
+    EXPECT_FALSE(exactOfFirst(R"({"ground": {"height": 0}, "particles": [{"name": "p", "position": [1, 2, 0]}],
+        "rigid_bodies": [{"name": "post", "shape": {"type": "box", "size": [0.2, 0.2, 0.2]}, "position": [0, 3, 0],
+                          "fixed": true}],
+        "joints": [{"type": "distance", "bodies": ["p", "post"], "anchors": [[1, 2, 0], [0, 3, 0]]}]})")
+                     .has_value());
+    const std::string spring = R"({"gravity": [0, 0, 0], "particles": [{"name": "p", "position": [0, 1, 0],
+        "velocity": [0, VY, 0]}], "forces": [{"type": "spring", "particle": "p", "anchor": [0, 0, 0], "stiffness": 10,
+        "rest_length": 1}]})";
+    const auto withSpeed = [&](const char* vy) {
+        std::string s = spring;
+        s.replace(s.find("VY"), 2, vy);
+        return exactOfFirst(s);
+    };
+    EXPECT_TRUE(withSpeed("1").has_value()) << "amplitude 0.32 m of a 1 m spring";
+    EXPECT_FALSE(withSpeed("-20").has_value()) << "amplitude 6.3 m: through the anchor";
 }

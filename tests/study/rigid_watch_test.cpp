@@ -246,31 +246,60 @@ TEST(RigidWatch, APendulumIsAtItsHighestEveryHalfPeriod)
     EXPECT_FALSE(bob.largestTilt.has_value()) << "a sphere has no up of its own";
 }
 
-// A cube turning about z at a steady w in zero g, free of torques: its start's up tilts by w t
-// until it passes a half turn, the largest angle being the last step's; it passes 45 degrees at
-// t = pi / (4 w), and its centre stays where it was.
+// A cube turning about z at a steady w while it falls freely: its start's up tilts by w t until it
+// passes a half turn, the largest angle being the last step's; it passes 45 degrees at
+// t = pi / (4 w), and its centre ends g dt^2 n (n + 1) / 2 below its start after n steps (the
+// splitting moves the centre by semi-implicit Euler). In zero g nothing is up: no tilt.
 TEST(RigidWatch, ABodysLargestTiltIsHowFarItsStartsUpTurned)
 {
-    World world;
-    auto cube = std::make_unique<RigidBody>(Shape::box(dvec3(0.2)), 500.0);
-    cube->setName("cube");
-    cube->setPos(dvec3(0.0, 1.0, 0.0));
-    const double w = 0.5;
-    cube->setAngularVelocity(dvec3(0.0, 0.0, w));
-    world.addBody(std::move(cube));
-    RigidWatch watch(world);
-    for (int n = 0; n < 1000; ++n) {
-        world.step(0.002);
-        watch.record(world);
+    for (const bool weighed : {true, false}) {
+        World world;
+        if (weighed)
+            world.addForce(std::make_unique<Gravity>(dvec3(0.0, -9.81, 0.0)));
+        auto cube = std::make_unique<RigidBody>(Shape::box(dvec3(0.2)), 500.0);
+        cube->setName("cube");
+        cube->setPos(dvec3(0.0, 1.0, 0.0));
+        const double w = 0.5;
+        cube->setAngularVelocity(dvec3(0.0, 0.0, w));
+        world.addBody(std::move(cube));
+        RigidWatch watch(world);
+        for (int n = 0; n < 1000; ++n) {
+            world.step(0.002);
+            watch.record(world);
+        }
+        const RigidFigures f = watch.bodies(world).at(0);
+        EXPECT_TRUE(f.highs.empty()) << "no joint: no swing";
+        if (!weighed) {
+            EXPECT_FALSE(f.largestTilt.has_value());
+            continue;
+        }
+        ASSERT_TRUE(f.largestTilt.has_value());
+        EXPECT_NEAR(*f.largestTilt, w * 2.0 * 180.0 / std::acos(-1.0), 1e-4); // the rotation's own rounding
+        ASSERT_TRUE(f.tippedAt.has_value());
+        EXPECT_NEAR(*f.tippedAt, std::acos(-1.0) / 4.0 / w, 0.002) << "past 45 degrees at the step after pi/4 / w";
+        EXPECT_GE(*f.tippedAt, std::acos(-1.0) / 4.0 / w);
+        EXPECT_NEAR(f.fromStart, 0.5 * 9.81 * 0.002 * 0.002 * 1000.0 * 1001.0, 1e-9);
     }
-    const RigidFigures f = watch.bodies(world).at(0);
-    ASSERT_TRUE(f.largestTilt.has_value());
-    EXPECT_NEAR(*f.largestTilt, w * 2.0 * 180.0 / std::acos(-1.0), 1e-4); // the rotation's own rounding
-    ASSERT_TRUE(f.tippedAt.has_value());
-    EXPECT_NEAR(*f.tippedAt, std::acos(-1.0) / 4.0 / w, 0.002) << "past 45 degrees at the step after pi/4 / w";
-    EXPECT_GE(*f.tippedAt, std::acos(-1.0) / 4.0 / w);
-    EXPECT_LT(f.fromStart, 1e-12) << "it turned in place";
-    EXPECT_TRUE(f.highs.empty()) << "no joint: no swing";
+}
+
+// What is no figure: a box hung still from two joints, whose upward speed's rounding changes
+// sign, has no turning points; a ball dropped straight onto the floor, whose contact does not
+// slip because it does not move along the floor, does not roll.
+TEST(RigidWatch, RoundingIsNoSwingAndABounceIsNoRoll)
+{
+    Scene hung = parseScene(R"({"dt": 0.01, "duration": 3, "room": {"min": [-3, 0, -3], "max": [3, 4, 3]},
+        "rigid_bodies": [{"name": "bob", "shape": {"type": "box", "size": [0.2, 0.2, 0.2]}, "position": [1, 2, 0]}],
+        "joints": [{"type": "ball", "bodies": ["bob"], "anchor": [0, 3, 0]},
+                   {"type": "ball", "bodies": ["bob"], "anchor": [1, 3, 0]}]})",
+                            "hung.json");
+    const RigidFigures bob = watched(hung).at(0);
+    EXPECT_TRUE(bob.stillFrom.has_value());
+    EXPECT_TRUE(bob.highs.empty()) << bob.highs.size() << " turning points of a body at rest";
+    Scene drop = parseScene(R"({"dt": 0.01, "duration": 3, "room": {"min": [-3, 0, -3], "max": [3, 4, 3]},
+        "rigid_bodies": [{"name": "ball", "shape": {"type": "sphere", "radius": 0.2}, "position": [0, 2, 0],
+                          "restitution": 0.5}]})",
+                            "drop.json");
+    EXPECT_FALSE(watched(drop).at(0).rollingFrom.has_value());
 }
 
 } // namespace
