@@ -80,6 +80,18 @@ nlohmann::json swarmStatistics(const World& world, double t)
             {"shaft_fraction", double(inShaft) / count}, {"state_bits_sum", bits}};
 }
 
+/// --integrator for a swarm: a spring system's method has no springs to step in one (a scene's
+/// swarm refuses it too), and would run as semi-implicit Euler under its name.
+Integrator swarmIntegratorFlag(const std::string& name)
+{
+    const Integrator integrator = integratorFlag(name);
+    if (isSpringSystemMethod(integrator))
+        throw UsageError(fmt::format("--integrator: {} steps particles joined by springs; a swarm has none: take "
+                                     "forward-euler, semi-implicit-euler, velocity-verlet or rk4",
+                                     integratorName(integrator)));
+    return integrator;
+}
+
 /// `pba bench --peer-worker`: the swarm of blow-dryer-swarm (--integrator's) on all cores, at
 /// the one size given, from the phase's start state (kPhases), driven line by line from standard
 /// input by bench/peers/run.py, which takes its windows in turn with the Python peers' (its own
@@ -97,7 +109,7 @@ int runPeerWorker(const BenchOptions& options)
     const std::optional<std::size_t> phase = phaseIndex(options.phase);
     if (!phase)
         throw UsageError(fmt::format("--phase: flight, landed or rested, got '{}'", options.phase));
-    const Integrator integrator = integratorFlag(options.integrator); // before the start states take minutes
+    const Integrator integrator = swarmIntegratorFlag(options.integrator); // before the start states take minutes
     const auto n = static_cast<std::size_t>(size);
     const double startTime = kPhases[*phase].time;
     World first = std::move(phaseWorlds(n, *phase).back());
@@ -132,7 +144,7 @@ int runPeerWorker(const BenchOptions& options)
 int runPhases(const BenchOptions& options)
 {
     const std::vector<double> sizes = options.sizes.empty() ? std::vector<double>{1e6} : options.sizes;
-    const Integrator integrator = integratorFlag(options.integrator);
+    const Integrator integrator = swarmIntegratorFlag(options.integrator);
     const int steps = options.quick ? 10 : 200;
     nlohmann::json out;
     out["results"] = nlohmann::json::array();
@@ -372,8 +384,8 @@ void addBenchCommand(CLI::App& root, Action& selected)
                     "in flight, landed and rested, at the sizes of --sizes (default 1e6); not with --peer-worker")
         ->excludes(peerWorker);
     CLI::Option* integrator = bench->add_option("--integrator", options->integrator,
-                      "With --phases or --peer-worker: the swarm's integrator, any name pba sim's --integrator "
-                      "takes (default semi-implicit-euler)")
+                      "With --phases or --peer-worker: the swarm's integrator, forward-euler, semi-implicit-euler "
+                      "(default), velocity-verlet or rk4")
         ->option_text("NAME");
     bench->add_option("--phase", options->phase,
                       "With --peer-worker: flight (from t = 0), landed (from t = 2 s) or rested (from t = 8 s)")

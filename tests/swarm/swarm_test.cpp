@@ -484,7 +484,8 @@ TEST(PbaBench, PhasesSplitTheSwarmStep)
     EXPECT_EQ(phases, (std::set<std::string>{"flight", "landed", "rested"}));
 }
 
-// `--integrator` picks the swarm's integrator for --phases; an unknown one is a usage error.
+// `--integrator` picks the swarm's integrator for --phases; an unknown one, or one a swarm cannot
+// take, is a usage error.
 TEST(PbaBench, PhasesTakeAnIntegrator)
 {
     const auto r = pba::test::runPba("bench --phases --quick --json --sizes 5000 --integrator rk4");
@@ -497,6 +498,14 @@ TEST(PbaBench, PhasesTakeAnIntegrator)
     EXPECT_EQ(bad.exitCode, 2);
     EXPECT_NE(bad.err.find("--integrator: unknown integrator 'leapfrog'"), std::string::npos) << bad.err;
     EXPECT_TRUE(bad.out.empty()) << bad.out;
+    // A spring system's method has no springs in a swarm: refused, as a scene's swarm refuses it,
+    // rather than run as semi-implicit Euler under its name.
+    for (const char* method : {"xpbd", "implicit-euler"}) {
+        const auto springs = pba::test::runPba(std::string("bench --phases --quick --sizes 5000 --integrator ") + method);
+        EXPECT_EQ(springs.exitCode, 2) << method;
+        EXPECT_NE(springs.err.find("steps particles joined by springs; a swarm has none"), std::string::npos)
+            << springs.err;
+    }
 }
 
 // The peer worker steps --integrator's swarm (for alternated windows of velocity Verlet or RK4);
