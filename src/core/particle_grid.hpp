@@ -7,6 +7,7 @@
 //
 // Every ball's candidates are found independently (on all cores) and kept in index order, and the
 // pairs listed ball by ball: the list, and so every result, is the same on any thread count.
+// A few balls far larger than the rest stay out of the grid and are tested against every ball.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -32,7 +33,7 @@ public:
         pairs.clear();
         if (n < 2 || !(maxRadius > 0.0))
             return;
-        m_spacing = 2.0 * maxRadius;
+        m_spacing = 2.0 * setBigBallsAside(n, radius, maxRadius);
         build(n, x);
         m_near.resize(n);
         forEachIndex(n, [&](std::size_t i) { nearOne(i, x, radius); });
@@ -42,6 +43,40 @@ public:
     }
 
 private:
+    /// A ball more than kBig times the median radius is tested against every ball rather than
+    /// widening every cell: one 1 m ball beside a cloth of 1 cm balls put the whole cloth in a
+    /// few cells. Up to kMostBig of them; more, and the cells are as wide as the largest ball.
+    /// Returns the largest radius among the balls in the grid.
+    template <class R>
+    double setBigBallsAside(std::size_t n, R& radius, double maxRadius)
+    {
+        static constexpr double kBig = 4.0;
+        static constexpr std::size_t kMostBig = 64;
+        m_radius.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+            m_radius[i] = radius(i);
+        m_sorted.assign(m_radius.begin(), m_radius.end());
+        std::nth_element(m_sorted.begin(), m_sorted.begin() + std::ptrdiff_t(n / 2), m_sorted.end());
+        const double limit = kBig * m_sorted[n / 2];
+        m_big.clear();
+        m_isBig.assign(n, 0);
+        double largest = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (m_radius[i] > limit) {
+                m_big.push_back(std::uint32_t(i));
+                m_isBig[i] = 1;
+            } else {
+                largest = std::max(largest, m_radius[i]);
+            }
+        }
+        if (!m_big.empty() && (m_big.size() > kMostBig || !(largest > 0.0))) {
+            m_big.clear();
+            m_isBig.assign(n, 0);
+            return maxRadius;
+        }
+        return largest;
+    }
+
     template <class X>
     void build(std::size_t n, X& x)
     {
@@ -52,15 +87,18 @@ private:
         m_start.assign(buckets + 1, 0); // one more: bucket b's balls are m_entries[m_start[b], m_start[b + 1])
         m_bucket.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
+            if (m_isBig[i])
+                continue;
             m_bucket[i] = bucketOf(cellOf(x(i), m_spacing), m_mask);
             ++m_start[m_bucket[i] + 1];
         }
         for (std::uint32_t b = 0; b < buckets; ++b)
             m_start[b + 1] += m_start[b];
-        m_entries.resize(n);
+        m_entries.resize(n - m_big.size());
         std::vector<std::uint32_t> fill(m_start.begin(), m_start.end() - 1);
         for (std::size_t i = 0; i < n; ++i)
-            m_entries[fill[m_bucket[i]]++] = std::uint32_t(i);
+            if (!m_isBig[i])
+                m_entries[fill[m_bucket[i]]++] = std::uint32_t(i);
     }
 
     template <class X, class R>
@@ -69,19 +107,27 @@ private:
         std::vector<std::uint32_t>& near = m_near[i];
         near.clear();
         const dvec3 p = x(i);
+        const auto test = [&](std::uint32_t j) {
+            const double reach = radius(i) + radius(j);
+            const dvec3 d = x(j) - p;
+            if (j > i && glm::dot(d, d) < reach * reach)
+                near.push_back(j);
+        };
+        if (m_isBig[i]) { // every ball after it
+            for (std::size_t j = i + 1; j < m_isBig.size(); ++j)
+                test(std::uint32_t(j));
+            return;
+        }
         const GridCell c = cellOf(p, m_spacing);
         for (std::int64_t dx = -1; dx <= 1; ++dx)
             for (std::int64_t dy = -1; dy <= 1; ++dy)
                 for (std::int64_t dz = -1; dz <= 1; ++dz) {
                     const std::uint32_t b = bucketOf({c.x + dx, c.y + dy, c.z + dz}, m_mask);
-                    for (std::size_t e = m_start[b]; e < m_start[b + 1]; ++e) {
-                        const std::uint32_t j = m_entries[e];
-                        const double reach = radius(i) + radius(j);
-                        const dvec3 d = x(j) - p;
-                        if (j > i && glm::dot(d, d) < reach * reach)
-                            near.push_back(j);
-                    }
+                    for (std::size_t e = m_start[b]; e < m_start[b + 1]; ++e)
+                        test(m_entries[e]);
                 }
+        for (const std::uint32_t j : m_big)
+            test(j);
         // Two of the 27 cells may share a bucket: each ball once, in index order.
         std::sort(near.begin(), near.end());
         near.erase(std::unique(near.begin(), near.end()), near.end());
@@ -92,6 +138,9 @@ private:
     std::vector<std::size_t> m_start;
     std::vector<std::uint32_t> m_bucket, m_entries;
     std::vector<std::vector<std::uint32_t>> m_near;
+    std::vector<double> m_radius, m_sorted;
+    std::vector<std::uint32_t> m_big;   ///< the balls tested against every ball, in index order
+    std::vector<std::uint8_t> m_isBig;
 };
 
 } // namespace pba::detail

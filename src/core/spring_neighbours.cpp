@@ -40,9 +40,12 @@ void SpringNeighbours::update(const std::vector<ClonePtr<Force>>& forces, std::s
     m_forces = forces.size();
     m_radii.assign(radii.begin(), radii.end());
     build(forces);
+    // Only a body with springs can be reached along them: a big ball beside a cloth does not
+    // widen every search to the whole cloth.
     double largest = 0.0;
-    for (const double r : m_radii)
-        largest = std::max(largest, r);
+    for (std::size_t i = 0; i < m_radii.size(); ++i)
+        if (m_edgeStart[i] < m_edgeStart[i + 1])
+            largest = std::max(largest, m_radii[i]);
     const std::size_t n = m_radii.size();
     m_distance.assign(n, kInfinite);
     m_nearStart.assign(n + 1, 0);
