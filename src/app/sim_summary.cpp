@@ -447,7 +447,7 @@ void printDryerBalance(const World& world, double start, double work, double now
 /// The whole scene's energy and momentum, now and at the start (swarms not included), of its
 /// moving bodies where some are fixed (movingEnergy). Returns the start's energy.
 double printSceneTotals(const World& world, const render::BodyGroups& groups, const std::vector<BodySummary>& summary,
-                      const std::vector<double>& energies, const study::JetWatch& jet, double sourceWork)
+                        const std::vector<double>& energies, const study::JetWatch& jet, double sourceWork)
 {
     std::vector<double> startEnergies(world.bodyCount());
     dvec3 momentum(0.0), startMomentum(0.0);

@@ -37,8 +37,10 @@ struct RunWatches {
 
 /// The run's summary on stdout: the scene's steps, a row per body that is no rope's or cloth's
 /// (its final position and speed, highest point, bounces and energy ratio), a row per rope and
-/// cloth (its totals), the whole scene's energy and momentum, then the rigid bodies', the swarms'
-/// and the jet's figures where the scene has them. Where the blow dryer pushed a body, its energy
+/// cloth (its totals) and a line of where its particles end, the whole scene's energy and
+/// momentum and its largest step's rise, each particle beside its exact solution where it has
+/// one, then the rigid bodies', the balls', the swarms' and the jet's figures where the scene has
+/// them. Where the blow dryer pushed a body, its energy
 /// ratio says so: the dryer's work, not an error; the scene's line gives that work
 /// (BlowUpWatch's sum of its power) and the ratio without it. `everyParticle` adds
 /// a row per particle of each rope and cloth.

@@ -68,7 +68,7 @@ std::pair<std::string, double> faceDown(const RigidBody& box, const dvec3& gravi
     return {face, std::acos(std::min(std::abs(down[axis]), 1.0)) * 180.0 / pi};
 }
 
-/// Up: against gravity, or +y in zero g.
+/// Up: against gravity (+y in zero g, where the figures that need an up are not kept).
 dvec3 upOf(const World& world)
 {
     const dvec3 g = world.gravity();
@@ -271,8 +271,8 @@ std::vector<RigidFigures> RigidWatch::bodies(const World& world) const
         endSlide(world, t); // a slide that lasts to the end of the run
         RigidFigures f = t.figures;
         f.meanSpin = t.steps > 0 ? t.spinSum / double(t.steps) : 0.0;
-        f.fromStart = glm::length(rigid(world, t.body).getPos() - t.start);
         const RigidBody& body = rigid(world, t.body);
+        f.fromStart = glm::length(body.getPos() - t.start);
         if (f.stillFrom && body.getShape().type == ShapeType::Box && glm::length(world.gravity()) > 0.0)
             std::tie(f.restingFace, f.tilt) = faceDown(body, world.gravity());
         out.push_back(std::move(f));
