@@ -158,18 +158,17 @@ void printJetSummary(const World& world, const study::JetWatch& jet, const rende
     for (std::size_t i = 0; i < bodies.size(); ++i)
         rows = rows || !(world.body(i).isFixed() || (groups.inFabric(i) && !everyParticle));
     if (rows)
-        fmt::print("{:<22} {:>8} {:>10} {:>10} {:>12} {:>14} {:>15}\n", "body", "mass", "in cone", "caught at",
-                   "longest stay", "height in cone", "longest in hole");
+        fmt::print("{:<22} {:>8} {:>10} {:>10} {:>12} {:>14} {:>14} {:>15}\n", "body", "mass", "in cone", "caught at",
+                   "longest stay", "mean height", "mean off axis", "longest in hole");
     for (std::size_t i = 0; i < bodies.size(); ++i) {
         const study::BodyInJet& b = bodies[i];
         if (world.body(i).isFixed() || (groups.inFabric(i) && !everyParticle))
             continue;
         // A body never in the cone has no height there: a dash, not "nanm".
-        const std::string height =
-            std::isnan(b.meanHeightInCone) ? std::string("-") : fmt::format("{:.3f}m", b.meanHeightInCone);
-        fmt::print("{:<22} {:>6.3g}kg {:>9.1f}% {:>10} {:>11.2f}s {:>14} {:>14.2f}s\n", b.name, b.mass,
+        const auto inCone = [](double m) { return std::isnan(m) ? std::string("-") : fmt::format("{:.3f}m", m); };
+        fmt::print("{:<22} {:>6.3g}kg {:>9.1f}% {:>10} {:>11.2f}s {:>14} {:>14} {:>14.2f}s\n", b.name, b.mass,
                    100.0 * jet.fractionInCone(i), b.caughtAt ? fmt::format("{:.2f}s", *b.caughtAt) : std::string("never"),
-                   b.longestStay, height, b.longestInShaft);
+                   b.longestStay, inCone(b.meanHeightInCone), inCone(b.meanOffAxisInCone), b.longestInShaft);
     }
     printFabricInJet(world, jet, groups);
     const auto inShaft = jet.swarmsInShaft(world);

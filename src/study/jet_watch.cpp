@@ -300,6 +300,8 @@ void JetWatch::record(const World& world)
             t.stay += dt;
             t.figures.timeInCone += dt;
             t.heightTime += x.y * dt;
+            const dvec3 d = x - dvec3(m_field->nozzle), axis(m_field->axis);
+            t.offAxisTime += glm::length(d - glm::dot(d, axis) * axis) * dt;
             t.figures.longestStay = std::max(t.figures.longestStay, t.stay);
             if (!t.figures.caughtAt && t.stay >= kCatchStay - 1e-9)
                 t.figures.caughtAt = t.stayStart;
@@ -320,7 +322,9 @@ std::vector<BodyInJet> JetWatch::bodies() const
     std::vector<BodyInJet> result;
     for (const Track& t : m_tracks) {
         BodyInJet b = t.figures;
-        b.meanHeightInCone = b.timeInCone > 0.0 ? t.heightTime / b.timeInCone : std::numeric_limits<double>::quiet_NaN();
+        const double none = std::numeric_limits<double>::quiet_NaN();
+        b.meanHeightInCone = b.timeInCone > 0.0 ? t.heightTime / b.timeInCone : none;
+        b.meanOffAxisInCone = b.timeInCone > 0.0 ? t.offAxisTime / b.timeInCone : none;
         result.push_back(b);
     }
     return result;

@@ -28,6 +28,7 @@ struct BodyInJet {
     double longestStay = 0.0;    ///< the longest time in the cone without leaving it, s
     std::optional<double> caughtAt; ///< start of the first stay of kCatchStay or more, s
     double meanHeightInCone = 0.0;  ///< m, over the steps spent in the cone (NaN if none)
+    double meanOffAxisInCone = 0.0; ///< its distance from the axis, m, likewise: the Bernoulli pull's work
     double longestInShaft = 0.0;    ///< the longest time under the floor's hole without leaving it, s
 };
 
@@ -95,7 +96,7 @@ private:
 
     struct Track {
         BodyInJet figures;
-        double stay = 0.0, stayStart = 0.0, shaftStay = 0.0, heightTime = 0.0;
+        double stay = 0.0, stayStart = 0.0, shaftStay = 0.0, heightTime = 0.0, offAxisTime = 0.0;
     };
     std::optional<BlowDryerField> m_field;
     std::vector<Track> m_tracks;

@@ -118,5 +118,26 @@ TEST(JetWatch, AttachedItListsTheSameStaysInsideTheStep)
     }
 }
 
+// A body's mean distance from the axis while in the cone: a fixed ball 0.3 m off the axis
+// reads 0.3 to rounding, one on it 0; a body never in the cone has none.
+TEST(JetWatch, ABodysMeanDistanceFromTheAxisIsWhereItIsInTheCone)
+{
+    Scene scene = parseScene(R"({"dt": 0.01, "duration": 1, "room": {"min": [-3, 0, -3], "max": [3, 4, 3]},
+        "particles": [{"name": "off", "position": [0.3, 2, 0], "fixed": true},
+                      {"name": "on", "position": [0, 1.5, 0], "fixed": true},
+                      {"name": "out", "position": [2.5, 0.5, 0], "fixed": true}],
+        "forces": [{"type": "blow-dryer", "nozzle": [0, 0, 0], "height": 3.5, "top_radius": 1.2, "strength": 30}]})",
+                             "axis.json");
+    JetWatch watch(scene.world);
+    for (int n = 0; n < 50; ++n) {
+        scene.world.step(scene.dt);
+        watch.record(scene.world);
+    }
+    const std::vector<BodyInJet> bodies = watch.bodies();
+    EXPECT_NEAR(bodies[0].meanOffAxisInCone, 0.3, 1e-12);
+    EXPECT_EQ(bodies[1].meanOffAxisInCone, 0.0);
+    EXPECT_TRUE(std::isnan(bodies[2].meanOffAxisInCone));
+}
+
 } // namespace
 } // namespace pba::study
