@@ -278,9 +278,10 @@ void printBallSummary(const World& world, const study::BallFigures& f)
                                                             1e3 * f.deepestInBody, f.deepestBody, f.deepestInBodyAt)
                                               : std::string("none went into a rigid body"));
     if (f.freeBalls >= 2)
-        parts.push_back(f.oneGroupFrom ? fmt::format("the {} free balls touch as one group (within {:g} mm) from "
-                                                     "t = {:.2f} s to the end", f.freeBalls, 1e3 * study::BallWatch::kTouch,
-                                                     *f.oneGroupFrom)
+        parts.push_back(f.oneGroupFrom ? fmt::format("the {} free balls touch as one group (within {:g} mm, or {:g}% "
+                                                     "of their radii if less) from t = {:.2f} s to the end", f.freeBalls,
+                                                     1e3 * study::BallWatch::kTouch,
+                                                     100.0 * study::BallWatch::kTouchShare, *f.oneGroupFrom)
                                        : fmt::format("the {} free balls are not one touching group at the end",
                                                      f.freeBalls));
     fmt::print("balls ({} particle{} with a radius, looked at every {} steps): {}\n", f.balls, f.balls == 1 ? "" : "s",

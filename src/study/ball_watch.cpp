@@ -70,8 +70,8 @@ void BallWatch::look(const World& world)
     std::iota(group.begin(), group.end(), std::size_t(0));
     forNearPairs(centres, m_radii, kTouch, [&](std::size_t i, std::size_t j) {
         const double gap = glm::length(centres[j] - centres[i]) - m_radii[i] - m_radii[j];
-        if (m_free[i] && m_free[j])
-            group[rootOf(group, i)] = rootOf(group, j); // within kTouch: touching
+        if (m_free[i] && m_free[j] && gap < std::min(kTouch, kTouchShare * (m_radii[i] + m_radii[j])))
+            group[rootOf(group, i)] = rootOf(group, j); // touching
         if (gap >= 0.0 || !world.ballsCollide(m_balls[i], m_balls[j]) || (m_fixed[i] && m_fixed[j]))
             return; // (two fixed balls do not meet: neither moves)
         const double share = -gap / (2.0 * std::min(m_radii[i], m_radii[j]));

@@ -35,8 +35,10 @@ public:
     /// Call after the last step: it looks there too.
     void finish(const World& world);
     static constexpr int kEvery = 10;
-    /// Two balls touch when their surfaces are this close (m).
+    /// Two balls touch when their surfaces are this close (m), or this share of their radii' sum
+    /// if that is less (sand grains a millimetre apart do not touch).
     static constexpr double kTouch = 1e-3;
+    static constexpr double kTouchShare = 0.01;
     const BallFigures& figures() const { return m_figures; }
 
 private:

@@ -75,7 +75,8 @@ TEST(BallWatch, AHeapsOverlapIsTheDeepestOfTheLooks)
 }
 
 // Three balls at rest in zero g, their surfaces 0.5 mm apart in a row, touch as one group from
-// the first look; a fourth 1 m away keeps them from being one.
+// the first look; a fourth 1 m away keeps them from being one. Balls of 1 cm 0.5 mm apart are
+// not touching: the gap is more than a hundredth of their radii.
 TEST(BallWatch, BallsTouchingInARowAreOneGroupFromTheFirstLook)
 {
     for (const bool fourth : {false, true}) {
@@ -97,6 +98,16 @@ TEST(BallWatch, BallsTouchingInARowAreOneGroupFromTheFirstLook)
             EXPECT_NEAR(*f.oneGroupFrom, 0.1, 1e-9);
         }
     }
+}
+
+TEST(BallWatch, SmallBallsAMillimetreApartDoNotTouch)
+{
+    Scene scene = parseScene(R"({"dt": 0.01, "duration": 1, "gravity": [0, 0, 0],
+        "room": {"min": [-2, 0, -2], "max": [2, 3, 2]}, "particles": [
+          {"name": "a", "position": [0, 1, 0], "radius": 0.01},
+          {"name": "b", "position": [0.0205, 1, 0], "radius": 0.01}]})",
+                             "grains.json");
+    EXPECT_FALSE(watched(scene, 25).oneGroupFrom.has_value());
 }
 
 } // namespace
