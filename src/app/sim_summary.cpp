@@ -19,11 +19,16 @@ namespace pba::app {
 
 namespace {
 
-/// A vector to four places, a component that rounds to zero as 0.0000, not -0.0000.
+/// c for printing to `places` decimals: 0 where it rounds to zero, which would print as -0.000.
+double placed(double c, int places)
+{
+    return std::abs(c) < 0.5 * std::pow(10.0, -places) ? 0.0 : c;
+}
+
+/// A vector to four places.
 std::string vectorText(const dvec3& v)
 {
-    const auto place = [](double c) { return std::abs(c) < 5e-5 ? 0.0 : c; };
-    return fmt::format("({:.4f}, {:.4f}, {:.4f})", place(v.x), place(v.y), place(v.z));
+    return fmt::format("({:.4f}, {:.4f}, {:.4f})", placed(v.x, 4), placed(v.y, 4), placed(v.z, 4));
 }
 
 /// Which bodies are a rope's or cloth's particles.
@@ -76,7 +81,7 @@ void printSwarmSummary(const World& world)
         fmt::print("swarm {}: {} particle{} ({}), mean position ({:.3f}, {:.3f}, {:.3f}), height {:.3f} to {:.3f}, "
                    "mean speed {:.3f} m/s, {} beyond the room's surfaces{}\n",
                    swarm.name(), swarm.size(), swarm.size() == 1 ? "" : "s", integratorName(swarm.integrator()),
-                   mean.x / n + 0.0, mean.y / n + 0.0, mean.z / n + 0.0,
+                   placed(mean.x / n, 3), placed(mean.y / n, 3), placed(mean.z / n, 3),
                    low, high, speed / n, outside, world.floorHole() ? " (those in the floor's hole not counted)" : "");
         if (!swarm.desc().collide || swarm.size() < 2)
             continue;

@@ -513,6 +513,20 @@ TEST(PbaSim, TiltsSwingsBallsAndHeapsAreMeasured)
     EXPECT_LT(numberAfter(grains.out, "the deepest two grains overlap by "), 0.1) << grains.out;
 }
 
+// A component that rounds to zero prints as 0.0000, not -0.0000: a box resting on the floor read
+// (0.0000, 0.2000, -0.0000).
+TEST(PbaSim, NothingPrintsAsMinusZero)
+{
+    const auto dir = freshDir("sim_minus_zero");
+    std::ofstream(dir / "boxes.json") << R"({"ground": {"height": 0}, "rigid_bodies": [
+        {"name": "rest", "shape": {"type": "box", "size": [0.4, 0.4, 0.4]}, "position": [0, 0.2, 0]},
+        {"name": "fall", "shape": {"type": "box", "size": [0.4, 0.4, 0.4]}, "position": [3, 2, 0]}]})";
+    const CommandResult r = runPba("sim " + (dir / "boxes.json").string() + " --duration 3");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out.find("-0.0000"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("(-0.000,"), std::string::npos) << r.out;
+}
+
 // A body with no energy at the start has no ratio: a dash, where one set moving by a joint read 1.
 TEST(PbaSim, NoEnergyAtTheStartIsNoRatio)
 {
