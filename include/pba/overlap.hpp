@@ -1,6 +1,12 @@
 #pragma once
 // How far two rigid bodies reach into each other where they stand, by the contacts' own narrow
-// phase: what a scene's loader asks of a body and a fixed one before the first step.
+// phase: what a scene's loader asks of a body and a fixed one before the first step. And which
+// balls are near each other, by the particles' contacts' own grid: what the watches measure.
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
 #include "pba/rigid_body.hpp"
 
 namespace pba {
@@ -10,5 +16,10 @@ namespace pba {
 double overlapDepth(const RigidBody& a, const RigidBody& b);
 /// The same for a ball of `radius` at `centre` (a particle with a radius) and `body`.
 double overlapDepth(const RigidBody& body, const dvec3& centre, double radius);
+
+/// Every pair (i < j) of balls (`centres`, `radii`) whose surfaces are less than `gap` apart,
+/// overlapping ones included, in the order of i, then j.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> nearBallPairs(std::span<const dvec3> centres,
+                                                                   std::span<const double> radii, double gap);
 
 } // namespace pba

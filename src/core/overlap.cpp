@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "contact/narrow_phase.hpp"
+#include "particle_grid.hpp"
 
 namespace pba {
 
@@ -33,6 +34,20 @@ double overlapDepth(const RigidBody& body, const dvec3& centre, double radius)
     for (int i = 0; i < m.count; ++i)
         depth = std::max(depth, -m.points[std::size_t(i)].separation);
     return depth;
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> nearBallPairs(std::span<const dvec3> centres,
+                                                                   std::span<const double> radii, double gap)
+{
+    // Each ball grown by half the gap: two are then "touching" when their surfaces are within it.
+    const auto reach = [&](std::size_t i) { return radii[i] + 0.5 * gap; };
+    double largest = 0.0;
+    for (std::size_t i = 0; i < radii.size(); ++i)
+        largest = std::max(largest, reach(i));
+    detail::ParticleGrid grid;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    grid.findPairs(centres.size(), [&](std::size_t i) { return centres[i]; }, reach, largest, pairs);
+    return pairs;
 }
 
 } // namespace pba

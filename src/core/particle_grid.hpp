@@ -8,6 +8,8 @@
 // Every ball's candidates are found independently (on all cores) and kept in index order, and the
 // pairs listed ball by ball: the list, and so every result, is the same on any thread count.
 // A few balls far larger than the rest stay out of the grid and are tested against every ball.
+// Cells are at least a millionth of the balls' span wide, so that balls far smaller than their
+// spread (1e-30 m apart by metres) do not all fall into the few cells at the hash's limit.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -33,7 +35,7 @@ public:
         pairs.clear();
         if (n < 2 || !(maxRadius > 0.0))
             return;
-        m_spacing = 2.0 * setBigBallsAside(n, radius, maxRadius);
+        m_spacing = std::max(2.0 * setBigBallsAside(n, radius, maxRadius), span(n, x) / kMostCells);
         build(n, x);
         m_near.resize(n);
         forEachIndex(n, [&](std::size_t i) { nearOne(i, x, radius); });
@@ -43,18 +45,48 @@ public:
     }
 
 private:
+    static constexpr double kMostCells = double(1 << 20); ///< across the balls' span
+    static constexpr double kBig = 4.0;                   ///< times the median radius: a big ball
+    static constexpr std::size_t kMostBig = 64;
+
+    /// The largest extent of the balls' centres along an axis (the big ones' too).
+    template <class X>
+    static double span(std::size_t n, X& x)
+    {
+        dvec3 lo = x(0), hi = lo;
+        for (std::size_t i = 1; i < n; ++i) {
+            const dvec3 p = x(i);
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+        const dvec3 extent = hi - lo;
+        return std::max({extent.x, extent.y, extent.z});
+    }
+
     /// A ball more than kBig times the median radius is tested against every ball rather than
     /// widening every cell: one 1 m ball beside a cloth of 1 cm balls put the whole cloth in a
     /// few cells. Up to kMostBig of them; more, and the cells are as wide as the largest ball.
-    /// Returns the largest radius among the balls in the grid.
+    /// Returns the largest radius among the balls in the grid. The radii rarely change between
+    /// steps: the split is kept while they and maxRadius stay as they were.
     template <class R>
     double setBigBallsAside(std::size_t n, R& radius, double maxRadius)
     {
-        static constexpr double kBig = 4.0;
-        static constexpr std::size_t kMostBig = 64;
+        bool same = m_radius.size() == n && m_splitFor == maxRadius;
         m_radius.resize(n);
-        for (std::size_t i = 0; i < n; ++i)
-            m_radius[i] = radius(i);
+        for (std::size_t i = 0; i < n; ++i) {
+            const double r = radius(i);
+            same = same && m_radius[i] == r;
+            m_radius[i] = r;
+        }
+        if (same)
+            return m_largest;
+        m_splitFor = maxRadius;
+        m_largest = splitByRadius(n, maxRadius);
+        return m_largest;
+    }
+
+    double splitByRadius(std::size_t n, double maxRadius)
+    {
         m_sorted.assign(m_radius.begin(), m_radius.end());
         std::nth_element(m_sorted.begin(), m_sorted.begin() + std::ptrdiff_t(n / 2), m_sorted.end());
         const double limit = kBig * m_sorted[n / 2];
@@ -139,6 +171,8 @@ private:
     std::vector<std::uint32_t> m_bucket, m_entries;
     std::vector<std::vector<std::uint32_t>> m_near;
     std::vector<double> m_radius, m_sorted;
+    double m_splitFor = -1.0; ///< the maxRadius the split below was made for
+    double m_largest = 0.0;   ///< the largest radius in the grid, of that split
     std::vector<std::uint32_t> m_big;   ///< the balls tested against every ball, in index order
     std::vector<std::uint8_t> m_isBig;
 };

@@ -7,7 +7,6 @@
 #include "pba/overlap.hpp"
 #include "pba/particle.hpp"
 #include "pba/rigid_body.hpp"
-#include "study/near_pairs.hpp"
 
 namespace pba::study {
 
@@ -68,16 +67,16 @@ void BallWatch::look(const World& world)
         centres[k] = world.body(m_balls[k]).getPos();
     std::vector<std::size_t> group(m_balls.size());
     std::iota(group.begin(), group.end(), std::size_t(0));
-    forNearPairs(centres, m_radii, kTouch, [&](std::size_t i, std::size_t j) {
+    for (const auto& [i, j] : nearBallPairs(centres, m_radii, kTouch)) {
         const double gap = glm::length(centres[j] - centres[i]) - m_radii[i] - m_radii[j];
         if (m_free[i] && m_free[j] && gap < std::min(kTouch, kTouchShare * (m_radii[i] + m_radii[j])))
             group[rootOf(group, i)] = rootOf(group, j); // touching
         if (gap >= 0.0 || !world.ballsCollide(m_balls[i], m_balls[j]) || (m_fixed[i] && m_fixed[j]))
-            return; // (two fixed balls do not meet: neither moves)
+            continue; // (two fixed balls do not meet: neither moves)
         const double share = -gap / (2.0 * std::min(m_radii[i], m_radii[j]));
         if (share > m_figures.deepestPair)
             m_figures.deepestPair = share, m_figures.deepestPairAt = now;
-    });
+    }
     for (const std::size_t b : m_bodies) {
         const auto& body = static_cast<const RigidBody&>(world.body(b));
         for (std::size_t k = 0; k < m_balls.size(); ++k) {

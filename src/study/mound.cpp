@@ -5,7 +5,7 @@
 #include <numbers>
 #include <vector>
 
-#include "study/near_pairs.hpp"
+#include "pba/overlap.hpp"
 
 namespace pba::study {
 
@@ -60,9 +60,8 @@ double deepestGrainOverlap(const Swarm& grains)
     for (std::size_t i = 0; i < grains.size(); ++i)
         centres[i] = dvec3(grains.position(i));
     double deepest = 0.0;
-    forNearPairs(centres, std::vector<double>(grains.size(), r), 0.0, [&](std::size_t i, std::size_t j) {
+    for (const auto& [i, j] : nearBallPairs(centres, std::vector<double>(grains.size(), r), 0.0))
         deepest = std::max(deepest, 2.0 * r - glm::length(centres[j] - centres[i]));
-    });
     return deepest / r;
 }
 

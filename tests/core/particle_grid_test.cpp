@@ -1,6 +1,7 @@
 // The particles' grid finds exactly the pairs of balls that touch, in index order, whatever their
 // sizes: checked against every pair, with balls of one size, with a few far larger ones (kept out
-// of the grid and tested against every ball), and with many large ones (the grid's cells widened).
+// of the grid and tested against every ball), with many large ones (the grid's cells widened),
+// with balls far smaller than their spread, and when one grid meets other radii the next time.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "particle_grid.hpp"
+#include "pba/overlap.hpp"
 
 namespace pba::detail {
 namespace {
@@ -49,6 +51,67 @@ TEST(ParticleGrid, FindsEveryTouchingPairWhateverTheBallsSizes)
                        found);
         EXPECT_EQ(found, everyPair(x, r)) << bigOnes << " big balls";
     }
+}
+
+Pairs found(ParticleGrid& grid, const std::vector<dvec3>& x, const std::vector<double>& r)
+{
+    double largest = 0.0;
+    for (const double ri : r)
+        largest = std::max(largest, ri);
+    Pairs pairs;
+    grid.findPairs(x.size(), [&](std::size_t i) { return x[i]; }, [&](std::size_t i) { return r[i]; }, largest, pairs);
+    return pairs;
+}
+
+TEST(ParticleGrid, BallsFarSmallerThanTheirSpreadStillMeet)
+{
+    // A nanometre apart over a metre: cells two radii wide would number 1e9 across, beyond the
+    // hash's limit; cells of a millionth of the span keep them apart.
+    std::vector<dvec3> x;
+    for (int i = 0; i < 400; ++i) { // in pairs 1.5 nm apart, the pairs 5 cm apart
+        const int k = i / 2;
+        x.emplace_back(double(k % 20) / 20.0 + 1.5e-9 * (i % 2), double(k / 20) / 20.0, 0.0);
+    }
+    const std::vector<double> r(x.size(), 1e-9);
+    ParticleGrid grid;
+    const Pairs pairs = found(grid, x, r);
+    EXPECT_EQ(pairs, everyPair(x, r));
+    EXPECT_FALSE(pairs.empty());
+}
+
+TEST(ParticleGrid, ANewSetOfRadiiIsSplitAgain)
+{
+    // The split into grid balls and big ones is kept while the radii stay as they were.
+    std::vector<dvec3> x;
+    std::vector<double> r;
+    for (int i = 0; i < 600; ++i) {
+        x.emplace_back(0.3 * std::sin(1.3 * i), 0.3 * std::sin(0.7 * i + 1.0), 0.3 * std::cos(2.1 * i));
+        r.push_back(0.01);
+    }
+    ParticleGrid grid;
+    EXPECT_EQ(found(grid, x, r), everyPair(x, r));
+    r[17] = r[300] = 0.2; // two big balls now
+    EXPECT_EQ(found(grid, x, r), everyPair(x, r));
+    r[17] = r[300] = 0.01;
+    EXPECT_EQ(found(grid, x, r), everyPair(x, r));
+}
+
+TEST(NearBallPairs, AreThePairsWhoseSurfacesAreWithinTheGap)
+{
+    std::vector<dvec3> x;
+    std::vector<double> r;
+    for (int i = 0; i < 800; ++i) {
+        x.emplace_back(0.5 * std::sin(1.7 * i), 0.5 * std::sin(0.3 * i + 2.0), 0.5 * std::cos(1.1 * i));
+        r.push_back(0.005 + 0.005 * std::abs(std::cos(3.0 * i)));
+    }
+    const double gap = 0.01;
+    Pairs expected;
+    for (std::uint32_t i = 0; i < x.size(); ++i)
+        for (std::uint32_t j = i + 1; j < x.size(); ++j)
+            if (glm::length(x[j] - x[i]) < r[i] + r[j] + gap)
+                expected.emplace_back(i, j);
+    EXPECT_EQ(nearBallPairs(x, r, gap), expected);
+    EXPECT_GT(expected.size(), everyPair(x, r).size()); // the gap counts
 }
 
 } // namespace
