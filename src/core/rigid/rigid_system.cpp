@@ -437,8 +437,10 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
     // A joint does no work: what its position pass adds to the island's height is taken from its
     // motion (a chain's energy never grows). Not for contacts alone, whose pass only undoes an
     // overlap the step made, and whose resting bodies have no motion to take it from.
-    if (withJoints)
+    if (withJoints) {
+        joints.projectAtEnd(settings.contact.velocityIterations);
         capEnergy(island, methodWork);
+    }
 }
 
 bool RigidSystem::appliedElsewhere(const Joint& j) const
