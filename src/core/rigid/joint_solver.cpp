@@ -602,10 +602,10 @@ Carried carriedAtEnd(const Joint& j, const SolverBody& a, const SolverBody& b)
 
 /// A relative turn of B from A (as the velocity rows' spin), with the anchors' gap along the
 /// carry (carriedSpin's reason).
-dvec3 carriedTurn(const Joint& j, const SolverBody& a, const SolverBody& b, const dmat3& carry, const dvec3& turn)
+dvec3 carriedTurn(const Joint& j, const SolverBody& a, const SolverBody& b, const Carried& carried, const dvec3& turn)
 {
     const dvec3 ra = glm::mat3_cast(a.endOrientation) * j.localA, rb = glm::mat3_cast(b.endOrientation) * j.localB;
-    return turn + glm::transpose(carry) * ((b.endPosition + rb) - (a.endPosition + ra));
+    return turn + glm::transpose(carried.carry) * ((b.endPosition + rb) - (a.endPosition + ra));
 }
 
 } // namespace
@@ -619,7 +619,7 @@ void JointSolver::holdAxis(const Joint& j, SolverBody& a, SolverBody& b)
     acrossOf(axisA, across);
     const Carried carried = carriedAtEnd(j, a, b);
     const dvec3 l = acrossImpulse(inverse2(carried.spin, across), across,
-                                  carriedTurn(j, a, b, carried.carry, glm::cross(axisA, axisB)));
+                                  carriedTurn(j, a, b, carried, glm::cross(axisA, axisB)));
     turnCarried(j, a, b, carried, l);
     if (!j.limited)
         return;
@@ -627,7 +627,7 @@ void JointSolver::holdAxis(const Joint& j, SolverBody& a, SolverBody& b)
     const double beyond = angle < j.lower ? angle - j.lower : angle > j.upper ? angle - j.upper : 0.0;
     const double k = glm::dot(axisA, carried.spin * axisA);
     if (beyond != 0.0 && k > 0.0) { // A turns back within the range, B the other way
-        const double past = beyond - glm::dot(axisA, carriedTurn(j, a, b, carried.carry, dvec3(0.0)));
+        const double past = beyond - glm::dot(axisA, carriedTurn(j, a, b, carried, dvec3(0.0)));
         turnCarried(j, a, b, carried, (past / k) * axisA);
     }
 }
@@ -640,7 +640,7 @@ void JointSolver::holdOrientation(const Joint& j, SolverBody& a, SolverBody& b)
         error = -error;
     const dvec3 theta = 2.0 * dvec3(error.x, error.y, error.z);
     const Carried carried = carriedAtEnd(j, a, b);
-    turnCarried(j, a, b, carried, -(inverseOr0(carried.spin) * carriedTurn(j, a, b, carried.carry, -theta)));
+    turnCarried(j, a, b, carried, -(inverseOr0(carried.spin) * carriedTurn(j, a, b, carried, -theta)));
 }
 
 void JointSolver::holdLength(const Joint& j, const Rows& r, SolverBody& a, SolverBody& b)
