@@ -199,6 +199,41 @@ TEST(Joints, AChainsEnergyNeverGrows)
     EXPECT_LT(world.body(links - 1).getPos().y, 2.0);
 }
 
+TEST(Joints, TwoRodsHingedOnSkewAxesSwingOnWithoutGainingEnergy)
+{
+    // The upper rod hinged to the world about (0, 1, 1), the lower to its end about (1, 0, 1).
+    // A hinge's last impulse, warm-started whole, pushed about the axis it had turned to since:
+    // the pair gained energy until the cap stopped it dead in mid-swing (at 3.45 s), and then
+    // climbed with no velocity at all.
+    World world = gravityWorld();
+    for (const double x : {0.4, 1.2}) {
+        RigidBody& rod = addBody(world, Shape::box(dvec3(0.8, 0.05, 0.05)), 4.0, dvec3(x, 3.2, 0.0));
+        rod.setIntegrator(Integrator::Splitting);
+    }
+    JointDesc upper, lower;
+    upper.type = lower.type = JointType::Hinge;
+    upper.bodyA = 0;
+    upper.anchor = dvec3(0.0, 3.2, 0.0);
+    upper.axis = dvec3(0.0, 1.0, 1.0);
+    lower.bodyA = 1;
+    lower.bodyB = 0;
+    lower.anchor = dvec3(0.8, 3.2, 0.0);
+    lower.axis = dvec3(1.0, 0.0, 1.0);
+    world.addJoint(upper);
+    world.addJoint(lower);
+    const double e0 = world.totalEnergy();
+    double highest = e0, slowest = INFINITY;
+    for (int n = 0; n < 5000; ++n) {
+        world.step(0.002);
+        highest = std::max(highest, world.totalEnergy());
+        if (n >= 4500) // its last second
+            slowest = std::min(slowest, glm::length(world.body(1).getVel()));
+    }
+    EXPECT_LE(highest - e0, 1e-8 * e0);
+    EXPECT_GT(slowest, 0.0); // never stopped dead
+    EXPECT_GT(glm::length(world.body(1).getPos() - dvec3(1.2, 3.2, 0.0)), 0.1);
+}
+
 // The same chain, its first hinge to the world a 200 N/m spring from above its end, under the
 // splitting: the spring is the solver's, not the free step's, so the energy the island may end
 // with counts it at the start's stretch (at the free step's, it let such a chain gain 4 times

@@ -167,6 +167,12 @@ void JointSolver::prepare(std::span<Joint> joints, std::span<const std::uint32_t
         r.rattle = rattles(j, bodies[r.a], bodies[r.b]);
         r.linearImpulse = j.linearImpulse;
         r.angularImpulse = j.angularImpulse;
+        // A hinge's rows across its axis hold no turn about it: the last step's impulse, kept as
+        // a world vector, is warm-started across the axis as it is now. (Its part along a tilted
+        // axis that had turned since was a push about the free axis, which no sweep takes back:
+        // two rods hinged on skew axes gained energy until the cap stopped them dead.)
+        if (j.type == JointType::Hinge)
+            r.angularImpulse -= glm::dot(r.angularImpulse, r.axis) * r.axis;
         r.axialImpulse = j.axialImpulse;
         r.lowerImpulse = j.lowerImpulse;
         r.upperImpulse = j.upperImpulse;
