@@ -1,8 +1,8 @@
 // Joints against closed forms: a pendulum on a ball joint swings with the physical pendulum's
 // period (small amplitude) and the elliptic integral's (90 degrees) and its rod does not stretch,
-// a pendulum on a rod or a ball joint keeps its energy to second order in dt (RATTLE) under
-// velocity Verlet's kind of step and loses it at first order under semi-implicit Euler's, a
-// chain's energy never grows, a hinge keeps its axis and its limits, a distance joint keeps its
+// a double pendulum on rods, ball joints or hinges and a welded pair keep their energy to second
+// order in dt (RATTLE) under velocity Verlet's kind of step and lose it at first order under
+// semi-implicit Euler's, two rods hinged on skew axes swing on, a chain's energy never grows, a hinge keeps its axis and its limits, a distance joint keeps its
 // length or springs with sqrt(k/m), a fixed joint makes two bodies one, and joined bodies do not
 // collide with each other unless the joint says so.
 #include "pba/world.hpp"
@@ -126,7 +126,7 @@ TEST(Joints, ThePendulumsRodDoesNotStretchInAMinute)
 
 /// What a double pendulum of two 0.8 m rods (each ending in a 5 kg ball of 8 cm) keeps of its
 /// energy after `seconds`, let go level: on rigid rods between the balls' centres, or on ball
-/// joints at the rods' ends (the balls turn with their rods).
+/// joints or hinges (about z) at the rods' ends (the balls turn with their rods).
 double doublePendulumKeeps(Integrator integrator, JointType type, double dt, double seconds)
 {
     World world = gravityWorld();
@@ -141,6 +141,7 @@ double doublePendulumKeeps(Integrator integrator, JointType type, double dt, dou
     lower.bodyB = 0;
     upper.anchor = upper.anchors[1] = dvec3(0.0, 2.0, 0.0);
     upper.anchors[0] = lower.anchor = lower.anchors[1] = dvec3(0.8, 2.0, 0.0);
+    upper.axis = lower.axis = dvec3(0.0, 0.0, 1.0);
     lower.anchors[0] = dvec3(1.6, 2.0, 0.0);
     world.addJoint(upper);
     world.addJoint(lower);
@@ -153,12 +154,12 @@ double doublePendulumKeeps(Integrator integrator, JointType type, double dt, dou
     return (world.totalEnergy() - hanging) / (e0 - hanging);
 }
 
-TEST(Joints, ARodOrBallJointPendulumKeepsItsEnergyToSecondOrderUnderVerlet)
+TEST(Joints, ADoublePendulumKeepsItsEnergyToSecondOrderUnderVerlet)
 {
     // RATTLE: what is lost goes as dt^2 (a quarter as dt halves), against semi-implicit Euler's
     // first order (the poses moved alone by the position pass).
     for (const Integrator method : {Integrator::VelocityVerlet, Integrator::Splitting})
-        for (const JointType type : {JointType::Distance, JointType::Ball}) {
+        for (const JointType type : {JointType::Distance, JointType::Ball, JointType::Hinge}) {
             const double coarse = 1.0 - doublePendulumKeeps(method, type, 0.004, 5.0);
             const double fine = 1.0 - doublePendulumKeeps(method, type, 0.002, 5.0);
             EXPECT_LT(coarse, 1e-3) << integratorName(method) << ", " << jointTypeName(type);
@@ -197,6 +198,38 @@ TEST(Joints, AChainsEnergyNeverGrows)
     EXPECT_LE(highest - e0, 1e-9 * std::abs(e0));
     // It swung: the last link is below the pivot now and then.
     EXPECT_LT(world.body(links - 1).getPos().y, 2.0);
+}
+
+TEST(Joints, AWeldedPairTumblingInZeroGKeepsItsEnergy)
+{
+    // Two boxes welded side by side, turning as one about their middle: what the weld loses goes
+    // as dt^2 under the splitting (RATTLE), as dt under semi-implicit Euler.
+    const auto keeps = [](Integrator method, double dt) {
+        World world;
+        const dvec3 spin(3.0, 1.0, 5.0);
+        for (const double x : {-0.2, 0.2}) {
+            RigidBody& box = addBody(world, Shape::box(dvec3(0.4, 0.2, 0.1)), 8.0, dvec3(x, 0.0, 0.0));
+            box.setIntegrator(method);
+            box.setVel(glm::cross(spin, dvec3(x, 0.0, 0.0)));
+            box.setAngularVelocity(spin);
+        }
+        JointDesc weld;
+        weld.type = JointType::Fixed;
+        weld.bodyA = 0;
+        weld.bodyB = 1;
+        world.addJoint(weld);
+        const double e0 = world.totalEnergy();
+        for (int n = 0, steps = int(std::lround(5.0 / dt)); n < steps; ++n)
+            world.step(dt);
+        return world.totalEnergy() / e0;
+    };
+    const double coarse = 1.0 - keeps(Integrator::Splitting, 0.004), fine = 1.0 - keeps(Integrator::Splitting, 0.002);
+    EXPECT_LT(coarse, 1e-3);
+    EXPECT_LT(fine, 0.3 * coarse);
+    EXPECT_GE(fine, 0.0);
+    const double eulerCoarse = 1.0 - keeps(Integrator::SemiImplicitEuler, 0.004);
+    const double eulerFine = 1.0 - keeps(Integrator::SemiImplicitEuler, 0.002);
+    EXPECT_GT(eulerFine, 0.35 * eulerCoarse);
 }
 
 TEST(Joints, TwoRodsHingedOnSkewAxesSwingOnWithoutGainingEnergy)

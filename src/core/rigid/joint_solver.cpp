@@ -140,15 +140,16 @@ JointSolver::Rows JointSolver::rowsAt(std::uint32_t index, Pose pose) const
 
 namespace {
 
-/// Whether a joint is solved as RATTLE (JointSolver's header): a ball joint or a rod, whose
-/// moving bodies all take velocity Verlet's kind of step (drift weight 1/2). A hinge's and a
-/// weld's angular rows are not: under RATTLE two hinges on non-parallel axes lost more energy
-/// than they do now (two rods, 0.76 of it in 30 s against 0.85).
+/// Whether a joint is solved as RATTLE (JointSolver's header): an equality (a ball joint, a
+/// hinge without limits, a weld, a rod) whose moving bodies all take velocity Verlet's kind of
+/// step (drift weight 1/2). A limit, like a contact, may only push.
 bool rattles(const Joint& j, const SolverBody& a, const SolverBody& b)
 {
-    const bool points = j.type == JointType::Ball || (j.type == JointType::Distance && !(j.stiffness > 0.0));
+    const bool equality = j.type == JointType::Ball || j.type == JointType::Fixed ||
+                          (j.type == JointType::Hinge && !j.limited) ||
+                          (j.type == JointType::Distance && !(j.stiffness > 0.0));
     const auto verlet = [](const SolverBody& k) { return k.isStatic() || k.driftWeight == 0.5; };
-    return points && !(a.isStatic() && b.isStatic()) && verlet(a) && verlet(b);
+    return equality && !(a.isStatic() && b.isStatic()) && verlet(a) && verlet(b);
 }
 
 } // namespace
@@ -565,15 +566,21 @@ void JointSolver::storeImpulses()
     }
 }
 
-void JointSolver::move(const Rows& r, SolverBody& a, SolverBody& b, const dvec3& ra, const dvec3& rb,
-                       const dvec3& p) const
+void JointSolver::move(const Rows& r, SolverBody& a, SolverBody& b, const dvec3& ra, const dvec3& rb, const dvec3& p,
+                       const dvec3& l) const
 {
     a.movePose(-p, ra);
     b.movePose(p, rb);
+    if (l != dvec3(0.0)) {
+        a.turnPose(-l);
+        b.turnPose(l);
+    }
     // RATTLE's pose drifts by its half-step velocity (x1 = x0 + dt v_half), which carries on into
     // the end velocity: a move of the pose is a change of that velocity as large over dt.
-    if (r.rattle)
-        applyLinear(a, b, ra, rb, p / m_settings.dt);
+    if (!r.rattle)
+        return;
+    applyLinear(a, b, ra, rb, p / m_settings.dt);
+    applyAngular(a, b, l / m_settings.dt);
 }
 
 void JointSolver::holdPoints(const Joint& j, const Rows& r, SolverBody& a, SolverBody& b)
@@ -582,8 +589,8 @@ void JointSolver::holdPoints(const Joint& j, const Rows& r, SolverBody& a, Solve
     const dvec3 error = (b.endPosition + rb) - (a.endPosition + ra);
     // RATTLE pushes along the start's rows (r.rA, r.rB): its constraint force is the start's.
     if (r.rattle)
-        return move(r, a, b, r.rA, r.rB, -(r.linearMass * error));
-    move(r, a, b, ra, rb, -(inverseOr0(pointMass(a, b, ra, rb)) * error));
+        return move(r, a, b, r.rA, r.rB, -(r.linearMass * error), dvec3(0.0));
+    move(r, a, b, ra, rb, -(inverseOr0(pointMass(a, b, ra, rb)) * error), dvec3(0.0));
 }
 
 namespace {
@@ -608,24 +615,29 @@ Carried carriedAtEnd(const Joint& j, const SolverBody& a, const SolverBody& b)
 
 /// A relative turn of B from A (as the velocity rows' spin), with the anchors' gap along the
 /// carry (carriedSpin's reason).
-dvec3 carriedTurn(const Joint& j, const SolverBody& a, const SolverBody& b, const Carried& carried, const dvec3& turn)
+dvec3 carriedTurn(const Joint& j, const SolverBody& a, const SolverBody& b, const dmat3& carry, const dvec3& turn)
 {
     const dvec3 ra = glm::mat3_cast(a.endOrientation) * j.localA, rb = glm::mat3_cast(b.endOrientation) * j.localB;
-    return turn + glm::transpose(carried.carry) * ((b.endPosition + rb) - (a.endPosition + ra));
+    return turn + glm::transpose(carry) * ((b.endPosition + rb) - (a.endPosition + ra));
 }
 
 } // namespace
 
-void JointSolver::holdAxis(const Joint& j, SolverBody& a, SolverBody& b)
+void JointSolver::holdAxis(const Joint& j, const Rows& r, SolverBody& a, SolverBody& b)
 {
     const dvec3 axisA = glm::normalize(glm::mat3_cast(a.endOrientation) * j.axisA);
     const dvec3 axisB = glm::normalize(glm::mat3_cast(b.endOrientation) * j.axisB);
     // B's axis is A's turned by about axisA x axisB: turn B back by that much, across the axis.
+    if (r.rattle) { // along the start's rows (holdPoints); no limits
+        const Block2 mass{{{r.acrossMass[0][0], r.acrossMass[0][1]}, {r.acrossMass[1][0], r.acrossMass[1][1]}}};
+        const dvec3 l = acrossImpulse(mass, r.across, carriedTurn(j, a, b, r.carry, glm::cross(axisA, axisB)));
+        return move(r, a, b, r.rA, r.rB, r.carry * l, l);
+    }
     dvec3 across[2];
     acrossOf(axisA, across);
     const Carried carried = carriedAtEnd(j, a, b);
     const dvec3 l = acrossImpulse(inverse2(carried.spin, across), across,
-                                  carriedTurn(j, a, b, carried, glm::cross(axisA, axisB)));
+                                  carriedTurn(j, a, b, carried.carry, glm::cross(axisA, axisB)));
     turnCarried(j, a, b, carried, l);
     if (!j.limited)
         return;
@@ -633,20 +645,24 @@ void JointSolver::holdAxis(const Joint& j, SolverBody& a, SolverBody& b)
     const double beyond = angle < j.lower ? angle - j.lower : angle > j.upper ? angle - j.upper : 0.0;
     const double k = glm::dot(axisA, carried.spin * axisA);
     if (beyond != 0.0 && k > 0.0) { // A turns back within the range, B the other way
-        const double past = beyond - glm::dot(axisA, carriedTurn(j, a, b, carried, dvec3(0.0)));
+        const double past = beyond - glm::dot(axisA, carriedTurn(j, a, b, carried.carry, dvec3(0.0)));
         turnCarried(j, a, b, carried, (past / k) * axisA);
     }
 }
 
-void JointSolver::holdOrientation(const Joint& j, SolverBody& a, SolverBody& b)
+void JointSolver::holdOrientation(const Joint& j, const Rows& r, SolverBody& a, SolverBody& b)
 {
     // The rotation that takes B to where A's orientation and the rest say it should be.
     dquat error = (a.endOrientation * j.rest) * glm::conjugate(b.endOrientation);
     if (error.w < 0.0)
         error = -error;
     const dvec3 theta = 2.0 * dvec3(error.x, error.y, error.z);
+    if (r.rattle) { // along the start's rows (holdPoints)
+        const dvec3 l = -(r.angularMass * carriedTurn(j, a, b, r.carry, -theta));
+        return move(r, a, b, r.rA, r.rB, r.carry * l, l);
+    }
     const Carried carried = carriedAtEnd(j, a, b);
-    turnCarried(j, a, b, carried, -(inverseOr0(carried.spin) * carriedTurn(j, a, b, carried, -theta)));
+    turnCarried(j, a, b, carried, -(inverseOr0(carried.spin) * carriedTurn(j, a, b, carried.carry, -theta)));
 }
 
 void JointSolver::holdLength(const Joint& j, const Rows& r, SolverBody& a, SolverBody& b)
@@ -666,7 +682,7 @@ void JointSolver::holdLength(const Joint& j, const Rows& r, SolverBody& a, Solve
     const double k = glm::dot(n, pointMass(a, b, armA, armB) * along);
     if (!(k > 0.0))
         return;
-    move(r, a, b, armA, armB, (-(len - j.length) / k) * along);
+    move(r, a, b, armA, armB, (-(len - j.length) / k) * along, dvec3(0.0));
 }
 
 void JointSolver::solvePositions()
@@ -678,11 +694,11 @@ void JointSolver::solvePositions()
         switch (j.type) {
         case JointType::Ball: holdPoints(j, r, a, b); break;
         case JointType::Hinge:
-            holdAxis(j, a, b);
+            holdAxis(j, r, a, b);
             holdPoints(j, r, a, b);
             break;
         case JointType::Fixed:
-            holdOrientation(j, a, b);
+            holdOrientation(j, r, a, b);
             holdPoints(j, r, a, b);
             break;
         case JointType::Distance: holdLength(j, r, a, b); break;
@@ -703,6 +719,7 @@ void JointSolver::projectAtEnd(int sweeps)
         const Joint& j = m_joints[r.joint];
         const dvec3 linear = j.type == JointType::Distance ? r.axialImpulse * r.n : r.linearImpulse;
         applyLinear(a, b, r.rA, r.rB, -0.5 * linear);
+        applyAngular(a, b, -0.5 * r.angularImpulse);
         m_endRows.push_back(rowsAt(r.joint, Pose::End));
     }
     for (int it = 0; it < sweeps && !m_endRows.empty(); ++it)

@@ -2,12 +2,7 @@
 // The joints' part of the solver: each joint's rows, solved in the same sweeps as the contacts
 // (velocities, warm-started from the last step's impulses) and then held on the poses
 // (positions, non-linear Gauss-Seidel), so that a pendulum's rod neither stretches nor adds
-// energy. A ball joint or a rod between bodies that take velocity Verlet's kind of step is RATTLE
-// (Andersen 1983): its position pass pushes along the start's rows and moves the velocities with
-// the poses, the velocity pass's impulses count half, and the velocities are projected onto the
-// joint at the end poses. That keeps a jointed body's energy over any time (a double pendulum's
-// to a thousandth in 30 s, the cap below taking what rounds above), where moving the poses alone
-// took it at first order in dt, as it still does for hinges and welds. Ball: the two anchors' relative velocity, three rows at once (a 3x3 block). Hinge: the
+// energy. Ball: the two anchors' relative velocity, three rows at once (a 3x3 block). Hinge: the
 // ball's rows, two angular rows that keep the axes parallel and, with limits, one that keeps the
 // angle in range. Distance: one row along the two anchors, rigid or (with a stiffness) a soft
 // constraint, which is an implicit spring (Catto, "Soft Constraints", GDC 2011). Fixed: the
@@ -15,6 +10,14 @@
 // with its angular one), so that it turns the pair about the joint, not each body about its own
 // centre: a small ball hinged a metre away is stopped by its limit in one sweep, where alone the
 // row spun the ball in place and the ball's rows undid it, a two-hundred-fiftieth a sweep.
+//
+// A joint that is an equality (a ball joint, a hinge without limits, a weld, a rod) between
+// bodies that take velocity Verlet's kind of step is RATTLE (Andersen 1983): its position pass
+// pushes along the step's start rows and moves the velocities with the poses, the velocity pass's
+// impulses count half, and the velocities are projected onto the joint at the end poses. Its
+// energy is then kept to second order in dt (the double-pendulum scene loses 2e-4 of it in 30 s,
+// the island's energy cap taking what rounds above), where moving the poses alone took it at
+// first order.
 #include <span>
 #include <vector>
 
@@ -119,7 +122,7 @@ private:
         double springGain = 0.0;    ///< 1 / (1 + dt (endStiffness dt Kw + c K))
         dvec3 linearImpulse{0.0}, angularImpulse{0.0};
         double axialImpulse = 0.0, lowerImpulse = 0.0, upperImpulse = 0.0;
-        /// Solved as RATTLE: a ball joint or a rod between velocity Verlet's kind of bodies
+        /// Solved as RATTLE: an equality between velocity Verlet's kind of bodies
         bool rattle = false;
         /// Between beginBlows and endBlows: the anchors' relative velocity and B's spin less A's
         /// before the blows, which the rows keep (zero otherwise)
@@ -143,12 +146,14 @@ private:
     enum class Pose { Start, End };
     /// Joint `index`'s rows at the bodies' start or end poses, with no impulses yet.
     Rows rowsAt(std::uint32_t index, Pose pose) const;
-    /// The position pass's move of a joint's bodies by the linear impulse p at the arms (A by
-    /// -p, B by +p), and for a RATTLE row their velocities as far again in a step.
-    void move(const Rows& r, SolverBody& a, SolverBody& b, const dvec3& ra, const dvec3& rb, const dvec3& p) const;
+    /// The position pass's move of a joint's bodies by the linear impulse p at the arms and the
+    /// angular l (A by -p and -l, B by +p and +l), and for a RATTLE row their velocities as far
+    /// again in a step.
+    void move(const Rows& r, SolverBody& a, SolverBody& b, const dvec3& ra, const dvec3& rb, const dvec3& p,
+              const dvec3& l) const;
     void holdPoints(const Joint& j, const Rows& r, SolverBody& a, SolverBody& b);
-    void holdAxis(const Joint& j, SolverBody& a, SolverBody& b);
-    void holdOrientation(const Joint& j, SolverBody& a, SolverBody& b);
+    void holdAxis(const Joint& j, const Rows& r, SolverBody& a, SolverBody& b);
+    void holdOrientation(const Joint& j, const Rows& r, SolverBody& a, SolverBody& b);
     void holdLength(const Joint& j, const Rows& r, SolverBody& a, SolverBody& b);
 
     std::span<Joint> m_joints;
