@@ -33,6 +33,18 @@ RigidBody& addBody(World& world, const Shape& shape, double mass, const dvec3& p
     return static_cast<RigidBody&>(world.addBody(std::move(body)));
 }
 
+/// Welds body b to body a at `anchor`; `collide`: they still collide with each other.
+void weld(World& world, std::size_t a, std::size_t b, const dvec3& anchor, bool collide = false)
+{
+    JointDesc joint;
+    joint.type = JointType::Fixed;
+    joint.bodyA = a;
+    joint.bodyB = b;
+    joint.anchor = anchor;
+    joint.collide = collide;
+    world.addJoint(joint);
+}
+
 World gravityWorld()
 {
     World world;
@@ -213,11 +225,7 @@ TEST(Joints, AWeldedPairTumblingInZeroGKeepsItsEnergy)
             box.setVel(glm::cross(spin, dvec3(x, 0.0, 0.0)));
             box.setAngularVelocity(spin);
         }
-        JointDesc weld;
-        weld.type = JointType::Fixed;
-        weld.bodyA = 0;
-        weld.bodyB = 1;
-        world.addJoint(weld);
+        weld(world, 0, 1, dvec3(0.0));
         const double e0 = world.totalEnergy();
         for (int n = 0, steps = int(std::lround(5.0 / dt)); n < steps; ++n)
             world.step(dt);
@@ -441,11 +449,7 @@ TEST(Joints, APlankHingedOnAStandMeetsTheStandInABlow)
     world.addJoint(joint);
     if (weighted) {
         addBody(world, Shape::box(dvec3(0.2, 0.1, 0.2)), 2.0, dvec3(0.6, 0.6, 0.0)).setCor(0.5);
-        JointDesc weld;
-        weld.type = JointType::Fixed;
-        weld.bodyA = 4;
-        weld.bodyB = 1;
-        world.addJoint(weld);
+        weld(world, 4, 1, dvec3(0.0));
     }
     const double e0 = world.totalEnergy();
     double boxHighest = box.getPos().y, arriving = 0.0, leaving = 0.0, most = e0;
@@ -721,12 +725,7 @@ TEST(Joints, AFixedJointMakesTwoBodiesOne)
     World world; // free, tumbling
     RigidBody& a = addBody(world, Shape::box(dvec3(0.3, 0.2, 0.1)), 2.0, dvec3(0.0, 0.0, 0.0));
     RigidBody& b = addBody(world, Shape::sphere(0.1), 1.0, dvec3(0.3, 0.1, 0.0));
-    JointDesc weld;
-    weld.type = JointType::Fixed;
-    weld.bodyA = 0;
-    weld.bodyB = 1;
-    weld.anchor = dvec3(0.15, 0.05, 0.0);
-    world.addJoint(weld);
+    weld(world, 0, 1, dvec3(0.15, 0.05, 0.0));
     a.setAngularVelocity(dvec3(1.0, 3.0, -2.0));
     a.setVel(dvec3(0.5, 0.0, 0.0));
     const dquat rest = glm::conjugate(a.getOrientation()) * b.getOrientation();
@@ -747,13 +746,7 @@ World weldedIntoEachOther(bool collide)
     World world;
     RigidBody& a = addBody(world, Shape::box(dvec3(0.4, 0.2, 0.2)), 2.0, dvec3(0.0));
     addBody(world, Shape::box(dvec3(0.2, 0.4, 0.2)), 1.0, dvec3(0.26, 0.1, 0.0));
-    JointDesc weld;
-    weld.type = JointType::Fixed;
-    weld.bodyA = 0;
-    weld.bodyB = 1;
-    weld.anchor = dvec3(0.2, 0.0, 0.0);
-    weld.collide = collide;
-    world.addJoint(weld);
+    weld(world, 0, 1, dvec3(0.2, 0.0, 0.0), collide);
     a.setAngularVelocity(dvec3(0.0, 0.0, 2.0));
     return world;
 }
