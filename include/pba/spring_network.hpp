@@ -37,6 +37,8 @@ public:
     std::string_view type() const override { return "spring"; }
     std::size_t size() const { return m_a.size(); }
     Link link(std::size_t s) const { return {m_a[s], m_b[s], m_stiffness[s], m_restLength[s], m_damping[s]}; }
+    /// Whether any of its springs has damping.
+    bool damped() const { return m_damped; }
 
     /// Zero: the force on one end needs the other end's trial state (see accumulate).
     dvec3 force(std::size_t index, const Body& body, const dvec3& x, const dvec3& v) const override;
@@ -59,6 +61,7 @@ private:
     // is half the memory a 97,000-spring cloth moves for them.
     std::vector<std::uint32_t> m_a, m_b;
     std::vector<double> m_stiffness, m_restLength, m_damping;
+    bool m_damped = false;
     std::size_t m_lowest = 0; ///< the bodies the springs touch lie in [m_lowest, m_lowest + m_first.size() - 1)
     /// The incidence list: the springs at body m_lowest + p are m_incident[m_first[p]] up to
     /// m_incident[m_first[p + 1]], each 2 s + 1 where the body is spring s's second end (it

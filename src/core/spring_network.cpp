@@ -38,6 +38,7 @@ SpringNetwork::SpringNetwork(const std::vector<Link>& links)
         m_stiffness.push_back(l.stiffness);
         m_restLength.push_back(l.restLength);
         m_damping.push_back(l.damping);
+        m_damped = m_damped || l.damping > 0.0;
         lowest = std::min({lowest, l.a, l.b});
         highest = std::max({highest, l.a, l.b});
     }

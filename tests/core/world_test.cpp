@@ -125,3 +125,10 @@ TEST(SpringNetwork, WorksInTheCallersScratchOrItsOwnAlike)
     EXPECT_EQ(own, kept);
     EXPECT_NE(own[5], dvec3(0.0));
 }
+
+TEST(SpringNetwork, IsDampedWhenAnyOfItsSpringsIs)
+{
+    SpringNetwork::Link still{0, 1, 100.0, 1.0, 0.0}, damped{1, 2, 100.0, 1.0, 0.5};
+    EXPECT_FALSE(SpringNetwork({still, still}).damped());
+    EXPECT_TRUE(SpringNetwork({still, damped}).damped());
+}
