@@ -1,5 +1,7 @@
 #include "contact/polyhedron_contact.hpp"
 
+#include "contact/manifold_reduction.hpp"
+
 #include <algorithm>
 #include <array>
 #include <type_traits>
@@ -130,12 +132,6 @@ ManifoldPoint makePoint(const Transform& ta, const dvec3& anchorA, const Transfo
     return {anchorA, anchorB, 0.5 * (ta.apply(anchorA) + tb.apply(anchorB)), separation, id};
 }
 
-/// Twice the signed area of triangle (p, q, r) seen along `normal`.
-double area2(const dvec3& p, const dvec3& q, const dvec3& r, const dvec3& normal)
-{
-    return glm::dot(normal, glm::cross(q - p, r - p));
-}
-
 /// The closest points of segments p + s d and q + t e, s and t in [0, 1] (Ericson, Real-Time
 /// Collision Detection, 5.1.9); the edges here are never parallel, but a zero-length or
 /// parallel pair still gets finite points.
@@ -154,46 +150,6 @@ std::pair<dvec3, dvec3> closestOnSegments(const dvec3& p, const dvec3& d, const 
 }
 
 } // namespace
-
-int reduceManifold(std::span<ClipPoint> points, const dvec3& normal)
-{
-    const std::size_t n = points.size();
-    if (n <= static_cast<std::size_t>(Manifold::kMaxPoints))
-        return static_cast<int>(n);
-    // The index with the largest score (the first on a tie), and that score.
-    const auto best = [n](auto&& score) {
-        std::size_t index = 0;
-        double top = score(0);
-        for (std::size_t i = 1; i < n; ++i)
-            if (const double s = score(i); s > top) {
-                top = s;
-                index = i;
-            }
-        return std::pair{index, top};
-    };
-    const std::size_t first = best([&](std::size_t i) { return -points[i].separation; }).first;
-    const dvec3 p1 = points[first].position;
-    const auto [second, length2] = best([&](std::size_t i) {
-        const dvec3 d = points[i].position - p1;
-        const dvec3 across = d - glm::dot(d, normal) * normal;
-        return glm::dot(across, across);
-    });
-    const dvec3 p2 = points[second].position;
-    const auto [third, area] = best([&](std::size_t i) { return std::abs(area2(p1, p2, points[i].position, normal)); });
-    const dvec3 p3 = points[third].position;
-    // Turned counter-clockwise, a point beyond one of the triangle's edges makes a negative area
-    // with it: the largest such is (twice) the area that point adds.
-    const double sign = area2(p1, p2, p3, normal) > 0.0 ? 1.0 : -1.0;
-    const auto [fourth, added] = best([&](std::size_t i) {
-        const dvec3& q = points[i].position;
-        return -std::min({sign * area2(p1, p2, q, normal), sign * area2(p2, p3, q, normal),
-                          sign * area2(p3, p1, q, normal)});
-    });
-    const int count = length2 <= 0.0 ? 1 : area <= 0.0 ? 2 : added <= 0.0 ? 3 : 4;
-    const std::array<ClipPoint, 4> chosen{points[first], points[second], points[third], points[fourth]};
-    std::copy_n(chosen.begin(), count, points.begin());
-    return count;
-}
 
 Manifold faceContact(const ConvexPolyhedron& ref, const Transform& refPose, const ConvexPolyhedron& inc,
                      const Transform& incPose, std::uint32_t face, Reference which, double margin)
@@ -236,7 +192,8 @@ Manifold faceContact(const ConvexPolyhedron& ref, const Transform& refPose, cons
             p.id = pairId(polygon[i].refFeature, polygon[i].incFeature, which);
         }
     }
-    const int count = reduceManifold({points, kept}, f.normal);
+    const int count =
+        reduceManifold(std::span{points, kept}, f.normal, [](const ClipPoint& p) { return p.position; });
 
     Manifold m;
     const dvec3 normal = refPose.rotation * f.normal;

@@ -33,10 +33,4 @@ struct ClipPoint {
     std::uint32_t id;
 };
 
-/// Keeps at most Manifold::kMaxPoints of `points` (all in the plane of `normal` but for their
-/// separations), in place: the deepest (the first on a tie), the one furthest from it, the one
-/// that makes the largest triangle with those two, and the one that adds the most area outside
-/// that triangle. Returns how many are kept.
-int reduceManifold(std::span<ClipPoint> points, const dvec3& normal);
-
 } // namespace pba::contact

@@ -1,5 +1,7 @@
 #include "rigid/room_contacts.hpp"
 
+#include "contact/manifold_reduction.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -41,10 +43,8 @@ void emit(Candidates& c, BodyIndex body, BodyIndex surfaceBody, std::vector<Cont
     // (half g dt^2) took in its top corners, kept two of them, the furthest from the deepest, in
     // place of two it stood on, and tipped over with a third more energy.
     constexpr double kNear = 0.01;
-    const double deepest =
-        std::min_element(c.points.begin(), c.points.end(), [](const ContactPoint& p, const ContactPoint& q) {
-            return p.separation < q.separation;
-        })->separation;
+    const auto bySeparation = [](const ContactPoint& p, const ContactPoint& q) { return p.separation < q.separation; };
+    const double deepest = std::min_element(c.points.begin(), c.points.end(), bySeparation)->separation;
     const auto isNear = [&](const ContactPoint& p) { return p.separation <= deepest + kNear; };
     int candidates = int(c.points.size());
     if (const auto touching = std::count_if(c.points.begin(), c.points.end(), isNear);
@@ -52,7 +52,11 @@ void emit(Candidates& c, BodyIndex body, BodyIndex surfaceBody, std::vector<Cont
         std::stable_partition(c.points.begin(), c.points.end(), isNear);
         candidates = int(touching);
     }
-    const int count = reduceToFour(c.points.data(), candidates);
+    // A surface's points share its normal but on the shaft's round wall, where each has its own:
+    // the deepest's plane is the contact's there.
+    const dvec3 plane = std::min_element(c.points.begin(), c.points.begin() + candidates, bySeparation)->normal;
+    const int count = contact::reduceManifold(std::span{c.points.data(), std::size_t(candidates)}, plane,
+                                              [](const ContactPoint& p) { return p.point; });
     contact.count = count;
     for (int k = 0; k < count; ++k)
         contact.points[k] = c.points[k];
@@ -60,61 +64,7 @@ void emit(Candidates& c, BodyIndex body, BodyIndex surfaceBody, std::vector<Cont
     c.points.clear();
 }
 
-double triangleArea2(const dvec3& a, const dvec3& b, const dvec3& c) { return glm::length(glm::cross(b - a, c - a)); }
-
 } // namespace
-
-int reduceToFour(ContactPoint* points, int count)
-{
-    if (count <= 4)
-        return count;
-    auto take = [&](int slot, int from) { std::swap(points[slot], points[from]); };
-    // 1. The deepest (the lowest index among equals: the result depends on the order given only
-    //    through ties, and the order is the shape's vertices').
-    int best = 0;
-    for (int k = 1; k < count; ++k)
-        if (points[k].separation < points[best].separation)
-            best = k;
-    take(0, best);
-    // 2. The furthest from it.
-    best = 1;
-    double far = -1.0;
-    for (int k = 1; k < count; ++k)
-        if (const double d = glm::length(points[k].point - points[0].point); d > far) {
-            far = d;
-            best = k;
-        }
-    take(1, best);
-    // 3. The largest triangle with those two.
-    best = 2;
-    double area = -1.0;
-    for (int k = 2; k < count; ++k)
-        if (const double a = triangleArea2(points[0].point, points[1].point, points[k].point); a > area) {
-            area = a;
-            best = k;
-        }
-    take(2, best);
-    // 4. The point that adds the most area to the triangle: the largest of the three triangles
-    //    it makes with the triangle's edges, on the far side of one of them.
-    best = 3;
-    area = -1.0;
-    const dvec3 n = glm::cross(points[1].point - points[0].point, points[2].point - points[0].point);
-    for (int k = 3; k < count; ++k) {
-        double added = 0.0;
-        for (int e = 0; e < 3; ++e) {
-            const dvec3& p = points[e].point;
-            const dvec3& q = points[(e + 1) % 3].point;
-            const double signedArea = glm::dot(glm::cross(q - p, points[k].point - p), n);
-            added = std::max(added, -signedArea); // outside the edge pq
-        }
-        if (added > area) {
-            area = added;
-            best = k;
-        }
-    }
-    take(3, best);
-    return 4;
-}
 
 void collideWithRoom(const CollisionShape& shape, const Transform& pose, std::span<const Plane> planes, double margin,
                      BodyIndex body, BodyIndex firstSurface, std::vector<Contact>& out, std::optional<double> sphereMargin)

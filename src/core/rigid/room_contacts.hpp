@@ -35,9 +35,4 @@ void collideWithRoom(const contact::CollisionShape& shape, const contact::Transf
 /// taken back at once, not over the next steps.
 bool pushOutOfRoom(const contact::CollisionShape& shape, dvec3& x, const dquat& q, std::span<const Plane> planes);
 
-/// Keeps at most four of `points` (given `count` > 4): the deepest, the one furthest from it,
-/// then the ones that make the largest triangle and quadrilateral (Box2D's and Jolt's
-/// reduction), in that order. Returns the new count.
-int reduceToFour(ContactPoint* points, int count);
-
 } // namespace pba::rigid
