@@ -361,3 +361,77 @@ TEST(RigidContact, IslandsSleepAndWakeWhenTouched)
     EXPECT_TRUE(world.isAsleep(0));
     EXPECT_TRUE(world.isAsleep(2));
 }
+
+namespace {
+
+/// A column of boxes on the floor, 30 cm square, each of `heights[i]` and `masses[i]`, friction
+/// 0.6, no bounce, every one stepped by `integrator`.
+std::vector<RigidBody*> addColumn(World& world, const std::vector<double>& heights, const std::vector<double>& masses,
+                                  Integrator integrator)
+{
+    std::vector<RigidBody*> column;
+    double y = 0.0;
+    for (std::size_t i = 0; i < heights.size(); ++i) {
+        auto box = std::make_unique<RigidBody>();
+        box->setShapeWithMass(Shape::box(dvec3(0.3, heights[i], 0.3)), masses[i]);
+        box->setPos(dvec3(0.0, y + 0.5 * heights[i], 0.0));
+        box->setCor(0.0);
+        box->setFriction(0.6);
+        box->setIntegrator(integrator);
+        column.push_back(&static_cast<RigidBody&>(world.addBody(std::move(box))));
+        y += heights[i];
+    }
+    return column;
+}
+
+} // namespace
+
+// A body resting on one hundreds of times lighter: the sweeps alone pass its weight down at
+// 1/500 of what it presses a sweep, and squeezed a 0.1 kg cube out from under 50 kg sideways
+// (25 cm in 10 s). Every column here stands 10 s, each box within 2 mm of where it started, at
+// dt 0.005 and 1/60 for every integrator: two boxes, a tower of six alternating 0.1 and 50 kg,
+// and a 10 g plate between 10 and 100 kg (which went 2 cm into the box under it).
+TEST(RigidContact, AHeavyBodyStandsOnAFarLighterOne)
+{
+    struct Column {
+        const char* name;
+        std::vector<double> heights, masses;
+    };
+    const std::vector<Column> columns{
+        {"50 kg on 0.1 kg", {0.2, 0.2}, {0.1, 50.0}},
+        {"six alternating", {0.2, 0.2, 0.2, 0.2, 0.2, 0.2}, {0.1, 50.0, 0.1, 50.0, 0.1, 50.0}},
+        {"a plate between", {0.3, 0.02, 0.3}, {10.0, 0.01, 100.0}},
+    };
+    for (const double dt : {0.005, 1.0 / 60.0})
+        for (const Integrator integrator : kRigidIntegrators)
+            for (const Column& c : columns) {
+                World world;
+                world.setRoom(Aabb{dvec3(-2.0, 0.0, -2.0), dvec3(2.0, 4.0, 2.0)});
+                world.addForce(std::make_unique<Gravity>(dvec3(0.0, -kG, 0.0)));
+                const auto column = addColumn(world, c.heights, c.masses, integrator);
+                std::vector<dvec3> start;
+                for (const RigidBody* b : column)
+                    start.push_back(b->getPos());
+                for (int n = 0; n < int(std::lround(10.0 / dt)); ++n)
+                    world.step(dt);
+                for (std::size_t i = 0; i < column.size(); ++i)
+                    EXPECT_LT(glm::length(column[i]->getPos() - start[i]), 2e-3)
+                        << c.name << ", box " << i << ", dt " << dt << ", " << integratorName(integrator);
+            }
+}
+
+// Where no body rests on anything fixed, nothing is held: a 50 kg ball meeting a 0.1 kg one
+// head-on in zero g leaves them as the textbook says (e = 1), to 1e-9.
+TEST(RigidContact, FarUnequalBallsMeetingInTheAirAreTheTextbooks)
+{
+    const double m1 = 50.0, m2 = 0.1, v1 = 1.0, v2 = -2.0;
+    World world;
+    RigidBody& a = addSphere(world, 0.2, m1, dvec3(-1.0, 0.0, 0.0), dvec3(v1, 0.0, 0.0));
+    RigidBody& b = addSphere(world, 0.05, m2, dvec3(0.5, 0.0, 0.0), dvec3(v2, 0.0, 0.0));
+    a.setCor(1.0);
+    b.setCor(1.0);
+    for (int n = 0; n < 200; ++n)
+        world.step(0.005);
+    EXPECT_NEAR(a.getVel().x, (m1 * v1 + m2 * v2 - m2 * (v1 - v2)) / (m1 + m2), 1e-9);
+    EXPECT_NEAR(b.getVel().x, (m1 * v1 + m2 * v2 + m1 * (v1 - v2)) / (m1 + m2), 1e-9);
+}
