@@ -435,3 +435,36 @@ TEST(RigidContact, FarUnequalBallsMeetingInTheAirAreTheTextbooks)
     EXPECT_NEAR(a.getVel().x, (m1 * v1 + m2 * v2 - m2 * (v1 - v2)) / (m1 + m2), 1e-9);
     EXPECT_NEAR(b.getVel().x, (m1 * v1 + m2 * v2 + m1 * (v1 - v2)) / (m1 + m2), 1e-9);
 }
+
+// A blow on a body far lighter than the striker meets it held by what it rests on: a 5 kg ball
+// dropped 1 m onto a 0.1 kg plate lying on the floor rebounds to e^2 h within 3% (blows passed
+// between the ball, the plate and the floor, two a contact, left the ball lying on the plate).
+// Semi-implicit Euler and the implicit gyroscopic step carry the plate's fall within the step
+// (g dt, which its floor stops only after the blow) into the blow, and lose to first order in
+// dt: 6.5% of the height at dt 0.005, 18% at 1/60; within 3% at dt 0.0005.
+TEST(RigidContact, ABallDroppedOnAFarLighterPlateOnTheFloorReboundsAsFromTheFloor)
+{
+    const double e = 0.8, h = 1.0, radius = 0.1, plate = 0.02;
+    for (const double dt : {0.0005, 0.005, 1.0 / 60.0})
+        for (const Integrator integrator : kRigidIntegrators) {
+            World world;
+            world.setRoom(Aabb{dvec3(-2.0, 0.0, -2.0), dvec3(2.0, 4.0, 2.0)});
+            world.addForce(std::make_unique<Gravity>(dvec3(0.0, -kG, 0.0)));
+            addColumn(world, {plate}, {0.1}, integrator)[0]->setCor(e);
+            RigidBody& ball = addSphere(world, radius, 5.0, dvec3(0.0, plate + radius + h, 0.0), dvec3(0.0));
+            ball.setCor(e);
+            ball.setIntegrator(integrator);
+            double top = 0.0;
+            bool bounced = false;
+            for (int n = 0; n < int(std::lround(1.2 / dt)); ++n) {
+                world.step(dt);
+                bounced = bounced || ball.getVel().y > 0.0;
+                if (bounced)
+                    top = std::max(top, ball.getPos().y - plate - radius);
+            }
+            const bool firstOrder = integrator == Integrator::SemiImplicitEuler ||
+                                    integrator == Integrator::ImplicitGyroscopic;
+            const double within = firstOrder && dt > 0.001 ? 14.0 * dt : 0.03;
+            EXPECT_NEAR(top, e * e * h, within * e * e * h) << "dt " << dt << ", " << integratorName(integrator);
+        }
+}

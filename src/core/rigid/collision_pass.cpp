@@ -134,11 +134,18 @@ void ContactSolver::pushRow(const BlowRow& r, double lambda)
     m_bodies[r.b].applyAngularImpulse(lambda * r.n);
 }
 
+bool ContactSolver::farLighterIn(const IslandContact& c, BodyIndex k) const
+{
+    const BodyIndex other = k == c.a ? c.b : c.a;
+    const double wk = m_bodies[k].inverseMass, wOther = m_bodies[other].inverseMass;
+    return wOther > 0.0 && wk > kShockRatio * wOther;
+}
+
 void ContactSolver::restingRows(const IslandContact& c, std::span<const ImpactRow> rows)
 {
     m_resting.clear();
     const auto held = [&](BodyIndex k) {
-        return (!m_pins.empty() && m_pinOf[k] >= 0 && (k == c.a || k == c.b)) ||
+        return (!m_pins.empty() && m_pinOf[k] >= 0 && (k == c.a || k == c.b)) || farLighterIn(c, k) ||
                std::find(m_mechanism.begin(), m_mechanism.end(), k) != m_mechanism.end();
     };
     for (const IslandContact& other : m_constraints) {
@@ -457,7 +464,7 @@ bool ContactSolver::collideOne(const IslandContact& c)
     if (m_impactJoints)
         m_impactJoints->mechanismRows(c.a, c.b, m_mechanism, m_jointEqualities, m_jointLimits);
     m_jointPushes.assign(m_jointEqualities.size() + m_jointLimits.size(), 0.0);
-    if (!m_pins.empty() || !m_mechanism.empty())
+    if (!m_pins.empty() || !m_mechanism.empty() || farLighterIn(c, c.a) || farLighterIn(c, c.b))
         restingRows(c, std::span(rows, std::size_t(count)));
     const std::span<const BodyIndex> joined = m_impactJoints ? m_impactJoints->bodies() : std::span<const BodyIndex>();
     m_jointBodiesBefore.clear();
