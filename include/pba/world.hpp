@@ -311,7 +311,8 @@ public:
     /// body, or it takes implicit-euler or xpbd (whose step is a system's, joined by springs or not).
     bool isCoupled(std::size_t i) const;
     /// Whether bodies a and b, particles with a radius, collide as balls after their steps: not
-    /// neighbours along one rope's or cloth's springs, which hold them instead (as of the last step).
+    /// neighbours along one rope's or cloth's springs, which hold them instead (as of the last
+    /// step: false for a body added since).
     bool ballsCollide(std::size_t a, std::size_t b) const;
     /// Whether any moving body is coupled: then `exact` acts as `reflect` on those bodies.
     bool hasCoupledBodies() const;

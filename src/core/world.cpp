@@ -568,6 +568,9 @@ std::vector<Wrench> World::sourceWrenches(std::span<const State> at) const
 
 bool World::ballsCollide(std::size_t a, std::size_t b) const
 {
+    // The radii and the springs' neighbours are the last step's: before a body's first step none.
+    if (std::max(a, b) >= m_bodies.radii.size())
+        return false;
     return m_bodies.radii[a] > 0.0 && m_bodies.radii[b] > 0.0 && !m_particleSystems.neighbours->near(a, b);
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "pba/forces.hpp"
+#include "pba/particle.hpp"
 #include "pba/scene/scene.hpp"
 #include "pba/spring_network.hpp"
 
@@ -131,4 +132,24 @@ TEST(SpringNetwork, IsDampedWhenAnyOfItsSpringsIs)
     SpringNetwork::Link still{0, 1, 100.0, 1.0, 0.0}, damped{1, 2, 100.0, 1.0, 0.5};
     EXPECT_FALSE(SpringNetwork({still, still}).damped());
     EXPECT_TRUE(SpringNetwork({still, damped}).damped());
+}
+
+// Whether two balls collide is known from their step: asked of balls added since (or of a world
+// never stepped) the answer is no, not a read past the last step's radii.
+TEST(World, BallsAddedSinceTheLastStepDoNotYetCollide)
+{
+    World world;
+    const auto addBall = [&](const dvec3& at) {
+        auto ball = std::make_unique<Particle>();
+        ball->setPos(at);
+        ball->setRadius(0.1);
+        world.addBody(std::move(ball));
+    };
+    addBall(dvec3(0.0));
+    addBall(dvec3(1.0, 0.0, 0.0));
+    EXPECT_FALSE(world.ballsCollide(0, 1));
+    world.step(0.01);
+    EXPECT_TRUE(world.ballsCollide(0, 1));
+    addBall(dvec3(2.0, 0.0, 0.0));
+    EXPECT_FALSE(world.ballsCollide(1, 2));
 }
