@@ -138,7 +138,7 @@ bool ContactSolver::farLighterIn(const IslandContact& c, BodyIndex k) const
 {
     const BodyIndex other = k == c.a ? c.b : c.a;
     const double wk = m_bodies[k].inverseMass, wOther = m_bodies[other].inverseMass;
-    return wOther > 0.0 && wk > kShockRatio * wOther;
+    return wOther > 0.0 && wk > kFarLighter * wOther;
 }
 
 void ContactSolver::restingRows(const IslandContact& c, std::span<const ImpactRow> rows)

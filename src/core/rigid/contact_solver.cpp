@@ -25,27 +25,17 @@ double speedAlong(const Jacobian& j, const SolverBody& a, const SolverBody& b)
 }
 
 /// An impulse `lambda` along a row: on B, and its opposite on A (a static body untouched: the
-/// islands that touch one share it; a held one too).
-void applyAlong(const Jacobian& j, double lambda, SolverBody& a, SolverBody& b, Held held = {})
+/// islands that touch one share it).
+void applyAlong(const Jacobian& j, double lambda, SolverBody& a, SolverBody& b)
 {
-    if (!held.a && !a.isStatic()) {
+    if (!a.isStatic()) {
         a.v -= (lambda * a.inverseMass) * dvec3(j.u);
         a.w -= lambda * dvec3(j.turnA);
     }
-    if (!held.b && !b.isStatic()) {
+    if (!b.isStatic()) {
         b.v += (lambda * b.inverseMass) * dvec3(j.u);
         b.w += lambda * dvec3(j.turnB);
     }
-}
-
-/// The mass a row meets: both bodies', or with one held, the other's alone.
-double massAlong(const Jacobian& j, const SolverBody& a, const SolverBody& b, Held held)
-{
-    if (!held.a && !held.b)
-        return j.mass;
-    const double inverse = held.a ? b.inverseMass + glm::dot(dvec3(j.momentB), dvec3(j.turnB))
-                                  : a.inverseMass + glm::dot(dvec3(j.momentA), dvec3(j.turnA));
-    return inverse > 0.0 && !(held.a && held.b) ? 1.0 / inverse : 0.0;
 }
 
 /// A sweep that changes no impulse by more than this share of the largest has converged.
@@ -207,33 +197,31 @@ void ContactSolver::warmStart()
     m_wide.build(m_constraints, m_velocityRows, m_bodies, m_oneAtATime);
 }
 
-void ContactSolver::solveFriction(const IslandContact& c, SolverBody& a, SolverBody& b, double& change, Held held)
+void ContactSolver::solveFriction(const IslandContact& c, SolverBody& a, SolverBody& b, double& change)
 {
     for (int i = 0; i < c.count; ++i) {
         VelocityRows& r = m_velocityRows[c.first + i];
         double want[2];
         for (int k = 0; k < 2; ++k)
-            want[k] = r.tangentImpulse[k] - massAlong(r.across[k], a, b, held) * speedAlong(r.across[k], a, b);
+            want[k] = r.tangentImpulse[k] - r.across[k].mass * speedAlong(r.across[k], a, b);
         const double length = std::sqrt(want[0] * want[0] + want[1] * want[1]);
         const double limit = c.friction * r.normalImpulse;
         const double scale = length > limit ? limit / length : 1.0;
         for (int k = 0; k < 2; ++k) {
             const double next = want[k] * scale;
-            applyAlong(r.across[k], next - r.tangentImpulse[k], a, b, held);
+            applyAlong(r.across[k], next - r.tangentImpulse[k], a, b);
             change = std::max(change, std::abs(next - r.tangentImpulse[k]));
             r.tangentImpulse[k] = next;
         }
     }
 }
 
-void ContactSolver::solveNormal(const IslandContact& c, SolverBody& a, SolverBody& b, double& change, double& largest,
-                                Held held)
+void ContactSolver::solveNormal(const IslandContact& c, SolverBody& a, SolverBody& b, double& change, double& largest)
 {
     for (int i = 0; i < c.count; ++i) {
         VelocityRows& r = m_velocityRows[c.first + i];
-        const double mass = massAlong(r.along, a, b, held);
-        const double next = std::max(r.normalImpulse - mass * (speedAlong(r.along, a, b) - r.target), 0.0);
-        applyAlong(r.along, next - r.normalImpulse, a, b, held);
+        const double next = std::max(r.normalImpulse - r.along.mass * (speedAlong(r.along, a, b) - r.target), 0.0);
+        applyAlong(r.along, next - r.normalImpulse, a, b);
         change = std::max(change, std::abs(next - r.normalImpulse));
         largest = std::max(largest, next);
         r.normalImpulse = next;
@@ -271,8 +259,6 @@ void ContactSolver::solveVelocities(int maxStrikes, int least, int most)
         for (int it = 0; it < most; ++it)
             if (solveVelocities() && it + 1 >= least)
                 break;
-        if (needsShock())
-            propagateShock();
         return;
     }
     // The three passes in one run of rounds: the other core, once it has joined, stays (waking

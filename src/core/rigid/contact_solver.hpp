@@ -10,8 +10,7 @@
 //     the joints are swept with each blow's impulses);
 //  2. velocities: every contact, warm-started with the last step's impulses, may close its gap
 //     but not cross it (speculative contacts), with Coulomb friction, for a fixed number of
-//     sweeps; joints take part here (joint_solver.hpp); where a body touches one far lighter,
-//     the pass ends with shock propagation (shock_pass.cpp);
+//     sweeps; joints take part here (joint_solver.hpp);
 //  3. positions: what overlap remains beyond a slop is pushed apart on the poses alone
 //     (non-linear Gauss-Seidel, as Box2D v2.4's position solver), adding no velocity and so no
 //     energy.
@@ -87,11 +86,6 @@ struct BlowRow {
 /// Solves one island's contacts. `contacts` holds every contact of the world; `island` lists
 /// the indices of this island's, in order. Works on `bodies` (the world's solver bodies: the
 /// island's and the static ones) and writes the impulses back into the contacts.
-/// Which of a row's two bodies a sweep holds as if fixed: neither, but in the shock pass.
-struct Held {
-    bool a = false, b = false;
-};
-
 class ContactSolver {
 public:
     /// `moving`: the island's moving bodies; `withJoints`: the caller interleaves a joint
@@ -155,22 +149,8 @@ private:
         double targetN = 0.0, targetT[2] = {0.0, 0.0};
         double pushN = 0.0, pushT[2] = {0.0, 0.0};
     };
-    void solveFriction(const IslandContact& c, SolverBody& a, SolverBody& b, double& change, Held held = {});
-    void solveNormal(const IslandContact& c, SolverBody& a, SolverBody& b, double& change, double& largest,
-                     Held held = {});
-    /// The end of pass 2 where a body rests on one far lighter (shock_pass.cpp): the contacts swept
-    /// from the ground up, rank by rank, each with its lower body held as if fixed.
-    bool needsShock() const;
-    void rankFromTheGround();
-    void propagateShock();
-    /// A body rests on one this many times lighter: the sweeps alone would need about as many
-    /// to pass its weight down (a 50 kg box on a 0.1 kg cube, 500, squeezed the cube out).
-    static constexpr double kShockRatio = 20.0;
-    /// A rank's sweeps at most: a box on four points takes about ten to agree with its turning.
-    static constexpr int kShockSweeps = 16;
-    static constexpr double kShockConverged = 1e-6; ///< as the sweeps' convergence
-    std::vector<int> m_rank; ///< per body: contacts between it and the ground (0: static)
-    std::vector<std::pair<int, std::uint32_t>> m_byRank; ///< the shock pass's contacts, by rank
+    void solveFriction(const IslandContact& c, SolverBody& a, SolverBody& b, double& change);
+    void solveNormal(const IslandContact& c, SolverBody& a, SolverBody& b, double& change, double& largest);
     /// A contact's blow in the collision pass: when its first point arrives (false: none
     /// does), the rows of the points arriving then, their impulses together.
     bool collideOne(const IslandContact& c);
@@ -190,11 +170,11 @@ private:
     /// `rows`; at most kMaxRestingRows, the closest to touching.
     void restingRows(const IslandContact& c, std::span<const ImpactRow> rows);
     static constexpr std::size_t kMaxRestingRows = 12;
-    /// Whether body k of contact c is over kShockRatio times lighter than its moving partner: a
-    /// blow of the partner then meets it held by what it rests on, as the shock pass holds it
-    /// (blows passed back and forth, two a contact, left a 5 kg ball dropped on a 0.1 kg plate
-    /// on the floor lying on it, with no rebound).
+    /// Whether body k of contact c is over kFarLighter times lighter than its moving partner: a
+    /// blow of the partner then meets it held by what it rests on (blows passed back and forth,
+    /// two a contact, left a 5 kg ball dropped on a 0.1 kg plate on the floor lying on it).
     bool farLighterIn(const IslandContact& c, BodyIndex k) const;
+    static constexpr double kFarLighter = 20.0;
     /// With resting rows or a mechanism: the normal pushes of `rows`, m_resting's and the
     /// mechanism's joint rows together, exactly.
     void solveBlowNormals(const IslandContact& c, std::span<ImpactRow> rows, double& change, double& largest);
