@@ -18,26 +18,6 @@ Jacobian jacobianOf(const SolverBody& a, const SolverBody& b, const dvec3& ra, c
             float(k > 0.0 ? 1.0 / k : 0.0)};
 }
 
-/// The two points' relative speed along a row.
-double speedAlong(const Jacobian& j, const SolverBody& a, const SolverBody& b)
-{
-    return glm::dot(dvec3(j.u), b.v - a.v) + glm::dot(dvec3(j.momentB), b.w) - glm::dot(dvec3(j.momentA), a.w);
-}
-
-/// An impulse `lambda` along a row: on B, and its opposite on A (a static body untouched: the
-/// islands that touch one share it).
-void applyAlong(const Jacobian& j, double lambda, SolverBody& a, SolverBody& b)
-{
-    if (!a.isStatic()) {
-        a.v -= (lambda * a.inverseMass) * dvec3(j.u);
-        a.w -= lambda * dvec3(j.turnA);
-    }
-    if (!b.isStatic()) {
-        b.v += (lambda * b.inverseMass) * dvec3(j.u);
-        b.w += lambda * dvec3(j.turnB);
-    }
-}
-
 /// A sweep that changes no impulse by more than this share of the largest has converged.
 constexpr double kConverged = 1e-6;
 
@@ -259,6 +239,8 @@ void ContactSolver::solveVelocities(int maxStrikes, int least, int most)
         for (int it = 0; it < most; ++it)
             if (solveVelocities() && it + 1 >= least)
                 break;
+        if (needsExactNormals())
+            solveNormalsExactly();
         return;
     }
     // The three passes in one run of rounds: the other core, once it has joined, stays (waking

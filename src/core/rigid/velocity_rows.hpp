@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 
 #include "rigid/contact.hpp"
+#include "rigid/solver_body.hpp"
 
 namespace pba::rigid {
 
@@ -41,5 +42,25 @@ struct IslandContact {
     std::uint32_t first = 0;
     int count = 0;
 };
+
+/// The two points' relative speed along a row.
+inline double speedAlong(const Jacobian& j, const SolverBody& a, const SolverBody& b)
+{
+    return glm::dot(dvec3(j.u), b.v - a.v) + glm::dot(dvec3(j.momentB), b.w) - glm::dot(dvec3(j.momentA), a.w);
+}
+
+/// An impulse `lambda` along a row: on B, and its opposite on A (a static body untouched: the
+/// islands that touch one share it).
+inline void applyAlong(const Jacobian& j, double lambda, SolverBody& a, SolverBody& b)
+{
+    if (!a.isStatic()) {
+        a.v -= (lambda * a.inverseMass) * dvec3(j.u);
+        a.w -= lambda * dvec3(j.turnA);
+    }
+    if (!b.isStatic()) {
+        b.v += (lambda * b.inverseMass) * dvec3(j.u);
+        b.w += lambda * dvec3(j.turnB);
+    }
+}
 
 } // namespace pba::rigid
