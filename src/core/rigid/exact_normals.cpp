@@ -28,21 +28,20 @@ bool ContactSolver::needsExactNormals() const
 
 void ContactSolver::solveNormalsExactly()
 {
-    m_wide.storeImpulses(m_velocityRows);
-    // Row i's body, the sign an impulse along it has on that body, and the row.
+    // So few contacts are swept one at a time: their impulses are the rows' own, none packed.
+    static_assert(kMostExactRows < WideContactRows::kFewest);
+    // Each row's two bodies, and the sign an impulse along the row has on each.
     struct End {
         BodyIndex body;
         double sign;
     };
     const std::size_t n = m_velocityRows.size();
     std::vector<End> ends(2 * n);
-    std::vector<const Jacobian*> along(n);
     for (const IslandContact& c : m_constraints)
         for (int p = 0; p < c.count; ++p) {
             const std::size_t i = c.first + std::size_t(p);
             ends[2 * i] = {c.a, -1.0};
             ends[2 * i + 1] = {c.b, 1.0};
-            along[i] = &m_velocityRows[i].along;
         }
     // A = J M^-1 J^T: rows i and j meet on the bodies they share (a static body moves for none).
     std::vector<double>& a = m_exactMatrix;
@@ -56,20 +55,18 @@ void ContactSolver::solveNormalsExactly()
                     const SolverBody& body = m_bodies[ei.body];
                     if (ei.body != ej.body || body.isStatic())
                         continue;
-                    const dvec3 momentI(si == 0 ? along[i]->momentA : along[i]->momentB);
-                    const dvec3 turnJ(sj == 0 ? along[j]->turnA : along[j]->turnB);
+                    const Jacobian& ri = m_velocityRows[i].along;
+                    const Jacobian& rj = m_velocityRows[j].along;
+                    const dvec3 momentI(si == 0 ? ri.momentA : ri.momentB), turnJ(sj == 0 ? rj.turnA : rj.turnB);
                     a[i * n + j] += ei.sign * ej.sign *
-                                    (body.inverseMass * glm::dot(dvec3(along[i]->u), dvec3(along[j]->u)) +
-                                     glm::dot(momentI, turnJ));
+                                    (body.inverseMass * glm::dot(dvec3(ri.u), dvec3(rj.u)) + glm::dot(momentI, turnJ));
                 }
     std::vector<double> b(n), x(n);
     for (int round = 0; round < kExactRounds; ++round) {
         double scale = 0.0;
         for (std::size_t i = 0; i < n; ++i) {
-            const End& ea = ends[2 * i];
-            const End& eb = ends[2 * i + 1];
             const VelocityRows& r = m_velocityRows[i];
-            b[i] = speedAlong(r.along, m_bodies[ea.body], m_bodies[eb.body]) - r.target;
+            b[i] = speedAlong(r.along, m_bodies[ends[2 * i].body], m_bodies[ends[2 * i + 1].body]) - r.target;
             for (std::size_t j = 0; j < n; ++j)
                 b[i] -= a[i * n + j] * m_velocityRows[j].normalImpulse;
             scale = std::max(scale, std::abs(b[i]));
@@ -86,7 +83,6 @@ void ContactSolver::solveNormalsExactly()
         for (const IslandContact& c : m_constraints)
             solveFriction(c, m_bodies[c.a], m_bodies[c.b], change);
     }
-    m_wide.loadImpulses(m_velocityRows);
 }
 
 } // namespace pba::rigid

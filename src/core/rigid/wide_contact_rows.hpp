@@ -40,8 +40,6 @@ public:
     void colour(std::span<const IslandContact> contacts, std::span<const SolverBody> bodies);
     /// The impulses back into the rows they came from.
     void storeImpulses(std::span<VelocityRows> rows) const;
-    /// And from them again, after a pass over the rows alone.
-    void loadImpulses(std::span<const VelocityRows> rows);
     /// The contacts (indices into build's) in the order a sweep visits them, four lanes a block
     /// (kEmptyLane where a block has fewer).
     std::vector<std::uint32_t> order() const;
