@@ -1,12 +1,12 @@
 #include "contact/polyhedron_contact.hpp"
 
-#include "contact/manifold_reduction.hpp"
-
 #include <algorithm>
 #include <array>
 #include <type_traits>
 #include <utility>
 #include <vector>
+
+#include "contact/manifold_reduction.hpp"
 
 namespace pba::contact {
 

@@ -1,9 +1,9 @@
 #include "rigid/room_contacts.hpp"
 
-#include "contact/manifold_reduction.hpp"
-
 #include <algorithm>
 #include <cmath>
+
+#include "contact/manifold_reduction.hpp"
 
 namespace pba::rigid {
 
