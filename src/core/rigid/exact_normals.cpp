@@ -30,43 +30,38 @@ void ContactSolver::solveNormalsExactly()
 {
     // So few contacts are swept one at a time: their impulses are the rows' own, none packed.
     static_assert(kMostExactRows < WideContactRows::kFewest);
-    // Each row's two bodies, and the sign an impulse along the row has on each.
-    struct End {
-        BodyIndex body;
-        double sign;
-    };
+    // Each row's two bodies.
     const std::size_t n = m_velocityRows.size();
-    std::vector<End> ends(2 * n);
+    std::vector<std::pair<BodyIndex, BodyIndex>> ends(n);
     for (const IslandContact& c : m_constraints)
-        for (int p = 0; p < c.count; ++p) {
-            const std::size_t i = c.first + std::size_t(p);
-            ends[2 * i] = {c.a, -1.0};
-            ends[2 * i + 1] = {c.b, 1.0};
-        }
-    // A = J M^-1 J^T: rows i and j meet on the bodies they share (a static body moves for none).
+        for (int p = 0; p < c.count; ++p)
+            ends[c.first + std::size_t(p)] = {c.a, c.b};
+    const auto speed = [&](std::size_t i) {
+        return speedAlong(m_velocityRows[i].along, m_bodies[ends[i].first], m_bodies[ends[i].second]);
+    };
+    // A = J M^-1 J^T: row i's change of speed for a unit impulse along row j, found by pushing
+    // and putting back (as the blows' matrix is).
     std::vector<double>& a = m_exactMatrix;
-    a.assign(n * n, 0.0);
+    a.resize(n * n);
+    std::vector<double> now(n);
     for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t j = 0; j < n; ++j)
-            for (int si = 0; si < 2; ++si)
-                for (int sj = 0; sj < 2; ++sj) {
-                    const End& ei = ends[2 * i + std::size_t(si)];
-                    const End& ej = ends[2 * j + std::size_t(sj)];
-                    const SolverBody& body = m_bodies[ei.body];
-                    if (ei.body != ej.body || body.isStatic())
-                        continue;
-                    const Jacobian& ri = m_velocityRows[i].along;
-                    const Jacobian& rj = m_velocityRows[j].along;
-                    const dvec3 momentI(si == 0 ? ri.momentA : ri.momentB), turnJ(sj == 0 ? rj.turnA : rj.turnB);
-                    a[i * n + j] += ei.sign * ej.sign *
-                                    (body.inverseMass * glm::dot(dvec3(ri.u), dvec3(rj.u)) + glm::dot(momentI, turnJ));
-                }
+        now[i] = speed(i);
+    for (std::size_t j = 0; j < n; ++j) {
+        SolverBody& pa = m_bodies[ends[j].first];
+        SolverBody& pb = m_bodies[ends[j].second];
+        const SolverBody keptA = pa, keptB = pb;
+        applyAlong(m_velocityRows[j].along, 1.0, pa, pb);
+        for (std::size_t i = 0; i < n; ++i)
+            a[i * n + j] = speed(i) - now[i];
+        pa = keptA;
+        pb = keptB;
+    }
     std::vector<double> b(n), x(n);
     for (int round = 0; round < kExactRounds; ++round) {
         double scale = 0.0;
         for (std::size_t i = 0; i < n; ++i) {
             const VelocityRows& r = m_velocityRows[i];
-            b[i] = speedAlong(r.along, m_bodies[ends[2 * i].body], m_bodies[ends[2 * i + 1].body]) - r.target;
+            b[i] = speed(i) - r.target;
             for (std::size_t j = 0; j < n; ++j)
                 b[i] -= a[i * n + j] * m_velocityRows[j].normalImpulse;
             scale = std::max(scale, std::abs(b[i]));
@@ -74,7 +69,7 @@ void ContactSolver::solveNormalsExactly()
         solveSmallLcp(a, b, n, 1e-12 * scale, x);
         for (std::size_t i = 0; i < n; ++i) {
             VelocityRows& r = m_velocityRows[i];
-            applyAlong(r.along, x[i] - r.normalImpulse, m_bodies[ends[2 * i].body], m_bodies[ends[2 * i + 1].body]);
+            applyAlong(r.along, x[i] - r.normalImpulse, m_bodies[ends[i].first], m_bodies[ends[i].second]);
             r.normalImpulse = x[i];
         }
         if (round + 1 == kExactRounds)

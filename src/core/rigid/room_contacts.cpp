@@ -43,8 +43,13 @@ void emit(Candidates& c, BodyIndex body, BodyIndex surfaceBody, std::vector<Cont
     // (half g dt^2) took in its top corners, kept two of them, the furthest from the deepest, in
     // place of two it stood on, and tipped over with a third more energy.
     constexpr double kNear = 0.01;
-    const auto bySeparation = [](const ContactPoint& p, const ContactPoint& q) { return p.separation < q.separation; };
-    const double deepest = std::min_element(c.points.begin(), c.points.end(), bySeparation)->separation;
+    const ContactPoint& deepestPoint =
+        *std::min_element(c.points.begin(), c.points.end(),
+                          [](const ContactPoint& p, const ContactPoint& q) { return p.separation < q.separation; });
+    const double deepest = deepestPoint.separation;
+    // A surface's points share its normal but on the shaft's round wall, where each has its own:
+    // the deepest's plane is the contact's there.
+    const dvec3 plane = deepestPoint.normal;
     const auto isNear = [&](const ContactPoint& p) { return p.separation <= deepest + kNear; };
     int candidates = int(c.points.size());
     if (const auto touching = std::count_if(c.points.begin(), c.points.end(), isNear);
@@ -52,9 +57,6 @@ void emit(Candidates& c, BodyIndex body, BodyIndex surfaceBody, std::vector<Cont
         std::stable_partition(c.points.begin(), c.points.end(), isNear);
         candidates = int(touching);
     }
-    // A surface's points share its normal but on the shaft's round wall, where each has its own:
-    // the deepest's plane is the contact's there.
-    const dvec3 plane = std::min_element(c.points.begin(), c.points.begin() + candidates, bySeparation)->normal;
     const int count = contact::reduceManifold(std::span{c.points.data(), std::size_t(candidates)}, plane,
                                               [](const ContactPoint& p) { return p.point; });
     contact.count = count;
