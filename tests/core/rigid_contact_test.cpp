@@ -423,36 +423,101 @@ TEST(RigidContact, AHeavyBodyStandsOnAFarLighterOne)
             }
 }
 
-// Too many rows for one exact solve, a 200 kg slab on two layers of 36 dice (0.1 kg, 1 cm apart)
-// is left to the sweeps, which hold it: every body within 2 mm of its start after 3 s. (Holding
-// each layer fixed in turn, shock propagation, lifted the slab 0.27 m with the dice's leftover
-// turning.)
-TEST(RigidContact, ASlabOnABedOfDiceStands)
+namespace {
+
+RigidBody& addBox(World& world, const dvec3& size, double mass, const dvec3& at, Integrator integrator = Integrator::Splitting)
+{
+    auto box = std::make_unique<RigidBody>();
+    box->setShapeWithMass(Shape::box(size), mass);
+    box->setPos(at);
+    box->setCor(0.0);
+    box->setFriction(0.6);
+    box->setIntegrator(integrator);
+    return static_cast<RigidBody&>(world.addBody(std::move(box)));
+}
+
+/// The largest distance of any moving body from its start after `seconds`.
+double farthestAfter(World& world, double seconds, double dt)
+{
+    std::vector<std::pair<const RigidBody*, dvec3>> start;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (const auto* rigid = dynamic_cast<const RigidBody*>(&world.body(i)))
+            start.emplace_back(rigid, rigid->getPos());
+    for (int n = 0; n < int(std::lround(seconds / dt)); ++n)
+        world.step(dt);
+    double farthest = 0.0;
+    for (const auto& [body, at] : start)
+        farthest = std::max(farthest, glm::length(body->getPos() - at));
+    return farthest;
+}
+
+World roomWithGravity()
 {
     World world;
     world.setRoom(Aabb{dvec3(-2.0, 0.0, -2.0), dvec3(2.0, 4.0, 2.0)});
     world.addForce(std::make_unique<Gravity>(dvec3(0.0, -kG, 0.0)));
-    std::vector<RigidBody*> bodies;
-    const auto add = [&](const dvec3& size, double mass, const dvec3& at) {
-        auto box = std::make_unique<RigidBody>();
-        box->setShapeWithMass(Shape::box(size), mass);
-        box->setPos(at);
-        box->setCor(0.0);
-        box->setFriction(0.6);
-        bodies.push_back(&static_cast<RigidBody&>(world.addBody(std::move(box))));
-    };
-    for (int layer = 0; layer < 2; ++layer)
+    return world;
+}
+
+/// Two layers of 36 dice (0.1 kg, 1 cm apart) on the floor.
+void addBedOfDice(World& world, int layers)
+{
+    for (int layer = 0; layer < layers; ++layer)
         for (int i = 0; i < 6; ++i)
             for (int k = 0; k < 6; ++k)
-                add(dvec3(0.1), 0.1, dvec3(0.11 * (i - 2.5), 0.05 + 0.1 * layer, 0.11 * (k - 2.5)));
-    add(dvec3(0.6, 0.1, 0.6), 200.0, dvec3(0.0, 0.25, 0.0));
-    std::vector<dvec3> start;
-    for (const RigidBody* b : bodies)
-        start.push_back(b->getPos());
-    for (int n = 0; n < 600; ++n)
-        world.step(0.005);
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-        EXPECT_LT(glm::length(bodies[i]->getPos() - start[i]), 2e-3) << "body " << i;
+                addBox(world, dvec3(0.1), 0.1, dvec3(0.11 * (i - 2.5), 0.05 + 0.1 * layer, 0.11 * (k - 2.5)));
+}
+
+} // namespace
+
+// Far unequal bodies in an island of hundreds of contact points: the exact solve's matrix is
+// applied row by row, never formed. A 200 kg slab on two layers of 36 dice; a 50 kg crate on a
+// 0.1 kg die on a layer of them (the die was pushed 18 mm out); a 20 kg slab on the dice with a
+// 0.1 kg box between it and a 50 kg crate (squeezed out 0.36 m). Each body within 1 mm after 3 s.
+// (Holding each layer fixed in turn, shock propagation, lifted the slab 0.27 m with the dice's
+// leftover turning.)
+TEST(RigidContact, FarUnequalBodiesStandInALargeIsland)
+{
+    {
+        World world = roomWithGravity();
+        addBedOfDice(world, 2);
+        addBox(world, dvec3(0.6, 0.1, 0.6), 200.0, dvec3(0.0, 0.25, 0.0));
+        EXPECT_LT(farthestAfter(world, 3.0, 0.005), 1e-3) << "slab on a bed";
+    }
+    {
+        World world = roomWithGravity();
+        addBedOfDice(world, 1);
+        addBox(world, dvec3(0.1), 0.1, dvec3(0.055, 0.15, 0.055));
+        addBox(world, dvec3(0.3), 50.0, dvec3(0.055, 0.35, 0.055));
+        EXPECT_LT(farthestAfter(world, 3.0, 0.005), 1e-3) << "crate on a die on a bed";
+    }
+    {
+        World world = roomWithGravity();
+        addBedOfDice(world, 1);
+        addBox(world, dvec3(0.6, 0.1, 0.6), 20.0, dvec3(0.0, 0.15, 0.0));
+        addBox(world, dvec3(0.2), 0.1, dvec3(0.0, 0.3, 0.0));
+        addBox(world, dvec3(0.3), 50.0, dvec3(0.0, 0.55, 0.0));
+        EXPECT_LT(farthestAfter(world, 3.0, 0.005), 1e-3) << "a light box between a slab and a crate";
+    }
+}
+
+// Two towers of six 20 cm boxes, 0.1 and 50 kg in turn, side by side and touching (72 contact
+// points, where one tower's were 24), stand: every box within 1 cm of its start after 10 s at
+// dt 0.005 under every integrator, within 3 cm at 1/60 but under forward Euler, whose towers
+// still fall there. The boxes slide a few millimetres as they settle, in the first half second:
+// friction is still swept. With the sweeps alone both towers fell (boxes 1.7 m away).
+TEST(RigidContact, TwoTowersOfFarUnequalBoxesSideBySideStand)
+{
+    for (const double dt : {0.005, 1.0 / 60.0})
+        for (const Integrator integrator : kRigidIntegrators) {
+            if (dt > 0.01 && integrator == Integrator::ForwardEuler)
+                continue;
+            World world = roomWithGravity();
+            for (int tower = 0; tower < 2; ++tower)
+                for (int i = 0; i < 6; ++i)
+                    addBox(world, dvec3(0.2), i % 2 == 0 ? 0.1 : 50.0, dvec3(0.2 * tower, 0.1 + 0.2 * i, 0.0), integrator);
+            EXPECT_LT(farthestAfter(world, 10.0, dt), dt < 0.01 ? 0.01 : 0.03) << "dt " << dt << ", " << integratorName(integrator);
+        }
 }
 
 // Where no body rests on anything fixed, nothing is held: a 50 kg ball meeting a 0.1 kg one

@@ -151,14 +151,17 @@ private:
     };
     void solveFriction(const IslandContact& c, SolverBody& a, SolverBody& b, double& change);
     void solveNormal(const IslandContact& c, SolverBody& a, SolverBody& b, double& change, double& largest);
-    /// The end of pass 2 in a small island where a body touches one far lighter (exact_normals.cpp):
-    /// the normal impulses as one exact LCP, friction swept between such solves.
+    /// The end of pass 2 in an island where a body touches one far lighter (exact_normals.cpp):
+    /// the normal impulses as one exact program, friction swept between such solves.
     bool needsExactNormals() const;
     void solveNormalsExactly();
-    /// The most rows solved so (the LCP's cost is about the cube of its rows, each active-set round).
-    static constexpr std::size_t kMostExactRows = 48;
     static constexpr int kExactRounds = 4; ///< exact solves, a friction sweep between two
-    std::vector<double> m_exactMatrix;     ///< its J M^-1 J^T
+    /// Products of the program's matrix a solve at most (three towers of 0.1 and 50 kg boxes in
+    /// turn, settling side by side, took about 40 a solve).
+    static constexpr int kExactIterations = 3000;
+    static constexpr double kExactSpeed = 1e-6; ///< m/s: a row's speed as exact as it need be
+    std::vector<std::int32_t> m_exactPlace;      ///< per body: its place among m_exactPlaced, or -1
+    std::vector<BodyIndex> m_exactPlaced;        ///< the moving bodies of the exact solve's rows
     /// A contact's blow in the collision pass: when its first point arrives (false: none
     /// does), the rows of the points arriving then, their impulses together.
     bool collideOne(const IslandContact& c);

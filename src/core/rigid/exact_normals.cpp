@@ -1,83 +1,151 @@
-// The end of pass 2 of the contact solver (contact_solver.hpp) for a small island where a body
-// touches one far lighter: its normal impulses solved exactly, as one small LCP.
+// The end of pass 2 of the contact solver (contact_solver.hpp) for an island where a body touches
+// one far lighter: its normal impulses solved exactly, as one quadratic program.
 //
 // A sweep passes a push between two bodies at a rate set by their masses: under a 50 kg box a
 // 0.1 kg one takes back 1/500 of the press a sweep, so a tower of such boxes in turn fell apart
 // long before the sweeps agreed. The LCP over every normal row of the island (w = A x + b, each
 // row's speed at least its target, its impulse at least 0, one of them at its bound) is the
-// answer the sweeps converge to, with the bodies' own masses, whatever their ratio. Friction,
-// whose bounds the normal impulses set, takes a sweep between two such solves.
+// answer the sweeps converge to, with the bodies' own masses, whatever their ratio. It is the
+// minimum of a convex quadratic over x >= 0 (bounded_qp.hpp), solved from the sweeps' impulses
+// with the matrix applied row by row, never formed: a bed of dice under a slab is hundreds of
+// rows. Friction, whose bounds the normal impulses set, takes a sweep between two such solves.
 #include "rigid/contact_solver.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
-#include "rigid/small_lcp.hpp"
+#include "rigid/bounded_qp.hpp"
 
 namespace pba::rigid {
 
 bool ContactSolver::needsExactNormals() const
 {
-    if (m_velocityRows.size() > kMostExactRows)
-        return false;
     for (const IslandContact& c : m_constraints)
         if (farLighterIn(c, c.a) || farLighterIn(c, c.b))
             return true;
     return false;
 }
 
+namespace {
+
+/// One normal row in double, its bodies by their place among the island's moving ones (-1: static).
+struct ExactRow {
+    dvec3 u{0.0}, momentA{0.0}, momentB{0.0}, turnA{0.0}, turnB{0.0};
+    double inverseMassA = 0.0, inverseMassB = 0.0;
+    std::int32_t a = -1, b = -1;
+    double scale = 1.0; ///< sqrt of the row's effective mass: the program's rows all of unit diagonal
+};
+
+/// A x for the scaled rows: the impulses along the rows into per-body velocity changes, read back
+/// as the rows' speeds.
+class ExactProduct {
+public:
+    ExactProduct(std::span<const ExactRow> rows, std::size_t bodies) : m_rows(rows), m_dv(bodies), m_dw(bodies) {}
+
+    void operator()(std::span<const double> in, std::span<double> out)
+    {
+        std::fill(m_dv.begin(), m_dv.end(), dvec3(0.0));
+        std::fill(m_dw.begin(), m_dw.end(), dvec3(0.0));
+        for (std::size_t j = 0; j < m_rows.size(); ++j) {
+            const ExactRow& r = m_rows[j];
+            const double lambda = in[j] * r.scale;
+            if (r.a >= 0) {
+                m_dv[std::size_t(r.a)] -= (lambda * r.inverseMassA) * r.u;
+                m_dw[std::size_t(r.a)] -= lambda * r.turnA;
+            }
+            if (r.b >= 0) {
+                m_dv[std::size_t(r.b)] += (lambda * r.inverseMassB) * r.u;
+                m_dw[std::size_t(r.b)] += lambda * r.turnB;
+            }
+        }
+        for (std::size_t i = 0; i < m_rows.size(); ++i) {
+            const ExactRow& r = m_rows[i];
+            double speed = 0.0;
+            if (r.a >= 0)
+                speed -= glm::dot(r.u, m_dv[std::size_t(r.a)]) + glm::dot(r.momentA, m_dw[std::size_t(r.a)]);
+            if (r.b >= 0)
+                speed += glm::dot(r.u, m_dv[std::size_t(r.b)]) + glm::dot(r.momentB, m_dw[std::size_t(r.b)]);
+            // A face's four points on a body that turns three ways are one row too many: a
+            // ten-billionth on the diagonal picks one of the equal answers.
+            out[i] = r.scale * speed + 1e-10 * in[i];
+        }
+    }
+
+private:
+    std::span<const ExactRow> m_rows;
+    std::vector<dvec3> m_dv, m_dw;
+};
+
+} // namespace
+
 void ContactSolver::solveNormalsExactly()
 {
-    // So few contacts are swept one at a time: their impulses are the rows' own, none packed.
-    static_assert(kMostExactRows < WideContactRows::kFewest);
-    // Each row's two bodies.
+    // A large island's sweeps keep their impulses in their blocks: here the rows' are the truth.
+    m_wide.storeImpulses(m_velocityRows);
+    // The island's moving bodies numbered from 0, for the product's velocity changes.
+    std::vector<std::int32_t>& place = m_exactPlace;
+    if (place.size() < m_bodies.size())
+        place.resize(m_bodies.size(), -1);
+    std::vector<BodyIndex>& placed = m_exactPlaced;
+    placed.clear();
+    const auto placeOf = [&](BodyIndex k) {
+        if (m_bodies[k].isStatic())
+            return std::int32_t(-1);
+        if (place[k] < 0) {
+            place[k] = std::int32_t(placed.size());
+            placed.push_back(k);
+        }
+        return place[k];
+    };
     const std::size_t n = m_velocityRows.size();
+    std::vector<ExactRow> rows(n);
     std::vector<std::pair<BodyIndex, BodyIndex>> ends(n);
     for (const IslandContact& c : m_constraints)
-        for (int p = 0; p < c.count; ++p)
-            ends[c.first + std::size_t(p)] = {c.a, c.b};
-    const auto speed = [&](std::size_t i) {
-        return speedAlong(m_velocityRows[i].along, m_bodies[ends[i].first], m_bodies[ends[i].second]);
-    };
-    // A = J M^-1 J^T: row i's change of speed for a unit impulse along row j, found by pushing
-    // and putting back (as the blows' matrix is).
-    std::vector<double>& a = m_exactMatrix;
-    a.resize(n * n);
-    std::vector<double> now(n);
-    for (std::size_t i = 0; i < n; ++i)
-        now[i] = speed(i);
-    for (std::size_t j = 0; j < n; ++j) {
-        SolverBody& pa = m_bodies[ends[j].first];
-        SolverBody& pb = m_bodies[ends[j].second];
-        const SolverBody keptA = pa, keptB = pb;
-        applyAlong(m_velocityRows[j].along, 1.0, pa, pb);
-        for (std::size_t i = 0; i < n; ++i)
-            a[i * n + j] = speed(i) - now[i];
-        pa = keptA;
-        pb = keptB;
-    }
-    std::vector<double> b(n), x(n);
+        for (int p = 0; p < c.count; ++p) {
+            const std::size_t i = c.first + std::size_t(p);
+            const Jacobian& j = m_velocityRows[i].along;
+            rows[i] = {dvec3(j.u), dvec3(j.momentA), dvec3(j.momentB), dvec3(j.turnA), dvec3(j.turnB),
+                       m_bodies[c.a].inverseMass, m_bodies[c.b].inverseMass, placeOf(c.a), placeOf(c.b),
+                       std::sqrt(double(j.mass))};
+            ends[i] = {c.a, c.b};
+        }
+    ExactProduct product(rows, placed.size());
+    const QpProduct multiply = [&](std::span<const double> in, std::span<double> out) { product(in, out); };
+    const double eigenvalue = 1.1 * largestEigenvalue(multiply, n);
+    // Solved when no row's speed is off by more than kExactSpeed on average (the program's rows
+    // are speeds times the root of their masses).
+    double massSum = 0.0;
+    for (const ExactRow& r : rows)
+        massSum += r.scale * r.scale;
+    const double tolerance = kExactSpeed * std::sqrt(massSum);
+    // The program is in the change of each impulse from what it is, scaled to unit diagonal:
+    // x = x_now + scale y >= 0, and c is each row's speed short of its target.
+    std::vector<double> c(n), lower(n), y(n);
+    const std::vector<double> upper(n, std::numeric_limits<double>::infinity());
     for (int round = 0; round < kExactRounds; ++round) {
-        double scale = 0.0;
         for (std::size_t i = 0; i < n; ++i) {
             const VelocityRows& r = m_velocityRows[i];
-            b[i] = speed(i) - r.target;
-            for (std::size_t j = 0; j < n; ++j)
-                b[i] -= a[i * n + j] * m_velocityRows[j].normalImpulse;
-            scale = std::max(scale, std::abs(b[i]));
+            c[i] = rows[i].scale * (speedAlong(r.along, m_bodies[ends[i].first], m_bodies[ends[i].second]) - r.target);
+            lower[i] = -r.normalImpulse / rows[i].scale;
         }
-        solveSmallLcp(a, b, n, 1e-12 * scale, x);
+        std::fill(y.begin(), y.end(), 0.0);
+        solveBoundedQp(multiply, c, lower, upper, eigenvalue, tolerance, kExactIterations, y);
         for (std::size_t i = 0; i < n; ++i) {
             VelocityRows& r = m_velocityRows[i];
-            applyAlong(r.along, x[i] - r.normalImpulse, m_bodies[ends[i].first], m_bodies[ends[i].second]);
-            r.normalImpulse = x[i];
+            const double next = std::max(r.normalImpulse + rows[i].scale * y[i], 0.0);
+            applyAlong(r.along, next - r.normalImpulse, m_bodies[ends[i].first], m_bodies[ends[i].second]);
+            r.normalImpulse = next;
         }
         if (round + 1 == kExactRounds)
             break;
         double change = 0.0;
-        for (const IslandContact& c : m_constraints)
-            solveFriction(c, m_bodies[c.a], m_bodies[c.b], change);
+        for (const IslandContact& contact : m_constraints)
+            solveFriction(contact, m_bodies[contact.a], m_bodies[contact.b], change);
     }
+    m_wide.loadImpulses(m_velocityRows);
+    for (const BodyIndex k : placed)
+        place[k] = -1;
 }
 
 } // namespace pba::rigid

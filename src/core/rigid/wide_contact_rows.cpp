@@ -255,4 +255,18 @@ void WideContactRows::storeImpulses(std::span<VelocityRows> rows) const
     }
 }
 
+void WideContactRows::loadImpulses(std::span<const VelocityRows> rows)
+{
+    for (Slot& slot : m_slots) {
+        for (int k = 0; k < 4; ++k) {
+            if (slot.source[k] == kEmptyLane)
+                continue;
+            const VelocityRows& r = rows[slot.source[k]];
+            slot.row[0].impulse[k] = float(r.normalImpulse);
+            slot.row[1].impulse[k] = float(r.tangentImpulse[0]);
+            slot.row[2].impulse[k] = float(r.tangentImpulse[1]);
+        }
+    }
+}
+
 } // namespace pba::rigid

@@ -40,6 +40,8 @@ public:
     void colour(std::span<const IslandContact> contacts, std::span<const SolverBody> bodies);
     /// The impulses back into the rows they came from.
     void storeImpulses(std::span<VelocityRows> rows) const;
+    /// The rows' impulses into the blocks (after a pass that worked on the rows themselves).
+    void loadImpulses(std::span<const VelocityRows> rows);
     /// The contacts (indices into build's) in the order a sweep visits them, four lanes a block
     /// (kEmptyLane where a block has fewer).
     std::vector<std::uint32_t> order() const;
