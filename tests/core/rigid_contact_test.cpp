@@ -472,8 +472,9 @@ void addBedOfDice(World& world, int layers)
 
 // Far unequal bodies in an island of hundreds of contact points: the exact solve's matrix is
 // applied row by row, never formed. A 200 kg slab on two layers of 36 dice; a 50 kg crate on a
-// 0.1 kg die on a layer of them (the die was pushed 18 mm out); a 20 kg slab on the dice with a
-// 0.1 kg box between it and a 50 kg crate (squeezed out 0.36 m). Each body within 1 mm after 3 s.
+// 0.1 kg die on a layer of them (the die was pushed 18 mm out), and on four layers of 144, an
+// island solved in halves (0.13 m); a 20 kg slab on the dice with a 0.1 kg box between it and a
+// 50 kg crate (squeezed out 0.36 m). Each body within 1 mm after 3 s.
 // (Holding each layer fixed in turn, shock propagation, lifted the slab 0.27 m with the dice's
 // leftover turning.)
 TEST(RigidContact, FarUnequalBodiesStandInALargeIsland)
@@ -498,6 +499,18 @@ TEST(RigidContact, FarUnequalBodiesStandInALargeIsland)
         addBox(world, dvec3(0.2), 0.1, dvec3(0.0, 0.3, 0.0));
         addBox(world, dvec3(0.3), 50.0, dvec3(0.0, 0.55, 0.0));
         EXPECT_LT(farthestAfter(world, 3.0, 0.005), 1e-3) << "a light box between a slab and a crate";
+    }
+    {
+        // Four layers of 144 dice: one island of over 512 contacts (the dice 1 cm apart are within
+        // the contact margin), solved in two halves on two cores, then exactly.
+        World world = roomWithGravity();
+        for (int layer = 0; layer < 4; ++layer)
+            for (int i = 0; i < 12; ++i)
+                for (int k = 0; k < 12; ++k)
+                    addBox(world, dvec3(0.1), 0.1, dvec3(0.11 * (i - 5.5), 0.05 + 0.1 * layer, 0.11 * (k - 5.5)));
+        addBox(world, dvec3(0.1), 0.1, dvec3(0.055, 0.45, 0.055));
+        addBox(world, dvec3(0.3), 50.0, dvec3(0.055, 0.65, 0.055));
+        EXPECT_LT(farthestAfter(world, 3.0, 0.005), 1e-3) << "crate on a die on a heap of 576 dice";
     }
 }
 

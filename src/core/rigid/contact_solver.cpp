@@ -287,6 +287,8 @@ void ContactSolver::solveVelocities(int maxStrikes, int least, int most)
         const int sweeps = round + 1 - first;
         return !(m_change <= kConverged * m_largest && sweeps >= least) && sweeps < most;
     });
+    if (needsExactNormals())
+        solveNormalsExactly();
 }
 
 void ContactSolver::storeImpulses()

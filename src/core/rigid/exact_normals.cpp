@@ -81,8 +81,16 @@ private:
 
 void ContactSolver::solveNormalsExactly()
 {
-    // A large island's sweeps keep their impulses in their blocks: here the rows' are the truth.
-    m_wide.storeImpulses(m_velocityRows);
+    // A large island's sweeps keep their impulses in their blocks (a halved one's, each part's):
+    // here the rows' are the truth.
+    const auto eachWide = [&](auto&& use) {
+        if (m_halved)
+            for (Part& p : m_parts)
+                use(p.wide);
+        else
+            use(m_wide);
+    };
+    eachWide([&](WideContactRows& wide) { wide.storeImpulses(m_velocityRows); });
     // The island's moving bodies numbered from 0, for the product's velocity changes.
     std::vector<std::int32_t>& place = m_exactPlace;
     if (place.size() < m_bodies.size())
@@ -143,7 +151,7 @@ void ContactSolver::solveNormalsExactly()
         for (const IslandContact& contact : m_constraints)
             solveFriction(contact, m_bodies[contact.a], m_bodies[contact.b], change);
     }
-    m_wide.loadImpulses(m_velocityRows);
+    eachWide([&](WideContactRows& wide) { wide.loadImpulses(m_velocityRows); });
     for (const BodyIndex k : placed)
         place[k] = -1;
 }
