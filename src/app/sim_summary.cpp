@@ -11,7 +11,6 @@
 
 #include "pba/particle.hpp"
 #include "pba/rigid_body.hpp"
-#include "render/body_groups.hpp"
 #include "study/exact_solution.hpp"
 #include "study/mound.hpp"
 
@@ -32,10 +31,9 @@ std::string vectorText(const dvec3& v)
 }
 
 /// Which bodies are a rope's or cloth's particles.
-std::vector<bool> fabricMembers(const Scene& scene)
+std::vector<bool> fabricMembers(const render::BodyGroups& groups, std::size_t bodies)
 {
-    const render::BodyGroups groups(scene.world, scene.fabric);
-    std::vector<bool> in(scene.world.bodyCount());
+    std::vector<bool> in(bodies);
     for (std::size_t i = 0; i < in.size(); ++i)
         in[i] = groups.inFabric(i);
     return in;
@@ -267,6 +265,14 @@ void printRigidSummary(const World& world, const study::RigidWatch& rigid)
     printPipelineSummary(world, rigid.pipeline());
 }
 
+/// A percentage to `figures` figures, but never with an exponent where it is large (150%, not
+/// 1.5e+02%): from where rounding to those figures would need one, whole.
+std::string percentText(double percent, int figures = 3)
+{
+    return percent >= std::pow(10.0, figures) - 0.5 ? fmt::format("{:.0f}", percent)
+                                                    : fmt::format("{:.{}g}", percent, figures);
+}
+
 /// What the balls (particles with a radius) did, as the ball watch saw them every tenth step.
 void printBallSummary(const World& world, const study::BallFigures& f)
 {
@@ -274,8 +280,8 @@ void printBallSummary(const World& world, const study::BallFigures& f)
         return; // a lone ball in a room: nothing to say
     std::vector<std::string> parts;
     if (f.balls >= 2)
-        parts.push_back(f.deepestPair > 0.0 ? fmt::format("two that collide overlapped by {:.2g}% of the smaller's "
-                                                          "diameter at most (t = {:.2f} s)", 100.0 * f.deepestPair,
+        parts.push_back(f.deepestPair > 0.0 ? fmt::format("two that collide overlapped by {}% of the smaller's "
+                                                          "diameter at most (t = {:.2f} s)", percentText(100.0 * f.deepestPair, 2),
                                                           f.deepestPairAt)
                                             : std::string("no two that collide overlapped"));
     if (world.hasRigidBodies())
@@ -346,10 +352,12 @@ void printBodyRows(const World& world, const render::BodyGroups& groups, const s
     for (const std::size_t i : rows) {
         const Body& b = world.body(i);
         const dvec3& x = b.getPos();
-        fmt::print("{:<22} {:<20} {:>32} {:>11.4g} {:>10.4f} {:>8} {:>14}{}\n", b.getName(),
+        // Four decimals while they fit the column; a body flung far off in figures.
+        const double highest = summary[i].highest;
+        fmt::print("{:<22} {:<20} {:>32} {:>11.4g} {:>10} {:>8} {:>14}{}\n", b.getName(),
                    b.isFixed() ? std::string("(fixed)") : std::string(integratorName(b.getIntegrator())),
                    vectorText(x), glm::length(b.getVel()),
-                   summary[i].highest, world.bounceCount(i), energyRatioText(energies[i], summary[i].startEnergy),
+                   std::abs(highest) < 1e4 ? fmt::format("{:.4f}", highest) : fmt::format("{:.4g}", highest), world.bounceCount(i), energyRatioText(energies[i], summary[i].startEnergy),
                    dryerWorked(jet, {i}) ? kDryerNote : "");
     }
 }
@@ -409,12 +417,6 @@ void printFabricEnds(const World& world, const render::BodyGroups& groups)
                                 : fmt::format("{} of its {} particles bounced, {}", bounced, g.members.size(),
                                               most == 1 ? std::string("once each") : fmt::format("up to {} times", most)));
     }
-}
-
-/// A percentage to three figures, without an exponent from 1,000 on.
-std::string percentText(double percent)
-{
-    return percent >= 1000.0 ? fmt::format("{:.0f}", percent) : fmt::format("{:.3g}", percent);
 }
 
 /// What may take a scene's energy, for its balance: bounces, contacts, its drag and damped springs
@@ -486,8 +488,8 @@ void printLargestStepRise(const World& world, const BlowUpWatch& watch, double s
     const double rise = watch.largestStepRise(), rounding = 1e-12 * watch.energyScale();
     if (rise > rounding)
         fmt::print("the energy{} rose by at most {:.2g} J in one step (t = {:.3f} s){}\n", less, rise,
-                   watch.largestStepRiseAt(), startEnergy > 0.0 ? fmt::format(", {:.2g}% of the start's energy",
-                                                                             100.0 * rise / startEnergy)
+                   watch.largestStepRiseAt(), startEnergy > 0.0 ? fmt::format(", {}% of the start's energy",
+                                                                             percentText(100.0 * rise / startEnergy, 2))
                                                                 : std::string());
     else if (rise > 0.0)
         fmt::print("the energy{} never rose from one step to the next by more than rounding ({:.2g} J at most, "
@@ -499,7 +501,8 @@ void printLargestStepRise(const World& world, const BlowUpWatch& watch, double s
 } // namespace
 
 RunWatches::RunWatches(const Scene& scene)
-    : blowUp(scene.world), jet(scene.world), rigid(scene.world), balls(scene.world, fabricMembers(scene))
+    : groups(scene.world, scene.fabric), blowUp(scene.world), jet(scene.world), rigid(scene.world),
+      balls(scene.world, fabricMembers(groups, scene.world.bodyCount()))
 {
     for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
         if (!scene.world.isRigid(i) && !scene.world.body(i).isFixed())
@@ -533,10 +536,10 @@ void printSummary(const Scene& scene, const World& world, const std::vector<Body
                reflectsCoupledBodies(world) ? " (reflect for bodies joined by springs)" : "");
     if (world.bodyCount() == 0) {
         printSwarmSummary(world);
-        printJetSummary(world, jet, render::BodyGroups(world, scene.fabric), everyParticle);
+        printJetSummary(world, jet, watches.groups, everyParticle);
         return;
     }
-    const render::BodyGroups groups(world, scene.fabric);
+    const render::BodyGroups& groups = watches.groups;
     const std::vector<double> energies = world.energies();
     printBodyRows(world, groups, summary, energies, jet, everyParticle);
     printSystemRows(world, groups, summary, energies, jet);

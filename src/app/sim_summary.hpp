@@ -5,6 +5,7 @@
 
 #include "pba/blow_up_watch.hpp"
 #include "pba/scene/scene.hpp"
+#include "render/body_groups.hpp"
 #include "study/ball_watch.hpp"
 #include "study/exact_solution.hpp"
 #include "study/jet_watch.hpp"
@@ -27,6 +28,8 @@ struct RunWatches {
     void record(const World& world);
     /// After the last step.
     void finish(const World& world) { balls.finish(world); }
+    /// The scene's ropes and cloths and every other body: for the watches and the summary alike.
+    render::BodyGroups groups;
     BlowUpWatch blowUp;
     study::JetWatch jet;
     study::RigidWatch rigid;

@@ -230,6 +230,25 @@ TEST(PbaSim, SaysHowFastTheInclinesBoxSlides)
               std::string::npos) << r.out;
 }
 
+// A body flung a thousand kilometres up keeps its row's columns: its highest point in figures
+// (1.272e+06), where four decimals overflowed the column and pushed the rest of the row along.
+TEST(PbaSim, AHighestPointFarUpKeepsTheColumns)
+{
+    const auto dir = freshDir("sim_far_up");
+    std::ofstream(dir / "up.json") << R"({"dt": 1, "duration": 600, "gravity": [0, -9.81, 0], )"
+                                    << R"("particles": [{"name": "b", "position": [0, 0, 0], "velocity": [0, 5000, 0]}]})";
+    const CommandResult r = runPba("sim " + (dir / "up.json").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::istringstream lines(r.out);
+    std::string header, row;
+    while (std::getline(lines, header) && header.rfind("body ", 0) != 0) {
+    }
+    ASSERT_TRUE(std::getline(lines, row)) << r.out;
+    // The row's last three columns (highest y, bounces, energy ratio) end where the header's do.
+    EXPECT_EQ(row.size(), header.size()) << header << "\n" << row;
+    EXPECT_NE(row.find(" 1.272e+06 "), std::string::npos) << row;
+}
+
 // The issue's two typos, as a student meets them: one line on stderr naming the file, the key
 // and the key it is close to, exit 2.
 TEST(PbaSim, AMisspeltSceneKeyIsNamedWithTheKeyItIsCloseTo)
