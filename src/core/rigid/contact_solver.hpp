@@ -160,8 +160,7 @@ private:
     /// turn, settling side by side, took about 40 a solve).
     static constexpr int kExactIterations = 3000;
     static constexpr double kExactSpeed = 1e-6; ///< m/s: a row's speed as exact as it need be
-    std::vector<std::int32_t> m_exactPlace;      ///< per body: its place among m_exactPlaced, or -1
-    std::vector<BodyIndex> m_exactPlaced;        ///< the moving bodies of the exact solve's rows
+    std::vector<std::int32_t> m_exactPlace;      ///< per body: -1 but while the exact rows are built
     /// A contact's blow in the collision pass: when its first point arrives (false: none
     /// does), the rows of the points arriving then, their impulses together.
     bool collideOne(const IslandContact& c);

@@ -77,6 +77,47 @@ private:
     std::vector<dvec3> m_dv, m_dw;
 };
 
+/// Each normal row of the island in double, its moving bodies numbered from 0 for the product.
+struct ExactRows {
+    std::vector<ExactRow> rows;
+    std::vector<std::pair<BodyIndex, BodyIndex>> ends; ///< each row's bodies, the solver's indices
+    std::size_t bodies = 0;
+};
+
+/// `place` holds -1 for every body on entry and on return (a scratch of the solver's).
+ExactRows exactRows(std::span<const IslandContact> contacts, std::span<const VelocityRows> velocityRows,
+                    std::span<const SolverBody> bodies, std::vector<std::int32_t>& place)
+{
+    if (place.size() < bodies.size())
+        place.resize(bodies.size(), -1);
+    std::vector<BodyIndex> placed;
+    const auto placeOf = [&](BodyIndex k) {
+        if (bodies[k].isStatic())
+            return std::int32_t(-1);
+        if (place[k] < 0) {
+            place[k] = std::int32_t(placed.size());
+            placed.push_back(k);
+        }
+        return place[k];
+    };
+    ExactRows exact;
+    exact.rows.resize(velocityRows.size());
+    exact.ends.resize(velocityRows.size());
+    for (const IslandContact& c : contacts)
+        for (int p = 0; p < c.count; ++p) {
+            const std::size_t i = c.first + std::size_t(p);
+            const Jacobian& j = velocityRows[i].along;
+            exact.rows[i] = {dvec3(j.u), dvec3(j.momentA), dvec3(j.momentB), dvec3(j.turnA), dvec3(j.turnB),
+                             bodies[c.a].inverseMass, bodies[c.b].inverseMass, placeOf(c.a), placeOf(c.b),
+                             std::sqrt(double(j.mass))};
+            exact.ends[i] = {c.a, c.b};
+        }
+    exact.bodies = placed.size();
+    for (const BodyIndex k : placed)
+        place[k] = -1;
+    return exact;
+}
+
 } // namespace
 
 void ContactSolver::solveNormalsExactly()
@@ -91,40 +132,15 @@ void ContactSolver::solveNormalsExactly()
             use(m_wide);
     };
     eachWide([&](WideContactRows& wide) { wide.storeImpulses(m_velocityRows); });
-    // The island's moving bodies numbered from 0, for the product's velocity changes.
-    std::vector<std::int32_t>& place = m_exactPlace;
-    if (place.size() < m_bodies.size())
-        place.resize(m_bodies.size(), -1);
-    std::vector<BodyIndex>& placed = m_exactPlaced;
-    placed.clear();
-    const auto placeOf = [&](BodyIndex k) {
-        if (m_bodies[k].isStatic())
-            return std::int32_t(-1);
-        if (place[k] < 0) {
-            place[k] = std::int32_t(placed.size());
-            placed.push_back(k);
-        }
-        return place[k];
-    };
-    const std::size_t n = m_velocityRows.size();
-    std::vector<ExactRow> rows(n);
-    std::vector<std::pair<BodyIndex, BodyIndex>> ends(n);
-    for (const IslandContact& c : m_constraints)
-        for (int p = 0; p < c.count; ++p) {
-            const std::size_t i = c.first + std::size_t(p);
-            const Jacobian& j = m_velocityRows[i].along;
-            rows[i] = {dvec3(j.u), dvec3(j.momentA), dvec3(j.momentB), dvec3(j.turnA), dvec3(j.turnB),
-                       m_bodies[c.a].inverseMass, m_bodies[c.b].inverseMass, placeOf(c.a), placeOf(c.b),
-                       std::sqrt(double(j.mass))};
-            ends[i] = {c.a, c.b};
-        }
-    ExactProduct product(rows, placed.size());
+    const ExactRows exact = exactRows(m_constraints, m_velocityRows, m_bodies, m_exactPlace);
+    const std::size_t n = exact.rows.size();
+    ExactProduct product(exact.rows, exact.bodies);
     const QpProduct multiply = [&](std::span<const double> in, std::span<double> out) { product(in, out); };
     const double eigenvalue = 1.1 * largestEigenvalue(multiply, n);
     // Solved when no row's speed is off by more than kExactSpeed on average (the program's rows
     // are speeds times the root of their masses).
     double massSum = 0.0;
-    for (const ExactRow& r : rows)
+    for (const ExactRow& r : exact.rows)
         massSum += r.scale * r.scale;
     const double tolerance = kExactSpeed * std::sqrt(massSum);
     // The program is in the change of each impulse from what it is, scaled to unit diagonal:
@@ -134,15 +150,17 @@ void ContactSolver::solveNormalsExactly()
     for (int round = 0; round < kExactRounds; ++round) {
         for (std::size_t i = 0; i < n; ++i) {
             const VelocityRows& r = m_velocityRows[i];
-            c[i] = rows[i].scale * (speedAlong(r.along, m_bodies[ends[i].first], m_bodies[ends[i].second]) - r.target);
-            lower[i] = -r.normalImpulse / rows[i].scale;
+            const auto [a, b] = exact.ends[i];
+            c[i] = exact.rows[i].scale * (speedAlong(r.along, m_bodies[a], m_bodies[b]) - r.target);
+            lower[i] = -r.normalImpulse / exact.rows[i].scale;
         }
         std::fill(y.begin(), y.end(), 0.0);
         solveBoundedQp(multiply, c, lower, upper, eigenvalue, tolerance, kExactIterations, y);
         for (std::size_t i = 0; i < n; ++i) {
             VelocityRows& r = m_velocityRows[i];
-            const double next = std::max(r.normalImpulse + rows[i].scale * y[i], 0.0);
-            applyAlong(r.along, next - r.normalImpulse, m_bodies[ends[i].first], m_bodies[ends[i].second]);
+            const auto [a, b] = exact.ends[i];
+            const double next = std::max(r.normalImpulse + exact.rows[i].scale * y[i], 0.0);
+            applyAlong(r.along, next - r.normalImpulse, m_bodies[a], m_bodies[b]);
             r.normalImpulse = next;
         }
         if (round + 1 == kExactRounds)
@@ -152,8 +170,6 @@ void ContactSolver::solveNormalsExactly()
             solveFriction(contact, m_bodies[contact.a], m_bodies[contact.b], change);
     }
     eachWide([&](WideContactRows& wide) { wide.loadImpulses(m_velocityRows); });
-    for (const BodyIndex k : placed)
-        place[k] = -1;
 }
 
 } // namespace pba::rigid
