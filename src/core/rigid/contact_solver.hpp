@@ -120,6 +120,10 @@ public:
     /// Passes 1 and 2 for an island without joints: the collisions, the warm start and at least
     /// `least` sweeps, on until one converges, `most` in all; a halved island's on two cores.
     void solveVelocities(int maxStrikes, int least, int most);
+    /// The end of pass 2 for a mechanism, after the sweeps: where a body touches one far
+    /// lighter, as an island without joints ends it (exact_normals.cpp), with the joints' sweeps
+    /// beside friction's between the exact solves.
+    void finishVelocities(JointSolver& joints);
     /// Body k's velocity and spin as the collision pass left them: the velocity pass's
     /// impulses, which act from the start of the step, are what it changed since.
     std::pair<dvec3, dvec3> afterCollisions(BodyIndex k) const { return {m_marks[2 * k], m_marks[2 * k + 1]}; }
@@ -152,9 +156,10 @@ private:
     void solveFriction(const IslandContact& c, SolverBody& a, SolverBody& b, double& change);
     void solveNormal(const IslandContact& c, SolverBody& a, SolverBody& b, double& change, double& largest);
     /// The end of pass 2 in an island where a body touches one far lighter (exact_normals.cpp):
-    /// the normal impulses as one exact program, friction swept between such solves.
+    /// the normal impulses as one exact program, friction (and a mechanism's joints) swept
+    /// between such solves.
     bool needsExactNormals() const;
-    void solveNormalsExactly();
+    void solveNormalsExactly(JointSolver* joints = nullptr);
     static constexpr int kExactRounds = 4; ///< exact solves, a friction sweep between two
     /// Products of the program's matrix a solve at most (three towers of 0.1 and 50 kg boxes in
     /// turn, settling side by side, took about 40 a solve).

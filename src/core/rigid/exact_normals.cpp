@@ -8,7 +8,8 @@
 // answer the sweeps converge to, with the bodies' own masses, whatever their ratio. It is the
 // minimum of a convex quadratic over x >= 0 (bounded_qp.hpp), solved from the sweeps' impulses
 // with the matrix applied row by row, never formed: a bed of dice under a slab is hundreds of
-// rows. Friction, whose bounds the normal impulses set, takes a sweep between two such solves.
+// rows. Friction, whose bounds the normal impulses set, takes a sweep between two such solves;
+// in a mechanism the joints take theirs there too (their rows stay with the sweeps).
 #include "rigid/contact_solver.hpp"
 
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include <limits>
 
 #include "rigid/bounded_qp.hpp"
+#include "rigid/joint_solver.hpp"
 
 namespace pba::rigid {
 
@@ -120,7 +122,13 @@ ExactRows exactRows(std::span<const IslandContact> contacts, std::span<const Vel
 
 } // namespace
 
-void ContactSolver::solveNormalsExactly()
+void ContactSolver::finishVelocities(JointSolver& joints)
+{
+    if (needsExactNormals())
+        solveNormalsExactly(&joints);
+}
+
+void ContactSolver::solveNormalsExactly(JointSolver* joints)
 {
     // A large island's sweeps keep their impulses in their blocks (a halved one's, each part's):
     // here the rows' are the truth.
@@ -168,6 +176,8 @@ void ContactSolver::solveNormalsExactly()
         double change = 0.0;
         for (const IslandContact& contact : m_constraints)
             solveFriction(contact, m_bodies[contact.a], m_bodies[contact.b], change);
+        if (joints)
+            joints->solveVelocities();
     }
     eachWide([&](WideContactRows& wide) { wide.loadImpulses(m_velocityRows); });
 }
