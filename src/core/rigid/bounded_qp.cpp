@@ -64,89 +64,125 @@ double largestEigenvalue(const QpProduct& multiply, std::size_t n, int iteration
     return lambda;
 }
 
+namespace {
+
+/// One solve's state: the iterate, its gradient, the search direction and their parts.
+class Mprgp {
+public:
+    Mprgp(const QpProduct& multiply, std::span<const double> c, std::span<const double> lower,
+          std::span<const double> upper, double step, std::span<double> y)
+        : m_multiply(multiply), m_c(c), m_lower(lower), m_upper(upper), m_step(step), m_y(y), m_g(y.size()),
+          m_ap(y.size())
+    {
+        gradient();
+        m_p = m_parts.free;
+    }
+
+    int products() const { return m_products; }
+    double projectedGradient() const { return std::sqrt(m_parts.freeSquared + m_parts.choppedSquared); }
+    /// Whether the bound rows pulling away outweigh the free gradient (Dostál's proportionality).
+    bool disproportional() const { return m_parts.choppedSquared > m_parts.reducedDotFree; }
+
+    /// The rows at their bounds that pull away leave them together (a row at its upper bound has
+    /// a chopped gradient of the other sign: it moves down). False where the matrix has no
+    /// curvature along them.
+    bool proportion()
+    {
+        const std::vector<double>& d = m_parts.chopped;
+        const double curvature = product(d);
+        if (curvature <= 0.0)
+            return false;
+        move(std::min(dot(m_g, d) / curvature, feasibleStep(d)), d);
+        m_parts.split(m_y, m_g, m_lower, m_upper, m_step);
+        m_p = m_parts.free;
+        return true;
+    }
+
+    /// A conjugate-gradient step along p if it stays within the bounds; else an expansion: up to
+    /// the first bound, then a projected step along the free gradient.
+    bool conjugate()
+    {
+        const double curvature = product(m_p);
+        if (curvature <= 0.0)
+            return false;
+        const double alpha = dot(m_g, m_p) / curvature, feasible = feasibleStep(m_p);
+        if (alpha <= feasible) {
+            move(alpha, m_p);
+            m_parts.split(m_y, m_g, m_lower, m_upper, m_step);
+            const double beta = dot(m_parts.free, m_ap) / curvature;
+            for (std::size_t i = 0; i < m_p.size(); ++i)
+                m_p[i] = m_parts.free[i] - beta * m_p[i];
+            return true;
+        }
+        move(feasible, m_p);
+        m_parts.split(m_y, m_g, m_lower, m_upper, m_step);
+        for (std::size_t i = 0; i < m_y.size(); ++i)
+            m_y[i] = std::clamp(m_y[i] - m_step * m_parts.free[i], m_lower[i], m_upper[i]);
+        gradient();
+        m_p = m_parts.free;
+        return true;
+    }
+
+private:
+    void gradient()
+    {
+        m_multiply(m_y, m_g);
+        for (std::size_t i = 0; i < m_g.size(); ++i)
+            m_g[i] += m_c[i];
+        ++m_products;
+        m_parts.split(m_y, m_g, m_lower, m_upper, m_step);
+    }
+    /// d.A d, with A d kept for the move.
+    double product(std::span<const double> d)
+    {
+        m_multiply(d, m_ap);
+        ++m_products;
+        return dot(d, m_ap);
+    }
+    /// The longest step along -d that keeps every row within its bounds.
+    double feasibleStep(std::span<const double> d) const
+    {
+        double alpha = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < d.size(); ++i)
+            if (d[i] > 0.0)
+                alpha = std::min(alpha, (m_y[i] - m_lower[i]) / d[i]);
+            else if (d[i] < 0.0)
+                alpha = std::min(alpha, (m_y[i] - m_upper[i]) / d[i]);
+        return alpha;
+    }
+    /// y -= alpha d, and the gradient with it (A d is the last product's).
+    void move(double alpha, std::span<const double> d)
+    {
+        for (std::size_t i = 0; i < m_y.size(); ++i) {
+            m_y[i] -= alpha * d[i];
+            m_g[i] -= alpha * m_ap[i];
+        }
+    }
+
+    const QpProduct& m_multiply;
+    std::span<const double> m_c, m_lower, m_upper;
+    double m_step;
+    std::span<double> m_y;
+    std::vector<double> m_g, m_p, m_ap;
+    Gradients m_parts;
+    int m_products = 0;
+};
+
+} // namespace
+
 BoundedQpResult solveBoundedQp(const QpProduct& multiply, std::span<const double> c, std::span<const double> lower,
                                std::span<const double> upper, double largestEigenvalue, double tolerance,
                                int maxIterations, std::span<double> y)
 {
-    const std::size_t n = y.size();
     BoundedQpResult result;
-    if (n == 0 || largestEigenvalue <= 0.0)
+    if (y.empty() || largestEigenvalue <= 0.0)
         return result;
-    const double step = 1.0 / largestEigenvalue; // within (0, 2 / ||A||]
-    std::vector<double> g(n), p(n), ap(n);
-    const auto gradient = [&] {
-        multiply(y, g);
-        for (std::size_t i = 0; i < n; ++i)
-            g[i] += c[i];
-        ++result.iterations;
-    };
-    gradient();
-    Gradients parts;
-    parts.split(y, g, lower, upper, step);
-    p = parts.free;
-    while (result.iterations < maxIterations) {
-        result.projectedGradient = std::sqrt(parts.freeSquared + parts.choppedSquared);
-        if (result.projectedGradient <= tolerance)
+    Mprgp solve(multiply, c, lower, upper, 1.0 / largestEigenvalue, y); // a step within (0, 2 / ||A||]
+    while (solve.products() < maxIterations && solve.projectedGradient() > tolerance)
+        if (!(solve.disproportional() ? solve.proportion() : solve.conjugate()))
             break;
-        if (parts.choppedSquared > parts.reducedDotFree) {
-            // Proportioning: the rows at their bounds that pull away leave them together (a
-            // row at its upper bound has a chopped gradient of the other sign: it moves down).
-            multiply(parts.chopped, ap);
-            ++result.iterations;
-            const double curvature = dot(parts.chopped, ap);
-            if (curvature <= 0.0)
-                break;
-            double alpha = dot(g, parts.chopped) / curvature;
-            for (std::size_t i = 0; i < n; ++i) // never past the other bound
-                if (parts.chopped[i] > 0.0)
-                    alpha = std::min(alpha, (y[i] - lower[i]) / parts.chopped[i]);
-                else if (parts.chopped[i] < 0.0)
-                    alpha = std::min(alpha, (y[i] - upper[i]) / parts.chopped[i]);
-            for (std::size_t i = 0; i < n; ++i) {
-                y[i] -= alpha * parts.chopped[i];
-                g[i] -= alpha * ap[i];
-            }
-            parts.split(y, g, lower, upper, step);
-            p = parts.free;
-            continue;
-        }
-        multiply(p, ap);
-        ++result.iterations;
-        const double curvature = dot(p, ap);
-        if (curvature <= 0.0)
-            break;
-        const double alphaCg = dot(g, p) / curvature;
-        double alphaFeasible = std::numeric_limits<double>::infinity();
-        for (std::size_t i = 0; i < n; ++i)
-            if (p[i] > 0.0)
-                alphaFeasible = std::min(alphaFeasible, (y[i] - lower[i]) / p[i]);
-            else if (p[i] < 0.0)
-                alphaFeasible = std::min(alphaFeasible, (y[i] - upper[i]) / p[i]);
-        if (alphaCg <= alphaFeasible) {
-            // A conjugate-gradient step within the bounds.
-            for (std::size_t i = 0; i < n; ++i) {
-                y[i] -= alphaCg * p[i];
-                g[i] -= alphaCg * ap[i];
-            }
-            parts.split(y, g, lower, upper, step);
-            const double beta = dot(parts.free, ap) / curvature;
-            for (std::size_t i = 0; i < n; ++i)
-                p[i] = parts.free[i] - beta * p[i];
-            continue;
-        }
-        // Expansion: up to the first bound, then a projected step along the free gradient.
-        for (std::size_t i = 0; i < n; ++i) {
-            y[i] -= alphaFeasible * p[i];
-            g[i] -= alphaFeasible * ap[i];
-        }
-        parts.split(y, g, lower, upper, step);
-        for (std::size_t i = 0; i < n; ++i)
-            y[i] = std::clamp(y[i] - step * parts.free[i], lower[i], upper[i]);
-        gradient();
-        parts.split(y, g, lower, upper, step);
-        p = parts.free;
-    }
-    result.projectedGradient = std::sqrt(parts.freeSquared + parts.choppedSquared);
+    result.iterations = solve.products();
+    result.projectedGradient = solve.projectedGradient();
     return result;
 }
 
