@@ -281,7 +281,8 @@ void printBallSummary(const World& world, const study::BallFigures& f)
     std::vector<std::string> parts;
     if (f.balls >= 2)
         parts.push_back(f.deepestPair > 0.0 ? fmt::format("two that collide overlapped by {}% of the smaller's "
-                                                          "diameter at most (t = {:.2f} s)", percentText(100.0 * f.deepestPair, 2),
+                                                          "diameter at most (t = {:.2f} s)",
+                                                          percentText(100.0 * f.deepestPair, 2),
                                                           f.deepestPairAt)
                                             : std::string("no two that collide overlapped"));
     if (world.hasRigidBodies())
@@ -354,10 +355,12 @@ void printBodyRows(const World& world, const render::BodyGroups& groups, const s
         const dvec3& x = b.getPos();
         // Four decimals while they fit the column; a body flung far off in figures.
         const double highest = summary[i].highest;
+        const std::string highestText =
+            std::abs(highest) < 1e4 ? fmt::format("{:.4f}", highest) : fmt::format("{:.4g}", highest);
         fmt::print("{:<22} {:<20} {:>32} {:>11.4g} {:>10} {:>8} {:>14}{}\n", b.getName(),
                    b.isFixed() ? std::string("(fixed)") : std::string(integratorName(b.getIntegrator())),
-                   vectorText(x), glm::length(b.getVel()),
-                   std::abs(highest) < 1e4 ? fmt::format("{:.4f}", highest) : fmt::format("{:.4g}", highest), world.bounceCount(i), energyRatioText(energies[i], summary[i].startEnergy),
+                   vectorText(x), glm::length(b.getVel()), highestText, world.bounceCount(i),
+                   energyRatioText(energies[i], summary[i].startEnergy),
                    dryerWorked(jet, {i}) ? kDryerNote : "");
     }
 }
