@@ -24,10 +24,17 @@ double placed(double c, int places)
     return std::abs(c) < 0.5 * std::pow(10.0, -places) ? 0.0 : c;
 }
 
+/// A coordinate to four places while that fits a table's column; one flung far off in figures
+/// (1.272e+06), where four places pushed the rest of its row along.
+std::string coordinateText(double c)
+{
+    return std::abs(c) < 1e4 ? fmt::format("{:.4f}", placed(c, 4)) : fmt::format("{:.4g}", c);
+}
+
 /// A vector to four places.
 std::string vectorText(const dvec3& v)
 {
-    return fmt::format("({:.4f}, {:.4f}, {:.4f})", placed(v.x, 4), placed(v.y, 4), placed(v.z, 4));
+    return fmt::format("({}, {}, {})", coordinateText(v.x), coordinateText(v.y), coordinateText(v.z));
 }
 
 /// Which bodies are a rope's or cloth's particles.
@@ -353,13 +360,9 @@ void printBodyRows(const World& world, const render::BodyGroups& groups, const s
     for (const std::size_t i : rows) {
         const Body& b = world.body(i);
         const dvec3& x = b.getPos();
-        // Four decimals while they fit the column; a body flung far off in figures.
-        const double highest = summary[i].highest;
-        const std::string highestText =
-            std::abs(highest) < 1e4 ? fmt::format("{:.4f}", highest) : fmt::format("{:.4g}", highest);
         fmt::print("{:<22} {:<20} {:>32} {:>11.4g} {:>10} {:>8} {:>14}{}\n", b.getName(),
                    b.isFixed() ? std::string("(fixed)") : std::string(integratorName(b.getIntegrator())),
-                   vectorText(x), glm::length(b.getVel()), highestText, world.bounceCount(i),
+                   vectorText(x), glm::length(b.getVel()), coordinateText(summary[i].highest), world.bounceCount(i),
                    energyRatioText(energies[i], summary[i].startEnergy),
                    dryerWorked(jet, {i}) ? kDryerNote : "");
     }

@@ -230,8 +230,9 @@ TEST(PbaSim, SaysHowFastTheInclinesBoxSlides)
               std::string::npos) << r.out;
 }
 
-// A body flung a thousand kilometres up keeps its row's columns: its highest point in figures
-// (1.272e+06), where four decimals overflowed the column and pushed the rest of the row along.
+// A body flung a thousand kilometres up keeps its row's columns: its highest point and final
+// position in figures (1.272e+06), where four decimals overflowed the columns and pushed the rest
+// of the row along.
 TEST(PbaSim, AHighestPointFarUpKeepsTheColumns)
 {
     const auto dir = freshDir("sim_far_up");
@@ -247,6 +248,7 @@ TEST(PbaSim, AHighestPointFarUpKeepsTheColumns)
     // The row's last three columns (highest y, bounces, energy ratio) end where the header's do.
     EXPECT_EQ(row.size(), header.size()) << header << "\n" << row;
     EXPECT_NE(row.find(" 1.272e+06 "), std::string::npos) << row;
+    EXPECT_NE(row.find("(0.0000, 1.231e+06, 0.0000)"), std::string::npos) << row;
 }
 
 // The two typos, as a student meets them: one line on stderr naming the file, the key
