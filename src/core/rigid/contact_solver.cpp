@@ -239,8 +239,7 @@ void ContactSolver::solveVelocities(int maxStrikes, int least, int most)
         for (int it = 0; it < most; ++it)
             if (solveVelocities() && it + 1 >= least)
                 break;
-        if (needsExactNormals())
-            solveNormalsExactly();
+        finishVelocities();
         return;
     }
     // The three passes in one run of rounds: the other core, once it has joined, stays (waking
@@ -287,8 +286,7 @@ void ContactSolver::solveVelocities(int maxStrikes, int least, int most)
         const int sweeps = round + 1 - first;
         return !(m_change <= kConverged * m_largest && sweeps >= least) && sweeps < most;
     });
-    if (needsExactNormals())
-        solveNormalsExactly();
+    finishVelocities();
 }
 
 void ContactSolver::storeImpulses()

@@ -120,10 +120,10 @@ public:
     /// Passes 1 and 2 for an island without joints: the collisions, the warm start and at least
     /// `least` sweeps, on until one converges, `most` in all; a halved island's on two cores.
     void solveVelocities(int maxStrikes, int least, int most);
-    /// The end of pass 2 for a mechanism, after the sweeps: where a body touches one far
-    /// lighter, as an island without joints ends it (exact_normals.cpp), with the joints' sweeps
-    /// beside friction's between the exact solves.
-    void finishVelocities(JointSolver& joints);
+    /// The end of pass 2, after the sweeps: where a body touches one far lighter, the normal
+    /// impulses solved exactly (exact_normals.cpp); a mechanism's `joints` swept beside friction
+    /// between the exact solves. solveVelocities ends with it; a mechanism's caller calls it.
+    void finishVelocities(JointSolver* joints = nullptr);
     /// Body k's velocity and spin as the collision pass left them: the velocity pass's
     /// impulses, which act from the start of the step, are what it changed since.
     std::pair<dvec3, dvec3> afterCollisions(BodyIndex k) const { return {m_marks[2 * k], m_marks[2 * k + 1]}; }
@@ -159,7 +159,7 @@ private:
     /// the normal impulses as one exact program, friction (and a mechanism's joints) swept
     /// between such solves.
     bool needsExactNormals() const;
-    void solveNormalsExactly(JointSolver* joints = nullptr);
+    void solveNormalsExactly(JointSolver* joints);
     static constexpr int kExactRounds = 4; ///< exact solves, a friction sweep between two
     /// Products of the program's matrix a solve at most (three towers of 0.1 and 50 kg boxes in
     /// turn, settling side by side, took about 40 a solve).

@@ -122,10 +122,10 @@ ExactRows exactRows(std::span<const IslandContact> contacts, std::span<const Vel
 
 } // namespace
 
-void ContactSolver::finishVelocities(JointSolver& joints)
+void ContactSolver::finishVelocities(JointSolver* joints)
 {
     if (needsExactNormals())
-        solveNormalsExactly(&joints);
+        solveNormalsExactly(joints);
 }
 
 void ContactSolver::solveNormalsExactly(JointSolver* joints)

@@ -524,7 +524,7 @@ void RigidSystem::solveMechanismVelocities(ContactSolver& solver, JointSolver& j
         if (converged && it + 1 >= settings.contact.velocityIterations)
             break;
     }
-    solver.finishVelocities(joints);
+    solver.finishVelocities(&joints);
 }
 
 void RigidSystem::moveEndPoses(std::size_t island, const ContactSolver& solver, double dt)
