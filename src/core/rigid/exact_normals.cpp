@@ -15,6 +15,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
+#include <utility>
+#include <vector>
 
 #include "rigid/bounded_qp.hpp"
 #include "rigid/joint_solver.hpp"
@@ -31,59 +34,57 @@ bool ContactSolver::needsExactNormals() const
 
 namespace {
 
-/// One normal row in double, its bodies by their place among the island's moving ones (-1: static).
+/// One normal row of the program: its bodies by their place among the island's moving ones (the
+/// static ones share the last place, never written).
 struct ExactRow {
-    dvec3 u{0.0}, momentA{0.0}, momentB{0.0}, turnA{0.0}, turnB{0.0};
-    double inverseMassA = 0.0, inverseMassB = 0.0;
-    std::int32_t a = -1, b = -1;
+    const Jacobian* along = nullptr;
+    std::uint32_t a = 0, b = 0;
     double scale = 1.0; ///< sqrt of the row's effective mass: the program's rows all of unit diagonal
+};
+
+/// What the impulses of one product do to a body: its velocities' change, by the sweeps' own
+/// formulas (speedAlong, applyAlong).
+struct VelocityChange {
+    dvec3 v{0.0}, w{0.0};
+    double inverseMass = 0.0;
+    bool isStatic() const { return inverseMass == 0.0; }
 };
 
 /// A x for the scaled rows: the impulses along the rows into per-body velocity changes, read back
 /// as the rows' speeds.
 class ExactProduct {
 public:
-    ExactProduct(std::span<const ExactRow> rows, std::size_t bodies) : m_rows(rows), m_dv(bodies), m_dw(bodies) {}
+    ExactProduct(std::span<const ExactRow> rows, std::vector<VelocityChange> bodies)
+        : m_rows(rows), m_bodies(std::move(bodies))
+    {
+    }
 
     void operator()(std::span<const double> in, std::span<double> out)
     {
-        std::fill(m_dv.begin(), m_dv.end(), dvec3(0.0));
-        std::fill(m_dw.begin(), m_dw.end(), dvec3(0.0));
+        for (VelocityChange& body : m_bodies)
+            body.v = body.w = dvec3(0.0);
         for (std::size_t j = 0; j < m_rows.size(); ++j) {
             const ExactRow& r = m_rows[j];
-            const double lambda = in[j] * r.scale;
-            if (r.a >= 0) {
-                m_dv[std::size_t(r.a)] -= (lambda * r.inverseMassA) * r.u;
-                m_dw[std::size_t(r.a)] -= lambda * r.turnA;
-            }
-            if (r.b >= 0) {
-                m_dv[std::size_t(r.b)] += (lambda * r.inverseMassB) * r.u;
-                m_dw[std::size_t(r.b)] += lambda * r.turnB;
-            }
+            applyAlong(*r.along, in[j] * r.scale, m_bodies[r.a], m_bodies[r.b]);
         }
         for (std::size_t i = 0; i < m_rows.size(); ++i) {
             const ExactRow& r = m_rows[i];
-            double speed = 0.0;
-            if (r.a >= 0)
-                speed -= glm::dot(r.u, m_dv[std::size_t(r.a)]) + glm::dot(r.momentA, m_dw[std::size_t(r.a)]);
-            if (r.b >= 0)
-                speed += glm::dot(r.u, m_dv[std::size_t(r.b)]) + glm::dot(r.momentB, m_dw[std::size_t(r.b)]);
             // A face's four points on a body that turns three ways are one row too many: a
             // ten-billionth on the diagonal picks one of the equal answers.
-            out[i] = r.scale * speed + 1e-10 * in[i];
+            out[i] = r.scale * speedAlong(*r.along, m_bodies[r.a], m_bodies[r.b]) + 1e-10 * in[i];
         }
     }
 
 private:
     std::span<const ExactRow> m_rows;
-    std::vector<dvec3> m_dv, m_dw;
+    std::vector<VelocityChange> m_bodies;
 };
 
-/// Each normal row of the island in double, its moving bodies numbered from 0 for the product.
+/// Each normal row of the island, its moving bodies numbered from 0 for the product.
 struct ExactRows {
     std::vector<ExactRow> rows;
     std::vector<std::pair<BodyIndex, BodyIndex>> ends; ///< each row's bodies, the solver's indices
-    std::size_t bodies = 0;
+    std::vector<VelocityChange> bodies;                ///< the moving ones, then one static
 };
 
 /// `place` holds -1 for every body on entry and on return (a scratch of the solver's).
@@ -93,14 +94,14 @@ ExactRows exactRows(std::span<const IslandContact> contacts, std::span<const Vel
     if (place.size() < bodies.size())
         place.resize(bodies.size(), -1);
     std::vector<BodyIndex> placed;
+    for (const IslandContact& c : contacts)
+        for (const BodyIndex k : {c.a, c.b})
+            if (!bodies[k].isStatic() && place[k] < 0) {
+                place[k] = std::int32_t(placed.size());
+                placed.push_back(k);
+            }
     const auto placeOf = [&](BodyIndex k) {
-        if (bodies[k].isStatic())
-            return std::int32_t(-1);
-        if (place[k] < 0) {
-            place[k] = std::int32_t(placed.size());
-            placed.push_back(k);
-        }
-        return place[k];
+        return bodies[k].isStatic() ? std::uint32_t(placed.size()) : std::uint32_t(place[k]);
     };
     ExactRows exact;
     exact.rows.resize(velocityRows.size());
@@ -109,12 +110,12 @@ ExactRows exactRows(std::span<const IslandContact> contacts, std::span<const Vel
         for (int p = 0; p < c.count; ++p) {
             const std::size_t i = c.first + std::size_t(p);
             const Jacobian& j = velocityRows[i].along;
-            exact.rows[i] = {dvec3(j.u), dvec3(j.momentA), dvec3(j.momentB), dvec3(j.turnA), dvec3(j.turnB),
-                             bodies[c.a].inverseMass, bodies[c.b].inverseMass, placeOf(c.a), placeOf(c.b),
-                             std::sqrt(double(j.mass))};
+            exact.rows[i] = {&j, placeOf(c.a), placeOf(c.b), std::sqrt(double(j.mass))};
             exact.ends[i] = {c.a, c.b};
         }
-    exact.bodies = placed.size();
+    exact.bodies.resize(placed.size() + 1);
+    for (std::size_t k = 0; k < placed.size(); ++k)
+        exact.bodies[k].inverseMass = bodies[placed[k]].inverseMass;
     for (const BodyIndex k : placed)
         place[k] = -1;
     return exact;
@@ -140,9 +141,9 @@ void ContactSolver::solveNormalsExactly(JointSolver* joints)
             use(m_wide);
     };
     eachWide([&](WideContactRows& wide) { wide.storeImpulses(m_velocityRows); });
-    const ExactRows exact = exactRows(m_constraints, m_velocityRows, m_bodies, m_exactPlace);
+    ExactRows exact = exactRows(m_constraints, m_velocityRows, m_bodies, m_exactPlace);
     const std::size_t n = exact.rows.size();
-    ExactProduct product(exact.rows, exact.bodies);
+    ExactProduct product(exact.rows, std::move(exact.bodies));
     const QpProduct multiply = [&](std::span<const double> in, std::span<double> out) { product(in, out); };
     const double eigenvalue = 1.1 * largestEigenvalue(multiply, n);
     // Solved when no row's speed is off by more than kExactSpeed on average (the program's rows

@@ -43,15 +43,18 @@ struct IslandContact {
     int count = 0;
 };
 
-/// The two points' relative speed along a row.
-inline double speedAlong(const Jacobian& j, const SolverBody& a, const SolverBody& b)
+/// The two points' relative speed along a row. `Body` is a SolverBody, or anything with its
+/// v, w, inverseMass and isStatic() (the exact solve's scratch velocity changes).
+template <class Body>
+double speedAlong(const Jacobian& j, const Body& a, const Body& b)
 {
     return glm::dot(dvec3(j.u), b.v - a.v) + glm::dot(dvec3(j.momentB), b.w) - glm::dot(dvec3(j.momentA), a.w);
 }
 
 /// An impulse `lambda` along a row: on B, and its opposite on A (a static body untouched: the
 /// islands that touch one share it).
-inline void applyAlong(const Jacobian& j, double lambda, SolverBody& a, SolverBody& b)
+template <class Body>
+void applyAlong(const Jacobian& j, double lambda, Body& a, Body& b)
 {
     if (!a.isStatic()) {
         a.v -= (lambda * a.inverseMass) * dvec3(j.u);
