@@ -77,9 +77,19 @@ void BallWatch::look(const World& world)
         if (share > m_figures.deepestPair)
             m_figures.deepestPair = share, m_figures.deepestPairAt = now;
     }
+    // The balls by x, so that a body looks only at those within its reach along x (a cloth of
+    // thousands of balls beside a heap of dice was every ball against every die).
+    std::vector<std::pair<double, std::size_t>> byX(m_balls.size());
+    for (std::size_t k = 0; k < m_balls.size(); ++k)
+        byX[k] = {centres[k].x, k};
+    std::sort(byX.begin(), byX.end());
+    const double largest = m_radii.empty() ? 0.0 : *std::max_element(m_radii.begin(), m_radii.end());
     for (const std::size_t b : m_bodies) {
         const auto& body = static_cast<const RigidBody&>(world.body(b));
-        for (std::size_t k = 0; k < m_balls.size(); ++k) {
+        const double reach = body.getBoundingRadius() + largest;
+        const auto first = std::lower_bound(byX.begin(), byX.end(), std::pair(body.getPos().x - reach, std::size_t(0)));
+        for (auto it = first; it != byX.end() && it->first <= body.getPos().x + reach; ++it) {
+            const std::size_t k = it->second;
             if (glm::length(centres[k] - body.getPos()) >= body.getBoundingRadius() + m_radii[k] ||
                 std::binary_search(m_joined.begin(), m_joined.end(), std::pair(m_balls[k], b)))
                 continue;
