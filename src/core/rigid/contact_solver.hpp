@@ -33,6 +33,11 @@ namespace pba::rigid {
 
 class JointSolver;
 
+/// A body over this many times lighter than one it touches or is joined to is far lighter: the
+/// sweeps pass a push between the two at the lighter one's rate, so the solver takes their rows
+/// exactly as well (exact_normals.cpp, exact_joints.cpp), and a blow meets the lighter held.
+inline constexpr double kFarLighter = 20.0;
+
 /// What one step's solve works with: the world's knobs, and what this step makes of them.
 struct SolverSettings {
     ContactSettings contact;
@@ -122,7 +127,8 @@ public:
     void solveVelocities(int maxStrikes, int least, int most);
     /// The end of pass 2, after the sweeps: where a body touches one far lighter, the normal
     /// impulses solved exactly (exact_normals.cpp); a mechanism's `joints` swept beside friction
-    /// between the exact solves. solveVelocities ends with it; a mechanism's caller calls it.
+    /// between the exact solves (and solved exactly too where they join bodies far apart in
+    /// mass). solveVelocities ends with it; a mechanism's caller calls it.
     void finishVelocities(JointSolver* joints = nullptr);
     /// Body k's velocity and spin as the collision pass left them: the velocity pass's
     /// impulses, which act from the start of the step, are what it changed since.
@@ -189,7 +195,6 @@ private:
     /// blow of the partner then meets it held by what it rests on (blows passed back and forth,
     /// two a contact, left a 5 kg ball dropped on a 0.1 kg plate on the floor lying on it).
     bool farLighterIn(const IslandContact& c, BodyIndex k) const;
-    static constexpr double kFarLighter = 20.0;
     /// With resting rows or a mechanism: the normal pushes of `rows`, m_resting's and the
     /// mechanism's joint rows together, exactly.
     void solveBlowNormals(const IslandContact& c, std::span<ImpactRow> rows, double& change, double& largest);

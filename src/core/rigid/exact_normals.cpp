@@ -9,7 +9,8 @@
 // minimum of a convex quadratic over x >= 0 (bounded_qp.hpp), solved from the sweeps' impulses
 // with the matrix applied row by row, never formed: a bed of dice under a slab is hundreds of
 // rows. Friction, whose bounds the normal impulses set, takes a sweep between two such solves;
-// in a mechanism the joints take theirs there too (their rows stay with the sweeps).
+// in a mechanism the joints take theirs there too (and, where a joint joins bodies far apart in
+// mass, their own exact solve: exact_joints.cpp).
 #include "rigid/contact_solver.hpp"
 
 #include <algorithm>
@@ -177,8 +178,10 @@ void ContactSolver::solveNormalsExactly(JointSolver* joints)
         double change = 0.0;
         for (const IslandContact& contact : m_constraints)
             solveFriction(contact, m_bodies[contact.a], m_bodies[contact.b], change);
-        if (joints)
+        if (joints) {
             joints->solveVelocities();
+            joints->solveVelocitiesExactly();
+        }
     }
     eachWide([&](WideContactRows& wide) { wide.loadImpulses(m_velocityRows); });
 }

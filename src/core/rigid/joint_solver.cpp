@@ -179,6 +179,12 @@ void JointSolver::prepare(std::span<Joint> joints, std::span<const std::uint32_t
         r.upperImpulse = j.upperImpulse;
         m_rows.push_back(r);
     }
+    m_farApart = false;
+    for (const Rows& r : m_rows) {
+        const double wa = bodies[r.a].inverseMass, wb = bodies[r.b].inverseMass;
+        const bool spring = joints[r.joint].type == JointType::Distance && joints[r.joint].stiffness > 0.0;
+        m_farApart = m_farApart || (!spring && wa > 0.0 && wb > 0.0 && std::max(wa, wb) > kFarLighter * std::min(wa, wb));
+    }
     m_movingBodies.clear();
     for (const Rows& r : m_rows)
         for (const BodyIndex k : {r.a, r.b})
@@ -724,6 +730,7 @@ void JointSolver::projectAtEnd(int sweeps)
     }
     for (int it = 0; it < sweeps && !m_endRows.empty(); ++it)
         sweep(m_endRows, false);
+    solveExactly(m_endRows);
 }
 
 } // namespace pba::rigid

@@ -85,6 +85,19 @@ public:
     /// The exact blow's matrix is dense: a chain of twelve hinges has 60 rows.
     static constexpr std::size_t kMaxMechanismRows = 72;
     void storeImpulses();
+    /// Whether a joint joins two moving bodies over kFarLighter times apart in mass (with at most
+    /// kMaxMechanismRows rows in all): the sweeps pass a pull between them at the lighter one's
+    /// rate, so that a 50 kg ball on two 0.1 kg links stretched them by a centimetre and came
+    /// apart at 1/60 s. Then the joints' rows (but springs') are also solved together exactly
+    /// (exact_joints.cpp): at the end of the velocity pass, after the position pass, and after
+    /// RATTLE's projection at the end poses.
+    bool farApart() const { return m_farApart; }
+    /// The velocity rows' impulses, all at once, so that every joint's relative velocity is what
+    /// its rows ask (a hinge's limits as inequalities).
+    void solveVelocitiesExactly() { solveExactly(m_rows); }
+    /// Newton steps on the end poses until the anchors meet (and rigid rods keep their length),
+    /// all joints at once.
+    void holdExactly();
     /// The kinetic energy that the explicit springs' impulses (all of a spring between forward
     /// Euler's bodies, taken at the step's start) give the free step's velocities: the method's
     /// own work, as its gain in a fall is, which an island's energy cap must leave to it.
@@ -165,6 +178,11 @@ private:
     BodyIndex m_world = 0;
     bool m_inBlows = false;
     std::vector<BodyIndex> m_movingBodies;
+    bool m_farApart = false;
+    /// One row of the exact solves: a BlowRow, and where its impulse goes among `rows`.
+    struct ExactRow;
+    void exactRowsOf(std::span<const Rows> rows, std::vector<ExactRow>& out) const;
+    void solveExactly(std::vector<Rows>& rows);
     std::vector<Pin> m_pins;
     void findPins();
     /// mechanismRows' parts: the mechanism's bodies and its joints (`taken`, by row), false for

@@ -430,6 +430,8 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
         joints.solvePositions();
         solver.solvePositions(atEnd);
     }
+    if (withJoints)
+        joints.holdExactly();
     thread_local std::vector<std::uint32_t> lifted;
     pushOutOfRoom(bodies, &lifted);
     if (!lifted.empty())
@@ -525,6 +527,7 @@ void RigidSystem::solveMechanismVelocities(ContactSolver& solver, JointSolver& j
             break;
     }
     solver.finishVelocities(&joints);
+    joints.solveVelocitiesExactly();
 }
 
 void RigidSystem::moveEndPoses(std::size_t island, const ContactSolver& solver, double dt)
