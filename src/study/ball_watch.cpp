@@ -34,11 +34,28 @@ BallWatch::BallWatch(const World& world, const std::vector<bool>& inFabric)
     std::sort(m_joined.begin(), m_joined.end());
     m_figures.balls = m_balls.size();
     m_figures.freeBalls = std::size_t(std::count(m_free.begin(), m_free.end(), true));
+    // The start: the balls in the bodies now; which pairs collide (a cloth's neighbours along its
+    // springs do not) is the first step's knowledge, so those are looked at after it.
+    m_startCentres = centresOf(world);
+    m_startTime = world.time();
+    lookIntoBodies(world, m_startCentres, m_startTime);
+}
+
+std::vector<dvec3> BallWatch::centresOf(const World& world) const
+{
+    std::vector<dvec3> centres(m_balls.size());
+    for (std::size_t k = 0; k < m_balls.size(); ++k)
+        centres[k] = world.body(m_balls[k]).getPos();
+    return centres;
 }
 
 void BallWatch::record(const World& world)
 {
-    if (active() && ++m_steps % kEvery == 0)
+    if (!active())
+        return;
+    if (m_steps == 0)
+        lookAtPairs(world, m_startCentres, m_startTime);
+    if (++m_steps % kEvery == 0)
         look(world);
 }
 
@@ -61,10 +78,13 @@ std::size_t rootOf(std::vector<std::size_t>& parent, std::size_t i)
 
 void BallWatch::look(const World& world)
 {
-    const double now = world.time();
-    std::vector<dvec3> centres(m_balls.size());
-    for (std::size_t k = 0; k < m_balls.size(); ++k)
-        centres[k] = world.body(m_balls[k]).getPos();
+    const std::vector<dvec3> centres = centresOf(world);
+    lookAtPairs(world, centres, world.time());
+    lookIntoBodies(world, centres, world.time());
+}
+
+void BallWatch::lookAtPairs(const World& world, const std::vector<dvec3>& centres, double now)
+{
     std::vector<std::size_t> group(m_balls.size());
     std::iota(group.begin(), group.end(), std::size_t(0));
     for (const auto& [i, j] : nearBallPairs(centres, m_radii, kTouch)) {
@@ -77,6 +97,24 @@ void BallWatch::look(const World& world)
         if (share > m_figures.deepestPair)
             m_figures.deepestPair = share, m_figures.deepestPairAt = now;
     }
+    if (m_figures.freeBalls < 2)
+        return;
+    std::optional<std::size_t> root;
+    bool one = true;
+    for (std::size_t k = 0; k < m_balls.size(); ++k)
+        if (m_free[k]) {
+            const std::size_t r = rootOf(group, k);
+            one = one && (!root || *root == r);
+            root = r;
+        }
+    if (!one)
+        m_figures.oneGroupFrom.reset();
+    else if (!m_figures.oneGroupFrom)
+        m_figures.oneGroupFrom = now;
+}
+
+void BallWatch::lookIntoBodies(const World& world, const std::vector<dvec3>& centres, double now)
+{
     // The balls by x, so that a body looks only at those within its reach along x (a cloth of
     // thousands of balls beside a heap of dice was every ball against every die).
     std::vector<std::pair<double, std::size_t>> byX(m_balls.size());
@@ -98,20 +136,6 @@ void BallWatch::look(const World& world)
                 m_figures.deepestInBody = depth, m_figures.deepestInBodyAt = now, m_figures.deepestBody = body.getName();
         }
     }
-    if (m_figures.freeBalls < 2)
-        return;
-    std::optional<std::size_t> root;
-    bool one = true;
-    for (std::size_t k = 0; k < m_balls.size(); ++k)
-        if (m_free[k]) {
-            const std::size_t r = rootOf(group, k);
-            one = one && (!root || *root == r);
-            root = r;
-        }
-    if (!one)
-        m_figures.oneGroupFrom.reset();
-    else if (!m_figures.oneGroupFrom)
-        m_figures.oneGroupFrom = now;
 }
 
 } // namespace pba::study

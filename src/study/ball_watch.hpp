@@ -1,7 +1,7 @@
 #pragma once
-// What the balls (particles with a radius) did over a run, looked at every tenth step: how far two
-// that collide went into each other, how far one went into a rigid body, and when the balls that
-// are no rope's or cloth's came together in one touching group. `pba sim` prints these, so that
+// What the balls (particles with a radius) did over a run, seen at the start and every tenth
+// step: how far two that collide went into each other, how far one went into a rigid body, and
+// when the balls that are no rope's or cloth's came together in one touching group. `pba sim` prints these, so that
 // descriptions such as "no particle is ever inside the box" say what it measures.
 #include <optional>
 #include <string>
@@ -43,6 +43,11 @@ public:
 
 private:
     void look(const World& world);
+    void lookAtPairs(const World& world, const std::vector<dvec3>& centres, double now);
+    void lookIntoBodies(const World& world, const std::vector<dvec3>& centres, double now);
+    std::vector<dvec3> centresOf(const World& world) const;
+    std::vector<dvec3> m_startCentres; ///< looked at for pairs after the first step
+    double m_startTime = 0.0;
     std::vector<std::size_t> m_balls;     ///< world indices of the particles with a radius
     std::vector<double> m_radii;
     std::vector<bool> m_free;             ///< of m_balls: in the touching group
