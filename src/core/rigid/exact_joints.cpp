@@ -7,12 +7,14 @@
 // step stopped. The rows of every joint together (a small dense system: the blows' rows,
 // blowRowsOf, with a hinge's limits as inequalities) are the answer the sweeps converge to,
 // whatever the ratio: solved after the velocity sweeps, after the position sweeps (Newton steps on
-// the anchors' gaps at the end poses) and after RATTLE's projection at the end. Springs stay
-// with the sweeps: soft, they pass no pull in an instant.
+// the joints' errors at the end poses: anchors apart, a hinge's axes apart, a weld's turn, a
+// hinge limit passed) and after RATTLE's projection at the end. Springs stay with the sweeps:
+// soft, they pass no pull in an instant.
 #include "rigid/joint_solver.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "rigid/small_lcp.hpp"
 
@@ -156,21 +158,25 @@ void JointSolver::holdExactly()
 {
     if (!m_farApart)
         return;
-    // Each joint's anchors (a rod's length) at the end poses, as rows of the anchors' gap.
+    // Each joint's errors at the end poses as rows: the anchors' gap (a rod's length), a hinge's
+    // axes apart and a weld's turn away from its rest, then the hinge limits passed (pushing only).
     struct GapRow {
         BlowRow row;
         double gap = 0.0;
         const Rows* rows = nullptr;
     };
-    thread_local std::vector<GapRow> gaps;
+    thread_local std::vector<GapRow> gaps, limits;
     const dvec3 frame[3] = {dvec3(1.0, 0.0, 0.0), dvec3(0.0, 1.0, 0.0), dvec3(0.0, 0.0, 1.0)};
+    const auto position = [](const SolverBody& k) { return k.isStatic() ? k.position : k.endPosition; };
+    const auto orientation = [](const SolverBody& k) { return k.isStatic() ? k.orientation : k.endOrientation; };
     // The steps' matrix is the start orientations' and a pose turns by a rotation vector's first
     // order, so a light link whipped round in a step converges only linearly: six 0.1 kg links
-    // under a 50 kg ball at 1/60 s took up to 32 rounds, two links 7, wrecking-ball 2.
+    // under a 50 kg ball at 1/60 s took up to 33 rounds, two links 7, wrecking-ball 2.
     constexpr int kRounds = 40;
-    constexpr double kHeld = 1e-9; // m
+    constexpr double kHeld = 1e-9; // m, and rad
     for (int round = 0; round < kRounds; ++round) {
         gaps.clear();
+        limits.clear();
         double widest = 0.0;
         for (const Rows& r : m_rows) {
             const Joint& j = m_joints[r.joint];
@@ -178,22 +184,47 @@ void JointSolver::holdExactly()
                 continue;
             const SolverBody& a = m_bodies[r.a];
             const SolverBody& b = m_bodies[r.b];
-            const dvec3 ra = glm::mat3_cast(a.isStatic() ? a.orientation : a.endOrientation) * j.localA;
-            const dvec3 rb = glm::mat3_cast(b.isStatic() ? b.orientation : b.endOrientation) * j.localB;
-            const dvec3 d = ((b.isStatic() ? b.position : b.endPosition) + rb) -
-                            ((a.isStatic() ? a.position : a.endPosition) + ra);
+            const dquat qa = orientation(a), qb = orientation(b);
+            const dvec3 ra = glm::mat3_cast(qa) * j.localA, rb = glm::mat3_cast(qb) * j.localB;
+            const dvec3 d = (position(b) + rb) - (position(a) + ra);
+            const auto add = [&](std::vector<GapRow>& to, const dvec3& n, bool angular, double gap) {
+                to.push_back({{r.a, r.b, ra, rb, n, angular, 0.0}, gap, &r});
+                widest = std::max(widest, std::abs(gap));
+            };
             if (j.type == JointType::Distance) {
                 const double length = glm::length(d);
-                if (length == 0.0)
-                    continue;
-                gaps.push_back({{r.a, r.b, ra, rb, d / length, false, 0.0}, length - j.length, &r});
-                widest = std::max(widest, std::abs(length - j.length));
+                if (length > 0.0)
+                    add(gaps, d / length, false, length - j.length);
                 continue;
             }
             for (const dvec3& n : frame)
-                gaps.push_back({{r.a, r.b, ra, rb, n, false, 0.0}, glm::dot(n, d), &r});
-            widest = std::max(widest, glm::length(d));
+                add(gaps, n, false, glm::dot(n, d));
+            if (j.type == JointType::Fixed) {
+                // B turned by -theta from where A's orientation and the rest put it (holdOrientation).
+                dquat error = (qa * j.rest) * glm::conjugate(qb);
+                if (error.w < 0.0)
+                    error = -error;
+                for (int k = 0; k < 3; ++k)
+                    add(gaps, frame[k], true, -2.0 * dvec3(error.x, error.y, error.z)[k]);
+            }
+            if (j.type != JointType::Hinge)
+                continue;
+            const dvec3 axisA = glm::normalize(glm::mat3_cast(qa) * j.axisA);
+            const dvec3 axisB = glm::normalize(glm::mat3_cast(qb) * j.axisB);
+            dvec3 across[2];
+            tangentsOf(axisA, across);
+            for (const dvec3& n : across) // B's axis is A's turned by about axisA x axisB
+                add(gaps, n, true, glm::dot(n, glm::cross(axisA, axisB)));
+            if (!j.limited)
+                continue;
+            const double angle = hingeAngle(j, qa, qb); // A's turn relative to B about the axis
+            if (angle < j.lower)
+                add(limits, -axisA, true, angle - j.lower);
+            else if (angle > j.upper)
+                add(limits, axisA, true, j.upper - angle);
         }
+        const std::size_t equalities = gaps.size();
+        gaps.insert(gaps.end(), limits.begin(), limits.end());
         const std::size_t n = gaps.size();
         if (n == 0 || n > kMaxMechanismRows || widest <= kHeld)
             return;
@@ -202,11 +233,53 @@ void JointSolver::holdExactly()
         std::vector<double> b(n), x(n);
         for (std::size_t i = 0; i < n; ++i)
             b[i] = gaps[i].gap;
-        solveSmallLcp(a, b, n, 0.0, x, n);
-        for (std::size_t i = 0; i < n; ++i) {
-            const GapRow& g = gaps[i];
-            move(*g.rows, m_bodies[g.row.a], m_bodies[g.row.b], g.row.rA, g.row.rB, x[i] * g.row.n, dvec3(0.0));
+        solveSmallLcp(a, b, n, 1e-12 * widest, x, equalities);
+        moveTogether(gaps, x);
+    }
+}
+
+template <class GapRows>
+void JointSolver::moveTogether(const GapRows& rows, std::span<const double> x)
+{
+    // Each body's moves summed before it turns: the rows' pushes on a light body nearly cancel,
+    // and turned one after another by their rotation vectors, each right to first order only,
+    // they did not (a light frame between a heavy door's hinge and the world turned 17 rad and
+    // back, and the anchors came apart).
+    struct Move {
+        dvec3 p{0.0}, l{0.0}, pRattle{0.0}, lRattle{0.0};
+    };
+    thread_local std::vector<Move> moves;
+    moves.assign(m_movingBodies.size(), Move{});
+    const auto moveOf = [&](BodyIndex k) -> Move* {
+        const auto at = std::lower_bound(m_movingBodies.begin(), m_movingBodies.end(), k);
+        return at != m_movingBodies.end() && *at == k ? &moves[std::size_t(at - m_movingBodies.begin())] : nullptr;
+    };
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const BlowRow& row = rows[i].row;
+        const bool rattle = rows[i].rows->rattle;
+        for (const auto& [k, sign, arm] : {std::tuple(row.a, -1.0, row.rA), std::tuple(row.b, 1.0, row.rB)}) {
+            Move* m = moveOf(k);
+            if (!m)
+                continue;
+            const dvec3 p = row.angular ? dvec3(0.0) : sign * x[i] * row.n;
+            const dvec3 l = row.angular ? sign * x[i] * row.n : glm::cross(arm, p);
+            m->p += p;
+            m->l += l;
+            if (rattle) {
+                m->pRattle += p;
+                m->lRattle += l;
+            }
         }
+    }
+    for (std::size_t k = 0; k < moves.size(); ++k) {
+        SolverBody& body = m_bodies[m_movingBodies[k]];
+        const Move& m = moves[k];
+        body.endPosition += body.inverseMass * m.p;
+        body.endOrientation = turned(body.endOrientation, body.inverseInertia * m.l);
+        // RATTLE's pose drifts by its half-step velocity, which carries on into the end velocity
+        // (move's reason).
+        body.v += body.inverseMass * m.pRattle / m_settings.dt;
+        body.w += body.inverseInertia * m.lRattle / m_settings.dt;
     }
 }
 

@@ -95,8 +95,8 @@ public:
     /// The velocity rows' impulses, all at once, so that every joint's relative velocity is what
     /// its rows ask (a hinge's limits as inequalities).
     void solveVelocitiesExactly() { solveExactly(m_rows); }
-    /// Newton steps on the end poses until the anchors meet (and rigid rods keep their length),
-    /// all joints at once.
+    /// Newton steps on the end poses until every joint holds (anchors, rods' lengths, hinges'
+    /// axes and limits, welds' turns), all joints at once.
     void holdExactly();
     /// The kinetic energy that the explicit springs' impulses (all of a spring between forward
     /// Euler's bodies, taken at the step's start) give the free step's velocities: the method's
@@ -183,6 +183,9 @@ private:
     struct ExactRow;
     void exactRowsOf(std::span<const Rows> rows, std::vector<ExactRow>& out) const;
     void solveExactly(std::vector<Rows>& rows);
+    /// holdExactly's moves x along `rows` (each with its BlowRow `row` and its joint's `rows`).
+    template <class GapRows>
+    void moveTogether(const GapRows& rows, std::span<const double> x);
     std::vector<Pin> m_pins;
     void findPins();
     /// mechanismRows' parts: the mechanism's bodies and its joints (`taken`, by row), false for
