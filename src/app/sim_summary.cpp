@@ -280,7 +280,8 @@ std::string percentText(double percent, int figures = 3)
                                                     : fmt::format("{:.{}g}", percent, figures);
 }
 
-/// What the balls (particles with a radius) did, as the ball watch saw them at the start and every tenth step.
+/// What the balls (particles with a radius) did, as the ball watch saw them at the start and
+/// every tenth step.
 void printBallSummary(const World& world, const study::BallFigures& f)
 {
     if (f.balls == 0 || (f.balls == 1 && !world.hasRigidBodies()))
@@ -303,8 +304,8 @@ void printBallSummary(const World& world, const study::BallFigures& f)
                                                      100.0 * study::BallWatch::kTouchShare, *f.oneGroupFrom)
                                        : fmt::format("the {} free balls are not one touching group at the end",
                                                      f.freeBalls));
-    fmt::print("balls ({} particle{} with a radius, seen at the start and every {} steps): {}\n", f.balls, f.balls == 1 ? "" : "s",
-               study::BallWatch::kEvery, fmt::join(parts, "; "));
+    fmt::print("balls ({} particle{} with a radius, seen at the start and every {} steps): {}\n", f.balls,
+               f.balls == 1 ? "" : "s", study::BallWatch::kEvery, fmt::join(parts, "; "));
 }
 
 /// Where each particle with a known exact motion is against it at the end.

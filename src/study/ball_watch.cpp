@@ -133,7 +133,8 @@ void BallWatch::lookIntoBodies(const World& world, const std::vector<dvec3>& cen
                 continue;
             const double depth = overlapDepth(body, centres[k], m_radii[k]);
             if (depth > m_figures.deepestInBody)
-                m_figures.deepestInBody = depth, m_figures.deepestInBodyAt = now, m_figures.deepestBody = body.getName();
+                m_figures.deepestInBody = depth, m_figures.deepestInBodyAt = now,
+                m_figures.deepestBody = body.getName();
         }
     }
 }

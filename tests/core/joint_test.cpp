@@ -215,9 +215,10 @@ TEST(Joints, AChainsEnergyNeverGrows)
 
 // A 50 kg ball on a chain of 0.1 kg links (ball joints) let go from 60 degrees: every joint's
 // two points stay within a micrometre for 6 s, at dt 0.005 and 1/60, under every integrator, and
-// the energy never grows (but forward Euler's, whose swing gains it of itself). The sweeps pass a pull down such a chain a five-hundredth a sweep:
-// two links stretched by a centimetre at dt 0.005 and came 0.99 m apart at 1/60, and six gained
-// energy until the step stopped. Solved together exactly (JointSolver::farApart), they hold.
+// the energy never grows (but forward Euler's, whose swing gains it of itself). The sweeps pass
+// a pull down such a chain a five-hundredth a sweep: two links stretched by a centimetre at
+// dt 0.005 and came 0.99 m apart at 1/60, and six gained energy until the step stopped. Solved
+// together exactly (JointSolver::farApart), they hold.
 TEST(Joints, AHeavyBallOnLightLinksHoldsItsJoints)
 {
     const double theta = kPi / 3.0, link = 0.4, radius = 0.2;

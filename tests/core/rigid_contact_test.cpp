@@ -531,8 +531,8 @@ TEST(RigidContact, TwoTowersOfFarUnequalBoxesSideBySideStand)
                 World world = roomWithGravity();
                 for (int tower = 0; tower < 2; ++tower)
                     for (int i = 0; i < 6; ++i)
-                        addBox(world, dvec3(0.2), i % 2 == 0 ? 0.1 : 50.0, dvec3((0.2 + gap) * tower, 0.1 + 0.2 * i, 0.0),
-                               integrator);
+                        addBox(world, dvec3(0.2), i % 2 == 0 ? 0.1 : 50.0,
+                               dvec3((0.2 + gap) * tower, 0.1 + 0.2 * i, 0.0), integrator);
                 const double bound = gap > 0.0 ? (dt < 0.01 ? 2e-4 : 2e-3) : (dt < 0.01 ? 0.01 : 0.03);
                 EXPECT_LT(farthestAfter(world, 10.0, dt), bound)
                     << "dt " << dt << ", " << integratorName(integrator) << ", gap " << gap;

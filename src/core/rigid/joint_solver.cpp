@@ -183,7 +183,8 @@ void JointSolver::prepare(std::span<Joint> joints, std::span<const std::uint32_t
     for (const Rows& r : m_rows) {
         const double wa = bodies[r.a].inverseMass, wb = bodies[r.b].inverseMass;
         const bool spring = joints[r.joint].type == JointType::Distance && joints[r.joint].stiffness > 0.0;
-        m_farApart = m_farApart || (!spring && wa > 0.0 && wb > 0.0 && std::max(wa, wb) > kFarLighter * std::min(wa, wb));
+        const bool far = wa > 0.0 && wb > 0.0 && std::max(wa, wb) > kFarLighter * std::min(wa, wb);
+        m_farApart = m_farApart || (!spring && far);
     }
     m_movingBodies.clear();
     for (const Rows& r : m_rows)
