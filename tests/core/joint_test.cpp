@@ -255,8 +255,9 @@ TEST(Joints, AHeavyBallOnLightLinksHoldsItsJoints)
                 const std::string where = std::to_string(links) + " links, dt " + std::to_string(dt) + ", " +
                                           std::string(integratorName(integrator));
                 EXPECT_LT(widest, 1e-6) << where;
-                if (integrator != Integrator::ForwardEuler) // whose free swing gains energy itself
+                if (integrator != Integrator::ForwardEuler) { // whose free swing gains energy itself
                     EXPECT_LE(highest - e0, 1e-9 * std::abs(e0)) << where;
+                }
             }
 }
 

@@ -397,7 +397,7 @@ TEST(RigidContact, AHeavyBodyStandsOnAFarLighterOne)
 {
     struct Column {
         const char* name;
-        std::vector<double> heights, masses, widths;
+        std::vector<double> heights, masses, widths = {};
     };
     const std::vector<Column> columns{
         {"50 kg on 0.1 kg", {0.2, 0.2}, {0.1, 50.0}},
