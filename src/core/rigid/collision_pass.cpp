@@ -196,21 +196,12 @@ void ContactSolver::solveBlowNormals(const IslandContact& c, std::span<ImpactRow
     std::vector<double> now(n), b(n), x(n);
     for (std::size_t i = 0; i < n; ++i)
         now[i] = speed(m_normals[i].row);
-    // A: row i's change of speed for a unit push of row j, found by pushing and putting back
-    // (the rows stay the same through the blow's sweeps).
+    // A (the rows stay the same through the blow's sweeps).
     std::vector<double>& A = m_normalMatrix;
     if (!m_normalMatrixMade) {
-        A.assign(n * n, 0.0);
-        for (std::size_t j = 0; j < n; ++j) {
-            const BlowRow& pushed = m_normals[j].row;
-            SolverBody& pa = m_bodies[pushed.a];
-            SolverBody& pb = m_bodies[pushed.b];
-            const dvec3 va = pa.v, wa = pa.w, vb = pb.v, wb = pb.w;
-            pushRow(pushed, 1.0);
-            for (std::size_t i = 0; i < n; ++i)
-                A[i * n + j] = speed(m_normals[i].row) - now[i];
-            pa.v = va, pa.w = wa, pb.v = vb, pb.w = wb;
-        }
+        blowRowMatrix(
+            m_bodies, n, [&](std::size_t i) -> const BlowRow& { return m_normals[i].row; },
+            [&](const BlowRow& row, double lambda) { pushRow(row, lambda); }, A);
         m_normalMatrixMade = true;
     }
     // Speeds as functions of the total pushes x: w = A x + b, wanted w >= 0, x >= 0, x . w = 0

@@ -88,6 +88,29 @@ struct BlowRow {
     }
 };
 
+/// A of w = A x + b over `n` blow rows, row-major: row i's change of speed for a unit push of
+/// row j, found by pushing row j and putting its two bodies' velocities back. `rowOf(i)` is row
+/// i; `push(row, lambda)` applies a row's impulse (a blow's through the pins).
+template <class RowOf, class Push>
+void blowRowMatrix(std::span<SolverBody> bodies, std::size_t n, RowOf&& rowOf, Push&& push, std::vector<double>& a)
+{
+    const auto speed = [&](const BlowRow& row) { return row.speed(bodies[row.a], bodies[row.b]); };
+    std::vector<double> now(n);
+    for (std::size_t i = 0; i < n; ++i)
+        now[i] = speed(rowOf(i));
+    a.assign(n * n, 0.0);
+    for (std::size_t j = 0; j < n; ++j) {
+        const BlowRow& pushed = rowOf(j);
+        SolverBody& pa = bodies[pushed.a];
+        SolverBody& pb = bodies[pushed.b];
+        const dvec3 va = pa.v, wa = pa.w, vb = pb.v, wb = pb.w;
+        push(pushed, 1.0);
+        for (std::size_t i = 0; i < n; ++i)
+            a[i * n + j] = speed(rowOf(i)) - now[i];
+        pa.v = va, pa.w = wa, pb.v = vb, pb.w = wb;
+    }
+}
+
 /// Solves one island's contacts. `contacts` holds every contact of the world; `island` lists
 /// the indices of this island's, in order. Works on `bodies` (the world's solver bodies: the
 /// island's and the static ones) and writes the impulses back into the contacts.

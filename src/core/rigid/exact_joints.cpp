@@ -42,28 +42,17 @@ void push(std::span<SolverBody> bodies, const BlowRow& r, double lambda)
     bodies[r.b].applyImpulse(lambda * r.n, r.rB);
 }
 
-/// A of w = A x + b, row-major: row i's change of speed for a unit impulse along row j, found
-/// by pushing and putting back. A ten-billionth of the largest on the diagonal picks one of
-/// equal answers where rows repeat each other (a loop of joints, a link between two anchors).
+/// blowRowMatrix over rows that hold their BlowRow as `row`, with a ten-billionth of the largest
+/// on the diagonal: it picks one of equal answers where rows repeat each other (a loop of joints,
+/// a link between two anchors).
 template <class Rows>
 std::vector<double> rowMatrix(std::span<SolverBody> bodies, const Rows& rows)
 {
     const std::size_t n = rows.size();
-    std::vector<double> a(n * n, 0.0);
-    std::vector<double> before(n);
-    for (std::size_t i = 0; i < n; ++i)
-        before[i] = rows[i].row.speed(bodies[rows[i].row.a], bodies[rows[i].row.b]);
-    for (std::size_t j = 0; j < n; ++j) {
-        const BlowRow& pushed = rows[j].row;
-        SolverBody& pa = bodies[pushed.a];
-        SolverBody& pb = bodies[pushed.b];
-        const SolverBody keptA = pa, keptB = pb;
-        push(bodies, pushed, 1.0);
-        for (std::size_t i = 0; i < n; ++i)
-            a[i * n + j] = rows[i].row.speed(bodies[rows[i].row.a], bodies[rows[i].row.b]) - before[i];
-        pa = keptA;
-        pb = keptB;
-    }
+    std::vector<double> a;
+    blowRowMatrix(
+        bodies, n, [&](std::size_t i) -> const BlowRow& { return rows[i].row; },
+        [&](const BlowRow& row, double lambda) { push(bodies, row, lambda); }, a);
     double largest = 0.0;
     for (std::size_t i = 0; i < n; ++i)
         largest = std::max(largest, a[i * n + i]);
