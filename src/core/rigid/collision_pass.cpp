@@ -126,12 +126,9 @@ void ContactSolver::applyBlow(BodyIndex a, BodyIndex b, const dvec3& rA, const d
 
 void ContactSolver::pushRow(const BlowRow& r, double lambda)
 {
-    if (!r.angular) {
-        applyBlow(r.a, r.b, r.rA, r.rB, lambda * r.n);
-        return;
-    }
-    m_bodies[r.a].applyAngularImpulse(-lambda * r.n); // a mechanism's body: never pinned
-    m_bodies[r.b].applyAngularImpulse(lambda * r.n);
+    if (r.angular) // a mechanism's body: never pinned
+        return r.push(m_bodies[r.a], m_bodies[r.b], lambda);
+    applyBlow(r.a, r.b, r.rA, r.rB, lambda * r.n);
 }
 
 bool ContactSolver::farLighterIn(const IslandContact& c, BodyIndex k) const

@@ -86,6 +86,18 @@ struct BlowRow {
     {
         return angular ? glm::dot(n, y.w - x.w) : glm::dot(n, y.pointVelocity(rB) - x.pointVelocity(rA));
     }
+    /// The row's impulse lambda: on y along n, on x against it (a blow's linear rows go through
+    /// its pins instead: ContactSolver::pushRow).
+    void push(SolverBody& x, SolverBody& y, double lambda) const
+    {
+        if (angular) {
+            x.applyAngularImpulse(-lambda * n);
+            y.applyAngularImpulse(lambda * n);
+            return;
+        }
+        x.applyImpulse(-lambda * n, rA);
+        y.applyImpulse(lambda * n, rB);
+    }
 };
 
 /// A of w = A x + b over `n` blow rows, row-major: row i's change of speed for a unit push of

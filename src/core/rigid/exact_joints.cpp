@@ -31,17 +31,6 @@ namespace {
 
 constexpr double kMet = 1e-9; ///< m/s: a row's speed this close to its target is met
 
-void push(std::span<SolverBody> bodies, const BlowRow& r, double lambda)
-{
-    if (r.angular) {
-        bodies[r.a].applyAngularImpulse(-lambda * r.n);
-        bodies[r.b].applyAngularImpulse(lambda * r.n);
-        return;
-    }
-    bodies[r.a].applyImpulse(-lambda * r.n, r.rA);
-    bodies[r.b].applyImpulse(lambda * r.n, r.rB);
-}
-
 /// blowRowMatrix over rows that hold their BlowRow as `row`, with a ten-billionth of the largest
 /// on the diagonal: it picks one of equal answers where rows repeat each other (a loop of joints,
 /// a link between two anchors).
@@ -52,7 +41,7 @@ std::vector<double> rowMatrix(std::span<SolverBody> bodies, const Rows& rows)
     std::vector<double> a;
     blowRowMatrix(
         bodies, n, [&](std::size_t i) -> const BlowRow& { return rows[i].row; },
-        [&](const BlowRow& row, double lambda) { push(bodies, row, lambda); }, a);
+        [&](const BlowRow& row, double lambda) { row.push(bodies[row.a], bodies[row.b], lambda); }, a);
     double largest = 0.0;
     for (std::size_t i = 0; i < n; ++i)
         largest = std::max(largest, a[i * n + i]);
@@ -131,7 +120,7 @@ void JointSolver::solveExactly(std::vector<Rows>& rows)
     solveSmallLcp(a, b, n, 1e-12 * scale, x, equalities);
     for (std::size_t i = 0; i < n; ++i) {
         const double change = x[i] - current[i];
-        push(m_bodies, exact[i].row, change);
+        exact[i].row.push(m_bodies[exact[i].row.a], m_bodies[exact[i].row.b], change);
         Rows& r = rows[exact[i].rows];
         switch (exact[i].part) {
         case ExactRow::Part::Linear: r.linearImpulse += change * exact[i].row.n; break;
