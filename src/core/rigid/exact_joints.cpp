@@ -52,7 +52,7 @@ std::vector<double> rowMatrix(std::span<SolverBody> bodies, const Rows& rows)
 
 } // namespace
 
-void JointSolver::exactRowsOf(std::span<const Rows> rows, std::vector<ExactRow>& out) const
+std::size_t JointSolver::exactRowsOf(std::span<const Rows> rows, std::vector<ExactRow>& out) const
 {
     out.clear();
     std::vector<ExactRow> limitRows;
@@ -76,7 +76,9 @@ void JointSolver::exactRowsOf(std::span<const Rows> rows, std::vector<ExactRow>&
             limitRows.push_back({limits[1], k, ExactRow::Part::Upper});
         }
     }
+    const std::size_t equalityCount = out.size();
     out.insert(out.end(), limitRows.begin(), limitRows.end());
+    return equalityCount;
 }
 
 void JointSolver::solveExactly(std::vector<Rows>& rows)
@@ -84,13 +86,10 @@ void JointSolver::solveExactly(std::vector<Rows>& rows)
     if (!m_farApart)
         return;
     thread_local std::vector<ExactRow> exact;
-    exactRowsOf(rows, exact);
+    const std::size_t equalities = exactRowsOf(rows, exact);
     const std::size_t n = exact.size();
     if (n == 0 || n > kMaxMechanismRows)
         return;
-    const std::size_t equalities = std::size_t(std::count_if(exact.begin(), exact.end(), [](const ExactRow& e) {
-        return e.part != ExactRow::Part::Lower && e.part != ExactRow::Part::Upper;
-    }));
     // Where the sweeps already met every row (a chain hanging still), there is nothing to do.
     double worst = 0.0;
     for (std::size_t i = 0; i < equalities; ++i)
@@ -145,8 +144,6 @@ void JointSolver::holdExactly()
     };
     thread_local std::vector<GapRow> gaps, limits;
     const dvec3 frame[3] = {dvec3(1.0, 0.0, 0.0), dvec3(0.0, 1.0, 0.0), dvec3(0.0, 0.0, 1.0)};
-    const auto position = [](const SolverBody& k) { return k.isStatic() ? k.position : k.endPosition; };
-    const auto orientation = [](const SolverBody& k) { return k.isStatic() ? k.orientation : k.endOrientation; };
     // The steps' matrix is the start orientations' and a pose turns by a rotation vector's first
     // order, so a light link whipped round in a step converges only linearly: six 0.1 kg links
     // under a 50 kg ball at 1/60 s took up to 33 rounds, two links 7, wrecking-ball 2.
@@ -162,9 +159,10 @@ void JointSolver::holdExactly()
                 continue;
             const SolverBody& a = m_bodies[r.a];
             const SolverBody& b = m_bodies[r.b];
-            const dquat qa = orientation(a), qb = orientation(b);
-            const dvec3 ra = glm::mat3_cast(qa) * j.localA, rb = glm::mat3_cast(qb) * j.localB;
-            const dvec3 d = (position(b) + rb) - (position(a) + ra);
+            // (A static body's end pose is its start's.)
+            const dvec3 ra = glm::mat3_cast(a.endOrientation) * j.localA;
+            const dvec3 rb = glm::mat3_cast(b.endOrientation) * j.localB;
+            const dvec3 d = (b.endPosition + rb) - (a.endPosition + ra);
             const auto add = [&](std::vector<GapRow>& to, const dvec3& n, bool angular, double gap) {
                 to.push_back({{r.a, r.b, ra, rb, n, angular, 0.0}, gap, &r});
                 widest = std::max(widest, std::abs(gap));
@@ -177,25 +175,21 @@ void JointSolver::holdExactly()
             }
             for (const dvec3& n : frame)
                 add(gaps, n, false, glm::dot(n, d));
-            if (j.type == JointType::Fixed) {
-                // B turned by -theta from where A's orientation and the rest put it (holdOrientation).
-                dquat error = (qa * j.rest) * glm::conjugate(qb);
-                if (error.w < 0.0)
-                    error = -error;
+            if (j.type == JointType::Fixed) { // B turned from where it should be by -weldError
+                const dvec3 theta = weldError(j, a, b);
                 for (int k = 0; k < 3; ++k)
-                    add(gaps, frame[k], true, -2.0 * dvec3(error.x, error.y, error.z)[k]);
+                    add(gaps, frame[k], true, -theta[k]);
             }
             if (j.type != JointType::Hinge)
                 continue;
-            const dvec3 axisA = glm::normalize(glm::mat3_cast(qa) * j.axisA);
-            const dvec3 axisB = glm::normalize(glm::mat3_cast(qb) * j.axisB);
+            const auto [axisA, axisB] = endAxes(j, a, b);
             dvec3 across[2];
             tangentsOf(axisA, across);
             for (const dvec3& n : across) // B's axis is A's turned by about axisA x axisB
                 add(gaps, n, true, glm::dot(n, glm::cross(axisA, axisB)));
             if (!j.limited)
                 continue;
-            const double angle = hingeAngle(j, qa, qb); // A's turn relative to B about the axis
+            const double angle = hingeAngle(j, a.endOrientation, b.endOrientation); // A's relative to B
             if (angle < j.lower)
                 add(limits, -axisA, true, angle - j.lower);
             else if (angle > j.upper)

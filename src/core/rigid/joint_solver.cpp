@@ -630,10 +630,23 @@ dvec3 carriedTurn(const Joint& j, const SolverBody& a, const SolverBody& b, cons
 
 } // namespace
 
+std::pair<dvec3, dvec3> JointSolver::endAxes(const Joint& j, const SolverBody& a, const SolverBody& b)
+{
+    return {glm::normalize(glm::mat3_cast(a.endOrientation) * j.axisA),
+            glm::normalize(glm::mat3_cast(b.endOrientation) * j.axisB)};
+}
+
+dvec3 JointSolver::weldError(const Joint& j, const SolverBody& a, const SolverBody& b)
+{
+    dquat error = (a.endOrientation * j.rest) * glm::conjugate(b.endOrientation);
+    if (error.w < 0.0)
+        error = -error;
+    return 2.0 * dvec3(error.x, error.y, error.z);
+}
+
 void JointSolver::holdAxis(const Joint& j, const Rows& r, SolverBody& a, SolverBody& b)
 {
-    const dvec3 axisA = glm::normalize(glm::mat3_cast(a.endOrientation) * j.axisA);
-    const dvec3 axisB = glm::normalize(glm::mat3_cast(b.endOrientation) * j.axisB);
+    const auto [axisA, axisB] = endAxes(j, a, b);
     // B's axis is A's turned by about axisA x axisB: turn B back by that much, across the axis.
     if (r.rattle) { // along the start's rows (holdPoints); no limits
         const Block2 mass{{{r.acrossMass[0][0], r.acrossMass[0][1]}, {r.acrossMass[1][0], r.acrossMass[1][1]}}};
@@ -659,11 +672,7 @@ void JointSolver::holdAxis(const Joint& j, const Rows& r, SolverBody& a, SolverB
 
 void JointSolver::holdOrientation(const Joint& j, const Rows& r, SolverBody& a, SolverBody& b)
 {
-    // The rotation that takes B to where A's orientation and the rest say it should be.
-    dquat error = (a.endOrientation * j.rest) * glm::conjugate(b.endOrientation);
-    if (error.w < 0.0)
-        error = -error;
-    const dvec3 theta = 2.0 * dvec3(error.x, error.y, error.z);
+    const dvec3 theta = weldError(j, a, b);
     if (r.rattle) { // along the start's rows (holdPoints)
         const dvec3 l = -(r.angularMass * carriedTurn(j, a, b, r.carry, -theta));
         return move(r, a, b, r.rA, r.rB, r.carry * l, l);

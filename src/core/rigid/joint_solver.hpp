@@ -19,6 +19,7 @@
 // the island's energy cap taking what rounds above), where moving the poses alone took it at
 // first order.
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "pba/joint.hpp"
@@ -164,6 +165,11 @@ private:
     /// again in a step.
     void move(const Rows& r, SolverBody& a, SolverBody& b, const dvec3& ra, const dvec3& rb, const dvec3& p,
               const dvec3& l) const;
+    /// The position errors at the end poses that the sweeps and the exact hold both undo: the
+    /// hinge's axes, A's and B's in the world (B's is A's turned by about their cross product),
+    /// and the rotation that takes B to where A's orientation and a weld's rest put it.
+    static std::pair<dvec3, dvec3> endAxes(const Joint& j, const SolverBody& a, const SolverBody& b);
+    static dvec3 weldError(const Joint& j, const SolverBody& a, const SolverBody& b);
     void holdPoints(const Joint& j, const Rows& r, SolverBody& a, SolverBody& b);
     void holdAxis(const Joint& j, const Rows& r, SolverBody& a, SolverBody& b);
     void holdOrientation(const Joint& j, const Rows& r, SolverBody& a, SolverBody& b);
@@ -181,7 +187,8 @@ private:
     bool m_farApart = false;
     /// One row of the exact solves: a BlowRow, and where its impulse goes among `rows`.
     struct ExactRow;
-    void exactRowsOf(std::span<const Rows> rows, std::vector<ExactRow>& out) const;
+    /// `rows`' rows into `out`, the equalities first; returns how many those are.
+    std::size_t exactRowsOf(std::span<const Rows> rows, std::vector<ExactRow>& out) const;
     void solveExactly(std::vector<Rows>& rows);
     /// holdExactly's moves x along `rows` (each with its BlowRow `row` and its joint's `rows`).
     template <class GapRows>
