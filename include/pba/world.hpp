@@ -266,6 +266,8 @@ public:
     };
     /// Every touching contact point of the last step (separation below a millimetre or pushing).
     std::vector<ContactPointView> contactPoints() const;
+    /// The same into `out`, whose storage a caller that looks after every step keeps.
+    void contactPoints(std::vector<ContactPointView>& out) const;
     /// How contacts and joints are solved, and when bodies sleep.
     ContactSettings& contactSettings();
     const ContactSettings& contactSettings() const;

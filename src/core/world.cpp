@@ -212,8 +212,15 @@ std::size_t World::addJoint(const JointDesc& desc)
 
 std::vector<World::ContactPointView> World::contactPoints() const
 {
-    const rigid::RigidSystem& system = *m_rigid.system;
     std::vector<ContactPointView> out;
+    contactPoints(out);
+    return out;
+}
+
+void World::contactPoints(std::vector<ContactPointView>& out) const
+{
+    const rigid::RigidSystem& system = *m_rigid.system;
+    out.clear();
     for (const rigid::Contact& c : system.contacts())
         for (int k = 0; k < c.count; ++k) {
             const rigid::ContactPoint& p = c.points[k];
@@ -229,7 +236,6 @@ std::vector<World::ContactPointView> World::contactPoints() const
                 view.bodyB = system.worldIndex(c.b);
             out.push_back(view);
         }
-    return out;
 }
 
 std::size_t World::jointCount() const { return m_rigid.system->joints().size(); }

@@ -118,10 +118,10 @@ RigidWatch::RigidWatch(const World& world)
 
 namespace {
 
-/// touchedSurfaces, with the normal of a contact with what each body touches.
-std::vector<Touch> touches(const World& world, const std::vector<World::ContactPointView>& contacts)
+/// touchedSurfaces, with the normal of a contact with what each body touches, into `on`.
+void touches(const World& world, const std::vector<World::ContactPointView>& contacts, std::vector<Touch>& on)
 {
-    std::vector<Touch> on(world.bodyCount());
+    on.assign(world.bodyCount(), Touch{});
     const auto add = [&](std::size_t body, std::size_t other, const dvec3& outward) {
         on[body].on = on[body].on == kNone || on[body].on == other ? other : kMany;
         on[body].outward = outward;
@@ -131,15 +131,16 @@ std::vector<Touch> touches(const World& world, const std::vector<World::ContactP
         if (c.bodyB)
             add(*c.bodyB, c.bodyA, c.normal);
     }
-    return on;
 }
 
 } // namespace
 
 std::vector<std::size_t> touchedSurfaces(const World& world)
 {
+    std::vector<Touch> touch;
+    touches(world, world.contactPoints(), touch);
     std::vector<std::size_t> on;
-    for (const Touch& t : touches(world, world.contactPoints()))
+    for (const Touch& t : touch)
         on.push_back(t.on);
     return on;
 }
@@ -175,11 +176,11 @@ void RigidWatch::lookAtPipeline(const World& world, const std::vector<World::Con
 
 void RigidWatch::record(const World& world)
 {
-    const std::vector<World::ContactPointView> contacts = world.contactPoints();
-    lookAtPipeline(world, contacts);
-    const std::vector<Touch> on = touches(world, contacts);
+    world.contactPoints(m_contacts);
+    lookAtPipeline(world, m_contacts);
+    touches(world, m_contacts, m_on);
     for (Track& t : m_tracks) {
-        look(world, t, on[t.body]);
+        look(world, t, m_on[t.body]);
         t.spinSum += glm::length(rigid(world, t.body).getAngularVelocity());
         ++t.steps;
     }

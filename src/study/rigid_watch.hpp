@@ -121,6 +121,11 @@ private:
     void look(const World& world, Track& t, const Touch& touch) const;
     static void endSlide(const World& world, Track& t);
     std::vector<Track> m_tracks;
+    /// The last step's contact points and what each body touches: kept from look to look, since
+    /// a heap asleep keeps its thousands of points and allocating them each step cost more than
+    /// its step.
+    std::vector<World::ContactPointView> m_contacts;
+    std::vector<Touch> m_on;
 };
 
 } // namespace pba::study
