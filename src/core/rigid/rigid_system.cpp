@@ -541,7 +541,10 @@ void RigidSystem::moveEndPoses(std::size_t island, const ContactSolver& solver, 
         b.shift += (b.v - v) * drift;
         b.turn += (b.w - w) * drift;
         b.endPosition += b.shift;
-        b.endOrientation = turned(b.endOrientation, b.turn);
+        // The methods whose whole turn the end velocity drives take the impulses' turn into it.
+        const bool within = b.driftWeight == 1.0 && b.turn != dvec3(0.0);
+        b.endOrientation = within ? turnedWithin(b.orientation, b.endOrientation, b.turn)
+                                  : turned(b.endOrientation, b.turn);
     }
 }
 

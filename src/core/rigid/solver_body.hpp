@@ -136,6 +136,20 @@ inline dquat turned(const dquat& q, const dvec3& theta)
     return t / glm::length(t);
 }
 
+/// The end orientation q1 of a step that turned q0 as semi-implicit Euler and the implicit
+/// gyroscopic step do, q1 = q0 + 1/2 (omega dt) q0 normalised, with theta added to that omega dt.
+/// Applied after the step's turn instead (turned), theta misses what the two turns do together,
+/// which for a body spinning radians a step is as large as theta: a bead spun up by the floor
+/// about its hinge's axis was turned off the axis and thrown back onto it a metre a step.
+inline dquat turnedWithin(const dquat& q0, const dquat& q1, const dvec3& theta)
+{
+    const dquat step = q1 * glm::conjugate(q0); // 1 + 1/2 omega dt, normalised: its real part is positive
+    if (!(step.w > 0.0))
+        return turned(q1, theta);
+    const dquat t = (step / step.w + dquat(0.0, theta.x, theta.y, theta.z) * 0.5) * q0;
+    return t / glm::length(t);
+}
+
 inline void SolverBody::movePose(const dvec3& p, const dvec3& r)
 {
     if (isStatic())
