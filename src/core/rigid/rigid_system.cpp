@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <tbb/parallel_for.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
@@ -12,6 +13,20 @@
 #include "rigid/room_contacts.hpp"
 
 namespace pba::rigid {
+
+namespace {
+/// fn(k) for every body k < n, kBodyGrain bodies a task: a body's own work is a few hundred
+/// nanoseconds, and waking the other core for a few hundred of them costs more than it saves.
+constexpr std::size_t kBodyGrain = 256;
+template <class F>
+void forEachBody(std::size_t n, F&& fn)
+{
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kBodyGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t k = r.begin(); k < r.end(); ++k)
+            fn(k);
+    });
+}
+} // namespace
 
 namespace {
 
@@ -157,7 +172,7 @@ void RigidSystem::boundingBoxes(double dt)
     m_reach.assign(n, 0.0);
     m_spinReach.assign(n, 0.0);
     m_boxes.resize(n);
-    tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
+    forEachBody(n, [&](std::size_t k) {
         const CollisionShape& shape = *m_material[k].shape;
         const RigidState& s = m_start[k];
         const RigidState& e = m_end[k];
@@ -370,7 +385,7 @@ void RigidSystem::prepareBodies(double dt, std::size_t surfaces)
     m_energyStart.resize(n);
     m_energyFree.resize(n);
     (void)dt;
-    tbb::parallel_for(std::size_t(0), n, [&](std::size_t k) {
+    forEachBody(n, [&](std::size_t k) {
         SolverBody& b = m_solverBodies[k];
         const RigidState& s = m_start[k];
         const RigidState& e = m_end[k];
@@ -771,7 +786,7 @@ RigidSystem::Energies RigidSystem::springEnergy(std::size_t island) const
 
 void RigidSystem::finishBodies()
 {
-    tbb::parallel_for(std::size_t(0), m_world.size(), [&](std::size_t k) {
+    forEachBody(m_world.size(), [&](std::size_t k) {
         if (m_motion[k] != Motion::Awake)
             return;
         const SolverBody& b = m_solverBodies[k];
