@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include <tbb/parallel_for.h>
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
@@ -15,6 +15,10 @@
 namespace pba::rigid {
 
 namespace {
+
+using contact::CollisionShape;
+using contact::Transform;
+
 /// fn(k) for every body k < n, kBodyGrain bodies a task: a body's own work is a few hundred
 /// nanoseconds, and waking the other core for a few hundred of them costs more than it saves.
 constexpr std::size_t kBodyGrain = 256;
@@ -26,12 +30,6 @@ void forEachBody(std::size_t n, F&& fn)
             fn(k);
     });
 }
-} // namespace
-
-namespace {
-
-using contact::CollisionShape;
-using contact::Transform;
 
 /// The box around a shape at a pose: a polyhedron's few vertices exactly, a sphere's or a
 /// many-vertexed hull's bounding sphere.
