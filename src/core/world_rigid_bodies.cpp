@@ -170,7 +170,11 @@ void World::pushAtFreeEnd(Integrator integrator, const std::vector<std::size_t>&
         s.v += dv;
         s.x += drift * dv;
         s.rotation.momentum += push.angular;
-        s.rotation.orientation = rigid::turned(s.rotation.orientation, drift * dw);
+        // As the contact solver's: a method whose whole turn the end velocity drives takes it within.
+        const dquat& start = m_rigid.system->start(m_bodies.rigidIndex[push.body]).rotation.orientation;
+        const bool within = rigid::driftWeight(integrator) == 1.0 && dw != dvec3(0.0);
+        s.rotation.orientation = within ? rigid::turnedWithin(start, s.rotation.orientation, drift * dw)
+                                        : rigid::turned(s.rotation.orientation, drift * dw);
     }
 }
 
