@@ -131,18 +131,22 @@ void JointSolver::solveExactly(std::vector<Rows>& rows)
     }
 }
 
-void JointSolver::holdExactly()
+void JointSolver::holdExactly(const RoomAtEnd& room)
 {
     if (!m_farApart)
         return;
     // Each joint's errors at the end poses as rows: the anchors' gap (a rod's length), a hinge's
-    // axes apart and a weld's turn away from its rest, then the hinge limits passed (pushing only).
+    // axes apart and a weld's turn away from its rest, then the hinge limits passed and the
+    // points beyond the room (pushing only). Held apart from the room, a light body hinged far
+    // from a heavy one was put back on its joint through a wall, and the room's push-out after
+    // opened the joint by 5 cm.
     struct GapRow {
         BlowRow row;
         double gap = 0.0;
-        const Rows* rows = nullptr;
+        const Rows* rows = nullptr; ///< its joint's; none for the room's
     };
     thread_local std::vector<GapRow> gaps, limits;
+    thread_local std::vector<Contact> beyond;
     const dvec3 frame[3] = {dvec3(1.0, 0.0, 0.0), dvec3(0.0, 1.0, 0.0), dvec3(0.0, 0.0, 1.0)};
     // The steps' matrix is the start orientations' and a pose turns by a rotation vector's first
     // order, so a light link whipped round in a step converges only linearly: six 0.1 kg links
@@ -195,6 +199,19 @@ void JointSolver::holdExactly()
             else if (angle > j.upper)
                 add(limits, axisA, true, j.upper - angle);
         }
+        for (const BodyIndex k : m_movingBodies) {
+            beyond.clear();
+            room(k, beyond);
+            for (const Contact& c : beyond)
+                for (int i = 0; i < c.count; ++i) {
+                    const ContactPoint& p = c.points[i];
+                    if (p.separation >= 0.0)
+                        continue;
+                    const BlowRow row{k, c.b, p.point - m_bodies[k].endPosition, dvec3(0.0), p.normal, false, 0.0};
+                    limits.push_back({row, p.separation, nullptr});
+                    widest = std::max(widest, -p.separation);
+                }
+        }
         const std::size_t equalities = gaps.size();
         gaps.insert(gaps.end(), limits.begin(), limits.end());
         const std::size_t n = gaps.size();
@@ -228,7 +245,7 @@ void JointSolver::moveTogether(const GapRows& rows, std::span<const double> x)
     };
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const BlowRow& row = rows[i].row;
-        const bool rattle = rows[i].rows->rattle;
+        const bool rattle = rows[i].rows && rows[i].rows->rattle;
         for (const auto& [k, sign, arm] : {std::tuple(row.a, -1.0, row.rA), std::tuple(row.b, 1.0, row.rB)}) {
             Move* m = moveOf(k);
             if (!m)

@@ -18,6 +18,7 @@
 // energy is then kept to second order in dt (the double-pendulum scene loses 2e-4 of it in 30 s,
 // the island's energy cap taking what rounds above), where moving the poses alone took it at
 // first order.
+#include <functional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -96,9 +97,13 @@ public:
     /// The velocity rows' impulses, all at once, so that every joint's relative velocity is what
     /// its rows ask (a hinge's limits as inequalities).
     void solveVelocitiesExactly() { solveExactly(m_rows); }
+    /// What the room does to body k at its end pose: its points beyond a surface, as
+    /// collideWithRoom finds them with no margin (none for a point body, which meets the room by
+    /// its own rule).
+    using RoomAtEnd = std::function<void(BodyIndex, std::vector<Contact>&)>;
     /// Newton steps on the end poses until every joint holds (anchors, rods' lengths, hinges'
-    /// axes and limits, welds' turns), all joints at once.
-    void holdExactly();
+    /// axes and limits, welds' turns), all joints at once, and no jointed body is beyond the room.
+    void holdExactly(const RoomAtEnd& room);
     /// The kinetic energy that the explicit springs' impulses (all of a spring between forward
     /// Euler's bodies, taken at the step's start) give the free step's velocities: the method's
     /// own work, as its gain in a fall is, which an island's energy cap must leave to it.

@@ -444,7 +444,13 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
         solver.solvePositions(atEnd);
     }
     if (withJoints)
-        joints.holdExactly();
+        joints.holdExactly([&](BodyIndex k, std::vector<Contact>& out) {
+            if (m_isPoint[k])
+                return;
+            const SolverBody& b = m_solverBodies[k];
+            collideWithRoom(*m_material[k].shape, Transform{b.endPosition, glm::mat3_cast(b.endOrientation)}, m_planes,
+                            0.0, k, worldBody() + 1, out);
+        });
     thread_local std::vector<std::uint32_t> lifted;
     pushOutOfRoom(bodies, &lifted);
     if (!lifted.empty())
