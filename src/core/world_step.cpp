@@ -31,7 +31,10 @@ void World::step(double dt)
     if (!(dt > 0.0 && std::isfinite(dt)))
         throw std::invalid_argument(fmt::format("a step's dt must be finite and positive, got {} s", dt));
     m_bodies.firstNonFinite = m_bodies.firstInside = m_bodies.objects.size();
-    detail::onCores(m_threads, [&] {
+    // Fewer bodies than a block of indices: each loop of the particles' phases is one block, and
+    // the other core, woken for them all the same, only slowed a 20 x 20 cloth's step by a third.
+    const int particleThreads = m_bodies.objects.size() < detail::kIndexGrain ? 1 : m_threads;
+    detail::onCores(particleThreads, [&] {
         m_bodies.storePreviousStates();
         m_swarms.keepForRollback();
         const Coupling& coupling = couple(); // a mixed coupled group throws before anything moves
@@ -39,8 +42,8 @@ void World::step(double dt)
         integrateIndependent(coupling.independent, dt);
         integrateParticleSystems(coupling, dt);
         collideBalls(dt);
-        stepRigidBodies(dt);
     });
+    detail::onCores(m_threads, [&] { stepRigidBodies(dt); });
     stepSwarms(dt);
     checkFinite(dt);
     checkInsideSurfaces(dt);
