@@ -139,7 +139,7 @@ void JointSolver::holdExactly(const RoomAtEnd& room)
     // axes apart and a weld's turn away from its rest, then the hinge limits passed and the
     // points beyond the room (pushing only). Held apart from the room, a light body hinged far
     // from a heavy one was put back on its joint through a wall, and the room's push-out after
-    // opened the joint by 5 cm.
+    // opened the joint by up to 9 cm.
     struct GapRow {
         BlowRow row;
         double gap = 0.0;
