@@ -165,7 +165,8 @@ public:
     Swarm& swarm(std::size_t i) { return *m_swarms.objects[i]; }
     const Swarm& swarm(std::size_t i) const { return *m_swarms.objects[i]; }
     /// Threads for stepping swarms and coupled bodies (a cloth): 0 (the default) uses all cores;
-    /// results do not depend on it.
+    /// results do not depend on it. A world of fewer bodies than 2,048 steps its particles on one,
+    /// where each of their loops is one block.
     void setThreads(int threads) { m_threads = threads; }
     /// The substeps of a step of the bodies that take `xpbd` (default kDefaultXpbdSubsteps).
     /// Throws std::invalid_argument unless it is from 1 to kMaxXpbdSubsteps.
@@ -591,7 +592,7 @@ private:
     Swarms m_swarms;
     Surfaces m_surfaces;
     StepClock m_clock;
-    int m_threads = 0; ///< for every phase of the step
+    int m_threads = 0; ///< the most any phase of the step uses
 };
 
 } // namespace pba
