@@ -26,11 +26,11 @@ decltype(auto) onCores(int threads, F&& fn)
 /// rope's or a few particles' loop runs on the calling thread).
 inline constexpr std::size_t kIndexGrain = 2048;
 
-/// fn(i) for every i < n, kIndexGrain indices a task.
+/// fn(i) for every i < n, `grain` indices a task (fewer where an index is more work).
 template <class F>
-void forEachIndex(std::size_t n, F&& fn)
+void forEachIndex(std::size_t n, F&& fn, std::size_t grain = kIndexGrain)
 {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kIndexGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t i = r.begin(); i < r.end(); ++i)
             fn(i);
     });

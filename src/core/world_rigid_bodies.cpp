@@ -170,11 +170,9 @@ void World::pushAtFreeEnd(Integrator integrator, const std::vector<std::size_t>&
         s.v += dv;
         s.x += drift * dv;
         s.rotation.momentum += push.angular;
-        // As the contact solver's: a method whose whole turn the end velocity drives takes it within.
         const dquat& start = m_rigid.system->start(m_bodies.rigidIndex[push.body]).rotation.orientation;
-        const bool within = rigid::driftWeight(integrator) == 1.0 && dw != dvec3(0.0);
-        s.rotation.orientation = within ? rigid::turnedWithin(start, s.rotation.orientation, drift * dw)
-                                        : rigid::turned(s.rotation.orientation, drift * dw);
+        s.rotation.orientation =
+            rigid::turnedByImpulses(start, s.rotation.orientation, drift * dw, rigid::driftWeight(integrator));
     }
 }
 

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
 #include "material_rule.hpp"
+#include "parallel.hpp"
 #include "rigid/carried_manifold.hpp"
 #include "rigid/room_contacts.hpp"
 
@@ -19,17 +19,9 @@ namespace {
 using contact::CollisionShape;
 using contact::Transform;
 
-/// fn(k) for every body k < n, kBodyGrain bodies a task: a body's own work is a few hundred
-/// nanoseconds, and waking the other core for a few hundred of them costs more than it saves.
+/// Bodies a task in the per-body loops: a body's own work is a few hundred nanoseconds, and
+/// waking the other core for a few hundred of them costs more than it saves.
 constexpr std::size_t kBodyGrain = 256;
-template <class F>
-void forEachBody(std::size_t n, F&& fn)
-{
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kBodyGrain), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t k = r.begin(); k < r.end(); ++k)
-            fn(k);
-    });
-}
 
 /// The box around a shape at a pose: a polyhedron's few vertices exactly, a sphere's or a
 /// many-vertexed hull's bounding sphere.
@@ -170,7 +162,7 @@ void RigidSystem::boundingBoxes(double dt)
     m_reach.assign(n, 0.0);
     m_spinReach.assign(n, 0.0);
     m_boxes.resize(n);
-    forEachBody(n, [&](std::size_t k) {
+    detail::forEachIndex(n, [&](std::size_t k) {
         const CollisionShape& shape = *m_material[k].shape;
         const RigidState& s = m_start[k];
         const RigidState& e = m_end[k];
@@ -187,7 +179,7 @@ void RigidSystem::boundingBoxes(double dt)
         }
         const double pad = 0.5 * m_settings.contactMargin;
         m_boxes[k] = {box.min - pad, box.max + pad};
-    });
+    }, kBodyGrain);
 }
 
 void RigidSystem::widenForPushes()
@@ -383,7 +375,7 @@ void RigidSystem::prepareBodies(double dt, std::size_t surfaces)
     m_energyStart.resize(n);
     m_energyFree.resize(n);
     (void)dt;
-    forEachBody(n, [&](std::size_t k) {
+    detail::forEachIndex(n, [&](std::size_t k) {
         SolverBody& b = m_solverBodies[k];
         const RigidState& s = m_start[k];
         const RigidState& e = m_end[k];
@@ -407,7 +399,7 @@ void RigidSystem::prepareBodies(double dt, std::size_t surfaces)
         b.wFree = b.w;
         m_energyStart[k] = energyInGravity(s, m.inverseMass, m.inverseInertiaBody, m_gravity);
         m_energyFree[k] = energyInGravity(e, m.inverseMass, m.inverseInertiaBody, m_gravity);
-    });
+    }, kBodyGrain);
 }
 
 void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings)
@@ -444,13 +436,7 @@ void RigidSystem::solveIsland(std::size_t island, const SolverSettings& settings
         solver.solvePositions(atEnd);
     }
     if (withJoints)
-        joints.holdExactly([&](BodyIndex k, std::vector<Contact>& out) {
-            if (m_isPoint[k])
-                return;
-            const SolverBody& b = m_solverBodies[k];
-            collideWithRoom(*m_material[k].shape, Transform{b.endPosition, glm::mat3_cast(b.endOrientation)}, m_planes,
-                            0.0, k, worldBody() + 1, out);
-        });
+        joints.holdExactly([&](BodyIndex k, std::vector<Contact>& out) { roomAtEnd({&k, 1}, out, 0.0); });
     thread_local std::vector<std::uint32_t> lifted;
     pushOutOfRoom(bodies, &lifted);
     if (!lifted.empty())
@@ -560,10 +546,7 @@ void RigidSystem::moveEndPoses(std::size_t island, const ContactSolver& solver, 
         b.shift += (b.v - v) * drift;
         b.turn += (b.w - w) * drift;
         b.endPosition += b.shift;
-        // The methods whose whole turn the end velocity drives take the impulses' turn into it.
-        const bool within = b.driftWeight == 1.0 && b.turn != dvec3(0.0);
-        b.endOrientation = within ? turnedWithin(b.orientation, b.endOrientation, b.turn)
-                                  : turned(b.endOrientation, b.turn);
+        b.endOrientation = turnedByImpulses(b.orientation, b.endOrientation, b.turn, b.driftWeight);
     }
 }
 
@@ -631,7 +614,8 @@ double RigidSystem::positionMargin(BodyIndex a, BodyIndex b) const
     return m_settings.contactMargin + push(a) + push(b);
 }
 
-void RigidSystem::roomAtEnd(std::span<const std::uint32_t> bodies, std::vector<Contact>& out) const
+void RigidSystem::roomAtEnd(std::span<const std::uint32_t> bodies, std::vector<Contact>& out,
+                            std::optional<double> margin) const
 {
     const std::size_t n = m_world.size();
     for (const std::uint32_t k : bodies) {
@@ -640,7 +624,7 @@ void RigidSystem::roomAtEnd(std::span<const std::uint32_t> bodies, std::vector<C
         const SolverBody& b = m_solverBodies[k];
         const std::size_t first = out.size();
         collideWithRoom(*m_material[k].shape, Transform{b.endPosition, glm::mat3_cast(b.endOrientation)}, m_planes,
-                        positionMargin(k, BodyIndex(n + 1)), BodyIndex(k), BodyIndex(n + 1), out);
+                        margin.value_or(positionMargin(k, BodyIndex(n + 1))), BodyIndex(k), BodyIndex(n + 1), out);
         for (std::size_t e = first; e < out.size(); ++e)
             out[e].radiusA = sphereRadius(*m_material[k].shape);
     }
@@ -790,7 +774,7 @@ RigidSystem::Energies RigidSystem::springEnergy(std::size_t island) const
 
 void RigidSystem::finishBodies()
 {
-    forEachBody(m_world.size(), [&](std::size_t k) {
+    detail::forEachIndex(m_world.size(), [&](std::size_t k) {
         if (m_motion[k] != Motion::Awake)
             return;
         const SolverBody& b = m_solverBodies[k];
@@ -799,7 +783,7 @@ void RigidSystem::finishBodies()
         e.v = b.v;
         e.rotation.orientation = b.endOrientation;
         e.rotation.momentum += b.momentumChange();
-    });
+    }, kBodyGrain);
 }
 
 void RigidSystem::updateSleep(double dt)

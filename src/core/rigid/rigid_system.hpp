@@ -25,6 +25,7 @@
 // at the end of its free step.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -170,7 +171,10 @@ private:
                        std::vector<Contact>& out) const;
     /// How far apart the end poses' contacts of a and b reach (b may be a surface of the room).
     double positionMargin(BodyIndex a, BodyIndex b) const;
-    void roomAtEnd(std::span<const std::uint32_t> bodies, std::vector<Contact>& out) const;
+    /// The room's contacts of `bodies` at their end poses, within `margin` (by default the
+    /// position pass's, positionMargin); none for a point body.
+    void roomAtEnd(std::span<const std::uint32_t> bodies, std::vector<Contact>& out,
+                   std::optional<double> margin = std::nullopt) const;
     void pairsAtEnd(std::span<const std::uint32_t> contacts, std::vector<Contact>& out) const;
     void finishBodies();
     void updateSleep(double dt);

@@ -150,6 +150,14 @@ inline dquat turnedWithin(const dquat& q0, const dquat& q1, const dvec3& theta)
     return t / glm::length(t);
 }
 
+/// The end orientation q1 (the step's from q0) turned further by theta, the impulses' share of
+/// the step's turn: within the step's turn for a method whose whole turn its end velocity drives
+/// (driftWeight 1: turnedWithin), after it for the others.
+inline dquat turnedByImpulses(const dquat& q0, const dquat& q1, const dvec3& theta, double driftWeight)
+{
+    return driftWeight == 1.0 && theta != dvec3(0.0) ? turnedWithin(q0, q1, theta) : turned(q1, theta);
+}
+
 inline void SolverBody::movePose(const dvec3& p, const dvec3& r)
 {
     if (isStatic())
