@@ -5,6 +5,7 @@
 // and a cloth as a surface. Plain indices: no physics and no drawing here.
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pba {
@@ -30,6 +31,26 @@ struct FabricLayout {
     std::vector<RopeLayout> ropes;
     std::vector<ClothLayout> cloths;
     bool empty() const { return ropes.empty() && cloths.empty(); }
+    /// The edges they are drawn with, as pairs of particles: a rope's links; a cloth's rows,
+    /// columns and each cell's diagonal from its first corner to its last.
+    std::vector<std::pair<std::size_t, std::size_t>> edges() const
+    {
+        std::vector<std::pair<std::size_t, std::size_t>> out;
+        for (const RopeLayout& rope : ropes)
+            for (std::size_t k = 0; k + 1 < rope.particles.size(); ++k)
+                out.emplace_back(rope.particles[k], rope.particles[k + 1]);
+        for (const ClothLayout& c : cloths)
+            for (std::size_t j = 0; j < c.height; ++j)
+                for (std::size_t i = 0; i < c.width; ++i) {
+                    if (i + 1 < c.width)
+                        out.emplace_back(c.at(i, j), c.at(i + 1, j));
+                    if (j + 1 < c.height)
+                        out.emplace_back(c.at(i, j), c.at(i, j + 1));
+                    if (i + 1 < c.width && j + 1 < c.height)
+                        out.emplace_back(c.at(i, j), c.at(i + 1, j + 1));
+                }
+        return out;
+    }
 };
 
 } // namespace pba

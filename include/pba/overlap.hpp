@@ -16,6 +16,10 @@ namespace pba {
 double overlapDepth(const RigidBody& a, const RigidBody& b);
 /// The same for a ball of `radius` at `centre` (a particle with a radius) and `body`.
 double overlapDepth(const RigidBody& body, const dvec3& centre, double radius);
+/// The same for the edge of a rope or cloth between balls at a and b of radii ra and rb (a rod
+/// as thick as they are, linearly between them, but no thicker than half the gap between
+/// them), looked at in `pieces` between the two: 0 for balls that touch.
+double overlapDepth(const RigidBody& body, const dvec3& a, double ra, const dvec3& b, double rb, int pieces);
 
 /// Every pair (i < j) of balls (`centres`, `radii`) whose surfaces are less than `gap` apart,
 /// overlapping ones included, in the order of i, then j.

@@ -297,6 +297,12 @@ void printBallSummary(const World& world, const study::BallFigures& f)
         parts.push_back(f.deepestInBody > 0.0 ? fmt::format("one went {:.2f} mm into '{}' at most (t = {:.2f} s)",
                                                             1e3 * f.deepestInBody, f.deepestBody, f.deepestInBodyAt)
                                               : std::string("none went into a rigid body"));
+    if (world.hasRigidBodies() && f.segments > 0)
+        parts.push_back(f.deepestBetween > 0.0
+                            ? fmt::format("a rope's or cloth's edge between two went {:.2f} mm into '{}' at most "
+                                          "(t = {:.2f} s)",
+                                          1e3 * f.deepestBetween, f.deepestBetweenBody, f.deepestBetweenAt)
+                            : std::string("no rope's or cloth's edge between two went into a rigid body"));
     if (f.freeBalls >= 2)
         parts.push_back(f.oneGroupFrom ? fmt::format("the {} free balls touch as one group (within {:g} mm, or {:g}% "
                                                      "of their radii if less) from t = {:.2f} s to the end", f.freeBalls,
@@ -509,7 +515,7 @@ void printLargestStepRise(const World& world, const BlowUpWatch& watch, double s
 
 RunWatches::RunWatches(const Scene& scene)
     : groups(scene.world, scene.fabric), blowUp(scene.world), jet(scene.world), rigid(scene.world),
-      balls(scene.world, fabricMembers(groups, scene.world.bodyCount()))
+      balls(scene.world, fabricMembers(groups, scene.world.bodyCount()), scene.fabric.edges())
 {
     for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
         if (!scene.world.isRigid(i) && !scene.world.body(i).isFixed())

@@ -36,6 +36,25 @@ double overlapDepth(const RigidBody& body, const dvec3& centre, double radius)
     return depth;
 }
 
+double overlapDepth(const RigidBody& body, const dvec3& a, double ra, const dvec3& b, double rb, int pieces)
+{
+    const double length = glm::length(b - a), gap = length - ra - rb;
+    if (!(gap > 0.0) || glm::length(0.5 * (a + b) - body.getPos()) > body.getBoundingRadius() + 0.5 * length + ra + rb)
+        return 0.0;
+    const contact::CollisionShape shape = contact::CollisionShape::of(body.getShape());
+    const contact::Transform pose{body.getPos(), glm::mat3_cast(body.getOrientation())};
+    double depth = 0.0;
+    for (int k = 1; k < pieces; ++k) {
+        const double t = double(k) / pieces;
+        const double radius = std::min(ra + t * (rb - ra), 0.5 * gap);
+        const contact::Manifold m = contact::collide(shape, pose, contact::CollisionShape::of(Shape::sphere(radius)),
+                                                     contact::Transform{a + t * (b - a), dmat3(1.0)}, 0.0);
+        for (int i = 0; i < m.count; ++i)
+            depth = std::max(depth, -m.points[std::size_t(i)].separation);
+    }
+    return depth;
+}
+
 std::vector<std::pair<std::uint32_t, std::uint32_t>> nearBallPairs(std::span<const dvec3> centres,
                                                                    std::span<const double> radii, double gap)
 {

@@ -10,7 +10,8 @@
 
 namespace pba::study {
 
-BallWatch::BallWatch(const World& world, const std::vector<bool>& inFabric)
+BallWatch::BallWatch(const World& world, const std::vector<bool>& inFabric,
+                     const std::vector<std::pair<std::size_t, std::size_t>>& edges)
 {
     for (std::size_t i = 0; i < world.bodyCount(); ++i) {
         if (world.isRigid(i)) {
@@ -32,6 +33,13 @@ BallWatch::BallWatch(const World& world, const std::vector<bool>& inFabric)
             m_joined.emplace_back(*frame.bodyB, frame.bodyA);
         }
     std::sort(m_joined.begin(), m_joined.end());
+    for (const auto& [a, b] : edges) {
+        const auto ia = std::lower_bound(m_balls.begin(), m_balls.end(), a);
+        const auto ib = std::lower_bound(m_balls.begin(), m_balls.end(), b);
+        if (ia != m_balls.end() && *ia == a && ib != m_balls.end() && *ib == b)
+            m_segments.emplace_back(std::size_t(ia - m_balls.begin()), std::size_t(ib - m_balls.begin()));
+    }
+    m_figures.segments = m_segments.size();
     m_figures.balls = m_balls.size();
     m_figures.freeBalls = std::size_t(std::count(m_free.begin(), m_free.end(), true));
     // The start: the balls in the bodies now; which pairs collide (a cloth's neighbours along its
@@ -81,6 +89,7 @@ void BallWatch::look(const World& world)
     const std::vector<dvec3> centres = centresOf(world);
     lookAtPairs(world, centres, world.time());
     lookIntoBodies(world, centres, world.time());
+    lookBetweenBalls(world, centres, world.time());
 }
 
 void BallWatch::lookAtPairs(const World& world, const std::vector<dvec3>& centres, double now)
@@ -135,6 +144,25 @@ void BallWatch::lookIntoBodies(const World& world, const std::vector<dvec3>& cen
             if (depth > m_figures.deepestInBody)
                 m_figures.deepestInBody = depth, m_figures.deepestInBodyAt = now,
                 m_figures.deepestBody = body.getName();
+        }
+    }
+}
+
+void BallWatch::lookBetweenBalls(const World& world, const std::vector<dvec3>& centres, double now)
+{
+    constexpr int kPieces = 16;
+    for (const std::size_t b : m_bodies) {
+        const auto& body = static_cast<const RigidBody&>(world.body(b));
+        const auto joined = [&](std::size_t k) {
+            return std::binary_search(m_joined.begin(), m_joined.end(), std::pair(m_balls[k], b));
+        };
+        for (const auto& [i, j] : m_segments) {
+            if (joined(i) || joined(j))
+                continue;
+            const double depth = overlapDepth(body, centres[i], m_radii[i], centres[j], m_radii[j], kPieces);
+            if (depth > m_figures.deepestBetween)
+                m_figures.deepestBetween = depth, m_figures.deepestBetweenAt = now,
+                m_figures.deepestBetweenBody = body.getName();
         }
     }
 }

@@ -19,6 +19,12 @@ struct BallFigures {
     /// A ball and a rigid body no joint joins: how far the ball went into it (m), which body, and when.
     double deepestInBody = 0.0, deepestInBodyAt = 0.0;
     std::string deepestBody;
+    /// A rope's or cloth's edges between two balls (the segments the contacts hold, as thick as
+    /// the balls but no thicker than half the gap between them), looked at in 16 pieces: how far
+    /// one went into a rigid body neither ball is joined to, which, and when.
+    std::size_t segments = 0;
+    double deepestBetween = 0.0, deepestBetweenAt = 0.0;
+    std::string deepestBetweenBody;
     /// The free balls (moving, in no rope or cloth), when there are two or more: every one of them
     /// touching another, all in one group, from then to the end.
     std::size_t freeBalls = 0;
@@ -27,8 +33,10 @@ struct BallFigures {
 
 class BallWatch {
 public:
-    /// `inFabric[i]`: body i is a rope's or cloth's particle.
-    BallWatch(const World& world, const std::vector<bool>& inFabric);
+    /// `inFabric[i]`: body i is a rope's or cloth's particle; `edges`, the ropes' and cloths'
+    /// (FabricLayout::edges).
+    BallWatch(const World& world, const std::vector<bool>& inFabric,
+              const std::vector<std::pair<std::size_t, std::size_t>>& edges = {});
     bool active() const { return !m_balls.empty(); }
     /// Call after every step; it looks every kEvery steps.
     void record(const World& world);
@@ -45,6 +53,7 @@ private:
     void look(const World& world);
     void lookAtPairs(const World& world, const std::vector<dvec3>& centres, double now);
     void lookIntoBodies(const World& world, const std::vector<dvec3>& centres, double now);
+    void lookBetweenBalls(const World& world, const std::vector<dvec3>& centres, double now);
     std::vector<dvec3> centresOf(const World& world) const;
     std::vector<dvec3> m_startCentres; ///< looked at for pairs after the first step
     double m_startTime = 0.0;
@@ -54,6 +63,7 @@ private:
     std::vector<bool> m_fixed;            ///< of m_balls
     std::vector<std::pair<std::size_t, std::size_t>> m_joined; ///< world indices a joint joins, both ways, sorted
     std::vector<std::size_t> m_bodies;    ///< the rigid bodies
+    std::vector<std::pair<std::size_t, std::size_t>> m_segments; ///< of m_balls: two balls an edge joins
     long m_steps = 0;
     BallFigures m_figures;
 };
