@@ -39,7 +39,9 @@ void SpringNeighbours::update(const std::vector<ClonePtr<Force>>& forces, std::s
     m_made = true;
     m_forces = forces.size();
     m_radii.assign(radii.begin(), radii.end());
+    ++m_generation;
     build(forces);
+    findSegments();
     // Only a body with springs can be reached along them: a big ball beside a cloth does not
     // widen every search to the whole cloth.
     double largest = 0.0;
@@ -81,6 +83,74 @@ void SpringNeighbours::build(const std::vector<ClonePtr<Force>>& forces)
         m_edges[fill[link.a]++] = {std::uint32_t(link.b), length};
         m_edges[fill[link.b]++] = {std::uint32_t(link.a), length};
     }
+}
+
+std::span<const SpringNeighbours::Edge> SpringNeighbours::springsOf(std::size_t i) const
+{
+    return {m_edges.data() + m_edgeStart[i], m_edgeStart[i + 1] - m_edgeStart[i]};
+}
+
+double SpringNeighbours::restLength(std::uint32_t i, std::uint32_t j) const
+{
+    for (const Edge& e : springsOf(i))
+        if (e.to == j)
+            return e.length;
+    return -1.0;
+}
+
+void SpringNeighbours::findSegments()
+{
+    // A spring runs past a third body when going through it is barely longer: a bending
+    // spring's two halves add up to it exactly, a shear spring's two sides to 1.41 times it.
+    constexpr double kThrough = 1.1;
+    m_segments.clear();
+    for (std::size_t i = 0; i < m_radii.size(); ++i) {
+        if (!(m_radii[i] > 0.0))
+            continue;
+        for (const Edge& ij : springsOf(i)) {
+            if (ij.to <= i || !(m_radii[ij.to] > 0.0))
+                continue;
+            const bool through = std::any_of(springsOf(i).begin(), springsOf(i).end(), [&](const Edge& ic) {
+                const double cj = ic.to == ij.to ? -1.0 : restLength(ic.to, ij.to);
+                return cj >= 0.0 && ic.length + cj < kThrough * ij.length;
+            });
+            if (!through)
+                m_segments.emplace_back(std::uint32_t(i), ij.to);
+        }
+    }
+    // Two springs between the same two bodies are one segment.
+    std::sort(m_segments.begin(), m_segments.end());
+    m_segments.erase(std::unique(m_segments.begin(), m_segments.end()), m_segments.end());
+    // Of a cell's two crossing diagonals, only the first (the one the renderer draws the cell's
+    // two triangles on): both would rest on a corner under the cell and share it by no rule.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> kept;
+    for (const auto& cd : m_segments)
+        if (!crossesAnEarlierSegment(cd.first, cd.second))
+            kept.push_back(cd);
+    m_segments = std::move(kept);
+}
+
+bool SpringNeighbours::crossesAnEarlierSegment(std::uint32_t c, std::uint32_t d) const
+{
+    // c-d and a-b are a cell's diagonals when each of a and b is joined to both c and d by
+    // springs shorter than c-d (the cell's sides).
+    const double diagonal = restLength(c, d);
+    const auto side = [&](std::uint32_t i, std::uint32_t j) {
+        const double l = restLength(i, j);
+        return l >= 0.0 && l < diagonal;
+    };
+    for (const Edge& ca : springsOf(c)) {
+        const std::uint32_t a = ca.to;
+        if (a == d || !side(c, a) || !side(d, a))
+            continue;
+        for (const Edge& ab : springsOf(a)) {
+            const auto other = std::pair(std::min(a, ab.to), std::max(a, ab.to));
+            if (ab.to != c && ab.to != d && side(c, ab.to) && side(d, ab.to) && other < std::pair(c, d) &&
+                std::binary_search(m_segments.begin(), m_segments.end(), other))
+                return true;
+        }
+    }
+    return false;
 }
 
 void SpringNeighbours::nearOne(std::size_t i, double largestRadius, std::vector<std::uint32_t>& out)

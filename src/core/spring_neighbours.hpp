@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "pba/clone_ptr.hpp"
@@ -27,6 +28,12 @@ public:
     void update(const std::vector<ClonePtr<Force>>& forces, std::span<const double> radii);
     /// Whether bodies a and b (world indices) are neighbours: never true for a body without springs.
     bool near(std::size_t a, std::size_t b) const;
+    /// The nets' segments: each spring between two bodies with a radius (a < b) that does not
+    /// run past a third along the net (a bending spring spans two segments, a shear spring
+    /// crosses a cell), in the order of their first body.
+    std::span<const std::pair<std::uint32_t, std::uint32_t>> segments() const { return m_segments; }
+    /// How many times the lists were made: a reader of segments() knows them again by it.
+    std::uint64_t generation() const { return m_generation; }
     std::unique_ptr<SpringNeighbours> clone() const { return std::make_unique<SpringNeighbours>(*this); }
 
 private:
@@ -35,6 +42,12 @@ private:
         double length;
     };
     void build(const std::vector<ClonePtr<Force>>& forces);
+    std::span<const Edge> springsOf(std::size_t i) const;
+    /// The rest length of the spring joining i and j, -1 if none does.
+    double restLength(std::uint32_t i, std::uint32_t j) const;
+    void findSegments();
+    /// Whether segment c-d (c < d) crosses a segment before it in m_segments across one cell.
+    bool crossesAnEarlierSegment(std::uint32_t c, std::uint32_t d) const;
     /// Body i's neighbours, found by a search of its springs out to the farthest they may lie.
     void nearOne(std::size_t i, double largestRadius, std::vector<std::uint32_t>& out);
 
@@ -46,6 +59,8 @@ private:
     std::vector<std::size_t> m_nearStart; ///< body i's neighbours: m_near[m_nearStart[i], m_nearStart[i + 1])
     std::vector<std::uint32_t> m_near;
     std::vector<double> m_distance; ///< the search's scratch, infinite where it has not been
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> m_segments;
+    std::uint64_t m_generation = 0;
 };
 
 } // namespace pba::detail

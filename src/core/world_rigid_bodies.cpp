@@ -9,6 +9,7 @@
 
 #include "parallel.hpp"
 #include "rigid/rigid_system.hpp"
+#include "spring_neighbours.hpp"
 #include "world_checks.hpp"
 
 namespace pba {
@@ -31,6 +32,7 @@ void World::stepRigidBodies(double dt)
     if (system.size() == 0)
         return;
     joinPointBodies();
+    giveSegments();
     thread_local std::vector<const RigidBody*> bodies;
     bodies.resize(system.size());
     for (std::size_t k = 0; k < system.size(); ++k)
@@ -65,6 +67,26 @@ void World::joinPointBodies()
             m_rigid.system->addPoint(i);
         }
     }
+}
+
+void World::giveSegments()
+{
+    rigid::RigidSystem& system = *m_rigid.system;
+    if (m_forces.couplings.empty()) // no spring between bodies: no net
+        return;
+    detail::SpringNeighbours& neighbours = *m_particleSystems.neighbours;
+    neighbours.update(m_forces.objects, m_bodies.radii);
+    if (neighbours.generation() == m_rigid.segmentsGeneration && system.size() == m_rigid.segmentsBodies)
+        return;
+    m_rigid.segmentsGeneration = neighbours.generation();
+    m_rigid.segmentsBodies = system.size();
+    std::vector<rigid::Segment> segments;
+    for (const auto& [a, b] : neighbours.segments()) {
+        const std::uint32_t ka = m_bodies.rigidIndex[a], kb = m_bodies.rigidIndex[b];
+        if (ka != kNotRigid && kb != kNotRigid && system.isPoint(ka) && system.isPoint(kb))
+            segments.push_back({ka, kb});
+    }
+    system.setSegments(std::move(segments));
 }
 
 void World::givePointBodies()

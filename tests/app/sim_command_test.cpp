@@ -515,8 +515,8 @@ TEST(PbaSim, ContactsJointsAndTheEnergysStepsAreMeasured)
 
 // What the descriptions claim of tilts, swings, balls and heaps, sim measures: the pendulum at
 // its highest every half period, the light box in the jet tilting by up to 26.5 degrees, the
-// sheet never more than a millimetre into the box and at rest, the balls in the dryer one clump
-// from 2.3 s, the grains' mound steep and their overlaps small.
+// sheet (its balls and the edges between them) never more than a millimetre into the box and at
+// rest, the balls in the dryer one clump from 2.3 s, the grains' mound steep and their overlaps small.
 TEST(PbaSim, TiltsSwingsBallsAndHeapsAreMeasured)
 {
     const CommandResult pendulum = runPba("sim pendulum --duration 5");
@@ -526,6 +526,7 @@ TEST(PbaSim, TiltsSwingsBallsAndHeapsAreMeasured)
     EXPECT_NEAR(numberAfter(boxes.out, "light: moving at the end; its start's up tilted by up to "), 26.5, 0.5) << boxes.out;
     const CommandResult sheet = runPba("sim cloth-on-box");
     EXPECT_LT(numberAfter(sheet.out, "one went "), 1.0) << sheet.out; // mm
+    EXPECT_LT(numberAfter(sheet.out, "edge between two went "), 1.0) << sheet.out; // mm
     EXPECT_LT(numberAfter(sheet.out, "the fastest at "), 0.01) << sheet.out;
     const CommandResult balls = runPba("sim balls-in-the-dryer --duration 10");
     EXPECT_NEAR(numberAfter(balls.out, "touch as one group (within 1 mm, or 1% of their radii if less) from t = "), 2.3, 0.1) << balls.out;

@@ -772,6 +772,75 @@ RigidSystem::Energies RigidSystem::springEnergy(std::size_t island) const
     return e;
 }
 
+void RigidSystem::holdNets(const SolverSettings& settings)
+{
+    if (m_segments.empty())
+        return;
+    thread_local std::vector<SegmentContact> contacts;
+    thread_local std::vector<std::uint32_t> balls;
+    contacts.clear();
+    balls.clear();
+    for (const Segment& s : m_segments)
+        segmentContacts(s, contacts, balls);
+    if (contacts.empty())
+        return;
+    constexpr int kSweeps = 4;
+    holdSegments(contacts, m_solverBodies, settings.restingSpeed, settings.dt, kSweeps);
+    // A ball pushed off a body may have been pushed through a wall: the room is the boundary.
+    std::sort(balls.begin(), balls.end());
+    balls.erase(std::unique(balls.begin(), balls.end()), balls.end());
+    pushOutOfRoom(balls);
+}
+
+void RigidSystem::segmentContacts(const Segment& s, std::vector<SegmentContact>& out,
+                                  std::vector<std::uint32_t>& balls) const
+{
+    // A net stepped by XPBD meets the bodies by its balls inside its substeps, and no more.
+    if (m_material[s.a].metInSubsteps || m_material[s.b].metInSubsteps)
+        return;
+    const SolverBody& a = m_solverBodies[s.a];
+    const SolverBody& b = m_solverBodies[s.b];
+    const Material& ma = m_material[s.a];
+    const Material& mb = m_material[s.b];
+    const double ra = sphereRadius(*ma.shape), rb = sphereRadius(*mb.shape);
+    const double reach = std::max(ra, rb);
+    thread_local std::vector<BodyPair> partners;
+    partners.clear();
+    m_broadPhase.partnersOf(
+        s.a, {glm::min(a.endPosition, b.endPosition) - reach, glm::max(a.endPosition, b.endPosition) + reach}, m_boxes,
+        m_isPoint, partners);
+    for (const BodyPair& pair : partners) {
+        const std::uint32_t k = pair.a == s.a ? pair.b : pair.a;
+        if (m_isPoint[k] || joinedApart(s.a, k) || joinedApart(s.b, k))
+            continue;
+        const SolverBody& body = m_solverBodies[k];
+        const SegmentDepths depths =
+            deepestBetweenBalls(*m_material[k].shape, Transform{body.endPosition, glm::mat3_cast(body.endOrientation)},
+                                a.endPosition, ra, b.endPosition, rb, m_settings.contactMargin);
+        for (int point = 0; point < depths.count; ++point) {
+            const SegmentDepth& depth = depths.points[std::size_t(point)];
+            const double t = depth.t;
+            SegmentContact& c = out.emplace_back();
+            c.a = s.a;
+            c.b = s.b;
+            c.body = k;
+            c.t = t;
+            c.normal = depth.normal;
+            c.arm = depth.point - body.endPosition;
+            c.depth = std::max(0.0, std::min(depth.line, 0.0) - depth.separation);
+            c.gap = std::max(depth.separation, 0.0);
+            // The point's material: its two balls' in their shares, with the body's by the rule.
+            c.friction = detail::combinedFriction((1.0 - t) * ma.friction + t * mb.friction, m_material[k].friction);
+            c.restitution =
+                detail::combinedRestitution((1.0 - t) * ma.restitution + t * mb.restitution, m_material[k].restitution);
+        }
+        if (depths.count > 0) {
+            balls.push_back(s.a);
+            balls.push_back(s.b);
+        }
+    }
+}
+
 void RigidSystem::finishBodies()
 {
     detail::forEachIndex(m_world.size(), [&](std::size_t k) {
@@ -854,6 +923,7 @@ void RigidSystem::solve(const dvec3& gravity, double dt)
                                  tbb::parallel_for(std::size_t(1), m_islandOrder.size(),
                                                    [&](std::size_t k) { solveIsland(m_islandOrder[k], settings); });
                              });
+    holdNets(settings);
     finishBodies();
     updateSleep(dt);
 }

@@ -11,7 +11,8 @@
 //   findContacts   broad phase, narrow phase against bodies and the room, warm start from the
 //                  cache, and the sleeping islands an awake body touched, woken
 //   (the World's free step of the bodies just woken)
-//   solve          islands, then per island: collisions, velocities, positions; then sleep
+//   solve          islands, then per island: collisions, velocities, positions; then the
+//                  nets' segments against the bodies (segment_contacts.hpp); then sleep
 //   (the World writes each end state back into its body)
 //
 // A particle with a radius (or joined to a rigid body) takes part as a point body: a ball that
@@ -40,6 +41,7 @@
 #include "rigid/contact_solver.hpp"
 #include "rigid/islands.hpp"
 #include "rigid/joint_solver.hpp"
+#include "rigid/segment_contacts.hpp"
 #include "rigid/solver_body.hpp"
 
 namespace pba::rigid {
@@ -90,6 +92,11 @@ public:
     /// not bounce. Then end(k) is body k's state at the end of the step.
     void solve(const dvec3& gravity, double dt);
     const RigidState& end(std::size_t k) const { return m_end[k]; }
+
+    /// The segments of the ropes' and cloths' nets between their point bodies: held out of the
+    /// bodies where a body lies between two balls.
+    void setSegments(std::vector<Segment> segments) { m_segments = std::move(segments); }
+    const std::vector<Segment>& segments() const { return m_segments; }
 
     // ---- joints ----
     /// A joint between two of the system's bodies, or (b == kWorldBody) between a and the world.
@@ -176,6 +183,10 @@ private:
     void roomAtEnd(std::span<const std::uint32_t> bodies, std::vector<Contact>& out,
                    std::optional<double> margin = std::nullopt) const;
     void pairsAtEnd(std::span<const std::uint32_t> contacts, std::vector<Contact>& out) const;
+    /// Every segment near a body, held out of it (holdSegments) at the end poses.
+    void holdNets(const SolverSettings& settings);
+    /// Segment s's contacts with the bodies near it, into `out`, and its balls into `balls` if any.
+    void segmentContacts(const Segment& s, std::vector<SegmentContact>& out, std::vector<std::uint32_t>& balls) const;
     void finishBodies();
     void updateSleep(double dt);
 
@@ -185,6 +196,7 @@ private:
     std::vector<Motion> m_motion;
     std::vector<std::uint8_t> m_isPoint;
     std::vector<std::uint32_t> m_points; ///< the moving point bodies of this step
+    std::vector<Segment> m_segments;
     std::vector<std::uint64_t> m_joinedApart; ///< sorted keys of the pairs joined and not colliding
     std::vector<double> m_stillFor; ///< seconds below the sleep speed
     std::vector<RigidState> m_start, m_end;

@@ -1,0 +1,136 @@
+// A rope's and a cloth's segments against rigid bodies: where a segment between two balls lies
+// deepest in a shape, against cases worked by hand (each beside its test), and what it does in a
+// world: a rope dropped across a bar thinner than the gap between its balls hangs over the bar
+// instead of falling through it between two balls.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/rigid/segment_contacts.hpp"
+#include "pba/scene/scene.hpp"
+#include "pba/shape.hpp"
+
+namespace {
+
+using pba::dvec3;
+using pba::contact::CollisionShape;
+using pba::contact::Transform;
+using pba::rigid::deepestBetweenBalls;
+using pba::rigid::SegmentDepths;
+
+constexpr double kMargin = 0.01; // the contact margin's default
+
+const CollisionShape& unitCube()
+{
+    static const CollisionShape cube = CollisionShape::of(pba::Shape::box(dvec3(1.0)));
+    return cube;
+}
+
+const Transform kAtOrigin{dvec3(0.0), pba::dmat3(1.0)};
+
+} // namespace
+
+// The segment from (0.6, 0.45, 0) to (0.45, 0.6, 0), radius 0.05 (its balls 0.21 m apart, far
+// from touching), passes over the cube's edge x = y = 0.5: its point (0.6 - 0.15 t, 0.45 + 0.15 t)
+// is sqrt((0.1 - 0.15 t)^2 + (0.15 t - 0.05)^2) from the edge, least at t = 1/2, 0.025 sqrt(2).
+// There it overlaps by 0.05 - 0.0354 = 0.0146 along (1, 1, 0)/sqrt(2); its balls are each 0.1 from
+// a face, separated by 0.05.
+TEST(SegmentContact, ASegmentAcrossABoxEdgeTouchesItAtTheEdgeAlongTheBisector)
+{
+    const SegmentDepths d =
+        deepestBetweenBalls(unitCube(), kAtOrigin, {0.6, 0.45, 0.0}, 0.05, {0.45, 0.6, 0.0}, 0.05, kMargin);
+    ASSERT_EQ(d.count, 1);
+    const auto& p = d.points[0];
+    // (The search finds t to 1/4000 of the segment.)
+    EXPECT_NEAR(p.t, 0.5, 2.5e-4);
+    EXPECT_NEAR(p.separation, 0.025 * std::numbers::sqrt2 - 0.05, 1e-6);
+    EXPECT_NEAR(p.line, 0.05, 1e-12);
+    EXPECT_NEAR(p.normal.x, 1.0 / std::numbers::sqrt2, 2e-3);
+    EXPECT_NEAR(p.normal.y, 1.0 / std::numbers::sqrt2, 2e-3);
+    EXPECT_NEAR(p.normal.z, 0.0, 1e-12);
+    EXPECT_NEAR(p.point.x, 0.525, 1e-4);
+    EXPECT_NEAR(p.point.y, 0.525, 1e-4);
+}
+
+// A segment from (-0.6, 0.52, 0) to (0.6, 0.52, 0), radius 0.03, lies across the cube's top, 2 cm
+// above it (overlapping by 1 cm) from x = -0.5 to 0.5, its balls beyond the two edges: as deep all
+// along that stretch, it touches at the stretch's two ends, t = 0.1/1.2 and 1.1/1.2, both along +y.
+TEST(SegmentContact, ASegmentLyingAcrossAFaceTouchesItAtBothEndsOfTheStretch)
+{
+    const SegmentDepths d =
+        deepestBetweenBalls(unitCube(), kAtOrigin, {-0.6, 0.52, 0.0}, 0.03, {0.6, 0.52, 0.0}, 0.03, kMargin);
+    ASSERT_EQ(d.count, 2);
+    EXPECT_NEAR(d.points[0].t, 0.1 / 1.2, 5e-4);
+    EXPECT_NEAR(d.points[1].t, 1.1 / 1.2, 5e-4);
+    for (const auto& p : d.points) {
+        EXPECT_NEAR(p.separation, -0.01, 1e-6);
+        EXPECT_GT(p.normal.y, 0.999);
+    }
+}
+
+// The same segment 3 cm above the top, as its balls would rest on it, is level with them: the
+// balls' own contacts hold it, and it adds none.
+TEST(SegmentContact, ASegmentAlongAFaceAsItsBallsRestAddsNoContact)
+{
+    EXPECT_EQ(deepestBetweenBalls(unitCube(), kAtOrigin, {-0.3, 0.53, 0.0}, 0.03, {0.3, 0.53, 0.0}, 0.03, kMargin)
+                  .count,
+              0);
+}
+
+// Balls that touch (0.06 apart, radius 0.03) cover their segment: a body in the groove between
+// them rests on them.
+TEST(SegmentContact, TouchingBallsHaveNoSegment)
+{
+    EXPECT_EQ(deepestBetweenBalls(unitCube(), kAtOrigin, {-0.03, 0.51, 0.0}, 0.03, {0.03, 0.51, 0.0}, 0.03, kMargin)
+                  .count,
+              0);
+}
+
+// Across the top of a sphere of radius 1 at the origin, 1.01 up, radius 0.02: deepest above the
+// centre (t = 1/2), overlapping by 0.01 along +y; its balls sqrt(2.0201) - 1.02 from the sphere.
+TEST(SegmentContact, ASegmentOverASphereTouchesItAboveItsCentre)
+{
+    const CollisionShape sphere = CollisionShape::of(pba::Shape::sphere(1.0));
+    const SegmentDepths d =
+        deepestBetweenBalls(sphere, kAtOrigin, {-1.0, 1.01, 0.0}, 0.02, {1.0, 1.01, 0.0}, 0.02, kMargin);
+    ASSERT_EQ(d.count, 1);
+    EXPECT_NEAR(d.points[0].t, 0.5, 2.5e-4);
+    EXPECT_NEAR(d.points[0].separation, -0.01, 1e-6);
+    EXPECT_NEAR(d.points[0].line, std::sqrt(2.0201) - 1.02, 1e-12);
+    EXPECT_NEAR(d.points[0].normal.y, 1.0, 1e-6);
+}
+
+// A rope of ten 2 cm balls 20 cm apart dropped across a fixed bar 2 cm thick, which lies between
+// its two middle balls (neither bouncing): without its segments it fell between them to the
+// floor; it hangs over the bar, its middle above the bar's top, and no point between two balls
+// within a ball's radius of the bar (less a millimetre), measured here from the bar's faces.
+TEST(SegmentContact, ARopeDroppedAcrossAThinBarHangsOverIt)
+{
+    pba::Scene scene = pba::parseScene(
+        R"({"dt": 0.002, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+            "ropes": [{"name": "rope", "from": [-0.9, 1.2, 0], "to": [0.9, 1.2, 0], "count": 10, "mass": 0.2,
+                       "stiffness": 500, "damping": 0.5, "radius": 0.02, "friction": 0.5, "restitution": 0}],
+            "rigid_bodies": [{"name": "bar", "shape": {"type": "box", "size": [0.02, 0.02, 1]}, "density": 500,
+                              "position": [0, 1, 0], "fixed": true, "friction": 0.5, "restitution": 0}]})",
+        "rope-over-a-bar.json");
+    pba::World& world = scene.world;
+    // The bar's half sizes: x and y 0.01 about (0, 1), z 0.5.
+    const auto distanceToBar = [](const dvec3& p) {
+        const dvec3 outside = glm::max(glm::abs(p - dvec3(0.0, 1.0, 0.0)) - dvec3(0.01, 0.01, 0.5), dvec3(0.0));
+        return glm::length(outside);
+    };
+    double nearest = INFINITY;
+    for (int step = 0; step < 1500; ++step) {
+        world.step(scene.dt);
+        for (std::size_t i = 0; i + 1 < 10; ++i) {
+            const dvec3 a = world.body(i).getPos(), b = world.body(i + 1).getPos();
+            for (int k = 0; k <= 50; ++k)
+                nearest = std::min(nearest, distanceToBar(a + (b - a) * (k / 50.0)));
+        }
+    }
+    EXPECT_GT(nearest, 0.02 - 0.001);
+    for (const std::size_t middle : {4, 5})
+        EXPECT_GT(world.body(middle).getPos().y, 1.01) << world.body(middle).getName();
+}
