@@ -5,7 +5,8 @@
 // between them through the springs is shorter than twice the sum of their radii (at rest they
 // would overlap, or nearly, or only a sharp fold could bring them together, which the bending
 // springs decide). Every other pair, far apart along one cloth or on two cloths, collides.
-// Private to the core.
+// From the same springs it lists the nets' segments, which rigid bodies meet between the balls
+// (rigid/segment_contacts.hpp). Private to the core.
 //
 // Made once from the springs and the radii, and again only when either changes: a cloth's
 // neighbours are its particles' few dozen nearest, held as sorted lists (compressed rows).
