@@ -41,7 +41,7 @@ double overlapDepth(const RigidBody& body, const dvec3& a, double ra, const dvec
     const double length = glm::length(b - a), gap = length - ra - rb;
     if (!(gap > 0.0) || glm::length(0.5 * (a + b) - body.getPos()) > body.getBoundingRadius() + 0.5 * length + ra + rb)
         return 0.0;
-    const contact::CollisionShape shape = contact::CollisionShape::of(body.getShape());
+    const contact::CollisionShape& shape = *body.getCollisionShape(); // built once with the body
     const contact::Transform pose{body.getPos(), glm::mat3_cast(body.getOrientation())};
     double depth = 0.0;
     for (int k = 1; k < pieces; ++k) {

@@ -96,7 +96,6 @@ public:
     /// The segments of the ropes' and cloths' nets between their point bodies: held out of the
     /// bodies where a body lies between two balls.
     void setSegments(std::vector<Segment> segments) { m_segments = std::move(segments); }
-    const std::vector<Segment>& segments() const { return m_segments; }
 
     // ---- joints ----
     /// A joint between two of the system's bodies, or (b == kWorldBody) between a and the world.
