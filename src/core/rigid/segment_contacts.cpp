@@ -165,29 +165,39 @@ SegmentDepths deepestBetweenBalls(const CollisionShape& shape, const Transform& 
     constexpr double kLevel = 1e-7;
     // How much deeper than the balls' line the segment lies at t: concave (a convex shape's
     // distance is convex along a line), 0 at both ends, and so nowhere above twice its middle's
-    // (a segment lying along a face is level with its balls). A golden-section search of 16
-    // rounds finds its maximum to a four-thousandth of the segment (30 um of a cloth's 13 cm).
+    // (a segment lying along a face is level with its balls).
     const auto beyond = [&](double t) { return sa + t * (sb - sa) - separation(t); };
     if (!(beyond(0.5) > 0.5 * kLevel))
         return {};
-    const double deepest = largestOfConcave(beyond, 16);
+    // Where it comes nearest the shape, its separation being convex along it: a golden-section
+    // search of 16 rounds finds that to a four-thousandth of the segment (30 um of a cloth's 13
+    // cm). Not where it lies deepest beyond its balls' line: a segment from a ball just above a
+    // bar to one hanging far below it has that point at the bar's far corner, clear of it, while
+    // it cuts the near one.
+    const double deepest = largestOfConcave([&](double t) { return -separation(t); }, 16);
     // A segment lying across a face (its middle on a box's top, its balls beyond the edges) is
-    // as deep along a stretch, where the line of its balls may tilt either way: held at the
-    // line's deepest point, it would be held at one end of the stretch or the other from step to
-    // step and rock. It is held at both ends instead, as a box lying on a face is at its corners.
-    // The stretch is where its separation is level with the deepest point's (a convex function's
-    // level set: bisection finds each end).
-    const double level = separation(deepest) + kLevel;
+    // as near along a stretch, where the line of its balls may tilt either way: held at one
+    // point of it, it would be held at one end of the stretch or the other from step to step and
+    // rock. It is held at both ends instead, as a box lying on a face is at its corners. The
+    // stretch is where its separation is within 10 um of the nearest point's (a convex function's
+    // level set: bisection finds each end): resting there, the segment tilts by a few microns
+    // either way from step to step.
+    constexpr double kFlat = 1e-5;
+    const double level = separation(deepest) + kFlat;
     const auto onLevel = [&](double t) { return separation(t) <= level; };
     constexpr double kStretch = 0.01; // of the segment: shorter, a point
-    // (A stretch reaches at least one of the two points half of kStretch away: the deepest point
-    // beyond a tilted line lies at one of its ends. Only then are its ends looked for.)
+    // (A stretch reaches at least one of the two points half of kStretch away: the search may
+    // stop at either end of it. Only then are its ends looked for.)
     const bool flat = onLevel(std::max(deepest - 0.5 * kStretch, 0.0)) || onLevel(std::min(deepest + 0.5 * kStretch, 1.0));
     constexpr int kHalvings = 12;
     const double first = flat ? edgeOf(onLevel, 0.0, deepest, kHalvings) : deepest;
     const double last = flat ? edgeOf(onLevel, 1.0, deepest, kHalvings) : deepest;
+    // A point nearest at one of the balls, within the search's reach, is that ball's own contact.
+    const bool atABall = deepest < 0.5 * kStretch || deepest > 1.0 - 0.5 * kStretch;
     SegmentDepths out;
-    for (const double t : last - first > kStretch ? std::array{first, last} : std::array{deepest, -1.0}) {
+    for (const double t : last - first > kStretch ? std::array{first, last}
+                          : atABall               ? std::array{-1.0, -1.0}
+                                                  : std::array{deepest, -1.0}) {
         if (t < 0.0)
             continue;
         const contact::Manifold m = ballAgainst(shape, pose, pointAt(t), radius(t));

@@ -3,11 +3,11 @@
 // contact solve; what lies between two balls that a spring joins does not, so a box's edge under
 // a sheet draped over it shows between two rows of balls, and a thin bar slips between a rope's.
 // After the solve, each segment near a body is held out of it as a rod as thick as its balls
-// (but no thicker than half the gap between them), at its one point deepest beyond the straight
-// line of its two balls' own separations (the shapes are convex: the depth along a segment, less
-// that line, has a single maximum), or at both ends of a stretch lying across a face. An
-// impulse there goes to each ball by where along the segment the point lies, as to a point of a
-// rod without mass, and back on the body. Private to the core.
+// (but no thicker than half the gap between them), at its one point nearest the body where it
+// lies deeper than the straight line of its two balls' own separations (the shapes are convex:
+// the separation along a segment has a single least), or at both ends of a stretch lying across a
+// face. An impulse there goes to each ball by where along the segment the point lies, as to a
+// point of a rod without mass, and back on the body. Private to the core.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -23,7 +23,7 @@ struct Segment {
     std::uint32_t a = 0, b = 0;
 };
 
-/// Where a segment lies deepest in a shape beyond its balls' straight line.
+/// Where a segment comes nearest a shape, deeper than its balls' straight line.
 struct SegmentDepth {
     double t = 0.0;          ///< along the segment from its first ball, strictly inside (0, 1)
     dvec3 normal{0.0};       ///< world, from the shape towards the segment
