@@ -8,6 +8,14 @@
 // anchor, known again by the two bodies); after each sweep every ball is put back inside the
 // room (whose push it cannot share). The order is the pairs' index order, so the result does not
 // depend on the thread count.
+//
+// A ball meets the segments of the ropes and cloths it is not part of too (each spring between
+// two balls that runs past no third: spring_neighbours.hpp), as rigid bodies do: as a rod as
+// thick as the segment's balls but no thicker than half the gap between them, at its point
+// nearest the ball, where the segment lies deeper in it than its two balls do. Its push and
+// impulses go to the segment's two balls by their shares of that point (a rod without mass), so
+// a ball smaller than the gap between a sheet's balls lands on the sheet instead of falling
+// through it. A net's own far balls meet it by their balls alone (the self-collision).
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -33,11 +41,25 @@ struct Ball {
     bool metInSubsteps = false;
 };
 
+/// A ball against a segment between two other balls, at the segment's point nearest it.
+struct BallOnSegment {
+    std::uint32_t a = 0, b = 0; ///< the segment's balls
+    std::uint32_t ball = 0;
+    double t = 0.0;      ///< the point, along the segment from a
+    double radius = 0.0; ///< the segment's thickness there
+};
+
 struct BallContacts {
     ParticleGrid grid;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
     std::vector<Ball> balls;
     std::vector<std::size_t> bodies; ///< each ball's world index
+    /// The nets' segments, as pairs of balls (indices into `balls`); set before solve, with the
+    /// generation of the lists they come from (the nets are worked out again when it changes).
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> segments;
+    std::uint64_t segmentsGeneration = 0;
+    /// The balls against segments of the last solve.
+    std::vector<BallOnSegment> onSegments;
 
     std::unique_ptr<BallContacts> clone() const { return std::make_unique<BallContacts>(*this); }
 
@@ -56,18 +78,22 @@ struct BallContacts {
         std::erase_if(pairs, [&](const auto& p) {
             return !together(p.first, p.second) || balls[p.first].inverseMass + balls[p.second].inverseMass == 0.0;
         });
-        if (pairs.empty()) {
+        findOnSegments();
+        if (pairs.empty() && onSegments.empty()) {
             m_remembered.clear();
             return;
         }
         findWalls(planes, largest);
         startContacts(dt);
+        startOnSegments(dt);
         for (int sweep = 0; sweep < sweeps; ++sweep) {
             for (std::size_t k = 0; k < pairs.size(); ++k) {
                 Ball& a = balls[pairs[k].first];
                 Ball& b = balls[pairs[k].second];
                 touchBalls(a.x, a.v, b.x, b.v, m_contacts[k], m_rules[k], sweep == 0);
             }
+            for (std::size_t k = 0; k < onSegments.size(); ++k)
+                touchSegment(onSegments[k], m_segmentContacts[k], m_segmentRules[k], sweep == 0);
             for (const auto& [k, walls] : nearWall)
                 keepInRoom(planes, walls, balls[k]);
         }
@@ -77,12 +103,29 @@ struct BallContacts {
     /// Whether pair k, of the last solve, arrived fast enough to rebound (a bounce, as the room's
     /// and the rigid bodies' contacts count one), rather than rest.
     bool rebounded(std::size_t k) const { return m_contacts[k].bounce > 0.0; }
+    /// The same for onSegments[k].
+    bool reboundedOnSegment(std::size_t k) const { return m_segmentContacts[k].bounce > 0.0; }
 
     /// A ball pushed out of the room by a sweep back on its surfaces (those of `walls`, a bit a
     /// plane), its speed into them taken away.
     static void keepInRoom(std::span<const Plane> planes, std::uint32_t walls, Ball& ball);
 
 private:
+    /// The balls against other nets' segments (onSegments), ball by ball in index order.
+    void findOnSegments();
+    /// Each ball's net (m_net), and whether any ball asks for segments (m_asking).
+    void findNets();
+    /// The segments that a ball of the smallest radius could meet deeper than their balls do,
+    /// into m_kept. False if none, or if no ball asks.
+    bool keepSegments();
+    /// Whether `ball` touches segment s of m_kept at an inner point, deeper than the segment's two
+    /// balls do: then m_touching is the contact.
+    bool touchingSegment(std::uint32_t s, std::uint32_t ball);
+    void startOnSegments(double dt);
+    /// touchBalls between the ball and the segment's point, as a ball of the point's mass
+    /// (each end carries its share of it), its push and impulses shared back to the two ends.
+    void touchSegment(const BallOnSegment& s, BallContact<double>& contact, const BallPairRule<double>& rule, bool first);
+
     /// Each moving ball within eight of the largest radii of a surface, with those surfaces
     /// (wallsWithin), into nearWall: the sweeps move a ball by its overlaps, each under a diameter.
     void findWalls(std::span<const Plane> planes, double largest);
@@ -94,6 +137,19 @@ private:
     std::vector<std::pair<std::uint32_t, std::uint32_t>> nearWall;
     std::vector<BallPairRule<double>> m_rules;
     std::vector<BallContact<double>> m_contacts;
+    ParticleGrid m_segmentGrid; ///< of the kept segments, each as the ball around it
+    BallOnSegment m_touching;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> m_kept;
+    std::vector<dvec3> m_segmentMiddle;
+    std::vector<double> m_segmentReach; ///< from its middle: half its length and its thicker ball
+    double m_largestSegmentReach = 0.0;
+    static constexpr std::uint32_t kNoNet = ~std::uint32_t(0);
+    std::vector<std::uint32_t> m_net;   ///< each ball's net (its first ball's index), or kNoNet
+    std::uint64_t m_netsOf = ~std::uint64_t(0); ///< the segments' generation m_net was found for
+    bool m_twoNets = false, m_asking = false;
+    std::vector<std::uint32_t> m_found; ///< a query's segments
+    std::vector<BallPairRule<double>> m_segmentRules;
+    std::vector<BallContact<double>> m_segmentContacts;
     /// The last step's contacts, by their bodies' world indices (first < second), in order.
     std::vector<std::pair<std::pair<std::size_t, std::size_t>, BallContact<double>>> m_remembered;
 };

@@ -44,6 +44,46 @@ public:
                 pairs.emplace_back(std::uint32_t(i), j);
     }
 
+    /// The grid of n balls alone, for near().
+    template <class X, class R>
+    void build(std::size_t n, X&& x, R&& radius, double maxRadius)
+    {
+        m_spacing = std::max(2.0 * setBigBallsAside(n, radius, maxRadius), span(n, x) / kMostCells);
+        build(n, x);
+    }
+
+    /// The balls of the grid that a ball of radius r at p touches, in index order, into out.
+    template <class X, class R>
+    void near(const dvec3& p, double r, X&& x, R&& radius, std::vector<std::uint32_t>& out) const
+    {
+        out.clear();
+        const auto test = [&](std::uint32_t j) {
+            const double reach = r + radius(j);
+            const dvec3 d = x(j) - p;
+            if (glm::dot(d, d) < reach * reach)
+                out.push_back(j);
+        };
+        // A ball of the grid is within half a cell (its largest radius) of its cell.
+        const auto cells = std::int64_t(std::ceil((r + 0.5 * m_spacing) / m_spacing));
+        if (const auto side = 2 * cells + 1; side * side * side >= std::int64_t(m_mask) + 1) {
+            for (std::uint32_t j = 0; j < m_radius.size(); ++j) // (a ball wider than the grid's buckets)
+                test(j);
+            return;
+        }
+        const GridCell c = cellOf(p, m_spacing);
+        for (std::int64_t dx = -cells; dx <= cells; ++dx)
+            for (std::int64_t dy = -cells; dy <= cells; ++dy)
+                for (std::int64_t dz = -cells; dz <= cells; ++dz) {
+                    const std::uint32_t b = bucketOf({c.x + dx, c.y + dy, c.z + dz}, m_mask);
+                    for (std::size_t e = m_start[b]; e < m_start[b + 1]; ++e)
+                        test(m_entries[e]);
+                }
+        for (const std::uint32_t j : m_big)
+            test(j);
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+    }
+
 private:
     static constexpr double kMostCells = double(1 << 20); ///< across the balls' span
     static constexpr double kBig = 4.0;                   ///< times the median radius: a big ball

@@ -789,17 +789,33 @@ void World::collideBalls(double dt)
     // springs hold them near each other.
     detail::SpringNeighbours& neighbours = *m_particleSystems.neighbours;
     neighbours.update(m_forces.objects, m_bodies.radii);
+    // The nets' segments, by their balls' places in the list (the list is in the world's order).
+    contacts.segments.clear();
+    contacts.segmentsGeneration = neighbours.generation();
+    const auto ballOf = [&](std::size_t body) {
+        return std::uint32_t(std::lower_bound(contacts.bodies.begin(), contacts.bodies.end(), body) - contacts.bodies.begin());
+    };
+    const auto isBall = [&](std::uint32_t k, std::size_t body) {
+        return k < contacts.bodies.size() && contacts.bodies[k] == body;
+    };
+    for (const auto& [a, b] : neighbours.segments())
+        if (const std::uint32_t ba = ballOf(a), bb = ballOf(b); isBall(ba, a) && isBall(bb, b))
+            contacts.segments.emplace_back(ba, bb);
     constexpr int kSweeps = 8;
     contacts.solve(m_surfaces.planes, kSweeps, dt, [&](std::uint32_t a, std::uint32_t b) {
         return !neighbours.near(contacts.bodies[a], contacts.bodies[b]);
     });
-    if (contacts.pairs.empty())
+    if (contacts.pairs.empty() && contacts.onSegments.empty())
         return;
     for (std::size_t k = 0; k < contacts.pairs.size(); ++k)
         if (contacts.rebounded(k))
             for (const std::uint32_t ball : {contacts.pairs[k].first, contacts.pairs[k].second})
                 if (!m_bodies.objects[contacts.bodies[ball]]->isFixed())
                     ++m_bodies.bounces[contacts.bodies[ball]];
+    for (std::size_t k = 0; k < contacts.onSegments.size(); ++k)
+        if (const std::size_t ball = contacts.bodies[contacts.onSegments[k].ball];
+            contacts.reboundedOnSegment(k) && !m_bodies.objects[ball]->isFixed())
+            ++m_bodies.bounces[ball];
     for (std::size_t k = 0; k < contacts.balls.size(); ++k)
         if (!m_bodies.objects[contacts.bodies[k]]->isFixed())
             m_bodies.objects[contacts.bodies[k]]->setState({contacts.balls[k].x, contacts.balls[k].v});

@@ -90,6 +90,7 @@ void BallWatch::look(const World& world)
     lookAtPairs(world, centres, world.time());
     lookIntoBodies(world, centres, world.time());
     lookBetweenBalls(world, centres, world.time());
+    lookIntoEdges(centres, world.time());
 }
 
 void BallWatch::lookAtPairs(const World& world, const std::vector<dvec3>& centres, double now)
@@ -163,6 +164,40 @@ void BallWatch::lookBetweenBalls(const World& world, const std::vector<dvec3>& c
             if (depth > m_figures.deepestBetween)
                 m_figures.deepestBetween = depth, m_figures.deepestBetweenAt = now,
                 m_figures.deepestBetweenBody = body.getName();
+        }
+    }
+}
+
+namespace {
+
+/// How far a ball of radius r at c goes into the edge from a (radius ra) to b (rb), as thick as
+/// its balls but no thicker than half the gap between them, at the edge's inner point nearest c
+/// (at its ends it is the balls' own overlap).
+double intoEdge(const dvec3& c, double r, const dvec3& a, double ra, const dvec3& b, double rb)
+{
+    const dvec3 d = b - a;
+    const double length = glm::length(d);
+    const double gap = length - ra - rb;
+    if (!(gap > 0.0))
+        return 0.0;
+    const double t = glm::dot(c - a, d) / (length * length);
+    if (!(t > 0.0 && t < 1.0))
+        return 0.0;
+    const double thickness = std::min(ra + t * (rb - ra), 0.5 * gap);
+    return r + thickness - glm::length(c - (a + t * d));
+}
+
+} // namespace
+
+void BallWatch::lookIntoEdges(const std::vector<dvec3>& centres, double now)
+{
+    for (std::size_t k = 0; k < m_balls.size(); ++k) {
+        if (!m_free[k])
+            continue;
+        for (const auto& [i, j] : m_segments) {
+            const double depth = intoEdge(centres[k], m_radii[k], centres[i], m_radii[i], centres[j], m_radii[j]);
+            if (depth > m_figures.deepestFreeInEdge)
+                m_figures.deepestFreeInEdge = depth, m_figures.deepestFreeInEdgeAt = now;
         }
     }
 }

@@ -1,6 +1,7 @@
 #pragma once
 // What the balls (particles with a radius) did over a run, seen at the start and every tenth
-// step: how far two that collide went into each other, how far one went into a rigid body, and
+// step: how far two that collide went into each other, how far one went into a rigid body, how
+// far a rope's or cloth's edges between two went into a rigid body and a free ball into them, and
 // when the balls that are no rope's or cloth's came together in one touching group. `pba sim` prints these, so that
 // descriptions such as "no particle is ever inside the box" say what it measures.
 #include <optional>
@@ -25,6 +26,8 @@ struct BallFigures {
     std::size_t segments = 0;
     double deepestBetween = 0.0, deepestBetweenAt = 0.0;
     std::string deepestBetweenBody;
+    /// A free ball (below) against those edges: how far it went into one at most (m), and when.
+    double deepestFreeInEdge = 0.0, deepestFreeInEdgeAt = 0.0;
     /// The free balls (moving, in no rope or cloth), when there are two or more: every one of them
     /// touching another, all in one group, from then to the end.
     std::size_t freeBalls = 0;
@@ -54,6 +57,7 @@ private:
     void lookAtPairs(const World& world, const std::vector<dvec3>& centres, double now);
     void lookIntoBodies(const World& world, const std::vector<dvec3>& centres, double now);
     void lookBetweenBalls(const World& world, const std::vector<dvec3>& centres, double now);
+    void lookIntoEdges(const std::vector<dvec3>& centres, double now);
     std::vector<dvec3> centresOf(const World& world) const;
     std::vector<dvec3> m_startCentres; ///< looked at for pairs after the first step
     double m_startTime = 0.0;

@@ -535,6 +535,21 @@ TEST(PbaSim, TiltsSwingsBallsAndHeapsAreMeasured)
     EXPECT_LT(numberAfter(grains.out, "the deepest two grains overlap by "), 0.1) << grains.out;
 }
 
+// A free ball dropped on a tightrope between two of its balls: sim says how far it went into the
+// rope's edge between them (the rope holds it: under a millimetre).
+TEST(PbaSim, AFreeBallInARopesEdgeIsMeasured)
+{
+    const auto dir = freshDir("sim_ball_on_edge");
+    std::ofstream(dir / "tightrope.json") << R"({"dt": 0.002, "gravity": [0, -9.81, 0],
+        "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+        "ropes": [{"name": "rope", "from": [-0.6, 1, 0], "to": [0.6, 1, 0], "count": 5, "mass": 0.5,
+                   "pinned": ["start", "end"], "stiffness": 2000, "damping": 20, "radius": 0.02, "restitution": 0}],
+        "particles": [{"name": "ball", "position": [0.15, 1.5, 0], "mass": 0.1, "radius": 0.05, "restitution": 0}]})";
+    const CommandResult r = runPba("sim " + (dir / "tightrope.json").string() + " --duration 3");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_LT(numberAfter(r.out, "a free ball went "), 1.0) << r.out; // mm
+}
+
 // A component that rounds to zero prints as 0.0000, not -0.0000: a box resting on the floor read
 // (0.0000, 0.2000, -0.0000).
 TEST(PbaSim, NothingPrintsAsMinusZero)

@@ -1,0 +1,129 @@
+// Balls against a rope's and a cloth's segments (the springs between two balls). Oracles: a ball
+// that hits a segment at its middle meets a body of the point's mass (each end carrying half of
+// it: 1 / (m/4 + m/4)^-1 = 2m for two balls of mass m), so an elastic ball of mass 2m stops and
+// gives both ends its velocity, and with restitution e leaves at (1 - e)/2 of it, momentum and
+// energy kept as two equal balls' head-on; a ball dropped on a tightrope between two of its balls
+// rests on it (without its segments it fell through to the floor); the thread count changes
+// nothing.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "pba/scene/scene.hpp"
+
+namespace {
+
+using pba::dvec3;
+
+/// A free link of two 0.1 kg balls of 2 cm radius 30 cm apart along x, and a 0.2 kg ball of 5 cm
+/// radius coming down onto its middle at 1 m/s, all with restitution `e`, in no gravity.
+pba::Scene ballOntoALink(const std::string& e)
+{
+    return pba::parseScene(R"({"dt": 0.001, "gravity": [0, 0, 0], "room": {"min": [-3, -3, -3], "max": [3, 3, 3]},
+        "ropes": [{"name": "link", "from": [-0.15, 0, 0], "to": [0.15, 0, 0], "count": 2, "mass": 0.2,
+                   "stiffness": 100, "radius": 0.02, "restitution": )" + e + R"(}],
+        "particles": [{"name": "ball", "position": [0, 0.3, 0], "velocity": [0, -1, 0], "mass": 0.2,
+                       "radius": 0.05, "restitution": )" + e + R"(}]})",
+                           "ball-onto-a-link.json");
+}
+
+/// The world index of the body named `name`.
+std::size_t named(const pba::World& world, const std::string& name)
+{
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (world.body(i).getName() == name)
+            return i;
+    ADD_FAILURE() << "no body " << name;
+    return 0;
+}
+
+} // namespace
+
+TEST(BallOnSegment, AnElasticBallOfTwiceAnEndsMassStopsAndGivesBothEndsItsVelocity)
+{
+    pba::Scene scene = ballOntoALink("1");
+    pba::World& world = scene.world;
+    for (int step = 0; step < 500; ++step)
+        world.step(scene.dt);
+    const std::size_t ball = named(world, "ball");
+    EXPECT_NEAR(glm::length(world.body(ball).getVel()), 0.0, 1e-9);
+    for (const char* end : {"link[0]", "link[1]"})
+        EXPECT_NEAR(glm::length(world.body(named(world, end)).getVel() - dvec3(0, -1, 0)), 0.0, 1e-9) << end;
+    EXPECT_GT(world.body(ball).getPos().y - world.body(named(world, "link[0]")).getPos().y, 0.07 - 1e-9) << "apart";
+    EXPECT_EQ(world.bounceCount(ball), 1u);
+}
+
+TEST(BallOnSegment, WithRestitutionAHalfTheBallKeepsAQuarterOfItsVelocity)
+{
+    pba::Scene scene = ballOntoALink("0.5");
+    pba::World& world = scene.world;
+    for (int step = 0; step < 500; ++step)
+        world.step(scene.dt);
+    // Equal masses 2m and 2m: the ball (1 - e)/2, the point (1 + e)/2 of the velocity.
+    EXPECT_NEAR(glm::length(world.body(named(world, "ball")).getVel() - dvec3(0, -0.25, 0)), 0.0, 1e-9);
+    for (const char* end : {"link[0]", "link[1]"})
+        EXPECT_NEAR(glm::length(world.body(named(world, end)).getVel() - dvec3(0, -0.75, 0)), 0.0, 1e-9) << end;
+}
+
+// A tightrope of five 2 cm balls 30 cm apart, pinned at both ends 1 m up, and a 5 cm ball dropped
+// from half a metre above the middle of its second link: the ball lands on the rope and stays on
+// it for 10 s (without its segments it fell between two balls to the floor), above its lowest
+// ball by more than the ball's radius.
+TEST(BallOnSegment, ABallDroppedOnATightropeBetweenItsBallsStaysOnIt)
+{
+    pba::Scene scene = pba::parseScene(
+        R"({"dt": 0.002, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+            "ropes": [{"name": "rope", "from": [-0.6, 1, 0], "to": [0.6, 1, 0], "count": 5, "mass": 0.5,
+                       "pinned": ["start", "end"], "stiffness": 2000, "damping": 2, "radius": 0.02,
+                       "friction": 0.5, "restitution": 0}],
+            "particles": [{"name": "ball", "position": [0.15, 1.5, 0], "mass": 0.1, "radius": 0.05,
+                           "friction": 0.5, "restitution": 0}]})",
+        "ball-on-a-tightrope.json");
+    pba::World& world = scene.world;
+    const std::size_t ball = named(world, "ball");
+    double lowest = INFINITY;
+    for (int step = 0; step < 5000; ++step) {
+        world.step(scene.dt);
+        lowest = std::min(lowest, world.body(ball).getPos().y);
+    }
+    // The rope sags under it by a few centimetres; it ends above the rope's lowest ball.
+    double ropeLowest = INFINITY;
+    for (int i = 0; i < 5; ++i)
+        ropeLowest = std::min(ropeLowest, world.body(named(world, "rope[" + std::to_string(i) + "]")).getPos().y);
+    EXPECT_GT(lowest, 0.85);
+    EXPECT_GT(world.body(ball).getPos().y, ropeLowest + 0.05);
+}
+
+// Small balls rain onto a sparse sheet of more balls than a task's grain (2,048), so two threads
+// split the grid's search.
+TEST(BallOnSegment, ResultsAreTheSameOnOneAndTwoThreads)
+{
+    auto run = [](int threads) {
+        std::string balls;
+        for (int i = 0; i < 40; ++i)
+            balls += std::string(i ? ", " : "") + R"({"name": "b)" + std::to_string(i) + R"(", "position": [)" +
+                     std::to_string(-1.5 + 0.077 * i) + ", 1.3, " + std::to_string(-1.2 + 0.061 * i) +
+                     R"(], "mass": 0.01, "radius": 0.015, "friction": 0.3})";
+        pba::Scene scene = pba::parseScene(
+            R"({"dt": 0.002, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+                "cloths": [{"name": "sheet", "origin": [-1.6, 1.2, -1.6], "across": [3.2, 0, 0], "down": [0, 0, 3.2],
+                            "columns": 48, "rows": 48, "mass": 20, "stiffness": {"structural": 50, "shear": 5, "bending": 0.1}, "pinned": ["top-left", "top-right", "bottom-left", "bottom-right"],
+                            "radius": 0.005, "friction": 0.3}],
+                "particles": [)" + balls + "]}",
+            "balls-on-a-sheet.json");
+        scene.world.setThreads(threads);
+        for (int step = 0; step < 40; ++step)
+            scene.world.step(scene.dt);
+        std::vector<pba::State> states;
+        for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
+            states.push_back(scene.world.body(i).getState());
+        return states;
+    };
+    const auto one = run(1), two = run(2);
+    ASSERT_EQ(one.size(), two.size());
+    for (std::size_t i = 0; i < one.size(); ++i) {
+        EXPECT_EQ(one[i].pos, two[i].pos) << i;
+        EXPECT_EQ(one[i].vel, two[i].vel) << i;
+    }
+}
