@@ -50,6 +50,15 @@ void BallContacts::remember()
                                   carriedOver(m_contacts[k], dvec3(b.x - a.x), m_rules[k].reach));
     }
     // (The balls are listed in the world's order and the pairs in theirs: the keys are in order.)
+    m_rememberedOnSegments.clear();
+    for (std::size_t k = 0; k < onSegments.size(); ++k) {
+        const BallOnSegment& s = onSegments[k];
+        const dvec3 point = (1.0 - s.t) * balls[s.a].x + s.t * balls[s.b].x;
+        m_rememberedOnSegments.emplace_back(
+            keyOf(s), carriedOver(m_segmentContacts[k], dvec3(balls[s.ball].x - point), m_segmentRules[k].reach));
+    }
+    std::sort(m_rememberedOnSegments.begin(), m_rememberedOnSegments.end(),
+              [](const auto& p, const auto& q) { return p.first < q.first; });
 }
 
 void BallContacts::findNets()
@@ -173,40 +182,63 @@ void BallContacts::startOnSegments(double dt)
         const BallOnSegment& s = onSegments[k];
         const Ball& A = balls[s.a];
         const Ball& B = balls[s.b];
-        const Ball& C = balls[s.ball];
+        Ball& C = balls[s.ball];
         const double ta = 1.0 - s.t, tb = s.t;
         const double w = ta * ta * A.inverseMass + tb * tb * B.inverseMass;
         const double total = w + C.inverseMass;
-        m_segmentContacts[k] = newContact(dvec3(C.x - (ta * A.x + tb * B.x)));
-        m_segmentRules[k] = {s.radius + C.radius,
-                             w / total,
-                             C.inverseMass / total,
-                             combinedRestitution(ta * A.cor + tb * B.cor, C.cor),
-                             combinedFriction(ta * A.friction + tb * B.friction, C.friction),
-                             std::max({A.restingSpeed, B.restingSpeed, C.restingSpeed}),
-                             dt};
+        const dvec3 d = C.x - (ta * A.x + tb * B.x);
+        m_segmentContacts[k] = newContact(d);
+        const BallPairRule<double>& rule = m_segmentRules[k] = {
+            s.radius + C.radius,
+            w / total,
+            C.inverseMass / total,
+            combinedRestitution(ta * A.cor + tb * B.cor, C.cor),
+            combinedFriction(ta * A.friction + tb * B.friction, C.friction),
+            std::max({A.restingSpeed, B.restingSpeed, C.restingSpeed}),
+            dt};
+        const SegmentKey key = keyOf(s);
+        const auto old = std::lower_bound(m_rememberedOnSegments.begin(), m_rememberedOnSegments.end(), key,
+                                          [](const auto& entry, const SegmentKey& k2) { return entry.first < k2; });
+        if (old == m_rememberedOnSegments.end() || old->first != key || A.metInSubsteps || B.metInSubsteps ||
+            C.metInSubsteps || !(glm::length(d) > 0.0))
+            continue;
+        const dvec3 n = glm::normalize(d);
+        BallContact<double>& c = m_segmentContacts[k];
+        c = old->second;
+        c.tangent -= glm::dot(c.tangent, n) * n;
+        const dvec3 change = c.normal * n + c.tangent;
+        shareOut(s, dvec3(0.0), -rule.shareA * change);
+        C.v += rule.shareB * change;
     }
+}
+
+void BallContacts::shareOut(const BallOnSegment& s, const dvec3& dx, const dvec3& dv)
+{
+    Ball& A = balls[s.a];
+    Ball& B = balls[s.b];
+    const double ta = 1.0 - s.t, tb = s.t;
+    const double w = ta * ta * A.inverseMass + tb * tb * B.inverseMass;
+    if (!(w > 0.0))
+        return;
+    // What moved the point by dx moves each end by its share, over the point's inverse mass.
+    const dvec3 moved = dx / w, pushed = dv / w;
+    A.x += ta * A.inverseMass * moved;
+    A.v += ta * A.inverseMass * pushed;
+    B.x += tb * B.inverseMass * moved;
+    B.v += tb * B.inverseMass * pushed;
 }
 
 void BallContacts::touchSegment(const BallOnSegment& s, BallContact<double>& contact, const BallPairRule<double>& rule,
                                 bool first)
 {
-    Ball& A = balls[s.a];
-    Ball& B = balls[s.b];
+    const Ball& A = balls[s.a];
+    const Ball& B = balls[s.b];
     Ball& C = balls[s.ball];
     const double ta = 1.0 - s.t, tb = s.t;
     const dvec3 x0 = ta * A.x + tb * B.x, v0 = ta * A.v + tb * B.v;
     dvec3 x = x0, v = v0;
     touchBalls(x, v, C.x, C.v, contact, rule, first);
-    const double w = ta * ta * A.inverseMass + tb * tb * B.inverseMass;
-    if (!(w > 0.0))
-        return;
-    // What moved the point by (x - x0) moves each end by its share, over the point's inverse mass.
-    const dvec3 moved = (x - x0) / w, pushed = (v - v0) / w;
-    A.x += ta * A.inverseMass * moved;
-    A.v += ta * A.inverseMass * pushed;
-    B.x += tb * B.inverseMass * moved;
-    B.v += tb * B.inverseMass * pushed;
+    shareOut(s, x - x0, v - v0);
 }
 
 void BallContacts::findWalls(std::span<const Plane> planes, double largest)

@@ -16,6 +16,7 @@
 // impulses go to the segment's two balls by their shares of that point (a rod without mass), so
 // a ball smaller than the gap between a sheet's balls lands on the sheet instead of falling
 // through it. A net's own far balls meet it by their balls alone (the self-collision).
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -81,6 +82,7 @@ struct BallContacts {
         findOnSegments();
         if (pairs.empty() && onSegments.empty()) {
             m_remembered.clear();
+            m_rememberedOnSegments.clear();
             return;
         }
         findWalls(planes, largest);
@@ -121,7 +123,11 @@ private:
     /// Whether `ball` touches segment s of m_kept at an inner point, deeper than the segment's two
     /// balls do: then m_touching is the contact.
     bool touchingSegment(std::uint32_t s, std::uint32_t ball);
+    /// Each ball's contact with a segment, its rule and, warm started, its contact as the last
+    /// step left it (known again by the ball and the segment's two bodies).
     void startOnSegments(double dt);
+    /// The segment's point moved by dx and its velocity changed by dv: each end's share of it.
+    void shareOut(const BallOnSegment& s, const dvec3& dx, const dvec3& dv);
     /// touchBalls between the ball and the segment's point, as a ball of the point's mass
     /// (each end carries its share of it), its push and impulses shared back to the two ends.
     void touchSegment(const BallOnSegment& s, BallContact<double>& contact, const BallPairRule<double>& rule, bool first);
@@ -152,6 +158,10 @@ private:
     std::vector<BallContact<double>> m_segmentContacts;
     /// The last step's contacts, by their bodies' world indices (first < second), in order.
     std::vector<std::pair<std::pair<std::size_t, std::size_t>, BallContact<double>>> m_remembered;
+    /// The last step's contacts with segments, by the ball's and the segment's bodies, in order.
+    using SegmentKey = std::array<std::size_t, 3>;
+    std::vector<std::pair<SegmentKey, BallContact<double>>> m_rememberedOnSegments;
+    SegmentKey keyOf(const BallOnSegment& s) const { return {bodies[s.ball], bodies[s.a], bodies[s.b]}; }
 };
 
 } // namespace pba::detail
