@@ -305,10 +305,10 @@ void printBallSummary(const World& world, const study::BallFigures& f)
                             : std::string("no rope's or cloth's edge between two went into a rigid body"));
     if (f.freeBalls >= 1 && f.segments > 0)
         parts.push_back(f.deepestFreeInEdge > 0.0
-                            ? fmt::format("a free ball went {:.2f} mm into a rope's or cloth's edge between two at "
-                                          "most (t = {:.2f} s)",
+                            ? fmt::format("a free ball went {:.2f} mm into a rope's or cloth's edge or cell between "
+                                          "its balls at most (t = {:.2f} s)",
                                           1e3 * f.deepestFreeInEdge, f.deepestFreeInEdgeAt)
-                            : std::string("no free ball went into a rope's or cloth's edge between two"));
+                            : std::string("no free ball went into a rope's or cloth's edge or cell between its balls"));
     if (f.freeBalls >= 2)
         parts.push_back(f.oneGroupFrom ? fmt::format("the {} free balls touch as one group (within {:g} mm, or {:g}% "
                                                      "of their radii if less) from t = {:.2f} s to the end", f.freeBalls,

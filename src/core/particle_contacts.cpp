@@ -50,194 +50,90 @@ void BallContacts::remember()
                                   carriedOver(m_contacts[k], dvec3(b.x - a.x), m_rules[k].reach));
     }
     // (The balls are listed in the world's order and the pairs in theirs: the keys are in order.)
-    m_rememberedOnSegments.clear();
-    for (std::size_t k = 0; k < onSegments.size(); ++k) {
-        const BallOnSegment& s = onSegments[k];
-        const dvec3 point = (1.0 - s.t) * balls[s.a].x + s.t * balls[s.b].x;
-        m_rememberedOnSegments.emplace_back(
-            keyOf(s), carriedOver(m_segmentContacts[k], dvec3(balls[s.ball].x - point), m_segmentRules[k].reach));
+    m_rememberedOnNets.clear();
+    for (std::size_t k = 0; k < onNets.size(); ++k) {
+        const BallOnNet& s = onNets[k];
+        dvec3 point(0.0);
+        for (std::size_t e = 0; e < 3; ++e)
+            point += s.weights[e] * balls[s.ends[e]].x;
+        m_rememberedOnNets.emplace_back(keyOf(s),
+                                        carriedOver(m_netContacts[k], dvec3(balls[s.ball].x - point), m_netRules[k].reach));
     }
-    std::sort(m_rememberedOnSegments.begin(), m_rememberedOnSegments.end(),
+    std::sort(m_rememberedOnNets.begin(), m_rememberedOnNets.end(),
               [](const auto& p, const auto& q) { return p.first < q.first; });
 }
 
-void BallContacts::findNets()
+void BallContacts::startOnNets(double dt)
 {
-    // The balls that segments join, by union-find (a net's first ball its root).
-    m_net.resize(balls.size());
-    for (std::size_t i = 0; i < balls.size(); ++i)
-        m_net[i] = std::uint32_t(i);
-    const auto root = [&](std::uint32_t i) {
-        while (m_net[i] != i)
-            i = m_net[i] = m_net[m_net[i]];
-        return i;
-    };
-    for (const auto& [a, b] : segments) {
-        const std::uint32_t ra = root(a), rb = root(b);
-        m_net[std::max(ra, rb)] = std::min(ra, rb);
-    }
-    std::vector<std::uint8_t> inNet(balls.size(), 0);
-    for (const auto& [a, b] : segments)
-        inNet[a] = inNet[b] = 1;
-    for (std::uint32_t i = 0; i < balls.size(); ++i)
-        m_net[i] = inNet[i] ? root(i) : kNoNet;
-    // A ball meets the segments of nets other than its own: its own net's far parts meet it by
-    // their balls (the self-collision), and asking every ball of a cloth would cost more than
-    // its contacts. So with one net, only the balls of none ask.
-    m_twoNets = false;
-    bool loose = false;
-    for (std::uint32_t i = 0; i < balls.size(); ++i) {
-        loose = loose || m_net[i] == kNoNet;
-        m_twoNets = m_twoNets || (m_net[i] != kNoNet && m_net[i] != m_net[segments[0].first]);
-    }
-    m_asking = loose || m_twoNets;
-    m_netsOf = segmentsGeneration;
-}
-
-bool BallContacts::keepSegments()
-{
-    m_kept.clear();
-    if (segments.empty())
-        return false;
-    if (m_netsOf != segmentsGeneration || m_net.size() != balls.size())
-        findNets();
-    if (!m_asking)
-        return false;
-    double smallest = INFINITY;
-    for (const Ball& ball : balls)
-        smallest = std::min(smallest, ball.radius);
-    // A ball of radius rc at the middle of a segment of length L between two balls of radius r,
-    // resting on both, lies sqrt((rc + r)^2 - (L/2)^2) from its axis. The segment, as thick as r
-    // (or L/2 - r, half its gap, where that is less), holds it further out only when
-    // rc (4r - L) < L (L/2 - r): touching balls (a trampoline's) leave no gap for it to matter.
-    for (const auto& [a, b] : segments) {
-        const double length = glm::length(balls[b].x - balls[a].x);
-        const double r = std::min(balls[a].radius, balls[b].radius);
-        if (length - balls[a].radius - balls[b].radius > 0.0 &&
-            (4.0 * r - length <= 0.0 || smallest * (4.0 * r - length) < length * (0.5 * length - r)))
-            m_kept.emplace_back(a, b);
-    }
-    m_segmentMiddle.resize(m_kept.size());
-    m_segmentReach.resize(m_kept.size());
-    m_largestSegmentReach = 0.0;
-    for (std::size_t s = 0; s < m_kept.size(); ++s) {
-        const auto [a, b] = m_kept[s];
-        m_segmentMiddle[s] = 0.5 * (balls[a].x + balls[b].x);
-        m_segmentReach[s] = 0.5 * glm::length(balls[b].x - balls[a].x) + std::max(balls[a].radius, balls[b].radius);
-        m_largestSegmentReach = std::max(m_largestSegmentReach, m_segmentReach[s]);
-    }
-    return !m_kept.empty();
-}
-
-void BallContacts::findOnSegments()
-{
-    onSegments.clear();
-    if (!keepSegments())
-        return;
-    const auto middle = [&](std::size_t s) { return m_segmentMiddle[s]; };
-    const auto reach = [&](std::size_t s) { return m_segmentReach[s]; };
-    bool built = false;
-    for (std::uint32_t c = 0; c < balls.size(); ++c) {
-        if (m_net[c] != kNoNet && !m_twoNets)
-            continue;
-        if (!built)
-            m_segmentGrid.build(m_kept.size(), middle, reach, m_largestSegmentReach);
-        built = true;
-        m_segmentGrid.near(balls[c].x, balls[c].radius, middle, reach, m_found);
-        for (const std::uint32_t s : m_found)
-            if (m_net[m_kept[s].first] != m_net[c] && touchingSegment(s, c))
-                onSegments.push_back(m_touching);
-    }
-}
-
-bool BallContacts::touchingSegment(std::uint32_t s, std::uint32_t ball)
-{
-    const auto [a, b] = m_kept[s];
-    const Ball& A = balls[a];
-    const Ball& B = balls[b];
-    const Ball& C = balls[ball];
-    const dvec3 d = B.x - A.x;
-    const double length2 = glm::dot(d, d);
-    const double gap = std::sqrt(length2) - A.radius - B.radius;
-    const double t = glm::dot(C.x - A.x, d) / length2;
-    // Nearer an end than this share of the segment, it is that ball's own contact.
-    constexpr double kEnd = 0.005;
-    if (!(t > kEnd && t < 1.0 - kEnd))
-        return false;
-    if ((1.0 - t) * (1.0 - t) * A.inverseMass + t * t * B.inverseMass + C.inverseMass == 0.0)
-        return false;
-    const double radius = std::min(A.radius + t * (B.radius - A.radius), 0.5 * gap);
-    const double separation = glm::length(C.x - (A.x + t * d)) - radius - C.radius;
-    const double line = (1.0 - t) * (glm::length(C.x - A.x) - A.radius - C.radius) +
-                        t * (glm::length(C.x - B.x) - B.radius - C.radius);
-    m_touching = {a, b, ball, t, radius};
-    return separation < 0.0 && separation < line;
-}
-
-void BallContacts::startOnSegments(double dt)
-{
-    m_segmentRules.resize(onSegments.size());
-    m_segmentContacts.resize(onSegments.size());
-    for (std::size_t k = 0; k < onSegments.size(); ++k) {
-        const BallOnSegment& s = onSegments[k];
-        const Ball& A = balls[s.a];
-        const Ball& B = balls[s.b];
-        Ball& C = balls[s.ball];
-        const double ta = 1.0 - s.t, tb = s.t;
-        const double w = ta * ta * A.inverseMass + tb * tb * B.inverseMass;
-        const double total = w + C.inverseMass;
-        const dvec3 d = C.x - (ta * A.x + tb * B.x);
-        m_segmentContacts[k] = newContact(d);
-        const BallPairRule<double>& rule = m_segmentRules[k] = {
-            s.radius + C.radius,
-            w / total,
-            C.inverseMass / total,
-            combinedRestitution(ta * A.cor + tb * B.cor, C.cor),
-            combinedFriction(ta * A.friction + tb * B.friction, C.friction),
-            std::max({A.restingSpeed, B.restingSpeed, C.restingSpeed}),
-            dt};
-        const SegmentKey key = keyOf(s);
-        const auto old = std::lower_bound(m_rememberedOnSegments.begin(), m_rememberedOnSegments.end(), key,
-                                          [](const auto& entry, const SegmentKey& k2) { return entry.first < k2; });
-        if (old == m_rememberedOnSegments.end() || old->first != key || A.metInSubsteps || B.metInSubsteps ||
-            C.metInSubsteps || !(glm::length(d) > 0.0))
+    m_netRules.resize(onNets.size());
+    m_netContacts.resize(onNets.size());
+    for (std::size_t k = 0; k < onNets.size(); ++k) {
+        const BallOnNet& s = onNets[k];
+        Ball& c = balls[s.ball];
+        dvec3 point(0.0);
+        double w = 0.0, cor = 0.0, friction = 0.0, resting = c.restingSpeed;
+        bool substeps = c.metInSubsteps;
+        for (std::size_t e = 0; e < 3; ++e) {
+            const Ball& end = balls[s.ends[e]];
+            point += s.weights[e] * end.x;
+            w += s.weights[e] * s.weights[e] * end.inverseMass;
+            cor += s.weights[e] * end.cor;
+            friction += s.weights[e] * end.friction;
+            resting = std::max(resting, end.restingSpeed);
+            substeps = substeps || end.metInSubsteps;
+        }
+        const double total = w + c.inverseMass;
+        const dvec3 d = c.x - point;
+        m_netContacts[k] = newContact(d);
+        const BallPairRule<double>& rule = m_netRules[k] = {s.radius + c.radius,
+                                                            w / total,
+                                                            c.inverseMass / total,
+                                                            combinedRestitution(cor, c.cor),
+                                                            combinedFriction(friction, c.friction),
+                                                            resting,
+                                                            dt};
+        const NetKey key = keyOf(s);
+        const auto old = std::lower_bound(m_rememberedOnNets.begin(), m_rememberedOnNets.end(), key,
+                                          [](const auto& entry, const NetKey& k2) { return entry.first < k2; });
+        if (old == m_rememberedOnNets.end() || old->first != key || substeps || !(glm::length(d) > 0.0))
             continue;
         const dvec3 n = glm::normalize(d);
-        BallContact<double>& c = m_segmentContacts[k];
-        c = old->second;
-        c.tangent -= glm::dot(c.tangent, n) * n;
-        const dvec3 change = c.normal * n + c.tangent;
+        BallContact<double>& contact = m_netContacts[k];
+        contact = old->second;
+        contact.tangent -= glm::dot(contact.tangent, n) * n;
+        const dvec3 change = contact.normal * n + contact.tangent;
         shareOut(s, dvec3(0.0), -rule.shareA * change);
-        C.v += rule.shareB * change;
+        c.v += rule.shareB * change;
     }
 }
 
-void BallContacts::shareOut(const BallOnSegment& s, const dvec3& dx, const dvec3& dv)
+void BallContacts::shareOut(const BallOnNet& s, const dvec3& dx, const dvec3& dv)
 {
-    Ball& A = balls[s.a];
-    Ball& B = balls[s.b];
-    const double ta = 1.0 - s.t, tb = s.t;
-    const double w = ta * ta * A.inverseMass + tb * tb * B.inverseMass;
+    double w = 0.0;
+    for (std::size_t e = 0; e < 3; ++e)
+        w += s.weights[e] * s.weights[e] * balls[s.ends[e]].inverseMass;
     if (!(w > 0.0))
         return;
-    // What moved the point by dx moves each end by its share, over the point's inverse mass.
+    // What moved the point by dx moves each end by its weight, over the point's inverse mass.
     const dvec3 moved = dx / w, pushed = dv / w;
-    A.x += ta * A.inverseMass * moved;
-    A.v += ta * A.inverseMass * pushed;
-    B.x += tb * B.inverseMass * moved;
-    B.v += tb * B.inverseMass * pushed;
+    for (std::size_t e = 0; e < 3; ++e) {
+        Ball& end = balls[s.ends[e]];
+        end.x += s.weights[e] * end.inverseMass * moved;
+        end.v += s.weights[e] * end.inverseMass * pushed;
+    }
 }
 
-void BallContacts::touchSegment(const BallOnSegment& s, BallContact<double>& contact, const BallPairRule<double>& rule,
-                                bool first)
+void BallContacts::touchNet(const BallOnNet& s, BallContact<double>& contact, const BallPairRule<double>& rule,
+                            bool first)
 {
-    const Ball& A = balls[s.a];
-    const Ball& B = balls[s.b];
-    Ball& C = balls[s.ball];
-    const double ta = 1.0 - s.t, tb = s.t;
-    const dvec3 x0 = ta * A.x + tb * B.x, v0 = ta * A.v + tb * B.v;
+    dvec3 x0(0.0), v0(0.0);
+    for (std::size_t e = 0; e < 3; ++e) {
+        x0 += s.weights[e] * balls[s.ends[e]].x;
+        v0 += s.weights[e] * balls[s.ends[e]].v;
+    }
     dvec3 x = x0, v = v0;
-    touchBalls(x, v, C.x, C.v, contact, rule, first);
+    Ball& c = balls[s.ball];
+    touchBalls(x, v, c.x, c.v, contact, rule, first);
     shareOut(s, x - x0, v - v0);
 }
 

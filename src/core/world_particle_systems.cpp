@@ -805,16 +805,16 @@ void World::collideBalls(double dt)
     contacts.solve(m_surfaces.planes, kSweeps, dt, [&](std::uint32_t a, std::uint32_t b) {
         return !neighbours.near(contacts.bodies[a], contacts.bodies[b]);
     });
-    if (contacts.pairs.empty() && contacts.onSegments.empty())
+    if (contacts.pairs.empty() && contacts.onNets.empty())
         return;
     for (std::size_t k = 0; k < contacts.pairs.size(); ++k)
         if (contacts.rebounded(k))
             for (const std::uint32_t ball : {contacts.pairs[k].first, contacts.pairs[k].second})
                 if (!m_bodies.objects[contacts.bodies[ball]]->isFixed())
                     ++m_bodies.bounces[contacts.bodies[ball]];
-    for (std::size_t k = 0; k < contacts.onSegments.size(); ++k)
-        if (const std::size_t ball = contacts.bodies[contacts.onSegments[k].ball];
-            contacts.reboundedOnSegment(k) && !m_bodies.objects[ball]->isFixed())
+    for (std::size_t k = 0; k < contacts.onNets.size(); ++k)
+        if (const std::size_t ball = contacts.bodies[contacts.onNets[k].ball];
+            contacts.reboundedOnNet(k) && !m_bodies.objects[ball]->isFixed())
             ++m_bodies.bounces[ball];
     for (std::size_t k = 0; k < contacts.balls.size(); ++k)
         if (!m_bodies.objects[contacts.bodies[k]]->isFixed())

@@ -40,6 +40,18 @@ BallWatch::BallWatch(const World& world, const std::vector<bool>& inFabric,
             m_segments.emplace_back(std::size_t(ia - m_balls.begin()), std::size_t(ib - m_balls.begin()));
     }
     m_figures.segments = m_segments.size();
+    // The cloths' triangles: three balls each two of which an edge joins.
+    std::vector<std::vector<std::size_t>> joined(m_balls.size());
+    for (const auto& [i, j] : m_segments) {
+        joined[i].push_back(j);
+        joined[j].push_back(i);
+    }
+    for (auto& list : joined)
+        std::sort(list.begin(), list.end());
+    for (const auto& [i, j] : m_segments)
+        for (const std::size_t k : joined[i])
+            if (k > std::max(i, j) && std::binary_search(joined[j].begin(), joined[j].end(), k))
+                m_triangles.push_back({i, j, k});
     m_figures.balls = m_balls.size();
     m_figures.freeBalls = std::size_t(std::count(m_free.begin(), m_free.end(), true));
     // The start: the balls in the bodies now; which pairs collide (a cloth's neighbours along its
@@ -187,6 +199,33 @@ double intoEdge(const dvec3& c, double r, const dvec3& a, double ra, const dvec3
     return r + thickness - glm::length(c - (a + t * d));
 }
 
+/// How far a ball of radius r at c goes into the triangle x (radii rs), as thick as its balls by
+/// where c's foot lies on it but no thicker than half the gap between two of them, where that
+/// foot lies inside it (at its sides and corners it is the edges' and the balls' own overlap).
+double intoTriangle(const dvec3& c, double r, const std::array<dvec3, 3>& x, const std::array<double, 3>& rs)
+{
+    const dvec3 e1 = x[1] - x[0], e2 = x[2] - x[0], q = c - x[0];
+    const dvec3 normal = glm::cross(e1, e2);
+    const double twiceArea = glm::length(normal);
+    if (!(twiceArea > 0.0))
+        return 0.0;
+    // The foot's barycentric weights, by the areas of the triangles it makes with each side.
+    const dvec3 n = normal / twiceArea;
+    const double u = glm::dot(glm::cross(q, e2), n) / twiceArea, v = glm::dot(glm::cross(e1, q), n) / twiceArea;
+    const std::array<double, 3> w{1.0 - u - v, u, v};
+    if (!(w[0] > 0.0 && w[1] > 0.0 && w[2] > 0.0))
+        return 0.0;
+    double thickness = w[0] * rs[0] + w[1] * rs[1] + w[2] * rs[2];
+    for (std::size_t e = 0; e < 3; ++e) {
+        const std::size_t f = (e + 1) % 3;
+        const double gap = glm::length(x[f] - x[e]) - rs[e] - rs[f];
+        if (!(gap > 0.0))
+            return 0.0;
+        thickness = std::min(thickness, 0.5 * gap);
+    }
+    return r + thickness - std::abs(glm::dot(q, n));
+}
+
 } // namespace
 
 void BallWatch::lookIntoEdges(const std::vector<dvec3>& centres, double now)
@@ -194,11 +233,15 @@ void BallWatch::lookIntoEdges(const std::vector<dvec3>& centres, double now)
     for (std::size_t k = 0; k < m_balls.size(); ++k) {
         if (!m_free[k])
             continue;
-        for (const auto& [i, j] : m_segments) {
-            const double depth = intoEdge(centres[k], m_radii[k], centres[i], m_radii[i], centres[j], m_radii[j]);
+        const auto deepest = [&](double depth) {
             if (depth > m_figures.deepestFreeInEdge)
                 m_figures.deepestFreeInEdge = depth, m_figures.deepestFreeInEdgeAt = now;
-        }
+        };
+        for (const auto& [i, j] : m_segments)
+            deepest(intoEdge(centres[k], m_radii[k], centres[i], m_radii[i], centres[j], m_radii[j]));
+        for (const auto& t : m_triangles)
+            deepest(intoTriangle(centres[k], m_radii[k], {centres[t[0]], centres[t[1]], centres[t[2]]},
+                                 {m_radii[t[0]], m_radii[t[1]], m_radii[t[2]]}));
     }
 }
 

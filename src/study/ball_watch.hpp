@@ -4,6 +4,7 @@
 // far a rope's or cloth's edges between two went into a rigid body and a free ball into them, and
 // when the balls that are no rope's or cloth's came together in one touching group. `pba sim` prints these, so that
 // descriptions such as "no particle is ever inside the box" say what it measures.
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,7 +27,8 @@ struct BallFigures {
     std::size_t segments = 0;
     double deepestBetween = 0.0, deepestBetweenAt = 0.0;
     std::string deepestBetweenBody;
-    /// A free ball (below) against those edges: how far it went into one at most (m), and when.
+    /// A free ball (below) against those edges and the cloths' triangles between them (as thick):
+    /// how far it went into one at most (m), and when.
     double deepestFreeInEdge = 0.0, deepestFreeInEdgeAt = 0.0;
     /// The free balls (moving, in no rope or cloth), when there are two or more: every one of them
     /// touching another, all in one group, from then to the end.
@@ -68,6 +70,7 @@ private:
     std::vector<std::pair<std::size_t, std::size_t>> m_joined; ///< world indices a joint joins, both ways, sorted
     std::vector<std::size_t> m_bodies;    ///< the rigid bodies
     std::vector<std::pair<std::size_t, std::size_t>> m_segments; ///< of m_balls: two balls an edge joins
+    std::vector<std::array<std::size_t, 3>> m_triangles;          ///< of m_balls: three edges' balls
     long m_steps = 0;
     BallFigures m_figures;
 };

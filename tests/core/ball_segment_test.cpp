@@ -1,10 +1,12 @@
-// Balls against a rope's and a cloth's segments (the springs between two balls). Oracles: a ball
-// that hits a segment at its middle meets a body of the point's mass (each end carrying half of
-// it: 1 / (m/4 + m/4)^-1 = 2m for two balls of mass m), so an elastic ball of mass 2m stops and
-// gives both ends its velocity, and with restitution e leaves at (1 - e)/2 of it, momentum and
-// energy kept as two equal balls' head-on; a ball dropped on a tightrope between two of its balls
-// rests on it (without its segments it fell through to the floor); the thread count changes
-// nothing.
+// Balls against the pieces of ropes and cloths between their balls: segments (the springs between
+// two balls) and a cloth's triangles. Oracles: a ball that hits a segment at its middle meets a
+// body of the point's mass (each end carrying half of it: (1/(4m) + 1/(4m))^-1 = 2m for two balls
+// of mass m), so an elastic ball of mass 2m stops and gives both ends its velocity, and with
+// restitution e leaves at (1 - e)/2 of it, momentum and energy kept as two equal balls' head-on;
+// at a triangle's centroid the point's mass is 3m (a third on each of three), so a ball of 3m
+// stops and gives the triangle's three balls its velocity, the cell's fourth none; a ball dropped
+// on a tightrope between two of its balls, or into a sparse sheet's cell, stays on it (without
+// the pieces it fell through to the floor); the thread count changes nothing.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -66,6 +68,40 @@ TEST(BallOnSegment, WithRestitutionAHalfTheBallKeepsAQuarterOfItsVelocity)
         EXPECT_NEAR(glm::length(world.body(named(world, end)).getVel() - dvec3(0, -0.75, 0)), 0.0, 1e-9) << end;
 }
 
+// A cell of a sheet: four 0.1 kg balls of 2 cm radius at the corners of a 30 cm square, in no
+// gravity, and a 0.3 kg ball of 3 cm radius coming down at 1 m/s onto the centroid of one of the
+// cell's two triangles (whose hole, 8.8 cm to its sides, it would pass through by its balls and
+// segments alone).
+TEST(BallOnSegment, AnElasticBallOfThreeTimesAnEndsMassStopsOnATrianglesCentroid)
+{
+    const auto sceneWithBallAt = [](const dvec3& at) {
+        return pba::parseScene(
+            R"({"dt": 0.001, "gravity": [0, 0, 0], "room": {"min": [-3, -3, -3], "max": [3, 3, 3]},
+                "cloths": [{"name": "cell", "origin": [-0.15, 0, -0.15], "across": [0.3, 0, 0], "down": [0, 0, 0.3],
+                            "columns": 2, "rows": 2, "mass": 0.4, "stiffness": {"structural": 10, "shear": 1, "bending": 0},
+                            "radius": 0.02, "restitution": 1}],
+                "particles": [{"name": "ball", "position": [)" +
+                std::to_string(at.x) + ", " + std::to_string(at.y) + ", " + std::to_string(at.z) +
+                R"(], "velocity": [0, -1, 0], "mass": 0.3, "radius": 0.03, "restitution": 1}]})",
+            "ball-onto-a-cell.json");
+    };
+    // The triangle drawn from the cell's first corner to its opposite one, and its third ball.
+    const char* triangle[] = {"cell[0,0]", "cell[0,1]", "cell[1,1]"};
+    pba::Scene probe = sceneWithBallAt(dvec3(2, 2, 2));
+    dvec3 centroid(0.0);
+    for (const char* end : triangle)
+        centroid += probe.world.body(named(probe.world, end)).getPos() / 3.0;
+    pba::Scene scene = sceneWithBallAt(centroid + dvec3(0, 0.1, 0));
+    pba::World& world = scene.world;
+    const std::size_t ball = named(world, "ball");
+    while (world.body(ball).getVel().y < -0.5)
+        world.step(scene.dt);
+    EXPECT_NEAR(glm::length(world.body(ball).getVel()), 0.0, 1e-9);
+    for (const char* end : triangle)
+        EXPECT_NEAR(glm::length(world.body(named(world, end)).getVel() - dvec3(0, -1, 0)), 0.0, 1e-9) << end;
+    EXPECT_NEAR(glm::length(world.body(named(world, "cell[1,0]")).getVel()), 0.0, 1e-9);
+}
+
 // A tightrope of five 2 cm balls 30 cm apart, pinned at both ends 1 m up, and a 5 cm ball dropped
 // from half a metre above the middle of its second link: the ball lands on the rope and stays on
 // it for 10 s (without its segments it fell between two balls to the floor), above its lowest
@@ -93,6 +129,31 @@ TEST(BallOnSegment, ABallDroppedOnATightropeBetweenItsBallsStaysOnIt)
         ropeLowest = std::min(ropeLowest, world.body(named(world, "rope[" + std::to_string(i) + "]")).getPos().y);
     EXPECT_GT(lowest, 0.85);
     EXPECT_GT(world.body(ball).getPos().y, ropeLowest + 0.05);
+}
+
+// A sheet of 12 x 12 balls of 1.5 cm radius 18 cm apart, pinned at its corners, and a 4 cm ball
+// dropped onto the middle of one of its cells (through whose triangles' holes it fits): it stays
+// on the sheet.
+TEST(BallOnSegment, ABallDroppedIntoASparseSheetsCellStaysOnIt)
+{
+    pba::Scene scene = pba::parseScene(
+        R"({"dt": 0.002, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+            "cloths": [{"name": "net", "origin": [-1, 1.2, -1], "across": [2, 0, 0], "down": [0, 0, 2], "columns": 12,
+                        "rows": 12, "mass": 1, "stiffness": {"structural": 200, "shear": 20, "bending": 0.5},
+                        "damping": 0.5, "pinned": ["top-left", "top-right", "bottom-left", "bottom-right"],
+                        "radius": 0.015, "friction": 0.4, "restitution": 0}],
+            "particles": [{"name": "ball", "position": [0.06, 1.6, 0.03], "mass": 0.05, "radius": 0.04,
+                           "friction": 0.4, "restitution": 0}]})",
+        "ball-into-a-net.json");
+    pba::World& world = scene.world;
+    const std::size_t ball = named(world, "ball");
+    for (int step = 0; step < 1500; ++step)
+        world.step(scene.dt);
+    double netLowest = INFINITY;
+    for (std::size_t i = 0; i < world.bodyCount(); ++i)
+        if (i != ball)
+            netLowest = std::min(netLowest, world.body(i).getPos().y);
+    EXPECT_GT(world.body(ball).getPos().y, netLowest) << "above the sheet's lowest ball";
 }
 
 // Small balls rain onto a sparse sheet of more balls than a task's grain (2,048), so two threads

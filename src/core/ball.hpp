@@ -1,0 +1,20 @@
+#pragma once
+// A particle with a radius as the balls' contacts see it over one step. Private to the core.
+#include "pba/math.hpp"
+
+namespace pba::detail {
+
+struct Ball {
+    dvec3 x{0.0}, v{0.0};
+    double inverseMass = 0.0; ///< 0: a fixed ball, which pushes and is not pushed
+    double radius = 0.0;
+    double cor = 1.0;
+    double friction = 0.0;
+    double restingSpeed = 0.0; ///< what its acceleration gives in one step, |a| dt
+    /// Stepped by XPBD, which keeps it apart from the others inside its substeps: its contacts
+    /// here only catch what those left, and start from nothing (a warm start would push apart
+    /// what the substeps already hold apart).
+    bool metInSubsteps = false;
+};
+
+} // namespace pba::detail
