@@ -32,31 +32,10 @@ void NetPieces::findNets(std::span<const Ball> balls, std::span<const std::pair<
         m_twoNets = m_twoNets || (m_net[i] != kNoNet && m_net[i] != m_net[segments[0].first]);
     }
     m_asking = loose || m_twoNets;
-    // The triangles: three balls each two of which a segment joins (a cloth's cells, halved by
-    // the diagonal it is drawn with; a rope has none).
-    std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> joined(balls.size()); // (ball, segment)
-    for (std::uint32_t s = 0; s < segments.size(); ++s) {
-        joined[segments[s].first].emplace_back(segments[s].second, s);
-        joined[segments[s].second].emplace_back(segments[s].first, s);
-    }
-    for (auto& list : joined)
-        std::sort(list.begin(), list.end());
-    const auto segmentBetween = [&](std::uint32_t i, std::uint32_t j) -> std::int64_t {
-        const auto it = std::lower_bound(joined[i].begin(), joined[i].end(), std::pair(j, std::uint32_t(0)));
-        return it != joined[i].end() && it->first == j ? std::int64_t(it->second) : -1;
-    };
-    m_triangles.clear();
-    for (std::uint32_t s = 0; s < segments.size(); ++s) {
-        const std::uint32_t a = std::min(segments[s].first, segments[s].second);
-        const std::uint32_t b = std::max(segments[s].first, segments[s].second);
-        for (const auto& [c, ac] : joined[a])
-            if (c > b)
-                if (const std::int64_t bc = segmentBetween(b, c); bc >= 0)
-                    m_triangles.push_back({{a, b, c}, 3, {s, ac, std::uint32_t(bc)}});
-    }
 }
 
-bool NetPieces::keep(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments)
+bool NetPieces::keep(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
+                     std::span<const std::array<std::uint32_t, 3>> triangles)
 {
     m_kept.clear();
     double smallest = INFINITY;
@@ -67,20 +46,18 @@ bool NetPieces::keep(std::span<const Ball> balls, std::span<const std::pair<std:
     // (or L/2 - r, half its gap, where that is less), holds it further out only when
     // rc (4r - L) < L (L/2 - r): touching balls (a trampoline's) leave no gap for it to matter.
     // A triangle counts where its three sides do.
-    m_keptSegment.assign(segments.size(), 0);
-    for (std::size_t s = 0; s < segments.size(); ++s) {
-        const auto [a, b] = segments[s];
+    const auto matters = [&](std::uint32_t a, std::uint32_t b) {
         const double length = glm::length(balls[b].x - balls[a].x);
         const double r = std::min(balls[a].radius, balls[b].radius);
-        if (length - balls[a].radius - balls[b].radius > 0.0 &&
-            (4.0 * r - length <= 0.0 || smallest * (4.0 * r - length) < length * (0.5 * length - r))) {
-            m_keptSegment[s] = 1;
-            m_kept.push_back({{a, b, b}, 2, {}});
-        }
-    }
-    for (const Piece& t : m_triangles)
-        if (m_keptSegment[t.sides[0]] && m_keptSegment[t.sides[1]] && m_keptSegment[t.sides[2]])
-            m_kept.push_back(t);
+        return length - balls[a].radius - balls[b].radius > 0.0 &&
+               (4.0 * r - length <= 0.0 || smallest * (4.0 * r - length) < length * (0.5 * length - r));
+    };
+    for (const auto& [a, b] : segments)
+        if (matters(a, b))
+            m_kept.push_back({{a, b, b}, 2});
+    for (const auto& [a, b, c] : triangles)
+        if (matters(a, b) && matters(b, c) && matters(a, c))
+            m_kept.push_back({{a, b, c}, 3});
     m_centre.resize(m_kept.size());
     m_reach.resize(m_kept.size());
     m_largestReach = 0.0;
@@ -103,7 +80,8 @@ bool NetPieces::keep(std::span<const Ball> balls, std::span<const std::pair<std:
 }
 
 void NetPieces::find(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
-                     std::uint64_t generation, std::vector<BallOnNet>& out)
+                     std::span<const std::array<std::uint32_t, 3>> triangles, std::uint64_t generation,
+                     std::vector<BallOnNet>& out)
 {
     out.clear();
     if (segments.empty())
@@ -112,7 +90,7 @@ void NetPieces::find(std::span<const Ball> balls, std::span<const std::pair<std:
         findNets(balls, segments);
         m_netsOf = generation;
     }
-    if (!m_asking || !keep(balls, segments))
+    if (!m_asking || !keep(balls, segments, triangles))
         return;
     const auto centre = [&](std::size_t p) { return m_centre[p]; };
     const auto reach = [&](std::size_t p) { return m_reach[p]; };

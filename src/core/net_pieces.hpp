@@ -32,22 +32,23 @@ struct BallOnNet {
 class NetPieces {
 public:
     /// The balls touching pieces of nets they are not part of, into `out`, ball by ball in index
-    /// order (so the same on any thread count). `segments` pairs of balls; `generation` changes
-    /// when they do (the nets and their triangles are worked out again then).
+    /// order (so the same on any thread count). `segments` pairs of balls, `triangles` triples;
+    /// `generation` changes when they do (the nets are worked out again then).
     void find(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
-              std::uint64_t generation, std::vector<BallOnNet>& out);
+              std::span<const std::array<std::uint32_t, 3>> triangles, std::uint64_t generation,
+              std::vector<BallOnNet>& out);
 
 private:
     struct Piece {
         std::array<std::uint32_t, 3> ends{};
-        int count = 2;                    ///< 2: a segment, 3: a triangle
-        std::array<std::uint32_t, 3> sides{}; ///< a triangle's three segments
+        int count = 2; ///< 2: a segment, 3: a triangle
     };
-    /// Each ball's net (m_net), the triangles, and whether any ball asks (m_asking).
+    /// Each ball's net (m_net), and whether any ball asks (m_asking).
     void findNets(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments);
     /// The pieces that a ball of the smallest radius could meet deeper than their balls do, into
     /// m_kept, with where each is and how far it reaches. False if none.
-    bool keep(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments);
+    bool keep(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
+              std::span<const std::array<std::uint32_t, 3>> triangles);
     /// Whether `ball` touches piece p at an inner point, deeper than the piece's own balls do:
     /// then `contact` is it.
     static bool touching(std::span<const Ball> balls, const Piece& p, std::uint32_t ball, BallOnNet& contact);
@@ -56,9 +57,7 @@ private:
     std::vector<std::uint32_t> m_net; ///< each ball's net (its first ball's index), or kNoNet
     std::uint64_t m_netsOf = ~std::uint64_t(0); ///< the generation m_net was found for
     bool m_twoNets = false, m_asking = false;
-    std::vector<Piece> m_triangles;
     std::vector<Piece> m_kept;
-    std::vector<std::uint8_t> m_keptSegment;
     std::vector<dvec3> m_centre;
     std::vector<double> m_reach; ///< from its centre: its farthest end, and its thickest ball
     double m_largestReach = 0.0;

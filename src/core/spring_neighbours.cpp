@@ -128,6 +128,17 @@ void SpringNeighbours::findSegments()
         if (!crossesAnEarlierSegment(cd.first, cd.second))
             kept.push_back(cd);
     m_segments = std::move(kept);
+    // The triangles: three bodies each two of which a segment joins (a cloth's cells, halved by
+    // the diagonal it is drawn with; a rope has none).
+    m_triangles.clear();
+    const auto joined = [&](std::uint32_t i, std::uint32_t j) {
+        return std::binary_search(m_segments.begin(), m_segments.end(), std::pair(i, j));
+    };
+    for (const auto& [a, b] : m_segments)
+        for (auto ac = std::lower_bound(m_segments.begin(), m_segments.end(), std::pair(a, b + 1));
+             ac != m_segments.end() && ac->first == a; ++ac)
+            if (joined(b, ac->second))
+                m_triangles.push_back({a, b, ac->second});
 }
 
 bool SpringNeighbours::crossesAnEarlierSegment(std::uint32_t c, std::uint32_t d) const

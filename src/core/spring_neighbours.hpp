@@ -5,11 +5,12 @@
 // between them through the springs is shorter than twice the sum of their radii (at rest they
 // would overlap, or nearly, or only a sharp fold could bring them together, which the bending
 // springs decide). Every other pair, far apart along one cloth or on two cloths, collides.
-// From the same springs it lists the nets' segments, which rigid bodies meet between the balls
-// (rigid/segment_contacts.hpp). Private to the core.
+// From the same springs it lists the nets' segments and triangles, which rigid bodies and other
+// balls meet between the balls (rigid/segment_contacts.hpp, net_pieces.hpp). Private to the core.
 //
 // Made once from the springs and the radii, and again only when either changes: a cloth's
 // neighbours are its particles' few dozen nearest, held as sorted lists (compressed rows).
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -33,6 +34,9 @@ public:
     /// run past a third along the net (a bending spring spans two segments, a shear spring
     /// crosses a cell), in the order of their first body.
     std::span<const std::pair<std::uint32_t, std::uint32_t>> segments() const { return m_segments; }
+    /// The nets' triangles: three bodies (a < b < c) each two of which a segment joins (a cloth's
+    /// cell halves, as the renderer draws them), in the order of their first two.
+    std::span<const std::array<std::uint32_t, 3>> triangles() const { return m_triangles; }
     /// How many times the lists were made: a reader of segments() knows them again by it.
     std::uint64_t generation() const { return m_generation; }
     std::unique_ptr<SpringNeighbours> clone() const { return std::make_unique<SpringNeighbours>(*this); }
@@ -61,6 +65,7 @@ private:
     std::vector<std::uint32_t> m_near;
     std::vector<double> m_distance; ///< the search's scratch, infinite where it has not been
     std::vector<std::pair<std::uint32_t, std::uint32_t>> m_segments;
+    std::vector<std::array<std::uint32_t, 3>> m_triangles;
     std::uint64_t m_generation = 0;
 };
 

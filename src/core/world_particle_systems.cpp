@@ -801,6 +801,11 @@ void World::collideBalls(double dt)
     for (const auto& [a, b] : neighbours.segments())
         if (const std::uint32_t ba = ballOf(a), bb = ballOf(b); isBall(ba, a) && isBall(bb, b))
             contacts.segments.emplace_back(ba, bb);
+    contacts.triangles.clear();
+    for (const auto& [a, b, c] : neighbours.triangles())
+        if (const std::uint32_t ba = ballOf(a), bb = ballOf(b), bc = ballOf(c);
+            isBall(ba, a) && isBall(bb, b) && isBall(bc, c))
+            contacts.triangles.push_back({ba, bb, bc});
     constexpr int kSweeps = 8;
     contacts.solve(m_surfaces.planes, kSweeps, dt, [&](std::uint32_t a, std::uint32_t b) {
         return !neighbours.near(contacts.bodies[a], contacts.bodies[b]);

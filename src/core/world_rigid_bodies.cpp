@@ -86,7 +86,18 @@ void World::giveSegments()
         if (ka != kNotRigid && kb != kNotRigid && system.isPoint(ka) && system.isPoint(kb))
             segments.push_back({ka, kb});
     }
-    system.setSegments(std::move(segments));
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    for (const auto& t : neighbours.triangles()) {
+        std::array<std::uint32_t, 3> k{};
+        bool points = true;
+        for (std::size_t e = 0; e < 3; ++e) {
+            k[e] = m_bodies.rigidIndex[t[e]];
+            points = points && k[e] != kNotRigid && system.isPoint(k[e]);
+        }
+        if (points)
+            triangles.push_back(k);
+    }
+    system.setSegments(std::move(segments), std::move(triangles));
 }
 
 void World::givePointBodies()

@@ -128,6 +128,34 @@ TEST(SegmentContact, ASegmentOverASphereTouchesItAboveItsCentre)
     EXPECT_NEAR(d.points[0].normal.y, 1.0, 1e-6);
 }
 
+// A cloth's triangle of 3 cm balls at (0.1, 0.49, 0.8), (0.8, 0.49, 0.8) and (0.8, 0.49, 0.1), level
+// 1 cm below the cube's top, its balls beside it: the cube's corner (0.5, 0.5, 0.5) comes up
+// through its inside, its foot at weights (3/7, 1/7, 3/7) (from (0.4, -0.3) = u (0.7, 0) +
+// v (0.7, -0.7) in x and z), 1 cm above the triangle's middle plane: 4 cm into it, along +y. Its
+// balls are 0.27, 0.394 and 0.27 from the cube.
+TEST(SegmentContact, ABoxCornerThroughACellsTriangleTouchesItThere)
+{
+    const std::array<dvec3, 3> x{dvec3(0.1, 0.49, 0.8), dvec3(0.8, 0.49, 0.8), dvec3(0.8, 0.49, 0.1)};
+    const auto d = pba::rigid::deepestUnderTriangle(unitCube(), kAtOrigin, x, {0.03, 0.03, 0.03}, kMargin);
+    ASSERT_TRUE(d.has_value());
+    EXPECT_NEAR(d->weights[0], 3.0 / 7.0, 1e-12);
+    EXPECT_NEAR(d->weights[1], 1.0 / 7.0, 1e-12);
+    EXPECT_NEAR(d->weights[2], 3.0 / 7.0, 1e-12);
+    EXPECT_NEAR(d->separation, -0.04, 1e-12);
+    EXPECT_NEAR(glm::length(d->normal - dvec3(0, 1, 0)), 0.0, 1e-12);
+    EXPECT_NEAR(glm::length(d->point - dvec3(0.5, 0.5, 0.5)), 0.0, 1e-12);
+    const double corner = std::sqrt(0.18) - 0.03; // the middle ball from the cube's edge
+    EXPECT_NEAR(d->line, 3.0 / 7.0 * 0.27 + 1.0 / 7.0 * corner + 3.0 / 7.0 * 0.27, 1e-9);
+}
+
+// The same triangle 3 cm above the top, its balls' separations level with its own (as they would
+// rest on a face): no contact of its own.
+TEST(SegmentContact, ATriangleLyingOnAFaceAsItsBallsRestAddsNoContact)
+{
+    const std::array<dvec3, 3> x{dvec3(-0.3, 0.53, 0.3), dvec3(0.3, 0.53, 0.3), dvec3(0.3, 0.53, -0.3)};
+    EXPECT_FALSE(pba::rigid::deepestUnderTriangle(unitCube(), kAtOrigin, x, {0.03, 0.03, 0.03}, kMargin).has_value());
+}
+
 // A rope of ten 2 cm balls 20 cm apart dropped across a fixed bar 2 cm thick, which lies between
 // its two middle balls: without its segments it fell between them to the floor; it hangs over the
 // bar, and no point between two balls comes within a ball's radius of the bar (less a
@@ -171,4 +199,4 @@ TEST_P(RopeOverABar, ARopeDroppedAcrossAThinBarHangsOverIt)
 }
 
 INSTANTIATE_TEST_SUITE_P(SegmentContact, RopeOverABar, ::testing::Values(R"(, "restitution": 0)", ""),
-                         [](const auto& info) { return info.index == 0 ? "NotBouncing" : "DefaultRestitution"; });
+                         [](const auto& param) { return param.index == 0 ? "NotBouncing" : "DefaultRestitution"; });

@@ -5,6 +5,8 @@
 // joint holding, and a sheet falls in folds onto the floor without passing through itself.
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -73,9 +75,33 @@ SCENE_CLAIM(TouchSceneClaims, ClothOnBoxDrapesOverTheBoxWithNoParticleInsideIt, 
             if (i + 1 < 16 && j + 1 < 16)
                 edges.emplace_back(at(i, j), at(i + 1, j + 1));
         }
+    // The cells' halves it is drawn with, and the box's top corners, which come up under them.
+    std::vector<std::array<std::size_t, 3>> triangles;
+    for (int j = 0; j + 1 < 16; ++j)
+        for (int i = 0; i + 1 < 16; ++i) {
+            triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            triangles.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
+        }
     double deepest = -INFINITY; // of the particles' surfaces (a radius, 2 cm, from their centres)
     double deepestBetween = -INFINITY; // of the sheet between them, as thick
+    double deepestCorner = -INFINITY; // of a top corner into a cell's half, as thick, over its inside
     run(scene, [&](long) {
+        for (const auto& t : triangles) {
+            const dvec3 a = world.body(t[0]).getPos(), b = world.body(t[1]).getPos(), c = world.body(t[2]).getPos();
+            const dvec3 n = glm::normalize(glm::cross(b - a, c - a));
+            for (const double x : {-0.4, 0.4})
+                for (const double z : {-0.4, 0.4}) {
+                    const dvec3 corner = centre + dvec3(x, 0.4, z);
+                    // Its foot's weights on b and c, by areas; inside the triangle if all three are positive.
+                    const double area = glm::dot(glm::cross(b - a, c - a), n);
+                    const double u = glm::dot(glm::cross(corner - a, c - a), n) / area;
+                    const double v = glm::dot(glm::cross(b - a, corner - a), n) / area;
+                    if (u > 0.0 && v > 0.0 && u + v < 1.0) // the sheet lies above the box: up is out
+                        deepestCorner = std::max(deepestCorner, std::abs(glm::dot(corner - a, n)) < 0.02
+                                                                    ? 0.02 - std::abs(glm::dot(corner - a, n))
+                                                                    : -INFINITY);
+                }
+        }
         for (const std::size_t i : sheet)
             deepest = std::max(deepest, depthInside(world.body(i).getPos(), centre, half) + 0.02);
         for (const auto& [a, b] : edges) {
@@ -90,6 +116,7 @@ SCENE_CLAIM(TouchSceneClaims, ClothOnBoxDrapesOverTheBoxWithNoParticleInsideIt, 
     });
     EXPECT_LE(deepest, 1e-3) << "a particle inside the box";
     EXPECT_LE(deepestBetween, 1e-3) << "the sheet between two particles inside the box";
+    EXPECT_LE(deepestCorner, 1e-3) << "a corner of the box through the sheet's cell";
     const auto& middle = world.body(bodyNamed(world, "sheet[8,8]"));
     // On the top, a radius above it; the sheet's edges, held a radius off the box's edges, lift
     // the coarse sheet's middle by a few millimetres.

@@ -782,6 +782,8 @@ void RigidSystem::holdNets(const SolverSettings& settings)
     balls.clear();
     for (const Segment& s : m_segments)
         segmentContacts(s, contacts, balls);
+    for (const auto& t : m_triangles)
+        triangleContacts(t, contacts, balls);
     if (contacts.empty())
         return;
     constexpr int kSweeps = 4;
@@ -821,10 +823,9 @@ void RigidSystem::segmentContacts(const Segment& s, std::vector<SegmentContact>&
             const SegmentDepth& depth = depths.points[std::size_t(point)];
             const double t = depth.t;
             SegmentContact& c = out.emplace_back();
-            c.a = s.a;
-            c.b = s.b;
+            c.ends = {s.a, s.b, s.b};
+            c.weights = {1.0 - t, t, 0.0};
             c.body = k;
-            c.t = t;
             c.normal = depth.normal;
             c.arm = depth.point - body.endPosition;
             c.depth = std::max(0.0, std::min(depth.line, 0.0) - depth.separation);
@@ -838,6 +839,54 @@ void RigidSystem::segmentContacts(const Segment& s, std::vector<SegmentContact>&
             balls.push_back(s.a);
             balls.push_back(s.b);
         }
+    }
+}
+
+void RigidSystem::triangleContacts(const std::array<std::uint32_t, 3>& t, std::vector<SegmentContact>& out,
+                                   std::vector<std::uint32_t>& balls) const
+{
+    for (const std::uint32_t end : t)
+        if (m_material[end].metInSubsteps)
+            return;
+    std::array<dvec3, 3> x{};
+    std::array<double, 3> r{};
+    dvec3 lo(INFINITY), hi(-INFINITY);
+    for (std::size_t e = 0; e < 3; ++e) {
+        x[e] = m_solverBodies[t[e]].endPosition;
+        r[e] = sphereRadius(*m_material[t[e]].shape);
+        lo = glm::min(lo, x[e] - r[e]);
+        hi = glm::max(hi, x[e] + r[e]);
+    }
+    thread_local std::vector<BodyPair> partners;
+    partners.clear();
+    m_broadPhase.partnersOf(t[0], {lo, hi}, m_boxes, m_isPoint, partners);
+    for (const BodyPair& pair : partners) {
+        const std::uint32_t k = pair.a == t[0] ? pair.b : pair.a;
+        if (m_isPoint[k] || joinedApart(t[0], k) || joinedApart(t[1], k) || joinedApart(t[2], k))
+            continue;
+        const SolverBody& body = m_solverBodies[k];
+        const std::optional<TriangleDepth> depth =
+            deepestUnderTriangle(*m_material[k].shape, Transform{body.endPosition, glm::mat3_cast(body.endOrientation)}, x,
+                                 r, m_settings.contactMargin);
+        if (!depth)
+            continue;
+        SegmentContact& c = out.emplace_back();
+        c.ends = t;
+        c.weights = depth->weights;
+        c.body = k;
+        c.normal = depth->normal;
+        c.arm = depth->point - body.endPosition;
+        c.depth = std::max(0.0, std::min(depth->line, 0.0) - depth->separation);
+        c.gap = std::max(depth->separation, 0.0);
+        // The point's material: its balls' by their weights, with the body's by the rule.
+        double friction = 0.0, restitution = 0.0;
+        for (std::size_t e = 0; e < 3; ++e) {
+            friction += depth->weights[e] * m_material[t[e]].friction;
+            restitution += depth->weights[e] * m_material[t[e]].restitution;
+        }
+        c.friction = detail::combinedFriction(friction, m_material[k].friction);
+        c.restitution = detail::combinedRestitution(restitution, m_material[k].restitution);
+        balls.insert(balls.end(), t.begin(), t.end());
     }
 }
 

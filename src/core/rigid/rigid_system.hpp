@@ -93,9 +93,13 @@ public:
     void solve(const dvec3& gravity, double dt);
     const RigidState& end(std::size_t k) const { return m_end[k]; }
 
-    /// The segments of the ropes' and cloths' nets between their point bodies: held out of the
-    /// bodies where a body lies between two balls.
-    void setSegments(std::vector<Segment> segments) { m_segments = std::move(segments); }
+    /// The segments of the ropes' and cloths' nets between their point bodies, and the cloths'
+    /// triangles of three: held out of the bodies where a body lies between their balls.
+    void setSegments(std::vector<Segment> segments, std::vector<std::array<std::uint32_t, 3>> triangles)
+    {
+        m_segments = std::move(segments);
+        m_triangles = std::move(triangles);
+    }
 
     // ---- joints ----
     /// A joint between two of the system's bodies, or (b == kWorldBody) between a and the world.
@@ -186,6 +190,9 @@ private:
     void holdNets(const SolverSettings& settings);
     /// Segment s's contacts with the bodies near it, into `out`, and its balls into `balls` if any.
     void segmentContacts(const Segment& s, std::vector<SegmentContact>& out, std::vector<std::uint32_t>& balls) const;
+    /// The same for a triangle of three point bodies.
+    void triangleContacts(const std::array<std::uint32_t, 3>& t, std::vector<SegmentContact>& out,
+                          std::vector<std::uint32_t>& balls) const;
     void finishBodies();
     void updateSleep(double dt);
 
@@ -196,6 +203,7 @@ private:
     std::vector<std::uint8_t> m_isPoint;
     std::vector<std::uint32_t> m_points; ///< the moving point bodies of this step
     std::vector<Segment> m_segments;
+    std::vector<std::array<std::uint32_t, 3>> m_triangles;
     std::vector<std::uint64_t> m_joinedApart; ///< sorted keys of the pairs joined and not colliding
     std::vector<double> m_stillFor; ///< seconds below the sleep speed
     std::vector<RigidState> m_start, m_end;

@@ -30,29 +30,33 @@ double inverseMassAlong(const SolverBody& body, const dvec3& r, const dvec3& u)
     return body.inverseMass + glm::dot(c, body.inverseInertia * c);
 }
 
-/// The segment's point of contact c as the solver sees it: its velocity, and its inverse mass
-/// along u (each ball moves by its share 1 - t or t of the point's impulse, and carries that
-/// share of it: a rod without mass between them).
+/// The piece's point of contact c as the solver sees it: its velocity, and its inverse mass
+/// along u (each ball moves by its weight of the point's impulse, and carries that share of it:
+/// a piece without mass between them).
 struct SegmentPoint {
     const SegmentContact& c;
     std::span<SolverBody> bodies;
-    double shareA() const { return 1.0 - c.t; }
-    double shareB() const { return c.t; }
     dvec3 relativeVelocity() const
     {
-        return shareA() * bodies[c.a].v + shareB() * bodies[c.b].v - bodies[c.body].pointVelocity(c.arm);
+        dvec3 v(0.0);
+        for (std::size_t e = 0; e < 3; ++e)
+            v += c.weights[e] * bodies[c.ends[e]].v;
+        return v - bodies[c.body].pointVelocity(c.arm);
     }
     double inverseMass(const dvec3& u) const
     {
-        return shareA() * shareA() * bodies[c.a].inverseMass + shareB() * shareB() * bodies[c.b].inverseMass +
-               inverseMassAlong(bodies[c.body], c.arm, u);
+        double w = 0.0;
+        for (std::size_t e = 0; e < 3; ++e)
+            w += c.weights[e] * c.weights[e] * bodies[c.ends[e]].inverseMass;
+        return w + inverseMassAlong(bodies[c.body], c.arm, u);
     }
-    /// An impulse p on the segment's point (-p on the body), on the end velocities, and on the
+    /// An impulse p on the piece's point (-p on the body), on the end velocities, and on the
     /// end poses by the share of the step's drift the end velocity drives (as moveEndPoses).
     void applyImpulse(const dvec3& p, double dt) const
     {
-        for (const auto& [k, share] : {std::pair{c.a, shareA()}, std::pair{c.b, shareB()}})
-            if (SolverBody& ball = bodies[k]; !ball.isStatic()) {
+        for (std::size_t e = 0; e < 3; ++e)
+            if (SolverBody& ball = bodies[c.ends[e]]; !ball.isStatic()) {
+                const double share = c.weights[e];
                 const dvec3 dv = share * ball.inverseMass * p;
                 ball.v += dv;
                 ball.endPosition += ball.driftWeight * dt * dv;
@@ -68,17 +72,19 @@ struct SegmentPoint {
     }
     void movePoses(const dvec3& p) const
     {
-        for (const auto& [k, share] : {std::pair{c.a, shareA()}, std::pair{c.b, shareB()}})
-            if (!bodies[k].isStatic())
-                bodies[k].endPosition += share * bodies[k].inverseMass * p;
+        for (std::size_t e = 0; e < 3; ++e)
+            if (SolverBody& ball = bodies[c.ends[e]]; !ball.isStatic())
+                ball.endPosition += c.weights[e] * ball.inverseMass * p;
         bodies[c.body].movePose(-p, c.arm);
     }
     /// How far the point has moved towards the body along the normal since `from` (the balls'
-    /// and the body's end positions when the contact was found).
-    double approach(const dvec3& fromA, const dvec3& fromB, const dvec3& fromBody) const
+    /// end positions, then the body's, when the contact was found).
+    double approach(const std::array<dvec3, 4>& from) const
     {
-        const dvec3 moved = shareA() * (bodies[c.a].endPosition - fromA) + shareB() * (bodies[c.b].endPosition - fromB) -
-                            (bodies[c.body].endPosition - fromBody);
+        dvec3 moved(0.0);
+        for (std::size_t e = 0; e < 3; ++e)
+            moved += c.weights[e] * (bodies[c.ends[e]].endPosition - from[e]);
+        moved -= bodies[c.body].endPosition - from[3];
         return -glm::dot(moved, c.normal);
     }
 };
@@ -209,6 +215,67 @@ SegmentDepths deepestBetweenBalls(const CollisionShape& shape, const Transform& 
     return out;
 }
 
+std::optional<TriangleDepth> deepestUnderTriangle(const CollisionShape& shape, const Transform& pose,
+                                                  const std::array<dvec3, 3>& x, const std::array<double, 3>& r,
+                                                  double margin)
+{
+    const dvec3 e1 = x[1] - x[0], e2 = x[2] - x[0];
+    const dvec3 across = glm::cross(e1, e2);
+    const double twiceArea = glm::length(across);
+    if (!(twiceArea > 0.0))
+        return std::nullopt;
+    // No thicker than half the gap between two of its balls (touching balls leave no inside).
+    double thickest = INFINITY;
+    for (std::size_t e = 0; e < 3; ++e) {
+        const std::size_t f = (e + 1) % 3;
+        const double gap = glm::length(x[f] - x[e]) - r[e] - r[f];
+        if (!(gap > 0.0))
+            return std::nullopt;
+        thickest = std::min(thickest, 0.5 * gap);
+    }
+    // From the shape towards the triangle: away from the side its centre is on.
+    dvec3 normal = across / twiceArea;
+    if (glm::dot(pose.position - x[0], normal) > 0.0)
+        normal = -normal;
+    if (std::abs(glm::dot(pose.position - x[0], normal)) > shape.boundingRadius() + thickest + margin)
+        return std::nullopt;
+    // A point's foot on the triangle, by the areas it makes with each side; inside, away from
+    // the sides by this share (the segments hold those).
+    constexpr double kSide = 0.005;
+    const auto footOf = [&](const dvec3& p, std::array<double, 3>& w) {
+        const dvec3 q = p - x[0];
+        const dvec3 n = across / twiceArea;
+        const double u = glm::dot(glm::cross(q, e2), n) / twiceArea, v = glm::dot(glm::cross(e1, q), n) / twiceArea;
+        w = {1.0 - u - v, u, v};
+        return w[0] > kSide && w[1] > kSide && w[2] > kSide;
+    };
+    std::optional<TriangleDepth> best;
+    const auto consider = [&](const dvec3& p) {
+        std::array<double, 3> w{};
+        if (!footOf(p, w))
+            return;
+        const double thickness = std::min(w[0] * r[0] + w[1] * r[1] + w[2] * r[2], thickest);
+        const double separation = glm::dot(x[0] - p, normal) - thickness;
+        if (separation < margin && (!best || separation < best->separation))
+            best = TriangleDepth{w, normal, p, separation, 0.0};
+    };
+    if (shape.kind == CollisionShape::Kind::Sphere)
+        consider(pose.position + shape.radius * normal);
+    else
+        for (const dvec3& vertex : shape.polyhedron->vertices)
+            consider(pose.apply(vertex));
+    if (!best)
+        return std::nullopt;
+    // Deeper than its balls' own separations there, or their contacts hold it (a sheet lying on
+    // a face is level with its balls).
+    constexpr double kLevel = 1e-7;
+    for (std::size_t e = 0; e < 3; ++e)
+        best->line += best->weights[e] * ballAgainst(shape, pose, x[e], r[e]).points[0].separation;
+    if (!(best->line - best->separation > kLevel))
+        return std::nullopt;
+    return best;
+}
+
 void holdSegments(std::span<const SegmentContact> contacts, std::span<SolverBody> bodies, double restingSpeed,
                   double dt, int sweeps)
 {
@@ -216,7 +283,7 @@ void holdSegments(std::span<const SegmentContact> contacts, std::span<SolverBody
         double normal = 0.0;   ///< the normal impulse so far
         dvec3 friction{0.0};   ///< the friction impulse so far
         double target = 0.0;   ///< the normal speed it leaves with
-        dvec3 fromA{0.0}, fromB{0.0}, fromBody{0.0};
+        std::array<dvec3, 4> from{}; ///< the ends' and the body's end positions at the start
     };
     thread_local std::vector<Held> held;
     held.assign(contacts.size(), Held{});
@@ -227,9 +294,9 @@ void holdSegments(std::span<const SegmentContact> contacts, std::span<SolverBody
         held[k].target = c.gap > 0.0                 ? -c.gap / dt
                          : arriving < -restingSpeed ? -c.restitution * arriving
                                                     : 0.0;
-        held[k].fromA = bodies[c.a].endPosition;
-        held[k].fromB = bodies[c.b].endPosition;
-        held[k].fromBody = bodies[c.body].endPosition;
+        for (std::size_t e = 0; e < 3; ++e)
+            held[k].from[e] = bodies[c.ends[e]].endPosition;
+        held[k].from[3] = bodies[c.body].endPosition;
     }
     for (int sweep = 0; sweep < sweeps; ++sweep)
         for (std::size_t k = 0; k < contacts.size(); ++k) {
@@ -259,7 +326,7 @@ void holdSegments(std::span<const SegmentContact> contacts, std::span<SolverBody
             const SegmentContact& c = contacts[k];
             const SegmentPoint p{c, bodies};
             Held& h = held[k];
-            const double left = c.depth + p.approach(h.fromA, h.fromB, h.fromBody);
+            const double left = c.depth + p.approach(h.from);
             if (!(left > 0.0) || !(p.inverseMass(c.normal) > 0.0))
                 continue;
             p.movePoses(left / p.inverseMass(c.normal) * c.normal);

@@ -10,6 +10,7 @@
 // point of a rod without mass, and back on the body. Private to the core.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 
 #include "contact/narrow_phase.hpp"
@@ -46,11 +47,30 @@ struct SegmentDepths {
 SegmentDepths deepestBetweenBalls(const contact::CollisionShape& shape, const contact::Transform& pose,
                                   const dvec3& pa, double ra, const dvec3& pb, double rb, double margin);
 
-/// A segment's contact with a body, at the end poses of the step.
+/// Where a cloth's triangle of three balls meets a shape: the shape's point furthest through the
+/// triangle's plane towards it (a corner of a box, a sphere's nearest point) over the triangle's
+/// inside, deeper than the triangle's balls' own separations there.
+struct TriangleDepth {
+    std::array<double, 3> weights{}; ///< the point's foot on the triangle, on its balls
+    dvec3 normal{0.0};               ///< world, from the shape towards the triangle
+    dvec3 point{0.0};                ///< the shape's point, world
+    double separation = 0.0;         ///< of the triangle there, as thick as its balls: below zero, an overlap
+    double line = 0.0;               ///< what the three balls' separations give there
+};
+
+/// The triangle of balls at x (radii r; as thick as they are by the weights, but no thicker than
+/// half the gap between two of them) against `shape` at `pose`: where the shape comes within
+/// `margin` of its inside, away from its sides (the segments hold those), deeper than its balls.
+std::optional<TriangleDepth> deepestUnderTriangle(const contact::CollisionShape& shape, const contact::Transform& pose,
+                                                  const std::array<dvec3, 3>& x, const std::array<double, 3>& r,
+                                                  double margin);
+
+/// A segment's or a triangle's contact with a body, at the end poses of the step.
 struct SegmentContact {
-    std::uint32_t a = 0, b = 0; ///< the segment's balls
+    /// The piece's balls: a segment's two (its third the second again, of weight 0), or a triangle's three.
+    std::array<std::uint32_t, 3> ends{};
+    std::array<double, 3> weights{}; ///< the point's, on its ends
     std::uint32_t body = 0;
-    double t = 0.0;
     dvec3 normal{0.0}; ///< from the body towards the segment
     dvec3 arm{0.0};    ///< from the body's centre of mass at the end to the point
     /// How far to push the segment out along the normal: its overlap less its balls' line's.
