@@ -70,16 +70,7 @@ public:
                 test(j);
             return;
         }
-        const GridCell c = cellOf(p, m_spacing);
-        for (std::int64_t dx = -cells; dx <= cells; ++dx)
-            for (std::int64_t dy = -cells; dy <= cells; ++dy)
-                for (std::int64_t dz = -cells; dz <= cells; ++dz) {
-                    const std::uint32_t b = bucketOf({c.x + dx, c.y + dy, c.z + dz}, m_mask);
-                    for (std::size_t e = m_start[b]; e < m_start[b + 1]; ++e)
-                        test(m_entries[e]);
-                }
-        for (const std::uint32_t j : m_big)
-            test(j);
+        visitAround(p, cells, test);
         std::sort(out.begin(), out.end());
         out.erase(std::unique(out.begin(), out.end()), out.end());
     }
@@ -190,19 +181,27 @@ private:
                 test(std::uint32_t(j));
             return;
         }
+        visitAround(p, 1, test);
+        // Two of the 27 cells may share a bucket: each ball once, in index order.
+        std::sort(near.begin(), near.end());
+        near.erase(std::unique(near.begin(), near.end()), near.end());
+    }
+
+    /// test(j) for each ball in the cells within `cells` of p's, and for each big ball (a ball
+    /// may come twice: two cells may share a bucket).
+    template <class Test>
+    void visitAround(const dvec3& p, std::int64_t cells, Test& test) const
+    {
         const GridCell c = cellOf(p, m_spacing);
-        for (std::int64_t dx = -1; dx <= 1; ++dx)
-            for (std::int64_t dy = -1; dy <= 1; ++dy)
-                for (std::int64_t dz = -1; dz <= 1; ++dz) {
+        for (std::int64_t dx = -cells; dx <= cells; ++dx)
+            for (std::int64_t dy = -cells; dy <= cells; ++dy)
+                for (std::int64_t dz = -cells; dz <= cells; ++dz) {
                     const std::uint32_t b = bucketOf({c.x + dx, c.y + dy, c.z + dz}, m_mask);
                     for (std::size_t e = m_start[b]; e < m_start[b + 1]; ++e)
                         test(m_entries[e]);
                 }
         for (const std::uint32_t j : m_big)
             test(j);
-        // Two of the 27 cells may share a bucket: each ball once, in index order.
-        std::sort(near.begin(), near.end());
-        near.erase(std::unique(near.begin(), near.end()), near.end());
     }
 
     double m_spacing = 1.0;
