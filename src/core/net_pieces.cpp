@@ -109,8 +109,8 @@ void NetPieces::find(std::span<const Ball> balls, std::span<const std::pair<std:
 namespace {
 
 /// The point's weights on a segment from a to b nearest p, and on a triangle a, b, c where p's
-/// foot on its plane lies (barycentric); false where that point is within `edge` of a side's or
-/// an end's share.
+/// foot on its plane lies (barycentric); false where a weight is under kEdge (at a side or an
+/// end, or outside).
 bool weightsOf(const dvec3& p, std::span<const dvec3> x, int count, std::array<double, 3>& w)
 {
     // Nearer a side or an end than this share, it is that side's or that ball's own contact.

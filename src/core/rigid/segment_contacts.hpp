@@ -6,8 +6,11 @@
 // (but no thicker than half the gap between them), at its one point nearest the body where it
 // lies deeper than the straight line of its two balls' own separations (the shapes are convex:
 // the separation along a segment has a single least), or at both ends of a stretch lying across a
-// face. An impulse there goes to each ball by where along the segment the point lies, as to a
-// point of a rod without mass, and back on the body. Private to the core.
+// face. A cloth's triangles (three balls each two of which a segment joins) are held out of it
+// too, at the body's point furthest through the triangle over its inside (a box's corner under a
+// cell's middle), where that lies deeper than its balls. An impulse there goes to each ball by
+// where the point lies among them, as to a point of a piece without mass, and back on the body.
+// Private to the core.
 #include <array>
 #include <cstdint>
 #include <optional>
