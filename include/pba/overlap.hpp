@@ -2,6 +2,7 @@
 // How far two rigid bodies reach into each other where they stand, by the contacts' own narrow
 // phase: what a scene's loader asks of a body and a fixed one before the first step. And which
 // balls are near each other, by the particles' contacts' own grid: what the watches measure.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -20,6 +21,11 @@ double overlapDepth(const RigidBody& body, const dvec3& centre, double radius);
 /// as thick as they are, linearly between them, but no thicker than half the gap between
 /// them), looked at in `pieces` between the two: 0 for balls that touch.
 double overlapDepth(const RigidBody& body, const dvec3& a, double ra, const dvec3& b, double rb, int pieces);
+/// The same for a cloth's triangle between balls at x of radii r (as thick as they are by where
+/// a point lies among them, but no thicker than half the gap between two): how far the body's
+/// point furthest through its plane (a corner, a sphere's nearest point) reaches into it over its
+/// inside, within its thickness. 0 for balls that touch.
+double overlapDepth(const RigidBody& body, const std::array<dvec3, 3>& x, const std::array<double, 3>& r);
 
 /// Every pair (i < j) of balls (`centres`, `radii`) whose surfaces are less than `gap` apart,
 /// overlapping ones included, in the order of i, then j.

@@ -299,10 +299,10 @@ void printBallSummary(const World& world, const study::BallFigures& f)
                                               : std::string("none went into a rigid body"));
     if (world.hasRigidBodies() && f.segments > 0)
         parts.push_back(f.deepestBetween > 0.0
-                            ? fmt::format("a rope's or cloth's edge between two went {:.2f} mm into '{}' at most "
-                                          "(t = {:.2f} s)",
+                            ? fmt::format("a rope's or cloth's edge or cell between its balls went {:.2f} mm into "
+                                          "'{}' at most (t = {:.2f} s)",
                                           1e3 * f.deepestBetween, f.deepestBetweenBody, f.deepestBetweenAt)
-                            : std::string("no rope's or cloth's edge between two went into a rigid body"));
+                            : std::string("no rope's or cloth's edge or cell between its balls went into a rigid body"));
     if (f.freeBalls >= 1 && f.segments > 0)
         parts.push_back(f.deepestFreeInEdge > 0.0
                             ? fmt::format("a free ball went {:.2f} mm into a rope's or cloth's edge or cell between "

@@ -55,6 +55,47 @@ double overlapDepth(const RigidBody& body, const dvec3& a, double ra, const dvec
     return depth;
 }
 
+double overlapDepth(const RigidBody& body, const std::array<dvec3, 3>& x, const std::array<double, 3>& r)
+{
+    double thickest = INFINITY;
+    for (std::size_t e = 0; e < 3; ++e) {
+        const std::size_t f = (e + 1) % 3;
+        const double gap = glm::length(x[f] - x[e]) - r[e] - r[f];
+        if (!(gap > 0.0))
+            return 0.0;
+        thickest = std::min(thickest, 0.5 * gap);
+    }
+    const dvec3 e1 = x[1] - x[0], e2 = x[2] - x[0];
+    const dvec3 across = glm::cross(e1, e2);
+    const double twiceArea = glm::length(across);
+    if (!(twiceArea > 0.0))
+        return 0.0;
+    const dvec3 n = across / twiceArea;
+    // Away from the side the body's centre is on.
+    const dvec3 away = glm::dot(body.getPos() - x[0], n) > 0.0 ? -n : n;
+    if (glm::dot(body.getPos() - x[0], -away) > body.getBoundingRadius() + thickest)
+        return 0.0;
+    double depth = 0.0;
+    const auto look = [&](const dvec3& p) {
+        const dvec3 q = p - x[0];
+        const double u = glm::dot(glm::cross(q, e2), n) / twiceArea, v = glm::dot(glm::cross(e1, q), n) / twiceArea;
+        if (!(u > 0.0 && v > 0.0 && u + v < 1.0))
+            return;
+        const double thickness = std::min((1.0 - u - v) * r[0] + u * r[1] + v * r[2], thickest);
+        // Within the triangle's thickness: a point further through lies beyond its plane beside
+        // it (a half-cell tilted over a box's edge has the box's far corner over it).
+        if (const double through = glm::dot(q, away); through < thickness)
+            depth = std::max(depth, through + thickness);
+    };
+    const contact::CollisionShape& shape = *body.getCollisionShape();
+    if (shape.kind == contact::CollisionShape::Kind::Sphere)
+        look(body.getPos() + shape.radius * away);
+    else
+        for (const dvec3& vertex : shape.polyhedron->vertices)
+            look(body.getPos() + glm::mat3_cast(body.getOrientation()) * vertex);
+    return depth;
+}
+
 std::vector<std::pair<std::uint32_t, std::uint32_t>> nearBallPairs(std::span<const dvec3> centres,
                                                                    std::span<const double> radii, double gap)
 {

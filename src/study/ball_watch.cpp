@@ -177,6 +177,15 @@ void BallWatch::lookBetweenBalls(const World& world, const std::vector<dvec3>& c
                 m_figures.deepestBetween = depth, m_figures.deepestBetweenAt = now,
                 m_figures.deepestBetweenBody = body.getName();
         }
+        for (const auto& t : m_triangles) {
+            if (joined(t[0]) || joined(t[1]) || joined(t[2]))
+                continue;
+            const double depth = overlapDepth(body, {centres[t[0]], centres[t[1]], centres[t[2]]},
+                                              {m_radii[t[0]], m_radii[t[1]], m_radii[t[2]]});
+            if (depth > m_figures.deepestBetween)
+                m_figures.deepestBetween = depth, m_figures.deepestBetweenAt = now,
+                m_figures.deepestBetweenBody = body.getName();
+        }
     }
 }
 

@@ -22,8 +22,9 @@ struct BallFigures {
     double deepestInBody = 0.0, deepestInBodyAt = 0.0;
     std::string deepestBody;
     /// A rope's or cloth's edges between two balls (the segments the contacts hold, as thick as
-    /// the balls but no thicker than half the gap between them), looked at in 16 pieces: how far
-    /// one went into a rigid body neither ball is joined to, which, and when.
+    /// the balls but no thicker than half the gap between them), looked at in 16 pieces, and a
+    /// cloth's triangles between three (as thick): how far one went into a rigid body none of
+    /// its balls is joined to, which, and when.
     std::size_t segments = 0;
     double deepestBetween = 0.0, deepestBetweenAt = 0.0;
     std::string deepestBetweenBody;

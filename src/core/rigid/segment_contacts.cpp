@@ -256,6 +256,11 @@ std::optional<TriangleDepth> deepestUnderTriangle(const CollisionShape& shape, c
             return;
         const double thickness = std::min(w[0] * r[0] + w[1] * r[1] + w[2] * r[2], thickest);
         const double separation = glm::dot(x[0] - p, normal) - thickness;
+        // A point further through than the triangle is thick is no point of it: the body's
+        // plane section lies beside the triangle (a sheet's half-cell tilted over a box's edge
+        // has the box's far corner over it, beyond its plane).
+        if (separation < -2.0 * thickness)
+            return;
         if (separation < margin && (!best || separation < best->separation))
             best = TriangleDepth{w, normal, p, separation, 0.0};
     };
