@@ -21,6 +21,9 @@ double overlapDepth(const RigidBody& body, const dvec3& centre, double radius);
 /// as thick as they are, linearly between them, but no thicker than half the gap between
 /// them), looked at in `pieces` between the two: 0 for balls that touch.
 double overlapDepth(const RigidBody& body, const dvec3& a, double ra, const dvec3& b, double rb, int pieces);
+/// Half the smallest gap between two of a triangle's balls at x of radii r (how thick its
+/// inside may be); 0 where two touch.
+double halfSmallestGap(const std::array<dvec3, 3>& x, const std::array<double, 3>& r);
 /// The same for a cloth's triangle between balls at x of radii r (as thick as they are by where
 /// a point lies among them, but no thicker than half the gap between two): how far the body's
 /// point furthest through its plane (a corner, a sphere's nearest point) reaches into it over its

@@ -55,16 +55,24 @@ double overlapDepth(const RigidBody& body, const dvec3& a, double ra, const dvec
     return depth;
 }
 
-double overlapDepth(const RigidBody& body, const std::array<dvec3, 3>& x, const std::array<double, 3>& r)
+double halfSmallestGap(const std::array<dvec3, 3>& x, const std::array<double, 3>& r)
 {
-    double thickest = INFINITY;
+    double half = INFINITY;
     for (std::size_t e = 0; e < 3; ++e) {
         const std::size_t f = (e + 1) % 3;
         const double gap = glm::length(x[f] - x[e]) - r[e] - r[f];
         if (!(gap > 0.0))
             return 0.0;
-        thickest = std::min(thickest, 0.5 * gap);
+        half = std::min(half, 0.5 * gap);
     }
+    return half;
+}
+
+double overlapDepth(const RigidBody& body, const std::array<dvec3, 3>& x, const std::array<double, 3>& r)
+{
+    const double thickest = halfSmallestGap(x, r);
+    if (!(thickest > 0.0))
+        return 0.0;
     const dvec3 e1 = x[1] - x[0], e2 = x[2] - x[0];
     const dvec3 across = glm::cross(e1, e2);
     const double twiceArea = glm::length(across);

@@ -224,14 +224,10 @@ double intoTriangle(const dvec3& c, double r, const std::array<dvec3, 3>& x, con
     const std::array<double, 3> w{1.0 - u - v, u, v};
     if (!(w[0] > 0.0 && w[1] > 0.0 && w[2] > 0.0))
         return 0.0;
-    double thickness = w[0] * rs[0] + w[1] * rs[1] + w[2] * rs[2];
-    for (std::size_t e = 0; e < 3; ++e) {
-        const std::size_t f = (e + 1) % 3;
-        const double gap = glm::length(x[f] - x[e]) - rs[e] - rs[f];
-        if (!(gap > 0.0))
-            return 0.0;
-        thickness = std::min(thickness, 0.5 * gap);
-    }
+    const double thickest = halfSmallestGap(x, rs);
+    if (!(thickest > 0.0))
+        return 0.0;
+    const double thickness = std::min(w[0] * rs[0] + w[1] * rs[1] + w[2] * rs[2], thickest);
     return r + thickness - std::abs(glm::dot(q, n));
 }
 
