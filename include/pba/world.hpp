@@ -425,9 +425,9 @@ private:
         ClonePtr<rigid::RigidSystem> system;
         RigidScratch scratch;
         std::size_t bodiesSeen = 0; ///< the bodies looked at for particles with a radius
-        /// What the system's segments were made from: the neighbours' generation, and the bodies.
-        std::uint64_t segmentsGeneration = 0;
-        std::size_t segmentsBodies = 0;
+        /// What the system's segments and triangles were made from: the neighbours' generation, and the bodies.
+        std::uint64_t piecesGeneration = 0;
+        std::size_t piecesBodies = 0;
         /// Impulses on bodies at the end of their free step this step (what an implicit-Euler
         /// sheet's held members did to them): world index, impulse, angular impulse.
         struct EndPush {
@@ -571,8 +571,8 @@ private:
     /// join the rigid system as point bodies; each step gives it their states and takes back
     /// what their contacts and joints made of them.
     void joinPointBodies();
-    /// The nets' segments between point bodies, given to the rigid system when they change.
-    void giveSegments();
+    /// The nets' pieces (segments and triangles) between point bodies, given to the rigid system when they change.
+    void givePieces();
     void givePointBodies();
     void storePointBodies();
     /// Phase 6 (Swarms, Forces, Surfaces).

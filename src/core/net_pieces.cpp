@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "piece_geometry.hpp"
+
 namespace pba::detail {
 
 void NetPieces::findNets(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments)
@@ -106,51 +108,23 @@ void NetPieces::find(std::span<const Ball> balls, std::span<const std::pair<std:
     }
 }
 
-namespace {
-
-/// The point's weights on a segment from a to b nearest p, and on a triangle a, b, c where p's
-/// foot on its plane lies (barycentric); false where a weight is under kEdge (at a side or an
-/// end, or outside).
-bool weightsOf(const dvec3& p, std::span<const dvec3> x, int count, std::array<double, 3>& w)
-{
-    // Nearer a side or an end than this share, it is that side's or that ball's own contact.
-    constexpr double kEdge = 0.005;
-    if (count == 2) {
-        const dvec3 d = x[1] - x[0];
-        const double t = glm::dot(p - x[0], d) / glm::dot(d, d);
-        w = {1.0 - t, t, 0.0};
-    } else {
-        const dvec3 e1 = x[1] - x[0], e2 = x[2] - x[0], q = p - x[0];
-        const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
-        const double det = d11 * d22 - d12 * d12;
-        if (!(det > 0.0))
-            return false;
-        const double u = (d22 * glm::dot(q, e1) - d12 * glm::dot(q, e2)) / det;
-        const double v = (d11 * glm::dot(q, e2) - d12 * glm::dot(q, e1)) / det;
-        w = {1.0 - u - v, u, v};
-    }
-    for (int e = 0; e < count; ++e)
-        if (!(w[std::size_t(e)] > kEdge))
-            return false;
-    return true;
-}
-
-} // namespace
-
 bool NetPieces::touching(std::span<const Ball> balls, const Piece& piece, std::uint32_t ball, BallOnNet& contact)
 {
     const Ball& c = balls[ball];
     std::array<dvec3, 3> x{};
     for (int e = 0; e < piece.count; ++e)
         x[std::size_t(e)] = balls[piece.ends[std::size_t(e)]].x;
+    const std::span<const dvec3> at(x.data(), std::size_t(piece.count));
     std::array<double, 3> w{};
-    if (!weightsOf(c.x, std::span<const dvec3>(x.data(), std::size_t(piece.count)), piece.count, w))
+    if (!footOnPiece(c.x, at, w))
         return false;
     dvec3 point(0.0);
+    std::array<double, 3> r{};
     double thickness = 0.0, line = 0.0, inverseMass = 0.0;
     for (int e = 0; e < piece.count; ++e) {
         const Ball& end = balls[piece.ends[std::size_t(e)]];
         const double share = w[std::size_t(e)];
+        r[std::size_t(e)] = end.radius;
         point += share * end.x;
         thickness += share * end.radius;
         line += share * (glm::length(c.x - end.x) - end.radius - c.radius);
@@ -158,15 +132,10 @@ bool NetPieces::touching(std::span<const Ball> balls, const Piece& piece, std::u
     }
     if (inverseMass + c.inverseMass == 0.0)
         return false;
-    // No thicker than half the gap between any two of its balls.
-    for (int e = 0; e < piece.count; ++e) {
-        const Ball& a = balls[piece.ends[std::size_t(e)]];
-        const Ball& b = balls[piece.ends[std::size_t((e + 1) % piece.count)]];
-        const double gap = glm::length(b.x - a.x) - a.radius - b.radius;
-        if (!(gap > 0.0))
-            return false;
-        thickness = std::min(thickness, 0.5 * gap);
-    }
+    const double thickest = thickestPiece(at, std::span<const double>(r.data(), at.size()));
+    if (!(thickest > 0.0))
+        return false;
+    thickness = std::min(thickness, thickest);
     const double separation = glm::length(c.x - point) - thickness - c.radius;
     contact = {piece.ends, w, ball, thickness};
     return separation < 0.0 && separation < line;

@@ -36,7 +36,7 @@ struct BallContacts {
     /// generation of the lists they come from (the nets are worked out again when it changes).
     std::vector<std::pair<std::uint32_t, std::uint32_t>> segments;
     std::vector<std::array<std::uint32_t, 3>> triangles; ///< the same, of three balls
-    std::uint64_t segmentsGeneration = 0;
+    std::uint64_t piecesGeneration = 0;
     /// The balls against pieces of nets of the last solve.
     std::vector<BallOnNet> onNets;
 
@@ -57,7 +57,7 @@ struct BallContacts {
         std::erase_if(pairs, [&](const auto& p) {
             return !together(p.first, p.second) || balls[p.first].inverseMass + balls[p.second].inverseMass == 0.0;
         });
-        m_pieces.find(balls, segments, triangles, segmentsGeneration, onNets);
+        m_pieces.find(balls, segments, triangles, piecesGeneration, onNets);
         if (pairs.empty() && onNets.empty()) {
             m_remembered.clear();
             m_rememberedOnNets.clear();

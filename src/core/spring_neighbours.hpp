@@ -6,7 +6,7 @@
 // would overlap, or nearly, or only a sharp fold could bring them together, which the bending
 // springs decide). Every other pair, far apart along one cloth or on two cloths, collides.
 // From the same springs it lists the nets' segments and triangles, which rigid bodies and other
-// balls meet between the balls (rigid/segment_contacts.hpp, net_pieces.hpp). Private to the core.
+// balls meet between the balls (rigid/piece_contacts.hpp, net_pieces.hpp). Private to the core.
 //
 // Made once from the springs and the radii, and again only when either changes: a cloth's
 // neighbours are its particles' few dozen nearest, held as sorted lists (compressed rows).

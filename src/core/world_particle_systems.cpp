@@ -791,7 +791,7 @@ void World::collideBalls(double dt)
     neighbours.update(m_forces.objects, m_bodies.radii);
     // The nets' segments, by their balls' places in the list (the list is in the world's order).
     contacts.segments.clear();
-    contacts.segmentsGeneration = neighbours.generation();
+    contacts.piecesGeneration = neighbours.generation();
     const auto ballOf = [&](std::size_t body) {
         return std::uint32_t(std::lower_bound(contacts.bodies.begin(), contacts.bodies.end(), body) - contacts.bodies.begin());
     };

@@ -32,7 +32,7 @@ void World::stepRigidBodies(double dt)
     if (system.size() == 0)
         return;
     joinPointBodies();
-    giveSegments();
+    givePieces();
     thread_local std::vector<const RigidBody*> bodies;
     bodies.resize(system.size());
     for (std::size_t k = 0; k < system.size(); ++k)
@@ -69,17 +69,17 @@ void World::joinPointBodies()
     }
 }
 
-void World::giveSegments()
+void World::givePieces()
 {
     rigid::RigidSystem& system = *m_rigid.system;
     if (m_forces.couplings.empty()) // no spring between bodies: no net
         return;
     detail::SpringNeighbours& neighbours = *m_particleSystems.neighbours;
     neighbours.update(m_forces.objects, m_bodies.radii);
-    if (neighbours.generation() == m_rigid.segmentsGeneration && system.size() == m_rigid.segmentsBodies)
+    if (neighbours.generation() == m_rigid.piecesGeneration && system.size() == m_rigid.piecesBodies)
         return;
-    m_rigid.segmentsGeneration = neighbours.generation();
-    m_rigid.segmentsBodies = system.size();
+    m_rigid.piecesGeneration = neighbours.generation();
+    m_rigid.piecesBodies = system.size();
     std::vector<rigid::Segment> segments;
     for (const auto& [a, b] : neighbours.segments()) {
         const std::uint32_t ka = m_bodies.rigidIndex[a], kb = m_bodies.rigidIndex[b];
@@ -97,7 +97,7 @@ void World::giveSegments()
         if (points)
             triangles.push_back(k);
     }
-    system.setSegments(std::move(segments), std::move(triangles));
+    system.setPieces(std::move(segments), std::move(triangles));
 }
 
 void World::givePointBodies()

@@ -776,7 +776,7 @@ void RigidSystem::holdNets(const SolverSettings& settings)
 {
     if (m_segments.empty())
         return;
-    thread_local std::vector<SegmentContact> contacts;
+    thread_local std::vector<PieceContact> contacts;
     thread_local std::vector<std::uint32_t> balls;
     contacts.clear();
     balls.clear();
@@ -787,14 +787,14 @@ void RigidSystem::holdNets(const SolverSettings& settings)
     if (contacts.empty())
         return;
     constexpr int kSweeps = 4;
-    holdSegments(contacts, m_solverBodies, settings.restingSpeed, settings.dt, kSweeps);
+    holdPieces(contacts, m_solverBodies, settings.restingSpeed, settings.dt, kSweeps);
     // A ball pushed off a body may have been pushed through a wall: the room is the boundary.
     std::sort(balls.begin(), balls.end());
     balls.erase(std::unique(balls.begin(), balls.end()), balls.end());
     pushOutOfRoom(balls);
 }
 
-void RigidSystem::segmentContacts(const Segment& s, std::vector<SegmentContact>& out,
+void RigidSystem::segmentContacts(const Segment& s, std::vector<PieceContact>& out,
                                   std::vector<std::uint32_t>& balls) const
 {
     // A net stepped by XPBD meets the bodies by its balls inside its substeps, and no more.
@@ -821,19 +821,8 @@ void RigidSystem::segmentContacts(const Segment& s, std::vector<SegmentContact>&
                                 a.endPosition, ra, b.endPosition, rb, m_settings.contactMargin);
         for (int point = 0; point < depths.count; ++point) {
             const SegmentDepth& depth = depths.points[std::size_t(point)];
-            const double t = depth.t;
-            SegmentContact& c = out.emplace_back();
-            c.ends = {s.a, s.b, s.b};
-            c.weights = {1.0 - t, t, 0.0};
-            c.body = k;
-            c.normal = depth.normal;
-            c.arm = depth.point - body.endPosition;
-            c.depth = std::max(0.0, std::min(depth.line, 0.0) - depth.separation);
-            c.gap = std::max(depth.separation, 0.0);
-            // The point's material: its two balls' in their shares, with the body's by the rule.
-            c.friction = detail::combinedFriction((1.0 - t) * ma.friction + t * mb.friction, m_material[k].friction);
-            c.restitution =
-                detail::combinedRestitution((1.0 - t) * ma.restitution + t * mb.restitution, m_material[k].restitution);
+            out.push_back(pieceContact({s.a, s.b, s.b}, {1.0 - depth.t, depth.t, 0.0}, k, depth.normal, depth.point,
+                                       depth.separation, depth.line));
         }
         if (depths.count > 0) {
             balls.push_back(s.a);
@@ -842,7 +831,7 @@ void RigidSystem::segmentContacts(const Segment& s, std::vector<SegmentContact>&
     }
 }
 
-void RigidSystem::triangleContacts(const std::array<std::uint32_t, 3>& t, std::vector<SegmentContact>& out,
+void RigidSystem::triangleContacts(const std::array<std::uint32_t, 3>& t, std::vector<PieceContact>& out,
                                    std::vector<std::uint32_t>& balls) const
 {
     for (const std::uint32_t end : t)
@@ -870,24 +859,32 @@ void RigidSystem::triangleContacts(const std::array<std::uint32_t, 3>& t, std::v
                                  r, m_settings.contactMargin);
         if (!depth)
             continue;
-        SegmentContact& c = out.emplace_back();
-        c.ends = t;
-        c.weights = depth->weights;
-        c.body = k;
-        c.normal = depth->normal;
-        c.arm = depth->point - body.endPosition;
-        c.depth = std::max(0.0, std::min(depth->line, 0.0) - depth->separation);
-        c.gap = std::max(depth->separation, 0.0);
-        // The point's material: its balls' by their weights, with the body's by the rule.
-        double friction = 0.0, restitution = 0.0;
-        for (std::size_t e = 0; e < 3; ++e) {
-            friction += depth->weights[e] * m_material[t[e]].friction;
-            restitution += depth->weights[e] * m_material[t[e]].restitution;
-        }
-        c.friction = detail::combinedFriction(friction, m_material[k].friction);
-        c.restitution = detail::combinedRestitution(restitution, m_material[k].restitution);
+        out.push_back(pieceContact(t, depth->weights, k, depth->normal, depth->point, depth->separation, depth->line));
         balls.insert(balls.end(), t.begin(), t.end());
     }
+}
+
+PieceContact RigidSystem::pieceContact(const std::array<std::uint32_t, 3>& ends, const std::array<double, 3>& weights,
+                                       std::uint32_t body, const dvec3& normal, const dvec3& point, double separation,
+                                       double line) const
+{
+    PieceContact c;
+    c.ends = ends;
+    c.weights = weights;
+    c.body = body;
+    c.normal = normal;
+    c.arm = point - m_solverBodies[body].endPosition;
+    c.depth = std::max(0.0, std::min(line, 0.0) - separation);
+    c.gap = std::max(separation, 0.0);
+    // The point's material: its balls' by their weights, with the body's by the rule.
+    double friction = 0.0, restitution = 0.0;
+    for (std::size_t e = 0; e < 3; ++e) {
+        friction += weights[e] * m_material[ends[e]].friction;
+        restitution += weights[e] * m_material[ends[e]].restitution;
+    }
+    c.friction = detail::combinedFriction(friction, m_material[body].friction);
+    c.restitution = detail::combinedRestitution(restitution, m_material[body].restitution);
+    return c;
 }
 
 void RigidSystem::finishBodies()

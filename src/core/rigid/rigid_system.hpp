@@ -12,7 +12,7 @@
 //                  cache, and the sleeping islands an awake body touched, woken
 //   (the World's free step of the bodies just woken)
 //   solve          islands, then per island: collisions, velocities, positions; then the
-//                  nets' segments against the bodies (segment_contacts.hpp); then sleep
+//                  nets' segments and triangles against the bodies (piece_contacts.hpp); then sleep
 //   (the World writes each end state back into its body)
 //
 // A particle with a radius (or joined to a rigid body) takes part as a point body: a ball that
@@ -41,7 +41,7 @@
 #include "rigid/contact_solver.hpp"
 #include "rigid/islands.hpp"
 #include "rigid/joint_solver.hpp"
-#include "rigid/segment_contacts.hpp"
+#include "rigid/piece_contacts.hpp"
 #include "rigid/solver_body.hpp"
 
 namespace pba::rigid {
@@ -95,7 +95,7 @@ public:
 
     /// The segments of the ropes' and cloths' nets between their point bodies, and the cloths'
     /// triangles of three: held out of the bodies where a body lies between their balls.
-    void setSegments(std::vector<Segment> segments, std::vector<std::array<std::uint32_t, 3>> triangles)
+    void setPieces(std::vector<Segment> segments, std::vector<std::array<std::uint32_t, 3>> triangles)
     {
         m_segments = std::move(segments);
         m_triangles = std::move(triangles);
@@ -186,13 +186,18 @@ private:
     void roomAtEnd(std::span<const std::uint32_t> bodies, std::vector<Contact>& out,
                    std::optional<double> margin = std::nullopt) const;
     void pairsAtEnd(std::span<const std::uint32_t> contacts, std::vector<Contact>& out) const;
-    /// Every segment near a body, held out of it (holdSegments) at the end poses.
+    /// Every segment and triangle near a body, held out of it (holdPieces) at the end poses.
     void holdNets(const SolverSettings& settings);
     /// Segment s's contacts with the bodies near it, into `out`, and its balls into `balls` if any.
-    void segmentContacts(const Segment& s, std::vector<SegmentContact>& out, std::vector<std::uint32_t>& balls) const;
+    void segmentContacts(const Segment& s, std::vector<PieceContact>& out, std::vector<std::uint32_t>& balls) const;
     /// The same for a triangle of three point bodies.
-    void triangleContacts(const std::array<std::uint32_t, 3>& t, std::vector<SegmentContact>& out,
+    void triangleContacts(const std::array<std::uint32_t, 3>& t, std::vector<PieceContact>& out,
                           std::vector<std::uint32_t>& balls) const;
+    /// A piece's contact with `body`, held at `point` (world) by the point of these weights on its
+    /// ends, its separation there and what its balls' line gives; its material by the weights.
+    PieceContact pieceContact(const std::array<std::uint32_t, 3>& ends, const std::array<double, 3>& weights,
+                              std::uint32_t body, const dvec3& normal, const dvec3& point, double separation,
+                              double line) const;
     void finishBodies();
     void updateSleep(double dt);
 

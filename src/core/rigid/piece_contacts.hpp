@@ -1,7 +1,8 @@
 #pragma once
-// A rope's and a cloth's segments against rigid bodies. Their balls meet the bodies through the
-// contact solve; what lies between two balls that a spring joins does not, so a box's edge under
-// a sheet draped over it shows between two rows of balls, and a thin bar slips between a rope's.
+// The pieces of ropes and cloths (their segments and triangles) against rigid bodies. Their
+// balls meet the bodies through the contact solve; what lies between two balls that a spring
+// joins does not, so a box's edge under a sheet draped over it shows between two rows of balls,
+// and a thin bar slips between a rope's.
 // After the solve, each segment near a body is held out of it as a rod as thick as its balls
 // (but no thicker than half the gap between them), at its one point nearest the body where it
 // lies deeper than the straight line of its two balls' own separations (the shapes are convex:
@@ -69,7 +70,7 @@ std::optional<TriangleDepth> deepestUnderTriangle(const contact::CollisionShape&
                                                   double margin);
 
 /// A segment's or a triangle's contact with a body, at the end poses of the step.
-struct SegmentContact {
+struct PieceContact {
     /// The piece's balls: a segment's two (its third the second again, of weight 0), or a triangle's three.
     std::array<std::uint32_t, 3> ends{};
     std::array<double, 3> weights{}; ///< the point's, on its ends
@@ -87,7 +88,7 @@ struct SegmentContact {
 /// restitution when it arrives faster than `restingSpeed`), with Coulomb friction, on the end
 /// velocities and by their drift over the step `dt` on the end poses; then pushes what still
 /// overlaps out on the end poses. The order is the list's.
-void holdSegments(std::span<const SegmentContact> contacts, std::span<SolverBody> bodies, double restingSpeed,
+void holdPieces(std::span<const PieceContact> contacts, std::span<SolverBody> bodies, double restingSpeed,
                   double dt, int sweeps);
 
 } // namespace pba::rigid

@@ -9,7 +9,7 @@
 #include <numbers>
 #include <string>
 
-#include "core/rigid/segment_contacts.hpp"
+#include "core/rigid/piece_contacts.hpp"
 #include "pba/scene/scene.hpp"
 #include "pba/shape.hpp"
 
@@ -38,7 +38,7 @@ const Transform kAtOrigin{dvec3(0.0), pba::dmat3(1.0)};
 // is sqrt((0.1 - 0.15 t)^2 + (0.15 t - 0.05)^2) from the edge, least at t = 1/2, 0.025 sqrt(2).
 // There it overlaps by 0.05 - 0.0354 = 0.0146 along (1, 1, 0)/sqrt(2); its balls are each 0.1 from
 // a face, separated by 0.05.
-TEST(SegmentContact, ASegmentAcrossABoxEdgeTouchesItAtTheEdgeAlongTheBisector)
+TEST(PieceContact, ASegmentAcrossABoxEdgeTouchesItAtTheEdgeAlongTheBisector)
 {
     const SegmentDepths d =
         deepestBetweenBalls(unitCube(), kAtOrigin, {0.6, 0.45, 0.0}, 0.05, {0.45, 0.6, 0.0}, 0.05, kMargin);
@@ -61,7 +61,7 @@ TEST(SegmentContact, ASegmentAcrossABoxEdgeTouchesItAtTheEdgeAlongTheBisector)
 // overlaps there by 41.57 mm along its own normal (1.42, 0.1) / |.|. (Its balls' line, 0.07 to
 // 0.2662, rises faster along it than the right face's distance does, so the point deepest beyond
 // that line lies low on the right face, clear of it.)
-TEST(SegmentContact, ASteepSegmentPastAnEdgeTouchesItWhereItComesNearest)
+TEST(PieceContact, ASteepSegmentPastAnEdgeTouchesItWhereItComesNearest)
 {
     const SegmentDepths d =
         deepestBetweenBalls(unitCube(), kAtOrigin, {0.5, 0.62, 0.0}, 0.05, {0.6, -0.8, 0.0}, 0.05, kMargin);
@@ -80,7 +80,7 @@ TEST(SegmentContact, ASteepSegmentPastAnEdgeTouchesItWhereItComesNearest)
 // A segment from (-0.6, 0.52, 0) to (0.6, 0.52, 0), radius 0.03, lies across the cube's top, 2 cm
 // above it (overlapping by 1 cm) from x = -0.5 to 0.5, its balls beyond the two edges: as deep all
 // along that stretch, it touches at the stretch's two ends, t = 0.1/1.2 and 1.1/1.2, both along +y.
-TEST(SegmentContact, ASegmentLyingAcrossAFaceTouchesItAtBothEndsOfTheStretch)
+TEST(PieceContact, ASegmentLyingAcrossAFaceTouchesItAtBothEndsOfTheStretch)
 {
     const SegmentDepths d =
         deepestBetweenBalls(unitCube(), kAtOrigin, {-0.6, 0.52, 0.0}, 0.03, {0.6, 0.52, 0.0}, 0.03, kMargin);
@@ -98,7 +98,7 @@ TEST(SegmentContact, ASegmentLyingAcrossAFaceTouchesItAtBothEndsOfTheStretch)
 
 // The same segment 3 cm above the top, as its balls would rest on it, is level with them: the
 // balls' own contacts hold it, and it adds none.
-TEST(SegmentContact, ASegmentAlongAFaceAsItsBallsRestAddsNoContact)
+TEST(PieceContact, ASegmentAlongAFaceAsItsBallsRestAddsNoContact)
 {
     EXPECT_EQ(deepestBetweenBalls(unitCube(), kAtOrigin, {-0.3, 0.53, 0.0}, 0.03, {0.3, 0.53, 0.0}, 0.03, kMargin)
                   .count,
@@ -107,7 +107,7 @@ TEST(SegmentContact, ASegmentAlongAFaceAsItsBallsRestAddsNoContact)
 
 // Balls that touch (0.06 apart, radius 0.03) cover their segment: a body in the groove between
 // them rests on them.
-TEST(SegmentContact, TouchingBallsHaveNoSegment)
+TEST(PieceContact, TouchingBallsHaveNoSegment)
 {
     EXPECT_EQ(deepestBetweenBalls(unitCube(), kAtOrigin, {-0.03, 0.51, 0.0}, 0.03, {0.03, 0.51, 0.0}, 0.03, kMargin)
                   .count,
@@ -116,7 +116,7 @@ TEST(SegmentContact, TouchingBallsHaveNoSegment)
 
 // Across the top of a sphere of radius 1 at the origin, 1.01 up, radius 0.02: deepest above the
 // centre (t = 1/2), overlapping by 0.01 along +y; its balls sqrt(2.0201) - 1.02 from the sphere.
-TEST(SegmentContact, ASegmentOverASphereTouchesItAboveItsCentre)
+TEST(PieceContact, ASegmentOverASphereTouchesItAboveItsCentre)
 {
     const CollisionShape sphere = CollisionShape::of(pba::Shape::sphere(1.0));
     const SegmentDepths d =
@@ -133,7 +133,7 @@ TEST(SegmentContact, ASegmentOverASphereTouchesItAboveItsCentre)
 // through its inside, its foot at weights (3/7, 1/7, 3/7) (from (0.4, -0.3) = u (0.7, 0) +
 // v (0.7, -0.7) in x and z), 1 cm above the triangle's middle plane: 4 cm into it, along +y. Its
 // balls are 0.27, 0.394 and 0.27 from the cube.
-TEST(SegmentContact, ABoxCornerThroughACellsTriangleTouchesItThere)
+TEST(PieceContact, ABoxCornerThroughACellsTriangleTouchesItThere)
 {
     const std::array<dvec3, 3> x{dvec3(0.1, 0.49, 0.8), dvec3(0.8, 0.49, 0.8), dvec3(0.8, 0.49, 0.1)};
     const auto d = pba::rigid::deepestUnderTriangle(unitCube(), kAtOrigin, x, {0.03, 0.03, 0.03}, kMargin);
@@ -150,7 +150,7 @@ TEST(SegmentContact, ABoxCornerThroughACellsTriangleTouchesItThere)
 
 // The same triangle 3 cm above the top, its balls' separations level with its own (as they would
 // rest on a face): no contact of its own.
-TEST(SegmentContact, ATriangleLyingOnAFaceAsItsBallsRestAddsNoContact)
+TEST(PieceContact, ATriangleLyingOnAFaceAsItsBallsRestAddsNoContact)
 {
     const std::array<dvec3, 3> x{dvec3(-0.3, 0.53, 0.3), dvec3(0.3, 0.53, 0.3), dvec3(0.3, 0.53, -0.3)};
     EXPECT_FALSE(pba::rigid::deepestUnderTriangle(unitCube(), kAtOrigin, x, {0.03, 0.03, 0.03}, kMargin).has_value());
@@ -198,5 +198,5 @@ TEST_P(RopeOverABar, ARopeDroppedAcrossAThinBarHangsOverIt)
     EXPECT_GT(world.body(9).getPos().x, 0.01);
 }
 
-INSTANTIATE_TEST_SUITE_P(SegmentContact, RopeOverABar, ::testing::Values(R"(, "restitution": 0)", ""),
+INSTANTIATE_TEST_SUITE_P(PieceContact, RopeOverABar, ::testing::Values(R"(, "restitution": 0)", ""),
                          [](const auto& param) { return param.index == 0 ? "NotBouncing" : "DefaultRestitution"; });

@@ -1,4 +1,4 @@
-#include "rigid/segment_contacts.hpp"
+#include "rigid/piece_contacts.hpp"
 
 #include <algorithm>
 #include <array>
@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "contact/sphere_contact.hpp"
+#include "piece_geometry.hpp"
 
 namespace pba::rigid {
 
@@ -33,8 +34,8 @@ double inverseMassAlong(const SolverBody& body, const dvec3& r, const dvec3& u)
 /// The piece's point of contact c as the solver sees it: its velocity, and its inverse mass
 /// along u (each ball moves by its weight of the point's impulse, and carries that share of it:
 /// a piece without mass between them).
-struct SegmentPoint {
-    const SegmentContact& c;
+struct PiecePoint {
+    const PieceContact& c;
     std::span<SolverBody> bodies;
     dvec3 relativeVelocity() const
     {
@@ -141,13 +142,12 @@ double edgeOf(const Below& below, double outer, double inner, int halvings)
 SegmentDepths deepestBetweenBalls(const CollisionShape& shape, const Transform& pose, const dvec3& pa, double ra,
                                   const dvec3& pb, double rb, double margin)
 {
-    // As thick as its balls, but no thicker than half the gap between them: where they nearly
-    // touch, a body in the groove between them rests on them, as it would without the segment.
+    // As thick as its balls, but no thicker than the piece's rule allows.
     const double length = glm::length(pb - pa);
-    const double gap = length - ra - rb;
-    if (!(gap > 0.0))
+    const double thickest = detail::thickestPiece(std::array{pa, pb}, std::array{ra, rb});
+    if (!(thickest > 0.0))
         return {};
-    const auto radius = [&](double t) { return std::min(ra + t * (rb - ra), 0.5 * gap); };
+    const auto radius = [&](double t) { return std::min(ra + t * (rb - ra), thickest); };
     const dvec3 nearest = closestOnSegment(pa, pb, pose.position);
     if (glm::length(nearest - pose.position) > shape.boundingRadius() + std::max(ra, rb))
         return {};
@@ -224,35 +224,20 @@ std::optional<TriangleDepth> deepestUnderTriangle(const CollisionShape& shape, c
     const double twiceArea = glm::length(across);
     if (!(twiceArea > 0.0))
         return std::nullopt;
-    // No thicker than half the gap between two of its balls (touching balls leave no inside).
-    double thickest = INFINITY;
-    for (std::size_t e = 0; e < 3; ++e) {
-        const std::size_t f = (e + 1) % 3;
-        const double gap = glm::length(x[f] - x[e]) - r[e] - r[f];
-        if (!(gap > 0.0))
-            return std::nullopt;
-        thickest = std::min(thickest, 0.5 * gap);
-    }
+    const double thickest = detail::thickestPiece(x, r);
+    if (!(thickest > 0.0))
+        return std::nullopt;
     // From the shape towards the triangle: away from the side its centre is on.
     dvec3 normal = across / twiceArea;
     if (glm::dot(pose.position - x[0], normal) > 0.0)
         normal = -normal;
     if (std::abs(glm::dot(pose.position - x[0], normal)) > shape.boundingRadius() + thickest + margin)
         return std::nullopt;
-    // A point's foot on the triangle, by the areas it makes with each side; inside, away from
-    // the sides by this share (the segments hold those).
-    constexpr double kSide = 0.005;
-    const auto footOf = [&](const dvec3& p, std::array<double, 3>& w) {
-        const dvec3 q = p - x[0];
-        const dvec3 n = across / twiceArea;
-        const double u = glm::dot(glm::cross(q, e2), n) / twiceArea, v = glm::dot(glm::cross(e1, q), n) / twiceArea;
-        w = {1.0 - u - v, u, v};
-        return w[0] > kSide && w[1] > kSide && w[2] > kSide;
-    };
     std::optional<TriangleDepth> best;
     const auto consider = [&](const dvec3& p) {
+        // Over the inside, away from the sides (the segments hold those).
         std::array<double, 3> w{};
-        if (!footOf(p, w))
+        if (!detail::footOnPiece(p, x, w))
             return;
         const double thickness = std::min(w[0] * r[0] + w[1] * r[1] + w[2] * r[2], thickest);
         const double separation = glm::dot(x[0] - p, normal) - thickness;
@@ -281,7 +266,7 @@ std::optional<TriangleDepth> deepestUnderTriangle(const CollisionShape& shape, c
     return best;
 }
 
-void holdSegments(std::span<const SegmentContact> contacts, std::span<SolverBody> bodies, double restingSpeed,
+void holdPieces(std::span<const PieceContact> contacts, std::span<SolverBody> bodies, double restingSpeed,
                   double dt, int sweeps)
 {
     struct Held {
@@ -293,8 +278,8 @@ void holdSegments(std::span<const SegmentContact> contacts, std::span<SolverBody
     thread_local std::vector<Held> held;
     held.assign(contacts.size(), Held{});
     for (std::size_t k = 0; k < contacts.size(); ++k) {
-        const SegmentContact& c = contacts[k];
-        const SegmentPoint p{c, bodies};
+        const PieceContact& c = contacts[k];
+        const PiecePoint p{c, bodies};
         const double arriving = glm::dot(p.relativeVelocity(), c.normal);
         held[k].target = c.gap > 0.0                 ? -c.gap / dt
                          : arriving < -restingSpeed ? -c.restitution * arriving
@@ -305,8 +290,8 @@ void holdSegments(std::span<const SegmentContact> contacts, std::span<SolverBody
     }
     for (int sweep = 0; sweep < sweeps; ++sweep)
         for (std::size_t k = 0; k < contacts.size(); ++k) {
-            const SegmentContact& c = contacts[k];
-            const SegmentPoint p{c, bodies};
+            const PieceContact& c = contacts[k];
+            const PiecePoint p{c, bodies};
             if (!(p.inverseMass(c.normal) > 0.0)) // fixed balls on a fixed body
                 continue;
             Held& h = held[k];
@@ -328,8 +313,8 @@ void holdSegments(std::span<const SegmentContact> contacts, std::span<SolverBody
         }
     for (int sweep = 0; sweep < sweeps; ++sweep)
         for (std::size_t k = 0; k < contacts.size(); ++k) {
-            const SegmentContact& c = contacts[k];
-            const SegmentPoint p{c, bodies};
+            const PieceContact& c = contacts[k];
+            const PiecePoint p{c, bodies};
             Held& h = held[k];
             const double left = c.depth + p.approach(h.from);
             if (!(left > 0.0) || !(p.inverseMass(c.normal) > 0.0))
