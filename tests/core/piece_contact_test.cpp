@@ -1,14 +1,17 @@
-// A rope's and a cloth's segments against rigid bodies: where a segment between two balls lies
-// deepest in a shape, against cases worked by hand (each beside its test), and what it does in a
-// world: a rope dropped across a bar thinner than the gap between its balls hangs over the bar
-// instead of falling through it between two balls.
+// A rope's and a cloth's pieces against rigid bodies: how thick a piece is and where a point lies
+// on it, where a segment or a triangle of balls lies deepest in a shape, against cases worked by
+// hand (each beside its test), and what it does in a world: a rope dropped across a bar thinner
+// than the gap between its balls hangs over the bar instead of falling through it between two
+// balls.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
 
+#include "core/piece_geometry.hpp"
 #include "core/rigid/piece_contacts.hpp"
 #include "pba/scene/scene.hpp"
 #include "pba/shape.hpp"
@@ -32,6 +35,41 @@ const CollisionShape& unitCube()
 const Transform kAtOrigin{dvec3(0.0), pba::dmat3(1.0)};
 
 } // namespace
+
+// Balls of radii 0.1 and 0.2, 1 m apart, leave a gap of 0.7: the segment is at most 0.35 thick.
+// A triangle (0,0,0), (1,0,0), (0,1,0) of radii 0.1 has gaps 0.8, 0.8 and sqrt 2 - 0.2: 0.4.
+// Touching balls leave no piece.
+TEST(PieceGeometry, APieceIsNoThickerThanHalfItsSmallestGap)
+{
+    using pba::detail::thickestPiece;
+    EXPECT_DOUBLE_EQ(thickestPiece(std::array{dvec3(0.0), dvec3(1.0, 0.0, 0.0)}, std::array{0.1, 0.2}), 0.35);
+    EXPECT_DOUBLE_EQ(thickestPiece(std::array{dvec3(0.0), dvec3(1.0, 0.0, 0.0), dvec3(0.0, 1.0, 0.0)},
+                                   std::array{0.1, 0.1, 0.1}),
+                     0.4);
+    EXPECT_EQ(thickestPiece(std::array{dvec3(0.0), dvec3(0.2, 0.0, 0.0)}, std::array{0.1, 0.1}), 0.0);
+}
+
+// (0.25, 3, 0) has its foot at a quarter of the segment from (0,0,0) to (1,0,0): weights 3/4,
+// 1/4; (0.2, 0.3, 5) on the triangle above lies at 1/2, 1/5, 3/10. A foot within half a percent
+// of an end or a side, or outside, is that ball's or side's own contact.
+TEST(PieceGeometry, APointsFootLiesOnAPieceByWeightsOnItsBalls)
+{
+    using pba::detail::footOnPiece;
+    std::array<double, 3> w{};
+    ASSERT_TRUE(footOnPiece(dvec3(0.25, 3.0, 0.0), std::array{dvec3(0.0), dvec3(1.0, 0.0, 0.0)}, w));
+    EXPECT_DOUBLE_EQ(w[0], 0.75);
+    EXPECT_DOUBLE_EQ(w[1], 0.25);
+    EXPECT_EQ(w[2], 0.0);
+    const std::array triangle{dvec3(0.0), dvec3(1.0, 0.0, 0.0), dvec3(0.0, 1.0, 0.0)};
+    ASSERT_TRUE(footOnPiece(dvec3(0.2, 0.3, 5.0), triangle, w));
+    EXPECT_NEAR(w[0], 0.5, 1e-15);
+    EXPECT_NEAR(w[1], 0.2, 1e-15);
+    EXPECT_NEAR(w[2], 0.3, 1e-15);
+    EXPECT_FALSE(footOnPiece(dvec3(0.002, 0.0, 1.0), std::array{dvec3(0.0), dvec3(1.0, 0.0, 0.0)}, w));
+    EXPECT_FALSE(footOnPiece(dvec3(0.5, 0.002, 0.0), triangle, w));
+    EXPECT_FALSE(footOnPiece(dvec3(0.8, 0.8, 0.0), triangle, w));
+    EXPECT_FALSE(footOnPiece(dvec3(0.5, 0.5, 0.0), std::array{dvec3(0.0), dvec3(1.0, 0.0, 0.0), dvec3(2.0, 0.0, 0.0)}, w));
+}
 
 // The segment from (0.6, 0.45, 0) to (0.45, 0.6, 0), radius 0.05 (its balls 0.21 m apart, far
 // from touching), passes over the cube's edge x = y = 0.5: its point (0.6 - 0.15 t, 0.45 + 0.15 t)
