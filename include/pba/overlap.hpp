@@ -34,5 +34,12 @@ double overlapDepth(const RigidBody& body, const std::array<dvec3, 3>& x, const 
 /// overlapping ones included, in the order of i, then j.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> nearBallPairs(std::span<const dvec3> centres,
                                                                    std::span<const double> radii, double gap);
+/// Every pair of a ball (`centres`, `radii`) and a sphere (`around`, `reach`: the bounds of a
+/// rope's or cloth's pieces, say) that overlap, as (ball, sphere), in the order of the ball, then
+/// the sphere.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> ballsInSpheres(std::span<const dvec3> centres,
+                                                                    std::span<const double> radii,
+                                                                    std::span<const dvec3> around,
+                                                                    std::span<const double> reach);
 
 } // namespace pba

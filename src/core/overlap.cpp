@@ -118,4 +118,25 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> nearBallPairs(std::span<con
     return pairs;
 }
 
+std::vector<std::pair<std::uint32_t, std::uint32_t>> ballsInSpheres(std::span<const dvec3> centres,
+                                                                    std::span<const double> radii,
+                                                                    std::span<const dvec3> around,
+                                                                    std::span<const double> reach)
+{
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    if (around.empty())
+        return pairs;
+    const auto at = [&](std::size_t j) { return around[j]; };
+    const auto size = [&](std::size_t j) { return reach[j]; };
+    detail::ParticleGrid grid;
+    grid.build(around.size(), at, size, *std::max_element(reach.begin(), reach.end()));
+    std::vector<std::uint32_t> near;
+    for (std::size_t i = 0; i < centres.size(); ++i) {
+        grid.near(centres[i], radii[i], at, size, near);
+        for (const std::uint32_t j : near)
+            pairs.emplace_back(std::uint32_t(i), j);
+    }
+    return pairs;
+}
+
 } // namespace pba

@@ -10,6 +10,17 @@
 
 namespace pba::study {
 
+namespace {
+
+std::size_t rootOf(std::vector<std::size_t>& parent, std::size_t i)
+{
+    while (parent[i] != i)
+        i = parent[i] = parent[parent[i]];
+    return i;
+}
+
+} // namespace
+
 BallWatch::BallWatch(const World& world, const std::vector<bool>& inFabric,
                      const std::vector<std::pair<std::size_t, std::size_t>>& edges)
 {
@@ -52,6 +63,16 @@ BallWatch::BallWatch(const World& world, const std::vector<bool>& inFabric,
         for (const std::size_t k : joined[i])
             if (k > std::max(i, j) && std::binary_search(joined[j].begin(), joined[j].end(), k))
                 m_triangles.push_back({i, j, k});
+    // Each ball's net: the balls its edges reach.
+    std::vector<std::size_t> parent(m_balls.size());
+    std::iota(parent.begin(), parent.end(), std::size_t(0));
+    for (const auto& [i, j] : m_segments)
+        parent[rootOf(parent, i)] = rootOf(parent, j);
+    m_netOf.assign(m_balls.size(), kNoNet);
+    for (const auto& [i, j] : m_segments)
+        m_netOf[i] = m_netOf[j] = rootOf(parent, i);
+    for (std::size_t k = 0; k < m_balls.size(); ++k)
+        m_figures.nets += std::size_t(m_netOf[k] == k);
     m_figures.balls = m_balls.size();
     m_figures.freeBalls = std::size_t(std::count(m_free.begin(), m_free.end(), true));
     // The start: the balls in the bodies now; which pairs collide (a cloth's neighbours along its
@@ -84,17 +105,6 @@ void BallWatch::finish(const World& world)
     if (active() && m_steps % kEvery != 0)
         look(world);
 }
-
-namespace {
-
-std::size_t rootOf(std::vector<std::size_t>& parent, std::size_t i)
-{
-    while (parent[i] != i)
-        i = parent[i] = parent[parent[i]];
-    return i;
-}
-
-} // namespace
 
 void BallWatch::look(const World& world)
 {
@@ -235,18 +245,46 @@ double intoTriangle(const dvec3& c, double r, const std::array<dvec3, 3>& x, con
 
 void BallWatch::lookIntoEdges(const std::vector<dvec3>& centres, double now)
 {
-    for (std::size_t k = 0; k < m_balls.size(); ++k) {
-        if (!m_free[k])
-            continue;
-        const auto deepest = [&](double depth) {
-            if (depth > m_figures.deepestFreeInEdge)
-                m_figures.deepestFreeInEdge = depth, m_figures.deepestFreeInEdgeAt = now;
-        };
-        for (const auto& [i, j] : m_segments)
-            deepest(intoEdge(centres[k], m_radii[k], centres[i], m_radii[i], centres[j], m_radii[j]));
-        for (const auto& t : m_triangles)
-            deepest(intoTriangle(centres[k], m_radii[k], {centres[t[0]], centres[t[1]], centres[t[2]]},
-                                 {m_radii[t[0]], m_radii[t[1]], m_radii[t[2]]}));
+    // The balls that meet other nets' edges: free balls, and the nets' own when there are two.
+    std::vector<std::size_t> asking;
+    for (std::size_t k = 0; k < m_balls.size(); ++k)
+        if (m_free[k] || (m_figures.nets >= 2 && m_netOf[k] != kNoNet))
+            asking.push_back(k);
+    if (asking.empty() || m_segments.empty())
+        return;
+    // Each piece (an edge, then a triangle) by the sphere around it, for the grid.
+    std::vector<std::array<std::size_t, 3>> pieces;
+    for (const auto& [i, j] : m_segments)
+        pieces.push_back({i, j, j});
+    pieces.insert(pieces.end(), m_triangles.begin(), m_triangles.end());
+    std::vector<dvec3> around(pieces.size());
+    std::vector<double> reach(pieces.size());
+    for (std::size_t p = 0; p < pieces.size(); ++p) {
+        const auto& e = pieces[p];
+        around[p] = (centres[e[0]] + centres[e[1]] + centres[e[2]]) / 3.0;
+        for (const std::size_t b : e)
+            reach[p] = std::max(reach[p], glm::length(centres[b] - around[p]) + m_radii[b]);
+    }
+    std::vector<dvec3> askingAt(asking.size());
+    std::vector<double> askingRadii(asking.size());
+    for (std::size_t a = 0; a < asking.size(); ++a)
+        askingAt[a] = centres[asking[a]], askingRadii[a] = m_radii[asking[a]];
+    for (const auto& [a, p] : ballsInSpheres(askingAt, askingRadii, around, reach)) {
+        const std::size_t k = asking[a];
+        const auto& e = pieces[p];
+        if (!m_free[k] && m_netOf[k] == m_netOf[e[0]])
+            continue; // its own net's: its far balls meet it by their balls alone
+        if (m_fixed[k] && m_fixed[e[0]] && m_fixed[e[1]] && m_fixed[e[2]])
+            continue; // (nothing fixed moves: they do not meet)
+        const double depth =
+            p < m_segments.size()
+                ? intoEdge(centres[k], m_radii[k], centres[e[0]], m_radii[e[0]], centres[e[1]], m_radii[e[1]])
+                : intoTriangle(centres[k], m_radii[k], {centres[e[0]], centres[e[1]], centres[e[2]]},
+                               {m_radii[e[0]], m_radii[e[1]], m_radii[e[2]]});
+        double& deepest = m_free[k] ? m_figures.deepestFreeInEdge : m_figures.deepestNetBallInEdge;
+        double& at = m_free[k] ? m_figures.deepestFreeInEdgeAt : m_figures.deepestNetBallInEdgeAt;
+        if (depth > deepest)
+            deepest = depth, at = now;
     }
 }
 

@@ -31,6 +31,10 @@ struct BallFigures {
     /// A free ball (below) against those edges and the cloths' triangles between them (as thick):
     /// how far it went into one at most (m), and when.
     double deepestFreeInEdge = 0.0, deepestFreeInEdgeAt = 0.0;
+    /// The ropes and cloths (balls joined by edges), and, when there are two or more, how far a
+    /// ball of one went into another's edges and triangles at most (m), and when.
+    std::size_t nets = 0;
+    double deepestNetBallInEdge = 0.0, deepestNetBallInEdgeAt = 0.0;
     /// The free balls (moving, in no rope or cloth), when there are two or more: every one of them
     /// touching another, all in one group, from then to the end.
     std::size_t freeBalls = 0;
@@ -72,6 +76,8 @@ private:
     std::vector<std::size_t> m_bodies;    ///< the rigid bodies
     std::vector<std::pair<std::size_t, std::size_t>> m_segments; ///< of m_balls: two balls an edge joins
     std::vector<std::array<std::size_t, 3>> m_triangles;          ///< of m_balls: three edges' balls
+    static constexpr std::size_t kNoNet = ~std::size_t(0);
+    std::vector<std::size_t> m_netOf; ///< of m_balls: its rope's or cloth's (a ball of it), or kNoNet
     long m_steps = 0;
     BallFigures m_figures;
 };

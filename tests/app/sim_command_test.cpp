@@ -550,6 +550,23 @@ TEST(PbaSim, AFreeBallInARopesEdgeIsMeasured)
     EXPECT_LT(numberAfter(r.out, "a free ball went "), 1.0) << r.out; // mm
 }
 
+// A short rope of thick balls laid along a tightrope, its balls between the tightrope's: each net's
+// balls meet the other's edges, and the summary says how far one went in.
+TEST(PbaSim, ARopesBallInAnotherRopesEdgeIsMeasured)
+{
+    const auto dir = freshDir("sim_rope_on_rope");
+    std::ofstream(dir / "ropes.json") << R"({"dt": 0.002, "gravity": [0, -9.81, 0],
+        "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+        "ropes": [{"name": "tightrope", "from": [-0.6, 1, 0], "to": [0.6, 1, 0], "count": 5, "mass": 0.5,
+                   "pinned": ["start", "end"], "stiffness": 2000, "damping": 20, "radius": 0.02, "restitution": 0},
+                  {"name": "short", "from": [-0.45, 1.3, 0], "to": [0.45, 1.3, 0], "count": 4, "mass": 0.2,
+                   "stiffness": 2000, "damping": 5, "radius": 0.04, "restitution": 0}]})";
+    const CommandResult r = runPba("sim " + (dir / "ropes.json").string() + " --duration 3");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_LT(numberAfter(r.out, "a rope's or cloth's ball went "), 1.0) << r.out; // mm
+    EXPECT_GT(numberAfter(r.out, "rope short at the end: its particles "), 0.9) << r.out; // m: on the tightrope
+}
+
 // A component that rounds to zero prints as 0.0000, not -0.0000: a box resting on the floor read
 // (0.0000, 0.2000, -0.0000).
 TEST(PbaSim, NothingPrintsAsMinusZero)

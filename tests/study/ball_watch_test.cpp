@@ -118,6 +118,32 @@ TEST(BallWatch, WhatOverlapsAtTheStartIsSeenThere)
         << "the contacts pushed them apart";
 }
 
+// Balls at rest in zero g that no contact moves (no two touch, and the world has no springs), read
+// as two nets by the edges the watch is given: a from (-0.3, 1, 0) to b at (0.3, 1, 0), radius 5
+// cm, and c at (0, 1.09, 0) to d above it. c lies 0.09 from a-b's axis, 1 cm into it (5 + 5 cm);
+// a free ball of 4 cm at (0.15, 0.93, 0), 0.07 from it, 2 cm in.
+TEST(BallWatch, ItReadsHowFarABallGoesIntoAnotherNetsEdge)
+{
+    Scene scene = parseScene(R"({"dt": 0.01, "duration": 1, "gravity": [0, 0, 0],
+        "room": {"min": [-2, 0, -2], "max": [2, 3, 2]}, "particles": [
+          {"name": "a", "position": [-0.3, 1, 0], "radius": 0.05},
+          {"name": "b", "position": [0.3, 1, 0], "radius": 0.05},
+          {"name": "c", "position": [0, 1.09, 0], "radius": 0.05},
+          {"name": "d", "position": [0, 2, 0], "radius": 0.05},
+          {"name": "free", "position": [0.15, 0.93, 0], "radius": 0.04}]})",
+                             "nets.json");
+    std::vector<bool> inNet{true, true, true, true, false};
+    BallWatch watch(scene.world, inNet, {{0, 1}, {2, 3}});
+    for (int n = 0; n < BallWatch::kEvery; ++n) {
+        scene.world.step(scene.dt);
+        watch.record(scene.world);
+    }
+    const BallFigures f = watch.figures();
+    EXPECT_EQ(f.nets, 2u);
+    EXPECT_NEAR(f.deepestNetBallInEdge, 0.01, 1e-12);
+    EXPECT_NEAR(f.deepestFreeInEdge, 0.02, 1e-12);
+}
+
 TEST(BallWatch, SmallBallsAMillimetreApartDoNotTouch)
 {
     Scene scene = parseScene(R"({"dt": 0.01, "duration": 1, "gravity": [0, 0, 0],
