@@ -549,7 +549,8 @@ private:
     void collideAndStore(const std::vector<std::size_t>& members, double dt, Integrator integrator);
     /// Phase 4b (ParticleSystems, Bodies, Surfaces): the particles with a radius that touch each
     /// other after their step are separated and exchange impulses (src/core/particle_contacts.hpp),
-    /// and so are the balls between other ropes' and cloths' balls (src/core/net_pieces.hpp);
+    /// and so are the balls and two nets' crossing edges between other ropes' and cloths' balls
+    /// (src/core/net_pieces.hpp);
     /// neighbours along one rope or cloth are left to their springs (src/core/spring_neighbours.hpp).
     void collideBalls(double dt);
     /// Phase 6, for a swarm that collides: its grains against each other and `room` (its planes

@@ -54,8 +54,12 @@ bool NetPieces::keep(std::span<const Ball> balls, std::span<const std::pair<std:
         return length - balls[a].radius - balls[b].radius > 0.0 &&
                (4.0 * r - length <= 0.0 || smallest * (4.0 * r - length) < length * (0.5 * length - r));
     };
+    // Between two nets, any segment with a gap may cross another's.
+    const auto gapped = [&](std::uint32_t a, std::uint32_t b) {
+        return m_twoNets && glm::length(balls[b].x - balls[a].x) - balls[a].radius - balls[b].radius > 0.0;
+    };
     for (const auto& [a, b] : segments)
-        if (matters(a, b))
+        if (matters(a, b) || gapped(a, b))
             m_kept.push_back({{a, b, b}, 2});
     for (const auto& [a, b, c] : triangles)
         if (matters(a, b) && matters(b, c) && matters(a, c))
@@ -83,7 +87,7 @@ bool NetPieces::keep(std::span<const Ball> balls, std::span<const std::pair<std:
 
 void NetPieces::find(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
                      std::span<const std::array<std::uint32_t, 3>> triangles, std::uint64_t generation,
-                     std::vector<BallOnNet>& out)
+                     std::vector<NetContact>& out)
 {
     out.clear();
     if (segments.empty())
@@ -97,7 +101,7 @@ void NetPieces::find(std::span<const Ball> balls, std::span<const std::pair<std:
     const auto centre = [&](std::size_t p) { return m_centre[p]; };
     const auto reach = [&](std::size_t p) { return m_reach[p]; };
     m_grid.build(m_kept.size(), centre, reach, m_largestReach);
-    BallOnNet contact;
+    NetContact contact;
     for (std::uint32_t c = 0; c < balls.size(); ++c) {
         if (m_net[c] != kNoNet && !m_twoNets)
             continue;
@@ -106,9 +110,21 @@ void NetPieces::find(std::span<const Ball> balls, std::span<const std::pair<std:
             if (m_net[m_kept[p].ends[0]] != m_net[c] && touching(balls, m_kept[p], c, contact))
                 out.push_back(contact);
     }
+    if (!m_twoNets)
+        return;
+    // Two nets' segments crossing between their balls, each pair once (p before q).
+    for (std::uint32_t p = 0; p < m_kept.size(); ++p) {
+        if (m_kept[p].count != 2)
+            continue;
+        m_grid.near(m_centre[p], m_reach[p], centre, reach, m_found);
+        for (const std::uint32_t q : m_found)
+            if (q > p && m_kept[q].count == 2 && m_net[m_kept[q].ends[0]] != m_net[m_kept[p].ends[0]] &&
+                crossing(balls, m_kept[p], m_kept[q], contact))
+                out.push_back(contact);
+    }
 }
 
-bool NetPieces::touching(std::span<const Ball> balls, const Piece& piece, std::uint32_t ball, BallOnNet& contact)
+bool NetPieces::touching(std::span<const Ball> balls, const Piece& piece, std::uint32_t ball, NetContact& contact)
 {
     const Ball& c = balls[ball];
     std::array<dvec3, 3> x{};
@@ -137,8 +153,67 @@ bool NetPieces::touching(std::span<const Ball> balls, const Piece& piece, std::u
         return false;
     thickness = std::min(thickness, thickest);
     const double separation = glm::length(c.x - point) - thickness - c.radius;
-    contact = {piece.ends, w, ball, thickness};
+    contact = {{piece.ends, w, piece.count, thickness}, NetPoint::ball(ball, c.radius)};
     return separation < 0.0 && separation < line;
+}
+
+namespace {
+
+/// The parameters s on p0 + s (p1 - p0) and t on q0 + t (q1 - q0) of the two segments' nearest
+/// points, each in [0, 1] (a parallel pair's at s = 0).
+std::pair<double, double> nearestOnSegments(const dvec3& p0, const dvec3& p1, const dvec3& q0, const dvec3& q1)
+{
+    const dvec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+    const double a = glm::dot(d1, d1), e = glm::dot(d2, d2), f = glm::dot(d2, r);
+    const double c = glm::dot(d1, r), b = glm::dot(d1, d2);
+    const double denominator = a * e - b * b;
+    double s = denominator > 1e-12 * a * e ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0;
+    double t = (b * s + f) / e;
+    if (t < 0.0)
+        t = 0.0, s = std::clamp(-c / a, 0.0, 1.0);
+    else if (t > 1.0)
+        t = 1.0, s = std::clamp((b - c) / a, 0.0, 1.0);
+    return {s, t};
+}
+
+/// How far a ball of radius r at c lies from the segment from a to b as thick as `thickness` at
+/// each t (its nearest point's).
+template <class Thickness>
+double ballToSegment(const dvec3& c, double r, const dvec3& a, const dvec3& b, const Thickness& thickness)
+{
+    const dvec3 d = b - a;
+    const double t = std::clamp(glm::dot(c - a, d) / glm::dot(d, d), 0.0, 1.0);
+    return glm::length(c - (a + t * d)) - r - thickness(t);
+}
+
+} // namespace
+
+bool NetPieces::crossing(std::span<const Ball> balls, const Piece& p, const Piece& q, NetContact& contact)
+{
+    const Ball &p0 = balls[p.ends[0]], &p1 = balls[p.ends[1]], &q0 = balls[q.ends[0]], &q1 = balls[q.ends[1]];
+    if (p0.inverseMass + p1.inverseMass + q0.inverseMass + q1.inverseMass == 0.0)
+        return false;
+    const auto [s, t] = nearestOnSegments(p0.x, p1.x, q0.x, q1.x);
+    if (!(s > kPieceEdge && s < 1.0 - kPieceEdge && t > kPieceEdge && t < 1.0 - kPieceEdge))
+        return false; // at a ball: that ball's own contact
+    const double thickestP = thickestPiece(std::array{p0.x, p1.x}, std::array{p0.radius, p1.radius});
+    const double thickestQ = thickestPiece(std::array{q0.x, q1.x}, std::array{q0.radius, q1.radius});
+    if (!(thickestP > 0.0 && thickestQ > 0.0))
+        return false;
+    const auto thickP = [&](double u) { return std::min((1.0 - u) * p0.radius + u * p1.radius, thickestP); };
+    const auto thickQ = [&](double u) { return std::min((1.0 - u) * q0.radius + u * q1.radius, thickestQ); };
+    const dvec3 atP = p0.x + s * (p1.x - p0.x), atQ = q0.x + t * (q1.x - q0.x);
+    const double separation = glm::length(atQ - atP) - thickP(s) - thickQ(t);
+    // Deeper than each segment's balls lie against the other (their own contacts hold those).
+    constexpr double kLevel = 1e-7;
+    const double lineP = (1.0 - s) * ballToSegment(p0.x, p0.radius, q0.x, q1.x, thickQ) +
+                         s * ballToSegment(p1.x, p1.radius, q0.x, q1.x, thickQ);
+    const double lineQ = (1.0 - t) * ballToSegment(q0.x, q0.radius, p0.x, p1.x, thickP) +
+                         t * ballToSegment(q1.x, q1.radius, p0.x, p1.x, thickP);
+    if (!(separation < 0.0 && separation < std::min(lineP, lineQ) - kLevel))
+        return false;
+    contact = {{p.ends, {1.0 - s, s, 0.0}, 2, thickP(s)}, {q.ends, {1.0 - t, t, 0.0}, 2, thickQ(t)}};
+    return true;
 }
 
 } // namespace pba::detail

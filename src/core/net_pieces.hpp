@@ -8,7 +8,9 @@
 // without mass), so a ball smaller than the holes of a sheet lands on it instead of falling
 // through. Only the balls of no net, or of another net, ask: a net's own far balls meet it by
 // their balls alone (the self-collision), and asking every ball of a cloth for its own pieces
-// would cost more than its contacts. Private to the core.
+// would cost more than its contacts. Two nets' segments that cross between their balls meet at
+// their nearest points in the same way, each side's share going to its own two balls, so a rope
+// dropped across another hangs on it. Private to the core.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -20,13 +22,22 @@
 
 namespace pba::detail {
 
-/// A ball against a piece of a net, at the piece's point nearest it.
-struct BallOnNet {
-    /// The piece's balls: a segment's two (its third the second again, of weight 0), or a triangle's three.
-    std::array<std::uint32_t, 3> ends{};
-    std::array<double, 3> weights{}; ///< the point's, on its ends (summing to 1)
-    std::uint32_t ball = 0;
-    double radius = 0.0; ///< the piece's thickness there
+/// Balls acting as one point: a ball alone, or a piece's point by its weights on the piece's balls.
+struct NetPoint {
+    std::array<std::uint32_t, 3> ends{}; ///< its balls (those past `count` repeat the last, of weight 0)
+    std::array<double, 3> weights{};     ///< summing to 1
+    int count = 1;                       ///< 1: a ball, 2: a segment's point, 3: a triangle's
+    double radius = 0.0;                 ///< the ball's, or the piece's thickness there
+
+    static NetPoint ball(std::uint32_t b, double radius) { return {{b, b, b}, {1.0, 0.0, 0.0}, 1, radius}; }
+};
+
+/// A ball of no net or of another net against a piece of a net, at the piece's point nearest it;
+/// or a segment of one net crossing a segment of another between their balls, at their nearest
+/// points.
+struct NetContact {
+    NetPoint piece;
+    NetPoint toucher; ///< the ball, or the other segment's point
 };
 
 class NetPieces {
@@ -36,7 +47,7 @@ public:
     /// `generation` changes when they do (the nets are worked out again then).
     void find(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
               std::span<const std::array<std::uint32_t, 3>> triangles, std::uint64_t generation,
-              std::vector<BallOnNet>& out);
+              std::vector<NetContact>& out);
 
 private:
     struct Piece {
@@ -51,7 +62,10 @@ private:
               std::span<const std::array<std::uint32_t, 3>> triangles);
     /// Whether `ball` touches piece p at an inner point, deeper than the piece's own balls do:
     /// then `contact` is it.
-    static bool touching(std::span<const Ball> balls, const Piece& p, std::uint32_t ball, BallOnNet& contact);
+    static bool touching(std::span<const Ball> balls, const Piece& p, std::uint32_t ball, NetContact& contact);
+    /// Whether segments p and q cross between their balls, nearer than their thicknesses and
+    /// deeper than either's balls lie against the other: then `contact` is it.
+    static bool crossing(std::span<const Ball> balls, const Piece& p, const Piece& q, NetContact& contact);
 
     static constexpr std::uint32_t kNoNet = ~std::uint32_t(0);
     std::vector<std::uint32_t> m_net; ///< each ball's net (its first ball's index), or kNoNet

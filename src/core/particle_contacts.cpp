@@ -52,15 +52,42 @@ void BallContacts::remember()
     // (The balls are listed in the world's order and the pairs in theirs: the keys are in order.)
     m_rememberedOnNets.clear();
     for (std::size_t k = 0; k < onNets.size(); ++k) {
-        const BallOnNet& s = onNets[k];
-        dvec3 point(0.0);
-        for (std::size_t e = 0; e < 3; ++e)
-            point += s.weights[e] * balls[s.ends[e]].x;
-        m_rememberedOnNets.emplace_back(keyOf(s),
-                                        carriedOver(m_netContacts[k], dvec3(balls[s.ball].x - point), m_netRules[k].reach));
+        const NetContact& s = onNets[k];
+        m_rememberedOnNets.emplace_back(
+            keyOf(s), carriedOver(m_netContacts[k], dvec3(positionOf(s.toucher) - positionOf(s.piece)), m_netRules[k].reach));
     }
     std::sort(m_rememberedOnNets.begin(), m_rememberedOnNets.end(),
               [](const auto& p, const auto& q) { return p.first < q.first; });
+}
+
+dvec3 BallContacts::positionOf(const NetPoint& p) const
+{
+    if (p.count == 1)
+        return balls[p.ends[0]].x;
+    dvec3 x(0.0);
+    for (std::size_t e = 0; e < 3; ++e)
+        x += p.weights[e] * balls[p.ends[e]].x;
+    return x;
+}
+
+dvec3 BallContacts::velocityOf(const NetPoint& p) const
+{
+    if (p.count == 1)
+        return balls[p.ends[0]].v;
+    dvec3 v(0.0);
+    for (std::size_t e = 0; e < 3; ++e)
+        v += p.weights[e] * balls[p.ends[e]].v;
+    return v;
+}
+
+double BallContacts::inverseMassOf(const NetPoint& p) const
+{
+    if (p.count == 1)
+        return balls[p.ends[0]].inverseMass;
+    double w = 0.0;
+    for (std::size_t e = 0; e < 3; ++e)
+        w += p.weights[e] * p.weights[e] * balls[p.ends[e]].inverseMass;
+    return w;
 }
 
 void BallContacts::startOnNets(double dt)
@@ -68,28 +95,27 @@ void BallContacts::startOnNets(double dt)
     m_netRules.resize(onNets.size());
     m_netContacts.resize(onNets.size());
     for (std::size_t k = 0; k < onNets.size(); ++k) {
-        const BallOnNet& s = onNets[k];
-        Ball& c = balls[s.ball];
-        dvec3 point(0.0);
-        double w = 0.0, cor = 0.0, friction = 0.0, resting = c.restingSpeed;
-        bool substeps = c.metInSubsteps;
-        for (std::size_t e = 0; e < 3; ++e) {
-            const Ball& end = balls[s.ends[e]];
-            point += s.weights[e] * end.x;
-            w += s.weights[e] * s.weights[e] * end.inverseMass;
-            cor += s.weights[e] * end.cor;
-            friction += s.weights[e] * end.friction;
-            resting = std::max(resting, end.restingSpeed);
-            substeps = substeps || end.metInSubsteps;
-        }
-        const double total = w + c.inverseMass;
-        const dvec3 d = c.x - point;
+        const NetContact& s = onNets[k];
+        // The material of each side's point: its balls' by their weights.
+        double cor[2] = {0.0, 0.0}, friction[2] = {0.0, 0.0}, resting = 0.0;
+        bool substeps = false;
+        for (const NetPoint* side : {&s.piece, &s.toucher})
+            for (std::size_t e = 0; e < 3; ++e) {
+                const Ball& end = balls[side->ends[e]];
+                const std::size_t i = side == &s.piece ? 0 : 1;
+                cor[i] += side->weights[e] * end.cor;
+                friction[i] += side->weights[e] * end.friction;
+                resting = std::max(resting, end.restingSpeed);
+                substeps = substeps || end.metInSubsteps;
+            }
+        const double w = inverseMassOf(s.piece), wt = inverseMassOf(s.toucher), total = w + wt;
+        const dvec3 d = positionOf(s.toucher) - positionOf(s.piece);
         m_netContacts[k] = newContact(d);
-        const BallPairRule<double>& rule = m_netRules[k] = {s.radius + c.radius,
+        const BallPairRule<double>& rule = m_netRules[k] = {s.piece.radius + s.toucher.radius,
                                                             w / total,
-                                                            c.inverseMass / total,
-                                                            combinedRestitution(cor, c.cor),
-                                                            combinedFriction(friction, c.friction),
+                                                            wt / total,
+                                                            combinedRestitution(cor[0], cor[1]),
+                                                            combinedFriction(friction[0], friction[1]),
                                                             resting,
                                                             dt};
         const NetKey key = keyOf(s);
@@ -102,39 +128,46 @@ void BallContacts::startOnNets(double dt)
         contact = old->second;
         contact.tangent -= glm::dot(contact.tangent, n) * n;
         const dvec3 change = contact.normal * n + contact.tangent;
-        shareOut(s, dvec3(0.0), -rule.shareA * change);
-        c.v += rule.shareB * change;
+        shareOut(s.piece, dvec3(0.0), -rule.shareA * change);
+        shareOut(s.toucher, dvec3(0.0), rule.shareB * change);
     }
 }
 
-void BallContacts::shareOut(const BallOnNet& s, const dvec3& dx, const dvec3& dv)
+void BallContacts::shareOut(const NetPoint& p, const dvec3& dx, const dvec3& dv)
 {
-    double w = 0.0;
-    for (std::size_t e = 0; e < 3; ++e)
-        w += s.weights[e] * s.weights[e] * balls[s.ends[e]].inverseMass;
+    if (p.count == 1) {
+        Ball& ball = balls[p.ends[0]];
+        ball.x += dx;
+        ball.v += dv;
+        return;
+    }
+    const double w = inverseMassOf(p);
     if (!(w > 0.0))
         return;
     // What moved the point by dx moves each end by its weight, over the point's inverse mass.
     const dvec3 moved = dx / w, pushed = dv / w;
     for (std::size_t e = 0; e < 3; ++e) {
-        Ball& end = balls[s.ends[e]];
-        end.x += s.weights[e] * end.inverseMass * moved;
-        end.v += s.weights[e] * end.inverseMass * pushed;
+        Ball& end = balls[p.ends[e]];
+        end.x += p.weights[e] * end.inverseMass * moved;
+        end.v += p.weights[e] * end.inverseMass * pushed;
     }
 }
 
-void BallContacts::touchNet(const BallOnNet& s, BallContact<double>& contact, const BallPairRule<double>& rule,
+void BallContacts::touchNet(const NetContact& s, BallContact<double>& contact, const BallPairRule<double>& rule,
                             bool first)
 {
-    dvec3 x0(0.0), v0(0.0);
-    for (std::size_t e = 0; e < 3; ++e) {
-        x0 += s.weights[e] * balls[s.ends[e]].x;
-        v0 += s.weights[e] * balls[s.ends[e]].v;
-    }
+    const dvec3 x0 = positionOf(s.piece), v0 = velocityOf(s.piece);
     dvec3 x = x0, v = v0;
-    Ball& c = balls[s.ball];
-    touchBalls(x, v, c.x, c.v, contact, rule, first);
-    shareOut(s, x - x0, v - v0);
+    if (s.toucher.count == 1) { // a ball: moved where it is
+        Ball& c = balls[s.toucher.ends[0]];
+        touchBalls(x, v, c.x, c.v, contact, rule, first);
+    } else {
+        const dvec3 y0 = positionOf(s.toucher), u0 = velocityOf(s.toucher);
+        dvec3 y = y0, u = u0;
+        touchBalls(x, v, y, u, contact, rule, first);
+        shareOut(s.toucher, y - y0, u - u0);
+    }
+    shareOut(s.piece, x - x0, v - v0);
 }
 
 void BallContacts::findWalls(std::span<const Plane> planes, double largest)

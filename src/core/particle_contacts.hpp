@@ -9,9 +9,10 @@
 // room (whose push it cannot share). The order is the pairs' index order, so the result does not
 // depend on the thread count.
 //
-// A ball meets the pieces of the ropes and cloths it is not part of too, between their balls
-// (net_pieces.hpp), in the same sweeps, as a ball of the piece's point's mass whose push and
-// impulses go to the piece's balls by their weights there.
+// A ball meets the pieces of the ropes and cloths it is not part of too, between their balls,
+// and two nets' segments meet where they cross between theirs (net_pieces.hpp), in the same
+// sweeps, as balls of their points' masses whose pushes and impulses go to the pieces' balls by
+// their weights there.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -37,8 +38,8 @@ struct BallContacts {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> segments;
     std::vector<std::array<std::uint32_t, 3>> triangles; ///< the same, of three balls
     std::uint64_t piecesGeneration = 0;
-    /// The balls against pieces of nets of the last solve.
-    std::vector<BallOnNet> onNets;
+    /// The balls and segments against pieces of nets of the last solve.
+    std::vector<NetContact> onNets;
 
     std::unique_ptr<BallContacts> clone() const { return std::make_unique<BallContacts>(*this); }
 
@@ -94,11 +95,16 @@ private:
     /// Each ball's contact with a piece of a net, its rule and, warm started, its contact as the
     /// last step left it (known again by the ball and the piece's bodies).
     void startOnNets(double dt);
-    /// The piece's point moved by dx and its velocity changed by dv: each end's share of it.
-    void shareOut(const BallOnNet& s, const dvec3& dx, const dvec3& dv);
-    /// touchBalls between the ball and the piece's point, as a ball of the point's mass (each end
-    /// carrying its weight of it), its push and impulses shared back to the ends.
-    void touchNet(const BallOnNet& s, BallContact<double>& contact, const BallPairRule<double>& rule, bool first);
+    /// A point of balls moved by dx and its velocity changed by dv: each ball's share of it.
+    void shareOut(const NetPoint& p, const dvec3& dx, const dvec3& dv);
+    /// touchBalls between the piece's point and the ball or the other segment's point, each as a
+    /// ball of its point's mass (each end carrying its weight of it), their pushes and impulses
+    /// shared back to the ends.
+    void touchNet(const NetContact& s, BallContact<double>& contact, const BallPairRule<double>& rule, bool first);
+    dvec3 positionOf(const NetPoint& p) const;
+    dvec3 velocityOf(const NetPoint& p) const;
+    /// Its inverse mass: each ball's by the square of its weight.
+    double inverseMassOf(const NetPoint& p) const;
 
     /// Each moving ball within eight of the largest radii of a surface, with those surfaces
     /// (wallsWithin), into nearWall: the sweeps move a ball by its overlaps, each under a diameter.
@@ -116,12 +122,13 @@ private:
     std::vector<BallContact<double>> m_netContacts;
     /// The last step's contacts, by their bodies' world indices (first < second), in order.
     std::vector<std::pair<std::pair<std::size_t, std::size_t>, BallContact<double>>> m_remembered;
-    /// The last step's contacts with pieces of nets, by the ball's and the piece's bodies, in order.
-    using NetKey = std::array<std::size_t, 4>;
+    /// The last step's contacts with pieces of nets, by the toucher's and the piece's bodies, in order.
+    using NetKey = std::array<std::size_t, 5>;
     std::vector<std::pair<NetKey, BallContact<double>>> m_rememberedOnNets;
-    NetKey keyOf(const BallOnNet& s) const
+    NetKey keyOf(const NetContact& s) const
     {
-        return {bodies[s.ball], bodies[s.ends[0]], bodies[s.ends[1]], bodies[s.ends[2]]};
+        return {bodies[s.toucher.ends[0]], bodies[s.toucher.ends[1]], bodies[s.piece.ends[0]], bodies[s.piece.ends[1]],
+                bodies[s.piece.ends[2]]};
     }
 };
 

@@ -818,9 +818,9 @@ void World::collideBalls(double dt)
                 if (!m_bodies.objects[contacts.bodies[ball]]->isFixed())
                     ++m_bodies.bounces[contacts.bodies[ball]];
     for (std::size_t k = 0; k < contacts.onNets.size(); ++k)
-        if (const std::size_t ball = contacts.bodies[contacts.onNets[k].ball];
-            contacts.reboundedOnNet(k) && !m_bodies.objects[ball]->isFixed())
-            ++m_bodies.bounces[ball];
+        if (const detail::NetPoint& toucher = contacts.onNets[k].toucher;
+            toucher.count == 1 && contacts.reboundedOnNet(k) && !m_bodies.objects[contacts.bodies[toucher.ends[0]]]->isFixed())
+            ++m_bodies.bounces[contacts.bodies[toucher.ends[0]]];
     for (std::size_t k = 0; k < contacts.balls.size(); ++k)
         if (!m_bodies.objects[contacts.bodies[k]]->isFixed())
             m_bodies.objects[contacts.bodies[k]]->setState({contacts.balls[k].x, contacts.balls[k].v});

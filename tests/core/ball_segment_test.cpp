@@ -6,7 +6,9 @@
 // at a triangle's centroid the point's mass is 3m (a third on each of three), so a ball of 3m
 // stops and gives the triangle's three balls its velocity, the cell's fourth none; a ball dropped
 // on a tightrope between two of its balls, or into a sparse sheet's cell, stays on it (without
-// the pieces it fell through to the floor); the thread count changes nothing.
+// the pieces it fell through to the floor); two equal elastic links crossing at their middles
+// meet as two points of mass 2m each, and so exchange their velocities; a rope dropped across a
+// tightrope where neither has a ball hangs on it; the thread count changes nothing.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -158,6 +160,60 @@ TEST(BallOnSegment, ABallDroppedIntoASparseSheetsCellStaysOnIt)
 
 // Small balls rain onto a sparse sheet of more balls than a task's grain (2,048), so two threads
 // split the grid's search.
+// Link A along x at rest, link B along z 30 cm above it coming down at 1 m/s: their middles meet.
+TEST(BallOnSegment, TwoEqualElasticLinksCrossingAtTheirMiddlesExchangeVelocities)
+{
+    pba::Scene scene = pba::parseScene(R"({"dt": 0.001, "gravity": [0, 0, 0], "room": {"min": [-3, -3, -3], "max": [3, 3, 3]},
+        "ropes": [{"name": "a", "from": [-0.15, 0, 0], "to": [0.15, 0, 0], "count": 2, "mass": 0.2,
+                   "stiffness": 100, "radius": 0.02, "restitution": 1},
+                  {"name": "b", "from": [0, 0.3, -0.15], "to": [0, 0.3, 0.15], "count": 2, "mass": 0.2,
+                   "stiffness": 100, "radius": 0.02, "restitution": 1}]})",
+                                       "crossing-links.json");
+    pba::World& world = scene.world;
+    for (const char* end : {"b[0]", "b[1]"})
+        world.body(named(world, end)).setVel(dvec3(0, -1, 0));
+    for (int step = 0; step < 500; ++step)
+        world.step(scene.dt);
+    for (const char* end : {"b[0]", "b[1]"})
+        EXPECT_NEAR(glm::length(world.body(named(world, end)).getVel()), 0.0, 1e-9) << end;
+    for (const char* end : {"a[0]", "a[1]"})
+        EXPECT_NEAR(glm::length(world.body(named(world, end)).getVel() - dvec3(0, -1, 0)), 0.0, 1e-9) << end;
+    EXPECT_GT(world.body(named(world, "b[0]")).getPos().y - world.body(named(world, "a[0]")).getPos().y, 0.04 - 1e-9)
+        << "apart";
+}
+
+// A rope of four balls dropped across a tightrope of five, crossing it between two of its balls
+// and between two of its own: it hangs on it (without the crossing it fell to the floor), the
+// same on one and two threads.
+TEST(BallOnSegment, ARopeDroppedAcrossATightropeWhereNeitherHasABallHangsOnIt)
+{
+    auto run = [](int threads) {
+        pba::Scene scene = pba::parseScene(
+            R"({"dt": 0.002, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+                "ropes": [{"name": "tightrope", "from": [-0.6, 1, 0], "to": [0.6, 1, 0], "count": 5, "mass": 0.5,
+                           "pinned": ["start", "end"], "stiffness": 2000, "damping": 20, "radius": 0.02,
+                           "restitution": 0, "friction": 0.5},
+                          {"name": "short", "from": [0.15, 1.3, -0.3], "to": [0.15, 1.3, 0.3], "count": 4, "mass": 0.2,
+                           "stiffness": 2000, "damping": 5, "radius": 0.03, "restitution": 0, "friction": 0.5}]})",
+            "rope-across-a-tightrope.json");
+        scene.world.setThreads(threads);
+        for (int step = 0; step < 1500; ++step)
+            scene.world.step(scene.dt);
+        std::vector<pba::State> states;
+        for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
+            states.push_back(scene.world.body(i).getState());
+        return states;
+    };
+    const auto one = run(1), two = run(2);
+    ASSERT_EQ(one.size(), two.size());
+    for (std::size_t i = 0; i < one.size(); ++i) {
+        EXPECT_EQ(one[i].pos, two[i].pos) << i;
+        EXPECT_EQ(one[i].vel, two[i].vel) << i;
+    }
+    for (std::size_t i = 5; i < one.size(); ++i) // the short rope's
+        EXPECT_GT(one[i].pos.y, 0.5) << i;
+}
+
 TEST(BallOnSegment, ResultsAreTheSameOnOneAndTwoThreads)
 {
     auto run = [](int threads) {
