@@ -311,11 +311,11 @@ void printBallSummary(const World& world, const study::BallFigures& f)
                             : std::string("no free ball went into a rope's or cloth's edge or cell between its balls"));
     if (f.nets >= 2)
         parts.push_back(f.deepestNetBallInEdge > 0.0
-                            ? fmt::format("a rope's or cloth's ball went {:.2f} mm into another's edge or cell between "
-                                          "its balls at most (t = {:.2f} s)",
+                            ? fmt::format("a rope's or cloth's ball or edge went {:.2f} mm into another's edge or "
+                                          "cell between its balls at most (t = {:.2f} s)",
                                           1e3 * f.deepestNetBallInEdge, f.deepestNetBallInEdgeAt)
-                            : std::string("no rope's or cloth's ball went into another's edge or cell between its "
-                                          "balls"));
+                            : std::string("no rope's or cloth's ball or edge went into another's edge or cell "
+                                          "between its balls"));
     if (f.freeBalls >= 2)
         parts.push_back(f.oneGroupFrom ? fmt::format("the {} free balls touch as one group (within {:g} mm, or {:g}% "
                                                      "of their radii if less) from t = {:.2f} s to the end", f.freeBalls,

@@ -286,6 +286,40 @@ void BallWatch::lookIntoEdges(const std::vector<dvec3>& centres, double now)
         if (depth > deepest)
             deepest = depth, at = now;
     }
+    if (m_figures.nets >= 2)
+        lookAtCrossings(centres, around, reach, now);
+}
+
+void BallWatch::lookAtCrossings(const std::vector<dvec3>& centres, const std::vector<dvec3>& around,
+                                const std::vector<double>& reach, double now)
+{
+    // Two nets' edges (the first pieces), each looked at in 16 pieces along it against the other.
+    constexpr int kPieces = 16;
+    const std::size_t edges = m_segments.size();
+    const std::span<const dvec3> edgesAround(around.data(), edges);
+    const std::span<const double> edgesReach(reach.data(), edges);
+    for (const auto& [p, q] : ballsInSpheres(edgesAround, edgesReach, edgesAround, edgesReach)) {
+        const auto [a, b] = m_segments[p];
+        const auto [c, d] = m_segments[q];
+        if (q <= p || m_netOf[a] == m_netOf[c] || (m_fixed[a] && m_fixed[b] && m_fixed[c] && m_fixed[d]))
+            continue;
+        // Each edge's pieces against the other edge, both ways.
+        const auto look = [&](std::size_t i, std::size_t j, std::size_t k, std::size_t l) {
+            const double gap = glm::length(centres[j] - centres[i]) - m_radii[i] - m_radii[j];
+            if (!(gap > 0.0))
+                return;
+            for (int n = 1; n < kPieces; ++n) {
+                const double u = double(n) / kPieces;
+                const double thickness = std::min(m_radii[i] + u * (m_radii[j] - m_radii[i]), 0.5 * gap);
+                const double depth = intoEdge(centres[i] + u * (centres[j] - centres[i]), thickness, centres[k],
+                                              m_radii[k], centres[l], m_radii[l]);
+                if (depth > m_figures.deepestNetBallInEdge)
+                    m_figures.deepestNetBallInEdge = depth, m_figures.deepestNetBallInEdgeAt = now;
+            }
+        };
+        look(a, b, c, d);
+        look(c, d, a, b);
+    }
 }
 
 } // namespace pba::study

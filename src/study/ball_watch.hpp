@@ -32,7 +32,8 @@ struct BallFigures {
     /// how far it went into one at most (m), and when.
     double deepestFreeInEdge = 0.0, deepestFreeInEdgeAt = 0.0;
     /// The ropes and cloths (balls joined by edges), and, when there are two or more, how far a
-    /// ball of one went into another's edges and triangles at most (m), and when.
+    /// ball or an edge of one (looked at in 16 pieces) went into another's edges and triangles at
+    /// most (m), and when.
     std::size_t nets = 0;
     double deepestNetBallInEdge = 0.0, deepestNetBallInEdgeAt = 0.0;
     /// The free balls (moving, in no rope or cloth), when there are two or more: every one of them
@@ -65,6 +66,10 @@ private:
     void lookIntoBodies(const World& world, const std::vector<dvec3>& centres, double now);
     void lookBetweenBalls(const World& world, const std::vector<dvec3>& centres, double now);
     void lookIntoEdges(const std::vector<dvec3>& centres, double now);
+    /// Two nets' edges crossing between their balls; `around` and `reach`, the spheres around the
+    /// edges, then the triangles.
+    void lookAtCrossings(const std::vector<dvec3>& centres, const std::vector<dvec3>& around,
+                         const std::vector<double>& reach, double now);
     std::vector<dvec3> centresOf(const World& world) const;
     std::vector<dvec3> m_startCentres; ///< looked at for pairs after the first step
     double m_startTime = 0.0;

@@ -144,6 +144,25 @@ TEST(BallWatch, ItReadsHowFarABallGoesIntoAnotherNetsEdge)
     EXPECT_NEAR(f.deepestFreeInEdge, 0.02, 1e-12);
 }
 
+// The same with c and d at (0.1, 1.09, -0.3) and (0.1, 1.09, 0.3): the edge c-d crosses a-b 0.09
+// above it, midway between c and d, 1 cm into it, where no ball is.
+TEST(BallWatch, ItReadsHowFarTwoNetsEdgesCrossIntoEachOther)
+{
+    Scene scene = parseScene(R"({"dt": 0.01, "duration": 1, "gravity": [0, 0, 0],
+        "room": {"min": [-2, 0, -2], "max": [2, 3, 2]}, "particles": [
+          {"name": "a", "position": [-0.3, 1, 0], "radius": 0.05},
+          {"name": "b", "position": [0.3, 1, 0], "radius": 0.05},
+          {"name": "c", "position": [0.1, 1.09, -0.3], "radius": 0.05},
+          {"name": "d", "position": [0.1, 1.09, 0.3], "radius": 0.05}]})",
+                             "crossing.json");
+    BallWatch watch(scene.world, std::vector<bool>(4, true), {{0, 1}, {2, 3}});
+    for (int n = 0; n < BallWatch::kEvery; ++n) {
+        scene.world.step(scene.dt);
+        watch.record(scene.world);
+    }
+    EXPECT_NEAR(watch.figures().deepestNetBallInEdge, 0.01, 1e-12);
+}
+
 TEST(BallWatch, SmallBallsAMillimetreApartDoNotTouch)
 {
     Scene scene = parseScene(R"({"dt": 0.01, "duration": 1, "gravity": [0, 0, 0],
