@@ -53,31 +53,21 @@ void BallContacts::remember()
     m_rememberedOnNets.clear();
     for (std::size_t k = 0; k < onNets.size(); ++k) {
         const NetContact& s = onNets[k];
-        m_rememberedOnNets.emplace_back(
-            keyOf(s), carriedOver(m_netContacts[k], dvec3(positionOf(s.toucher) - positionOf(s.piece)), m_netRules[k].reach));
+        const dvec3 d = pointOf(s.toucher, &Ball::x) - pointOf(s.piece, &Ball::x);
+        m_rememberedOnNets.emplace_back(keyOf(s), carriedOver(m_netContacts[k], d, m_netRules[k].reach));
     }
     std::sort(m_rememberedOnNets.begin(), m_rememberedOnNets.end(),
               [](const auto& p, const auto& q) { return p.first < q.first; });
 }
 
-dvec3 BallContacts::positionOf(const NetPoint& p) const
+dvec3 BallContacts::pointOf(const NetPoint& p, dvec3 Ball::*field) const
 {
     if (p.count == 1)
-        return balls[p.ends[0]].x;
+        return balls[p.ends[0]].*field;
     dvec3 x(0.0);
     for (std::size_t e = 0; e < 3; ++e)
-        x += p.weights[e] * balls[p.ends[e]].x;
+        x += p.weights[e] * (balls[p.ends[e]].*field);
     return x;
-}
-
-dvec3 BallContacts::velocityOf(const NetPoint& p) const
-{
-    if (p.count == 1)
-        return balls[p.ends[0]].v;
-    dvec3 v(0.0);
-    for (std::size_t e = 0; e < 3; ++e)
-        v += p.weights[e] * balls[p.ends[e]].v;
-    return v;
 }
 
 double BallContacts::inverseMassOf(const NetPoint& p) const
@@ -109,7 +99,7 @@ void BallContacts::startOnNets(double dt)
                 substeps = substeps || end.metInSubsteps;
             }
         const double w = inverseMassOf(s.piece), wt = inverseMassOf(s.toucher), total = w + wt;
-        const dvec3 d = positionOf(s.toucher) - positionOf(s.piece);
+        const dvec3 d = pointOf(s.toucher, &Ball::x) - pointOf(s.piece, &Ball::x);
         m_netContacts[k] = newContact(d);
         const BallPairRule<double>& rule = m_netRules[k] = {s.piece.radius + s.toucher.radius,
                                                             w / total,
@@ -156,13 +146,13 @@ void BallContacts::shareOut(const NetPoint& p, const dvec3& dx, const dvec3& dv)
 void BallContacts::touchNet(const NetContact& s, BallContact<double>& contact, const BallPairRule<double>& rule,
                             bool first)
 {
-    const dvec3 x0 = positionOf(s.piece), v0 = velocityOf(s.piece);
+    const dvec3 x0 = pointOf(s.piece, &Ball::x), v0 = pointOf(s.piece, &Ball::v);
     dvec3 x = x0, v = v0;
     if (s.toucher.count == 1) { // a ball: moved where it is
         Ball& c = balls[s.toucher.ends[0]];
         touchBalls(x, v, c.x, c.v, contact, rule, first);
     } else {
-        const dvec3 y0 = positionOf(s.toucher), u0 = velocityOf(s.toucher);
+        const dvec3 y0 = pointOf(s.toucher, &Ball::x), u0 = pointOf(s.toucher, &Ball::v);
         dvec3 y = y0, u = u0;
         touchBalls(x, v, y, u, contact, rule, first);
         shareOut(s.toucher, y - y0, u - u0);

@@ -101,8 +101,8 @@ private:
     /// ball of its point's mass (each end carrying its weight of it), their pushes and impulses
     /// shared back to the ends.
     void touchNet(const NetContact& s, BallContact<double>& contact, const BallPairRule<double>& rule, bool first);
-    dvec3 positionOf(const NetPoint& p) const;
-    dvec3 velocityOf(const NetPoint& p) const;
+    /// Its position (`&Ball::x`) or velocity (`&Ball::v`): its balls' by their weights.
+    dvec3 pointOf(const NetPoint& p, dvec3 Ball::*field) const;
     /// Its inverse mass: each ball's by the square of its weight.
     double inverseMassOf(const NetPoint& p) const;
 

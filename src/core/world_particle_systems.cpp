@@ -817,10 +817,12 @@ void World::collideBalls(double dt)
             for (const std::uint32_t ball : {contacts.pairs[k].first, contacts.pairs[k].second})
                 if (!m_bodies.objects[contacts.bodies[ball]]->isFixed())
                     ++m_bodies.bounces[contacts.bodies[ball]];
-    for (std::size_t k = 0; k < contacts.onNets.size(); ++k)
-        if (const detail::NetPoint& toucher = contacts.onNets[k].toucher;
-            toucher.count == 1 && contacts.reboundedOnNet(k) && !m_bodies.objects[contacts.bodies[toucher.ends[0]]]->isFixed())
-            ++m_bodies.bounces[contacts.bodies[toucher.ends[0]]];
+    for (std::size_t k = 0; k < contacts.onNets.size(); ++k) {
+        const detail::NetPoint& toucher = contacts.onNets[k].toucher;
+        const std::size_t ball = contacts.bodies[toucher.ends[0]];
+        if (toucher.count == 1 && contacts.reboundedOnNet(k) && !m_bodies.objects[ball]->isFixed())
+            ++m_bodies.bounces[ball]; // (a ball's: a crossing of two segments bounces no ball of its own)
+    }
     for (std::size_t k = 0; k < contacts.balls.size(); ++k)
         if (!m_bodies.objects[contacts.bodies[k]]->isFixed())
             m_bodies.objects[contacts.bodies[k]]->setState({contacts.balls[k].x, contacts.balls[k].v});

@@ -42,6 +42,28 @@ std::size_t named(const pba::World& world, const std::string& name)
     return 0;
 }
 
+/// Every body's state after `steps` steps of the scene `json` on `threads` threads.
+std::vector<pba::State> statesAfter(const std::string& json, int steps, int threads)
+{
+    pba::Scene scene = pba::parseScene(json, "threads.json");
+    scene.world.setThreads(threads);
+    for (int step = 0; step < steps; ++step)
+        scene.world.step(scene.dt);
+    std::vector<pba::State> states;
+    for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
+        states.push_back(scene.world.body(i).getState());
+    return states;
+}
+
+void expectSameStates(const std::vector<pba::State>& one, const std::vector<pba::State>& two)
+{
+    ASSERT_EQ(one.size(), two.size());
+    for (std::size_t i = 0; i < one.size(); ++i) {
+        EXPECT_EQ(one[i].pos, two[i].pos) << i;
+        EXPECT_EQ(one[i].vel, two[i].vel) << i;
+    }
+}
+
 } // namespace
 
 TEST(BallOnSegment, AnElasticBallOfTwiceAnEndsMassStopsAndGivesBothEndsItsVelocity)
@@ -187,60 +209,33 @@ TEST(BallOnSegment, TwoEqualElasticLinksCrossingAtTheirMiddlesExchangeVelocities
 // same on one and two threads.
 TEST(BallOnSegment, ARopeDroppedAcrossATightropeWhereNeitherHasABallHangsOnIt)
 {
-    auto run = [](int threads) {
-        pba::Scene scene = pba::parseScene(
-            R"({"dt": 0.002, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
-                "ropes": [{"name": "tightrope", "from": [-0.6, 1, 0], "to": [0.6, 1, 0], "count": 5, "mass": 0.5,
-                           "pinned": ["start", "end"], "stiffness": 2000, "damping": 20, "radius": 0.02,
-                           "restitution": 0, "friction": 0.5},
-                          {"name": "short", "from": [0.15, 1.3, -0.3], "to": [0.15, 1.3, 0.3], "count": 4, "mass": 0.2,
-                           "stiffness": 2000, "damping": 5, "radius": 0.03, "restitution": 0, "friction": 0.5}]})",
-            "rope-across-a-tightrope.json");
-        scene.world.setThreads(threads);
-        for (int step = 0; step < 1500; ++step)
-            scene.world.step(scene.dt);
-        std::vector<pba::State> states;
-        for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
-            states.push_back(scene.world.body(i).getState());
-        return states;
-    };
-    const auto one = run(1), two = run(2);
-    ASSERT_EQ(one.size(), two.size());
-    for (std::size_t i = 0; i < one.size(); ++i) {
-        EXPECT_EQ(one[i].pos, two[i].pos) << i;
-        EXPECT_EQ(one[i].vel, two[i].vel) << i;
-    }
+    const std::string json =
+        R"({"dt": 0.002, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+            "ropes": [{"name": "tightrope", "from": [-0.6, 1, 0], "to": [0.6, 1, 0], "count": 5, "mass": 0.5,
+                       "pinned": ["start", "end"], "stiffness": 2000, "damping": 20, "radius": 0.02,
+                       "restitution": 0, "friction": 0.5},
+                      {"name": "short", "from": [0.15, 1.3, -0.3], "to": [0.15, 1.3, 0.3], "count": 4,
+                       "mass": 0.2, "stiffness": 2000, "damping": 5, "radius": 0.03, "restitution": 0,
+                       "friction": 0.5}]})";
+    const auto one = statesAfter(json, 1500, 1);
+    expectSameStates(one, statesAfter(json, 1500, 2));
     for (std::size_t i = 5; i < one.size(); ++i) // the short rope's
         EXPECT_GT(one[i].pos.y, 0.5) << i;
 }
 
 TEST(BallOnSegment, ResultsAreTheSameOnOneAndTwoThreads)
 {
-    auto run = [](int threads) {
-        std::string balls;
-        for (int i = 0; i < 40; ++i)
-            balls += std::string(i ? ", " : "") + R"({"name": "b)" + std::to_string(i) + R"(", "position": [)" +
-                     std::to_string(-1.5 + 0.077 * i) + ", 1.3, " + std::to_string(-1.2 + 0.061 * i) +
-                     R"(], "mass": 0.01, "radius": 0.015, "friction": 0.3})";
-        pba::Scene scene = pba::parseScene(
-            R"({"dt": 0.002, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
-                "cloths": [{"name": "sheet", "origin": [-1.6, 1.2, -1.6], "across": [3.2, 0, 0], "down": [0, 0, 3.2],
-                            "columns": 48, "rows": 48, "mass": 20, "stiffness": {"structural": 50, "shear": 5, "bending": 0.1}, "pinned": ["top-left", "top-right", "bottom-left", "bottom-right"],
-                            "radius": 0.005, "friction": 0.3}],
-                "particles": [)" + balls + "]}",
-            "balls-on-a-sheet.json");
-        scene.world.setThreads(threads);
-        for (int step = 0; step < 40; ++step)
-            scene.world.step(scene.dt);
-        std::vector<pba::State> states;
-        for (std::size_t i = 0; i < scene.world.bodyCount(); ++i)
-            states.push_back(scene.world.body(i).getState());
-        return states;
-    };
-    const auto one = run(1), two = run(2);
-    ASSERT_EQ(one.size(), two.size());
-    for (std::size_t i = 0; i < one.size(); ++i) {
-        EXPECT_EQ(one[i].pos, two[i].pos) << i;
-        EXPECT_EQ(one[i].vel, two[i].vel) << i;
-    }
+    std::string balls;
+    for (int i = 0; i < 40; ++i)
+        balls += std::string(i ? ", " : "") + R"({"name": "b)" + std::to_string(i) + R"(", "position": [)" +
+                 std::to_string(-1.5 + 0.077 * i) + ", 1.3, " + std::to_string(-1.2 + 0.061 * i) +
+                 R"(], "mass": 0.01, "radius": 0.015, "friction": 0.3})";
+    const std::string json =
+        R"({"dt": 0.002, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+            "cloths": [{"name": "sheet", "origin": [-1.6, 1.2, -1.6], "across": [3.2, 0, 0], "down": [0, 0, 3.2],
+                        "columns": 48, "rows": 48, "mass": 20, "stiffness": {"structural": 50, "shear": 5,
+                        "bending": 0.1}, "pinned": ["top-left", "top-right", "bottom-left", "bottom-right"],
+                        "radius": 0.005, "friction": 0.3}],
+            "particles": [)" + balls + "]}";
+    expectSameStates(statesAfter(json, 40, 1), statesAfter(json, 40, 2));
 }
