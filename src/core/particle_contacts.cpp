@@ -87,14 +87,15 @@ void BallContacts::startOnNets(double dt)
     for (std::size_t k = 0; k < onNets.size(); ++k) {
         const NetContact& s = onNets[k];
         // The material of each side's point: its balls' by their weights.
-        double cor[2] = {0.0, 0.0}, friction[2] = {0.0, 0.0}, resting = 0.0;
+        const std::array<const NetPoint*, 2> sides{&s.piece, &s.toucher};
+        std::array<double, 2> cor{}, friction{};
+        double resting = 0.0;
         bool substeps = false;
-        for (const NetPoint* side : {&s.piece, &s.toucher})
+        for (std::size_t i = 0; i < 2; ++i)
             for (std::size_t e = 0; e < 3; ++e) {
-                const Ball& end = balls[side->ends[e]];
-                const std::size_t i = side == &s.piece ? 0 : 1;
-                cor[i] += side->weights[e] * end.cor;
-                friction[i] += side->weights[e] * end.friction;
+                const Ball& end = balls[sides[i]->ends[e]];
+                cor[i] += sides[i]->weights[e] * end.cor;
+                friction[i] += sides[i]->weights[e] * end.friction;
                 resting = std::max(resting, end.restingSpeed);
                 substeps = substeps || end.metInSubsteps;
             }
@@ -125,7 +126,7 @@ void BallContacts::startOnNets(double dt)
 
 void BallContacts::shareOut(const NetPoint& p, const dvec3& dx, const dvec3& dv)
 {
-    if (p.count == 1) {
+    if (p.count == 1) { // a ball alone moves by dx itself, to the bit
         Ball& ball = balls[p.ends[0]];
         ball.x += dx;
         ball.v += dv;
