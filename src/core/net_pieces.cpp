@@ -54,12 +54,13 @@ bool NetPieces::keep(std::span<const Ball> balls, std::span<const std::pair<std:
         return length - balls[a].radius - balls[b].radius > 0.0 &&
                (4.0 * r - length <= 0.0 || smallest * (4.0 * r - length) < length * (0.5 * length - r));
     };
-    // Between two nets, any segment with a gap may cross another's.
+    // Between two nets, any segment with a gap may cross another's (a gap is all `matters` needs
+    // of it then).
     const auto gapped = [&](std::uint32_t a, std::uint32_t b) {
-        return m_twoNets && glm::length(balls[b].x - balls[a].x) - balls[a].radius - balls[b].radius > 0.0;
+        return glm::length(balls[b].x - balls[a].x) - balls[a].radius - balls[b].radius > 0.0;
     };
     for (const auto& [a, b] : segments)
-        if (matters(a, b) || gapped(a, b))
+        if (m_twoNets ? gapped(a, b) : matters(a, b))
             m_kept.push_back({{a, b, b}, 2});
     for (const auto& [a, b, c] : triangles)
         if (matters(a, b) && matters(b, c) && matters(a, c))
@@ -205,12 +206,11 @@ bool NetPieces::crossing(std::span<const Ball> balls, const Piece& p, const Piec
     const dvec3 atP = p0.x + s * (p1.x - p0.x), atQ = q0.x + t * (q1.x - q0.x);
     const double separation = glm::length(atQ - atP) - thickP(s) - thickQ(t);
     // Deeper than each segment's balls lie against the other (their own contacts hold those).
-    constexpr double kLevel = 1e-7;
     const double lineP = (1.0 - s) * ballToSegment(p0.x, p0.radius, q0.x, q1.x, thickQ) +
                          s * ballToSegment(p1.x, p1.radius, q0.x, q1.x, thickQ);
     const double lineQ = (1.0 - t) * ballToSegment(q0.x, q0.radius, p0.x, p1.x, thickP) +
                          t * ballToSegment(q1.x, q1.radius, p0.x, p1.x, thickP);
-    if (!(separation < 0.0 && separation < std::min(lineP, lineQ) - kLevel))
+    if (!(separation < 0.0 && separation < std::min(lineP, lineQ) - kPieceLevel))
         return false;
     contact = {{p.ends, {1.0 - s, s, 0.0}, 2, thickP(s)}, {q.ends, {1.0 - t, t, 0.0}, 2, thickQ(t)}};
     return true;

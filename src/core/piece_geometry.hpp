@@ -15,6 +15,10 @@ namespace pba::detail {
 /// own contact, not the piece's.
 inline constexpr double kPieceEdge = 0.005;
 
+/// A piece lies deeper in what it meets than its balls do only beyond this (m): level with its
+/// balls to within rounding, it is lying along a surface, and its balls' own contacts hold it.
+inline constexpr double kPieceLevel = 1e-7;
+
 /// How thick a piece of balls at x (radii r) may be at most: half the smallest gap between two of
 /// them (where two nearly touch, what lies in the groove rests on them, as it would without the
 /// piece); 0 where two touch, leaving no inside.

@@ -167,13 +167,11 @@ SegmentDepths deepestBetweenBalls(const CollisionShape& shape, const Transform& 
     // them: when those add up to more than its length, none of it can touch.
     if (sa + sb > length + 2.0 * margin)
         return {};
-    // Level with its balls' line to within rounding: along a face.
-    constexpr double kLevel = 1e-7;
     // How much deeper than the balls' line the segment lies at t: concave (a convex shape's
     // distance is convex along a line), 0 at both ends, and so nowhere above twice its middle's
     // (a segment lying along a face is level with its balls).
     const auto beyond = [&](double t) { return sa + t * (sb - sa) - separation(t); };
-    if (!(beyond(0.5) > 0.5 * kLevel))
+    if (!(beyond(0.5) > 0.5 * detail::kPieceLevel))
         return {};
     // Where it comes nearest the shape, its separation being convex along it: a golden-section
     // search of 16 rounds finds that to a four-thousandth of the segment (30 um of a cloth's 13
@@ -209,7 +207,7 @@ SegmentDepths deepestBetweenBalls(const CollisionShape& shape, const Transform& 
         const contact::Manifold m = ballAgainst(shape, pose, pointAt(t), radius(t));
         const double s = m.points[0].separation;
         const double line = sa + t * (sb - sa);
-        if (s < margin && line - s > kLevel)
+        if (s < margin && line - s > detail::kPieceLevel)
             out.points[std::size_t(out.count++)] = SegmentDepth{t, m.normal, pointAt(t), s, line};
     }
     return out;
@@ -258,10 +256,9 @@ std::optional<TriangleDepth> deepestUnderTriangle(const CollisionShape& shape, c
         return std::nullopt;
     // Deeper than its balls' own separations there, or their contacts hold it (a sheet lying on
     // a face is level with its balls).
-    constexpr double kLevel = 1e-7;
     for (std::size_t e = 0; e < 3; ++e)
         best->line += best->weights[e] * ballAgainst(shape, pose, x[e], r[e]).points[0].separation;
-    if (!(best->line - best->separation > kLevel))
+    if (!(best->line - best->separation > detail::kPieceLevel))
         return std::nullopt;
     return best;
 }
