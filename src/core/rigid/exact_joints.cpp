@@ -131,23 +131,90 @@ void JointSolver::solveExactly(std::vector<Rows>& rows)
     }
 }
 
+struct JointSolver::GapRow {
+    BlowRow row;
+    double gap = 0.0;
+    const Rows* rows = nullptr; ///< its joint's; none for the room's
+};
+
+double JointSolver::endErrorRows(std::vector<GapRow>& gaps, std::vector<GapRow>& limits) const
+{
+    const dvec3 frame[3] = {dvec3(1.0, 0.0, 0.0), dvec3(0.0, 1.0, 0.0), dvec3(0.0, 0.0, 1.0)};
+    double widest = 0.0;
+    for (const Rows& r : m_rows) {
+        const Joint& j = m_joints[r.joint];
+        if (j.type == JointType::Distance && j.stiffness > 0.0)
+            continue;
+        const SolverBody& a = m_bodies[r.a];
+        const SolverBody& b = m_bodies[r.b];
+        // (A static body's end pose is its start's.)
+        const dvec3 ra = glm::mat3_cast(a.endOrientation) * j.localA;
+        const dvec3 rb = glm::mat3_cast(b.endOrientation) * j.localB;
+        const dvec3 d = (b.endPosition + rb) - (a.endPosition + ra);
+        const auto add = [&](std::vector<GapRow>& to, const dvec3& n, bool angular, double gap) {
+            to.push_back({{r.a, r.b, ra, rb, n, angular, 0.0}, gap, &r});
+            widest = std::max(widest, std::abs(gap));
+        };
+        if (j.type == JointType::Distance) {
+            const double length = glm::length(d);
+            if (length > 0.0)
+                add(gaps, d / length, false, length - j.length);
+            continue;
+        }
+        for (const dvec3& n : frame)
+            add(gaps, n, false, glm::dot(n, d));
+        if (j.type == JointType::Fixed) { // B turned from where it should be by -weldError
+            const dvec3 theta = weldError(j, a, b);
+            for (int k = 0; k < 3; ++k)
+                add(gaps, frame[k], true, -theta[k]);
+        }
+        if (j.type != JointType::Hinge)
+            continue;
+        const auto [axisA, axisB] = endAxes(j, a, b);
+        dvec3 across[2];
+        tangentsOf(axisA, across);
+        for (const dvec3& n : across) // B's axis is A's turned by about axisA x axisB
+            add(gaps, n, true, glm::dot(n, glm::cross(axisA, axisB)));
+        if (!j.limited)
+            continue;
+        const double angle = hingeAngle(j, a.endOrientation, b.endOrientation); // A's relative to B
+        if (angle < j.lower)
+            add(limits, -axisA, true, angle - j.lower);
+        else if (angle > j.upper)
+            add(limits, axisA, true, j.upper - angle);
+    }
+    return widest;
+}
+
+double JointSolver::roomRows(const RoomAtEnd& room, std::vector<GapRow>& limits) const
+{
+    thread_local std::vector<Contact> beyond;
+    double deepest = 0.0;
+    for (const BodyIndex k : m_movingBodies) {
+        beyond.clear();
+        room(k, beyond);
+        for (const Contact& c : beyond)
+            for (int i = 0; i < c.count; ++i) {
+                const ContactPoint& p = c.points[i];
+                if (p.separation >= 0.0)
+                    continue;
+                const BlowRow row{k, c.b, p.point - m_bodies[k].endPosition, dvec3(0.0), p.normal, false, 0.0};
+                limits.push_back({row, p.separation, nullptr});
+                deepest = std::max(deepest, -p.separation);
+            }
+    }
+    return deepest;
+}
+
 void JointSolver::holdExactly(const RoomAtEnd& room)
 {
     if (!m_farApart)
         return;
-    // Each joint's errors at the end poses as rows: the anchors' gap (a rod's length), a hinge's
-    // axes apart and a weld's turn away from its rest, then the hinge limits passed and the
-    // points beyond the room (pushing only). Held apart from the room, a light body hinged far
+    // Newton steps on the joints' errors at the end poses, the hinge limits passed and the points
+    // beyond the room (pushing only) among them. Held apart from the room, a light body hinged far
     // from a heavy one was put back on its joint through a wall, and the room's push-out after
     // opened the joint by up to 9 cm.
-    struct GapRow {
-        BlowRow row;
-        double gap = 0.0;
-        const Rows* rows = nullptr; ///< its joint's; none for the room's
-    };
     thread_local std::vector<GapRow> gaps, limits;
-    thread_local std::vector<Contact> beyond;
-    const dvec3 frame[3] = {dvec3(1.0, 0.0, 0.0), dvec3(0.0, 1.0, 0.0), dvec3(0.0, 0.0, 1.0)};
     // The steps' matrix is the start orientations' and a pose turns by a rotation vector's first
     // order, so a light link whipped round in a step converges only linearly: six 0.1 kg links
     // under a 50 kg ball at 1/60 s took up to 33 rounds, two links 7, wrecking-ball 2.
@@ -156,62 +223,8 @@ void JointSolver::holdExactly(const RoomAtEnd& room)
     for (int round = 0; round < kRounds; ++round) {
         gaps.clear();
         limits.clear();
-        double widest = 0.0;
-        for (const Rows& r : m_rows) {
-            const Joint& j = m_joints[r.joint];
-            if (j.type == JointType::Distance && j.stiffness > 0.0)
-                continue;
-            const SolverBody& a = m_bodies[r.a];
-            const SolverBody& b = m_bodies[r.b];
-            // (A static body's end pose is its start's.)
-            const dvec3 ra = glm::mat3_cast(a.endOrientation) * j.localA;
-            const dvec3 rb = glm::mat3_cast(b.endOrientation) * j.localB;
-            const dvec3 d = (b.endPosition + rb) - (a.endPosition + ra);
-            const auto add = [&](std::vector<GapRow>& to, const dvec3& n, bool angular, double gap) {
-                to.push_back({{r.a, r.b, ra, rb, n, angular, 0.0}, gap, &r});
-                widest = std::max(widest, std::abs(gap));
-            };
-            if (j.type == JointType::Distance) {
-                const double length = glm::length(d);
-                if (length > 0.0)
-                    add(gaps, d / length, false, length - j.length);
-                continue;
-            }
-            for (const dvec3& n : frame)
-                add(gaps, n, false, glm::dot(n, d));
-            if (j.type == JointType::Fixed) { // B turned from where it should be by -weldError
-                const dvec3 theta = weldError(j, a, b);
-                for (int k = 0; k < 3; ++k)
-                    add(gaps, frame[k], true, -theta[k]);
-            }
-            if (j.type != JointType::Hinge)
-                continue;
-            const auto [axisA, axisB] = endAxes(j, a, b);
-            dvec3 across[2];
-            tangentsOf(axisA, across);
-            for (const dvec3& n : across) // B's axis is A's turned by about axisA x axisB
-                add(gaps, n, true, glm::dot(n, glm::cross(axisA, axisB)));
-            if (!j.limited)
-                continue;
-            const double angle = hingeAngle(j, a.endOrientation, b.endOrientation); // A's relative to B
-            if (angle < j.lower)
-                add(limits, -axisA, true, angle - j.lower);
-            else if (angle > j.upper)
-                add(limits, axisA, true, j.upper - angle);
-        }
-        for (const BodyIndex k : m_movingBodies) {
-            beyond.clear();
-            room(k, beyond);
-            for (const Contact& c : beyond)
-                for (int i = 0; i < c.count; ++i) {
-                    const ContactPoint& p = c.points[i];
-                    if (p.separation >= 0.0)
-                        continue;
-                    const BlowRow row{k, c.b, p.point - m_bodies[k].endPosition, dvec3(0.0), p.normal, false, 0.0};
-                    limits.push_back({row, p.separation, nullptr});
-                    widest = std::max(widest, -p.separation);
-                }
-        }
+        const double joints = endErrorRows(gaps, limits); // (the room's rows after the joints' limits)
+        const double widest = std::max(joints, roomRows(room, limits));
         const std::size_t equalities = gaps.size();
         gaps.insert(gaps.end(), limits.begin(), limits.end());
         const std::size_t n = gaps.size();

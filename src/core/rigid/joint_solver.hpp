@@ -195,6 +195,16 @@ private:
     /// `rows`' rows into `out`, the equalities first; returns how many those are.
     std::size_t exactRowsOf(std::span<const Rows> rows, std::vector<ExactRow>& out) const;
     void solveExactly(std::vector<Rows>& rows);
+    /// One row of holdExactly's: a BlowRow, the error along it at the end poses, and its joint's
+    /// rows (none for the room's).
+    struct GapRow;
+    /// The joints' errors at the end poses as rows: their equalities into `gaps` (the anchors'
+    /// gap or a rod's length, a hinge's axes apart, a weld's turn), the hinge limits passed into
+    /// `limits`. Returns the largest error.
+    double endErrorRows(std::vector<GapRow>& gaps, std::vector<GapRow>& limits) const;
+    /// The moving bodies' points beyond the room at the end poses, as rows into `limits`.
+    /// Returns the deepest.
+    double roomRows(const RoomAtEnd& room, std::vector<GapRow>& limits) const;
     /// holdExactly's moves x along `rows` (each with its BlowRow `row` and its joint's `rows`).
     template <class GapRows>
     void moveTogether(const GapRows& rows, std::span<const double> x);
