@@ -350,33 +350,49 @@ StabilityRun runStability(const Scene& scene, Integrator integrator, double dt, 
     return run;
 }
 
-StabilityResult measureStabilityLimit(const Scene& scene, Integrator integrator, double omega,
-                                      const StabilityCriterion& criterion)
+namespace {
+
+/// The springs' own energy scale, sum k L^2 / 2 (each stretched by its rest length).
+double springEnergyScale(const Scene& scene)
 {
-    StabilityResult result{integrator, omega, theoryDtLimit(integrator, omega), kNaN, {}, {}, {}, {}};
-    // "No energy" is measured against the springs' own scale, sum k L^2 / 2 (each stretched by its
-    // rest length): a cloth at rest keeps rounding-sized energies that no bound can be set by.
     SpanCollector springs;
     for (std::size_t i = 0; i < scene.world.forceCount(); ++i)
         scene.world.force(i).accept(springs);
     double scale = 0.0;
     for (const auto& span : springs.spans)
         scale += 0.5 * span.stiffness * span.restLength * span.restLength;
-    if (!(std::abs(scene.world.totalEnergy()) > 1e-12 * scale)) {
+    return scale;
+}
+
+/// An integrator with no limit to bisect for: the ladder's runs, each run's end energy the damping
+/// it costs, and the largest dt up to which every run was stable.
+void climbTheLadder(const Scene& scene, double omega, const StabilityCriterion& criterion, StabilityResult& result)
+{
+    bool allStable = true;
+    for (double omegaDt : kLadderOmegaDt) {
+        result.ladder.push_back(runStability(scene, result.integrator, omegaDt / omega, omega, criterion));
+        allStable = allStable && result.ladder.back().stable;
+        if (allStable)
+            result.measuredDt = omegaDt / omega;
+    }
+    if (std::isnan(result.measuredDt))
+        result.unmeasured = fmt::format("unstable at omega dt = {:g} already", kLadderOmegaDt[0]);
+}
+
+} // namespace
+
+StabilityResult measureStabilityLimit(const Scene& scene, Integrator integrator, double omega,
+                                      const StabilityCriterion& criterion)
+{
+    StabilityResult result{integrator, omega, theoryDtLimit(integrator, omega), kNaN, {}, {}, {}, {}};
+    // "No energy" is measured against the springs' own scale: a cloth at rest keeps rounding-sized
+    // energies that no bound can be set by.
+    if (!(std::abs(scene.world.totalEnergy()) > 1e-12 * springEnergyScale(scene))) {
         result.unmeasured = "the scene starts with no energy (at rest at equilibrium): no bound to set";
         return result;
     }
     if (std::isinf(result.theoryDt)) {
-        // No limit to bisect for: run the ladder, each run's end energy the damping it costs.
-        bool allStable = true;
-        for (double omegaDt : kLadderOmegaDt) {
-            result.ladder.push_back(runStability(scene, integrator, omegaDt / omega, omega, criterion));
-            allStable = allStable && result.ladder.back().stable;
-            if (allStable)
-                result.measuredDt = omegaDt / omega;
-        }
-        if (std::isnan(result.measuredDt))
-            result.unmeasured = fmt::format("unstable at omega dt = {:g} already", kLadderOmegaDt[0]);
+        climbTheLadder(scene, omega, criterion, result);
         return result;
     }
     // The last two runs' reasons: a spring that leaves its linear range at the same time at dt
