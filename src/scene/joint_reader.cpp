@@ -142,15 +142,9 @@ std::array<double, 2> readLimits(ObjectReader& reader)
     return {lower, upper};
 }
 
-} // namespace
-
-JointDesc readJoint(const Json& value, const std::string& path, const std::string& file, World& world)
+/// `bodies`: one body, joined to the world, or two different ones.
+void readBodies(ObjectReader& reader, const World& world, JointDesc& joint)
 {
-    ObjectReader reader(value, path, file);
-    reader.expectKeys(
-        {"type", "bodies", "anchor", "anchors", "axis", "limits", "length", "stiffness", "damping", "collide"});
-    JointDesc joint;
-    joint.type = readType(reader);
     const Json& bodies = reader.raw("bodies");
     if (!bodies.is_array() || bodies.empty() || bodies.size() > 2)
         reader.fail("bodies", "must name one rigid body (joined to the world) or two (a rigid body and a rigid "
@@ -161,6 +155,58 @@ JointDesc readJoint(const Json& value, const std::string& path, const std::strin
         if (*joint.bodyB == joint.bodyA)
             reader.fail("bodies", "names the same body twice");
     }
+}
+
+/// A distance joint's anchors, and its length, stiffness and damping.
+void readRod(ObjectReader& reader, const World& world, JointDesc& joint)
+{
+    joint.anchors = readAnchors(reader);
+    checkAnchor(reader, world, "anchors[0]", joint.anchors[0], joint.bodyA);
+    checkAnchor(reader, world, "anchors[1]", joint.anchors[1], joint.bodyB.value_or(joint.bodyA));
+    if (reader.has("length")) {
+        joint.length = reader.nonNegative("length");
+        if (*joint.length > kMaxAnchorReach)
+            reader.fail("length", fmt::format("must be at most {:g} m, got {:g}", kMaxAnchorReach, *joint.length));
+    }
+    if (reader.has("stiffness")) {
+        joint.stiffness = reader.positive("stiffness");
+        if (*joint.stiffness > kMaxStiffness)
+            reader.fail("stiffness", fmt::format("must be at most {:g} N/m (stiffer, leave the stiffness out: "
+                                                 "a rigid rod), got {:g}", kMaxStiffness, *joint.stiffness));
+    }
+    if (joint.length && !joint.stiffness)
+        failIfRodIsNotAtItsLength(reader, joint);
+    if (reader.has("damping") && !joint.stiffness)
+        reader.fail("damping", "belongs to a spring: give a stiffness too (without one the rod is rigid)");
+    joint.damping = reader.nonNegative("damping", 0.0);
+    if (joint.damping > kMaxStiffness)
+        reader.fail("damping", fmt::format("must be at most {:g} N s/m, got {:g}", kMaxStiffness, joint.damping));
+}
+
+/// A ball, hinge or fixed joint's one anchor (a weld's defaults to its first body's centre).
+void readAnchor(ObjectReader& reader, const World& world, JointDesc& joint)
+{
+    joint.anchor = joint.type == JointType::Fixed ? reader.vec3("anchor", world.body(joint.bodyA).getPos())
+                                                  : reader.vec3("anchor");
+    // A ball joint of a particle and a rigid body (the only one a particle may have) holds the
+    // particle at its centre.
+    const bool ballAcross = joint.type == JointType::Ball && joint.bodyB &&
+                            world.isRigid(joint.bodyA) != world.isRigid(*joint.bodyB);
+    checkAnchor(reader, world, "anchor", joint.anchor, joint.bodyA, ballAcross);
+    if (joint.bodyB)
+        checkAnchor(reader, world, "anchor", joint.anchor, *joint.bodyB, ballAcross);
+}
+
+} // namespace
+
+JointDesc readJoint(const Json& value, const std::string& path, const std::string& file, World& world)
+{
+    ObjectReader reader(value, path, file);
+    reader.expectKeys(
+        {"type", "bodies", "anchor", "anchors", "axis", "limits", "length", "stiffness", "damping", "collide"});
+    JointDesc joint;
+    joint.type = readType(reader);
+    readBodies(reader, world, joint);
     failIfNothingMoves(reader, world, joint);
     auto onlyFor = [&](const char* key, bool allowed, const char* types) {
         if (reader.has(key) && !allowed)
@@ -174,39 +220,10 @@ JointDesc readJoint(const Json& value, const std::string& path, const std::strin
     onlyFor("anchor", !distance, "ball, hinge and fixed");
     onlyFor("axis", hinge, "hinge");
     onlyFor("limits", hinge, "hinge");
-    if (distance) {
-        joint.anchors = readAnchors(reader);
-        checkAnchor(reader, world, "anchors[0]", joint.anchors[0], joint.bodyA);
-        checkAnchor(reader, world, "anchors[1]", joint.anchors[1], joint.bodyB.value_or(joint.bodyA));
-        if (reader.has("length")) {
-            joint.length = reader.nonNegative("length");
-            if (*joint.length > kMaxAnchorReach)
-                reader.fail("length", fmt::format("must be at most {:g} m, got {:g}", kMaxAnchorReach, *joint.length));
-        }
-        if (reader.has("stiffness")) {
-            joint.stiffness = reader.positive("stiffness");
-            if (*joint.stiffness > kMaxStiffness)
-                reader.fail("stiffness", fmt::format("must be at most {:g} N/m (stiffer, leave the stiffness out: "
-                                                     "a rigid rod), got {:g}", kMaxStiffness, *joint.stiffness));
-        }
-        if (joint.length && !joint.stiffness)
-            failIfRodIsNotAtItsLength(reader, joint);
-        if (reader.has("damping") && !joint.stiffness)
-            reader.fail("damping", "belongs to a spring: give a stiffness too (without one the rod is rigid)");
-        joint.damping = reader.nonNegative("damping", 0.0);
-        if (joint.damping > kMaxStiffness)
-            reader.fail("damping", fmt::format("must be at most {:g} N s/m, got {:g}", kMaxStiffness, joint.damping));
-    } else {
-        joint.anchor = joint.type == JointType::Fixed ? reader.vec3("anchor", world.body(joint.bodyA).getPos())
-                                                      : reader.vec3("anchor");
-        // A ball joint of a particle and a rigid body (the only one a particle may have) holds the
-        // particle at its centre.
-        const bool ballAcross = joint.type == JointType::Ball && joint.bodyB &&
-                                world.isRigid(joint.bodyA) != world.isRigid(*joint.bodyB);
-        checkAnchor(reader, world, "anchor", joint.anchor, joint.bodyA, ballAcross);
-        if (joint.bodyB)
-            checkAnchor(reader, world, "anchor", joint.anchor, *joint.bodyB, ballAcross);
-    }
+    if (distance)
+        readRod(reader, world, joint);
+    else
+        readAnchor(reader, world, joint);
     if (hinge) {
         joint.axis = unitOrZero(reader.vec3("axis"));
         if (joint.axis == dvec3(0.0))
