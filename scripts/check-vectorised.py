@@ -2,7 +2,7 @@
 """Fails when a hot loop of the swarm step stops vectorising.
 
 The loops are marked in the sources by a comment line `// vectorised: checked` right above the
-`for` (in src/core/swarm.cpp and the private headers it includes). This compiles src/core/swarm.cpp exactly as the build does (its command from
+`for` (in src/core/swarms/swarm.cpp and the private headers it includes). This compiles src/core/swarms/swarm.cpp exactly as the build does (its command from
 compile_commands.json) with GCC's vectorisation report (-fopt-info-vec-optimized-missed), and requires
 every marked loop to be reported "vectorized using 64 byte vectors" (the AVX-512 copy that
 target_clones makes) and "using 32 byte vectors" (the AVX2 copy), and no copy of it to be
@@ -50,7 +50,7 @@ def main():
         return 77
     with open(os.path.join(build, "compile_commands.json")) as f:
         commands = json.load(f)
-    swarm = os.path.realpath(os.path.join(source, "src/core/swarm.cpp"))
+    swarm = os.path.realpath(os.path.join(source, "src/core/swarms/swarm.cpp"))
     entry = next((c for c in commands if os.path.realpath(c["file"]) == swarm), None)
     if entry is None:
         print("check-vectorised: swarm.cpp is not in compile_commands.json")
@@ -62,7 +62,8 @@ def main():
         return 77
     core = os.path.join(source, "src/core")
     sources = [swarm] + [os.path.join(core, name) for name in
-                         ("surface_tests.hpp", "swarm_block.hpp", "swarm_integrate.hpp", "swarm_collide.hpp")]
+                         ("surfaces/surface_tests.hpp", "swarms/swarm_block.hpp", "swarms/swarm_integrate.hpp",
+                          "swarms/swarm_collide.hpp")]
     loops = marked_loops(sources)
     if not loops:
         print("check-vectorised: no marked loops found")

@@ -52,7 +52,7 @@ PHASE_STEPS = {"flight": 0, "landed": LANDED_STEPS, "rested": RESTED_STEPS}
 
 
 def mix(z):
-    """splitmix64 over uint64 arrays (pba's src/core/swarm.cpp `mix`); wraps as C++ does."""
+    """splitmix64 over uint64 arrays (pba's src/core/swarms/swarm.cpp `mix`); wraps as C++ does."""
     z = z + np.uint64(0x9E3779B97F4A7C15)
     z = (z ^ (z >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
     z = (z ^ (z >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)

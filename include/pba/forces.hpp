@@ -53,7 +53,7 @@ private:
 };
 
 /// A damped spring from a fixed anchor, F = -k (|d| - L) d/|d| - c (v . d/|d|) d/|d| with
-/// d = x - anchor: its kernel is springForce (src/core/spring_force.hpp). It ties one named
+/// d = x - anchor: its kernel is springForce (src/core/forces/spring_force.hpp). It ties one named
 /// particle: a swarm in the same world feels nothing of it.
 class Spring final : public ForceBase<Spring> {
 public:

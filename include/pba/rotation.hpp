@@ -9,7 +9,7 @@
 // without one: Euler's equations, with their gyroscopic term I_w' omega, follow from it. Every
 // method renormalises q at the end of its step. This header declares; the stages of each method
 // are in pba/detail/rigid_step.hpp (templates, included at the end), the rotations' own steps in
-// src/core/rotation.cpp.
+// src/core/bodies/rotation.cpp.
 #include <span>
 #include <vector>
 

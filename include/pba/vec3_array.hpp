@@ -26,7 +26,7 @@ public:
     auto begin() const { return m_items.begin(); }
     auto end() const { return m_items.end(); }
 
-    /// Body by body, out of line (src/core/vec3_array.cpp): each is a loop over the whole group,
+    /// Body by body, out of line (src/core/swarms/vec3_array.cpp): each is a loop over the whole group,
     /// beside which a call costs nothing.
     Vec3Array& operator+=(const Vec3Array& other);
     friend Vec3Array operator+(Vec3Array a, const Vec3Array& b) { return a += b; }

@@ -2,19 +2,21 @@
 // The World owns bodies, forces and the surfaces that bound them, and advances them by
 // a fixed dt. It is made of parts, each the data of one concern (as Jolt's PhysicsSystem is
 // made of a body manager, a broad phase, a contact manager...); they are World's private
-// members, declared at the end of this file:
-//   Bodies           every body, and what the step keeps of each (previous state and rotation,
-//                    mass, restitution, coupling key, state and pose at the current stage,
-//                    bounces, the first one not finite or inside a surface)
-//   Forces           the forces, the pairs of bodies they couple, and their accumulators
-//   ParticleSystems  the coupling of the moving particles into systems, one per integrator,
-//                    their scratch, and implicit-euler's and xpbd's spring solvers
-//   RigidBodies      the rigid system (src/core/rigid/: broad phase, narrow phase, contact
+// members, declared at the end of this file (their code in src/core/, a folder each):
+//   Bodies           (bodies/) every body, and what the step keeps of each (previous state and
+//                    rotation, mass, restitution, coupling key, state and pose at the current
+//                    stage, bounces, the first one not finite or inside a surface)
+//   Forces           (forces/) the forces, the pairs of bodies they couple, and their accumulators
+//   ParticleSystems  (particle_systems/, balls/) the coupling of the moving particles into
+//                    systems, one per integrator, their scratch, implicit-euler's and xpbd's
+//                    spring solvers, and the contacts of the particles with a radius
+//   RigidBodies      (rigid/, contact/) the rigid system (broad phase, narrow phase, contact
 //                    cache, islands with their sleep, contact solver and joints) and the
 //                    buffers of the bodies' free step
-//   Swarms           the swarms (float arrays, all cores) and their copies for a rollback
-//   Surfaces         the ground or the room, the floor hole, their planes, the collision response
-//   StepClock        the time and the step count
+//   Swarms           (swarms/) the swarms (float arrays, all cores) and their copies for a rollback
+//   Surfaces         (surfaces/) the ground or the room, the floor hole, their planes, the
+//                    collision response
+//   StepClock        the time and the step count (the clocks that drive it: clock/)
 // step() runs in named phases (the way Box2D's solver stages and Jolt's step jobs are named),
 // each a function over one part or a named few:
 //   1. Bodies::storePreviousStates (and Swarms::keepForRollback): the states before the step,
@@ -548,10 +550,10 @@ private:
     /// The system's end states through the surfaces into its bodies, each checked finite.
     void collideAndStore(const std::vector<std::size_t>& members, double dt, Integrator integrator);
     /// Phase 4b (ParticleSystems, Bodies, Surfaces): the particles with a radius that touch each
-    /// other after their step are separated and exchange impulses (src/core/particle_contacts.hpp),
+    /// other after their step are separated and exchange impulses (src/core/balls/particle_contacts.hpp),
     /// and so are the balls and two nets' crossing edges between other ropes' and cloths' balls
-    /// (src/core/net_pieces.hpp);
-    /// neighbours along one rope or cloth are left to their springs (src/core/spring_neighbours.hpp).
+    /// (src/core/balls/net_pieces.hpp);
+    /// neighbours along one rope or cloth are left to their springs (src/core/particle_systems/spring_neighbours.hpp).
     void collideBalls(double dt);
     /// Phase 6, for a swarm that collides: its grains against each other and `room` (its planes
     /// moved a grain's radius inwards) by the particles' rule, in float and on all cores

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "contact/narrow_phase.hpp"
-#include "particle_grid.hpp"
+#include "balls/particle_grid.hpp"
 
 namespace pba {
 

@@ -12,13 +12,13 @@
 
 #include "pba/forces.hpp"
 
-#include "collision_rules.hpp"
+#include "surfaces/collision_rules.hpp"
 #include "rigid/joint_solver.hpp"
 #include "rigid/rigid_system.hpp"
-#include "grain_contacts.hpp"
-#include "particle_contacts.hpp"
-#include "spring_neighbours.hpp"
-#include "spring_solvers.hpp"
+#include "swarms/grain_contacts.hpp"
+#include "balls/particle_contacts.hpp"
+#include "particle_systems/spring_neighbours.hpp"
+#include "particle_systems/spring_solvers.hpp"
 
 namespace pba {
 

@@ -1,7 +1,7 @@
 // A World's phase for its particle systems (integrateParticleSystems): each system of the
 // coupling with its method. integrateCoupled steps the explicit methods' systems, every stage
 // evaluating every force; integrateBackwardEuler and integrateXpbd the systems whose springs
-// are stepped implicitly, with their solvers (src/core/backward_euler.cpp, xpbd.cpp). Each
+// are stepped implicitly, with their solvers (src/core/particle_systems/backward_euler.cpp, xpbd.cpp). Each
 // hands the end states to collideAndStore.
 #include "pba/world.hpp"
 
@@ -10,14 +10,14 @@
 #include <tuple>
 #include <unordered_map>
 
-#include "collision_rules.hpp"
-#include "grain_contacts.hpp"
+#include "surfaces/collision_rules.hpp"
+#include "swarms/grain_contacts.hpp"
 #include "material_rule.hpp"
 #include "parallel.hpp"
-#include "particle_contacts.hpp"
+#include "balls/particle_contacts.hpp"
 #include "rigid/rigid_system.hpp"
-#include "spring_neighbours.hpp"
-#include "spring_solvers.hpp"
+#include "particle_systems/spring_neighbours.hpp"
+#include "particle_systems/spring_solvers.hpp"
 #include "world_checks.hpp"
 
 namespace pba {

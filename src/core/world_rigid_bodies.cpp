@@ -9,7 +9,7 @@
 
 #include "parallel.hpp"
 #include "rigid/rigid_system.hpp"
-#include "spring_neighbours.hpp"
+#include "particle_systems/spring_neighbours.hpp"
 #include "world_checks.hpp"
 
 namespace pba {

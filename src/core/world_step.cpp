@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "collision_rules.hpp"
+#include "surfaces/collision_rules.hpp"
 #include "parallel.hpp"
 #include "world_checks.hpp"
 

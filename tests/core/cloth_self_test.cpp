@@ -16,7 +16,7 @@
 #include "pba/scene/scene.hpp"
 #include "pba/spring_network.hpp"
 #include "pba/world.hpp"
-#include "spring_neighbours.hpp"
+#include "particle_systems/spring_neighbours.hpp"
 
 using namespace pba;
 

@@ -10,8 +10,8 @@
 #include <random>
 #include <vector>
 
-#include "core/room_surfaces.hpp"
-#include "core/surface_tests.hpp"
+#include "core/surfaces/room_surfaces.hpp"
+#include "core/surfaces/surface_tests.hpp"
 #include "pba/forces.hpp"
 #include "pba/scene/scene.hpp"
 #include "pba/world.hpp"

@@ -8,7 +8,7 @@
 #include <memory>
 #include <numbers>
 
-#include "core/collision_rules.hpp"
+#include "core/surfaces/collision_rules.hpp"
 #include "pba/forces.hpp"
 #include "pba/world.hpp"
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "particle_grid.hpp"
+#include "balls/particle_grid.hpp"
 #include "pba/overlap.hpp"
 
 namespace pba::detail {

@@ -11,7 +11,7 @@
 #include <numbers>
 #include <string>
 
-#include "core/piece_geometry.hpp"
+#include "core/balls/piece_geometry.hpp"
 #include "core/rigid/piece_contacts.hpp"
 #include "pba/scene/scene.hpp"
 #include "pba/shape.hpp"

@@ -17,7 +17,7 @@
 #include "pba/swarm.hpp"
 #include "pba/world.hpp"
 
-#include "backward_euler.hpp"
+#include "particle_systems/backward_euler.hpp"
 
 using namespace pba;
 

@@ -1,4 +1,4 @@
-// XPBD's ropes and cloths meet rigid bodies and each other inside their substeps (src/core/xpbd.hpp,
+// XPBD's ropes and cloths meet rigid bodies and each other inside their substeps (src/core/particle_systems/xpbd.hpp,
 // xpbd_rigid_contacts.hpp). Oracles: the pushes between a sheet and a box are equal and opposite,
 // so with no gravity and no wall reached their total momentum stays what it was (to rounding)
 // while each changes the other's; a ball dropped on a fixed box rises to e^2 h; a ball resting on

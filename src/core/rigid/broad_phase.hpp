@@ -15,7 +15,7 @@
 
 #include "pba/math.hpp"
 #include "rigid/contact.hpp"
-#include "spatial_hash.hpp"
+#include "balls/spatial_hash.hpp"
 
 namespace pba::rigid {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "contact/sphere_contact.hpp"
-#include "piece_geometry.hpp"
+#include "balls/piece_geometry.hpp"
 
 namespace pba::rigid {
 

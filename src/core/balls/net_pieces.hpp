@@ -1,0 +1,101 @@
+#pragma once
+// The pieces of ropes and cloths between their balls, which other balls meet: each segment (a
+// spring between two balls that runs past no third: spring_neighbours.hpp) and each triangle of
+// three segments (a cloth's cell halves, as it is drawn), as thick as their balls but no thicker
+// than half the gap between them. A ball that comes between a net's balls meets the piece at its
+// point nearest the ball, where the piece lies deeper in it than the piece's own balls do; the
+// contact's push and impulses go to the piece's balls by their weights at that point (a piece
+// without mass), so a ball smaller than the holes of a sheet lands on it instead of falling
+// through. Only the balls of no net, or of another net, ask: a net's own far balls meet it by
+// their balls alone (the self-collision), and asking every ball of a cloth for its own pieces
+// would cost more than its contacts. Two nets' segments that cross between their balls meet at
+// their nearest points in the same way, each side's share going to its own two balls, so a rope
+// dropped across another hangs on it. A ball whose way through the step went through a piece
+// (a ball falling fast onto a sheet, a rope swung past a ball) is a pass: it is put back on the
+// side it came from, and meets the piece there. Private to the core.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "balls/ball.hpp"
+#include "balls/particle_grid.hpp"
+
+namespace pba::detail {
+
+/// Balls acting as one point: a ball alone, or a piece's point by its weights on the piece's balls.
+struct NetPoint {
+    std::array<std::uint32_t, 3> ends{}; ///< its balls (those past `count` repeat the last, of weight 0)
+    std::array<double, 3> weights{};     ///< summing to 1
+    int count = 1;                       ///< 1: a ball, 2: a segment's point, 3: a triangle's
+    double radius = 0.0;                 ///< the ball's, or the piece's thickness there
+
+    static NetPoint ball(std::uint32_t b, double radius) { return {{b, b, b}, {1.0, 0.0, 0.0}, 1, radius}; }
+};
+
+/// A ball of no net or of another net against a piece of a net, at the piece's point nearest it;
+/// or a segment of one net crossing a segment of another between their balls, at their nearest
+/// points.
+struct NetContact {
+    NetPoint piece;
+    NetPoint toucher; ///< the ball, or the other segment's point
+};
+
+/// A ball that went through a piece of a net in the step, between the piece's balls: where it
+/// crossed the piece, and the side it came from (a unit vector across the piece as it is now).
+struct NetPass {
+    NetContact contact;
+    dvec3 side{0.0};
+};
+
+class NetPieces {
+public:
+    /// The balls touching pieces of nets they are not part of, into `out`, and those that went
+    /// through one, into `passes` (those instead), ball by ball in index order (so the same on any
+    /// thread count). `starts`: each ball's centre at the step's start (empty: no passes looked
+    /// for). `segments` pairs of balls, `triangles` triples; `generation` changes when they do
+    /// (the nets are worked out again then).
+    void find(std::span<const Ball> balls, std::span<const dvec3> starts,
+              std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
+              std::span<const std::array<std::uint32_t, 3>> triangles, std::uint64_t generation,
+              std::vector<NetContact>& out, std::vector<NetPass>& passes);
+
+private:
+    struct Piece {
+        std::array<std::uint32_t, 3> ends{};
+        int count = 2; ///< 2: a segment, 3: a triangle
+    };
+    /// Each ball's net (m_net), and whether any ball asks (m_asking).
+    void findNets(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments);
+    /// The pieces that a ball of the smallest radius could meet deeper than their balls do, into
+    /// m_kept, with where each is and how far it reaches. False if none.
+    bool keep(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
+              std::span<const std::array<std::uint32_t, 3>> triangles);
+    /// Whether `ball` touches piece p at an inner point, deeper than the piece's own balls do:
+    /// then `contact` is it.
+    static bool touching(std::span<const Ball> balls, const Piece& p, std::uint32_t ball, NetContact& contact);
+    /// Whether `ball`, moving from its start to where it is against piece p moving from its balls'
+    /// starts, went through p's inside within its thickness: then `pass` is where (`along` the share
+    /// of the step at which it came nearest).
+    static bool passed(std::span<const Ball> balls, std::span<const dvec3> starts, const Piece& p,
+                       std::uint32_t ball, NetPass& pass, double& along);
+    /// Whether segments p and q cross between their balls, nearer than their thicknesses and
+    /// deeper than either's balls lie against the other: then `contact` is it.
+    static bool crossing(std::span<const Ball> balls, const Piece& p, const Piece& q, NetContact& contact);
+
+    static constexpr std::uint32_t kNoNet = ~std::uint32_t(0);
+    /// The heaviest ball, in masses of a piece's point, that is put back where it went through it.
+    static constexpr double kHeaviestPasser = 8.0;
+    std::vector<std::uint32_t> m_net; ///< each ball's net (its first ball's index), or kNoNet
+    std::uint64_t m_netsOf = ~std::uint64_t(0); ///< the generation m_net was found for
+    bool m_twoNets = false, m_asking = false;
+    std::vector<Piece> m_kept;
+    std::vector<dvec3> m_centre;
+    std::vector<double> m_reach; ///< from its centre: its farthest end, and its thickest ball
+    double m_largestReach = 0.0;
+    ParticleGrid m_grid; ///< of the kept pieces, each as the ball around it
+    std::vector<std::uint32_t> m_found;
+};
+
+} // namespace pba::detail

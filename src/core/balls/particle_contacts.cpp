@@ -1,0 +1,210 @@
+#include "balls/particle_contacts.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "surfaces/collision_rules.hpp"
+#include "material_rule.hpp"
+
+namespace pba::detail {
+
+void BallContacts::startContacts(double dt)
+{
+    m_rules.resize(pairs.size());
+    m_contacts.resize(pairs.size());
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        Ball& a = balls[pairs[k].first];
+        Ball& b = balls[pairs[k].second];
+        m_contacts[k] = newContact(dvec3(b.x - a.x));
+        const double w = a.inverseMass + b.inverseMass;
+        BallPairRule<double>& rule = m_rules[k];
+        rule = {a.radius + b.radius, a.inverseMass / w, b.inverseMass / w, combinedRestitution(a.cor, b.cor),
+                combinedFriction(a.friction, b.friction), std::max(a.restingSpeed, b.restingSpeed), dt};
+        const std::pair<std::size_t, std::size_t> key(bodies[pairs[k].first], bodies[pairs[k].second]);
+        const auto old = std::lower_bound(m_remembered.begin(), m_remembered.end(), key,
+                                          [](const auto& entry, const auto& k2) { return entry.first < k2; });
+        if (old == m_remembered.end() || old->first != key || a.metInSubsteps || b.metInSubsteps)
+            continue;
+        const dvec3 d = b.x - a.x;
+        const double distance = glm::length(d);
+        if (!(distance > 0.0))
+            continue;
+        const dvec3 n = d / distance;
+        BallContact<double>& c = m_contacts[k];
+        c = old->second;
+        c.tangent -= glm::dot(c.tangent, n) * n;
+        const dvec3 change = c.normal * n + c.tangent;
+        a.v -= rule.shareA * change;
+        b.v += rule.shareB * change;
+    }
+}
+
+void BallContacts::remember()
+{
+    m_remembered.clear();
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const Ball& a = balls[pairs[k].first];
+        const Ball& b = balls[pairs[k].second];
+        m_remembered.emplace_back(std::pair(bodies[pairs[k].first], bodies[pairs[k].second]),
+                                  carriedOver(m_contacts[k], dvec3(b.x - a.x), m_rules[k].reach));
+    }
+    // (The balls are listed in the world's order and the pairs in theirs: the keys are in order.)
+    m_rememberedOnNets.clear();
+    for (std::size_t k = 0; k < onNets.size(); ++k) {
+        const NetContact& s = onNets[k];
+        const dvec3 d = pointOf(s.toucher, &Ball::x) - pointOf(s.piece, &Ball::x);
+        m_rememberedOnNets.emplace_back(keyOf(s), carriedOver(m_netContacts[k], d, m_netRules[k].reach));
+    }
+    std::sort(m_rememberedOnNets.begin(), m_rememberedOnNets.end(),
+              [](const auto& p, const auto& q) { return p.first < q.first; });
+}
+
+dvec3 BallContacts::pointOf(const NetPoint& p, dvec3 Ball::*field) const
+{
+    if (p.count == 1)
+        return balls[p.ends[0]].*field;
+    dvec3 x(0.0);
+    for (std::size_t e = 0; e < 3; ++e)
+        x += p.weights[e] * (balls[p.ends[e]].*field);
+    return x;
+}
+
+double BallContacts::inverseMassOf(const NetPoint& p) const
+{
+    if (p.count == 1)
+        return balls[p.ends[0]].inverseMass;
+    double w = 0.0;
+    for (std::size_t e = 0; e < 3; ++e)
+        w += p.weights[e] * p.weights[e] * balls[p.ends[e]].inverseMass;
+    return w;
+}
+
+void BallContacts::startOnNets(double dt)
+{
+    m_netRules.resize(onNets.size());
+    m_netContacts.resize(onNets.size());
+    for (std::size_t k = 0; k < onNets.size(); ++k) {
+        const NetContact& s = onNets[k];
+        // The material of each side's point: its balls' by their weights.
+        const std::array<const NetPoint*, 2> sides{&s.piece, &s.toucher};
+        std::array<double, 2> cor{}, friction{};
+        double resting = 0.0;
+        bool substeps = false;
+        for (std::size_t i = 0; i < 2; ++i)
+            for (std::size_t e = 0; e < 3; ++e) {
+                const Ball& end = balls[sides[i]->ends[e]];
+                cor[i] += sides[i]->weights[e] * end.cor;
+                friction[i] += sides[i]->weights[e] * end.friction;
+                resting = std::max(resting, end.restingSpeed);
+                substeps = substeps || end.metInSubsteps;
+            }
+        const double w = inverseMassOf(s.piece), wt = inverseMassOf(s.toucher), total = w + wt;
+        const dvec3 d = pointOf(s.toucher, &Ball::x) - pointOf(s.piece, &Ball::x);
+        m_netContacts[k] = newContact(d);
+        const BallPairRule<double>& rule = m_netRules[k] = {s.piece.radius + s.toucher.radius,
+                                                            w / total,
+                                                            wt / total,
+                                                            combinedRestitution(cor[0], cor[1]),
+                                                            combinedFriction(friction[0], friction[1]),
+                                                            resting,
+                                                            dt};
+        const NetKey key = keyOf(s);
+        const auto old = std::lower_bound(m_rememberedOnNets.begin(), m_rememberedOnNets.end(), key,
+                                          [](const auto& entry, const NetKey& k2) { return entry.first < k2; });
+        if (old == m_rememberedOnNets.end() || old->first != key || substeps || !(glm::length(d) > 0.0))
+            continue;
+        const dvec3 n = glm::normalize(d);
+        BallContact<double>& contact = m_netContacts[k];
+        contact = old->second;
+        contact.tangent -= glm::dot(contact.tangent, n) * n;
+        const dvec3 change = contact.normal * n + contact.tangent;
+        shareOut(s.piece, dvec3(0.0), -rule.shareA * change);
+        shareOut(s.toucher, dvec3(0.0), rule.shareB * change);
+    }
+}
+
+void BallContacts::putBack()
+{
+    for (const NetPass& pass : m_passes) {
+        const NetContact& s = pass.contact;
+        const dvec3 d = pointOf(s.toucher, &Ball::x) - pointOf(s.piece, &Ball::x);
+        // Just touching: the sweeps then take its approach away (or rebound it) there. The ball
+        // is put back, as far as the step took it through, rather than the piece's balls by their
+        // shares: a heavy ball would pull them out of their net by that much, and its springs would
+        // throw them back. A fixed ball stays, and the piece goes back instead.
+        const dvec3 back = (s.piece.radius + s.toucher.radius) * pass.side - d;
+        if (inverseMassOf(s.toucher) > 0.0)
+            shareOut(s.toucher, back, dvec3(0.0));
+        else
+            shareOut(s.piece, -back, dvec3(0.0));
+        onNets.push_back(s);
+    }
+}
+
+void BallContacts::shareOut(const NetPoint& p, const dvec3& dx, const dvec3& dv)
+{
+    if (p.count == 1) { // a ball alone moves by dx itself, to the bit
+        Ball& ball = balls[p.ends[0]];
+        ball.x += dx;
+        ball.v += dv;
+        return;
+    }
+    const double w = inverseMassOf(p);
+    if (!(w > 0.0))
+        return;
+    // What moved the point by dx moves each end by its weight, over the point's inverse mass.
+    const dvec3 moved = dx / w, pushed = dv / w;
+    for (std::size_t e = 0; e < 3; ++e) {
+        Ball& end = balls[p.ends[e]];
+        end.x += p.weights[e] * end.inverseMass * moved;
+        end.v += p.weights[e] * end.inverseMass * pushed;
+    }
+}
+
+void BallContacts::touchNet(const NetContact& s, BallContact<double>& contact, const BallPairRule<double>& rule,
+                            bool first)
+{
+    const dvec3 x0 = pointOf(s.piece, &Ball::x), v0 = pointOf(s.piece, &Ball::v);
+    dvec3 x = x0, v = v0;
+    if (s.toucher.count == 1) { // a ball: moved where it is
+        Ball& c = balls[s.toucher.ends[0]];
+        touchBalls(x, v, c.x, c.v, contact, rule, first);
+    } else {
+        const dvec3 y0 = pointOf(s.toucher, &Ball::x), u0 = pointOf(s.toucher, &Ball::v);
+        dvec3 y = y0, u = u0;
+        touchBalls(x, v, y, u, contact, rule, first);
+        shareOut(s.toucher, y - y0, u - u0);
+    }
+    shareOut(s.piece, x - x0, v - v0);
+}
+
+void BallContacts::findWalls(std::span<const Plane> planes, double largest)
+{
+    nearWall.clear();
+    for (std::size_t k = 0; k < balls.size(); ++k) {
+        const Ball& ball = balls[k];
+        const std::uint32_t walls = wallsWithin(planes.first(std::min(planes.size(), kMaxBallPlanes)), ball.x,
+                                                ball.radius + 8.0 * largest);
+        if (walls != 0 && ball.inverseMass != 0.0)
+            nearWall.emplace_back(std::uint32_t(k), walls);
+    }
+}
+
+void BallContacts::keepInRoom(std::span<const Plane> planes, std::uint32_t walls, Ball& ball)
+{
+    const std::size_t count = std::min(planes.size(), kMaxBallPlanes);
+    for (std::size_t p = 0; p < count; ++p) {
+        if (!visits(walls, p))
+            continue;
+        const Plane plane = planes[p].inflatedBy(ball.radius);
+        if (plane.distance(ball.x) < 0.0 && !plane.overHole(ball.x)) {
+            collision_detail::snapOnto(plane, ball.x);
+            const double vn = glm::dot(plane.normal, ball.v);
+            if (vn < 0.0)
+                ball.v -= vn * plane.normal;
+        }
+    }
+}
+
+} // namespace pba::detail
