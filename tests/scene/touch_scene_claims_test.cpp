@@ -206,10 +206,9 @@ TEST(TouchScenes, BoxesRestingOnAnImplicitSheetGainNoEnergy)
     std::string boxes;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 4; ++j)
-            boxes += (boxes.empty() ? "" : ",") +
-                     fmt::format(R"({{"name": "box{}{}", "shape": {{"type": "box", "size": [0.15, 0.15, 0.15]}},
+            boxes += fmt::format(R"({}{{"name": "box{}{}", "shape": {{"type": "box", "size": [0.15, 0.15, 0.15]}},
                                      "mass": 0.5, "position": [{}, 1.8, {}], "friction": 0.5}})",
-                                 i, j, -0.45 + 0.3 * i, -0.45 + 0.3 * j);
+                                 boxes.empty() ? "" : ",", i, j, -0.45 + 0.3 * i, -0.45 + 0.3 * j);
     Scene scene = parseScene(R"({"dt": 0.005, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 4, 2]},
         "cloths": [{"name": "sheet", "origin": [-1, 1.5, -1], "across": [2, 0, 0], "down": [0, 0, 2], "columns": 15,
                     "rows": 15, "mass": 2, "stiffness": {"structural": 20000, "shear": 2000, "bending": 5}, "damping": 60,
