@@ -772,7 +772,6 @@ void World::collideBalls(double dt)
 {
     detail::BallContacts& contacts = *m_particleSystems.ballContacts;
     contacts.balls.clear();
-    contacts.starts.clear();
     contacts.bodies.clear();
     contacts.pairs.clear(); // (read by the next step's holdOnBalls: none if fewer than two balls)
     for (std::size_t i = 0; i < m_bodies.objects.size(); ++i) {
@@ -783,7 +782,6 @@ void World::collideBalls(double dt)
         contacts.balls.push_back({b.getPos(), b.getVel(), b.isFixed() ? 0.0 : 1.0 / m_bodies.masses[i],
                                   m_bodies.radii[i], m_bodies.cors[i], m_bodies.frictions[i],
                                   glm::length(b.getAcc()) * dt, b.getIntegrator() == Integrator::Xpbd});
-        contacts.starts.push_back(m_bodies.previous[i].pos);
     }
     if (contacts.balls.size() < 2)
         return;

@@ -8,8 +8,7 @@
 // on a tightrope between two of its balls, or into a sparse sheet's cell, stays on it (without
 // the pieces it fell through to the floor); two equal elastic links crossing at their middles
 // meet as two points of mass 2m each, and so exchange their velocities; a rope dropped across a
-// tightrope where neither has a ball hangs on it; a ball that goes through a link or a sheet
-// within one step meets it as one that arrives slowly does; the thread count changes nothing.
+// tightrope where neither has a ball hangs on it; the thread count changes nothing.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -78,22 +77,6 @@ TEST(BallOnSegment, AnElasticBallOfTwiceAnEndsMassStopsAndGivesBothEndsItsVeloci
     for (const char* end : {"link[0]", "link[1]"})
         EXPECT_NEAR(glm::length(world.body(named(world, end)).getVel() - dvec3(0, -1, 0)), 0.0, 1e-9) << end;
     EXPECT_GT(world.body(ball).getPos().y - world.body(named(world, "link[0]")).getPos().y, 0.07 - 1e-9) << "apart";
-    EXPECT_EQ(world.bounceCount(ball), 1u);
-}
-
-// The same ball at 150 m/s, 8 cm above the link (1 cm clear of it), goes 15 cm in its one step
-// of 1 ms: from above the link to as far below it as it reaches (without the pass, untouched).
-TEST(BallOnSegment, AnElasticBallThroughALinkInOneStepMeetsItAsOneArrivingSlowly)
-{
-    pba::Scene scene = ballOntoALink("1");
-    pba::World& world = scene.world;
-    const std::size_t ball = named(world, "ball");
-    world.body(ball).setState({dvec3(0, 0.08, 0), dvec3(0, -150, 0)});
-    world.step(scene.dt);
-    EXPECT_NEAR(glm::length(world.body(ball).getVel()), 0.0, 1e-9);
-    for (const char* end : {"link[0]", "link[1]"})
-        EXPECT_NEAR(glm::length(world.body(named(world, end)).getVel() - dvec3(0, -150, 0)), 0.0, 1e-9) << end;
-    EXPECT_GT(world.body(ball).getPos().y - world.body(named(world, "link[0]")).getPos().y, 0.07 - 1e-9) << "above";
     EXPECT_EQ(world.bounceCount(ball), 1u);
 }
 
@@ -172,47 +155,29 @@ TEST(BallOnSegment, ABallDroppedOnATightropeBetweenItsBallsStaysOnIt)
     EXPECT_GT(world.body(ball).getPos().y, ropeLowest + 0.05);
 }
 
-namespace {
-
-/// How far above a sheet's lowest ball a ball dropped into it ends: a sheet of 12 x 12 balls of
-/// 1.5 cm radius 18 cm apart, pinned at its corners (`integrator` its key and value, or empty),
-/// and a 4 cm ball coming down at `speed` onto the middle of one of its cells (through whose
-/// triangles' holes it fits), `steps` steps of `dt`.
-double aboveASparseSheet(const std::string& dt, const std::string& integrator, double speed, int steps)
+// A sheet of 12 x 12 balls of 1.5 cm radius 18 cm apart, pinned at its corners, and a 4 cm ball
+// dropped onto the middle of one of its cells (through whose triangles' holes it fits): it stays
+// on the sheet.
+TEST(BallOnSegment, ABallDroppedIntoASparseSheetsCellStaysOnIt)
 {
     pba::Scene scene = pba::parseScene(
-        R"({"dt": )" + dt + R"(, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
+        R"({"dt": 0.002, "gravity": [0, -9.81, 0], "room": {"min": [-2, 0, -2], "max": [2, 3, 2]},
             "cloths": [{"name": "net", "origin": [-1, 1.2, -1], "across": [2, 0, 0], "down": [0, 0, 2], "columns": 12,
                         "rows": 12, "mass": 1, "stiffness": {"structural": 200, "shear": 20, "bending": 0.5},
-                        "damping": 0.5, "pinned": ["top-left", "top-right", "bottom-left", "bottom-right"], )" +
-            integrator + R"( "radius": 0.015, "friction": 0.4, "restitution": 0}],
-            "particles": [{"name": "ball", "position": [0.06, 1.6, 0.03], "velocity": [0, )" +
-            std::to_string(-speed) + R"(, 0], "mass": 0.05, "radius": 0.04, "friction": 0.4, "restitution": 0}]})",
+                        "damping": 0.5, "pinned": ["top-left", "top-right", "bottom-left", "bottom-right"],
+                        "radius": 0.015, "friction": 0.4, "restitution": 0}],
+            "particles": [{"name": "ball", "position": [0.06, 1.6, 0.03], "mass": 0.05, "radius": 0.04,
+                           "friction": 0.4, "restitution": 0}]})",
         "ball-into-a-net.json");
     pba::World& world = scene.world;
     const std::size_t ball = named(world, "ball");
-    for (int step = 0; step < steps; ++step)
+    for (int step = 0; step < 1500; ++step)
         world.step(scene.dt);
     double netLowest = INFINITY;
     for (std::size_t i = 0; i < world.bodyCount(); ++i)
         if (i != ball)
             netLowest = std::min(netLowest, world.body(i).getPos().y);
-    return world.body(ball).getPos().y - netLowest;
-}
-
-} // namespace
-
-// Dropped from 40 cm above the sheet, the ball stays on it.
-TEST(BallOnSegment, ABallDroppedIntoASparseSheetsCellStaysOnIt)
-{
-    EXPECT_GT(aboveASparseSheet("0.002", "", 0.0, 1500), 0.0);
-}
-
-// At 1/60 s, thrown down into it at 8 m/s, the ball goes further in a step (13 cm) than the sheet
-// and it are thick (11 cm): without being put back where it went through, it fell to the floor.
-TEST(BallOnSegment, ABallThrownThroughASparseSheetInOneStepStaysOnIt)
-{
-    EXPECT_GT(aboveASparseSheet("0.016666666666666666", R"("integrator": "implicit-euler",)", 8.0, 180), 0.0);
+    EXPECT_GT(world.body(ball).getPos().y, netLowest) << "above the sheet's lowest ball";
 }
 
 // Link A along x at rest, link B along z 30 cm above it coming down at 1 m/s: their middles meet.

@@ -86,13 +86,11 @@ bool NetPieces::keep(std::span<const Ball> balls, std::span<const std::pair<std:
     return !m_kept.empty();
 }
 
-void NetPieces::find(std::span<const Ball> balls, std::span<const dvec3> starts,
-                     std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
+void NetPieces::find(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
                      std::span<const std::array<std::uint32_t, 3>> triangles, std::uint64_t generation,
-                     std::vector<NetContact>& out, std::vector<NetPass>& passes)
+                     std::vector<NetContact>& out)
 {
     out.clear();
-    passes.clear();
     if (segments.empty())
         return;
     if (m_netsOf != generation || m_net.size() != balls.size()) {
@@ -104,32 +102,11 @@ void NetPieces::find(std::span<const Ball> balls, std::span<const dvec3> starts,
     const auto centre = [&](std::size_t p) { return m_centre[p]; };
     const auto reach = [&](std::size_t p) { return m_reach[p]; };
     m_grid.build(m_kept.size(), centre, reach, m_largestReach);
-    // A piece a ball went through in the step lies within the ball's way and the piece's own
-    // (at most the farthest any net's ball went) of where the ball is.
-    double farthest = 0.0;
-    if (!starts.empty())
-        for (std::uint32_t b = 0; b < balls.size(); ++b)
-            if (m_net[b] != kNoNet)
-                farthest = std::max(farthest, glm::length(balls[b].x - starts[b]));
     NetContact contact;
-    NetPass pass, first;
     for (std::uint32_t c = 0; c < balls.size(); ++c) {
         if (m_net[c] != kNoNet && !m_twoNets)
             continue;
-        const double way = starts.empty() ? 0.0 : glm::length(balls[c].x - starts[c]) + farthest;
-        m_grid.near(balls[c].x, balls[c].radius + way, centre, reach, m_found);
-        // The piece it went through first, if any: then that is its contact, where it came from.
-        double earliest = INFINITY;
-        if (way > 0.0)
-            for (const std::uint32_t p : m_found)
-                if (double along = 0.0; m_net[m_kept[p].ends[0]] != m_net[c] &&
-                                        passed(balls, starts, m_kept[p], c, pass, along) && along < earliest)
-                    earliest = along, first = pass;
-        if (earliest < INFINITY) {
-            passes.push_back(first);
-            continue;
-        }
-        // (More pieces than a ball at rest would find: only those it touches pass.)
+        m_grid.near(balls[c].x, balls[c].radius, centre, reach, m_found);
         for (const std::uint32_t p : m_found)
             if (m_net[m_kept[p].ends[0]] != m_net[c] && touching(balls, m_kept[p], c, contact))
                 out.push_back(contact);
@@ -179,70 +156,6 @@ bool NetPieces::touching(std::span<const Ball> balls, const Piece& piece, std::u
     const double separation = glm::length(c.x - point) - thickness - c.radius;
     contact = {{piece.ends, w, piece.count, thickness}, NetPoint::ball(ball, c.radius)};
     return separation < 0.0 && separation < line;
-}
-
-bool NetPieces::passed(std::span<const Ball> balls, std::span<const dvec3> starts, const Piece& piece,
-                       std::uint32_t ball, NetPass& pass, double& along)
-{
-    const Ball& c = balls[ball];
-    const std::size_t count = std::size_t(piece.count);
-    std::array<dvec3, 3> from{}, to{};
-    std::array<double, 3> r{};
-    double inverseMass = c.inverseMass;
-    for (std::size_t e = 0; e < count; ++e) {
-        const Ball& end = balls[piece.ends[e]];
-        from[e] = starts[piece.ends[e]];
-        to[e] = end.x;
-        r[e] = end.radius;
-        inverseMass += end.inverseMass;
-    }
-    const std::span<const dvec3> was(from.data(), count), now(to.data(), count);
-    // Across the piece: a triangle's normal, or a segment's line; the same way round at both ends
-    // of the step (a piece turned over in one step has no side to come from).
-    const dvec3 across0 = count == 2 ? from[1] - from[0] : glm::cross(from[1] - from[0], from[2] - from[0]);
-    const dvec3 across1 = count == 2 ? to[1] - to[0] : glm::cross(to[1] - to[0], to[2] - to[0]);
-    if (inverseMass == 0.0 || !(glm::dot(across0, across1) > 0.0))
-        return false;
-    const double thickest = thickestPiece(now, std::span<const double>(r.data(), count));
-    std::array<double, 3> w0{}, w1{};
-    if (!(thickest > 0.0) || !weightsOnPiece(starts[ball], was, w0) || !weightsOnPiece(c.x, now, w1))
-        return false;
-    // The ball from the piece's foot under it, at the start and now: on opposite sides, it went
-    // through the piece's line or plane.
-    const auto offset = [&](const dvec3& p, std::span<const dvec3> x, const std::array<double, 3>& w) {
-        dvec3 foot(0.0);
-        for (std::size_t e = 0; e < count; ++e)
-            foot += w[e] * x[e];
-        return p - foot;
-    };
-    const dvec3 o0 = offset(starts[ball], was, w0), o1 = offset(c.x, now, w1);
-    if (!(glm::dot(o0, o1) < 0.0))
-        return false;
-    // Where it came nearest that line or plane, its offset and foot taken as moving evenly.
-    const dvec3 step = o1 - o0;
-    along = std::clamp(-glm::dot(o0, step) / glm::dot(step, step), 0.0, 1.0);
-    std::array<double, 3> w{};
-    double thickness = 0.0, pointInverseMass = 0.0;
-    for (std::size_t e = 0; e < count; ++e) {
-        w[e] = w0[e] + along * (w1[e] - w0[e]);
-        thickness += w[e] * r[e];
-        pointInverseMass += w[e] * w[e] * balls[piece.ends[e]].inverseMass;
-    }
-    thickness = std::min(thickness, thickest);
-    // A ball far heavier than the piece's point there goes through it all the same: the contact
-    // moves the point's balls alone, not the net their springs pull on, and a ball put back
-    // each step while keeping its speed would gather speed in place.
-    if (c.inverseMass > 0.0 && c.inverseMass * kHeaviestPasser < pointInverseMass)
-        return false;
-    const bool inside = insidePiece(std::span<const double>(w.data(), count));
-    if (!inside || !(glm::length(o0 + along * step) < thickness + c.radius))
-        return false; // beside it, or past it further than it is thick
-    dvec3 side = count == 2 ? o0 - glm::dot(o0, across1) / glm::dot(across1, across1) * across1
-                            : glm::dot(o0, across1) * across1;
-    if (!(glm::length(side) > 0.0))
-        return false;
-    pass = {{{piece.ends, w, piece.count, thickness}, NetPoint::ball(ball, c.radius)}, glm::normalize(side)};
-    return true;
 }
 
 namespace {

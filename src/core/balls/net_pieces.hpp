@@ -10,9 +10,7 @@
 // their balls alone (the self-collision), and asking every ball of a cloth for its own pieces
 // would cost more than its contacts. Two nets' segments that cross between their balls meet at
 // their nearest points in the same way, each side's share going to its own two balls, so a rope
-// dropped across another hangs on it. A ball whose way through the step went through a piece
-// (a ball falling fast onto a sheet, a rope swung past a ball) is a pass: it is put back on the
-// side it came from, and meets the piece there. Private to the core.
+// dropped across another hangs on it. Private to the core.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -42,24 +40,14 @@ struct NetContact {
     NetPoint toucher; ///< the ball, or the other segment's point
 };
 
-/// A ball that went through a piece of a net in the step, between the piece's balls: where it
-/// crossed the piece, and the side it came from (a unit vector across the piece as it is now).
-struct NetPass {
-    NetContact contact;
-    dvec3 side{0.0};
-};
-
 class NetPieces {
 public:
-    /// The balls touching pieces of nets they are not part of, into `out`, and those that went
-    /// through one, into `passes` (those instead), ball by ball in index order (so the same on any
-    /// thread count). `starts`: each ball's centre at the step's start (empty: no passes looked
-    /// for). `segments` pairs of balls, `triangles` triples; `generation` changes when they do
-    /// (the nets are worked out again then).
-    void find(std::span<const Ball> balls, std::span<const dvec3> starts,
-              std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
+    /// The balls touching pieces of nets they are not part of, into `out`, ball by ball in index
+    /// order (so the same on any thread count). `segments` pairs of balls, `triangles` triples;
+    /// `generation` changes when they do (the nets are worked out again then).
+    void find(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
               std::span<const std::array<std::uint32_t, 3>> triangles, std::uint64_t generation,
-              std::vector<NetContact>& out, std::vector<NetPass>& passes);
+              std::vector<NetContact>& out);
 
 private:
     struct Piece {
@@ -75,18 +63,11 @@ private:
     /// Whether `ball` touches piece p at an inner point, deeper than the piece's own balls do:
     /// then `contact` is it.
     static bool touching(std::span<const Ball> balls, const Piece& p, std::uint32_t ball, NetContact& contact);
-    /// Whether `ball`, moving from its start to where it is against piece p moving from its balls'
-    /// starts, went through p's inside within its thickness: then `pass` is where (`along` the share
-    /// of the step at which it came nearest).
-    static bool passed(std::span<const Ball> balls, std::span<const dvec3> starts, const Piece& p,
-                       std::uint32_t ball, NetPass& pass, double& along);
     /// Whether segments p and q cross between their balls, nearer than their thicknesses and
     /// deeper than either's balls lie against the other: then `contact` is it.
     static bool crossing(std::span<const Ball> balls, const Piece& p, const Piece& q, NetContact& contact);
 
     static constexpr std::uint32_t kNoNet = ~std::uint32_t(0);
-    /// The heaviest ball, in masses of a piece's point, that is put back where it went through it.
-    static constexpr double kHeaviestPasser = 8.0;
     std::vector<std::uint32_t> m_net; ///< each ball's net (its first ball's index), or kNoNet
     std::uint64_t m_netsOf = ~std::uint64_t(0); ///< the generation m_net was found for
     bool m_twoNets = false, m_asking = false;

@@ -124,24 +124,6 @@ void BallContacts::startOnNets(double dt)
     }
 }
 
-void BallContacts::putBack()
-{
-    for (const NetPass& pass : m_passes) {
-        const NetContact& s = pass.contact;
-        const dvec3 d = pointOf(s.toucher, &Ball::x) - pointOf(s.piece, &Ball::x);
-        // Just touching: the sweeps then take its approach away (or rebound it) there. The ball
-        // is put back, as far as the step took it through, rather than the piece's balls by their
-        // shares: a heavy ball would pull them out of their net by that much, and its springs would
-        // throw them back. A fixed ball stays, and the piece goes back instead.
-        const dvec3 back = (s.piece.radius + s.toucher.radius) * pass.side - d;
-        if (inverseMassOf(s.toucher) > 0.0)
-            shareOut(s.toucher, back, dvec3(0.0));
-        else
-            shareOut(s.piece, -back, dvec3(0.0));
-        onNets.push_back(s);
-    }
-}
-
 void BallContacts::shareOut(const NetPoint& p, const dvec3& dx, const dvec3& dv)
 {
     if (p.count == 1) { // a ball alone moves by dx itself, to the bit

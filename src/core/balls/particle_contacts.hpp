@@ -12,9 +12,7 @@
 // A ball meets the pieces of the ropes and cloths it is not part of too, between their balls,
 // and two nets' segments meet where they cross between theirs (net_pieces.hpp), in the same
 // sweeps, as balls of their points' masses whose pushes and impulses go to the pieces' balls by
-// their weights there. A ball that went through a piece in the step is put back on the side it
-// came from first, the piece's balls and it each moved by its share (a ball falling fast onto a
-// sheet at 1/60 s lands on it, where it passed through).
+// their weights there.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -34,7 +32,6 @@ struct BallContacts {
     ParticleGrid grid;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
     std::vector<Ball> balls;
-    std::vector<dvec3> starts;       ///< each ball's centre at the step's start
     std::vector<std::size_t> bodies; ///< each ball's world index
     /// The nets' segments, as pairs of balls (indices into `balls`); set before solve, with the
     /// generation of the lists they come from (the nets are worked out again when it changes).
@@ -52,8 +49,6 @@ struct BallContacts {
     template <class Together>
     void solve(std::span<const Plane> planes, int sweeps, double dt, Together&& together)
     {
-        m_pieces.find(balls, starts, segments, triangles, piecesGeneration, onNets, m_passes);
-        putBack();
         double largest = 0.0;
         for (const Ball& b : balls)
             largest = std::max(largest, b.radius);
@@ -63,6 +58,7 @@ struct BallContacts {
         std::erase_if(pairs, [&](const auto& p) {
             return !together(p.first, p.second) || balls[p.first].inverseMass + balls[p.second].inverseMass == 0.0;
         });
+        m_pieces.find(balls, segments, triangles, piecesGeneration, onNets);
         if (pairs.empty() && onNets.empty()) {
             m_remembered.clear();
             m_rememberedOnNets.clear();
@@ -96,9 +92,6 @@ struct BallContacts {
     static void keepInRoom(std::span<const Plane> planes, std::uint32_t walls, Ball& ball);
 
 private:
-    /// The balls that went through pieces (m_passes) put back on the sides they came from, each
-    /// touching its piece there, and their contacts added to onNets.
-    void putBack();
     /// Each ball's contact with a piece of a net, its rule and, warm started, its contact as the
     /// last step left it (known again by the ball and the piece's bodies).
     void startOnNets(double dt);
@@ -125,7 +118,6 @@ private:
     std::vector<BallPairRule<double>> m_rules;
     std::vector<BallContact<double>> m_contacts;
     NetPieces m_pieces;
-    std::vector<NetPass> m_passes;
     std::vector<BallPairRule<double>> m_netRules;
     std::vector<BallContact<double>> m_netContacts;
     /// The last step's contacts, by their bodies' world indices (first < second), in order.

@@ -36,10 +36,10 @@ inline double thickestPiece(std::span<const dvec3> x, std::span<const double> r)
     return thickest;
 }
 
-/// Where the foot of p lies on the line or the plane of the piece at x, as weights on its balls
-/// summing to 1 (a triangle's third weight 0 for a segment), inside it or not. False where the
-/// triangle has no area.
-inline bool weightsOnPiece(const dvec3& p, std::span<const dvec3> x, std::array<double, 3>& w)
+/// Where the foot of p lies on the piece at x: on a segment's line or a triangle's plane, as
+/// weights on its balls summing to 1 (a triangle's third weight 0 for a segment). False where
+/// the triangle has no area or the foot lies within kPieceEdge of a side or an end, or outside.
+inline bool footOnPiece(const dvec3& p, std::span<const dvec3> x, std::array<double, 3>& w)
 {
     if (x.size() == 2) {
         const dvec3 d = x[1] - x[0];
@@ -55,24 +55,10 @@ inline bool weightsOnPiece(const dvec3& p, std::span<const dvec3> x, std::array<
         const double v = (d11 * glm::dot(q, e2) - d12 * glm::dot(q, e1)) / det;
         w = {1.0 - u - v, u, v};
     }
-    return true;
-}
-
-/// Whether p's weights on the piece (weightsOnPiece) put its foot inside it, further than
-/// kPieceEdge from every side or end.
-inline bool insidePiece(std::span<const double> w)
-{
-    for (const double share : w)
-        if (!(share > kPieceEdge))
+    for (std::size_t e = 0; e < x.size(); ++e)
+        if (!(w[e] > kPieceEdge))
             return false;
     return true;
-}
-
-/// Where the foot of p lies on the piece at x (weightsOnPiece). False where the triangle has no
-/// area or the foot lies within kPieceEdge of a side or an end, or outside.
-inline bool footOnPiece(const dvec3& p, std::span<const dvec3> x, std::array<double, 3>& w)
-{
-    return weightsOnPiece(p, x, w) && insidePiece(std::span<const double>(w.data(), x.size()));
 }
 
 } // namespace pba::detail
