@@ -54,8 +54,7 @@ bool NetPieces::keep(std::span<const Ball> balls, std::span<const std::pair<std:
         return length - balls[a].radius - balls[b].radius > 0.0 &&
                (4.0 * r - length <= 0.0 || smallest * (4.0 * r - length) < length * (0.5 * length - r));
     };
-    // Between two nets, any segment with a gap may cross another's (a gap is all `matters` needs
-    // of it then).
+    // Between two nets any segment with a gap may cross another's, so each such one is kept.
     const auto gapped = [&](std::uint32_t a, std::uint32_t b) {
         return glm::length(balls[b].x - balls[a].x) - balls[a].radius - balls[b].radius > 0.0;
     };
