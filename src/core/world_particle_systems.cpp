@@ -779,9 +779,10 @@ void World::collideBalls(double dt)
             continue;
         const Body& b = *m_bodies.objects[i];
         contacts.bodies.push_back(i);
-        contacts.balls.push_back({b.getPos(), b.getVel(), b.isFixed() ? 0.0 : 1.0 / m_bodies.masses[i],
-                                  m_bodies.radii[i], m_bodies.cors[i], m_bodies.frictions[i],
-                                  glm::length(b.getAcc()) * dt, b.getIntegrator() == Integrator::Xpbd});
+        contacts.balls.push_back({b.getPos(), b.getVel(), m_bodies.previous[i].pos,
+                                  b.isFixed() ? 0.0 : 1.0 / m_bodies.masses[i], m_bodies.radii[i], m_bodies.cors[i],
+                                  m_bodies.frictions[i], glm::length(b.getAcc()) * dt,
+                                  b.getIntegrator() == Integrator::Xpbd});
     }
     if (contacts.balls.size() < 2)
         return;
@@ -810,7 +811,12 @@ void World::collideBalls(double dt)
     contacts.solve(m_surfaces.planes, kSweeps, dt, [&](std::uint32_t a, std::uint32_t b) {
         return !neighbours.near(contacts.bodies[a], contacts.bodies[b]);
     });
-    if (contacts.pairs.empty() && contacts.onNets.empty())
+    for (const auto& met : contacts.impacts.met())
+        if (met.rebounded)
+            for (const std::uint32_t ball : {met.a, met.b})
+                if (!m_bodies.objects[contacts.bodies[ball]]->isFixed())
+                    ++m_bodies.bounces[contacts.bodies[ball]];
+    if (contacts.pairs.empty() && contacts.onNets.empty() && contacts.impacts.met().empty())
         return;
     for (std::size_t k = 0; k < contacts.pairs.size(); ++k)
         if (contacts.rebounded(k))

@@ -69,6 +69,67 @@ TEST(ParticleContacts, UnequalRestitutionsCombineAsTwoBodiesDo)
     EXPECT_NEAR(world.body(1).getVel().x, 1.0, 1e-9);
 }
 
+// Balls that would pass through each other within one step (4 cm balls closing at 10 m/s at
+// dt 1/60 s) meet at their time of impact instead. With no gravity the paths are straight, so
+// the oracle is exact: the balls touch at t* = (gap) / (closing speed), leave with the
+// textbook's velocities, and are at their analytic places at the end.
+TEST(ParticleContacts, BallsThatWouldPassInOneStepMeetAtTheirTimeOfImpact)
+{
+    const double m1 = 1.0, m2 = 3.0, v1 = 6.0, v2 = -4.0, r = 0.02, dt = 1.0 / 60.0;
+    for (const double e : {1.0, 0.5}) {
+        World world;
+        world.addParticle(ball(dvec3(-0.5, 1, 0), dvec3(v1, 0, 0), m1, r, e));
+        world.addParticle(ball(dvec3(0.5, 1, 0), dvec3(v2, 0, 0), m2, r, e));
+        const int steps = 12; // 0.2 s; they meet at 0.096 s, inside the sixth step
+        for (int step = 0; step < steps; ++step)
+            world.step(dt);
+        const double tImpact = (1.0 - 2.0 * r) / (v1 - v2), later = steps * dt - tImpact;
+        const double u1 = (m1 * v1 + m2 * v2 - m2 * e * (v1 - v2)) / (m1 + m2);
+        const double u2 = (m1 * v1 + m2 * v2 + m1 * e * (v1 - v2)) / (m1 + m2);
+        EXPECT_NEAR(world.body(0).getVel().x, u1, 1e-12) << e;
+        EXPECT_NEAR(world.body(1).getVel().x, u2, 1e-12) << e;
+        EXPECT_NEAR(world.body(0).getPos().x, -0.5 + v1 * tImpact + u1 * later, 1e-12) << e;
+        EXPECT_NEAR(world.body(1).getPos().x, 0.5 + v2 * tImpact + u2 * later, 1e-12) << e;
+        EXPECT_EQ(world.bounceCount(0), 1u);
+        EXPECT_EQ(world.bounceCount(1), 1u);
+    }
+}
+
+TEST(ParticleContacts, AGlancingImpactWithinOneStepKeepsMomentumAndEnergy)
+{
+    // Equal balls, one at rest, hit at an impact parameter of half their reach: the normal at
+    // impact is 30 degrees from the line of motion; frictionless and elastic, the struck ball
+    // leaves along it at v cos 30 and the striker at right angles to it at v sin 30.
+    const double r = 0.02, v = 12.0, dt = 1.0 / 60.0;
+    World world;
+    world.addParticle(ball(dvec3(-0.3, 1, 0), dvec3(v, 0, 0), 1.0, r));
+    world.addParticle(ball(dvec3(0, 1 + r, 0), dvec3(0.0), 1.0, r));
+    for (int step = 0; step < 4; ++step)
+        world.step(dt);
+    const dvec3 n(std::sqrt(3.0) / 2.0, 0.5, 0.0);
+    const dvec3 struck = v * n.x * n, striker = dvec3(v, 0, 0) - struck;
+    EXPECT_NEAR(glm::length(world.body(1).getVel() - struck), 0.0, 1e-12);
+    EXPECT_NEAR(glm::length(world.body(0).getVel() - striker), 0.0, 1e-12);
+    const dvec3 momentum = world.body(0).getVel() + world.body(1).getVel();
+    EXPECT_NEAR(glm::length(momentum - dvec3(v, 0, 0)), 0.0, 1e-12);
+    const double energy = glm::dot(world.body(0).getVel(), world.body(0).getVel()) +
+                          glm::dot(world.body(1).getVel(), world.body(1).getVel());
+    EXPECT_NEAR(energy, v * v, 1e-10);
+}
+
+TEST(ParticleContacts, ABallThrownThroughAFixedBallInOneStepRebounds)
+{
+    World world;
+    Particle post = ball(dvec3(0, 1, 0), dvec3(0.0), 1.0, 0.03, 0.5);
+    post.setFixed(true);
+    world.addParticle(post);
+    world.addParticle(ball(dvec3(-0.4, 1, 0), dvec3(15, 0, 0), 0.2, 0.02, 0.5));
+    for (int step = 0; step < 3; ++step)
+        world.step(1.0 / 60.0);
+    EXPECT_NEAR(world.body(1).getVel().x, -7.5, 1e-12) << "back at e times its speed";
+    EXPECT_LT(world.body(1).getPos().x, -0.05);
+}
+
 TEST(ParticleContacts, ABallRestingOnABallRestingOnTheFloorStaysPut)
 {
     World world;

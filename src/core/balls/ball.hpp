@@ -6,6 +6,7 @@ namespace pba::detail {
 
 struct Ball {
     dvec3 x{0.0}, v{0.0};
+    dvec3 start{0.0}; ///< where it was when the step began: its path is the line from there to x
     double inverseMass = 0.0; ///< 0: a fixed ball, which pushes and is not pushed
     double radius = 0.0;
     double cor = 1.0;

@@ -3,11 +3,12 @@
 // and exchange impulses, with restitution and Coulomb friction, by the rule every ball has
 // (ball_rule.hpp), the room standing by as an immovable partner. Private to the core.
 //
-// Contacts are solved a pair at a time in the grid's order (Gauss-Seidel), a few sweeps a step,
-// each pair starting from what it did the step before (its impulses and its static friction's
-// anchor, known again by the two bodies); after each sweep every ball is put back inside the
-// room (whose push it cannot share). The order is the pairs' index order, so the result does not
-// depend on the thread count.
+// Pairs that met and would have parted within the step are met first, at their time of impact
+// (ball_impacts.hpp). Contacts are solved a pair at a time in the grid's order (Gauss-Seidel), a
+// few sweeps a step, each pair starting from what it did the step before (its impulses and its
+// static friction's anchor, known again by the two bodies); after each sweep every ball is put
+// back inside the room (whose push it cannot share). The order is the pairs' index order, so the
+// result does not depend on the thread count.
 //
 // A ball meets the pieces of the ropes and cloths it is not part of too, between their balls,
 // and two nets' segments meet where they cross between theirs (net_pieces.hpp), in the same
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "balls/ball.hpp"
+#include "balls/ball_impacts.hpp"
 #include "balls/ball_rule.hpp"
 #include "balls/net_pieces.hpp"
 #include "balls/particle_grid.hpp"
@@ -40,6 +42,8 @@ struct BallContacts {
     std::uint64_t piecesGeneration = 0;
     /// The balls and segments against pieces of nets of the last solve.
     std::vector<NetContact> onNets;
+    /// The pairs that met within the last step, before its sweeps.
+    BallImpacts impacts;
 
     std::unique_ptr<BallContacts> clone() const { return std::make_unique<BallContacts>(*this); }
 
@@ -49,6 +53,7 @@ struct BallContacts {
     template <class Together>
     void solve(std::span<const Plane> planes, int sweeps, double dt, Together&& together)
     {
+        impacts.meet(balls, planes, dt, together);
         double largest = 0.0;
         for (const Ball& b : balls)
             largest = std::max(largest, b.radius);
