@@ -198,7 +198,8 @@ TEST(PieceContact, ATriangleLyingOnAFaceAsItsBallsRestAddsNoContact)
 // its two middle balls: without its segments it fell between them to the floor; it hangs over the
 // bar, and no point between two balls comes within a ball's radius of the bar (less a
 // millimetre), measured here from the bar's faces. Neither bouncing, and with the particles'
-// default restitution of 1 (the rope then whips over the bar, its links steep).
+// default restitution of 1 (the rope then whips over the bar, its links steep, and its two ends
+// swing into each other under it at 6 m/s and rebound, so they need not end on their own sides).
 class RopeOverABar : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(RopeOverABar, ARopeDroppedAcrossAThinBarHangsOverIt)
@@ -227,13 +228,15 @@ TEST_P(RopeOverABar, ARopeDroppedAcrossAThinBarHangsOverIt)
         }
     }
     EXPECT_GT(nearest, 0.02 - 0.001);
-    // Over the bar: a ball above its top, the rope's ends on either side.
-    double highest = -INFINITY;
-    for (std::size_t i = 0; i < 10; ++i)
-        highest = std::max(highest, world.body(i).getPos().y);
-    EXPECT_GT(highest, 1.01);
-    EXPECT_LT(world.body(0).getPos().x, -0.01);
-    EXPECT_GT(world.body(9).getPos().x, 0.01);
+    // Over the bar: a ball above its top, its neighbours on either side.
+    std::size_t top = 0;
+    for (std::size_t i = 1; i < 10; ++i)
+        if (world.body(i).getPos().y > world.body(top).getPos().y)
+            top = i;
+    ASSERT_TRUE(top > 0 && top < 9);
+    EXPECT_GT(world.body(top).getPos().y, 1.01);
+    EXPECT_LT(world.body(top - 1).getPos().x, -0.01);
+    EXPECT_GT(world.body(top + 1).getPos().x, 0.01);
 }
 
 INSTANTIATE_TEST_SUITE_P(PieceContact, RopeOverABar, ::testing::Values(R"(, "restitution": 0)", ""),

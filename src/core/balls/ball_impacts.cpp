@@ -24,14 +24,17 @@ std::optional<double> impactTime(const Ball& a, const Ball& b)
     return (-dr - std::sqrt(std::max(0.0, dr * dr - rr * c0))) / rr;
 }
 
-bool meetAt(Ball& a, Ball& b, double t, double dt)
+std::optional<bool> meetAt(Ball& a, Ball& b, double t, double dt)
 {
     const dvec3 xa = a.start + t * (a.x - a.start), xb = b.start + t * (b.x - b.start);
     const dvec3 n = glm::normalize(xb - xa);
-    // The path's relative velocity: the end velocities' for semi-implicit Euler, and the one the
-    // pair met with for every integrator, so that the rest of the step parts them.
-    const dvec3 u = ((b.x - b.start) - (a.x - a.start)) / dt;
+    // The velocities the step ends with, as the sweeps' rule takes them: a path bent by the room
+    // within the step (a ball off the floor) is no velocity, and an impulse from it could add
+    // energy. Velocities that part the pair already leave it to the sweeps.
+    const dvec3 u = b.v - a.v;
     const double un = glm::dot(u, n);
+    if (!(un < 0.0))
+        return std::nullopt;
     const bool rebounds = -un > 2.0 * std::max(a.restingSpeed, b.restingSpeed);
     const double cor = rebounds ? combinedRestitution(a.cor, b.cor) : 0.0;
     const double normal = -(1.0 + cor) * un;
@@ -79,10 +82,13 @@ void BallImpacts::meetInOrder(std::span<Ball> balls, std::span<const Plane> plan
     for (const Impact& impact : m_impacts) {
         if (m_done[impact.a] || m_done[impact.b])
             continue;
-        m_done[impact.a] = m_done[impact.b] = 1;
         Ball& a = balls[impact.a];
         Ball& b = balls[impact.b];
-        m_met.push_back({impact.a, impact.b, meetAt(a, b, impact.t, dt)});
+        const std::optional<bool> rebounded = meetAt(a, b, impact.t, dt);
+        if (!rebounded)
+            continue;
+        m_done[impact.a] = m_done[impact.b] = 1;
+        m_met.push_back({impact.a, impact.b, *rebounded});
         for (Ball* ball : {&a, &b})
             if (ball->inverseMass > 0.0)
                 BallContacts::keepInRoom(planes, ~std::uint32_t(0), *ball);

@@ -33,9 +33,10 @@ inline constexpr double kImpactMove = 0.1;
 std::optional<double> impactTime(const Ball& a, const Ball& b);
 
 /// Balls a and b met at fraction t of a step of dt: their velocities changed by the impact at
-/// the point they touched (along the path's relative velocity), their ends moved by that change
-/// over the rest of the step. Whether the pair rebounded (not a resting contact).
-bool meetAt(Ball& a, Ball& b, double t, double dt);
+/// the point they touched, their ends moved by that change over the rest of the step. Whether
+/// the pair rebounded (not a resting contact); nothing, and nothing changed, if their velocities
+/// part them already.
+std::optional<bool> meetAt(Ball& a, Ball& b, double t, double dt);
 
 class BallImpacts {
 public:
