@@ -4,10 +4,10 @@
 // step left the balls. Each ball's path over the step is the straight line from where it
 // started to where its integrator put it; a pair that was apart when the step began, came within
 // its reach on those paths and closed by over a tenth of its reach in the step meets at its time
-// of impact, by the sweeps' rule (restitution, Coulomb friction), and goes on from there with
-// its new velocities for the rest of the step: where they go and how fast is then exact for
-// straight paths. Slower pairs overlap by under a tenth of their reach at the step's end, and
-// the sweeps push them apart. Private to the core.
+// of impact, by the sweeps' rule (restitution, Coulomb friction) on the velocities the step
+// ends with, and goes on from there with its new velocities for the rest of the step: where
+// they go and how fast is then exact for straight paths. Slower pairs overlap by under a tenth
+// of their reach at the step's end, and the sweeps push them apart. Private to the core.
 //
 // Each ball meets at most one such pair a step, the earliest: a ball knocked into a third by
 // its impact is left to the sweeps. The pairs are taken in the order of their times, then of

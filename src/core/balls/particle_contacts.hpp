@@ -3,12 +3,12 @@
 // and exchange impulses, with restitution and Coulomb friction, by the rule every ball has
 // (ball_rule.hpp), the room standing by as an immovable partner. Private to the core.
 //
-// Pairs that met and would have parted within the step are met first, at their time of impact
-// (ball_impacts.hpp). Contacts are solved a pair at a time in the grid's order (Gauss-Seidel), a
-// few sweeps a step, each pair starting from what it did the step before (its impulses and its
-// static friction's anchor, known again by the two bodies); after each sweep every ball is put
-// back inside the room (whose push it cannot share). The order is the pairs' index order, so the
-// result does not depend on the thread count.
+// Pairs that met within the step, closing by over a tenth of their reach, are met first, at
+// their time of impact (ball_impacts.hpp). Contacts are solved a pair at a time in the grid's
+// order (Gauss-Seidel), a few sweeps a step, each pair starting from what it did the step before
+// (its impulses and its static friction's anchor, known again by the two bodies); after each
+// sweep every ball is put back inside the room (whose push it cannot share). The order is the
+// pairs' index order, so the result does not depend on the thread count.
 //
 // A ball meets the pieces of the ropes and cloths it is not part of too, between their balls,
 // and two nets' segments meet where they cross between theirs (net_pieces.hpp), in the same
