@@ -774,6 +774,10 @@ void World::collideBalls(double dt)
     contacts.balls.clear();
     contacts.bodies.clear();
     contacts.pairs.clear(); // (read by the next step's holdOnBalls: none if fewer than two balls)
+    std::vector<std::uint8_t>& sprung = contacts.sprung;
+    sprung.assign(m_bodies.objects.size(), 0);
+    for (const auto& [a, b] : m_forces.couplings)
+        sprung[a] = sprung[b] = 1;
     for (std::size_t i = 0; i < m_bodies.objects.size(); ++i) {
         if (m_bodies.radii[i] == 0.0)
             continue;
@@ -782,7 +786,7 @@ void World::collideBalls(double dt)
         contacts.balls.push_back({b.getPos(), b.getVel(), m_bodies.previous[i].pos,
                                   b.isFixed() ? 0.0 : 1.0 / m_bodies.masses[i], m_bodies.radii[i], m_bodies.cors[i],
                                   m_bodies.frictions[i], glm::length(b.getAcc()) * dt,
-                                  b.getIntegrator() == Integrator::Xpbd});
+                                  b.getIntegrator() == Integrator::Xpbd, sprung[i] != 0});
     }
     if (contacts.balls.size() < 2)
         return;
@@ -811,11 +815,16 @@ void World::collideBalls(double dt)
     contacts.solve(m_surfaces.planes, kSweeps, dt, [&](std::uint32_t a, std::uint32_t b) {
         return !neighbours.near(contacts.bodies[a], contacts.bodies[b]);
     });
+    const auto bounced = [&](std::uint32_t ball) {
+        if (!m_bodies.objects[contacts.bodies[ball]]->isFixed())
+            ++m_bodies.bounces[contacts.bodies[ball]];
+    };
     for (const auto& met : contacts.impacts.met())
-        if (met.rebounded)
-            for (const std::uint32_t ball : {met.a, met.b})
-                if (!m_bodies.objects[contacts.bodies[ball]]->isFixed())
-                    ++m_bodies.bounces[contacts.bodies[ball]];
+        if (met.rebounded) {
+            bounced(met.a);
+            if (met.b != met.a) // (a ball on a piece: met.b is the ball again)
+                bounced(met.b);
+        }
     if (contacts.pairs.empty() && contacts.onNets.empty() && contacts.impacts.met().empty())
         return;
     for (std::size_t k = 0; k < contacts.pairs.size(); ++k)

@@ -16,6 +16,10 @@ struct Ball {
     /// here only catch what those left, and start from nothing (a warm start would push apart
     /// what the substeps already hold apart).
     bool metInSubsteps = false;
+    /// Joined to other bodies by springs (a rope's or a cloth's): an impact within the step
+    /// changes its velocity but not its place, since its springs, not free flight, move it over
+    /// the rest of the step (ball_impacts.hpp).
+    bool sprung = false;
 };
 
 } // namespace pba::detail

@@ -1,6 +1,7 @@
 #include "balls/ball_impacts.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <tuple>
 
@@ -49,21 +50,24 @@ std::optional<bool> meetAt(Ball& a, Ball& b, double t, double dt)
     const double rest = (1.0 - t) * dt;
     a.v += dva;
     b.v += dvb;
-    a.x += rest * dva;
-    b.x += rest * dvb;
+    if (!a.sprung)
+        a.x += rest * dva;
+    if (!b.sprung)
+        b.x += rest * dvb;
     return rebounds;
 }
 
-bool BallImpacts::findCandidates(std::span<const Ball> balls)
+bool BallImpacts::anyMoved(std::span<const Ball> balls)
 {
-    m_candidates.clear();
     // No ball moved a tenth of its radius: no pair's move reaches a tenth of its reach.
-    const bool moved = std::any_of(balls.begin(), balls.end(), [](const Ball& b) {
+    return std::any_of(balls.begin(), balls.end(), [](const Ball& b) {
         const dvec3 move = b.x - b.start;
         return glm::dot(move, move) > kImpactMove * kImpactMove * b.radius * b.radius;
     });
-    if (!moved)
-        return false;
+}
+
+void BallImpacts::findCandidates(std::span<const Ball> balls)
+{
     // Each path inside a sphere about its middle.
     const auto middle = [&](std::size_t i) { return 0.5 * (balls[i].start + balls[i].x); };
     const auto around = [&](std::size_t i) { return balls[i].radius + 0.5 * glm::length(balls[i].x - balls[i].start); };
@@ -71,28 +75,52 @@ bool BallImpacts::findCandidates(std::span<const Ball> balls)
     for (std::size_t i = 0; i < balls.size(); ++i)
         largest = std::max(largest, around(i));
     m_grid.findPairs(balls.size(), middle, around, largest, m_candidates);
-    return !m_candidates.empty();
 }
 
 void BallImpacts::meetInOrder(std::span<Ball> balls, std::span<const Plane> planes, double dt)
 {
-    std::sort(m_impacts.begin(), m_impacts.end(),
-              [](const Impact& p, const Impact& q) { return std::tie(p.t, p.a, p.b) < std::tie(q.t, q.a, q.b); });
+    std::sort(m_impacts.begin(), m_impacts.end(), [](const Impact& p, const Impact& q) {
+        return std::tie(p.t, p.a, p.b, p.pass) < std::tie(q.t, q.a, q.b, q.pass);
+    });
     m_done.assign(balls.size(), 0);
     for (const Impact& impact : m_impacts) {
-        if (m_done[impact.a] || m_done[impact.b])
+        // The balls it moves: the two, or the ball and the piece's.
+        std::array<std::uint32_t, 4> moves{impact.a, impact.b, impact.b, impact.b};
+        if (impact.pass != kNoPass)
+            std::copy_n(m_passes[impact.pass].piece.ends.begin(), 3, moves.begin() + 1);
+        if (std::any_of(moves.begin(), moves.end(), [&](std::uint32_t k) { return m_done[k] != 0; }))
             continue;
-        Ball& a = balls[impact.a];
-        Ball& b = balls[impact.b];
-        const std::optional<bool> rebounded = meetAt(a, b, impact.t, dt);
+        const std::optional<bool> rebounded =
+            impact.pass == kNoPass ? meetAt(balls[impact.a], balls[impact.b], impact.t, dt)
+                                   : meetPiece(balls, impact.a, m_passes[impact.pass].piece, impact.t, dt);
         if (!rebounded)
             continue;
-        m_done[impact.a] = m_done[impact.b] = 1;
         m_met.push_back({impact.a, impact.b, *rebounded});
-        for (Ball* ball : {&a, &b})
-            if (ball->inverseMass > 0.0)
-                BallContacts::keepInRoom(planes, ~std::uint32_t(0), *ball);
+        for (const std::uint32_t k : moves) {
+            m_done[k] = 1;
+            if (balls[k].inverseMass > 0.0)
+                BallContacts::keepInRoom(planes, ~std::uint32_t(0), balls[k]);
+        }
     }
+}
+
+std::optional<bool> BallImpacts::meetPiece(std::span<Ball> balls, std::uint32_t k, const NetPoint& piece, double t,
+                                           double dt)
+{
+    Ball point = asBall(balls, piece);
+    point.sprung = true;
+    const dvec3 before = point.v;
+    const std::optional<bool> rebounded = meetAt(balls[k], point, t, dt);
+    if (!rebounded || !(point.inverseMass > 0.0))
+        return rebounded;
+    // What changed the point's velocity by dv changed each ball's by its weight times its
+    // inverse mass over the point's (shareOut's rule); its springs move it (Ball::sprung).
+    const dvec3 pushed = (point.v - before) / point.inverseMass;
+    for (std::size_t e = 0; e < std::size_t(piece.count); ++e) {
+        Ball& end = balls[piece.ends[e]];
+        end.v += piece.weights[e] * end.inverseMass * pushed;
+    }
+    return rebounded;
 }
 
 } // namespace pba::detail

@@ -7,7 +7,15 @@
 // of impact, by the sweeps' rule (restitution, Coulomb friction) on the velocities the step
 // ends with, and goes on from there with its new velocities for the rest of the step: where
 // they go and how fast is then exact for straight paths. Slower pairs overlap by under a tenth
-// of their reach at the step's end, and the sweeps push them apart. Private to the core.
+// of their reach at the step's end, and the sweeps push them apart.
+//
+// A ball meets the pieces of another net (net_pieces.hpp) so too, at the piece's point it came
+// nearest, as a ball of that point's mass whose impulse goes to the piece's balls by their
+// weights. A net's balls take an impact's velocity but not its move over the rest of the step
+// (Ball::sprung): moved as if in free flight, a sheet's balls stretched its springs, and a ball
+// dropped on a 2 kg sheet gave the world 65 J in one step. A ball much heavier than the piece's
+// point therefore still goes through it: the impact leaves the point behind, where only a solve
+// with the sheet's springs would bring the net behind it. Private to the core.
 //
 // Each ball meets at most one such pair a step, the earliest: a ball knocked into a third by
 // its impact is left to the sweeps. The pairs are taken in the order of their times, then of
@@ -19,6 +27,7 @@
 #include <vector>
 
 #include "balls/ball.hpp"
+#include "balls/net_pieces.hpp"
 #include "balls/particle_grid.hpp"
 #include "pba/collision.hpp"
 
@@ -41,22 +50,29 @@ std::optional<bool> meetAt(Ball& a, Ball& b, double t, double dt);
 class BallImpacts {
 public:
     /// Every pair of `balls` (but those `together(a, b)` rules out) that meets within the step,
-    /// met at its time of impact; a ball moved then kept in the room of `planes`.
-    template <class Together>
-    void meet(std::span<Ball> balls, std::span<const Plane> planes, double dt, Together&& together)
+    /// and every ball that meets a piece of a net (`findPasses(out)` lists them), met at its time
+    /// of impact; a ball moved then kept in the room of `planes`.
+    template <class Together, class FindPasses>
+    void meet(std::span<Ball> balls, std::span<const Plane> planes, double dt, Together&& together,
+              FindPasses&& findPasses)
     {
         m_met.clear();
-        if (!findCandidates(balls))
+        if (!anyMoved(balls))
             return;
         m_impacts.clear();
+        findCandidates(balls);
         for (const auto& [a, b] : m_candidates)
             if (together(a, b) && balls[a].inverseMass + balls[b].inverseMass > 0.0)
                 if (const auto t = impactTime(balls[a], balls[b]))
-                    m_impacts.push_back({*t, a, b});
+                    m_impacts.push_back({*t, a, b, kNoPass});
+        findPasses(m_passes);
+        for (std::uint32_t k = 0; k < m_passes.size(); ++k)
+            m_impacts.push_back({m_passes[k].t, m_passes[k].ball, m_passes[k].ball, k});
         meetInOrder(balls, planes, dt);
     }
 
-    /// The pairs met in the last step, and whether each rebounded.
+    /// The pairs met in the last step (a ball and a piece of a net: b is the ball again), and
+    /// whether each rebounded.
     struct Met {
         std::uint32_t a, b;
         bool rebounded;
@@ -64,16 +80,24 @@ public:
     const std::vector<Met>& met() const { return m_met; }
 
 private:
+    static constexpr std::uint32_t kNoPass = ~std::uint32_t(0);
     struct Impact {
         double t;
         std::uint32_t a, b;
+        std::uint32_t pass; ///< into m_passes, for a ball and a piece
     };
-    /// The pairs whose paths' bounding spheres overlap, when any ball moved far enough for an impact.
-    bool findCandidates(std::span<const Ball> balls);
+    /// Whether any ball moved far enough in the step for an impact.
+    static bool anyMoved(std::span<const Ball> balls);
+    /// The pairs whose paths' bounding spheres overlap.
+    void findCandidates(std::span<const Ball> balls);
     void meetInOrder(std::span<Ball> balls, std::span<const Plane> planes, double dt);
+    /// Ball k met the piece of pass p: the point's change of velocity and move shared out to the
+    /// piece's balls by their weights, as a push at it would be. Whether it met (as meetAt).
+    std::optional<bool> meetPiece(std::span<Ball> balls, std::uint32_t k, const NetPoint& piece, double t, double dt);
 
     ParticleGrid m_grid;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> m_candidates;
+    std::vector<PiecePass> m_passes;
     std::vector<Impact> m_impacts;
     std::vector<std::uint8_t> m_done;
     std::vector<Met> m_met;

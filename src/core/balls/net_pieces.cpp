@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "balls/ball_impacts.hpp"
 #include "balls/piece_geometry.hpp"
 
 namespace pba::detail {
@@ -85,25 +86,35 @@ bool NetPieces::keep(std::span<const Ball> balls, std::span<const std::pair<std:
     return !m_kept.empty();
 }
 
-void NetPieces::find(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
-                     std::span<const std::array<std::uint32_t, 3>> triangles, std::uint64_t generation,
-                     std::vector<NetContact>& out)
+bool NetPieces::ready(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
+                      std::span<const std::array<std::uint32_t, 3>> triangles, std::uint64_t generation)
 {
-    out.clear();
     if (segments.empty())
-        return;
+        return false;
     if (m_netsOf != generation || m_net.size() != balls.size()) {
         findNets(balls, segments);
         m_netsOf = generation;
     }
     if (!m_asking || !keep(balls, segments, triangles))
-        return;
+        return false;
     const auto centre = [&](std::size_t p) { return m_centre[p]; };
     const auto reach = [&](std::size_t p) { return m_reach[p]; };
     m_grid.build(m_kept.size(), centre, reach, m_largestReach);
+    return true;
+}
+
+void NetPieces::find(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
+                     std::span<const std::array<std::uint32_t, 3>> triangles, std::uint64_t generation,
+                     std::vector<NetContact>& out)
+{
+    out.clear();
+    if (!ready(balls, segments, triangles, generation))
+        return;
+    const auto centre = [&](std::size_t p) { return m_centre[p]; };
+    const auto reach = [&](std::size_t p) { return m_reach[p]; };
     NetContact contact;
     for (std::uint32_t c = 0; c < balls.size(); ++c) {
-        if (m_net[c] != kNoNet && !m_twoNets)
+        if (!asks(c))
             continue;
         m_grid.near(balls[c].x, balls[c].radius, centre, reach, m_found);
         for (const std::uint32_t p : m_found)
@@ -122,6 +133,79 @@ void NetPieces::find(std::span<const Ball> balls, std::span<const std::pair<std:
                 crossing(balls, m_kept[p], m_kept[q], contact))
                 out.push_back(contact);
     }
+}
+
+void NetPieces::findPasses(std::span<const Ball> balls,
+                           std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
+                           std::span<const std::array<std::uint32_t, 3>> triangles, std::uint64_t generation,
+                           std::vector<PiecePass>& out)
+{
+    out.clear();
+    if (!ready(balls, segments, triangles, generation))
+        return;
+    // A piece a ball met lies within the ball's way and the piece's own (at most the farthest any
+    // net's ball went) of where the ball is now.
+    double farthest = 0.0;
+    for (std::uint32_t b = 0; b < balls.size(); ++b)
+        if (m_net[b] != kNoNet)
+            farthest = std::max(farthest, glm::length(balls[b].x - balls[b].start));
+    const auto centre = [&](std::size_t p) { return m_centre[p]; };
+    const auto reach = [&](std::size_t p) { return m_reach[p]; };
+    PiecePass pass;
+    for (std::uint32_t c = 0; c < balls.size(); ++c) {
+        const double way = glm::length(balls[c].x - balls[c].start) + farthest;
+        if (!asks(c) || !(way > kImpactMove * balls[c].radius))
+            continue; // (no pair's move reaches a tenth of its reach)
+        m_grid.near(balls[c].x, balls[c].radius + way, centre, reach, m_found);
+        for (const std::uint32_t p : m_found)
+            if (m_net[m_kept[p].ends[0]] != m_net[c] && passing(balls, m_kept[p], c, pass))
+                out.push_back(pass);
+    }
+}
+
+bool NetPieces::passing(std::span<const Ball> balls, const Piece& piece, std::uint32_t ball, PiecePass& pass)
+{
+    const Ball& c = balls[ball];
+    const std::size_t count = std::size_t(piece.count);
+    std::array<dvec3, 3> at{};
+    std::array<double, 3> r{};
+    for (std::size_t e = 0; e < count; ++e)
+        r[e] = balls[piece.ends[e]].radius;
+    const std::span<const dvec3> piecePlaces(at.data(), count);
+    // The piece's point the ball came nearest: the weights of the ball's foot on the piece at
+    // the time it came nearest the point the last weights named, three times over from the
+    // middle of the step (a piece turns and stretches little in a step).
+    NetPoint point{piece.ends, {1.0 / double(count), 1.0 / double(count), count == 3 ? 1.0 / 3.0 : 0.0}, piece.count};
+    double t = 0.5;
+    bool inside = false;
+    for (int round = 0; round < 4; ++round) {
+        for (std::size_t e = 0; e < count; ++e) {
+            const Ball& end = balls[piece.ends[e]];
+            at[e] = end.start + t * (end.x - end.start);
+        }
+        inside = footOnPiece(c.start + t * (c.x - c.start), piecePlaces, point.weights);
+        if (round == 3)
+            break;
+        const Ball p = asBall(balls, point);
+        const dvec3 d0 = p.start - c.start, move = (p.x - p.start) - (c.x - c.start);
+        const double moved = glm::dot(move, move);
+        t = moved > 0.0 ? std::clamp(-glm::dot(d0, move) / moved, 0.0, 1.0) : 0.0;
+    }
+    const double thickest = thickestPiece(piecePlaces, std::span<const double>(r.data(), count));
+    if (!inside || !(thickest > 0.0))
+        return false; // beside it (or at a ball: that ball's own impact), or where two balls touch
+    point.radius = 0.0;
+    for (std::size_t e = 0; e < count; ++e)
+        point.radius += point.weights[e] * r[e];
+    point.radius = std::min(point.radius, thickest);
+    const Ball p = asBall(balls, point);
+    if (p.inverseMass + c.inverseMass == 0.0)
+        return false;
+    const std::optional<double> when = impactTime(c, p);
+    if (!when)
+        return false;
+    pass = {*when, ball, point};
+    return true;
 }
 
 bool NetPieces::touching(std::span<const Ball> balls, const Piece& piece, std::uint32_t ball, NetContact& contact)

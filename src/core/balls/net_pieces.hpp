@@ -10,7 +10,9 @@
 // their balls alone (the self-collision), and asking every ball of a cloth for its own pieces
 // would cost more than its contacts. Two nets' segments that cross between their balls meet at
 // their nearest points in the same way, each side's share going to its own two balls, so a rope
-// dropped across another hangs on it. Private to the core.
+// dropped across another hangs on it. A ball that met a piece within the step, on its way there,
+// is found too (findPasses), and met at that time (ball_impacts.hpp). Private to the core.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -32,12 +34,42 @@ struct NetPoint {
     static NetPoint ball(std::uint32_t b, double radius) { return {{b, b, b}, {1.0, 0.0, 0.0}, 1, radius}; }
 };
 
+/// The point as one ball: its balls' places (now and at the step's start), velocities and
+/// materials by its weights, its inverse mass theirs by the squares of the weights (what a push
+/// at it moves it by), its radius its own.
+inline Ball asBall(std::span<const Ball> balls, const NetPoint& p)
+{
+    Ball b;
+    b.radius = p.radius;
+    b.cor = b.friction = 0.0;
+    for (std::size_t e = 0; e < 3; ++e) {
+        const Ball& end = balls[p.ends[e]];
+        const double w = p.weights[e];
+        b.x += w * end.x;
+        b.v += w * end.v;
+        b.start += w * end.start;
+        b.inverseMass += w * w * end.inverseMass;
+        b.cor += w * end.cor;
+        b.friction += w * end.friction;
+        b.restingSpeed = std::max(b.restingSpeed, end.restingSpeed);
+    }
+    return b;
+}
+
 /// A ball of no net or of another net against a piece of a net, at the piece's point nearest it;
 /// or a segment of one net crossing a segment of another between their balls, at their nearest
 /// points.
 struct NetContact {
     NetPoint piece;
     NetPoint toucher; ///< the ball, or the other segment's point
+};
+
+/// A ball that met a piece of a net it is not part of within the step, on its way from where it
+/// started: when (a fraction of the step), and the piece's point it met.
+struct PiecePass {
+    double t = 0.0;
+    std::uint32_t ball = 0;
+    NetPoint piece;
 };
 
 class NetPieces {
@@ -48,6 +80,12 @@ public:
     void find(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
               std::span<const std::array<std::uint32_t, 3>> triangles, std::uint64_t generation,
               std::vector<NetContact>& out);
+    /// The balls that met a piece of a net they are not part of within the step, each ball's
+    /// path and each of the piece's balls' the straight line from its start (ball_impacts.hpp),
+    /// into `out`, ball by ball in index order.
+    void findPasses(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
+                    std::span<const std::array<std::uint32_t, 3>> triangles, std::uint64_t generation,
+                    std::vector<PiecePass>& out);
 
 private:
     struct Piece {
@@ -60,6 +98,15 @@ private:
     /// m_kept, with where each is and how far it reaches. False if none.
     bool keep(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
               std::span<const std::array<std::uint32_t, 3>> triangles);
+    /// The nets worked out (again, if `generation` changed), the pieces kept and their grid
+    /// built; false if no ball asks or no piece is kept.
+    bool ready(std::span<const Ball> balls, std::span<const std::pair<std::uint32_t, std::uint32_t>> segments,
+               std::span<const std::array<std::uint32_t, 3>> triangles, std::uint64_t generation);
+    /// Whether `ball` may meet pieces (of no net, or of one of two nets or more).
+    bool asks(std::uint32_t ball) const { return m_net[ball] == kNoNet || m_twoNets; }
+    /// Whether `ball` met piece p at an inner point within the step, on the straight paths:
+    /// then `pass` is it.
+    static bool passing(std::span<const Ball> balls, const Piece& p, std::uint32_t ball, PiecePass& pass);
     /// Whether `ball` touches piece p at an inner point, deeper than the piece's own balls do:
     /// then `contact` is it.
     static bool touching(std::span<const Ball> balls, const Piece& p, std::uint32_t ball, NetContact& contact);

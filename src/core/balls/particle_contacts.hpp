@@ -35,6 +35,7 @@ struct BallContacts {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
     std::vector<Ball> balls;
     std::vector<std::size_t> bodies; ///< each ball's world index
+    std::vector<std::uint8_t> sprung; ///< for each body of the world, whether springs join it to another (Ball::sprung)
     /// The nets' segments, as pairs of balls (indices into `balls`); set before solve, with the
     /// generation of the lists they come from (the nets are worked out again when it changes).
     std::vector<std::pair<std::uint32_t, std::uint32_t>> segments;
@@ -53,7 +54,9 @@ struct BallContacts {
     template <class Together>
     void solve(std::span<const Plane> planes, int sweeps, double dt, Together&& together)
     {
-        impacts.meet(balls, planes, dt, together);
+        impacts.meet(balls, planes, dt, together, [&](std::vector<PiecePass>& passes) {
+            m_pieces.findPasses(balls, segments, triangles, piecesGeneration, passes);
+        });
         double largest = 0.0;
         for (const Ball& b : balls)
             largest = std::max(largest, b.radius);
