@@ -783,10 +783,16 @@ void World::collideBalls(double dt)
             continue;
         const Body& b = *m_bodies.objects[i];
         contacts.bodies.push_back(i);
-        contacts.balls.push_back({b.getPos(), b.getVel(), m_bodies.previous[i].pos,
-                                  b.isFixed() ? 0.0 : 1.0 / m_bodies.masses[i], m_bodies.radii[i], m_bodies.cors[i],
-                                  m_bodies.frictions[i], glm::length(b.getAcc()) * dt,
-                                  b.getIntegrator() == Integrator::Xpbd, sprung[i] != 0});
+        contacts.balls.push_back({.x = b.getPos(),
+                                  .v = b.getVel(),
+                                  .start = m_bodies.previous[i].pos,
+                                  .inverseMass = b.isFixed() ? 0.0 : 1.0 / m_bodies.masses[i],
+                                  .radius = m_bodies.radii[i],
+                                  .cor = m_bodies.cors[i],
+                                  .friction = m_bodies.frictions[i],
+                                  .restingSpeed = glm::length(b.getAcc()) * dt,
+                                  .metInSubsteps = b.getIntegrator() == Integrator::Xpbd,
+                                  .sprung = sprung[i] != 0});
     }
     if (contacts.balls.size() < 2)
         return;

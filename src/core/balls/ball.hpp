@@ -7,6 +7,7 @@ namespace pba::detail {
 struct Ball {
     dvec3 x{0.0}, v{0.0};
     dvec3 start{0.0}; ///< where it was when the step began: its path is the line from there to x
+    double since = 0.0; ///< when it was at `start`, as a fraction of the step (its last impact's, or 0)
     double inverseMass = 0.0; ///< 0: a fixed ball, which pushes and is not pushed
     double radius = 0.0;
     double cor = 1.0;

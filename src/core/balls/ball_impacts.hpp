@@ -17,9 +17,11 @@
 // point therefore still goes through it: the impact leaves the point behind, where only a solve
 // with the sheet's springs would bring the net behind it. Private to the core.
 //
-// Each ball meets at most one such pair a step, the earliest: a ball knocked into a third by
-// its impact is left to the sweeps. The pairs are taken in the order of their times, then of
-// their indices, so the result does not depend on the thread count.
+// The impacts are met in rounds, each ball's earliest in a round, in the order of their times,
+// then of their balls' indices, so the result does not depend on the thread count. A free ball
+// goes on from an impact on a new path, from where it met the other, and the next round looks
+// along that path for the ball it may knock into next: up to kRounds impacts a ball a step.
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -37,8 +39,11 @@ namespace pba::detail {
 /// (a resting heap's step never looks for impacts).
 inline constexpr double kImpactMove = 0.1;
 
+/// Where the ball is at fraction t of the step on its path.
+dvec3 placeAt(const Ball& ball, double t);
+
 /// When, as a fraction of the step, balls a and b first touched on their paths, if they were
-/// apart at its start and moved far enough against each other to be met at that time.
+/// apart where both paths begin and moved far enough against each other to be met at that time.
 std::optional<double> impactTime(const Ball& a, const Ball& b);
 
 /// Balls a and b met at fraction t of a step of dt: their velocities changed by the impact at
@@ -69,6 +74,21 @@ public:
         for (std::uint32_t k = 0; k < m_passes.size(); ++k)
             m_impacts.push_back({m_passes[k].t, m_passes[k].ball, m_passes[k].ball, k});
         meetInOrder(balls, planes, dt);
+        // A free ball sent on by its impact may meet another later in the step, on its new path.
+        for (int round = 1; round < kRounds && !m_moved.empty(); ++round) {
+            m_impacts.clear();
+            for (const std::uint32_t k : m_moved) {
+                m_grid.near(0.5 * (balls[k].start + balls[k].x), balls[k].radius + 0.5 * glm::length(balls[k].x - balls[k].start),
+                            [&](std::size_t i) { return m_middle[i]; }, [&](std::size_t i) { return m_around[i]; }, m_found);
+                for (const std::uint32_t j : m_found) {
+                    const auto [a, b] = std::minmax(k, j);
+                    if (a != b && together(a, b) && balls[a].inverseMass + balls[b].inverseMass > 0.0)
+                        if (const auto t = impactTime(balls[a], balls[b]))
+                            m_impacts.push_back({*t, a, b, kNoPass});
+                }
+            }
+            meetInOrder(balls, planes, dt);
+        }
     }
 
     /// The pairs met in the last step (a ball and a piece of a net: b is the ball again), and
@@ -81,6 +101,8 @@ public:
 
 private:
     static constexpr std::uint32_t kNoPass = ~std::uint32_t(0);
+    /// Rounds of impacts a step: a free ball takes up to one a round, each later than its last.
+    static constexpr int kRounds = 4;
     struct Impact {
         double t;
         std::uint32_t a, b;
@@ -88,15 +110,20 @@ private:
     };
     /// Whether any ball moved far enough in the step for an impact.
     static bool anyMoved(std::span<const Ball> balls);
-    /// The pairs whose paths' bounding spheres overlap.
+    /// The pairs whose paths' bounding spheres overlap, those spheres kept in the grid.
     void findCandidates(std::span<const Ball> balls);
+    /// The impacts found, in order of their times, each ball's earliest (those moved, if free, into
+    /// m_moved).
     void meetInOrder(std::span<Ball> balls, std::span<const Plane> planes, double dt);
     /// Ball k met the piece of pass p: the point's change of velocity and move shared out to the
     /// piece's balls by their weights, as a push at it would be. Whether it met (as meetAt).
     std::optional<bool> meetPiece(std::span<Ball> balls, std::uint32_t k, const NetPoint& piece, double t, double dt);
 
     ParticleGrid m_grid;
+    std::vector<dvec3> m_middle; ///< each path's sphere, as the grid holds it
+    std::vector<double> m_around;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> m_candidates;
+    std::vector<std::uint32_t> m_found, m_moved;
     std::vector<PiecePass> m_passes;
     std::vector<Impact> m_impacts;
     std::vector<std::uint8_t> m_done;
