@@ -138,15 +138,8 @@ std::optional<bool> BallImpacts::meetPiece(std::span<Ball> balls, std::uint32_t 
     point.sprung = true;
     const dvec3 before = point.v;
     const std::optional<bool> rebounded = meetAt(balls[k], point, t, dt);
-    if (!rebounded || !(point.inverseMass > 0.0))
-        return rebounded;
-    // What changed the point's velocity by dv changed each ball's by its weight times its
-    // inverse mass over the point's (shareOut's rule); its springs move it (Ball::sprung).
-    const dvec3 pushed = (point.v - before) / point.inverseMass;
-    for (std::size_t e = 0; e < std::size_t(piece.count); ++e) {
-        Ball& end = balls[piece.ends[e]];
-        end.v += piece.weights[e] * end.inverseMass * pushed;
-    }
+    if (rebounded) // its velocity only: its springs move it (Ball::sprung)
+        shareOut(balls, piece, dvec3(0.0), point.v - before);
     return rebounded;
 }
 

@@ -36,7 +36,7 @@ struct NetPoint {
 
 /// The point as one ball: its balls' places (now and at the step's start), velocities and
 /// materials by its weights, its inverse mass theirs by the squares of the weights (what a push
-/// at it moves it by), its radius its own.
+/// at it moves it by), its radius its own; met in substeps, or sprung, if any of its balls is.
 inline Ball asBall(std::span<const Ball> balls, const NetPoint& p)
 {
     Ball b;
@@ -52,8 +52,31 @@ inline Ball asBall(std::span<const Ball> balls, const NetPoint& p)
         b.cor += w * end.cor;
         b.friction += w * end.friction;
         b.restingSpeed = std::max(b.restingSpeed, end.restingSpeed);
+        b.metInSubsteps = b.metInSubsteps || end.metInSubsteps;
+        b.sprung = b.sprung || end.sprung;
     }
     return b;
+}
+
+/// A point of balls moved by dx and its velocity changed by dv: each ball's share of it, its
+/// weight times its inverse mass over the point's (a ball alone moves by dx itself, to the bit).
+inline void shareOut(std::span<Ball> balls, const NetPoint& p, const dvec3& dx, const dvec3& dv)
+{
+    if (p.count == 1) {
+        Ball& ball = balls[p.ends[0]];
+        ball.x += dx;
+        ball.v += dv;
+        return;
+    }
+    const double w = asBall(balls, p).inverseMass;
+    if (!(w > 0.0))
+        return;
+    const dvec3 moved = dx / w, pushed = dv / w;
+    for (std::size_t e = 0; e < 3; ++e) {
+        Ball& end = balls[p.ends[e]];
+        end.x += p.weights[e] * end.inverseMass * moved;
+        end.v += p.weights[e] * end.inverseMass * pushed;
+    }
 }
 
 /// A ball of no net or of another net against a piece of a net, at the piece's point nearest it;

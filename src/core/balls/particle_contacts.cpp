@@ -53,31 +53,11 @@ void BallContacts::remember()
     m_rememberedOnNets.clear();
     for (std::size_t k = 0; k < onNets.size(); ++k) {
         const NetContact& s = onNets[k];
-        const dvec3 d = pointOf(s.toucher, &Ball::x) - pointOf(s.piece, &Ball::x);
+        const dvec3 d = asBall(balls, s.toucher).x - asBall(balls, s.piece).x;
         m_rememberedOnNets.emplace_back(keyOf(s), carriedOver(m_netContacts[k], d, m_netRules[k].reach));
     }
     std::sort(m_rememberedOnNets.begin(), m_rememberedOnNets.end(),
               [](const auto& p, const auto& q) { return p.first < q.first; });
-}
-
-dvec3 BallContacts::pointOf(const NetPoint& p, dvec3 Ball::*field) const
-{
-    if (p.count == 1)
-        return balls[p.ends[0]].*field;
-    dvec3 x(0.0);
-    for (std::size_t e = 0; e < 3; ++e)
-        x += p.weights[e] * (balls[p.ends[e]].*field);
-    return x;
-}
-
-double BallContacts::inverseMassOf(const NetPoint& p) const
-{
-    if (p.count == 1)
-        return balls[p.ends[0]].inverseMass;
-    double w = 0.0;
-    for (std::size_t e = 0; e < 3; ++e)
-        w += p.weights[e] * p.weights[e] * balls[p.ends[e]].inverseMass;
-    return w;
 }
 
 void BallContacts::startOnNets(double dt)
@@ -86,29 +66,19 @@ void BallContacts::startOnNets(double dt)
     m_netContacts.resize(onNets.size());
     for (std::size_t k = 0; k < onNets.size(); ++k) {
         const NetContact& s = onNets[k];
-        // The material of each side's point: its balls' by their weights.
-        const std::array<const NetPoint*, 2> sides{&s.piece, &s.toucher};
-        std::array<double, 2> cor{}, friction{};
-        double resting = 0.0;
-        bool substeps = false;
-        for (std::size_t i = 0; i < 2; ++i)
-            for (std::size_t e = 0; e < 3; ++e) {
-                const Ball& end = balls[sides[i]->ends[e]];
-                cor[i] += sides[i]->weights[e] * end.cor;
-                friction[i] += sides[i]->weights[e] * end.friction;
-                resting = std::max(resting, end.restingSpeed);
-                substeps = substeps || end.metInSubsteps;
-            }
-        const double w = inverseMassOf(s.piece), wt = inverseMassOf(s.toucher), total = w + wt;
-        const dvec3 d = pointOf(s.toucher, &Ball::x) - pointOf(s.piece, &Ball::x);
+        // Each side as one ball of its point's place, mass and material.
+        const Ball piece = asBall(balls, s.piece), toucher = asBall(balls, s.toucher);
+        const double total = piece.inverseMass + toucher.inverseMass;
+        const dvec3 d = toucher.x - piece.x;
         m_netContacts[k] = newContact(d);
         const BallPairRule<double>& rule = m_netRules[k] = {s.piece.radius + s.toucher.radius,
-                                                            w / total,
-                                                            wt / total,
-                                                            combinedRestitution(cor[0], cor[1]),
-                                                            combinedFriction(friction[0], friction[1]),
-                                                            resting,
+                                                            piece.inverseMass / total,
+                                                            toucher.inverseMass / total,
+                                                            combinedRestitution(piece.cor, toucher.cor),
+                                                            combinedFriction(piece.friction, toucher.friction),
+                                                            std::max(piece.restingSpeed, toucher.restingSpeed),
                                                             dt};
+        const bool substeps = piece.metInSubsteps || toucher.metInSubsteps;
         const NetKey key = keyOf(s);
         const auto old = std::lower_bound(m_rememberedOnNets.begin(), m_rememberedOnNets.end(), key,
                                           [](const auto& entry, const NetKey& k2) { return entry.first < k2; });
@@ -119,46 +89,28 @@ void BallContacts::startOnNets(double dt)
         contact = old->second;
         contact.tangent -= glm::dot(contact.tangent, n) * n;
         const dvec3 change = contact.normal * n + contact.tangent;
-        shareOut(s.piece, dvec3(0.0), -rule.shareA * change);
-        shareOut(s.toucher, dvec3(0.0), rule.shareB * change);
-    }
-}
-
-void BallContacts::shareOut(const NetPoint& p, const dvec3& dx, const dvec3& dv)
-{
-    if (p.count == 1) { // a ball alone moves by dx itself, to the bit
-        Ball& ball = balls[p.ends[0]];
-        ball.x += dx;
-        ball.v += dv;
-        return;
-    }
-    const double w = inverseMassOf(p);
-    if (!(w > 0.0))
-        return;
-    // What moved the point by dx moves each end by its weight, over the point's inverse mass.
-    const dvec3 moved = dx / w, pushed = dv / w;
-    for (std::size_t e = 0; e < 3; ++e) {
-        Ball& end = balls[p.ends[e]];
-        end.x += p.weights[e] * end.inverseMass * moved;
-        end.v += p.weights[e] * end.inverseMass * pushed;
+        shareOut(balls, s.piece, dvec3(0.0), -rule.shareA * change);
+        shareOut(balls, s.toucher, dvec3(0.0), rule.shareB * change);
     }
 }
 
 void BallContacts::touchNet(const NetContact& s, BallContact<double>& contact, const BallPairRule<double>& rule,
                             bool first)
 {
-    const dvec3 x0 = pointOf(s.piece, &Ball::x), v0 = pointOf(s.piece, &Ball::v);
+    const Ball piece = asBall(balls, s.piece);
+    const dvec3 x0 = piece.x, v0 = piece.v;
     dvec3 x = x0, v = v0;
     if (s.toucher.count == 1) { // a ball: moved where it is
         Ball& c = balls[s.toucher.ends[0]];
         touchBalls(x, v, c.x, c.v, contact, rule, first);
     } else {
-        const dvec3 y0 = pointOf(s.toucher, &Ball::x), u0 = pointOf(s.toucher, &Ball::v);
+        const Ball toucher = asBall(balls, s.toucher);
+        const dvec3 y0 = toucher.x, u0 = toucher.v;
         dvec3 y = y0, u = u0;
         touchBalls(x, v, y, u, contact, rule, first);
-        shareOut(s.toucher, y - y0, u - u0);
+        shareOut(balls, s.toucher, y - y0, u - u0);
     }
-    shareOut(s.piece, x - x0, v - v0);
+    shareOut(balls, s.piece, x - x0, v - v0);
 }
 
 void BallContacts::findWalls(std::span<const Plane> planes, double largest)

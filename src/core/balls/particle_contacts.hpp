@@ -103,16 +103,10 @@ private:
     /// Each ball's contact with a piece of a net, its rule and, warm started, its contact as the
     /// last step left it (known again by the ball and the piece's bodies).
     void startOnNets(double dt);
-    /// A point of balls moved by dx and its velocity changed by dv: each ball's share of it.
-    void shareOut(const NetPoint& p, const dvec3& dx, const dvec3& dv);
     /// touchBalls between the piece's point and the ball or the other segment's point, each as a
     /// ball of its point's mass (each end carrying its weight of it), their pushes and impulses
     /// shared back to the ends.
     void touchNet(const NetContact& s, BallContact<double>& contact, const BallPairRule<double>& rule, bool first);
-    /// Its position (`&Ball::x`) or velocity (`&Ball::v`): its balls' by their weights.
-    dvec3 pointOf(const NetPoint& p, dvec3 Ball::*field) const;
-    /// Its inverse mass: each ball's by the square of its weight.
-    double inverseMassOf(const NetPoint& p) const;
 
     /// Each moving ball within eight of the largest radii of a surface, with those surfaces
     /// (wallsWithin), into nearWall: the sweeps move a ball by its overlaps, each under a diameter.
