@@ -47,8 +47,9 @@ dvec3 placeAt(const Ball& ball, double t);
 std::optional<double> impactTime(const Ball& a, const Ball& b);
 
 /// Balls a and b met at fraction t of a step of dt: their velocities changed by the impact at
-/// the point they touched, their ends moved by that change over the rest of the step. Whether
-/// the pair rebounded (not a resting contact); nothing, and nothing changed, if their velocities
+/// the point they touched; a free ball's end moved by that change over the rest of the step, its
+/// path then running from where it met the other (a sprung one keeps its place). Whether the
+/// pair rebounded (not a resting contact); nothing, and nothing changed, if their velocities
 /// part them already.
 std::optional<bool> meetAt(Ball& a, Ball& b, double t, double dt);
 
